@@ -1,0 +1,114 @@
+//! The crate's one error type.
+
+/// Everything that can go wrong while building or evaluating a representation.
+///
+/// Indices count from 0, the first data point (or control point, or knot).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// Fewer data or control points than the representation needs.
+    #[error("too few points: {what} needs at least {needed}, got {got}")]
+    TooFewPoints {
+        /// What needs them.
+        what: &'static str,
+        /// The minimum.
+        needed: usize,
+        /// What was given.
+        got: usize,
+    },
+    /// A sequence that must increase strictly does not (x of a spline function, parameters, knots).
+    #[error("{what} must increase strictly: value {value} at index {index} follows {previous}")]
+    NotIncreasing {
+        /// Which sequence.
+        what: &'static str,
+        /// Index of the offending value.
+        index: usize,
+        /// The value before it.
+        previous: f64,
+        /// The offending value.
+        value: f64,
+    },
+    /// Two consecutive data points coincide, so a chord-length parameter step would be zero.
+    #[error("points {index} and {} coincide", index + 1)]
+    RepeatedPoint {
+        /// Index of the first of the two points.
+        index: usize,
+    },
+    /// A coordinate, parameter, weight or knot is NaN or infinite.
+    #[error("{what} {index} is not finite")]
+    NonFinite {
+        /// Which kind of value.
+        what: &'static str,
+        /// Its index.
+        index: usize,
+    },
+    /// Two inputs that must have related lengths do not.
+    #[error("length mismatch: {what} expected {expected}, got {got}")]
+    LengthMismatch {
+        /// Which input.
+        what: &'static str,
+        /// The length it must have.
+        expected: usize,
+        /// The length it has.
+        got: usize,
+    },
+    /// A knot vector is not a valid clamped, non-decreasing vector for the degree and count.
+    #[error("bad knot vector: {reason}")]
+    BadKnots {
+        /// What is wrong with it.
+        reason: String,
+    },
+    /// A degree the representation does not support.
+    #[error("bad degree {degree}: {reason}")]
+    BadDegree {
+        /// The degree given.
+        degree: usize,
+        /// Why it is not allowed.
+        reason: &'static str,
+    },
+    /// A weight of a rational curve or surface is not strictly positive.
+    #[error("weight {index} is {value}, weights must be positive")]
+    BadWeight {
+        /// Its index.
+        index: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// An index (of a data point, a control point) is out of range.
+    #[error("index {index} out of range for {len} {what}")]
+    IndexOutOfRange {
+        /// What is indexed.
+        what: &'static str,
+        /// The index given.
+        index: usize,
+        /// How many there are.
+        len: usize,
+    },
+    /// A move that a representation cannot make (e.g. changing x of a spline function's point).
+    #[error("invalid move of point {index}: {reason}")]
+    InvalidMove {
+        /// The point.
+        index: usize,
+        /// Why.
+        reason: &'static str,
+    },
+    /// A linear system that must be solved is singular or numerically so.
+    #[error("singular system while {what}")]
+    Singular {
+        /// What was being solved.
+        what: &'static str,
+    },
+    /// A grid of surface points is not rectangular.
+    #[error("grid row {row} has {got} points, expected {expected}")]
+    RaggedGrid {
+        /// The row.
+        row: usize,
+        /// Expected length.
+        expected: usize,
+        /// Actual length.
+        got: usize,
+    },
+}
+
+/// The crate's result type.
+pub type Result<T> = std::result::Result<T, Error>;

@@ -1,0 +1,1 @@
+//! fairing (under construction).

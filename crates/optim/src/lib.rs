@@ -1,0 +1,1 @@
+//! argmin adapters (under construction).

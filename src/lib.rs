@@ -1,0 +1,11 @@
+//! The fairing framework, re-exported in one place.
+//!
+//! See the README for the architecture: representations ([`curve_repr`]) ← indicators and
+//! criteria ([`fairness`]) ← optimisation adapters ([`optim`]) ← strategies and pipelines
+//! ([`fairing`]) ← the `fair` command ([`fair_cli`]).
+
+pub use curve_repr;
+pub use fair_cli;
+pub use fairing;
+pub use fairness;
+pub use optim;
