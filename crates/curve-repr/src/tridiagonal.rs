@@ -54,14 +54,14 @@ pub fn solve<T: Field>(lower: &[f64], diag: &[f64], upper: &[f64], rhs: &[T]) ->
     let mut x: Vec<T> = Vec::with_capacity(n);
     let mut pivot = diag[0];
     let scale = |i: usize| diag[i].abs() + lower[i].abs() + upper[i].abs();
-    if !(pivot.abs() > PIVOT_TOLERANCE * scale(0)) || !pivot.is_finite() {
+    if !pivot.is_finite() || pivot.abs() <= PIVOT_TOLERANCE * scale(0) {
         return Err(singular);
     }
     upper_prime[0] = upper[0] / pivot;
     x.push(rhs[0] * (1.0 / pivot));
     for i in 1..n {
         pivot = diag[i] - lower[i] * upper_prime[i - 1];
-        if !(pivot.abs() > PIVOT_TOLERANCE * scale(i)) || !pivot.is_finite() {
+        if !pivot.is_finite() || pivot.abs() <= PIVOT_TOLERANCE * scale(i) {
             return Err(singular);
         }
         upper_prime[i] = upper[i] / pivot;
@@ -106,7 +106,7 @@ pub fn solve_cyclic<T: Field>(lower: &[f64], diag: &[f64], upper: &[f64], rhs: &
     u[n - 1] = alpha;
     let z = solve(&lower_open, &modified, &upper_open, &u)?;
     let denominator = 1.0 + z[0] + beta / gamma * z[n - 1];
-    if !(denominator.abs() > PIVOT_TOLERANCE) || !denominator.is_finite() {
+    if !denominator.is_finite() || denominator.abs() <= PIVOT_TOLERANCE {
         return Err(Error::Singular {
             what: "solving a cyclic tridiagonal system",
         });
