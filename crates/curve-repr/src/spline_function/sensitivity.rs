@@ -21,6 +21,21 @@
 //! at the end points j = 1, n themselves, and for clamped ends, whose end rows do carry data
 //! (g_1 = ∓1/h_1 for j = 1, 2). Every entry is tested against a full solve with y = e_j.
 //!
+//! In the interior (g_{j−1} = 1/h_{j−1}, g_{j+1} = 1/h_j, and lower_j/p_{j−1} = a_{j−1}/h_{j−1})
+//! the form above reduces to the printed Eq. 14–15. At Han's j = 2 (and symmetrically
+//! j = n − 1) it gives, with Han's 1-based indices:
+//!
+//! - natural (a_1 = 0, g_1 = 0) and clamped (a_1 = 1/2, g_1 = 1/h_1, so g_1/p_1 = a_1/h_1): the
+//!   printed Eq. 14–15 hold unchanged;
+//! - parabolic runout (a_1 = −1, g_1 = 0): they do not. The correct entries are
+//!   c̃_2^2 = −(1/h_1 + (1 + a*_3)/h_2) / (3h_1 + 2h_2 − a*_3 h_2) and c̃_1^2 = c̃_2^2, where the
+//!   printed Eq. 14 drops the 1/h_1 term (its 1 + a_1 is 0) and Eq. 15 adds −1/h_1².
+//!   Mirrored at j = n − 1: c̃_{n−1}^{n−1} = −((1 + a_{n−2})/h_{n−2} + 1/h_{n−1}) /
+//!   (2h_{n−2} + 3h_{n−1} − a_{n−2}h_{n−2}) and c̃_n^{n−1} = c̃_{n−1}^{n−1}.
+//!
+//! At the end points themselves (j = 1, n; Han leaves them out) runout and natural have
+//! g_1 = 0, g_2 = 1/h_1, clamped has g_1 = −1/h_1, g_2 = 1/h_1; the same form covers them.
+//!
 //! **Decay.** 0 < a_i, a*_i < 1/2 in the interior (proof in the `recurrence` module);
 //! only the end factors a_1, a*_n (−1 for runout, 0 natural, 1/2 clamped) can reach 1 in
 //! magnitude, so for |i − j| ≥ 2
@@ -227,5 +242,53 @@ impl SplineFunction {
             }
         }
         Some(SensitivityColumn { first, values })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::EndCondition;
+    use super::*;
+
+    /// Han's Eq. 14 as printed, 0-based: the centre entry of column j.
+    fn printed_eq_14(spline: &SplineFunction, j: usize) -> f64 {
+        let x = spline.x();
+        let e = &spline.elimination;
+        let (before, after) = (x[j] - x[j - 1], x[j + 1] - x[j]);
+        let numerator =
+            -((1.0 + e.forward_factor[j - 1]) / before + (1.0 + e.backward_factor[j + 1]) / after);
+        numerator
+            / (2.0 * (before + after) - e.forward_factor[j - 1] * before - e.backward_factor[j + 1] * after)
+    }
+
+    #[test]
+    fn printed_eq_14_holds_inside_and_next_to_the_ends_except_for_runout() {
+        let x = [0.0, 0.7, 1.0, 2.2, 2.5, 4.0, 4.1];
+        let n = x.len();
+        let y = [0.0; 7];
+        for end in [
+            EndCondition::ParabolicRunout,
+            EndCondition::Natural,
+            EndCondition::Clamped {
+                start_slope: 0.0,
+                end_slope: 0.0,
+            },
+        ] {
+            let spline = SplineFunction::new(&x, &y, end).unwrap();
+            for j in 1..n - 1 {
+                let exact = spline.sensitivity(j, j);
+                let agrees = (printed_eq_14(&spline, j) - exact).abs() < 1e-12 * exact.abs();
+                let next_to_an_end = j == 1 || j == n - 2;
+                let runout = end == EndCondition::ParabolicRunout;
+                assert_eq!(agrees, !(runout && next_to_an_end), "{end:?} j = {j}");
+            }
+        }
+        // The corrected runout entry next to the start (module doc, 1-based there).
+        let spline = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap();
+        let (h1, h2) = (x[1] - x[0], x[2] - x[1]);
+        let a3 = spline.elimination.backward_factor[2];
+        let corrected = -(1.0 / h1 + (1.0 + a3) / h2) / (3.0 * h1 + 2.0 * h2 - a3 * h2);
+        assert!((spline.sensitivity(1, 1) - corrected).abs() < 1e-13 * corrected.abs());
+        assert_eq!(spline.sensitivity(0, 1), spline.sensitivity(1, 1));
     }
 }
