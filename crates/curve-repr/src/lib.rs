@@ -21,6 +21,7 @@
 pub mod curve;
 pub mod error;
 pub mod parametrization;
+pub mod spline_function;
 pub mod surface;
 pub mod tridiagonal;
 pub mod vector;
@@ -28,5 +29,6 @@ pub mod vector;
 pub use curve::{Curve, Interpolant, Side};
 pub use error::{Error, Result};
 pub use parametrization::Parametrization;
+pub use spline_function::{EndCondition, SplineFunction};
 pub use surface::Surface;
 pub use vector::{Vec2, Vec3, Vector};
