@@ -20,6 +20,7 @@
 
 pub mod curve;
 pub mod error;
+pub mod hermite;
 pub mod parametrization;
 pub mod surface;
 pub mod tridiagonal;
@@ -27,6 +28,7 @@ pub mod vector;
 
 pub use curve::{Curve, Interpolant, Side};
 pub use error::{Error, Result};
+pub use hermite::{HermiteEnds, HermiteSettings, HermiteSpline};
 pub use parametrization::Parametrization;
 pub use surface::Surface;
 pub use vector::{Vec2, Vec3, Vector};
