@@ -9,7 +9,10 @@ fn points(n: usize) -> Vec<Vec2> {
     (0..n)
         .map(|i| {
             let t = i as f64 * 0.01;
-            Vec2::new(t + 0.003 * (t * 37.0).sin(), (t * 3.0).sin() + 0.002 * (t * 91.0).cos())
+            Vec2::new(
+                t + 0.003 * (t * 37.0).sin(),
+                (t * 3.0).sin() + 0.002 * (t * 91.0).cos(),
+            )
         })
         .collect()
 }

@@ -71,7 +71,11 @@ mod tests {
         (0..9)
             .map(|i| {
                 let t = i as f64;
-                Vec3::new(t + 0.3 * (t * 1.7).sin(), (t * 0.9).cos() * 2.0, 0.4 * t * t.sqrt())
+                Vec3::new(
+                    t + 0.3 * (t * 1.7).sin(),
+                    (t * 0.9).cos() * 2.0,
+                    0.4 * t * t.sqrt(),
+                )
             })
             .collect()
     }
@@ -94,7 +98,10 @@ mod tests {
                 let gradient = (plus - minus) / (2.0 * delta);
                 let curvature = (plus - 2.0 * base + minus) / (delta * delta);
                 // E is quadratic in M: a gradient that vanishes means E(M ± δ) − E(M) = O(δ²).
-                assert!(gradient.abs() < 1e-7 * curvature.abs().max(1.0), "i {i} axis {axis}: {gradient}");
+                assert!(
+                    gradient.abs() < 1e-7 * curvature.abs().max(1.0),
+                    "i {i} axis {axis}: {gradient}"
+                );
                 assert!(plus > base && minus > base);
             }
         }
@@ -104,7 +111,11 @@ mod tests {
     /// segment energies agree with a 3-point Gauss–Legendre rule (exact for |C''|², degree 2).
     #[test]
     fn jumps_and_energies_agree_with_the_jet() {
-        for ends in [HermiteEnds::Natural, HermiteEnds::ParabolicRunout, HermiteEnds::Closed] {
+        for ends in [
+            HermiteEnds::Natural,
+            HermiteEnds::ParabolicRunout,
+            HermiteEnds::Closed,
+        ] {
             let settings = HermiteSettings::default().with_ends(ends);
             let spline = HermiteSpline::new(&zigzag(), &settings).unwrap();
             let jumps = spline.third_derivative_jumps();

@@ -183,7 +183,9 @@ impl<const D: usize> HermiteSpline<D> {
             Side::Left => self.knots.partition_point(|&k| k < t),
             Side::Right => self.knots.partition_point(|&k| k <= t),
         };
-        count.saturating_sub(1).min(self.segment_count().saturating_sub(1))
+        count
+            .saturating_sub(1)
+            .min(self.segment_count().saturating_sub(1))
     }
 }
 
@@ -331,17 +333,32 @@ mod tests {
         assert!(HermiteSpline::natural(&two).is_ok());
         assert!(matches!(
             HermiteSpline::natural(&two[..1]),
-            Err(Error::TooFewPoints { needed: 2, got: 1, .. })
+            Err(Error::TooFewPoints {
+                needed: 2,
+                got: 1,
+                ..
+            })
         ));
         for ends in [HermiteEnds::ParabolicRunout, HermiteEnds::Closed] {
             let settings = HermiteSettings::default().with_ends(ends);
             assert!(matches!(
                 HermiteSpline::new(&two, &settings),
-                Err(Error::TooFewPoints { needed: 3, got: 2, .. })
+                Err(Error::TooFewPoints {
+                    needed: 3,
+                    got: 2,
+                    ..
+                })
             ));
         }
-        let repeated = [Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0)];
-        assert_eq!(HermiteSpline::natural(&repeated), Err(Error::RepeatedPoint { index: 1 }));
+        let repeated = [
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+        ];
+        assert_eq!(
+            HermiteSpline::natural(&repeated),
+            Err(Error::RepeatedPoint { index: 1 })
+        );
         let settings = HermiteSettings::default().with_parametrization(Parametrization::Centripetal);
         assert_eq!(
             HermiteSpline::new(&repeated, &settings),
@@ -363,31 +380,52 @@ mod tests {
         let settings = HermiteSettings::default().with_parameters(vec![0.0, 1.0]);
         assert!(matches!(
             HermiteSpline::new(&repeated, &settings),
-            Err(Error::LengthMismatch { expected: 3, got: 2, .. })
+            Err(Error::LengthMismatch {
+                expected: 3,
+                got: 2,
+                ..
+            })
         ));
         let closed = HermiteSettings::default()
             .with_ends(HermiteEnds::Closed)
             .with_parameters(vec![0.0, 1.0, 2.0]);
         assert!(matches!(
             HermiteSpline::new(&repeated, &closed),
-            Err(Error::LengthMismatch { expected: 4, got: 3, .. })
+            Err(Error::LengthMismatch {
+                expected: 4,
+                got: 3,
+                ..
+            })
         ));
         let nan = [Vec2::new(0.0, 0.0), Vec2::new(f64::NAN, 1.0)];
-        assert!(matches!(HermiteSpline::natural(&nan), Err(Error::NonFinite { index: 1, .. })));
-        let clamped = HermiteSettings::default().with_clamped_ends(Vec2::zeros(), Vec2::new(f64::INFINITY, 0.0));
+        assert!(matches!(
+            HermiteSpline::natural(&nan),
+            Err(Error::NonFinite { index: 1, .. })
+        ));
+        let clamped =
+            HermiteSettings::default().with_clamped_ends(Vec2::zeros(), Vec2::new(f64::INFINITY, 0.0));
         assert!(matches!(
             HermiteSpline::new(&two, &clamped),
             Err(Error::NonFinite { index: 1, .. })
         ));
         // A closed curve whose last point repeats the first has a zero closing chord.
-        let loop_points = [Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0), Vec2::new(0.0, 1.0), Vec2::new(0.0, 0.0)];
+        let loop_points = [
+            Vec2::new(0.0, 0.0),
+            Vec2::new(1.0, 0.0),
+            Vec2::new(0.0, 1.0),
+            Vec2::new(0.0, 0.0),
+        ];
         let settings = HermiteSettings::default().with_ends(HermiteEnds::Closed);
         assert!(matches!(
             HermiteSpline::new(&loop_points, &settings),
             Err(Error::RepeatedPoint { .. })
         ));
         // Huge coordinates overflow the chord lengths: an error, not a NaN curve.
-        let huge = [Vec2::new(-1e308, 0.0), Vec2::new(1e308, 0.0), Vec2::new(1e308, 1e308)];
+        let huge = [
+            Vec2::new(-1e308, 0.0),
+            Vec2::new(1e308, 0.0),
+            Vec2::new(1e308, 1e308),
+        ];
         assert!(HermiteSpline::natural(&huge).is_err());
     }
 }

@@ -36,9 +36,19 @@ impl<const D: usize> HermiteSpline<D> {
         let open_end = |ends: Option<(f64, f64, Vector<D>)>, at_start: bool| {
             ends.map(|(first, second, rhs)| {
                 if at_start {
-                    Row { lower: 0.0, diag: first, upper: second, rhs }
+                    Row {
+                        lower: 0.0,
+                        diag: first,
+                        upper: second,
+                        rhs,
+                    }
                 } else {
-                    Row { lower: first, diag: second, upper: 0.0, rhs }
+                    Row {
+                        lower: first,
+                        diag: second,
+                        upper: 0.0,
+                        rhs,
+                    }
                 }
             })
         };
@@ -135,7 +145,10 @@ pub(super) fn window<const D: usize>(
 
 fn check_tangents<const D: usize>(tangents: &[Vector<D>]) -> Result<()> {
     match tangents.iter().position(|m| m.iter().any(|c| !c.is_finite())) {
-        Some(index) => Err(Error::NonFinite { what: "tangent", index }),
+        Some(index) => Err(Error::NonFinite {
+            what: "tangent",
+            index,
+        }),
         None => Ok(()),
     }
 }

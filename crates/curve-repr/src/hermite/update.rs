@@ -28,7 +28,11 @@ fn decay<const D: usize>(spline: &HermiteSpline<D>, k: usize, forward: bool) -> 
     let (h0, h1) = (spline.step(previous), spline.step(k));
     let a = h1 / (h0 + h1);
     let b = h0 / (h0 + h1);
-    let q = if forward { a / (2.0 - 0.5 * b) } else { b / (2.0 - 0.5 * a) };
+    let q = if forward {
+        a / (2.0 - 0.5 * b)
+    } else {
+        b / (2.0 - 0.5 * a)
+    };
     if q.is_finite() {
         q
     } else {
@@ -131,7 +135,10 @@ fn merge(sorted: &[(isize, isize)]) -> Vec<(isize, isize)> {
 /// Merges the windows of the moved points and solves each; falls back to a full solve when
 /// the windows of a closed curve cover it. Tangents are written only after every solve
 /// succeeded.
-fn update_tangents<const D: usize>(spline: &mut HermiteSpline<D>, moves: &[(usize, Vector<D>)]) -> Result<()> {
+fn update_tangents<const D: usize>(
+    spline: &mut HermiteSpline<D>,
+    moves: &[(usize, Vector<D>)],
+) -> Result<()> {
     let count = spline.points.len() as isize;
     let mut windows: Vec<(isize, isize)> = moves.iter().map(|&(j, _)| window_of(spline, j)).collect();
     if spline.is_closed() {
@@ -197,18 +204,26 @@ mod tests {
         let settings = HermiteSettings::default().with_parametrization(Parametrization::Uniform);
         let before = HermiteSpline::new(&points, &settings).unwrap();
         let mut after = before.clone();
-        after.move_points(&[(100, points[100] + Vec2::new(0.0, 1.0))]).unwrap();
+        after
+            .move_points(&[(100, points[100] + Vec2::new(0.0, 1.0))])
+            .unwrap();
         after.rebuild().unwrap();
         let change = |k: usize| (after.tangents[k] - before.tangents[k]).norm();
         let near = change(101);
         for distance in 2..25 {
             let ratio = change(100 + distance) / near;
-            assert!(ratio <= (2.0f64 / 7.0).powi(distance as i32 - 1), "distance {distance}");
+            assert!(
+                ratio <= (2.0f64 / 7.0).powi(distance as i32 - 1),
+                "distance {distance}"
+            );
             if distance > 12 {
                 continue;
             }
             let rate = (change(100 + distance) / change(100 + distance - 1)).abs();
-            assert!((rate - (2.0 - 3f64.sqrt())).abs() < 1e-6, "distance {distance}: {rate}");
+            assert!(
+                (rate - (2.0 - 3f64.sqrt())).abs() < 1e-6,
+                "distance {distance}: {rate}"
+            );
         }
     }
 
