@@ -20,6 +20,7 @@
 
 pub mod curve;
 pub mod error;
+pub mod hermite;
 pub mod parametrization;
 pub mod spline_function;
 pub mod surface;
@@ -28,6 +29,7 @@ pub mod vector;
 
 pub use curve::{Curve, Interpolant, Side};
 pub use error::{Error, Result};
+pub use hermite::{HermiteEnds, HermiteSettings, HermiteSpline};
 pub use parametrization::Parametrization;
 pub use spline_function::{EndCondition, SplineFunction};
 pub use surface::Surface;
