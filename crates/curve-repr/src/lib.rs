@@ -19,14 +19,20 @@
 //! [`Error`].
 
 pub mod curve;
+pub mod bspline;
 pub mod error;
+pub mod nurbs_curve;
+pub mod nurbs_surface;
 pub mod parametrization;
 pub mod surface;
 pub mod tridiagonal;
 pub mod vector;
 
 pub use curve::{Curve, Interpolant, Side};
+pub use bspline::KnotVector;
 pub use error::{Error, Result};
+pub use nurbs_curve::{Interpolation, InterpolationSettings, NurbsCurve, NurbsInterpolant};
+pub use nurbs_surface::NurbsSurface;
 pub use parametrization::Parametrization;
 pub use surface::Surface;
 pub use vector::{Vec2, Vec3, Vector};
