@@ -454,10 +454,12 @@ proptest! {
         radius in 0.01f64..100.0,
         start in -10.0f64..10.0,
         sweep in 0.01f64..(2.0 * std::f64::consts::PI),
-        cx in -50.0f64..50.0,
-        cy in -50.0f64..50.0,
+        cx in -5.0f64..5.0,
+        cy in -5.0f64..5.0,
     ) {
-        let center = Vec2::new(cx, cy);
+        // The centre scales with the radius: a far centre makes C'' a difference of large
+        // numbers (conditioning, not the construction), which a fixed tolerance cannot judge.
+        let center = Vec2::new(cx, cy) * radius;
         let arc = NurbsCurve::circular_arc(center, radius, start, start + sweep).unwrap();
         for i in 0..=40 {
             let u = i as f64 / 40.0;
