@@ -21,18 +21,26 @@ fn interpolation(c: &mut Criterion) {
         let data = points(n);
         group.bench_with_input(BenchmarkId::new("build_and_solve", n), &data, |b, data| {
             b.iter(|| {
-                let problem =
-                    Interpolation::with_parametrization(black_box(data), Parametrization::ChordLength, InterpolationSettings::default())
-                        .unwrap();
+                let problem = Interpolation::with_parametrization(
+                    black_box(data),
+                    Parametrization::ChordLength,
+                    InterpolationSettings::default(),
+                )
+                .unwrap();
                 problem.nubs().unwrap()
             })
         });
     }
     let data = points(100);
-    let settings = InterpolationSettings::default().with_end_tangents(Vec2::new(1.0, 1.0), Vec2::new(1.0, 0.0));
+    let settings =
+        InterpolationSettings::default().with_end_tangents(Vec2::new(1.0, 1.0), Vec2::new(1.0, 0.0));
     let problem = Interpolation::with_parametrization(&data, Parametrization::ChordLength, settings).unwrap();
-    let weights: Vec<f64> = (0..problem.control_count()).map(|i| 1.0 + 0.3 * (i as f64 * 0.1).sin()).collect();
-    group.bench_function("weighted_resolve/100", |b| b.iter(|| problem.solve(black_box(&weights)).unwrap()));
+    let weights: Vec<f64> = (0..problem.control_count())
+        .map(|i| 1.0 + 0.3 * (i as f64 * 0.1).sin())
+        .collect();
+    group.bench_function("weighted_resolve/100", |b| {
+        b.iter(|| problem.solve(black_box(&weights)).unwrap())
+    });
     group.finish();
 }
 

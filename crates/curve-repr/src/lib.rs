@@ -18,8 +18,8 @@
 //! No input makes this crate panic: every constructor validates its input and returns
 //! [`Error`].
 
-pub mod curve;
 pub mod bspline;
+pub mod curve;
 pub mod error;
 pub mod nurbs_curve;
 pub mod nurbs_surface;
@@ -28,8 +28,8 @@ pub mod surface;
 pub mod tridiagonal;
 pub mod vector;
 
-pub use curve::{Curve, Interpolant, Side};
 pub use bspline::KnotVector;
+pub use curve::{Curve, Interpolant, Side};
 pub use error::{Error, Result};
 pub use nurbs_curve::{Interpolation, InterpolationSettings, NurbsCurve, NurbsInterpolant};
 pub use nurbs_surface::NurbsSurface;

@@ -98,12 +98,16 @@ impl NurbsSurface {
 
     /// Control point P_ij, if in range.
     pub fn control_point(&self, i: usize, j: usize) -> Option<Vec3> {
-        (j < self.columns).then(|| self.control_points.get(i * self.columns + j).copied()).flatten()
+        (j < self.columns)
+            .then(|| self.control_points.get(i * self.columns + j).copied())
+            .flatten()
     }
 
     /// Weight w_ij, if in range.
     pub fn weight(&self, i: usize, j: usize) -> Option<f64> {
-        (j < self.columns).then(|| self.weights.get(i * self.columns + j).copied()).flatten()
+        (j < self.columns)
+            .then(|| self.weights.get(i * self.columns + j).copied())
+            .flatten()
     }
 
     /// All partial derivatives S^{(k,l)} for k ≤ `order_u`, l ≤ `order_v` at (u, v), with
@@ -114,7 +118,15 @@ impl NurbsSurface {
     /// S^{(k,l)} = (A^{(k,l)} − Σ_{j=1}^{l} C(l,j) w^{(0,j)} S^{(k,l−j)}
     ///   − Σ_{i=1}^{k} C(k,i) [w^{(i,0)} S^{(k−i,l)} + Σ_{j=1}^{l} C(l,j) w^{(i,j)} S^{(k−i,l−j)}]) / w.
     /// O(p q (order_u + 1)(order_v + 1) + order⁴).
-    pub fn derivatives(&self, u: f64, v: f64, order_u: usize, order_v: usize, side_u: Side, side_v: Side) -> Vec<Vec<Vec3>> {
+    pub fn derivatives(
+        &self,
+        u: f64,
+        v: f64,
+        order_u: usize,
+        order_v: usize,
+        side_u: Side,
+        side_v: Side,
+    ) -> Vec<Vec<Vec3>> {
         let (p, q) = self.degrees();
         let span_u = self.knots_u.span(u, side_u);
         let span_v = self.knots_v.span(v, side_v);

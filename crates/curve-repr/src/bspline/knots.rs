@@ -76,7 +76,11 @@ impl KnotVector {
         let interior = &knots[degree + 1..expected - degree - 1];
         let mut run = 0;
         for (i, k) in interior.iter().enumerate() {
-            run = if i > 0 && interior[i - 1] == *k { run + 1 } else { 1 };
+            run = if i > 0 && interior[i - 1] == *k {
+                run + 1
+            } else {
+                1
+            };
             if run > degree {
                 return Err(bad(format!(
                     "interior knot {} has multiplicity above the degree {}",
@@ -107,7 +111,11 @@ impl KnotVector {
         if count < 2 || control_count < degree + 1 {
             return Err(Error::TooFewPoints {
                 what: "interpolation of this degree",
-                needed: if end_derivatives { degree.saturating_sub(1).max(2) } else { degree + 1 },
+                needed: if end_derivatives {
+                    degree.saturating_sub(1).max(2)
+                } else {
+                    degree + 1
+                },
                 got: count,
             });
         }
@@ -127,7 +135,9 @@ impl KnotVector {
         let offset = if end_derivatives { 0 } else { 1 };
         for k in 0..interior {
             let start = offset + k;
-            let sum: f64 = params.get(start..start + degree).map_or(f64::NAN, |w| w.iter().sum());
+            let sum: f64 = params
+                .get(start..start + degree)
+                .map_or(f64::NAN, |w| w.iter().sum());
             knots.push(sum / p);
         }
         knots.extend(std::iter::repeat(last).take(degree + 1));

@@ -44,7 +44,8 @@ fn arc<const D: usize>(
     let narcs = ((sweep / FRAC_PI_2) * (1.0 - TOLERANCE)).ceil().clamp(1.0, 4.0) as usize;
     let delta = sweep / narcs as f64;
     let middle_weight = (delta / 2.0).cos();
-    let at = |angle: f64, scale: f64| center + (x_axis * angle.cos() + y_axis * angle.sin()) * (radius * scale);
+    let at =
+        |angle: f64, scale: f64| center + (x_axis * angle.cos() + y_axis * angle.sin()) * (radius * scale);
     let mut points = Vec::with_capacity(2 * narcs + 1);
     let mut weights = Vec::with_capacity(2 * narcs + 1);
     points.push(at(start, 1.0));
@@ -85,7 +86,14 @@ impl NurbsCurve<3> {
     /// measured from `x_axis` towards `y_axis`. Otherwise as [`NurbsCurve::circular_arc`].
     ///
     /// Fails also with [`Error::Singular`] when the axes are zero or not orthogonal.
-    pub fn circular_arc_3d(center: Vec3, x_axis: Vec3, y_axis: Vec3, radius: f64, start: f64, end: f64) -> Result<Self> {
+    pub fn circular_arc_3d(
+        center: Vec3,
+        x_axis: Vec3,
+        y_axis: Vec3,
+        radius: f64,
+        start: f64,
+        end: f64,
+    ) -> Result<Self> {
         let (lx, ly) = (x_axis.norm(), y_axis.norm());
         let singular = Error::Singular {
             what: "building an arc: plane axes must be non-zero and orthogonal",

@@ -215,7 +215,8 @@ impl<const D: usize> Interpolation<D> {
         let singular = Error::Singular {
             what: "factoring the NURBS interpolation matrix",
         };
-        let matrix = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &triplets).map_err(|_| singular.clone())?;
+        let matrix = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &triplets)
+            .map_err(|_| singular.clone())?;
         let lu = matrix.sp_lu().map_err(|_| singular)?;
         Ok(Self {
             knots,
@@ -301,7 +302,9 @@ impl<const D: usize> Interpolation<D> {
                 Condition::Tangent(k, at_end) => {
                     let tangent = self.end_tangents.map(|(a, b)| if at_end { b } else { a });
                     match (points.get(k), tangent) {
-                        (Some(p), Some(t)) => Some(p * weight_at(row, &row.values) + t * weight_at(row, &row.point_values)),
+                        (Some(p), Some(t)) => {
+                            Some(p * weight_at(row, &row.values) + t * weight_at(row, &row.point_values))
+                        }
                         _ => None,
                     }
                 }
@@ -392,7 +395,11 @@ impl<const D: usize> Interpolant<D> for NurbsInterpolant<D> {
 
     /// Data point `index`; NaN coordinates for an index out of range.
     fn point(&self, index: usize) -> Vector<D> {
-        self.interpolation.points.get(index).copied().unwrap_or_else(|| Vector::repeat(f64::NAN))
+        self.interpolation
+            .points
+            .get(index)
+            .copied()
+            .unwrap_or_else(|| Vector::repeat(f64::NAN))
     }
 
     /// The normalised parameter of point `index`; NaN for an index out of range.

@@ -9,7 +9,10 @@ use crate::{Error, Result, Side, Vector};
 type Homogeneous<const D: usize> = (Vector<D>, f64);
 
 fn lerp<const D: usize>(a: Homogeneous<D>, b: Homogeneous<D>, alpha: f64) -> Homogeneous<D> {
-    (a.0 * (1.0 - alpha) + b.0 * alpha, a.1 * (1.0 - alpha) + b.1 * alpha)
+    (
+        a.0 * (1.0 - alpha) + b.0 * alpha,
+        a.1 * (1.0 - alpha) + b.1 * alpha,
+    )
 }
 
 impl<const D: usize> NurbsCurve<D> {
@@ -32,7 +35,10 @@ impl<const D: usize> NurbsCurve<D> {
         let s = up.iter().filter(|&&k| k == u).count();
         if s + times > p {
             return Err(Error::BadKnots {
-                reason: format!("inserting {u} {times} times gives multiplicity {} above the degree {p}", s + times),
+                reason: format!(
+                    "inserting {u} {times} times gives multiplicity {} above the degree {p}",
+                    s + times
+                ),
             });
         }
         if times == 0 {
@@ -41,7 +47,12 @@ impl<const D: usize> NurbsCurve<D> {
         let k = self.knots.span(u, Side::Right);
         let np = self.control_points.len() - 1;
         let r = times;
-        let pw: Vec<Homogeneous<D>> = self.weighted.iter().copied().zip(self.weights.iter().copied()).collect();
+        let pw: Vec<Homogeneous<D>> = self
+            .weighted
+            .iter()
+            .copied()
+            .zip(self.weights.iter().copied())
+            .collect();
         let mut uq = Vec::with_capacity(up.len() + r);
         uq.extend_from_slice(&up[..=k]);
         uq.extend(std::iter::repeat(u).take(r));
@@ -97,12 +108,18 @@ impl<const D: usize> NurbsCurve<D> {
                 reason: "must be finite and non-negative",
             });
         }
-        let distance = |x: Homogeneous<D>, y: Homogeneous<D>| ((x.0 - y.0).norm_squared() + (x.1 - y.1).powi(2)).sqrt();
+        let distance =
+            |x: Homogeneous<D>, y: Homogeneous<D>| ((x.0 - y.0).norm_squared() + (x.1 - y.1).powi(2)).sqrt();
         let num = times.min(s);
         let r = self.knots.span(u, Side::Right) as isize;
         let (p_i, s_i) = (p as isize, s as isize);
         let order = p_i + 1;
-        let mut pw: Vec<Homogeneous<D>> = self.weighted.iter().copied().zip(self.weights.iter().copied()).collect();
+        let mut pw: Vec<Homogeneous<D>> = self
+            .weighted
+            .iter()
+            .copied()
+            .zip(self.weights.iter().copied())
+            .collect();
         let uk = |i: isize| knots.get(i as usize).copied().unwrap_or(f64::NAN);
         let mut first = r - p_i;
         let mut last = r - s_i;
@@ -121,10 +138,16 @@ impl<const D: usize> NurbsCurve<D> {
                 let alpha_j = (u - uk(j - t)) / (uk(j + order) - uk(j - t));
                 let prev = temp[(ii - 1) as usize];
                 let pi = pw[i as usize];
-                temp[ii as usize] = ((pi.0 - prev.0 * (1.0 - alpha_i)) / alpha_i, (pi.1 - prev.1 * (1.0 - alpha_i)) / alpha_i);
+                temp[ii as usize] = (
+                    (pi.0 - prev.0 * (1.0 - alpha_i)) / alpha_i,
+                    (pi.1 - prev.1 * (1.0 - alpha_i)) / alpha_i,
+                );
                 let next = temp[(jj + 1) as usize];
                 let pj = pw[j as usize];
-                temp[jj as usize] = ((pj.0 - next.0 * alpha_j) / (1.0 - alpha_j), (pj.1 - next.1 * alpha_j) / (1.0 - alpha_j));
+                temp[jj as usize] = (
+                    (pj.0 - next.0 * alpha_j) / (1.0 - alpha_j),
+                    (pj.1 - next.1 * alpha_j) / (1.0 - alpha_j),
+                );
                 i += 1;
                 ii += 1;
                 j -= 1;

@@ -58,7 +58,12 @@ impl<const D: usize> NurbsCurve<D> {
     /// [`Error::BadKnots`] / [`Error::BadDegree`] / [`Error::TooFewPoints`] as
     /// [`KnotVector::new`], [`Error::NonFinite`] on a non-finite control point and
     /// [`Error::BadWeight`] on a weight that is not finite and positive. O(n).
-    pub fn new(degree: usize, knots: Vec<f64>, control_points: Vec<Vector<D>>, weights: Vec<f64>) -> Result<Self> {
+    pub fn new(
+        degree: usize,
+        knots: Vec<f64>,
+        control_points: Vec<Vector<D>>,
+        weights: Vec<f64>,
+    ) -> Result<Self> {
         if weights.len() != control_points.len() {
             return Err(Error::LengthMismatch {
                 what: "weights",
@@ -77,8 +82,15 @@ impl<const D: usize> NurbsCurve<D> {
     }
 
     /// Builds from a validated knot vector; checks lengths, points and weights.
-    pub(crate) fn from_parts(knots: KnotVector, control_points: Vec<Vector<D>>, weights: Vec<f64>) -> Result<Self> {
-        for (what, len) in [("control points", control_points.len()), ("weights", weights.len())] {
+    pub(crate) fn from_parts(
+        knots: KnotVector,
+        control_points: Vec<Vector<D>>,
+        weights: Vec<f64>,
+    ) -> Result<Self> {
+        for (what, len) in [
+            ("control points", control_points.len()),
+            ("weights", weights.len()),
+        ] {
             if len != knots.control_count() {
                 return Err(Error::LengthMismatch {
                     what,
@@ -191,7 +203,11 @@ impl<const D: usize> serde::Serialize for NurbsCurve<D> {
     /// `{"type": "nurbs", "degree", "knots", "control_points": [[x, y(, z)], …], "weights"}`,
     /// the `curve` object of the `fair` report.
     fn serialize<S: serde::Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
-        let points: Vec<Vec<f64>> = self.control_points.iter().map(|p| p.iter().copied().collect()).collect();
+        let points: Vec<Vec<f64>> = self
+            .control_points
+            .iter()
+            .map(|p| p.iter().copied().collect())
+            .collect();
         let mut s = serializer.serialize_struct("NurbsCurve", 5)?;
         s.serialize_field("type", "nurbs")?;
         s.serialize_field("degree", &self.degree())?;
