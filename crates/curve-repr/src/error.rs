@@ -108,6 +108,16 @@ pub enum Error {
         /// Actual length.
         got: usize,
     },
+    /// A scalar argument outside its allowed range (a radius, an angle sweep, a knot to insert).
+    #[error("{what} is {value}: {reason}")]
+    OutOfRange {
+        /// Which argument.
+        what: &'static str,
+        /// Its value.
+        value: f64,
+        /// The allowed range.
+        reason: &'static str,
+    },
 }
 
 /// The crate's result type.

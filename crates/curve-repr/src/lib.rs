@@ -18,18 +18,24 @@
 //! No input makes this crate panic: every constructor validates its input and returns
 //! [`Error`].
 
+pub mod bspline;
 pub mod curve;
 pub mod error;
 pub mod hermite;
+pub mod nurbs_curve;
+pub mod nurbs_surface;
 pub mod parametrization;
 pub mod spline_function;
 pub mod surface;
 pub mod tridiagonal;
 pub mod vector;
 
+pub use bspline::KnotVector;
 pub use curve::{Curve, Interpolant, Side};
 pub use error::{Error, Result};
 pub use hermite::{HermiteEnds, HermiteSettings, HermiteSpline};
+pub use nurbs_curve::{Interpolation, InterpolationSettings, NurbsCurve, NurbsInterpolant};
+pub use nurbs_surface::NurbsSurface;
 pub use parametrization::Parametrization;
 pub use spline_function::{EndCondition, SplineFunction};
 pub use surface::Surface;

@@ -1,0 +1,48 @@
+//! NURBS interpolation: building (knots, matrix, sparse LU, solve) for 10², 10³, 10⁴ points,
+//! and re-solving for new weights with the stored factors (the inner step of the weight
+//! optimisation of Nowacki et al.).
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use curve_repr::{Interpolation, InterpolationSettings, Parametrization, Vec2};
+use std::hint::black_box;
+
+fn points(n: usize) -> Vec<Vec2> {
+    (0..n)
+        .map(|i| {
+            let t = i as f64 / n as f64 * 20.0;
+            Vec2::new(t + 0.2 * (3.1 * t).sin(), t.sin() + 0.01 * (17.0 * t).cos())
+        })
+        .collect()
+}
+
+fn interpolation(c: &mut Criterion) {
+    let mut group = c.benchmark_group("nurbs_interpolation");
+    for n in [100, 1_000, 10_000] {
+        let data = points(n);
+        group.bench_with_input(BenchmarkId::new("build_and_solve", n), &data, |b, data| {
+            b.iter(|| {
+                let problem = Interpolation::with_parametrization(
+                    black_box(data),
+                    Parametrization::ChordLength,
+                    InterpolationSettings::default(),
+                )
+                .unwrap();
+                problem.nubs().unwrap()
+            })
+        });
+    }
+    let data = points(100);
+    let settings =
+        InterpolationSettings::default().with_end_tangents(Vec2::new(1.0, 1.0), Vec2::new(1.0, 0.0));
+    let problem = Interpolation::with_parametrization(&data, Parametrization::ChordLength, settings).unwrap();
+    let weights: Vec<f64> = (0..problem.control_count())
+        .map(|i| 1.0 + 0.3 * (i as f64 * 0.1).sin())
+        .collect();
+    group.bench_function("weighted_resolve/100", |b| {
+        b.iter(|| problem.solve(black_box(&weights)).unwrap())
+    });
+    group.finish();
+}
+
+criterion_group!(benches, interpolation);
+criterion_main!(benches);
