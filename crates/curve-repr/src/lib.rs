@@ -18,6 +18,7 @@
 //! No input makes this crate panic: every constructor validates its input and returns
 //! [`Error`].
 
+pub mod bicubic_surface;
 pub mod curve;
 pub mod error;
 pub mod parametrization;
@@ -25,6 +26,7 @@ pub mod surface;
 pub mod tridiagonal;
 pub mod vector;
 
+pub use bicubic_surface::{BicubicSplineSurface, BicubicSurfaceSettings, NodeJump};
 pub use curve::{Curve, Interpolant, Side};
 pub use error::{Error, Result};
 pub use parametrization::Parametrization;
