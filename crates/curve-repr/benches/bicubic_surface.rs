@@ -10,7 +10,11 @@ fn grid(count: usize) -> Vec<Vec<Vec3>> {
             (0..count)
                 .map(|j| {
                     let (x, y) = (i as f64 * 0.1, j as f64 * 0.1);
-                    Vec3::new(x, y, (x * 0.7).sin() * (y * 0.4).cos() + 0.01 * ((i * 31 + j * 17) as f64).sin())
+                    Vec3::new(
+                        x,
+                        y,
+                        (x * 0.7).sin() * (y * 0.4).cos() + 0.01 * ((i * 31 + j * 17) as f64).sin(),
+                    )
                 })
                 .collect()
         })
@@ -21,9 +25,11 @@ fn build(c: &mut Criterion) {
     let mut group = c.benchmark_group("bicubic_surface_build");
     for count in [50, 100, 200, 400] {
         let points = grid(count);
-        group.bench_with_input(BenchmarkId::from_parameter(format!("{count}x{count}")), &points, |b, points| {
-            b.iter(|| BicubicSplineSurface::new(black_box(points)))
-        });
+        group.bench_with_input(
+            BenchmarkId::from_parameter(format!("{count}x{count}")),
+            &points,
+            |b, points| b.iter(|| BicubicSplineSurface::new(black_box(points))),
+        );
     }
     group.finish();
 }

@@ -67,13 +67,21 @@ fn dense_natural3(x: &[f64], values: &[Vec3]) -> [DenseNatural; 3] {
 }
 
 fn eval3(spline: &[DenseNatural; 3], t: f64, order: usize) -> Vec3 {
-    Vec3::new(spline[0].eval(t, order), spline[1].eval(t, order), spline[2].eval(t, order))
+    Vec3::new(
+        spline[0].eval(t, order),
+        spline[1].eval(t, order),
+        spline[2].eval(t, order),
+    )
 }
 
 /// A wavy, non-uniformly spaced grid (deterministic).
 fn wavy_grid(u_count: usize, v_count: usize) -> Vec<Vec<Vec3>> {
-    let xs: Vec<f64> = (0..u_count).map(|i| i as f64 + 0.35 * ((i * i) as f64).sin()).collect();
-    let ys: Vec<f64> = (0..v_count).map(|j| 1.3 * j as f64 + 0.4 * (j as f64 * 1.7).cos()).collect();
+    let xs: Vec<f64> = (0..u_count)
+        .map(|i| i as f64 + 0.35 * ((i * i) as f64).sin())
+        .collect();
+    let ys: Vec<f64> = (0..v_count)
+        .map(|j| 1.3 * j as f64 + 0.4 * (j as f64 * 1.7).cos())
+        .collect();
     xs.iter()
         .enumerate()
         .map(|(i, &x)| {
@@ -81,7 +89,11 @@ fn wavy_grid(u_count: usize, v_count: usize) -> Vec<Vec<Vec3>> {
                 .enumerate()
                 .map(|(j, &y)| {
                     let noise = 0.05 * ((7 * i + 13 * j) as f64).sin();
-                    Vec3::new(x + 0.1 * y, y - 0.05 * x, (0.8 * x).sin() * (0.5 * y).cos() + noise)
+                    Vec3::new(
+                        x + 0.1 * y,
+                        y - 0.05 * x,
+                        (0.8 * x).sin() * (0.5 * y).cos() + noise,
+                    )
                 })
                 .collect()
         })
@@ -127,8 +139,13 @@ fn interpolates_every_point_and_network_curves_are_natural_splines() {
         for &u in &samples(&uk) {
             for order in 0..=3 {
                 let expected = eval3(&spline, u, order);
-                let got = surface.partial_from(u, v, order, 0, Side::Right, Side::Right).unwrap();
-                assert!(close(got, expected, 1e-10), "u-line {j} at {u}, order {order}: {got} vs {expected}");
+                let got = surface
+                    .partial_from(u, v, order, 0, Side::Right, Side::Right)
+                    .unwrap();
+                assert!(
+                    close(got, expected, 1e-10),
+                    "u-line {j} at {u}, order {order}: {got} vs {expected}"
+                );
             }
         }
     }
@@ -138,7 +155,9 @@ fn interpolates_every_point_and_network_curves_are_natural_splines() {
         for &v in &samples(&vk) {
             for order in 0..=3 {
                 let expected = eval3(&spline, v, order);
-                let got = surface.partial_from(u, v, 0, order, Side::Right, Side::Right).unwrap();
+                let got = surface
+                    .partial_from(u, v, 0, order, Side::Right, Side::Right)
+                    .unwrap();
                 assert!(close(got, expected, 1e-10), "v-line {i} at {v}, order {order}");
             }
         }
@@ -183,7 +202,10 @@ fn twists_are_splines_of_the_v_tangents_in_either_direction() {
     for (i, tangents) in u_tangents.iter().enumerate() {
         let spline = dense_natural3(&vk, tangents);
         for (j, &v) in vk.iter().enumerate() {
-            assert!(close(surface.twist(i, j).unwrap(), eval3(&spline, v, 1), 1e-10), "T_{i}{j} via v");
+            assert!(
+                close(surface.twist(i, j).unwrap(), eval3(&spline, v, 1), 1e-10),
+                "T_{i}{j} via v"
+            );
         }
     }
 }
@@ -198,7 +220,9 @@ fn continuity_across_knot_lines_is_c2_everywhere_and_third_derivatives_jump() {
             for b in 0..=3 {
                 for a in 0..=3 {
                     let left = surface.partial_from(u, v, a, b, Side::Left, Side::Right).unwrap();
-                    let right = surface.partial_from(u, v, a, b, Side::Right, Side::Right).unwrap();
+                    let right = surface
+                        .partial_from(u, v, a, b, Side::Right, Side::Right)
+                        .unwrap();
                     if a <= 2 {
                         assert!(close(left, right, 1e-10), "∂^({a},{b}) across u = {u} at v = {v}");
                     } else {
@@ -215,9 +239,14 @@ fn continuity_across_knot_lines_is_c2_everywhere_and_third_derivatives_jump() {
             for a in 0..=3 {
                 for b in 0..=3 {
                     let below = surface.partial_from(u, v, a, b, Side::Right, Side::Left).unwrap();
-                    let above = surface.partial_from(u, v, a, b, Side::Right, Side::Right).unwrap();
+                    let above = surface
+                        .partial_from(u, v, a, b, Side::Right, Side::Right)
+                        .unwrap();
                     if b <= 2 {
-                        assert!(close(below, above, 1e-10), "∂^({a},{b}) across v = {v} at u = {u}");
+                        assert!(
+                            close(below, above, 1e-10),
+                            "∂^({a},{b}) across v = {v} at u = {u}"
+                        );
                     } else {
                         largest_jump = largest_jump.max((below - above).norm());
                     }
@@ -244,7 +273,10 @@ fn partials_agree_with_finite_differences() {
                         if a < 3 {
                             let difference = (value(u + step, v) - value(u - step, v)) / (2.0 * step);
                             let exact = surface.partial(u, v, a + 1, b).unwrap();
-                            assert!(close(difference, exact, 1e-6), "d/du of ({a},{b}): {difference} vs {exact}");
+                            assert!(
+                                close(difference, exact, 1e-6),
+                                "d/du of ({a},{b}): {difference} vs {exact}"
+                            );
                         }
                         if b < 3 {
                             let difference = (value(u, v + step) - value(u, v - step)) / (2.0 * step);
@@ -272,7 +304,10 @@ fn bilinear_data_are_reproduced_exactly() {
         Vec3::new(0.25, -0.6, 1.3),
     );
     let f = |u: f64, v: f64| a + b * u + c * v + d * (u * v);
-    let grid: Vec<Vec<Vec3>> = uk.iter().map(|&u| vk.iter().map(|&v| f(u, v)).collect()).collect();
+    let grid: Vec<Vec<Vec3>> = uk
+        .iter()
+        .map(|&u| vk.iter().map(|&v| f(u, v)).collect())
+        .collect();
     let settings = BicubicSurfaceSettings::default()
         .with_u_knots(uk.clone())
         .with_v_knots(vk.clone());
@@ -284,13 +319,17 @@ fn bilinear_data_are_reproduced_exactly() {
             assert!(close(surface.partial(u, v, 0, 1).unwrap(), c + d * u, 1e-12));
             assert!(close(surface.partial(u, v, 1, 1).unwrap(), d, 1e-12));
             for (du, dv) in [(2, 0), (0, 2), (3, 0), (0, 3), (2, 1), (3, 3)] {
-                assert!(surface.partial(u, v, du, dv).unwrap().norm() < 1e-10, "({du},{dv})");
+                assert!(
+                    surface.partial(u, v, du, dv).unwrap().norm() < 1e-10,
+                    "({du},{dv})"
+                );
             }
         }
     }
     assert!(surface.max_z() < 1e-10);
     // The smallest grid: one bilinear patch.
-    let small = BicubicSplineSurface::new(&[vec![f(0.0, 0.0), f(0.0, 1.0)], vec![f(1.0, 0.0), f(1.0, 1.0)]]).unwrap();
+    let small =
+        BicubicSplineSurface::new(&[vec![f(0.0, 0.0), f(0.0, 1.0)], vec![f(1.0, 0.0), f(1.0, 1.0)]]).unwrap();
     let scale = |t: f64, knots: &[f64]| t / knots[1];
     let (su, sv) = (small.u_knots().to_vec(), small.v_knots().to_vec());
     for &(s, t) in &[(0.2, 0.9), (0.5, 0.5), (1.0, 0.3)] {
@@ -299,7 +338,12 @@ fn bilinear_data_are_reproduced_exactly() {
             + f(0.0, 1.0) * ((1.0 - s) * t)
             + f(1.0, 1.0) * (s * t);
         let point = small.eval(s * su[1], t * sv[1]);
-        assert!(close(point, bilinear, 1e-13), "{} {}", scale(s, &su), scale(t, &sv));
+        assert!(
+            close(point, bilinear, 1e-13),
+            "{} {}",
+            scale(s, &su),
+            scale(t, &sv)
+        );
     }
 }
 
@@ -310,7 +354,10 @@ fn planes_are_reproduced_with_averaged_chord_length_knots() {
     let xs = [0.0, 0.3, 1.2, 1.5, 2.9, 3.1];
     let ys = [-1.0, -0.2, 0.1, 1.4, 2.0];
     let plane = |x: f64, y: f64| 0.7 * x - 1.3 * y + 0.2;
-    let grid: Vec<Vec<Vec3>> = xs.iter().map(|&x| ys.iter().map(|&y| Vec3::new(x, y, plane(x, y))).collect()).collect();
+    let grid: Vec<Vec<Vec3>> = xs
+        .iter()
+        .map(|&x| ys.iter().map(|&y| Vec3::new(x, y, plane(x, y))).collect())
+        .collect();
     let surface = BicubicSplineSurface::new(&grid).unwrap();
     let (uk, vk) = (surface.u_knots().to_vec(), surface.v_knots().to_vec());
     let x_of_u = |u: f64| xs[0] + (u - uk[0]) * (xs[5] - xs[0]) / (uk[5] - uk[0]);
@@ -364,7 +411,10 @@ fn tensor_products_of_natural_splines_are_reproduced_and_quadrics_are_not() {
             constant(u_order, 1.0) * linear_v,
         )
     };
-    let grid: Vec<Vec<Vec3>> = uk.iter().map(|&u| vk.iter().map(|&v| target(u, v, 0, 0)).collect()).collect();
+    let grid: Vec<Vec<Vec3>> = uk
+        .iter()
+        .map(|&u| vk.iter().map(|&v| target(u, v, 0, 0)).collect())
+        .collect();
     let surface = BicubicSplineSurface::with_settings(&grid, &settings).unwrap();
     for &u in &samples(&uk) {
         for &v in &samples(&vk) {
@@ -396,7 +446,10 @@ fn tensor_products_of_natural_splines_are_reproduced_and_quadrics_are_not() {
     assert!(surface.twists().iter().all(|t| t.norm() < 1e-12));
     assert!(surface.partial(uk[0], 1.0, 2, 0).unwrap().z.abs() < 1e-12);
     let middle = surface.partial(1.9, 1.3, 2, 0).unwrap().z;
-    assert!((middle - 2.0).abs() > 1e-3, "the quadric is not reproduced: S_uu = {middle}");
+    assert!(
+        (middle - 2.0).abs() > 1e-3,
+        "the quadric is not reproduced: S_uu = {middle}"
+    );
 }
 
 #[test]
@@ -408,9 +461,13 @@ fn third_derivative_jumps_and_z_match_one_sided_limits() {
     let mut max_z: f64 = 0.0;
     for jump in &jumps {
         let (u, v) = (uk[jump.i], vk[jump.j]);
-        let u_jump = surface.partial_from(u, v, 3, 0, Side::Right, Side::Right).unwrap()
+        let u_jump = surface
+            .partial_from(u, v, 3, 0, Side::Right, Side::Right)
+            .unwrap()
             - surface.partial_from(u, v, 3, 0, Side::Left, Side::Right).unwrap();
-        let v_jump = surface.partial_from(u, v, 0, 3, Side::Right, Side::Right).unwrap()
+        let v_jump = surface
+            .partial_from(u, v, 0, 3, Side::Right, Side::Right)
+            .unwrap()
             - surface.partial_from(u, v, 0, 3, Side::Right, Side::Left).unwrap();
         assert!(close(jump.u, u_jump, 1e-10) && close(jump.v, v_jump, 1e-10));
         let z = surface.z(jump.i, jump.j).unwrap();
@@ -429,13 +486,20 @@ fn network_strain_energy_equals_the_integral_of_the_network_curvature() {
     let surface = BicubicSplineSurface::new(&wavy_grid(5, 7)).unwrap();
     let (uk, vk) = (surface.u_knots().to_vec(), surface.v_knots().to_vec());
     // 3-point Gauss–Legendre is exact for the quadratic |S''|² on each segment.
-    let nodes = [(-(0.6f64).sqrt(), 5.0 / 9.0), (0.0, 8.0 / 9.0), ((0.6f64).sqrt(), 5.0 / 9.0)];
+    let nodes = [
+        (-(0.6f64).sqrt(), 5.0 / 9.0),
+        (0.0, 8.0 / 9.0),
+        ((0.6f64).sqrt(), 5.0 / 9.0),
+    ];
     let integrate = |knots: &[f64], f: &dyn Fn(f64) -> f64| {
         knots
             .windows(2)
             .map(|w| {
                 let (mid, half) = ((w[0] + w[1]) / 2.0, (w[1] - w[0]) / 2.0);
-                nodes.iter().map(|&(x, weight)| weight * half * f(mid + half * x)).sum::<f64>()
+                nodes
+                    .iter()
+                    .map(|&(x, weight)| weight * half * f(mid + half * x))
+                    .sum::<f64>()
             })
             .sum::<f64>()
     };
@@ -447,7 +511,10 @@ fn network_strain_energy_equals_the_integral_of_the_network_curvature() {
         expected += integrate(&vk, &|v| surface.partial(u, v, 0, 2).unwrap().norm_squared());
     }
     let energy = surface.network_strain_energy();
-    assert!((energy - expected).abs() < 1e-10 * expected, "{energy} vs {expected}");
+    assert!(
+        (energy - expected).abs() < 1e-10 * expected,
+        "{energy} vs {expected}"
+    );
     assert!(energy > 0.0);
 }
 
@@ -488,20 +555,33 @@ fn bad_grids_are_errors() {
     ragged[2].pop();
     assert_eq!(
         BicubicSplineSurface::new(&ragged),
-        Err(Error::RaggedGrid { row: 2, expected: 3, got: 2 })
+        Err(Error::RaggedGrid {
+            row: 2,
+            expected: 3,
+            got: 2
+        })
     );
     let mut nan = grid.clone();
     nan[1][2].y = f64::NAN;
-    assert!(matches!(BicubicSplineSurface::new(&nan), Err(Error::NonFinite { index: 5, .. })));
+    assert!(matches!(
+        BicubicSplineSurface::new(&nan),
+        Err(Error::NonFinite { index: 5, .. })
+    ));
     let mut infinite = grid.clone();
     infinite[0][0].x = f64::INFINITY;
-    assert!(matches!(BicubicSplineSurface::new(&infinite), Err(Error::NonFinite { .. })));
+    assert!(matches!(
+        BicubicSplineSurface::new(&infinite),
+        Err(Error::NonFinite { .. })
+    ));
     // Repeated grid lines: rows i = 1, 2 equal, or columns j = 0, 1 equal.
     let mut repeated_u = grid.clone();
     repeated_u[2] = repeated_u[1].clone();
     assert_eq!(
         BicubicSplineSurface::new(&repeated_u),
-        Err(Error::RepeatedGridLine { direction: "u", index: 1 })
+        Err(Error::RepeatedGridLine {
+            direction: "u",
+            index: 1
+        })
     );
     let mut repeated_v = grid.clone();
     for row in &mut repeated_v {
@@ -509,21 +589,47 @@ fn bad_grids_are_errors() {
     }
     assert_eq!(
         BicubicSplineSurface::new(&repeated_v),
-        Err(Error::RepeatedGridLine { direction: "v", index: 0 })
+        Err(Error::RepeatedGridLine {
+            direction: "v",
+            index: 0
+        })
     );
     // Too few lines in a direction.
-    assert!(matches!(BicubicSplineSurface::new(&grid[..1]), Err(Error::TooFewPoints { .. })));
+    assert!(matches!(
+        BicubicSplineSurface::new(&grid[..1]),
+        Err(Error::TooFewPoints { .. })
+    ));
     let single_column: Vec<Vec<Vec3>> = grid.iter().map(|row| vec![row[0]]).collect();
-    assert!(matches!(BicubicSplineSurface::new(&single_column), Err(Error::TooFewPoints { .. })));
-    assert!(matches!(BicubicSplineSurface::new(&[]), Err(Error::TooFewPoints { .. })));
+    assert!(matches!(
+        BicubicSplineSurface::new(&single_column),
+        Err(Error::TooFewPoints { .. })
+    ));
+    assert!(matches!(
+        BicubicSplineSurface::new(&[]),
+        Err(Error::TooFewPoints { .. })
+    ));
     let empty_rows = vec![Vec::new(), Vec::new()];
-    assert!(matches!(BicubicSplineSurface::new(&empty_rows), Err(Error::TooFewPoints { .. })));
+    assert!(matches!(
+        BicubicSplineSurface::new(&empty_rows),
+        Err(Error::TooFewPoints { .. })
+    ));
     // Given knots: wrong length, not increasing, not finite.
-    let bad = |knots: Vec<f64>| BicubicSplineSurface::with_settings(&grid, &settings.clone().with_u_knots(knots));
-    assert!(matches!(bad(vec![0.0, 1.0, 2.0]), Err(Error::LengthMismatch { .. })));
-    assert!(matches!(bad(vec![0.0, 1.0, 1.0, 2.0]), Err(Error::NotIncreasing { index: 2, .. })));
-    assert!(matches!(bad(vec![0.0, 1.0, f64::NAN, 2.0]), Err(Error::NonFinite { .. })));
-    let bad_v = BicubicSplineSurface::with_settings(&grid, &settings.clone().with_v_knots(vec![2.0, 1.0, 3.0]));
+    let bad =
+        |knots: Vec<f64>| BicubicSplineSurface::with_settings(&grid, &settings.clone().with_u_knots(knots));
+    assert!(matches!(
+        bad(vec![0.0, 1.0, 2.0]),
+        Err(Error::LengthMismatch { .. })
+    ));
+    assert!(matches!(
+        bad(vec![0.0, 1.0, 1.0, 2.0]),
+        Err(Error::NotIncreasing { index: 2, .. })
+    ));
+    assert!(matches!(
+        bad(vec![0.0, 1.0, f64::NAN, 2.0]),
+        Err(Error::NonFinite { .. })
+    ));
+    let bad_v =
+        BicubicSplineSurface::with_settings(&grid, &settings.clone().with_v_knots(vec![2.0, 1.0, 3.0]));
     assert!(matches!(bad_v, Err(Error::NotIncreasing { .. })));
     // Flat grid of the wrong size.
     let flat: Vec<Vec3> = grid.iter().flatten().copied().collect();
@@ -540,7 +646,10 @@ fn bad_grids_are_errors() {
         vec![Vec3::new(-f64::MAX, 0.0, 0.0), Vec3::new(-f64::MAX, 1.0, 0.0)],
         vec![Vec3::new(f64::MAX, 0.0, 0.0), Vec3::new(f64::MAX, 1.0, 0.0)],
     ];
-    assert!(matches!(BicubicSplineSurface::new(&huge), Err(Error::NonFinite { .. })));
+    assert!(matches!(
+        BicubicSplineSurface::new(&huge),
+        Err(Error::NonFinite { .. })
+    ));
     // Knot steps so small that tangents overflow.
     let tiny = BicubicSplineSurface::with_settings(
         &grid,
@@ -557,7 +666,11 @@ fn full_rebuild(surface: &BicubicSplineSurface) -> BicubicSplineSurface {
 }
 
 fn relative_difference(a: &[Vec3], b: &[Vec3]) -> f64 {
-    let scale = b.iter().map(|p| p.norm()).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
+    let scale = b
+        .iter()
+        .map(|p| p.norm())
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
     a.iter().zip(b).map(|(x, y)| (x - y).norm()).fold(0.0, f64::max) / scale
 }
 

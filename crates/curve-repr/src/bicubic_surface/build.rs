@@ -137,11 +137,23 @@ impl BicubicSplineSurface {
         })?;
         let u_knots = match settings.u_knots() {
             Some(knots) => checked_knots("u knots", knots, u_count)?,
-            None => averaged_knots(&points, u_count, v_count, settings.parametrization(), Direction::U)?,
+            None => averaged_knots(
+                &points,
+                u_count,
+                v_count,
+                settings.parametrization(),
+                Direction::U,
+            )?,
         };
         let v_knots = match settings.v_knots() {
             Some(knots) => checked_knots("v knots", knots, v_count)?,
-            None => averaged_knots(&points, u_count, v_count, settings.parametrization(), Direction::V)?,
+            None => averaged_knots(
+                &points,
+                u_count,
+                v_count,
+                settings.parametrization(),
+                Direction::V,
+            )?,
         };
         let u_system = NaturalSplineSystem::new(&u_knots)?;
         let v_system = NaturalSplineSystem::new(&v_knots)?;
@@ -188,11 +200,13 @@ impl BicubicSplineSurface {
     /// `values[i·(n+1) + j]` (Eq. 2 with free ends). O(n).
     pub(super) fn solve_along_v(&self, values: &[Vec3], i: usize) -> Result<Vec<Vec3>> {
         let start = i * self.v_count;
-        let line = values.get(start..start + self.v_count).ok_or(Error::IndexOutOfRange {
-            what: "grid lines along u",
-            index: i,
-            len: self.u_count,
-        })?;
+        let line = values
+            .get(start..start + self.v_count)
+            .ok_or(Error::IndexOutOfRange {
+                what: "grid lines along u",
+                index: i,
+                len: self.u_count,
+            })?;
         self.v_system.tangents(line)
     }
 

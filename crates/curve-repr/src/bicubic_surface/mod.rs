@@ -188,7 +188,10 @@ impl BicubicSplineSurface {
 
     /// max z_ij over the interior nodes (0 when there are none): the report's `max_z`. O(m·n).
     pub fn max_z(&self) -> f64 {
-        self.third_derivative_jumps().iter().map(NodeJump::z).fold(0.0, f64::max)
+        self.third_derivative_jumps()
+            .iter()
+            .map(NodeJump::z)
+            .fold(0.0, f64::max)
     }
 
     /// The strain energy of the network curves (the report's `e_s` for surfaces, the sum that
@@ -254,7 +257,12 @@ fn hermite_basis(s: f64, order: usize) -> [f64; 4] {
             -s2 + s2 * s,
             3.0 * s2 - 2.0 * s2 * s,
         ],
-        1 => [-6.0 * s + 6.0 * s2, 1.0 - 4.0 * s + 3.0 * s2, -2.0 * s + 3.0 * s2, 6.0 * s - 6.0 * s2],
+        1 => [
+            -6.0 * s + 6.0 * s2,
+            1.0 - 4.0 * s + 3.0 * s2,
+            -2.0 * s + 3.0 * s2,
+            6.0 * s - 6.0 * s2,
+        ],
         2 => [-6.0 + 12.0 * s, -4.0 + 6.0 * s, -2.0 + 6.0 * s, 6.0 - 12.0 * s],
         _ => [12.0, 6.0, 6.0, -12.0],
     }
@@ -262,7 +270,12 @@ fn hermite_basis(s: f64, order: usize) -> [f64; 4] {
 
 impl Surface for BicubicSplineSurface {
     fn domain(&self) -> ((f64, f64), (f64, f64)) {
-        let first_last = |knots: &[f64]| (knots.first().copied().unwrap_or(0.0), knots.last().copied().unwrap_or(0.0));
+        let first_last = |knots: &[f64]| {
+            (
+                knots.first().copied().unwrap_or(0.0),
+                knots.last().copied().unwrap_or(0.0),
+            )
+        };
         (first_last(&self.u_knots), first_last(&self.v_knots))
     }
 
@@ -313,7 +326,10 @@ mod tests {
                 let derivative = hermite_basis(s, order + 1);
                 for k in 0..4 {
                     let difference = (above[k] - below[k]) / (2.0 * step);
-                    assert!((difference - derivative[k]).abs() < 1e-8, "s {s} order {order} k {k}");
+                    assert!(
+                        (difference - derivative[k]).abs() < 1e-8,
+                        "s {s} order {order} k {k}"
+                    );
                 }
             }
         }

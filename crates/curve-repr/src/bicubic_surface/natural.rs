@@ -161,6 +161,9 @@ mod tests {
     fn wrong_lengths_are_errors() {
         assert!(NaturalSplineSystem::new(&[1.0]).is_err());
         let system = NaturalSplineSystem::new(&[0.0, 1.0, 2.0]).unwrap();
-        assert!(matches!(system.tangents(&[1.0, 2.0]), Err(Error::LengthMismatch { .. })));
+        assert!(matches!(
+            system.tangents(&[1.0, 2.0]),
+            Err(Error::LengthMismatch { .. })
+        ));
     }
 }

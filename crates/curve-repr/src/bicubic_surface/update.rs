@@ -178,13 +178,21 @@ mod tests {
         for count in [1, 3, 12] {
             let mut surface = BicubicSplineSurface::new(&grid(11, 9)).unwrap();
             let moves: Vec<_> = (0..count)
-                .map(|k| (((k * 7) % 11, (k * 5 + 2) % 9), Vec3::new(0.3 * k as f64, -1.0, 2.0)))
+                .map(|k| {
+                    (
+                        ((k * 7) % 11, (k * 5 + 2) % 9),
+                        Vec3::new(0.3 * k as f64, -1.0, 2.0),
+                    )
+                })
                 .collect();
             surface.move_points(&moves).unwrap();
             let full = rebuilt(&surface);
             assert!(max_difference(surface.u_tangents(), full.u_tangents()) < 1e-12);
             assert!(max_difference(surface.v_tangents(), full.v_tangents()) < 1e-12);
-            assert!(max_difference(surface.twists(), full.twists()) < 1e-12, "{count} moves");
+            assert!(
+                max_difference(surface.twists(), full.twists()) < 1e-12,
+                "{count} moves"
+            );
         }
     }
 
