@@ -117,6 +117,14 @@ pub enum Error {
         value: f64,
         /// The allowed range.
         reason: &'static str,
+    /// Two consecutive grid lines of a surface coincide on average, so the averaged
+    /// chord-length knot step between them would be zero.
+    #[error("grid lines {index} and {} in the {direction} direction coincide", index + 1)]
+    RepeatedGridLine {
+        /// `"u"` (lines i and i + 1 of P_ij) or `"v"` (lines j and j + 1).
+        direction: &'static str,
+        /// Index of the first of the two lines.
+        index: usize,
     },
 }
 

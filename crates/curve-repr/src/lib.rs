@@ -19,6 +19,7 @@
 //! [`Error`].
 
 pub mod bspline;
+pub mod bicubic_surface;
 pub mod curve;
 pub mod error;
 pub mod hermite;
@@ -31,6 +32,7 @@ pub mod tridiagonal;
 pub mod vector;
 
 pub use bspline::KnotVector;
+pub use bicubic_surface::{BicubicSplineSurface, BicubicSurfaceSettings, NodeJump};
 pub use curve::{Curve, Interpolant, Side};
 pub use error::{Error, Result};
 pub use hermite::{HermiteEnds, HermiteSettings, HermiteSpline};

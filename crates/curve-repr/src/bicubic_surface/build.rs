@@ -1,0 +1,316 @@
+//! Construction of the bicubic spline surface (Zhang–Cheng §4, first paragraph): knots,
+//! natural cubic splines along every u-line and v-line, twists, all in O(m·n).
+
+use super::natural::NaturalSplineSystem;
+use super::BicubicSplineSurface;
+use crate::{Error, Parametrization, Result, Vec3};
+
+/// How a [`BicubicSplineSurface`] is built: its knots.
+///
+/// By default the knots are chord-length *averaged*, the definition the `fair` report uses
+/// (DESIGN.md, "surface kind"): u_0 = 0 and u_{i+1} − u_i = (1/(n+1)) Σ_j |P_{i+1,j} − P_{i,j}|,
+/// the mean over the n + 1 u-lines of their chord lengths; v_j likewise over the m + 1
+/// v-lines. [`with_parametrization`](Self::with_parametrization) swaps the chord length for
+/// another step rule (uniform steps of 1 give Kjellander's surfaces), averaged the same way;
+/// [`with_u_knots`](Self::with_u_knots) and [`with_v_knots`](Self::with_v_knots) give the
+/// knots outright.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BicubicSurfaceSettings {
+    parametrization: Parametrization,
+    u_knots: Option<Vec<f64>>,
+    v_knots: Option<Vec<f64>>,
+}
+
+impl BicubicSurfaceSettings {
+    /// The step rule averaged into knots where none are given (default: chord length).
+    pub fn with_parametrization(mut self, parametrization: Parametrization) -> Self {
+        self.parametrization = parametrization;
+        self
+    }
+
+    /// Given knots u_0..u_m (finite, strictly increasing, one per grid line i).
+    pub fn with_u_knots(mut self, knots: Vec<f64>) -> Self {
+        self.u_knots = Some(knots);
+        self
+    }
+
+    /// Given knots v_0..v_n (finite, strictly increasing, one per grid line j).
+    pub fn with_v_knots(mut self, knots: Vec<f64>) -> Self {
+        self.v_knots = Some(knots);
+        self
+    }
+
+    /// The step rule of averaged knots.
+    pub fn parametrization(&self) -> Parametrization {
+        self.parametrization
+    }
+
+    /// The given u knots, if any.
+    pub fn u_knots(&self) -> Option<&[f64]> {
+        self.u_knots.as_deref()
+    }
+
+    /// The given v knots, if any.
+    pub fn v_knots(&self) -> Option<&[f64]> {
+        self.v_knots.as_deref()
+    }
+}
+
+impl BicubicSplineSurface {
+    /// The bicubic spline surface through the grid `grid[i][j]` = P_ij (i = 0..m along u,
+    /// j = 0..n along v) with chord-length averaged knots. See [`with_settings`](Self::with_settings).
+    pub fn new(grid: &[Vec<Vec3>]) -> Result<Self> {
+        Self::with_settings(grid, &BicubicSurfaceSettings::default())
+    }
+
+    /// The bicubic spline surface through the grid `grid[i][j]` = P_ij: the outer slice runs
+    /// along u (i = 0..m), each inner vector along v (j = 0..n). O(m·n).
+    ///
+    /// Needs m, n ≥ 1 (two grid lines in each direction; with two, the surface is linear in
+    /// that direction). Fails with [`Error::TooFewPoints`], [`Error::RaggedGrid`] (an inner
+    /// vector whose length differs from the first one's), [`Error::NonFinite`] (a coordinate,
+    /// reported with the flat index i·(n+1) + j, or a knot), [`Error::LengthMismatch`] and
+    /// [`Error::NotIncreasing`] for given knots, and [`Error::RepeatedGridLine`] when two
+    /// consecutive grid lines coincide on average (a zero averaged step).
+    pub fn with_settings(grid: &[Vec<Vec3>], settings: &BicubicSurfaceSettings) -> Result<Self> {
+        let u_count = grid.len();
+        if u_count < 2 {
+            return Err(Error::TooFewPoints {
+                what: "a bicubic spline surface (grid lines along u)",
+                needed: 2,
+                got: u_count,
+            });
+        }
+        let v_count = grid[0].len();
+        for (row, line) in grid.iter().enumerate() {
+            if line.len() != v_count {
+                return Err(Error::RaggedGrid {
+                    row,
+                    expected: v_count,
+                    got: line.len(),
+                });
+            }
+        }
+        let points: Vec<Vec3> = grid.iter().flatten().copied().collect();
+        Self::from_flat(points, u_count, v_count, settings)
+    }
+
+    /// The surface through a flat grid: `points[i·v_count + j]` = P_ij, with m + 1 = `u_count`
+    /// and n + 1 = `v_count`. Fails as [`with_settings`](Self::with_settings) does, and with
+    /// [`Error::LengthMismatch`] when `points.len() != u_count·v_count`. O(m·n).
+    pub fn from_flat(
+        points: Vec<Vec3>,
+        u_count: usize,
+        v_count: usize,
+        settings: &BicubicSurfaceSettings,
+    ) -> Result<Self> {
+        for (what, count) in [
+            ("a bicubic spline surface (grid lines along u)", u_count),
+            ("a bicubic spline surface (grid lines along v)", v_count),
+        ] {
+            if count < 2 {
+                return Err(Error::TooFewPoints {
+                    what,
+                    needed: 2,
+                    got: count,
+                });
+            }
+        }
+        let expected = u_count.checked_mul(v_count).ok_or(Error::LengthMismatch {
+            what: "grid points",
+            expected: usize::MAX,
+            got: points.len(),
+        })?;
+        if points.len() != expected {
+            return Err(Error::LengthMismatch {
+                what: "grid points",
+                expected,
+                got: points.len(),
+            });
+        }
+        crate::vector::check_finite(&points).map_err(|error| match error {
+            Error::NonFinite { index, .. } => Error::NonFinite {
+                what: "grid point (flat index i·(n+1) + j)",
+                index,
+            },
+            other => other,
+        })?;
+        let u_knots = match settings.u_knots() {
+            Some(knots) => checked_knots("u knots", knots, u_count)?,
+            None => averaged_knots(
+                &points,
+                u_count,
+                v_count,
+                settings.parametrization(),
+                Direction::U,
+            )?,
+        };
+        let v_knots = match settings.v_knots() {
+            Some(knots) => checked_knots("v knots", knots, v_count)?,
+            None => averaged_knots(
+                &points,
+                u_count,
+                v_count,
+                settings.parametrization(),
+                Direction::V,
+            )?,
+        };
+        let u_system = NaturalSplineSystem::new(&u_knots)?;
+        let v_system = NaturalSplineSystem::new(&v_knots)?;
+        let mut surface = Self {
+            u_count,
+            v_count,
+            points,
+            u_knots,
+            v_knots,
+            u_tangents: Vec::new(),
+            v_tangents: Vec::new(),
+            twists: Vec::new(),
+            u_system,
+            v_system,
+        };
+        let total = u_count * v_count;
+        let mut u_tangents = vec![Vec3::zeros(); total];
+        for j in 0..v_count {
+            let line = surface.solve_along_u(&surface.points, j)?;
+            scatter_u_line(&mut u_tangents, v_count, j, &line);
+        }
+        let mut v_tangents = Vec::with_capacity(total);
+        for i in 0..u_count {
+            v_tangents.extend(surface.solve_along_v(&surface.points, i)?);
+        }
+        let twists = surface.all_twists(&v_tangents)?;
+        check_finite_result("u tangent", &u_tangents)?;
+        check_finite_result("v tangent", &v_tangents)?;
+        check_finite_result("twist", &twists)?;
+        surface.u_tangents = u_tangents;
+        surface.v_tangents = v_tangents;
+        surface.twists = twists;
+        Ok(surface)
+    }
+
+    /// The tangents ∂/∂u at (u_i, v_j), i = 0..m, of the natural cubic spline along u through
+    /// `values[i·(n+1) + j]` (Eq. 2 with free ends). O(m).
+    pub(super) fn solve_along_u(&self, values: &[Vec3], j: usize) -> Result<Vec<Vec3>> {
+        let line: Vec<Vec3> = values.iter().skip(j).step_by(self.v_count).copied().collect();
+        self.u_system.tangents(&line)
+    }
+
+    /// The tangents ∂/∂v at (u_i, v_j), j = 0..n, of the natural cubic spline along v through
+    /// `values[i·(n+1) + j]` (Eq. 2 with free ends). O(n).
+    pub(super) fn solve_along_v(&self, values: &[Vec3], i: usize) -> Result<Vec<Vec3>> {
+        let start = i * self.v_count;
+        let line = values
+            .get(start..start + self.v_count)
+            .ok_or(Error::IndexOutOfRange {
+                what: "grid lines along u",
+                index: i,
+                len: self.u_count,
+            })?;
+        self.v_system.tangents(line)
+    }
+
+    /// The twists S_uv at every node: along each u-line j, the tangents of the natural cubic
+    /// spline through the v tangents M^v_{0,j}..M^v_{m,j} (Zhang–Cheng §4: "computed from
+    /// natural cubic spline curves in u direction that interpolate the partial derivative of
+    /// S(u,v) with respect to v"). O(m·n).
+    pub(super) fn all_twists(&self, v_tangents: &[Vec3]) -> Result<Vec<Vec3>> {
+        let mut twists = vec![Vec3::zeros(); self.u_count * self.v_count];
+        for j in 0..self.v_count {
+            let line = self.solve_along_u(v_tangents, j)?;
+            scatter_u_line(&mut twists, self.v_count, j, &line);
+        }
+        Ok(twists)
+    }
+}
+
+/// Writes `line[i]` into `grid[i·v_count + j]`.
+pub(super) fn scatter_u_line(grid: &mut [Vec3], v_count: usize, j: usize, line: &[Vec3]) {
+    for (slot, value) in grid.iter_mut().skip(j).step_by(v_count).zip(line) {
+        *slot = *value;
+    }
+}
+
+/// Fails with [`Error::NonFinite`] if a computed value overflowed (points so large or knots
+/// so close that a tangent is not representable).
+pub(super) fn check_finite_result(what: &'static str, values: &[Vec3]) -> Result<()> {
+    match values.iter().position(|p| p.iter().any(|c| !c.is_finite())) {
+        Some(index) => Err(Error::NonFinite { what, index }),
+        None => Ok(()),
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Direction {
+    U,
+    V,
+}
+
+/// Given knots: one per grid line, finite, strictly increasing.
+fn checked_knots(what: &'static str, knots: &[f64], count: usize) -> Result<Vec<f64>> {
+    if knots.len() != count {
+        return Err(Error::LengthMismatch {
+            what,
+            expected: count,
+            got: knots.len(),
+        });
+    }
+    crate::vector::check_finite_values(what, knots)?;
+    check_increasing(what, knots)?;
+    Ok(knots.to_vec())
+}
+
+fn check_increasing(what: &'static str, knots: &[f64]) -> Result<()> {
+    match knots.windows(2).position(|w| !(w[1] > w[0])) {
+        Some(i) => Err(Error::NotIncreasing {
+            what,
+            index: i + 1,
+            previous: knots[i],
+            value: knots[i + 1],
+        }),
+        None => Ok(()),
+    }
+}
+
+/// Averaged knots: t_0 = 0, t_{k+1} − t_k = the mean over the lines of the other direction of
+/// the step between grid lines k and k + 1 (DESIGN.md "surface kind"). O(m·n).
+fn averaged_knots(
+    points: &[Vec3],
+    u_count: usize,
+    v_count: usize,
+    parametrization: Parametrization,
+    direction: Direction,
+) -> Result<Vec<f64>> {
+    let (count, across, what, name) = match direction {
+        Direction::U => (u_count, v_count, "u knot", "u"),
+        Direction::V => (v_count, u_count, "v knot", "v"),
+    };
+    let at = |k: usize, l: usize| match direction {
+        Direction::U => points[k * v_count + l],
+        Direction::V => points[l * v_count + k],
+    };
+    let step = |a: Vec3, b: Vec3| match parametrization {
+        Parametrization::Uniform => 1.0,
+        Parametrization::ChordLength => (b - a).norm(),
+        Parametrization::Centripetal => (b - a).norm().sqrt(),
+    };
+    let mut knots = Vec::with_capacity(count);
+    knots.push(0.0);
+    for k in 0..count - 1 {
+        let sum: f64 = (0..across).map(|l| step(at(k, l), at(k + 1, l))).sum();
+        let mean = sum / across as f64;
+        if mean == 0.0 {
+            return Err(Error::RepeatedGridLine {
+                direction: name,
+                index: k,
+            });
+        }
+        let next = knots[k] + mean;
+        if !next.is_finite() {
+            return Err(Error::NonFinite { what, index: k + 1 });
+        }
+        knots.push(next);
+    }
+    check_increasing(what, &knots)?;
+    Ok(knots)
+}
