@@ -190,8 +190,7 @@ mod tests {
 
     #[test]
     fn vanishing_tangent_is_an_error() {
-        // y = x³ parametrised as (t³, t⁶)? Simpler: the twisted cubic scaled in t has C′ ≠ 0;
-        // use the cusp (t², t³) from the test curves' power-form Bézier at t = 0.
+        // The cusp (t², t³): C′(0) = 0.
         let cusp = crate::test_curves::PowerCubic::<2> {
             coefficients: [Vec2::zeros(), Vec2::zeros(), Vec2::new(1.0, 0.0), Vec2::new(0.0, 1.0)],
             domain: (-1.0, 1.0),

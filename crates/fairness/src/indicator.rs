@@ -31,11 +31,13 @@
 //!
 //! // The same from a closure, boxed for a run-time choice.
 //! let start_height: Box<dyn Criterion<dyn Curve<2>>> =
-//!     Box::new(FnCriterion::new("start-height", |c: &dyn Curve<2>| {
+//!     Box::new(FnCriterion::<dyn Curve<2>, _>::new("start-height", |c| {
 //!         Ok(c.jet(c.domain().0, Side::Right)[0].y)
 //!     }));
 //! # let _ = start_height;
 //! ```
+
+use std::marker::PhantomData;
 
 use crate::Result;
 
@@ -103,26 +105,30 @@ impl<R: ?Sized, T: Criterion<R> + ?Sized> Criterion<R> for &T {
     }
 }
 
-/// A [`Criterion`] made of a name and a closure.
+/// A [`Criterion`] over `R` made of a name and a closure.
 ///
-/// The closure's result is checked: a non-finite value becomes
-/// [`Error::NonFinite`](crate::Error::NonFinite).
-pub struct FnCriterion<F> {
+/// `R` is a type parameter (not inferred from the closure alone) so that the closure's
+/// argument type comes from it: write `FnCriterion::<dyn Curve<2>, _>::new(...)` for a
+/// criterion over any planar curve. The closure's result is checked: a non-finite value
+/// becomes [`Error::NonFinite`](crate::Error::NonFinite).
+pub struct FnCriterion<R: ?Sized, F> {
     name: String,
     function: F,
+    representation: PhantomData<fn(&R)>,
 }
 
-impl<F> FnCriterion<F> {
+impl<R: ?Sized, F: Fn(&R) -> Result<f64>> FnCriterion<R, F> {
     /// A criterion called `name` that evaluates `function`.
     pub fn new(name: impl Into<String>, function: F) -> Self {
         FnCriterion {
             name: name.into(),
             function,
+            representation: PhantomData,
         }
     }
 }
 
-impl<R: ?Sized, F: Fn(&R) -> Result<f64>> Criterion<R> for FnCriterion<F> {
+impl<R: ?Sized, F: Fn(&R) -> Result<f64>> Criterion<R> for FnCriterion<R, F> {
     fn name(&self) -> &str {
         &self.name
     }
@@ -139,7 +145,7 @@ impl<R: ?Sized, F: Fn(&R) -> Result<f64>> Criterion<R> for FnCriterion<F> {
     }
 }
 
-impl<F> std::fmt::Debug for FnCriterion<F> {
+impl<R: ?Sized, F> std::fmt::Debug for FnCriterion<R, F> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("FnCriterion").field("name", &self.name).finish()
     }
@@ -163,7 +169,7 @@ mod tests {
     fn boxed_and_borrowed_criteria_forward() {
         let boxed: Vec<Box<dyn Criterion<[f64]>>> = vec![
             Box::new(Len),
-            Box::new(FnCriterion::new("sum", |r: &[f64]| Ok(r.iter().sum()))),
+            Box::new(FnCriterion::<[f64], _>::new("sum", |r| Ok(r.iter().sum()))),
         ];
         let data = [1.0, 2.0, 4.0];
         let values: Vec<f64> = boxed.iter().map(|c| c.evaluate(&data[..]).unwrap()).collect();
@@ -173,7 +179,7 @@ mod tests {
 
     #[test]
     fn closure_returning_nan_is_an_error() {
-        let c = FnCriterion::new("nan", |_: &[f64]| Ok(f64::NAN));
+        let c = FnCriterion::<[f64], _>::new("nan", |_| Ok(f64::NAN));
         assert!(matches!(
             c.evaluate(&[][..]),
             Err(crate::Error::NonFinite { .. })

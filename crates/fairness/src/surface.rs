@@ -84,7 +84,7 @@ pub fn surface_jumps<S: Surface + ?Sized>(
                     let vvv_left = partial(surface, what, u, v, 0, 3, Side::Right, Side::Left)?;
                     Ok((uuu_right - uuu_left).norm() + (vvv_right - vvv_left).norm())
                 })
-                .collect()
+                .collect::<Result<Vec<f64>>>()
         })
         .collect()
 }
