@@ -139,11 +139,17 @@ mod tests {
     #[test]
     fn parabola_curvature_matches_closed_form() {
         for a in [0.5, -2.0, 3.0] {
-            let p = Parabola { a, domain: (-2.0, 2.0) };
+            let p = Parabola {
+                a,
+                domain: (-2.0, 2.0),
+            };
             for x in [-1.5, -0.3, 0.0, 0.7, 1.9] {
                 let expected = 2.0 * a / (1.0 + 4.0 * a * a * x * x).powf(1.5);
                 let k = curvature_at(&p, x, Side::Right).unwrap();
-                assert!((k - expected).abs() <= 1e-14 * expected.abs().max(1.0), "{k} {expected}");
+                assert!(
+                    (k - expected).abs() <= 1e-14 * expected.abs().max(1.0),
+                    "{k} {expected}"
+                );
             }
         }
     }
@@ -153,20 +159,30 @@ mod tests {
     #[test]
     fn parabola_curvature_slope_matches_finite_difference() {
         let a = 1.3;
-        let p = Parabola { a, domain: (-2.0, 2.0) };
+        let p = Parabola {
+            a,
+            domain: (-2.0, 2.0),
+        };
         let kappa = |x: f64| 2.0 * a / (1.0 + 4.0 * a * a * x * x).powf(1.5);
         let h = 1e-5;
         for x in [-1.2, -0.4, 0.0, 0.25, 1.1] {
             let dk_dx = (kappa(x + h) - kappa(x - h)) / (2.0 * h);
             let expected = dk_dx / (1.0 + 4.0 * a * a * x * x).sqrt();
             let slope = curvature_slope_at(&p, x, Side::Right).unwrap();
-            assert!((slope - expected).abs() <= 1e-8 * expected.abs().max(1.0), "{slope} {expected}");
+            assert!(
+                (slope - expected).abs() <= 1e-8 * expected.abs().max(1.0),
+                "{slope} {expected}"
+            );
         }
     }
 
     #[test]
     fn helix_has_constant_curvature() {
-        let helix = Helix { radius: 2.0, pitch: 0.5, domain: (0.0, 10.0) };
+        let helix = Helix {
+            radius: 2.0,
+            pitch: 0.5,
+            domain: (0.0, 10.0),
+        };
         let expected = 2.0 / (4.0 + 0.25);
         for t in [0.0, 1.0, 3.3, 9.9] {
             assert!((curvature_at(&helix, t, Side::Left).unwrap() - expected).abs() < 1e-15);
@@ -184,7 +200,10 @@ mod tests {
             let speed = c.jet(t, Side::Right)[1].norm();
             let expected = (k(t + h) - k(t - h)) / (2.0 * h) / speed;
             let slope = curvature_slope_at(&c, t, Side::Right).unwrap();
-            assert!((slope - expected).abs() <= 1e-8 * expected.abs().max(1.0), "{slope} {expected}");
+            assert!(
+                (slope - expected).abs() <= 1e-8 * expected.abs().max(1.0),
+                "{slope} {expected}"
+            );
         }
     }
 
@@ -192,7 +211,12 @@ mod tests {
     fn vanishing_tangent_is_an_error() {
         // The cusp (t², t³): C′(0) = 0.
         let cusp = crate::test_curves::PowerCubic::<2> {
-            coefficients: [Vec2::zeros(), Vec2::zeros(), Vec2::new(1.0, 0.0), Vec2::new(0.0, 1.0)],
+            coefficients: [
+                Vec2::zeros(),
+                Vec2::zeros(),
+                Vec2::new(1.0, 0.0),
+                Vec2::new(0.0, 1.0),
+            ],
             domain: (-1.0, 1.0),
         };
         assert!(matches!(

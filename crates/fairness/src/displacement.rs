@@ -59,7 +59,10 @@ mod tests {
         assert_eq!(d, Displacement { s_d: 6.0, m_d: 5.0 });
         let d = Displacement::between(&[Vec3::new(1.0, 2.0, 2.0)], &[Vec3::zeros()]).unwrap();
         assert_eq!(d, Displacement { s_d: 3.0, m_d: 3.0 });
-        assert_eq!(Displacement::between::<2>(&[], &[]).unwrap(), Displacement::default());
+        assert_eq!(
+            Displacement::between::<2>(&[], &[]).unwrap(),
+            Displacement::default()
+        );
     }
 
     #[test]
@@ -67,7 +70,11 @@ mod tests {
         let a = [Vec2::zeros(), Vec2::zeros()];
         assert!(matches!(
             Displacement::between(&a, &a[..1]),
-            Err(Error::LengthMismatch { expected: 2, got: 1, .. })
+            Err(Error::LengthMismatch {
+                expected: 2,
+                got: 1,
+                ..
+            })
         ));
         let nan = [Vec2::zeros(), Vec2::new(f64::NAN, 0.0)];
         assert!(matches!(Displacement::between(&a, &nan), Err(Error::Curve(_))));

@@ -339,10 +339,7 @@ mod tests {
             + 9.0 * a3.norm_squared() / 5.0;
         let e2 = 4.0 * a2.norm_squared() + 12.0 * a2.dot(&a3) + 12.0 * a3.norm_squared();
         let e3 = 36.0 * a3.norm_squared();
-        for (label, quadrature) in [
-            ("adaptive", None),
-            ("exact Gauss", Some(3)),
-        ] {
+        for (label, quadrature) in [("adaptive", None), ("exact Gauss", Some(3))] {
             let (g1, g2, g3) = match quadrature {
                 None => (
                     E1::new().evaluate(&bezier).unwrap(),
@@ -369,14 +366,22 @@ mod tests {
     #[test]
     fn circle_arc_energies() {
         let (r, a, b) = (2.5, 0.3, 2.9);
-        let arc = CircleArc { centre: Vec2::new(1.0, -2.0), radius: r, angles: (a, b) };
+        let arc = CircleArc {
+            centre: Vec2::new(1.0, -2.0),
+            radius: r,
+            angles: (a, b),
+        };
         let energies = Energies::of(&arc).unwrap();
         let tolerance = Adaptive::default().relative_tolerance;
         assert!(close(energies.e1, r * r * (b - a), 1e-14));
         assert!(close(energies.e2, r * r * (b - a), 1e-14));
         assert!(close(energies.e3, r * r * (b - a), 1e-14));
         assert!(close(energies.ek, (b - a) / r, tolerance), "{}", energies.ek);
-        assert!(energies.ek_prime.abs() <= tolerance * energies.ek, "{}", energies.ek_prime);
+        assert!(
+            energies.ek_prime.abs() <= tolerance * energies.ek,
+            "{}",
+            energies.ek_prime
+        );
         let length = arc_length(&arc, &Adaptive::default()).unwrap();
         assert!(close(length, r * (b - a), tolerance));
     }
@@ -384,7 +389,11 @@ mod tests {
     /// The helix: κ = r/(r² + p²) constant, L = √(r² + p²) Δt, so Ek = κ² L and Ek′ = 0.
     #[test]
     fn helix_energies() {
-        let helix = Helix { radius: 1.5, pitch: 0.4, domain: (0.0, 7.0) };
+        let helix = Helix {
+            radius: 1.5,
+            pitch: 0.4,
+            domain: (0.0, 7.0),
+        };
         let c2 = 1.5_f64 * 1.5 + 0.4 * 0.4;
         let kappa = 1.5 / c2;
         let ek = Ek::new().evaluate(&helix).unwrap();
@@ -421,20 +430,32 @@ mod tests {
             .zip(breaks.windows(2))
             .map(|(d, w)| d.norm_squared() * (w[1] - w[0]))
             .sum();
-        assert!(close(E3::for_polynomial(3).evaluate(&curve).unwrap(), expected, 1e-13));
+        assert!(close(
+            E3::for_polynomial(3).evaluate(&curve).unwrap(),
+            expected,
+            1e-13
+        ));
         assert!(close(E3::new().evaluate(&curve).unwrap(), expected, 1e-13));
         let reference = GaussLegendre::new(64)
             .unwrap()
             .integrate_pieces("E2", |t| curve.jet(t, Side::Right)[2].norm_squared(), &breaks)
             .unwrap();
-        assert!(close(E2::for_polynomial(3).evaluate(&curve).unwrap(), reference, 1e-13));
+        assert!(close(
+            E2::for_polynomial(3).evaluate(&curve).unwrap(),
+            reference,
+            1e-13
+        ));
         let energies = Energies::of_polynomial(&curve, 3).unwrap();
         assert!(close(energies.e3, expected, 1e-13));
     }
 
     #[test]
     fn criteria_are_object_safe_and_named() {
-        let arc = CircleArc { centre: Vec2::zeros(), radius: 1.0, angles: (0.0, 1.0) };
+        let arc = CircleArc {
+            centre: Vec2::zeros(),
+            radius: 1.0,
+            angles: (0.0, 1.0),
+        };
         let criteria: Vec<Box<dyn Criterion<CircleArc>>> = vec![
             Box::new(E1::new()),
             Box::new(E2::new()),
@@ -452,15 +473,29 @@ mod tests {
     fn failures_are_errors_not_nan() {
         // A cusp: C′(0) = 0 at the centre node of the Kronrod rule, κ undefined there.
         let cusp = PowerCubic::<2> {
-            coefficients: [Vec2::zeros(), Vec2::zeros(), Vec2::new(1.0, 0.0), Vec2::new(0.0, 1.0)],
+            coefficients: [
+                Vec2::zeros(),
+                Vec2::zeros(),
+                Vec2::new(1.0, 0.0),
+                Vec2::new(0.0, 1.0),
+            ],
             domain: (-1.0, 1.0),
         };
         assert!(matches!(Ek::new().evaluate(&cusp), Err(Error::NonFinite { .. })));
-        assert!(matches!(EkPrime::new().evaluate(&cusp), Err(Error::NonFinite { .. })));
+        assert!(matches!(
+            EkPrime::new().evaluate(&cusp),
+            Err(Error::NonFinite { .. })
+        ));
         // A sharp parabola with no bisection allowed cannot meet 1e-10.
-        let sharp = Parabola { a: 50.0, domain: (-1.0, 1.0) };
+        let sharp = Parabola {
+            a: 50.0,
+            domain: (-1.0, 1.0),
+        };
         let no_bisection = Ek::new().with_quadrature(Adaptive::default().with_max_depth(0));
-        assert!(matches!(no_bisection.evaluate(&sharp), Err(Error::NoConvergence { .. })));
+        assert!(matches!(
+            no_bisection.evaluate(&sharp),
+            Err(Error::NoConvergence { .. })
+        ));
         assert!(matches!(
             derivative_energy(&sharp, 4, &PieceQuadrature::default()),
             Err(Error::InvalidSetting { .. })

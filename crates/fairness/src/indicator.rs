@@ -180,9 +180,6 @@ mod tests {
     #[test]
     fn closure_returning_nan_is_an_error() {
         let c = FnCriterion::<[f64], _>::new("nan", |_| Ok(f64::NAN));
-        assert!(matches!(
-            c.evaluate(&[][..]),
-            Err(crate::Error::NonFinite { .. })
-        ));
+        assert!(matches!(c.evaluate(&[][..]), Err(crate::Error::NonFinite { .. })));
     }
 }

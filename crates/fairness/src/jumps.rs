@@ -205,7 +205,10 @@ mod tests {
             Vec2::new(0.0, -0.4),
         ];
         let start = [Vec2::zeros(), Vec2::new(1.0, 0.2), Vec2::new(0.1, 0.3)];
-        (PiecewiseCubic::c2_from_third_derivatives(breaks, start, &third), third)
+        (
+            PiecewiseCubic::c2_from_third_derivatives(breaks, start, &third),
+            third,
+        )
     }
 
     #[test]
@@ -235,7 +238,11 @@ mod tests {
         let third = [Vec3::new(1.0, 2.0, 2.0), Vec3::new(-1.0, 2.0, 2.0)];
         let curve = PiecewiseCubic::c2_from_third_derivatives(breaks, [Vec3::zeros(); 3], &third);
         assert_eq!(third_derivative_jumps(&curve).unwrap(), vec![2.0]);
-        let arc = CircleArc { centre: Vec2::zeros(), radius: 1.0, angles: (0.0, 1.0) };
+        let arc = CircleArc {
+            centre: Vec2::zeros(),
+            radius: 1.0,
+            angles: (0.0, 1.0),
+        };
         assert!(third_derivative_jumps(&arc).unwrap().is_empty());
     }
 
@@ -253,12 +260,15 @@ mod tests {
                 - k(t + 2.0 * h, Side::Right))
                 / (2.0 * h)
                 / speed;
-            let left = (3.0 * k(*t, Side::Left) - 4.0 * k(t - h, Side::Left)
-                + k(t - 2.0 * h, Side::Left))
+            let left = (3.0 * k(*t, Side::Left) - 4.0 * k(t - h, Side::Left) + k(t - 2.0 * h, Side::Left))
                 / (2.0 * h)
                 / speed;
             let expected = (right - left).abs();
-            assert!((jumps[i] - expected).abs() < 1e-6 * expected.max(1.0), "{} {expected}", jumps[i]);
+            assert!(
+                (jumps[i] - expected).abs() < 1e-6 * expected.max(1.0),
+                "{} {expected}",
+                jumps[i]
+            );
         }
         assert!(jumps[1].abs() < 1e-14);
     }
@@ -268,7 +278,10 @@ mod tests {
         // slopes 1, 0, 2 ⇒ e = −1, 2: one sign change.
         let e = curvature_vibrations(&[0.0, 1.0, 3.0, 4.0], &[0.0, 1.0, 1.0, 3.0]).unwrap();
         assert_eq!(e, vec![-1.0, 2.0]);
-        assert_eq!(vibration_count(&[0.0, 1.0, 3.0, 4.0], &[0.0, 1.0, 1.0, 3.0]).unwrap(), 1);
+        assert_eq!(
+            vibration_count(&[0.0, 1.0, 3.0, 4.0], &[0.0, 1.0, 1.0, 3.0]).unwrap(),
+            1
+        );
         assert!(curvature_vibrations(&[0.0, 1.0], &[1.0, 2.0]).unwrap().is_empty());
         assert!(curvature_vibrations(&[], &[]).unwrap().is_empty());
     }
@@ -296,10 +309,17 @@ mod tests {
     /// Han's x–c polyline: e from (x, c), Infl_num and Vib_num of the oracle.
     #[test]
     fn han_e_matches_runout_oracle() {
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/reference/runout_spline_function.json");
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../data/reference/runout_spline_function.json"
+        );
         let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
         let floats = |v: &serde_json::Value| -> Vec<f64> {
-            v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
+            v.as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_f64().unwrap())
+                .collect()
         };
         for set in json["datasets"].as_array().unwrap() {
             let (x, c, e) = (floats(&set["x"]), floats(&set["c"]), floats(&set["e"]));
@@ -310,7 +330,10 @@ mod tests {
                 assert!((g - w).abs() <= 1e-9 * scale, "{g} {w}");
             }
             assert_eq!(sign_changes(&c) as u64, set["Infl_num"].as_u64().unwrap());
-            assert_eq!(vibration_count(&x, &c).unwrap() as u64, set["Vib_num"].as_u64().unwrap());
+            assert_eq!(
+                vibration_count(&x, &c).unwrap() as u64,
+                set["Vib_num"].as_u64().unwrap()
+            );
         }
     }
 }

@@ -36,7 +36,7 @@ mod test_curves;
 
 pub use curvature::CurvatureForm;
 pub use displacement::Displacement;
-pub use energy::{Energies, Ek, EkPrime, PieceQuadrature, E1, E2, E3};
+pub use energy::{Ek, EkPrime, Energies, PieceQuadrature, E1, E2, E3};
 pub use error::{Error, Result};
 pub use indicator::{Criterion, FnCriterion, LocalIndicator};
 pub use quadrature::{Adaptive, GaussLegendre};

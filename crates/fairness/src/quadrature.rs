@@ -215,12 +215,7 @@ const GAUSS7_WEIGHTS: [f64; 4] = [
 ];
 
 /// One G7K15 evaluation on [a, b]: (Kronrod estimate, |K15 − G7|).
-fn kronrod15<F: FnMut(f64) -> f64>(
-    what: &'static str,
-    f: &mut F,
-    a: f64,
-    b: f64,
-) -> Result<(f64, f64)> {
+fn kronrod15<F: FnMut(f64) -> f64>(what: &'static str, f: &mut F, a: f64, b: f64) -> Result<(f64, f64)> {
     let half = 0.5 * (b - a);
     let mid = 0.5 * (a + b);
     let mut eval = |t: f64| {
@@ -344,13 +339,7 @@ impl Adaptive {
     }
 
     /// ∫ f over [a, b]. See [`integrate_pieces`](Self::integrate_pieces).
-    pub fn integrate<F: FnMut(f64) -> f64>(
-        &self,
-        what: &'static str,
-        f: F,
-        a: f64,
-        b: f64,
-    ) -> Result<f64> {
+    pub fn integrate<F: FnMut(f64) -> f64>(&self, what: &'static str, f: F, a: f64, b: f64) -> Result<f64> {
         self.integrate_pieces(what, f, &[a, b])
     }
 
@@ -391,16 +380,12 @@ impl Adaptive {
         }
         let mut subdivisions = 0;
         loop {
-            let tolerance = self
-                .absolute_tolerance
-                .max(self.relative_tolerance * total.abs());
+            let tolerance = self.absolute_tolerance.max(self.relative_tolerance * total.abs());
             if total_error <= tolerance {
                 // Running sums drift; confirm on fresh sums before stopping.
                 total = heap.iter().map(|i| i.value).sum();
                 total_error = heap.iter().map(|i| i.error).sum();
-                let tolerance = self
-                    .absolute_tolerance
-                    .max(self.relative_tolerance * total.abs());
+                let tolerance = self.absolute_tolerance.max(self.relative_tolerance * total.abs());
                 if total_error <= tolerance {
                     return finite_result(what, total, breaks);
                 }
@@ -416,8 +401,8 @@ impl Adaptive {
                 None
             };
             let mid = 0.5 * (worst.start + worst.end);
-            let reason = reason.or((mid <= worst.start || mid >= worst.end)
-                .then_some("interval too small to bisect"));
+            let reason =
+                reason.or((mid <= worst.start || mid >= worst.end).then_some("interval too small to bisect"));
             if let Some(reason) = reason {
                 return Err(Error::NoConvergence {
                     what,
@@ -458,14 +443,21 @@ mod tests {
             let rule = GaussLegendre::new(n).unwrap();
             assert!((rule.weights().iter().sum::<f64>() - 2.0).abs() < 1e-14);
             for degree in 0..=(2 * n - 1) {
-                let exact = if degree % 2 == 0 { 2.0 / (degree as f64 + 1.0) } else { 0.0 };
+                let exact = if degree % 2 == 0 {
+                    2.0 / (degree as f64 + 1.0)
+                } else {
+                    0.0
+                };
                 let got = rule.integrate(|x| x.powi(degree as i32), -1.0, 1.0);
                 assert!((got - exact).abs() < 1e-13, "n={n} degree={degree}: {got}");
             }
             let degree = 2 * n;
             let exact = 2.0 / (degree as f64 + 1.0);
             let got = rule.integrate(|x| x.powi(degree as i32), -1.0, 1.0);
-            assert!((got - exact).abs() > 1e-6, "n={n} should not be exact for degree {degree}");
+            assert!(
+                (got - exact).abs() > 1e-6,
+                "n={n} should not be exact for degree {degree}"
+            );
         }
         assert!(GaussLegendre::new(0).is_err());
         assert!(GaussLegendre::new(65).is_err());
@@ -505,13 +497,17 @@ mod tests {
     #[test]
     fn non_convergence_is_an_error_not_a_number() {
         // 1/√x: integrable, but the error near 0 shrinks slowly; depth 5 cannot reach 1e-10.
-        let result = Adaptive::default()
-            .with_max_depth(5)
-            .integrate("singular", |x: f64| 1.0 / x.sqrt(), 0.0, 1.0);
+        let result =
+            Adaptive::default()
+                .with_max_depth(5)
+                .integrate("singular", |x: f64| 1.0 / x.sqrt(), 0.0, 1.0);
         assert!(matches!(result, Err(Error::NoConvergence { .. })), "{result:?}");
-        let result = Adaptive::default()
-            .with_max_subdivisions(3)
-            .integrate("oscillating", |x: f64| (1.0 / x).sin(), 1e-4, 1.0);
+        let result = Adaptive::default().with_max_subdivisions(3).integrate(
+            "oscillating",
+            |x: f64| (1.0 / x).sin(),
+            1e-4,
+            1.0,
+        );
         assert!(matches!(result, Err(Error::NoConvergence { .. })), "{result:?}");
     }
 
@@ -532,7 +528,10 @@ mod tests {
 
     #[test]
     fn empty_or_degenerate_ranges_integrate_to_zero() {
-        assert_eq!(Adaptive::default().integrate_pieces("e", |x| x, &[]).unwrap(), 0.0);
+        assert_eq!(
+            Adaptive::default().integrate_pieces("e", |x| x, &[]).unwrap(),
+            0.0
+        );
         assert_eq!(Adaptive::default().integrate("e", |x| x, 1.0, 1.0).unwrap(), 0.0);
     }
 }

@@ -94,7 +94,11 @@ mod tests {
     }
 
     fn floats(v: &serde_json::Value) -> Vec<f64> {
-        v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
+        v.as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
     }
 
     fn check<const D: usize>(set: &serde_json::Value) -> FairnessSummary
@@ -135,7 +139,10 @@ mod tests {
     /// inflections and vibrations.
     #[test]
     fn parametric_summary_matches_oracle() {
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/reference/parametric_metrics.json");
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../data/reference/parametric_metrics.json"
+        );
         let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
         for set in json["datasets"].as_array().unwrap() {
             match set["dim"].as_u64() {
@@ -162,7 +169,10 @@ mod tests {
                             jet[1].cross(&jet[2])
                         })
                         .collect();
-                    assert_eq!(binormal_flips(&binormals) as u64, set["inflections"].as_u64().unwrap());
+                    assert_eq!(
+                        binormal_flips(&binormals) as u64,
+                        set["inflections"].as_u64().unwrap()
+                    );
                 }
                 other => panic!("unexpected dim {other:?}"),
             }
@@ -171,7 +181,11 @@ mod tests {
 
     #[test]
     fn summary_serialises_with_null_fields() {
-        let summary = FairnessSummary { inflections: None, vibrations: Some(3), ..Default::default() };
+        let summary = FairnessSummary {
+            inflections: None,
+            vibrations: Some(3),
+            ..Default::default()
+        };
         let json = serde_json::to_value(summary).unwrap();
         assert!(json["inflections"].is_null());
         assert_eq!(json["vibrations"], 3);

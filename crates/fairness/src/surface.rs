@@ -257,8 +257,16 @@ mod tests {
 
     fn surface(c: f64) -> HeightSurface {
         HeightSurface {
-            f: Kinked { alpha: 2.0, beta: -1.0, knot: 1.0 },
-            g: Kinked { alpha: 0.5, beta: 4.0, knot: 2.0 },
+            f: Kinked {
+                alpha: 2.0,
+                beta: -1.0,
+                knot: 1.0,
+            },
+            g: Kinked {
+                alpha: 0.5,
+                beta: 4.0,
+                knot: 2.0,
+            },
             c,
             domain: ((0.0, 3.0), (0.0, 4.0)),
         }
@@ -290,20 +298,35 @@ mod tests {
     #[test]
     fn energies_of_a_polynomial_surface() {
         let s = HeightSurface {
-            f: Kinked { alpha: 0.0, beta: 0.0, knot: 1.0 },
-            g: Kinked { alpha: 0.0, beta: 0.0, knot: 1.0 },
+            f: Kinked {
+                alpha: 0.0,
+                beta: 0.0,
+                knot: 1.0,
+            },
+            g: Kinked {
+                alpha: 0.0,
+                beta: 0.0,
+                knot: 1.0,
+            },
             c: 1.0,
             domain: ((0.0, 2.0), (0.0, 3.0)),
         };
         let u = vec![0.0, 0.5, 2.0];
         let v = vec![0.0, 1.0, 1.5, 3.0];
         let (uu, vv) = (2.0_f64, 3.0_f64);
-        let plate = ThinPlateEnergy(KnotGrid::new(u.clone(), v.clone())).evaluate(&s).unwrap();
+        let plate = ThinPlateEnergy(KnotGrid::new(u.clone(), v.clone()))
+            .evaluate(&s)
+            .unwrap();
         let expected = 4.0 * uu * vv.powi(3) / 3.0 + 8.0 * vv * uu.powi(3) / 3.0;
         assert!((plate - expected).abs() < 1e-12 * expected, "{plate} {expected}");
-        let network = NetworkStrainEnergy(KnotGrid::new(u, v.clone())).evaluate(&s).unwrap();
+        let network = NetworkStrainEnergy(KnotGrid::new(u, v.clone()))
+            .evaluate(&s)
+            .unwrap();
         let expected = 4.0 * uu * v.iter().map(|x| x * x).sum::<f64>();
-        assert!((network - expected).abs() < 1e-12 * expected, "{network} {expected}");
+        assert!(
+            (network - expected).abs() < 1e-12 * expected,
+            "{network} {expected}"
+        );
     }
 
     /// With the kinked f, S_uu = f″(u) + 2cv is piecewise linear in u: the per-interval rule
@@ -321,7 +344,10 @@ mod tests {
     #[test]
     fn bad_knots_are_errors() {
         let s = surface(0.0);
-        assert!(matches!(surface_jumps(&s, &[0.0], &[0.0, 1.0]), Err(Error::TooFewPoints { .. })));
+        assert!(matches!(
+            surface_jumps(&s, &[0.0], &[0.0, 1.0]),
+            Err(Error::TooFewPoints { .. })
+        ));
         assert!(surface_jumps(&s, &[0.0, 0.0, 1.0], &[0.0, 1.0]).is_err());
         assert!(surface_jumps(&s, &[0.0, f64::NAN], &[0.0, 1.0]).is_err());
         let grid = KnotGrid::new(vec![0.0, 1.0], vec![0.0, 1.0]).with_points(0);

@@ -156,11 +156,7 @@ impl<const D: usize> PiecewiseCubic<D> {
     /// The C2 piecewise cubic starting with value, C′, C″ = `start` at `breaks[0]` whose
     /// constant third derivative on piece i is `third[i]`: value, C′ and C″ carry over each
     /// break, so C‴ jumps by exactly `third[i] − third[i−1]` at `breaks[i]`.
-    pub fn c2_from_third_derivatives(
-        breaks: Vec<f64>,
-        start: [Vector<D>; 3],
-        third: &[Vector<D>],
-    ) -> Self {
+    pub fn c2_from_third_derivatives(breaks: Vec<f64>, start: [Vector<D>; 3], third: &[Vector<D>]) -> Self {
         let mut pieces = Vec::with_capacity(third.len());
         let [mut p, mut d1, mut d2] = start;
         for (i, d3) in third.iter().enumerate() {
