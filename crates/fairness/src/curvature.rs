@@ -1,0 +1,228 @@
+//! Curvature κ and its arc-length derivative dκ/ds from a curve's jet.
+//!
+//! Planar curves get the signed curvature (counter-clockwise positive), spatial curves the
+//! unsigned one, as DESIGN.md's parametric report and `parametric_metrics.json` define:
+//!
+//! - 2D: κ = (x′y″ − y′x″) / |C′|³,
+//!   dκ/dt = [(x′y‴ − y′x‴)|C′|² − 3(x′y″ − y′x″)(C′·C″)] / |C′|⁵;
+//! - 3D: with b = C′ × C″ (so b′ = C′ × C‴), κ = |b| / |C′|³,
+//!   dκ/dt = [(b·b′)|C′|² / |b| − 3|b|(C′·C″)] / |C′|⁵;
+//!
+//! and dκ/ds = (dκ/dt) / |C′| in both. Where b = 0 in 3D (a point of zero curvature) |b| has a
+//! corner: its one-sided derivatives are ±|b′|; we take their mean, 0, for the first term
+//! (the set of such parameters has measure zero in every integral of this crate).
+//!
+//! [`CurvatureForm`] picks the form from the point type, so that generic code over
+//! `const D: usize` asks for `Vector<D>: CurvatureForm`.
+
+use curve_repr::{Curve, Side, Vec2, Vec3, Vector};
+
+use crate::{Error, Result};
+
+/// The curvature formulas of one dimension (implemented for [`Vec2`] and [`Vec3`]).
+pub trait CurvatureForm: Sized {
+    /// Whether the curvature carries a sign (planar curves), so that inflections make sense.
+    const SIGNED: bool;
+
+    /// κ from the first and second derivatives; `None` where C′ = 0 or the result is not finite.
+    fn curvature(d1: &Self, d2: &Self) -> Option<f64>;
+
+    /// dκ/ds from the first three derivatives; `None` where C′ = 0 or the result is not finite.
+    fn curvature_slope(d1: &Self, d2: &Self, d3: &Self) -> Option<f64>;
+}
+
+fn finite(value: f64) -> Option<f64> {
+    value.is_finite().then_some(value)
+}
+
+fn cross2(a: &Vec2, b: &Vec2) -> f64 {
+    a.x * b.y - a.y * b.x
+}
+
+impl CurvatureForm for Vec2 {
+    const SIGNED: bool = true;
+
+    fn curvature(d1: &Vec2, d2: &Vec2) -> Option<f64> {
+        let speed = d1.norm();
+        if speed == 0.0 {
+            return None;
+        }
+        finite(cross2(d1, d2) / (speed * speed * speed))
+    }
+
+    fn curvature_slope(d1: &Vec2, d2: &Vec2, d3: &Vec2) -> Option<f64> {
+        let speed2 = d1.norm_squared();
+        if speed2 == 0.0 {
+            return None;
+        }
+        let numerator = cross2(d1, d3) * speed2 - 3.0 * cross2(d1, d2) * d1.dot(d2);
+        // dκ/dt = numerator / |C′|⁵, then divide by |C′| for dκ/ds.
+        finite(numerator / (speed2 * speed2 * speed2))
+    }
+}
+
+impl CurvatureForm for Vec3 {
+    const SIGNED: bool = false;
+
+    fn curvature(d1: &Vec3, d2: &Vec3) -> Option<f64> {
+        let speed = d1.norm();
+        if speed == 0.0 {
+            return None;
+        }
+        finite(d1.cross(d2).norm() / (speed * speed * speed))
+    }
+
+    fn curvature_slope(d1: &Vec3, d2: &Vec3, d3: &Vec3) -> Option<f64> {
+        let speed2 = d1.norm_squared();
+        if speed2 == 0.0 {
+            return None;
+        }
+        let b = d1.cross(d2);
+        let b_prime = d1.cross(d3);
+        let b_norm = b.norm();
+        let first = if b_norm > 0.0 {
+            b.dot(&b_prime) * speed2 / b_norm
+        } else {
+            0.0
+        };
+        let numerator = first - 3.0 * b_norm * d1.dot(d2);
+        finite(numerator / (speed2 * speed2 * speed2))
+    }
+}
+
+/// κ at `t` from `side`; fails with [`Error::NonFinite`] where the tangent vanishes.
+pub fn curvature_at<const D: usize, C>(curve: &C, t: f64, side: Side) -> Result<f64>
+where
+    C: Curve<D> + ?Sized,
+    Vector<D>: CurvatureForm,
+{
+    let jet = curve.jet(t, side);
+    CurvatureForm::curvature(&jet[1], &jet[2]).ok_or(Error::NonFinite {
+        what: "curvature",
+        parameter: t,
+    })
+}
+
+/// dκ/ds at `t` from `side`; fails with [`Error::NonFinite`] where the tangent vanishes.
+pub fn curvature_slope_at<const D: usize, C>(curve: &C, t: f64, side: Side) -> Result<f64>
+where
+    C: Curve<D> + ?Sized,
+    Vector<D>: CurvatureForm,
+{
+    let jet = curve.jet(t, side);
+    CurvatureForm::curvature_slope(&jet[1], &jet[2], &jet[3]).ok_or(Error::NonFinite {
+        what: "curvature slope",
+        parameter: t,
+    })
+}
+
+/// κ at every break point (the knots), from the right (the last one from the only piece
+/// there). κ is continuous at the knots of a C2 curve, so the side only matters for curves
+/// that are not. O(n) plus the curve's evaluation cost.
+pub fn curvature_at_breaks<const D: usize, C>(curve: &C) -> Result<Vec<f64>>
+where
+    C: Curve<D> + ?Sized,
+    Vector<D>: CurvatureForm,
+{
+    curve
+        .breaks()
+        .into_iter()
+        .map(|t| curvature_at(curve, t, Side::Right))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_curves::{Helix, Parabola, TwistedCubic};
+
+    #[test]
+    fn parabola_curvature_matches_closed_form() {
+        for a in [0.5, -2.0, 3.0] {
+            let p = Parabola {
+                a,
+                domain: (-2.0, 2.0),
+            };
+            for x in [-1.5, -0.3, 0.0, 0.7, 1.9] {
+                let expected = 2.0 * a / (1.0 + 4.0 * a * a * x * x).powf(1.5);
+                let k = curvature_at(&p, x, Side::Right).unwrap();
+                assert!(
+                    (k - expected).abs() <= 1e-14 * expected.abs().max(1.0),
+                    "{k} {expected}"
+                );
+            }
+        }
+    }
+
+    /// dκ/ds against a central difference of the closed-form κ(x) over the arc length
+    /// ds = √(1 + 4a²x²) dx.
+    #[test]
+    fn parabola_curvature_slope_matches_finite_difference() {
+        let a = 1.3;
+        let p = Parabola {
+            a,
+            domain: (-2.0, 2.0),
+        };
+        let kappa = |x: f64| 2.0 * a / (1.0 + 4.0 * a * a * x * x).powf(1.5);
+        let h = 1e-5;
+        for x in [-1.2, -0.4, 0.0, 0.25, 1.1] {
+            let dk_dx = (kappa(x + h) - kappa(x - h)) / (2.0 * h);
+            let expected = dk_dx / (1.0 + 4.0 * a * a * x * x).sqrt();
+            let slope = curvature_slope_at(&p, x, Side::Right).unwrap();
+            assert!(
+                (slope - expected).abs() <= 1e-8 * expected.abs().max(1.0),
+                "{slope} {expected}"
+            );
+        }
+    }
+
+    #[test]
+    fn helix_has_constant_curvature() {
+        let helix = Helix {
+            radius: 2.0,
+            pitch: 0.5,
+            domain: (0.0, 10.0),
+        };
+        let expected = 2.0 / (4.0 + 0.25);
+        for t in [0.0, 1.0, 3.3, 9.9] {
+            assert!((curvature_at(&helix, t, Side::Left).unwrap() - expected).abs() < 1e-15);
+            assert!(curvature_slope_at(&helix, t, Side::Left).unwrap().abs() < 1e-15);
+        }
+    }
+
+    /// The 3D form of dκ/ds against a central difference of κ along arc length.
+    #[test]
+    fn spatial_curvature_slope_matches_finite_difference() {
+        let c = TwistedCubic;
+        let h = 1e-5;
+        for t in [-0.8, 0.1, 0.6, 1.4] {
+            let k = |t: f64| curvature_at(&c, t, Side::Right).unwrap();
+            let speed = c.jet(t, Side::Right)[1].norm();
+            let expected = (k(t + h) - k(t - h)) / (2.0 * h) / speed;
+            let slope = curvature_slope_at(&c, t, Side::Right).unwrap();
+            assert!(
+                (slope - expected).abs() <= 1e-8 * expected.abs().max(1.0),
+                "{slope} {expected}"
+            );
+        }
+    }
+
+    #[test]
+    fn vanishing_tangent_is_an_error() {
+        // The cusp (t², t³): C′(0) = 0.
+        let cusp = crate::test_curves::PowerCubic::<2> {
+            coefficients: [
+                Vec2::zeros(),
+                Vec2::zeros(),
+                Vec2::new(1.0, 0.0),
+                Vec2::new(0.0, 1.0),
+            ],
+            domain: (-1.0, 1.0),
+        };
+        assert!(matches!(
+            curvature_at(&cusp, 0.0, Side::Right),
+            Err(Error::NonFinite { .. })
+        ));
+        assert!(curvature_slope_at(&cusp, 0.0, Side::Right).is_err());
+    }
+}

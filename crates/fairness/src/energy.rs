@@ -1,0 +1,506 @@
+//! Integral fairness criteria (Nowacki, Liu and Lü, FAIRSHAPE 1996, §2 "Fairness Criteria"):
+//!
+//! - E1 = ∫ |C′(t)|² dt, the first-order parametric criterion;
+//! - E2 = ∫ |C″(t)|² dt, the second-order parametric criterion (the strain energy, Han's E_s
+//!   for a spline function, DESIGN.md's `e_s` for the parametric kind);
+//! - E3 = ∫ |C‴(t)|² dt, the third-order parametric criterion;
+//! - Ek = ∫ κ² ds = ∫ κ(t)² |C′(t)| dt, the curvature criterion;
+//! - Ek′ = ∫ (dκ/ds)² ds = ∫ (dκ/ds)² |C′(t)| dt, the change-of-curvature criterion.
+//!
+//! The paper numbers no equations; these five are the list of its §2. It writes every
+//! integral over [0, 1]. We integrate E1–E3 over the curve's own parameter domain and Ek, Ek′
+//! over the true arc length (DESIGN.md: "energies over the curve as represented"): for a
+//! curve parametrised on [0, 1], as Nowacki's NURBS are, E1–E3 are the paper's; Ek and Ek′
+//! are geometric and do not depend on the parametrisation at all.
+//!
+//! Integration runs piece by piece between the curve's [`breaks`](Curve::breaks), where the
+//! integrands are smooth. E1–E3 default to adaptive G7K15, which is right for any curve; for
+//! polynomial pieces of degree p, [`PieceQuadrature::for_polynomial`] selects the Gauss–
+//! Legendre rule that is exact (|C^(k)|² has degree 2(p − k), so p − k + 1 points). Ek and Ek′
+//! are never polynomial and always adaptive.
+
+use std::marker::PhantomData;
+
+use curve_repr::{Curve, Side, Vector};
+
+use crate::curvature::CurvatureForm;
+use crate::quadrature::{Adaptive, GaussLegendre};
+use crate::{Criterion, Error, Result};
+
+/// How E1–E3 integrate each piece between break points.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PieceQuadrature {
+    /// Adaptive G7K15 to the given settings (the default; right for rational pieces).
+    Adaptive(Adaptive),
+    /// A Gauss–Legendre rule with this many points on every piece (exact for integrands that
+    /// are polynomials of degree up to 2·points − 1 on each piece).
+    GaussLegendre(usize),
+}
+
+impl Default for PieceQuadrature {
+    fn default() -> Self {
+        PieceQuadrature::Adaptive(Adaptive::default())
+    }
+}
+
+impl PieceQuadrature {
+    /// The exact Gauss–Legendre rule for ∫|C^(order)|² on polynomial pieces of `degree`:
+    /// the integrand has degree 2(degree − order), so degree − order + 1 points (at least 1).
+    pub fn for_polynomial(degree: usize, order: usize) -> Self {
+        PieceQuadrature::GaussLegendre(degree.saturating_sub(order) + 1)
+    }
+}
+
+/// ∫ |C^(order)(t)|² dt over the curve's domain, piece by piece. O(pieces).
+///
+/// Fails on a bad rule (see [`GaussLegendre::new`]), a non-finite derivative, or an adaptive
+/// integration that does not converge.
+pub fn derivative_energy<const D: usize, C>(
+    curve: &C,
+    order: usize,
+    quadrature: &PieceQuadrature,
+) -> Result<f64>
+where
+    C: Curve<D> + ?Sized,
+{
+    if !(1..=curve_repr::curve::MAX_ORDER).contains(&order) {
+        return Err(Error::InvalidSetting {
+            what: "derivative order",
+            reason: "must be 1, 2 or 3",
+        });
+    }
+    let breaks = curve.breaks();
+    let integrand = |t: f64| curve.jet(t, Side::Right)[order].norm_squared();
+    const NAMES: [&str; 4] = ["", "E1", "E2", "E3"];
+    let what = NAMES[order];
+    match quadrature {
+        PieceQuadrature::Adaptive(settings) => settings.integrate_pieces(what, integrand, &breaks),
+        PieceQuadrature::GaussLegendre(points) => {
+            GaussLegendre::new(*points)?.integrate_pieces(what, integrand, &breaks)
+        }
+    }
+}
+
+/// The curvature criterion Ek = ∫ κ² ds over the whole curve, adaptive. O(pieces).
+pub fn curvature_energy<const D: usize, C>(curve: &C, settings: &Adaptive) -> Result<f64>
+where
+    C: Curve<D> + ?Sized,
+    Vector<D>: CurvatureForm,
+{
+    let integrand = |t: f64| {
+        let jet = curve.jet(t, Side::Right);
+        match CurvatureForm::curvature(&jet[1], &jet[2]) {
+            Some(k) => k * k * jet[1].norm(),
+            None => f64::NAN,
+        }
+    };
+    settings.integrate_pieces("Ek", integrand, &curve.breaks())
+}
+
+/// The change-of-curvature criterion Ek′ = ∫ (dκ/ds)² ds over the whole curve, adaptive.
+/// O(pieces).
+pub fn curvature_slope_energy<const D: usize, C>(curve: &C, settings: &Adaptive) -> Result<f64>
+where
+    C: Curve<D> + ?Sized,
+    Vector<D>: CurvatureForm,
+{
+    let integrand = |t: f64| {
+        let jet = curve.jet(t, Side::Right);
+        match CurvatureForm::curvature_slope(&jet[1], &jet[2], &jet[3]) {
+            Some(k) => k * k * jet[1].norm(),
+            None => f64::NAN,
+        }
+    };
+    settings.integrate_pieces("Ek'", integrand, &curve.breaks())
+}
+
+/// The arc length ∫ |C′(t)| dt, adaptive. O(pieces).
+pub fn arc_length<const D: usize, C>(curve: &C, settings: &Adaptive) -> Result<f64>
+where
+    C: Curve<D> + ?Sized,
+{
+    let integrand = |t: f64| curve.jet(t, Side::Right)[1].norm();
+    settings.integrate_pieces("arc length", integrand, &curve.breaks())
+}
+
+macro_rules! derivative_criterion {
+    ($(#[$doc:meta])* $name:ident, $order:expr, $label:expr) => {
+        $(#[$doc])*
+        ///
+        /// Generic over the dimension `D` (inferred from the curve it measures); the default
+        /// quadrature is adaptive, [`for_polynomial`](Self::for_polynomial) selects the exact
+        /// Gauss–Legendre rule for polynomial pieces.
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct $name<const D: usize = 2> {
+            /// How each piece is integrated.
+            pub quadrature: PieceQuadrature,
+            dimension: PhantomData<[(); D]>,
+        }
+
+        impl<const D: usize> Default for $name<D> {
+            fn default() -> Self {
+                Self::new()
+            }
+        }
+
+        impl<const D: usize> $name<D> {
+            /// The criterion with adaptive quadrature.
+            pub fn new() -> Self {
+                $name {
+                    quadrature: PieceQuadrature::default(),
+                    dimension: PhantomData,
+                }
+            }
+
+            /// Sets how each piece is integrated.
+            pub fn with_quadrature(mut self, quadrature: PieceQuadrature) -> Self {
+                self.quadrature = quadrature;
+                self
+            }
+
+            /// The exact Gauss–Legendre rule for polynomial pieces of `degree`.
+            pub fn for_polynomial(degree: usize) -> Self {
+                Self::new().with_quadrature(PieceQuadrature::for_polynomial(degree, $order))
+            }
+        }
+
+        impl<const D: usize, C: Curve<D> + ?Sized> Criterion<C> for $name<D> {
+            fn name(&self) -> &str {
+                $label
+            }
+            fn evaluate(&self, curve: &C) -> Result<f64> {
+                derivative_energy(curve, $order, &self.quadrature)
+            }
+        }
+    };
+}
+
+derivative_criterion!(
+    /// Nowacki's first-order parametric criterion E1 = ∫ |C′(t)|² dt.
+    E1, 1, "e1"
+);
+derivative_criterion!(
+    /// Nowacki's second-order parametric criterion E2 = ∫ |C″(t)|² dt (the strain energy).
+    E2, 2, "e2"
+);
+derivative_criterion!(
+    /// Nowacki's third-order parametric criterion E3 = ∫ |C‴(t)|² dt.
+    E3, 3, "e3"
+);
+
+macro_rules! curvature_criterion {
+    ($(#[$doc:meta])* $name:ident, $function:ident, $label:expr) => {
+        $(#[$doc])*
+        ///
+        /// Generic over the dimension `D` (2 or 3, inferred from the curve); adaptive to
+        /// [`Adaptive`]'s settings (relative tolerance 10⁻¹⁰ by default).
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct $name<const D: usize = 2> {
+            /// Settings of the adaptive quadrature.
+            pub quadrature: Adaptive,
+            dimension: PhantomData<[(); D]>,
+        }
+
+        impl<const D: usize> Default for $name<D> {
+            fn default() -> Self {
+                Self::new()
+            }
+        }
+
+        impl<const D: usize> $name<D> {
+            /// The criterion with the default quadrature settings.
+            pub fn new() -> Self {
+                $name {
+                    quadrature: Adaptive::default(),
+                    dimension: PhantomData,
+                }
+            }
+
+            /// Sets the quadrature settings.
+            pub fn with_quadrature(mut self, quadrature: Adaptive) -> Self {
+                self.quadrature = quadrature;
+                self
+            }
+        }
+
+        impl<const D: usize, C: Curve<D> + ?Sized> Criterion<C> for $name<D>
+        where
+            Vector<D>: CurvatureForm,
+        {
+            fn name(&self) -> &str {
+                $label
+            }
+            fn evaluate(&self, curve: &C) -> Result<f64> {
+                $function(curve, &self.quadrature)
+            }
+        }
+    };
+}
+
+curvature_criterion!(
+    /// Nowacki's curvature criterion Ek = ∫ κ² ds.
+    Ek, curvature_energy, "ek"
+);
+curvature_criterion!(
+    /// Nowacki's change-of-curvature criterion Ek′ = ∫ (dκ/ds)² ds.
+    EkPrime, curvature_slope_energy, "ek-prime"
+);
+
+/// The five criteria of one curve, as the report's `energies` block.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Energies {
+    /// E1 = ∫ |C′|² dt.
+    pub e1: f64,
+    /// E2 = ∫ |C″|² dt.
+    pub e2: f64,
+    /// E3 = ∫ |C‴|² dt.
+    pub e3: f64,
+    /// Ek = ∫ κ² ds.
+    pub ek: f64,
+    /// Ek′ = ∫ (dκ/ds)² ds.
+    pub ek_prime: f64,
+}
+
+impl Energies {
+    /// All five with the default (adaptive) quadrature; right for any curve. O(pieces).
+    pub fn of<const D: usize, C>(curve: &C) -> Result<Self>
+    where
+        C: Curve<D> + ?Sized,
+        Vector<D>: CurvatureForm,
+    {
+        Self::with_quadrature(curve, &PieceQuadrature::default(), &Adaptive::default())
+    }
+
+    /// All five, E1–E3 by the exact Gauss–Legendre rule for polynomial pieces of `degree`.
+    pub fn of_polynomial<const D: usize, C>(curve: &C, degree: usize) -> Result<Self>
+    where
+        C: Curve<D> + ?Sized,
+        Vector<D>: CurvatureForm,
+    {
+        let adaptive = Adaptive::default();
+        Ok(Energies {
+            e1: derivative_energy(curve, 1, &PieceQuadrature::for_polynomial(degree, 1))?,
+            e2: derivative_energy(curve, 2, &PieceQuadrature::for_polynomial(degree, 2))?,
+            e3: derivative_energy(curve, 3, &PieceQuadrature::for_polynomial(degree, 3))?,
+            ek: curvature_energy(curve, &adaptive)?,
+            ek_prime: curvature_slope_energy(curve, &adaptive)?,
+        })
+    }
+
+    /// All five, E1–E3 with `pieces`, Ek and Ek′ with `curvature`.
+    pub fn with_quadrature<const D: usize, C>(
+        curve: &C,
+        pieces: &PieceQuadrature,
+        curvature: &Adaptive,
+    ) -> Result<Self>
+    where
+        C: Curve<D> + ?Sized,
+        Vector<D>: CurvatureForm,
+    {
+        Ok(Energies {
+            e1: derivative_energy(curve, 1, pieces)?,
+            e2: derivative_energy(curve, 2, pieces)?,
+            e3: derivative_energy(curve, 3, pieces)?,
+            ek: curvature_energy(curve, curvature)?,
+            ek_prime: curvature_slope_energy(curve, curvature)?,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_curves::{CircleArc, Helix, Parabola, PiecewiseCubic, PowerCubic};
+    use curve_repr::{Vec2, Vec3};
+
+    fn close(got: f64, expected: f64, relative: f64) -> bool {
+        (got - expected).abs() <= relative * expected.abs().max(1e-300)
+    }
+
+    /// For C(t) = a₀ + a₁t + a₂t² + a₃t³ on [0, 1], integrating the power-basis polynomials
+    /// term by term (∫₀¹ tᵏ dt = 1/(k+1)):
+    ///   |C′|² = |a₁|² + 4(a₁·a₂)t + (4|a₂|² + 6 a₁·a₃)t² + 12(a₂·a₃)t³ + 9|a₃|²t⁴
+    ///     ⇒ E1 = |a₁|² + 2 a₁·a₂ + (4|a₂|² + 6 a₁·a₃)/3 + 3 a₂·a₃ + 9|a₃|²/5;
+    ///   |C″|² = 4|a₂|² + 24(a₂·a₃)t + 36|a₃|²t²  ⇒ E2 = 4|a₂|² + 12 a₂·a₃ + 12|a₃|²;
+    ///   |C‴|² = 36|a₃|²                          ⇒ E3 = 36|a₃|².
+    #[test]
+    fn bezier_energies_match_closed_forms() {
+        let bezier = PowerCubic::bezier([
+            Vec2::new(0.0, 0.0),
+            Vec2::new(1.0, 2.0),
+            Vec2::new(3.0, -1.0),
+            Vec2::new(4.0, 1.5),
+        ]);
+        let [_, a1, a2, a3] = bezier.coefficients;
+        let e1 = a1.norm_squared()
+            + 2.0 * a1.dot(&a2)
+            + (4.0 * a2.norm_squared() + 6.0 * a1.dot(&a3)) / 3.0
+            + 3.0 * a2.dot(&a3)
+            + 9.0 * a3.norm_squared() / 5.0;
+        let e2 = 4.0 * a2.norm_squared() + 12.0 * a2.dot(&a3) + 12.0 * a3.norm_squared();
+        let e3 = 36.0 * a3.norm_squared();
+        for (label, quadrature) in [("adaptive", None), ("exact Gauss", Some(3))] {
+            let (g1, g2, g3) = match quadrature {
+                None => (
+                    E1::new().evaluate(&bezier).unwrap(),
+                    E2::new().evaluate(&bezier).unwrap(),
+                    E3::new().evaluate(&bezier).unwrap(),
+                ),
+                Some(degree) => (
+                    E1::for_polynomial(degree).evaluate(&bezier).unwrap(),
+                    E2::for_polynomial(degree).evaluate(&bezier).unwrap(),
+                    E3::for_polynomial(degree).evaluate(&bezier).unwrap(),
+                ),
+            };
+            assert!(close(g1, e1, 1e-13), "{label} E1 {g1} {e1}");
+            assert!(close(g2, e2, 1e-13), "{label} E2 {g2} {e2}");
+            assert!(close(g3, e3, 1e-13), "{label} E3 {g3} {e3}");
+        }
+        // One point fewer than exact is wrong for E1: the rule really is at its limit.
+        let short = E1::<2>::new().with_quadrature(PieceQuadrature::GaussLegendre(2));
+        assert!(!close(short.evaluate(&bezier).unwrap(), e1, 1e-6));
+    }
+
+    /// The energies of a circle arc of radius r over Δθ: |C′|² = |C″|² = |C‴|² = r², κ = 1/r,
+    /// arc length rΔθ, so E1 = E2 = E3 = r²Δθ, Ek = κ² L = Δθ / r and Ek′ = 0.
+    #[test]
+    fn circle_arc_energies() {
+        let (r, a, b) = (2.5, 0.3, 2.9);
+        let arc = CircleArc {
+            centre: Vec2::new(1.0, -2.0),
+            radius: r,
+            angles: (a, b),
+        };
+        let energies = Energies::of(&arc).unwrap();
+        let tolerance = Adaptive::default().relative_tolerance;
+        assert!(close(energies.e1, r * r * (b - a), 1e-14));
+        assert!(close(energies.e2, r * r * (b - a), 1e-14));
+        assert!(close(energies.e3, r * r * (b - a), 1e-14));
+        assert!(close(energies.ek, (b - a) / r, tolerance), "{}", energies.ek);
+        assert!(
+            energies.ek_prime.abs() <= tolerance * energies.ek,
+            "{}",
+            energies.ek_prime
+        );
+        let length = arc_length(&arc, &Adaptive::default()).unwrap();
+        assert!(close(length, r * (b - a), tolerance));
+    }
+
+    /// The helix: κ = r/(r² + p²) constant, L = √(r² + p²) Δt, so Ek = κ² L and Ek′ = 0.
+    #[test]
+    fn helix_energies() {
+        let helix = Helix {
+            radius: 1.5,
+            pitch: 0.4,
+            domain: (0.0, 7.0),
+        };
+        let c2 = 1.5_f64 * 1.5 + 0.4 * 0.4;
+        let kappa = 1.5 / c2;
+        let ek = Ek::new().evaluate(&helix).unwrap();
+        assert!(close(ek, kappa * kappa * c2.sqrt() * 7.0, 1e-10), "{ek}");
+        assert!(EkPrime::new().evaluate(&helix).unwrap().abs() < 1e-20);
+    }
+
+    /// Ek of the parabola y = a x² over [−X, X]: with x = tan(φ)/(2a), κ ds = dφ and
+    /// κ = 2a cos³φ, so Ek = ∫ 2a cos³φ dφ = 2a [sin φ − sin³φ/3] between ±atan(2aX).
+    #[test]
+    fn parabola_curvature_energy_matches_closed_form() {
+        let (a, x) = (1.7, 1.2);
+        let p = Parabola { a, domain: (-x, x) };
+        let phi = (2.0 * a * x).atan();
+        let expected = 2.0 * 2.0 * a * (phi.sin() - phi.sin().powi(3) / 3.0);
+        let ek = Ek::new().evaluate(&p).unwrap();
+        assert!(close(ek, expected, 1e-10), "{ek} {expected}");
+    }
+
+    /// E3 of a piecewise cubic is Σ |C‴_i|² h_i, E2 checked against a 64-point rule.
+    #[test]
+    fn piecewise_energies_sum_pieces() {
+        let breaks = vec![0.0, 0.5, 1.7, 2.0, 3.1];
+        let third = [
+            Vec3::new(1.0, -2.0, 0.5),
+            Vec3::new(-3.0, 1.0, 0.0),
+            Vec3::new(0.5, 0.5, 2.0),
+            Vec3::new(2.0, 0.0, -1.0),
+        ];
+        let start = [Vec3::zeros(), Vec3::new(1.0, 0.5, 0.0), Vec3::new(0.0, 1.0, -1.0)];
+        let curve = PiecewiseCubic::c2_from_third_derivatives(breaks.clone(), start, &third);
+        let expected: f64 = third
+            .iter()
+            .zip(breaks.windows(2))
+            .map(|(d, w)| d.norm_squared() * (w[1] - w[0]))
+            .sum();
+        assert!(close(
+            E3::for_polynomial(3).evaluate(&curve).unwrap(),
+            expected,
+            1e-13
+        ));
+        assert!(close(E3::new().evaluate(&curve).unwrap(), expected, 1e-13));
+        let reference = GaussLegendre::new(64)
+            .unwrap()
+            .integrate_pieces("E2", |t| curve.jet(t, Side::Right)[2].norm_squared(), &breaks)
+            .unwrap();
+        assert!(close(
+            E2::for_polynomial(3).evaluate(&curve).unwrap(),
+            reference,
+            1e-13
+        ));
+        let energies = Energies::of_polynomial(&curve, 3).unwrap();
+        assert!(close(energies.e3, expected, 1e-13));
+    }
+
+    #[test]
+    fn criteria_are_object_safe_and_named() {
+        let arc = CircleArc {
+            centre: Vec2::zeros(),
+            radius: 1.0,
+            angles: (0.0, 1.0),
+        };
+        let criteria: Vec<Box<dyn Criterion<CircleArc>>> = vec![
+            Box::new(E1::new()),
+            Box::new(E2::new()),
+            Box::new(E3::new()),
+            Box::new(Ek::new()),
+            Box::new(EkPrime::new()),
+        ];
+        let names: Vec<&str> = criteria.iter().map(|c| c.name()).collect();
+        assert_eq!(names, ["e1", "e2", "e3", "ek", "ek-prime"]);
+        let dynamic: &dyn Curve<2> = &arc;
+        assert!(close(Ek::new().evaluate(dynamic).unwrap(), 1.0, 1e-10));
+    }
+
+    #[test]
+    fn failures_are_errors_not_nan() {
+        // A cusp: C′(0) = 0 at the centre node of the Kronrod rule, κ undefined there.
+        let cusp = PowerCubic::<2> {
+            coefficients: [
+                Vec2::zeros(),
+                Vec2::zeros(),
+                Vec2::new(1.0, 0.0),
+                Vec2::new(0.0, 1.0),
+            ],
+            domain: (-1.0, 1.0),
+        };
+        assert!(matches!(Ek::new().evaluate(&cusp), Err(Error::NonFinite { .. })));
+        assert!(matches!(
+            EkPrime::new().evaluate(&cusp),
+            Err(Error::NonFinite { .. })
+        ));
+        // A sharp parabola with no bisection allowed cannot meet 1e-10.
+        let sharp = Parabola {
+            a: 50.0,
+            domain: (-1.0, 1.0),
+        };
+        let no_bisection = Ek::new().with_quadrature(Adaptive::default().with_max_depth(0));
+        assert!(matches!(
+            no_bisection.evaluate(&sharp),
+            Err(Error::NoConvergence { .. })
+        ));
+        assert!(matches!(
+            derivative_energy(&sharp, 4, &PieceQuadrature::default()),
+            Err(Error::InvalidSetting { .. })
+        ));
+        let bad_rule = E2::<2>::new().with_quadrature(PieceQuadrature::GaussLegendre(0));
+        assert!(bad_rule.evaluate(&sharp).is_err());
+    }
+}
