@@ -157,15 +157,17 @@ impl Constraints {
                     reason: format!("{} restraining radii for {n} points", radii.len()),
                 });
             }
-            if let Some(index) = radii.iter().position(|r| !(*r >= 0.0)) {
+            if let Some(index) = radii.iter().position(|r| r.is_nan() || *r < 0.0) {
                 return Err(Error::BadConstraint {
                     reason: format!("restraining radius of point {index} is {}", radii[index]),
                 });
             }
         }
         if let Some(d) = self.tolerance {
-            if !(d >= 0.0) {
-                return Err(Error::BadConstraint { reason: format!("tolerance {d} is negative or NaN") });
+            if d.is_nan() || d < 0.0 {
+                return Err(Error::BadConstraint {
+                    reason: format!("tolerance {d} is negative or NaN"),
+                });
             }
         }
         Ok(())
@@ -180,7 +182,12 @@ impl Constraints {
     /// of its restraining radius and the tolerance band (the intersection of two balls with
     /// one centre is the smaller ball); `f64::INFINITY` when neither is set.
     pub fn allowed_distance(&self, index: usize) -> f64 {
-        let radius = self.radii.as_ref().and_then(|r| r.get(index)).copied().unwrap_or(f64::INFINITY);
+        let radius = self
+            .radii
+            .as_ref()
+            .and_then(|r| r.get(index))
+            .copied()
+            .unwrap_or(f64::INFINITY);
         radius.min(self.tolerance.unwrap_or(f64::INFINITY))
     }
 
@@ -218,7 +225,11 @@ impl Constraints {
         if !self.is_movable(index, n) {
             return Ok(*original);
         }
-        Ok(project_into_ball(original, self.allowed_distance(index), proposed))
+        Ok(project_into_ball(
+            original,
+            self.allowed_distance(index),
+            proposed,
+        ))
     }
 
     /// Checks that `faired` honours every constraint against `original`, naming the first
@@ -229,8 +240,12 @@ impl Constraints {
     pub fn check<const D: usize>(&self, original: &[Vector<D>], faired: &[Vector<D>]) -> Result<()> {
         let n = original.len();
         if faired.len() != n {
-            return Err(curve_repr::Error::LengthMismatch { what: "faired points", expected: n, got: faired.len() }
-                .into());
+            return Err(curve_repr::Error::LengthMismatch {
+                what: "faired points",
+                expected: n,
+                got: faired.len(),
+            }
+            .into());
         }
         self.validate(n)?;
         for (index, (p, q)) in original.iter().zip(faired).enumerate() {
@@ -241,17 +256,30 @@ impl Constraints {
             if frozen && p != q {
                 return Err(Error::ConstraintViolated {
                     index,
-                    constraint: if self.fixed.contains(&index) { "fixed point" } else { "end clamp" },
+                    constraint: if self.fixed.contains(&index) {
+                        "fixed point"
+                    } else {
+                        "end clamp"
+                    },
                     detail: format!("moved by {:e}", (q - p).norm()),
                 });
             }
             let distance = (q - p).norm();
             let allowed = self.allowed_distance(index);
             if distance > allowed {
-                let radius = self.radii.as_ref().and_then(|r| r.get(index)).copied().unwrap_or(f64::INFINITY);
+                let radius = self
+                    .radii
+                    .as_ref()
+                    .and_then(|r| r.get(index))
+                    .copied()
+                    .unwrap_or(f64::INFINITY);
                 return Err(Error::ConstraintViolated {
                     index,
-                    constraint: if radius <= allowed { "restraining radius" } else { "tolerance" },
+                    constraint: if radius <= allowed {
+                        "restraining radius"
+                    } else {
+                        "tolerance"
+                    },
                     detail: format!("moved {distance:e}, allowed {allowed:e}"),
                 });
             }
@@ -273,7 +301,7 @@ pub fn project_into_ball<const D: usize>(center: &Vector<D>, radius: f64, propos
     if distance <= radius {
         return *proposed;
     }
-    if !(radius > 0.0) || !distance.is_finite() {
+    if radius.is_nan() || radius <= 0.0 || !distance.is_finite() {
         return *center;
     }
     let mut scale = radius / distance;

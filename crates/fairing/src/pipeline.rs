@@ -165,7 +165,7 @@ impl<'a, const D: usize> Pipeline<'a, D> {
             return Err(Error::NoStages);
         }
         if let Some(t) = self.tolerance {
-            if !(t >= 0.0) {
+            if t.is_nan() || t < 0.0 {
                 return Err(Error::BadParameter {
                     name: "tolerance",
                     value: t.to_string(),
@@ -198,7 +198,11 @@ impl<'a, const D: usize> Pipeline<'a, D> {
                 });
             }
             let name = strategy.name().to_owned();
-            let report = |termination, iterations| StageReport { name: name.clone(), iterations, termination };
+            let report = |termination, iterations| StageReport {
+                name: name.clone(),
+                iterations,
+                termination,
+            };
             if self.satisfied.as_mut().is_some_and(|p| p(&state)) {
                 termination = TerminationReason::IndicatorSatisfied;
                 reports.push(report(termination, 0));
@@ -254,7 +258,9 @@ impl<'a, const D: usize> Pipeline<'a, D> {
         let elapsed = start.elapsed();
         state.check()?;
         let (points, original) = state.into_points();
-        let moved = (0..points.len()).filter(|&i| points.get(i) != original.get(i)).collect();
+        let moved = (0..points.len())
+            .filter(|&i| points.get(i) != original.get(i))
+            .collect();
         Ok(FairingResult {
             points,
             original,

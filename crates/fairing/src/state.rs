@@ -52,7 +52,10 @@ impl<const D: usize> FairingState<D> {
         constraints.validate(points.len())?;
         if closed && constraints.end_clamp() != crate::EndClamp::None {
             return Err(Error::BadConstraint {
-                reason: format!("end clamp {} on a closed curve, which has no ends", constraints.end_clamp().name()),
+                reason: format!(
+                    "end clamp {} on a closed curve, which has no ends",
+                    constraints.end_clamp().name()
+                ),
             });
         }
         Ok(Self {
@@ -116,8 +119,14 @@ impl<const D: usize> FairingState<D> {
     /// Errors: an index out of range, a non-finite proposal.
     pub fn move_point(&mut self, index: usize, proposed: Vector<D>) -> Result<Vector<D>> {
         let n = self.points.len();
-        let (Some(original), Some(current)) = (self.original.get(index), self.points.get(index).copied()) else {
-            return Err(curve_repr::Error::IndexOutOfRange { what: "points", index, len: n }.into());
+        let (Some(original), Some(current)) = (self.original.get(index), self.points.get(index).copied())
+        else {
+            return Err(curve_repr::Error::IndexOutOfRange {
+                what: "points",
+                index,
+                len: n,
+            }
+            .into());
         };
         let to = self.constraints.constrain_move(index, n, original, &proposed)?;
         if to != current {
@@ -125,7 +134,11 @@ impl<const D: usize> FairingState<D> {
                 *slot = to;
             }
             self.moved.insert(index);
-            self.pending.push(Move { index, from: current, to });
+            self.pending.push(Move {
+                index,
+                from: current,
+                to,
+            });
         }
         Ok(to)
     }
@@ -150,5 +163,8 @@ impl<const D: usize> FairingState<D> {
 
 /// Returns an error naming the strategy: a helper for strategy authors.
 pub fn strategy_error(strategy: &str, reason: impl Into<String>) -> Error {
-    Error::Strategy { strategy: strategy.to_owned(), reason: reason.into() }
+    Error::Strategy {
+        strategy: strategy.to_owned(),
+        reason: reason.into(),
+    }
 }

@@ -15,12 +15,18 @@ pub struct StepOutcome {
 impl StepOutcome {
     /// A step after which the strategy wants to go on.
     pub fn running(criterion: Option<f64>) -> Self {
-        Self { done: false, criterion }
+        Self {
+            done: false,
+            criterion,
+        }
     }
 
     /// The strategy's last step: nothing left to do.
     pub fn done(criterion: Option<f64>) -> Self {
-        Self { done: true, criterion }
+        Self {
+            done: true,
+            criterion,
+        }
     }
 }
 

@@ -63,12 +63,18 @@ pub fn blend(n: usize, segments: &[Segment], displacements: &[Vec<Vec2>]) -> Res
         }
         for (j, (&i, d)) in segment.indices.iter().zip(moves).enumerate() {
             let (Some(s), Some(w)) = (sum.get_mut(i), weight.get_mut(i)) else {
-                return Err(Error::Partition { reason: format!("segment index {i} out of range for {n} points") });
+                return Err(Error::Partition {
+                    reason: format!("segment index {i} out of range for {n} points"),
+                });
             };
             let wj = segment.blend_weight(j);
             *s += d * wj;
             *w += wj;
         }
     }
-    Ok(sum.into_iter().zip(weight).map(|(s, w)| if w > 0.0 { s / w } else { Vec2::zeros() }).collect())
+    Ok(sum
+        .into_iter()
+        .zip(weight)
+        .map(|(s, w)| if w > 0.0 { s / w } else { Vec2::zeros() })
+        .collect())
 }

@@ -22,7 +22,10 @@ impl Frame {
     /// The frame with `origin` and an x axis at `angle` radians (counter-clockwise from the
     /// original x axis).
     pub fn new(origin: Vec2, angle: f64) -> Self {
-        Self { origin, axis: Vec2::new(angle.cos(), angle.sin()) }
+        Self {
+            origin,
+            axis: Vec2::new(angle.cos(), angle.sin()),
+        }
     }
 
     /// The unit y axis (the x axis turned a quarter counter-clockwise).

@@ -56,7 +56,10 @@ pub struct PartitionSettings {
 
 impl Default for PartitionSettings {
     fn default() -> Self {
-        Self { limit: PI, overlap: 5 }
+        Self {
+            limit: PI,
+            overlap: 5,
+        }
     }
 }
 
@@ -75,7 +78,7 @@ impl PartitionSettings {
 
     /// Checks the ranges: limit in (0, π], overlap ≥ 1.
     pub fn validate(&self) -> Result<()> {
-        if !(self.limit > 0.0 && self.limit <= PI) {
+        if self.limit.is_nan() || self.limit <= 0.0 || self.limit > PI {
             return Err(Error::BadParameter {
                 name: "limit",
                 value: self.limit.to_string(),
@@ -113,7 +116,11 @@ pub struct Segment {
 impl Segment {
     /// The segment's points in its frame: (x, y) with x strictly increasing. O(len).
     pub fn local_points(&self, points: &[Vec2]) -> Vec<Vec2> {
-        self.indices.iter().filter_map(|&i| points.get(i)).map(|p| self.frame.to_local(p)).collect()
+        self.indices
+            .iter()
+            .filter_map(|&i| points.get(i))
+            .map(|p| self.frame.to_local(p))
+            .collect()
     }
 }
 
@@ -134,7 +141,10 @@ impl Walk<'_> {
     }
 
     fn point(&self, position: usize) -> Vec2 {
-        self.points.get(self.index(position)).copied().unwrap_or_else(Vec2::zeros)
+        self.points
+            .get(self.index(position))
+            .copied()
+            .unwrap_or_else(Vec2::zeros)
     }
 
     fn edge(&self, j: usize) -> Vec2 {
@@ -147,7 +157,9 @@ impl Walk<'_> {
             .get(a..b)
             .unwrap_or(&[])
             .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| (lo.min(v), hi.max(v)))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+                (lo.min(v), hi.max(v))
+            })
     }
 
     /// The frame of positions a..=b and whether x increases strictly in it.
@@ -198,14 +210,24 @@ pub fn partition(points: &[Vec2], closed: bool, settings: &PartitionSettings) ->
     let n = points.len();
     let needed = if closed { 3 } else { 2 };
     if n < needed {
-        return Err(curve_repr::Error::TooFewPoints { what: "partition", needed, got: n }.into());
+        return Err(curve_repr::Error::TooFewPoints {
+            what: "partition",
+            needed,
+            got: n,
+        }
+        .into());
     }
     curve_repr::vector::check_finite(points)?;
     let k = settings.overlap;
     // Closed: start at the largest turn; positions 0..=n+k (position n is position 0 again).
     let start = if closed { largest_turn(points) } else { 0 };
     let edges = if closed { n + k } else { n - 1 };
-    let mut walk = Walk { points, alpha: Vec::with_capacity(edges), phi0: 0.0, start };
+    let mut walk = Walk {
+        points,
+        alpha: Vec::with_capacity(edges),
+        phi0: 0.0,
+        start,
+    };
     let mut previous: Option<Vec2> = None;
     let mut alpha = 0.0;
     for j in 0..edges {
@@ -248,7 +270,9 @@ pub fn partition(points: &[Vec2], closed: bool, settings: &PartitionSettings) ->
     let mut wrap = 0;
     if closed {
         if spans.len() < 2 {
-            return Err(Error::Partition { reason: "a closed curve that turns less than the limit".into() });
+            return Err(Error::Partition {
+                reason: "a closed curve that turns less than the limit".into(),
+            });
         }
         let first_free = spans.get(1).map_or(0, |s| s.0);
         let (last_start, _, _) = spans.last().copied().unwrap_or((0, 0, 0));
@@ -272,7 +296,11 @@ pub fn partition(points: &[Vec2], closed: bool, settings: &PartitionSettings) ->
         let (frame, turning, increasing) = walk.frame(a, b);
         if !increasing {
             return Err(Error::Partition {
-                reason: format!("points {} and {} are not a function in any frame", walk.index(a), walk.index(b)),
+                reason: format!(
+                    "points {} and {} are not a function in any frame",
+                    walk.index(a),
+                    walk.index(b)
+                ),
             });
         }
         let overlap_after = match spans.get(s + 1) {
@@ -295,8 +323,11 @@ fn largest_turn(points: &[Vec2]) -> usize {
     let n = points.len();
     let mut best = (0, f64::NEG_INFINITY);
     for i in 0..n {
-        let (Some(p), Some(q), Some(r)) = (points.get((i + n - 1) % n), points.get(i), points.get((i + 1) % n))
-        else {
+        let (Some(p), Some(q), Some(r)) = (
+            points.get((i + n - 1) % n),
+            points.get(i),
+            points.get((i + 1) % n),
+        ) else {
             continue;
         };
         let (e, f) = (q - p, r - q);

@@ -62,7 +62,13 @@ impl<F: SegmentFairer> SegmentedFairing<F> {
     /// A driver around `fairer` with the default partition and passes.
     pub fn new(fairer: F) -> Self {
         let name = format!("segmented({})", fairer.name());
-        Self { fairer, settings: PartitionSettings::default(), passes: Self::DEFAULT_PASSES, done: 0, name }
+        Self {
+            fairer,
+            settings: PartitionSettings::default(),
+            passes: Self::DEFAULT_PASSES,
+            done: 0,
+            name,
+        }
     }
 
     /// Sets the partition settings.
@@ -91,7 +97,11 @@ impl<F: SegmentFairer> FairingStrategy<2> for SegmentedFairing<F> {
     fn init(&mut self, state: &mut FairingState<2>) -> Result<()> {
         self.settings.validate()?;
         if self.passes == 0 {
-            return Err(Error::BadParameter { name: "passes", value: "0".into(), reason: "at least one pass" });
+            return Err(Error::BadParameter {
+                name: "passes",
+                value: "0".into(),
+                reason: "at least one pass",
+            });
         }
         self.done = 0;
         let _ = state;
@@ -119,11 +129,16 @@ impl<F: SegmentFairer> FairingStrategy<2> for SegmentedFairing<F> {
                     .into());
                 }
                 if let Some(j) = y.iter().position(|v| !v.is_finite()) {
-                    return Err(Error::NonFiniteMove { index: segment.indices.get(j).copied().unwrap_or(0) });
+                    return Err(Error::NonFiniteMove {
+                        index: segment.indices.get(j).copied().unwrap_or(0),
+                    });
                 }
             }
             displacements.push(
-                y.iter().zip(&before).map(|(new, old)| segment.frame.displacement(new - old)).collect::<Vec<Vec2>>(),
+                y.iter()
+                    .zip(&before)
+                    .map(|(new, old)| segment.frame.displacement(new - old))
+                    .collect::<Vec<Vec2>>(),
             );
         }
         let moves = blend(points.len(), &segments, &displacements)?;
@@ -133,6 +148,10 @@ impl<F: SegmentFairer> FairingStrategy<2> for SegmentedFairing<F> {
             }
         }
         self.done += 1;
-        Ok(if self.done >= self.passes { StepOutcome::done(None) } else { StepOutcome::running(None) })
+        Ok(if self.done >= self.passes {
+            StepOutcome::done(None)
+        } else {
+            StepOutcome::running(None)
+        })
     }
 }

@@ -10,7 +10,10 @@ fn vec3() -> impl Strategy<Value = Vec3> {
 fn constraints(n: usize) -> impl Strategy<Value = Constraints> {
     (
         proptest::collection::vec(0..n, 0..3),
-        proptest::option::of(proptest::collection::vec(prop_oneof![Just(0.0), 1e-9..10.0f64, Just(f64::INFINITY)], n)),
+        proptest::option::of(proptest::collection::vec(
+            prop_oneof![Just(0.0), 1e-9..10.0f64, Just(f64::INFINITY)],
+            n,
+        )),
         proptest::option::of(prop_oneof![Just(0.0), 1e-9..10.0f64]),
         prop_oneof![Just(EndClamp::None), Just(EndClamp::G0), Just(EndClamp::G2)],
     )
@@ -80,26 +83,40 @@ fn non_finite_proposal_is_an_error() {
 
 #[test]
 fn validate_rejects_bad_constraints() {
-    assert!(matches!(Constraints::default().with_fixed([5]).validate(5), Err(Error::BadConstraint { .. })));
+    assert!(matches!(
+        Constraints::default().with_fixed([5]).validate(5),
+        Err(Error::BadConstraint { .. })
+    ));
     assert!(Constraints::default().with_fixed([4]).validate(5).is_ok());
     assert!(matches!(
-        Constraints::default().with_restraining_radii(vec![1.0; 4]).validate(5),
+        Constraints::default()
+            .with_restraining_radii(vec![1.0; 4])
+            .validate(5),
         Err(Error::BadConstraint { .. })
     ));
     assert!(matches!(
-        Constraints::default().with_restraining_radii(vec![1.0, -1.0, 1.0]).validate(3),
+        Constraints::default()
+            .with_restraining_radii(vec![1.0, -1.0, 1.0])
+            .validate(3),
         Err(Error::BadConstraint { .. })
     ));
     assert!(matches!(
-        Constraints::default().with_restraining_radii(vec![1.0, f64::NAN, 1.0]).validate(3),
+        Constraints::default()
+            .with_restraining_radii(vec![1.0, f64::NAN, 1.0])
+            .validate(3),
         Err(Error::BadConstraint { .. })
     ));
-    assert!(matches!(Constraints::default().with_tolerance(-0.1).validate(3), Err(Error::BadConstraint { .. })));
+    assert!(matches!(
+        Constraints::default().with_tolerance(-0.1).validate(3),
+        Err(Error::BadConstraint { .. })
+    ));
 }
 
 #[test]
 fn movability_accounts_for_end_clamps() {
-    let c = Constraints::default().with_end_clamp(EndClamp::G1).with_fixed([2]);
+    let c = Constraints::default()
+        .with_end_clamp(EndClamp::G1)
+        .with_fixed([2]);
     let movable: Vec<bool> = (0..6).map(|i| c.is_movable(i, 6)).collect();
     assert_eq!(movable, [false, true, false, true, true, false]);
     assert!(!c.is_movable(6, 6));
@@ -109,35 +126,64 @@ fn movability_accounts_for_end_clamps() {
 
 #[test]
 fn check_names_the_violated_point() {
-    let original = vec![Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0), Vec2::new(2.0, 0.0), Vec2::new(3.0, 0.0)];
+    let original = vec![
+        Vec2::new(0.0, 0.0),
+        Vec2::new(1.0, 0.0),
+        Vec2::new(2.0, 0.0),
+        Vec2::new(3.0, 0.0),
+    ];
     let mut faired = original.clone();
     let fixed = Constraints::default().with_fixed([2]);
     assert!(fixed.check(&original, &faired).is_ok());
     faired[2].y = 1e-300;
     assert!(matches!(
         fixed.check(&original, &faired),
-        Err(Error::ConstraintViolated { index: 2, constraint: "fixed point", .. })
+        Err(Error::ConstraintViolated {
+            index: 2,
+            constraint: "fixed point",
+            ..
+        })
     ));
 
     let mut faired = original.clone();
     faired[1].y = 0.30000001;
     let band = Constraints::default().with_tolerance(0.3);
-    assert!(matches!(band.check(&original, &faired), Err(Error::ConstraintViolated { index: 1, constraint: "tolerance", .. })));
+    assert!(matches!(
+        band.check(&original, &faired),
+        Err(Error::ConstraintViolated {
+            index: 1,
+            constraint: "tolerance",
+            ..
+        })
+    ));
     faired[1].y = 0.3;
     assert!(band.check(&original, &faired).is_ok());
 
-    let radii = Constraints::default().with_restraining_radii(vec![1.0, 1.0, 0.1, 1.0]).with_tolerance(0.5);
+    let radii = Constraints::default()
+        .with_restraining_radii(vec![1.0, 1.0, 0.1, 1.0])
+        .with_tolerance(0.5);
     let mut faired = original.clone();
     faired[2].x += 0.2;
     assert!(matches!(
         radii.check(&original, &faired),
-        Err(Error::ConstraintViolated { index: 2, constraint: "restraining radius", .. })
+        Err(Error::ConstraintViolated {
+            index: 2,
+            constraint: "restraining radius",
+            ..
+        })
     ));
 
     let clamp = Constraints::default().with_end_clamp(EndClamp::G0);
     let mut faired = original.clone();
     faired[3].x = 3.0000000000000004;
-    assert!(matches!(clamp.check(&original, &faired), Err(Error::ConstraintViolated { index: 3, constraint: "end clamp", .. })));
+    assert!(matches!(
+        clamp.check(&original, &faired),
+        Err(Error::ConstraintViolated {
+            index: 3,
+            constraint: "end clamp",
+            ..
+        })
+    ));
 
     let mut short = original.clone();
     short.pop();

@@ -12,7 +12,10 @@ struct Laplacian {
 }
 
 fn second_difference_energy(points: &[Vec2]) -> f64 {
-    points.windows(3).map(|w| (w[0] - 2.0 * w[1] + w[2]).norm_squared()).sum()
+    points
+        .windows(3)
+        .map(|w| (w[0] - 2.0 * w[1] + w[2]).norm_squared())
+        .sum()
 }
 
 impl FairingStrategy<2> for Laplacian {
@@ -29,7 +32,9 @@ impl FairingStrategy<2> for Laplacian {
             let target = p[i] + self.lambda * ((p[i - 1] + p[i + 1]) * 0.5 - p[i]);
             state.move_point(i, target)?;
         }
-        Ok(StepOutcome::running(Some(second_difference_energy(state.points()))))
+        Ok(StepOutcome::running(Some(second_difference_energy(
+            state.points(),
+        ))))
     }
 }
 
@@ -47,12 +52,23 @@ impl FairingStrategy<2> for Counted {
         self.taken += 1;
         let p = state.points()[1];
         state.move_point(1, p + Vec2::new(0.0, 1.0))?;
-        Ok(if self.taken >= self.steps { StepOutcome::done(None) } else { StepOutcome::running(None) })
+        Ok(if self.taken >= self.steps {
+            StepOutcome::done(None)
+        } else {
+            StepOutcome::running(None)
+        })
     }
 }
 
 fn noisy(n: usize) -> Vec<Vec2> {
-    (0..n).map(|i| Vec2::new(i as f64, if i % 2 == 0 { 0.5 } else { -0.5 } + (i as f64 * 0.37).sin())).collect()
+    (0..n)
+        .map(|i| {
+            Vec2::new(
+                i as f64,
+                if i % 2 == 0 { 0.5 } else { -0.5 } + (i as f64 * 0.37).sin(),
+            )
+        })
+        .collect()
 }
 
 /// Replays a trace from the original points.
@@ -73,13 +89,20 @@ fn stops_at_max_iterations_and_observers_see_every_step() {
             .with_max_iterations(7)
             .with_observer(|state: &FairingState<2>, step: &StepRecord<2>| {
                 assert_eq!(state.iteration, step.iteration);
-                seen.push((step.iteration, step.moves.len(), step.criterion.unwrap_or(f64::NAN)));
+                seen.push((
+                    step.iteration,
+                    step.moves.len(),
+                    step.criterion.unwrap_or(f64::NAN),
+                ));
             });
         pipeline.run(noisy(20)).unwrap()
     };
     assert_eq!(result.termination, TerminationReason::MaxIterations);
     assert_eq!(result.iterations, 7);
-    assert_eq!(seen.iter().map(|s| s.0).collect::<Vec<_>>(), (1..=7).collect::<Vec<_>>());
+    assert_eq!(
+        seen.iter().map(|s| s.0).collect::<Vec<_>>(),
+        (1..=7).collect::<Vec<_>>()
+    );
     assert_eq!(result.trace.steps.len(), 7);
     for (record, s) in result.trace.steps.iter().zip(&seen) {
         assert_eq!(record.moves.len(), s.1);
@@ -94,7 +117,10 @@ fn stops_at_max_iterations_and_observers_see_every_step() {
 #[test]
 fn stops_when_the_criterion_converges() {
     let tol = 1e-3;
-    let result = Pipeline::new(Laplacian { lambda: 0.5 }).with_tolerance(tol).run(noisy(12)).unwrap();
+    let result = Pipeline::new(Laplacian { lambda: 0.5 })
+        .with_tolerance(tol)
+        .run(noisy(12))
+        .unwrap();
     assert_eq!(result.termination, TerminationReason::Converged);
     assert!(result.iterations < Pipeline::<2>::DEFAULT_MAX_ITERATIONS);
     let mut criteria: Vec<f64> = vec![second_difference_energy(&result.original)];
@@ -107,7 +133,10 @@ fn stops_when_the_criterion_converges() {
 
 #[test]
 fn stops_when_the_strategy_is_done() {
-    let result = Pipeline::new(Counted { steps: 3, taken: 0 }).with_max_iterations(10).run(noisy(4)).unwrap();
+    let result = Pipeline::new(Counted { steps: 3, taken: 0 })
+        .with_max_iterations(10)
+        .run(noisy(4))
+        .unwrap();
     assert_eq!(result.termination, TerminationReason::StrategyDone);
     assert_eq!(result.iterations, 3);
     assert_eq!(result.points[1], result.original[1] + Vec2::new(0.0, 3.0));
@@ -130,8 +159,14 @@ fn stops_when_the_indicator_is_satisfied() {
     assert!(energies[..energies.len() - 1].iter().all(|&e| e >= threshold));
 
     // Satisfied before any step: nothing runs.
-    let result = Pipeline::new(Laplacian { lambda: 0.5 }).with_satisfied(|_: &FairingState<2>| true).run(points.clone()).unwrap();
-    assert_eq!((result.iterations, result.termination), (0, TerminationReason::IndicatorSatisfied));
+    let result = Pipeline::new(Laplacian { lambda: 0.5 })
+        .with_satisfied(|_: &FairingState<2>| true)
+        .run(points.clone())
+        .unwrap();
+    assert_eq!(
+        (result.iterations, result.termination),
+        (0, TerminationReason::IndicatorSatisfied)
+    );
     assert_eq!(result.points, points);
 }
 
@@ -146,7 +181,10 @@ fn stages_run_one_after_another_on_the_same_points() {
     assert_eq!(result.stages.len(), 2);
     assert_eq!(result.stages[0].name, "laplacian");
     assert_eq!(result.stages[0].termination, TerminationReason::MaxIterations);
-    assert_eq!((result.stages[1].iterations, result.stages[1].termination), (2, TerminationReason::StrategyDone));
+    assert_eq!(
+        (result.stages[1].iterations, result.stages[1].termination),
+        (2, TerminationReason::StrategyDone)
+    );
     assert_eq!(result.termination, TerminationReason::StrategyDone);
     assert_eq!(result.iterations, 6);
     assert_eq!(result.original, points);
@@ -157,7 +195,10 @@ fn stages_run_one_after_another_on_the_same_points() {
 #[test]
 fn constraints_hold_through_the_run() {
     let points = noisy(15);
-    let constraints = Constraints::default().with_fixed([5]).with_tolerance(0.2).with_end_clamp(EndClamp::G0);
+    let constraints = Constraints::default()
+        .with_fixed([5])
+        .with_tolerance(0.2)
+        .with_end_clamp(EndClamp::G0);
     let result = Pipeline::new(Laplacian { lambda: 0.9 })
         .with_constraints(constraints.clone())
         .with_max_iterations(50)
@@ -168,7 +209,12 @@ fn constraints_hold_through_the_run() {
     assert_eq!(result.points[0], points[0]);
     assert_eq!(result.points[14], points[14]);
     // The band is active: some point sits on it.
-    let max = result.points.iter().zip(&points).map(|(a, b)| (a - b).norm()).fold(0.0, f64::max);
+    let max = result
+        .points
+        .iter()
+        .zip(&points)
+        .map(|(a, b)| (a - b).norm())
+        .fold(0.0, f64::max);
     assert!(max > 0.19 && max <= 0.2, "max displacement {max}");
     assert!(!result.moved.contains(&5) && !result.moved.contains(&0));
 }
@@ -190,7 +236,10 @@ fn bad_input_is_an_error() {
     let mut pipeline = Pipeline::new(Laplacian { lambda: 0.5 });
     let mut points = noisy(6);
     points[3].x = f64::NAN;
-    assert!(matches!(pipeline.run(points), Err(Error::Repr(curve_repr::Error::NonFinite { index: 3, .. }))));
+    assert!(matches!(
+        pipeline.run(points),
+        Err(Error::Repr(curve_repr::Error::NonFinite { index: 3, .. }))
+    ));
     let err = Pipeline::new(Laplacian { lambda: 0.5 })
         .with_constraints(Constraints::default().with_fixed([6]))
         .run(noisy(6))
@@ -213,7 +262,10 @@ fn bad_input_is_an_error() {
             Ok(StepOutcome::done(None))
         }
     }
-    assert_eq!(Pipeline::new(Broken).run(noisy(3)).unwrap_err(), Error::NonFiniteMove { index: 1 });
+    assert_eq!(
+        Pipeline::new(Broken).run(noisy(3)).unwrap_err(),
+        Error::NonFiniteMove { index: 1 }
+    );
     struct NanCriterion;
     impl FairingStrategy<2> for NanCriterion {
         fn name(&self) -> &str {
@@ -223,16 +275,24 @@ fn bad_input_is_an_error() {
             Ok(StepOutcome::running(Some(f64::NAN)))
         }
     }
-    assert!(matches!(Pipeline::new(NanCriterion).run(noisy(3)), Err(Error::Strategy { .. })));
+    assert!(matches!(
+        Pipeline::new(NanCriterion).run(noisy(3)),
+        Err(Error::Strategy { .. })
+    ));
     assert!(matches!(
         Pipeline::new(NanCriterion).with_tolerance(-1.0).run(noisy(3)),
-        Err(Error::BadParameter { name: "tolerance", .. })
+        Err(Error::BadParameter {
+            name: "tolerance",
+            ..
+        })
     ));
 }
 
 #[test]
 fn trace_serialises() {
-    let result = Pipeline::new(Counted { steps: 2, taken: 0 }).run(noisy(3)).unwrap();
+    let result = Pipeline::new(Counted { steps: 2, taken: 0 })
+        .run(noisy(3))
+        .unwrap();
     let json = serde_json::to_string(&result.trace).unwrap();
     let back: Trace<2> = serde_json::from_str(&json).unwrap();
     assert_eq!(back, result.trace);
