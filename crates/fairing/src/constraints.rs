@@ -100,6 +100,11 @@ impl Constraints {
     /// Sets one restraining radius per point (Zhang–Cheng §2.3's restraining circles in 2D,
     /// §4's spheres in 3D): point i never leaves the closed ball of radius `radii[i]` around
     /// its original position. `f64::INFINITY` leaves a point unrestrained; 0 freezes it.
+    ///
+    /// These are the user's radii. Zhang–Cheng's automatic algorithm derives its own region
+    /// from the data (radius |P_i − P̄_i|, P̄_i from their Eq. 11) at `init`; such a strategy
+    /// keeps those radii itself and applies [`project_into_ball`] before
+    /// [`FairingState::move_point`](crate::FairingState::move_point) applies these.
     pub fn with_restraining_radii(mut self, radii: Vec<f64>) -> Self {
         self.radii = Some(radii);
         self

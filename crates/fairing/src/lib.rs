@@ -6,7 +6,7 @@
 //! owns the loop, termination ([`TerminationReason`]), [`Observer`]s, the [`Trace`] of every
 //! move, timing, composition of stages and the final [`Constraints::check`].
 //!
-//! [`partition`] holds the arbitrary-curve machinery of Han et al. §4.2: split a planar
+//! [`mod@partition`] holds the arbitrary-curve machinery of Han et al. §4.2: split a planar
 //! curve into overlapping function segments by turning angle, transform each into the frame of
 //! its angular bisector, fair it as a function y(x), transform back and blend the overlaps
 //! ([`SegmentedFairing`]).
