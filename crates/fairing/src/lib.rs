@@ -1,1 +1,33 @@
-//! fairing (under construction).
+//! Fairing strategies, the constraints they honour and the pipeline that runs them.
+//!
+//! The third and fourth axes of the framework (see DESIGN.md): *how the shape is changed*
+//! ([`FairingStrategy`]) and *what must hold* ([`Constraints`]). The pieces are separate as
+//! in argmin: a strategy says how to take one step on a [`FairingState`]; the [`Pipeline`]
+//! owns the loop, termination ([`TerminationReason`]), [`Observer`]s, the [`Trace`] of every
+//! move, timing, composition of stages and the final [`Constraints::check`].
+//!
+//! [`mod@partition`] holds the arbitrary-curve machinery of Han et al. §4.2: split a planar
+//! curve into overlapping function segments by turning angle, transform each into the frame of
+//! its angular bisector, fair it as a function y(x), transform back and blend the overlaps
+//! ([`SegmentedFairing`]).
+
+pub mod constraints;
+pub mod error;
+pub mod observer;
+pub mod partition;
+pub mod pipeline;
+pub mod state;
+pub mod strategy;
+pub mod trace;
+
+pub use constraints::{project_into_ball, Constraints, EndClamp};
+pub use error::{Error, Result};
+pub use observer::Observer;
+pub use partition::{partition, PartitionSettings, Segment, SegmentFairer, SegmentedFairing};
+pub use pipeline::{FairingResult, Pipeline, StageReport, TerminationReason};
+pub use state::{FairingState, Move};
+pub use strategy::{reject_derivative_clamps, FairingStrategy, StepOutcome};
+pub use trace::{StepRecord, Trace};
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,157 @@
+//! [`SegmentedFairing`]: Han et al.'s arbitrary-curve pipeline (§4.2.4) as a strategy.
+
+use curve_repr::Vec2;
+
+use super::{blend, partition, PartitionSettings};
+use crate::{Error, FairingState, FairingStrategy, Result, StepOutcome};
+
+/// Fairs one function segment y(x) in place: the inner method of [`SegmentedFairing`]
+/// (Han's two-phase fairing, a smoothing spline, ...).
+///
+/// `x` increases strictly; `fixed[j]` marks points that must not move (fixed points and
+/// clamped curve ends; moving them anyway is undone by the constraints). Only y may change,
+/// so every move is normal to the frame's x axis. Any closure
+/// `FnMut(&[f64], &mut [f64], &[bool]) -> Result<()>` is a segment fairer with the defaults.
+pub trait SegmentFairer {
+    /// The fairer's name, used in [`SegmentedFairing`]'s name and its errors.
+    fn name(&self) -> &str {
+        "segment"
+    }
+
+    /// The fewest points it can fair; shorter segments are left unchanged. Default 4.
+    fn min_points(&self) -> usize {
+        4
+    }
+
+    /// Fairs `y` over `x`.
+    fn fair(&mut self, x: &[f64], y: &mut [f64], fixed: &[bool]) -> Result<()>;
+}
+
+impl<F: FnMut(&[f64], &mut [f64], &[bool]) -> Result<()>> SegmentFairer for F {
+    fn fair(&mut self, x: &[f64], y: &mut [f64], fixed: &[bool]) -> Result<()> {
+        self(x, y, fixed)
+    }
+}
+
+/// Han §4.2.4: partition the planar curve into function segments, fair each in its frame,
+/// move back, blend the overlaps; one such pass per step, `passes` steps in all.
+///
+/// Choices where the paper is silent (tested): the partition is recomputed at every pass
+/// (moved points change the turning angles); all segments are faired from the same current
+/// points (not one after another on already-blended points), so the result does not depend
+/// on the order of segments; each segment's change is the displacement dy·(frame normal) and
+/// the overlaps blend displacements with the linear ramp of [`blend()`]; the constraints
+/// (tolerance band, radii, fixed points) are applied to the blended move in the original
+/// frame by [`FairingState::move_point`]. End clamps beyond G0 are rejected (a function
+/// fairer has no end-tangent condition in the original frame), as is any end clamp on a
+/// closed curve.
+///
+/// Cost per pass: O(n · overlap) plus the fairer's cost on every segment.
+pub struct SegmentedFairing<F> {
+    fairer: F,
+    settings: PartitionSettings,
+    passes: usize,
+    done: usize,
+    name: String,
+}
+
+impl<F: SegmentFairer> SegmentedFairing<F> {
+    /// The default number of passes (the paper says "several times").
+    pub const DEFAULT_PASSES: usize = 3;
+
+    /// A driver around `fairer` with the default partition and passes.
+    pub fn new(fairer: F) -> Self {
+        let name = format!("segmented({})", fairer.name());
+        Self {
+            fairer,
+            settings: PartitionSettings::default(),
+            passes: Self::DEFAULT_PASSES,
+            done: 0,
+            name,
+        }
+    }
+
+    /// Sets the partition settings.
+    pub fn with_partition(mut self, settings: PartitionSettings) -> Self {
+        self.settings = settings;
+        self
+    }
+
+    /// Sets the number of passes (at least 1).
+    pub fn with_passes(mut self, passes: usize) -> Self {
+        self.passes = passes;
+        self
+    }
+
+    /// The inner fairer.
+    pub fn fairer(&self) -> &F {
+        &self.fairer
+    }
+}
+
+impl<F: SegmentFairer> FairingStrategy<2> for SegmentedFairing<F> {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn init(&mut self, state: &mut FairingState<2>) -> Result<()> {
+        self.settings.validate()?;
+        if self.passes == 0 {
+            return Err(Error::BadParameter {
+                name: "passes",
+                value: "0".into(),
+                reason: "at least one pass",
+            });
+        }
+        self.done = 0;
+        let _ = state;
+        Ok(())
+    }
+
+    fn step(&mut self, state: &mut FairingState<2>) -> Result<StepOutcome> {
+        let points = state.points().to_vec();
+        let segments = partition(&points, state.is_closed(), &self.settings)?;
+        let mut displacements = Vec::with_capacity(segments.len());
+        for segment in &segments {
+            let local = segment.local_points(&points);
+            let x: Vec<f64> = local.iter().map(|p| p.x).collect();
+            let before: Vec<f64> = local.iter().map(|p| p.y).collect();
+            let mut y = before.clone();
+            if local.len() >= self.fairer.min_points() {
+                let fixed: Vec<bool> = segment.indices.iter().map(|&i| !state.is_movable(i)).collect();
+                self.fairer.fair(&x, &mut y, &fixed)?;
+                if y.len() != before.len() {
+                    return Err(curve_repr::Error::LengthMismatch {
+                        what: "faired segment",
+                        expected: before.len(),
+                        got: y.len(),
+                    }
+                    .into());
+                }
+                if let Some(j) = y.iter().position(|v| !v.is_finite()) {
+                    return Err(Error::NonFiniteMove {
+                        index: segment.indices.get(j).copied().unwrap_or(0),
+                    });
+                }
+            }
+            displacements.push(
+                y.iter()
+                    .zip(&before)
+                    .map(|(new, old)| segment.frame.displacement(new - old))
+                    .collect::<Vec<Vec2>>(),
+            );
+        }
+        let moves = blend(points.len(), &segments, &displacements)?;
+        for (i, (p, d)) in points.iter().zip(&moves).enumerate() {
+            if d.x != 0.0 || d.y != 0.0 {
+                state.move_point(i, p + d)?;
+            }
+        }
+        self.done += 1;
+        Ok(if self.done >= self.passes {
+            StepOutcome::done(None)
+        } else {
+            StepOutcome::running(None)
+        })
+    }
+}
