@@ -117,6 +117,7 @@ pub enum Error {
         value: f64,
         /// The allowed range.
         reason: &'static str,
+    },
     /// Two consecutive grid lines of a surface coincide on average, so the averaged
     /// chord-length knot step between them would be zero.
     #[error("grid lines {index} and {} in the {direction} direction coincide", index + 1)]
