@@ -661,8 +661,14 @@ proptest! {
         prop_assert!(max_residual(&curve, &points, problem.params()) < 1e-12 * size);
         prop_assert_eq!(curve.weights(), w);
         if tangents {
-            prop_assert!((curve.jet(0.0, Side::Right)[1] - t0).norm() < 1e-10 * t0.norm());
-            prop_assert!((curve.jet(1.0, Side::Right)[1] - t1).norm() < 1e-10 * t1.norm());
+            // The rational derivative (A' - W'C)/W divides by the end weight after a
+            // cancellation between weighted control points, so round-off grows with the
+            // weight ratio; the bound is machine precision times that ratio.
+            let ratio = w.iter().cloned().fold(0.0, f64::max) / w.iter().cloned().fold(f64::INFINITY, f64::min);
+            for (u, t) in [(0.0, t0), (1.0, t1)] {
+                let error = (curve.jet(u, Side::Right)[1] - t).norm();
+                prop_assert!(error < 1e-12 * ratio * t.norm(), "end tangent error {} at u = {}", error, u);
+            }
         }
     }
 

@@ -474,7 +474,7 @@ mod tests {
     #[test]
     fn adaptive_meets_its_tolerance_on_a_peaked_integrand() {
         // ∫_{-1}^{1} 1/(ε² + x²) dx = (2/ε) atan(1/ε).
-        let eps = 1e-3;
+        let eps: f64 = 1e-3;
         let exact = 2.0 / eps * (1.0 / eps).atan();
         let got = Adaptive::default()
             .integrate("peak", |x| 1.0 / (eps * eps + x * x), -1.0, 1.0)

@@ -316,7 +316,21 @@ impl<const D: usize> Interpolation<D> {
                 rhs[(r, c)] = value[c];
             }
         }
+        let original = rhs.clone();
         self.lu.solve_in_place(rhs.as_mut());
+        // One step of iterative refinement: the rows mix point conditions (entries O(1)) and
+        // derivative conditions (entries O(p/Δu)), and with strongly varying weights the
+        // first solve leaves a residual well above round-off in the derivative rows.
+        let mut residual = original;
+        for (r, row) in self.rows.iter().enumerate() {
+            for (j, value) in row.values.iter().enumerate() {
+                for c in 0..D {
+                    residual[(r, c)] -= value * rhs[(row.first + j, c)];
+                }
+            }
+        }
+        self.lu.solve_in_place(residual.as_mut());
+        rhs += &residual;
         let control_points: Vec<Vector<D>> = (0..n)
             .map(|i| Vector::<D>::from_fn(|c, _| rhs[(i, c)] / weights[i]))
             .collect();
