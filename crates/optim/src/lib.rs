@@ -20,8 +20,7 @@ pub mod weight_law;
 
 pub use error::{Error, Result};
 pub use nelder_mead::{
-    minimize, InitialSimplex, Minimum, NelderMeadSettings, Objective, Observer, Progress,
-    Termination,
+    minimize, InitialSimplex, Minimum, NelderMeadSettings, Objective, Observer, Progress, Termination,
 };
 pub use problem::{WeightCriterion, WeightProblem, WeightSolution};
 pub use weight_law::{CubicBernstein, LawDescription, PerPoint, WeightLaw};

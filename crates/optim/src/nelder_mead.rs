@@ -38,9 +38,7 @@
 use std::cell::Cell;
 use std::fmt;
 
-use argmin::core::{
-    CostFunction, IterState, Problem, Solver, State, TerminationReason, TerminationStatus,
-};
+use argmin::core::{CostFunction, IterState, Problem, Solver, State, TerminationReason, TerminationStatus};
 use argmin::solver::neldermead::NelderMead;
 
 use crate::error::{Error, Result};
@@ -313,9 +311,7 @@ where
     // The start point is a vertex with a finite cost, so argmin always holds a finite best;
     // the fallback keeps this panic-free regardless.
     let (params, cost) = match state.get_best_param() {
-        Some(params) if state.get_best_cost() <= start_cost => {
-            (params.clone(), state.get_best_cost())
-        }
+        Some(params) if state.get_best_cost() <= start_cost => (params.clone(), state.get_best_cost()),
         _ => (start.to_vec(), start_cost),
     };
     Ok(Minimum {
@@ -371,16 +367,19 @@ fn run<O: Objective + ?Sized>(
     notify(&state);
     loop {
         if !state.terminated() {
-            if let TerminationStatus::Terminated(reason) = solver.terminate_internal(&state) {
+            if let TerminationStatus::Terminated(reason) =
+                <NelderMead<Vec<f64>, f64> as Solver<CountedObjective<'_, O>, NmState>>::terminate_internal(
+                    &mut solver,
+                    &state,
+                )
+            {
                 state = state.terminate_with(reason);
             }
         }
         if state.terminated() {
             return Ok(state);
         }
-        let (next, _) = solver
-            .next_iter(problem, state)
-            .map_err(Error::from_solver)?;
+        let (next, _) = solver.next_iter(problem, state).map_err(Error::from_solver)?;
         state = next;
         state.update();
         state.increment_iter();
@@ -508,7 +507,11 @@ fn rank_deficient(mut rows: Vec<Vec<f64>>) -> bool {
     let n = rows.len();
     for column in 0..n {
         let pivot = (column..n).max_by(|&a, &b| {
-            let value = |r: usize| rows.get(r).and_then(|row| row.get(column)).map_or(0.0, |x| x.abs());
+            let value = |r: usize| {
+                rows.get(r)
+                    .and_then(|row| row.get(column))
+                    .map_or(0.0, |x| x.abs())
+            };
             value(a).total_cmp(&value(b))
         });
         let Some(pivot) = pivot else { return true };
@@ -640,7 +643,11 @@ mod tests {
         let m = minimize(&objective, &[0.0, 0.0], settings).unwrap();
         assert!(m.failed_evaluations > 0);
         assert!(m.cost.is_finite());
-        assert!(m.params[0] <= 1.5 && (m.params[0] - 1.5).abs() < 1e-3, "{:?}", m.params);
+        assert!(
+            m.params[0] <= 1.5 && (m.params[0] - 1.5).abs() < 1e-3,
+            "{:?}",
+            m.params
+        );
         assert!(m.params[1].abs() < 1e-3, "{:?}", m.params);
     }
 
@@ -678,17 +685,29 @@ mod tests {
             Err(Error::InvalidSetting { .. })
         ));
         assert!(matches!(
-            minimize(&fine, &[0.0], NelderMeadSettings::default().with_sd_tolerance(-1.0)),
+            minimize(
+                &fine,
+                &[0.0],
+                NelderMeadSettings::default().with_sd_tolerance(-1.0)
+            ),
             Err(Error::InvalidSetting { .. })
         ));
         assert!(matches!(
-            minimize(&fine, &[0.0, 0.0], NelderMeadSettings::default().with_steps(vec![1.0])),
+            minimize(
+                &fine,
+                &[0.0, 0.0],
+                NelderMeadSettings::default().with_steps(vec![1.0])
+            ),
             Err(Error::LengthMismatch { .. })
         ));
         // Two vertices on one line through the start: the simplex is flat.
         let flat = vec![vec![1.0, 1.0], vec![2.0, 2.0]];
         assert!(matches!(
-            minimize(&fine, &[0.0, 0.0], NelderMeadSettings::default().with_vertices(flat)),
+            minimize(
+                &fine,
+                &[0.0, 0.0],
+                NelderMeadSettings::default().with_vertices(flat)
+            ),
             Err(Error::DegenerateSimplex { dimension: 2 })
         ));
         // A step too small to change a large start coordinate also makes a flat simplex.

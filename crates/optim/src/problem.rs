@@ -122,11 +122,7 @@ impl<L: WeightLaw, C: WeightCriterion> WeightProblem<L, C> {
 
     /// Minimises from the law's parameters `start`; `before` is still the criterion at unit
     /// weights. The observer in `settings` sees the scaled criterion (see the type's docs).
-    pub fn solve_from(
-        &self,
-        start: &[f64],
-        settings: NelderMeadSettings<'_>,
-    ) -> Result<WeightSolution> {
+    pub fn solve_from(&self, start: &[f64], settings: NelderMeadSettings<'_>) -> Result<WeightSolution> {
         let unit = self.law.identity_params(self.control_points);
         let before = self.criterion_at(&unit).map_err(|error| Error::StartFailed {
             reason: format!("at unit weights: {error}"),
@@ -145,7 +141,11 @@ impl<L: WeightLaw, C: WeightCriterion> WeightProblem<L, C> {
             (minimum.params, after, weights)
         } else {
             // Only when started away from unit weights and the search ended above them.
-            (unit.clone(), before, self.law.weights(&unit, self.control_points)?)
+            (
+                unit.clone(),
+                before,
+                self.law.weights(&unit, self.control_points)?,
+            )
         };
         Ok(WeightSolution {
             weights,
@@ -178,9 +178,8 @@ mod tests {
     fn recovers_a_law_that_is_the_minimiser() {
         let target = target();
         // A plain squared distance, whose unique minimiser is the target itself.
-        let criterion = |w: &[f64]| -> Result<f64> {
-            Ok(w.iter().zip(&target).map(|(a, b)| (a - b).powi(2)).sum())
-        };
+        let criterion =
+            |w: &[f64]| -> Result<f64> { Ok(w.iter().zip(&target).map(|(a, b)| (a - b).powi(2)).sum()) };
         let problem = WeightProblem::new(CubicBernstein, 10, criterion);
         let solution = problem
             .solve(
@@ -226,7 +225,9 @@ mod tests {
             Ok(w.iter().map(|w| (w - 1.4).powi(2)).sum())
         };
         let problem = WeightProblem::new(PerPoint, 4, criterion);
-        let solution = problem.solve(NelderMeadSettings::default().with_step(0.5)).unwrap();
+        let solution = problem
+            .solve(NelderMeadSettings::default().with_step(0.5))
+            .unwrap();
         assert!(solution.weights.iter().all(|w| *w <= 1.5));
         // w_0 is held at 1; the others reach 1.4.
         for w in &solution.weights[1..] {

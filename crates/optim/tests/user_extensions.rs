@@ -2,8 +2,7 @@
 
 use optim::weight_law::{check_parameters, positive_weight};
 use optim::{
-    minimize, NelderMeadSettings, Objective, Result, Termination, WeightCriterion, WeightLaw,
-    WeightProblem,
+    minimize, NelderMeadSettings, Objective, Result, Termination, WeightCriterion, WeightLaw, WeightProblem,
 };
 
 /// A user's law: log-weights quadratic in s = i/n, symmetric about the middle,
@@ -54,7 +53,11 @@ struct Sphere {
 
 impl Objective for Sphere {
     fn cost(&self, params: &[f64]) -> Result<f64> {
-        Ok(params.iter().zip(&self.centre).map(|(x, c)| (x - c).powi(2)).sum())
+        Ok(params
+            .iter()
+            .zip(&self.centre)
+            .map(|(x, c)| (x - c).powi(2))
+            .sum())
     }
 }
 
@@ -66,7 +69,9 @@ fn user_objective_plugs_into_minimize() {
     let m = minimize(
         &sphere,
         &[0.0; 4],
-        NelderMeadSettings::default().with_step(1.0).with_sd_tolerance(1e-14),
+        NelderMeadSettings::default()
+            .with_step(1.0)
+            .with_sd_tolerance(1e-14),
     )
     .unwrap();
     assert_eq!(m.termination, Termination::Converged);
@@ -85,7 +90,11 @@ fn user_law_and_user_criterion_plug_into_weight_problem() {
         .unwrap();
     assert_eq!(solution.law.name, "symmetric-bulge");
     assert_eq!(solution.law.parameters, vec!["p0"]);
-    assert!((solution.params[0] - 4.0 * 2f64.ln()).abs() < 1e-5, "{:?}", solution.params);
+    assert!(
+        (solution.params[0] - 4.0 * 2f64.ln()).abs() < 1e-5,
+        "{:?}",
+        solution.params
+    );
     assert!((solution.weights[4] - 0.5).abs() < 1e-6);
     assert_eq!(solution.before, 0.25); // (1 − 0.5)² at unit weights
     assert!(solution.after < 1e-10);
