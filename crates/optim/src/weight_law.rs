@@ -243,9 +243,8 @@ impl WeightLaw for CubicBernstein {
 ///
 /// Weights matter only up to a common factor (scaling all of them leaves the NURBS curve
 /// unchanged), so one weight can be fixed without losing any curve: fixing w_0 removes exactly
-/// that redundant direction. Fixing both end weights, as is sometimes done, would remove a real
-/// degree of freedom as well: the ratio w_1/w_0 sets the end-tangent magnitude and w_n/w_0
-/// changes the curve, so only the first is held here.
+/// that redundant direction. Fixing both end weights, as is sometimes done, would also remove a
+/// real degree of freedom (the ratio w_n/w_0 changes the curve), so only the first is held.
 ///
 /// Cost O(n) per evaluation.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
