@@ -222,7 +222,8 @@ mod tests {
         }
         // The third piece repeats the second's C‴: no jump there.
         assert_eq!(z[1], 0.0);
-        assert!((ThirdDerivativeJump::new().max_value(&curve).unwrap() - expected[2]).abs() < 1e-13);
+        let largest = expected.iter().cloned().fold(0.0, f64::max);
+        assert!((ThirdDerivativeJump::new().max_value(&curve).unwrap() - largest).abs() < 1e-13);
         // The construction really is C2: value, C′ and C″ agree from both sides.
         for t in &curve.breaks[1..5] {
             let (l, r) = (curve.jet(*t, Side::Left), curve.jet(*t, Side::Right));
