@@ -18,7 +18,10 @@ fn temp_file(name: &str, text: &str) -> PathBuf {
 }
 
 fn fair(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fair")).args(args).output().expect("run fair")
+    Command::new(env!("CARGO_BIN_EXE_fair"))
+        .args(args)
+        .output()
+        .expect("run fair")
 }
 
 fn fair_with_stdin(args: &[&str], stdin: &str) -> Output {
@@ -30,7 +33,12 @@ fn fair_with_stdin(args: &[&str], stdin: &str) -> Output {
         .stderr(std::process::Stdio::piped())
         .spawn()
         .expect("spawn fair");
-    child.stdin.take().expect("stdin").write_all(stdin.as_bytes()).expect("write stdin");
+    child
+        .stdin
+        .take()
+        .expect("stdin")
+        .write_all(stdin.as_bytes())
+        .expect("write stdin");
     child.wait_with_output().expect("wait fair")
 }
 
@@ -38,7 +46,10 @@ fn fair_with_stdin(args: &[&str], stdin: &str) -> Output {
 fn assert_bad_input(output: &Output, needles: &[&str]) -> String {
     let stderr = String::from_utf8_lossy(&output.stderr).to_string();
     assert_eq!(output.status.code(), Some(2), "stderr: {stderr}");
-    assert!(!stderr.contains("panicked") && !stderr.contains("RUST_BACKTRACE"), "{stderr}");
+    assert!(
+        !stderr.contains("panicked") && !stderr.contains("RUST_BACKTRACE"),
+        "{stderr}"
+    );
     assert_eq!(stderr.trim_end().lines().count(), 1, "not one line: {stderr:?}");
     assert!(stderr.starts_with("fair: "), "{stderr}");
     for needle in needles {
@@ -112,7 +123,10 @@ fn missing_file() {
 fn unknown_method() {
     let path = temp_file("good.csv", "x,y\n0,0\n1,1\n2,0\n3,1\n4,0\n");
     let p = path.to_str().unwrap();
-    assert_bad_input(&fair(&["curve", p, "--method", "no-such-method"]), &["no-such-method", "two-phase"]);
+    assert_bad_input(
+        &fair(&["curve", p, "--method", "no-such-method"]),
+        &["no-such-method", "two-phase"],
+    );
     assert_bad_input(&fair(&["curve", p, "--method", "zhang-cheng"]), &["zhang-cheng"]);
 }
 
@@ -127,15 +141,24 @@ fn unknown_subcommand_and_bad_options() {
     assert_bad_input(&fair(&["curve", p, "--tolerance", "-3"]), &["-3"]);
     assert_bad_input(&fair(&["curve", p, "--clamp-ends", "g7"]), &["g7"]);
     assert_bad_input(&fair(&["curve", p, "--fixed", "9"]), &["--fixed", "index 9"]);
-    assert_bad_input(&fair(&["curve", p, "--method", "batten", "--set", "zz=1"]), &["--set", "zz"]);
-    assert_bad_input(&fair(&["curve", p, "--kind", "function", "--bogus"]), &["--bogus"]);
+    assert_bad_input(
+        &fair(&["curve", p, "--method", "batten", "--set", "zz=1"]),
+        &["--set", "zz"],
+    );
+    assert_bad_input(
+        &fair(&["curve", p, "--kind", "function", "--bogus"]),
+        &["--bogus"],
+    );
 }
 
 #[test]
 fn function_kind_needs_increasing_x() {
     let path = temp_file("loop.csv", "x,y\n0,0\n1,1\n0.5,2\n");
     let p = path.to_str().unwrap();
-    assert_bad_input(&fair(&["curve", p, "--kind", "function"]), &[&format!("{p}:4:"), "increasing"]);
+    assert_bad_input(
+        &fair(&["curve", p, "--kind", "function"]),
+        &[&format!("{p}:4:"), "increasing"],
+    );
 }
 
 #[test]
@@ -146,13 +169,33 @@ fn standard_input_errors_name_stdin() {
 
 #[test]
 fn help_version_and_methods_succeed() {
-    for args in [&["--help"][..], &["--version"], &["methods"], &["curve", "--help"]] {
+    for args in [
+        &["--help"][..],
+        &["--version"],
+        &["methods"],
+        &["curve", "--help"],
+    ] {
         let output = fair(args);
-        assert_eq!(output.status.code(), Some(0), "{args:?}: {}", String::from_utf8_lossy(&output.stderr));
+        assert_eq!(
+            output.status.code(),
+            Some(0),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&output.stderr)
+        );
         assert!(!output.stdout.is_empty());
     }
     let methods = String::from_utf8_lossy(&fair(&["methods"]).stdout).to_string();
-    for name in ["two-phase", "strain-energy", "kjellander", "poliakoff", "batten", "nurbs-weights", "smoothing-spline", "sapidis-farin", "zhang-cheng"] {
+    for name in [
+        "two-phase",
+        "strain-energy",
+        "kjellander",
+        "poliakoff",
+        "batten",
+        "nurbs-weights",
+        "smoothing-spline",
+        "sapidis-farin",
+        "zhang-cheng",
+    ] {
         assert!(methods.contains(name), "{name} missing from\n{methods}");
     }
 }

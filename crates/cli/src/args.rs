@@ -156,13 +156,22 @@ pub fn parse_setting(text: &str) -> Result<Setting, String> {
         return Err(format!("expected NAME=VALUE, got `{text}`"));
     };
     let (name, value) = (name.trim(), value.trim());
-    if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-') {
-        return Err(format!("parameter name `{name}` must be letters, digits, `_` or `-`"));
+    if name.is_empty()
+        || !name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+    {
+        return Err(format!(
+            "parameter name `{name}` must be letters, digits, `_` or `-`"
+        ));
     }
     if value.is_empty() {
         return Err(format!("parameter `{name}` has an empty value"));
     }
-    Ok(Setting { name: name.to_string(), value: value.to_string() })
+    Ok(Setting {
+        name: name.to_string(),
+        value: value.to_string(),
+    })
 }
 
 /// Parses `2,5,7` (spaces allowed) into point indices counted from 0.
@@ -207,17 +216,49 @@ mod tests {
     #[test]
     fn full_curve_command() {
         let cli = parse(&[
-            "curve", "in.csv", "--method", "batten", "--kind", "function", "--config", "c.toml", "--set", "p=0.9",
-            "--set", "criterion=ek", "--fixed", "2,5,7", "--points", "4, 5", "--tolerance", "0.01", "--clamp-ends",
-            "g1", "-o", "out.csv", "--report", "r.json", "--plot", "p.svg", "--quiet",
+            "curve",
+            "in.csv",
+            "--method",
+            "batten",
+            "--kind",
+            "function",
+            "--config",
+            "c.toml",
+            "--set",
+            "p=0.9",
+            "--set",
+            "criterion=ek",
+            "--fixed",
+            "2,5,7",
+            "--points",
+            "4, 5",
+            "--tolerance",
+            "0.01",
+            "--clamp-ends",
+            "g1",
+            "-o",
+            "out.csv",
+            "--report",
+            "r.json",
+            "--plot",
+            "p.svg",
+            "--quiet",
         ])
         .unwrap();
-        let Command::Curve(a) = cli.command else { panic!("not curve") };
+        let Command::Curve(a) = cli.command else {
+            panic!("not curve")
+        };
         assert_eq!(a.input, "in.csv");
         assert_eq!(a.method.as_deref(), Some("batten"));
         assert_eq!(a.kind, KindArg::Function);
         assert_eq!(a.settings.len(), 2);
-        assert_eq!(a.settings[1], Setting { name: "criterion".into(), value: "ek".into() });
+        assert_eq!(
+            a.settings[1],
+            Setting {
+                name: "criterion".into(),
+                value: "ek".into()
+            }
+        );
         assert_eq!(a.fixed, Some(IndexList(vec![2, 5, 7])));
         assert_eq!(a.points, Some(IndexList(vec![4, 5])));
         assert_eq!(a.tolerance, Some(0.01));
@@ -229,11 +270,18 @@ mod tests {
     #[test]
     fn other_subcommands() {
         assert!(matches!(parse(&["methods"]).unwrap().command, Command::Methods));
-        let Command::Demo(d) = parse(&["demo", "--out", "d"]).unwrap().command else { panic!() };
+        let Command::Demo(d) = parse(&["demo", "--out", "d"]).unwrap().command else {
+            panic!()
+        };
         assert_eq!(d.out, PathBuf::from("d"));
-        let Command::Inspect(i) = parse(&["inspect", "-", "--kind", "parametric"]).unwrap().command else { panic!() };
+        let Command::Inspect(i) = parse(&["inspect", "-", "--kind", "parametric"]).unwrap().command else {
+            panic!()
+        };
         assert_eq!(i.input, "-");
-        let Command::Surface(s) = parse(&["surface", "s.csv", "--method", "kjellander"]).unwrap().command else {
+        let Command::Surface(s) = parse(&["surface", "s.csv", "--method", "kjellander"])
+            .unwrap()
+            .command
+        else {
             panic!()
         };
         assert_eq!(s.method.as_deref(), Some("kjellander"));
@@ -261,7 +309,13 @@ mod tests {
 
     #[test]
     fn setting_parser() {
-        assert_eq!(parse_setting("a=b=c").unwrap(), Setting { name: "a".into(), value: "b=c".into() });
+        assert_eq!(
+            parse_setting("a=b=c").unwrap(),
+            Setting {
+                name: "a".into(),
+                value: "b=c".into()
+            }
+        );
         assert!(parse_setting("a b=1").is_err());
         assert!(parse_setting("a=").unwrap_err().contains("empty value"));
     }

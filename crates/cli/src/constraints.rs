@@ -27,7 +27,11 @@ impl Constraints {
             match indices.iter().find(|i| **i >= count) {
                 Some(i) => Err(Error::Argument {
                     option,
-                    message: format!("index {i} is past the last point ({} points, indices 0 to {})", count, count.saturating_sub(1)),
+                    message: format!(
+                        "index {i} is past the last point ({} points, indices 0 to {})",
+                        count,
+                        count.saturating_sub(1)
+                    ),
                 }),
                 None => Ok(()),
             }
@@ -37,10 +41,18 @@ impl Constraints {
         check("--fixed", &fixed)?;
         check("--points", &bad_points)?;
         if let Some(i) = bad_points.iter().find(|i| fixed.contains(i)) {
-            return Err(Error::Argument { option: "--points", message: format!("point {i} is also in --fixed") });
+            return Err(Error::Argument {
+                option: "--points",
+                message: format!("point {i} is also in --fixed"),
+            });
         }
         fixed.sort_unstable();
-        Ok(Constraints { fixed, bad_points, tolerance: args.tolerance, clamp_ends: args.clamp_ends })
+        Ok(Constraints {
+            fixed,
+            bad_points,
+            tolerance: args.tolerance,
+            clamp_ends: args.clamp_ends,
+        })
     }
 }
 
@@ -60,12 +72,19 @@ mod tests {
 
     #[test]
     fn indices_are_checked() {
-        let c = Constraints::from_args(&args(&["--fixed", "7,2", "--points", "4", "--tolerance", "0.1"]), 8).unwrap();
+        let c = Constraints::from_args(
+            &args(&["--fixed", "7,2", "--points", "4", "--tolerance", "0.1"]),
+            8,
+        )
+        .unwrap();
         assert_eq!(c.fixed, vec![2, 7]);
         assert_eq!(c.bad_points, vec![4]);
         assert_eq!(c.tolerance, Some(0.1));
         let e = Constraints::from_args(&args(&["--fixed", "8"]), 8).unwrap_err();
-        assert_eq!(e.to_string(), "--fixed: index 8 is past the last point (8 points, indices 0 to 7)");
+        assert_eq!(
+            e.to_string(),
+            "--fixed: index 8 is past the last point (8 points, indices 0 to 7)"
+        );
         assert_eq!(e.exit_code(), 2);
         let e = Constraints::from_args(&args(&["--fixed", "3", "--points", "3"]), 8).unwrap_err();
         assert!(e.to_string().contains("also in --fixed"));

@@ -172,26 +172,43 @@ mod tests {
 
     #[test]
     fn parse_error_names_file_and_line() {
-        let e = Error::Parse { path: "a.csv".into(), line: 3, message: "bad".into() };
+        let e = Error::Parse {
+            path: "a.csv".into(),
+            line: 3,
+            message: "bad".into(),
+        };
         assert_eq!(e.to_string(), "a.csv:3: bad");
         assert_eq!(e.exit_code(), 2);
     }
 
     #[test]
     fn internal_failures_exit_one() {
-        assert_eq!(Error::NotAvailable { what: "method `batten`".into() }.exit_code(), 1);
+        assert_eq!(
+            Error::NotAvailable {
+                what: "method `batten`".into()
+            }
+            .exit_code(),
+            1
+        );
         assert_eq!(Error::Internal { message: "x".into() }.exit_code(), 1);
     }
 
     #[test]
     fn too_few_points_singular() {
-        let e = Error::TooFewPoints { path: "p.csv".into(), found: 1, needed: 3, what: "a curve".into() };
+        let e = Error::TooFewPoints {
+            path: "p.csv".into(),
+            found: 1,
+            needed: 3,
+            what: "a curve".into(),
+        };
         assert_eq!(e.to_string(), "p.csv: 1 point, a curve needs at least 3");
     }
 
     #[test]
     fn one_line_joins_lines() {
-        let e = Error::Internal { message: "a\nb\n".into() };
+        let e = Error::Internal {
+            message: "a\nb\n".into(),
+        };
         assert_eq!(e.one_line(), "internal error: a; b");
     }
 }

@@ -83,8 +83,15 @@ mod tests {
     #[test]
     fn function_is_checked_with_line() {
         let e = resolve(KindArg::Function, &input("x,y\n0,0\n1,1\n0.5,0\n")).unwrap_err();
-        assert!(e.to_string().starts_with("k.csv:4: --kind function needs x strictly increasing"), "{e}");
-        assert_eq!(resolve(KindArg::Parametric, &input("0,0\n1,1\n")).unwrap(), CurveKind::Parametric);
+        assert!(
+            e.to_string()
+                .starts_with("k.csv:4: --kind function needs x strictly increasing"),
+            "{e}"
+        );
+        assert_eq!(
+            resolve(KindArg::Parametric, &input("0,0\n1,1\n")).unwrap(),
+            CurveKind::Parametric
+        );
         assert!(resolve(KindArg::Function, &input("0,0,0\n1,1,1\n")).is_err());
     }
 }

@@ -45,7 +45,10 @@ use std::process::ExitCode;
 pub fn run() -> ExitCode {
     std::panic::set_hook(Box::new(|info| {
         let message = panic_message(info.payload());
-        let place = info.location().map(|l| format!(" ({}:{})", l.file(), l.line())).unwrap_or_default();
+        let place = info
+            .location()
+            .map(|l| format!(" ({}:{})", l.file(), l.line()))
+            .unwrap_or_default();
         if let Ok(mut last) = LAST_PANIC.lock() {
             *last = Some(format!("{message}{place}"));
         }
@@ -78,7 +81,9 @@ where
     let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| commands::dispatch(cli)))
         .unwrap_or_else(|payload| {
             let recorded = LAST_PANIC.lock().ok().and_then(|mut last| last.take());
-            Err(Error::Internal { message: recorded.unwrap_or_else(|| panic_message(payload.as_ref())) })
+            Err(Error::Internal {
+                message: recorded.unwrap_or_else(|| panic_message(payload.as_ref())),
+            })
         });
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -106,7 +111,9 @@ fn usage(e: clap::Error) -> ExitCode {
             ExitCode::from(2)
         }
         _ => {
-            let error = Error::Usage { message: usage_line(&e.render().to_string()) };
+            let error = Error::Usage {
+                message: usage_line(&e.render().to_string()),
+            };
             let _ = writeln!(std::io::stderr(), "fair: {}", error.one_line());
             ExitCode::from(error.exit_code())
         }
@@ -115,7 +122,11 @@ fn usage(e: clap::Error) -> ExitCode {
 
 /// clap's first message line without its `error: ` prefix, plus where to look for help.
 fn usage_line(rendered: &str) -> String {
-    let first = rendered.lines().map(str::trim).find(|l| !l.is_empty()).unwrap_or("invalid arguments");
+    let first = rendered
+        .lines()
+        .map(str::trim)
+        .find(|l| !l.is_empty())
+        .unwrap_or("invalid arguments");
     let first = first.strip_prefix("error:").map(str::trim).unwrap_or(first);
     format!("{first} (see `fair --help`)")
 }

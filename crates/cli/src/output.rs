@@ -12,11 +12,18 @@ use std::io::Write;
 /// `points` must have the dimension of the input; a Lednicer input needs the same count.
 pub fn format_curve(input: &CurveInput, points: &Points) -> Result<String> {
     if let Some(index) = points.first_non_finite() {
-        return Err(Error::NonFiniteOutput { what: "output point".into(), index });
+        return Err(Error::NonFiniteOutput {
+            what: "output point".into(),
+            index,
+        });
     }
     if points.dimension() != input.points.dimension() {
         return Err(Error::Internal {
-            message: format!("output has dimension {}, input {}", points.dimension(), input.points.dimension()),
+            message: format!(
+                "output has dimension {}, input {}",
+                points.dimension(),
+                input.points.dimension()
+            ),
         });
     }
     let rows = points.rows();
@@ -30,7 +37,9 @@ pub fn format_curve(input: &CurveInput, points: &Points) -> Result<String> {
             push_rows(&mut text, rows.iter().map(Vec::as_slice), *delimiter);
         }
         InputFormat::Json { document } => {
-            let array = serde_json::to_value(&rows).map_err(|e| Error::Internal { message: e.to_string() })?;
+            let array = serde_json::to_value(&rows).map_err(|e| Error::Internal {
+                message: e.to_string(),
+            })?;
             let value = match document {
                 Some(map) => {
                     let mut map = map.clone();
@@ -39,7 +48,9 @@ pub fn format_curve(input: &CurveInput, points: &Points) -> Result<String> {
                 }
                 None => array,
             };
-            text = serde_json::to_string_pretty(&value).map_err(|e| Error::Internal { message: e.to_string() })?;
+            text = serde_json::to_string_pretty(&value).map_err(|e| Error::Internal {
+                message: e.to_string(),
+            })?;
             text.push('\n');
         }
         InputFormat::Selig { name } => {
@@ -47,7 +58,12 @@ pub fn format_curve(input: &CurveInput, points: &Points) -> Result<String> {
             text.push('\n');
             push_rows(&mut text, rows.iter().map(Vec::as_slice), Delimiter::Whitespace);
         }
-        InputFormat::Lednicer { name, upper, lower, shared_leading_edge } => {
+        InputFormat::Lednicer {
+            name,
+            upper,
+            lower,
+            shared_leading_edge,
+        } => {
             let expected = (upper + lower).saturating_sub(usize::from(*shared_leading_edge));
             if rows.len() != expected || *upper == 0 {
                 return Err(Error::Internal {
@@ -61,7 +77,11 @@ pub fn format_curve(input: &CurveInput, points: &Points) -> Result<String> {
             }
             lower_rows.extend(rest.iter().map(Vec::as_slice));
             text.push_str(&format!("{name}\n{upper}. {lower}.\n\n"));
-            push_rows(&mut text, upper_rows.iter().rev().map(Vec::as_slice), Delimiter::Whitespace);
+            push_rows(
+                &mut text,
+                upper_rows.iter().rev().map(Vec::as_slice),
+                Delimiter::Whitespace,
+            );
             text.push('\n');
             push_rows(&mut text, lower_rows.into_iter(), Delimiter::Whitespace);
         }
@@ -72,7 +92,10 @@ pub fn format_curve(input: &CurveInput, points: &Points) -> Result<String> {
 /// Formats a surface grid in the row order and header of `input`, indices as in the file.
 pub fn format_surface(input: &SurfaceInput, grid: &Grid) -> Result<String> {
     if let Some(index) = grid.points.iter().position(|p| !p.iter().all(|c| c.is_finite())) {
-        return Err(Error::NonFiniteOutput { what: "output grid point".into(), index });
+        return Err(Error::NonFiniteOutput {
+            what: "output grid point".into(),
+            index,
+        });
     }
     let mut text = String::new();
     if let Some(header) = &input.header {
@@ -85,7 +108,10 @@ pub fn format_surface(input: &SurfaceInput, grid: &Grid) -> Result<String> {
             message: format!("output grid has no cell ({i}, {j})"),
         })?;
         let (fi, fj) = (i as i64 + input.offset.0, j as i64 + input.offset.1);
-        text.push_str(&format!("{fi}{separator}{fj}{separator}{}{separator}{}{separator}{}\n", p.x, p.y, p.z));
+        text.push_str(&format!(
+            "{fi}{separator}{fj}{separator}{}{separator}{}{separator}{}\n",
+            p.x, p.y, p.z
+        ));
     }
     Ok(text)
 }
@@ -105,13 +131,17 @@ pub fn write_text(path: &str, text: &str) -> Result<()> {
     if path == "-" {
         let mut stdout = std::io::stdout().lock();
         return match stdout.write_all(text.as_bytes()).and_then(|()| stdout.flush()) {
-            Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
-                Err(Error::Write { path: "<stdout>".into(), reason: io_reason(&e) })
-            }
+            Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(Error::Write {
+                path: "<stdout>".into(),
+                reason: io_reason(&e),
+            }),
             _ => Ok(()),
         };
     }
-    std::fs::write(path, text).map_err(|e| Error::Write { path: path.into(), reason: io_reason(&e) })
+    std::fs::write(path, text).map_err(|e| Error::Write {
+        path: path.into(),
+        reason: io_reason(&e),
+    })
 }
 
 #[cfg(test)]
@@ -141,7 +171,10 @@ mod tests {
 
     #[test]
     fn json_round_trips_keeping_other_keys() {
-        let (a, b, w) = round_trip("a.json", "{\"name\": \"w\", \"points\": [[0.1, 0.2], [0.3, 0.7]]}");
+        let (a, b, w) = round_trip(
+            "a.json",
+            "{\"name\": \"w\", \"points\": [[0.1, 0.2], [0.3, 0.7]]}",
+        );
         assert_eq!(a.points, b.points);
         assert_eq!(a.format, b.format);
         assert!(w.contains("\"name\": \"w\""));
@@ -155,7 +188,10 @@ mod tests {
         assert_eq!(a.points, b.points);
         assert_eq!(a.format, b.format);
         assert!(w.starts_with("NACA 0012\n1 0\n"));
-        let (a, b, w) = round_trip("l.dat", "FOIL\n3. 3.\n\n0 0\n0.5 0.1\n1 0\n\n0 0\n0.5 -0.1\n1 0\n");
+        let (a, b, w) = round_trip(
+            "l.dat",
+            "FOIL\n3. 3.\n\n0 0\n0.5 0.1\n1 0\n\n0 0\n0.5 -0.1\n1 0\n",
+        );
         assert_eq!(a.points, b.points);
         assert_eq!(a.format, b.format);
         assert!(w.starts_with("FOIL\n3. 3.\n\n0 0\n"), "{w}");
@@ -186,6 +222,9 @@ mod tests {
     #[test]
     fn write_to_missing_directory_fails_cleanly() {
         let e = write_text("/nonexistent/dir/out.csv", "x").unwrap_err();
-        assert_eq!(e.to_string(), "/nonexistent/dir/out.csv: cannot write: no such file or directory");
+        assert_eq!(
+            e.to_string(),
+            "/nonexistent/dir/out.csv: cannot write: no such file or directory"
+        );
     }
 }

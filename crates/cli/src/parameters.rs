@@ -28,23 +28,39 @@ pub struct Parameters {
 impl Parameters {
     /// Collects parameters for `method` from an optional config file and `--set`s, and checks
     /// every name against the method.
-    pub fn collect(method: &MethodInfo, config: Option<&std::path::Path>, settings: &[Setting]) -> Result<Parameters> {
+    pub fn collect(
+        method: &MethodInfo,
+        config: Option<&std::path::Path>,
+        settings: &[Setting],
+    ) -> Result<Parameters> {
         let mut values = BTreeMap::new();
         if let Some(path) = config {
             let name = path.display().to_string();
-            let text = std::fs::read_to_string(path)
-                .map_err(|e| Error::Read { path: name.clone(), reason: crate::input::io_reason(&e) })?;
+            let text = std::fs::read_to_string(path).map_err(|e| Error::Read {
+                path: name.clone(),
+                reason: crate::input::io_reason(&e),
+            })?;
             for (key, given) in parse_config(&name, &text, method.name)? {
                 values.insert(key, given);
             }
         }
         for setting in settings {
-            values.insert(setting.name.clone(), Given { value: setting.value.clone(), origin: "--set".into() });
+            values.insert(
+                setting.name.clone(),
+                Given {
+                    value: setting.value.clone(),
+                    origin: "--set".into(),
+                },
+            );
         }
         for (name, given) in &values {
             if method.parameter(name).is_none() {
                 let known: Vec<&str> = method.parameters.iter().map(|p| p.name).collect();
-                let known = if known.is_empty() { "it has none yet".to_string() } else { format!("known: {}", known.join(", ")) };
+                let known = if known.is_empty() {
+                    "it has none yet".to_string()
+                } else {
+                    format!("known: {}", known.join(", "))
+                };
                 return Err(Error::Parameter {
                     origin: given.origin.clone(),
                     message: format!("`{}` is not a parameter of `{}` ({known})", name, method.name),
@@ -91,7 +107,11 @@ impl Parameters {
             Some(given) if choices.contains(&given.value.as_str()) => Ok(given.value.clone()),
             Some(given) => Err(Error::Parameter {
                 origin: given.origin.clone(),
-                message: format!("`{name}` = `{}` is not one of {}", given.value, choices.join(", ")),
+                message: format!(
+                    "`{name}` = `{}` is not one of {}",
+                    given.value,
+                    choices.join(", ")
+                ),
             }),
         }
     }
@@ -112,7 +132,12 @@ impl Parameters {
 }
 
 fn line_at(text: &str, offset: usize) -> usize {
-    1 + text.as_bytes().iter().take(offset).filter(|b| **b == b'\n').count()
+    1 + text
+        .as_bytes()
+        .iter()
+        .take(offset)
+        .filter(|b| **b == b'\n')
+        .count()
 }
 
 /// The top-level scalars of a config, then those of the table named `method` (which win).
@@ -120,8 +145,15 @@ fn parse_config(name: &str, text: &str, method: &str) -> Result<Vec<(String, Giv
     let table: toml::Table = toml::from_str(text).map_err(|e| {
         let message = e.message().to_string();
         match e.span() {
-            Some(span) => Error::Parse { path: name.into(), line: line_at(text, span.start), message },
-            None => Error::Invalid { path: name.into(), message },
+            Some(span) => Error::Parse {
+                path: name.into(),
+                line: line_at(text, span.start),
+                message,
+            },
+            None => Error::Invalid {
+                path: name.into(),
+                message,
+            },
         }
     })?;
     let locate = |key: &str| -> String {
@@ -130,7 +162,8 @@ fn parse_config(name: &str, text: &str, method: &str) -> Result<Vec<(String, Giv
             .lines()
             .position(|l| {
                 let l = l.trim_start();
-                l.strip_prefix(key).is_some_and(|rest| rest.trim_start().starts_with('='))
+                l.strip_prefix(key)
+                    .is_some_and(|rest| rest.trim_start().starts_with('='))
             })
             .map_or(0, |i| i + 1);
         if line > 0 {
@@ -152,7 +185,10 @@ fn parse_config(name: &str, text: &str, method: &str) -> Result<Vec<(String, Giv
                 })
             }
         };
-        Ok(Given { value: text, origin: locate(key) })
+        Ok(Given {
+            value: text,
+            origin: locate(key),
+        })
     };
     let mut out = Vec::new();
     for (key, value) in &table {
@@ -179,8 +215,16 @@ mod tests {
         paper: "",
         summary: "",
         parameters: &[
-            ParameterInfo { name: "p", default: "0.99", meaning: "" },
-            ParameterInfo { name: "criterion", default: "ek", meaning: "" },
+            ParameterInfo {
+                name: "p",
+                default: "0.99",
+                meaning: "",
+            },
+            ParameterInfo {
+                name: "criterion",
+                default: "ek",
+                meaning: "",
+            },
         ],
     };
 
@@ -192,11 +236,17 @@ mod tests {
 
     #[test]
     fn set_overrides_config_and_method_table_overrides_top() {
-        let path = temp("a.toml", "p = 0.5\ncriterion = \"e2\"\n[smoothing-spline]\np = 0.7\n[batten]\np = 3\n");
+        let path = temp(
+            "a.toml",
+            "p = 0.5\ncriterion = \"e2\"\n[smoothing-spline]\np = 0.7\n[batten]\np = 3\n",
+        );
         let params = Parameters::collect(&METHOD, Some(&path), &[]).unwrap();
         assert_eq!(params.number("p", 0.0).unwrap(), 0.7);
         assert_eq!(params.choice("criterion", &["e2", "ek"], "ek").unwrap(), "e2");
-        let set = [Setting { name: "p".into(), value: "0.9".into() }];
+        let set = [Setting {
+            name: "p".into(),
+            value: "0.9".into(),
+        }];
         let params = Parameters::collect(&METHOD, Some(&path), &set).unwrap();
         assert_eq!(params.number("p", 0.0).unwrap(), 0.9);
         std::fs::remove_file(path).ok();
@@ -204,10 +254,20 @@ mod tests {
 
     #[test]
     fn unknown_and_bad_values() {
-        let set = [Setting { name: "q".into(), value: "1".into() }];
+        let set = [Setting {
+            name: "q".into(),
+            value: "1".into(),
+        }];
         let e = Parameters::collect(&METHOD, None, &set).unwrap_err();
-        assert!(e.to_string().contains("`q` is not a parameter of `smoothing-spline` (known: p, criterion)"), "{e}");
-        let set = [Setting { name: "p".into(), value: "x".into() }];
+        assert!(
+            e.to_string()
+                .contains("`q` is not a parameter of `smoothing-spline` (known: p, criterion)"),
+            "{e}"
+        );
+        let set = [Setting {
+            name: "p".into(),
+            value: "x".into(),
+        }];
         let params = Parameters::collect(&METHOD, None, &set).unwrap();
         assert!(params.number("p", 1.0).is_err());
         assert!(params.count("p", 1).is_err());

@@ -51,7 +51,12 @@ pub fn planar_view(points: &Points) -> Vec<[f64; 2]> {
 impl CurvePlot {
     /// A plot of the input points only.
     pub fn of_input(title: impl Into<String>, points: &Points, function: bool) -> CurvePlot {
-        CurvePlot { title: title.into(), input: planar_view(points), function, ..CurvePlot::default() }
+        CurvePlot {
+            title: title.into(),
+            input: planar_view(points),
+            function,
+            ..CurvePlot::default()
+        }
     }
 
     /// The figure: the curve panel, then a z_i panel when z values are given.
@@ -69,25 +74,58 @@ impl CurvePlot {
             );
         }
         match &self.input_curve {
-            Some(c) => curve.push(Line::new(c.clone()).with_label("input curve").with_color(Color::palette(0))),
-            None => curve.push(Line::new(self.input.clone()).with_label("input polygon").with_color(Color::palette(0)).with_width(0.8)),
+            Some(c) => curve.push(
+                Line::new(c.clone())
+                    .with_label("input curve")
+                    .with_color(Color::palette(0)),
+            ),
+            None => curve.push(
+                Line::new(self.input.clone())
+                    .with_label("input polygon")
+                    .with_color(Color::palette(0))
+                    .with_width(0.8),
+            ),
         }
         if let Some(c) = &self.faired_curve {
-            curve.push(Line::new(c.clone()).with_label("faired curve").with_color(Color::palette(1)));
+            curve.push(
+                Line::new(c.clone())
+                    .with_label("faired curve")
+                    .with_color(Color::palette(1)),
+            );
         }
-        curve.push(Markers::new(self.input.clone()).with_label("input points").with_color(Color::palette(0)));
+        curve.push(
+            Markers::new(self.input.clone())
+                .with_label("input points")
+                .with_color(Color::palette(0)),
+        );
         if let Some(p) = &self.faired {
-            curve.push(Markers::new(p.clone()).with_label("faired points").with_color(Color::palette(1)).with_hollow(true));
+            curve.push(
+                Markers::new(p.clone())
+                    .with_label("faired points")
+                    .with_color(Color::palette(1))
+                    .with_hollow(true),
+            );
         }
         let mut figure = Figure::new().with_title(self.title.clone()).with_panel(curve);
         if self.z_before.is_some() || self.z_after.is_some() {
-            let mut z = Panel::new("third-derivative jumps z_i").with_x_label("point index i").with_y_label("z_i");
+            let mut z = Panel::new("third-derivative jumps z_i")
+                .with_x_label("point index i")
+                .with_y_label("z_i");
             if let Some(values) = &self.z_before {
-                z.push(Bars::indexed(values.clone()).with_label("before").with_color(Color::palette(0)));
+                z.push(
+                    Bars::indexed(values.clone())
+                        .with_label("before")
+                        .with_color(Color::palette(0)),
+                );
             }
             if let Some(values) = &self.z_after {
                 let x = (0..values.len()).map(|i| i as f64 + 0.2).collect();
-                z.push(Bars::new(x, values.clone()).with_width(0.4).with_label("after").with_color(Color::palette(1)));
+                z.push(
+                    Bars::new(x, values.clone())
+                        .with_width(0.4)
+                        .with_label("after")
+                        .with_color(Color::palette(1)),
+                );
             }
             figure.push(z);
         }
@@ -110,12 +148,18 @@ pub struct SurfacePlot {
 
 fn grid_lines(grid: &Grid, color: Color, label: &str, panel: &mut Panel) {
     for i in 0..grid.rows {
-        let row: Vec<[f64; 2]> = (0..grid.columns).filter_map(|j| grid.get(i, j)).map(|p| [p.x, p.y]).collect();
+        let row: Vec<[f64; 2]> = (0..grid.columns)
+            .filter_map(|j| grid.get(i, j))
+            .map(|p| [p.x, p.y])
+            .collect();
         let line = Line::new(row).with_color(color).with_width(0.8);
         panel.push(if i == 0 { line.with_label(label) } else { line });
     }
     for j in 0..grid.columns {
-        let column: Vec<[f64; 2]> = (0..grid.rows).filter_map(|i| grid.get(i, j)).map(|p| [p.x, p.y]).collect();
+        let column: Vec<[f64; 2]> = (0..grid.rows)
+            .filter_map(|i| grid.get(i, j))
+            .map(|p| [p.x, p.y])
+            .collect();
         panel.push(Line::new(column).with_color(color).with_width(0.8));
     }
 }
@@ -123,7 +167,10 @@ fn grid_lines(grid: &Grid, color: Color, label: &str, panel: &mut Panel) {
 impl SurfacePlot {
     /// The figure: the grid seen from above (x, y), and the z_ij map when given.
     pub fn figure(&self) -> Figure {
-        let mut view = Panel::new("grid, top view").with_x_label("x").with_y_label("y").with_equal_aspect(true);
+        let mut view = Panel::new("grid, top view")
+            .with_x_label("x")
+            .with_y_label("y")
+            .with_equal_aspect(true);
         if let Some(grid) = &self.input {
             grid_lines(grid, Color::palette(0), "input grid", &mut view);
         }
@@ -133,7 +180,10 @@ impl SurfacePlot {
         let mut figure = Figure::new().with_title(self.title.clone()).with_panel(view);
         if let Some(z) = &self.z {
             figure.push(
-                Panel::new("z_ij").with_x_label("i").with_y_label("j").with(ColorMap::indexed(z.clone()).with_label("z_ij")),
+                Panel::new("z_ij")
+                    .with_x_label("i")
+                    .with_y_label("j")
+                    .with(ColorMap::indexed(z.clone()).with_label("z_ij")),
             );
         }
         figure

@@ -134,11 +134,19 @@ pub const METHODS: &[MethodInfo] = &[
 
 /// The method called `name` for `kind`, or [`Error::UnknownMethod`] listing the known names.
 pub fn find(name: &str, kind: MethodKind) -> Result<&'static MethodInfo> {
-    METHODS.iter().find(|m| m.kind == kind && m.name == name).ok_or_else(|| Error::UnknownMethod {
-        name: name.to_string(),
-        kind: kind.name(),
-        known: METHODS.iter().filter(|m| m.kind == kind).map(|m| m.name).collect::<Vec<_>>().join(", "),
-    })
+    METHODS
+        .iter()
+        .find(|m| m.kind == kind && m.name == name)
+        .ok_or_else(|| Error::UnknownMethod {
+            name: name.to_string(),
+            kind: kind.name(),
+            known: METHODS
+                .iter()
+                .filter(|m| m.kind == kind)
+                .map(|m| m.name)
+                .collect::<Vec<_>>()
+                .join(", "),
+        })
 }
 
 /// The table `fair methods` prints: one block per method, its parameters indented below it.
@@ -148,12 +156,18 @@ pub fn table() -> String {
     for kind in [MethodKind::Curve, MethodKind::Surface] {
         text.push_str(&format!("{} methods:\n", kind.name()));
         for method in METHODS.iter().filter(|m| m.kind == kind) {
-            text.push_str(&format!("  {:width$}  {} ({})\n", method.name, method.summary, method.paper));
+            text.push_str(&format!(
+                "  {:width$}  {} ({})\n",
+                method.name, method.summary, method.paper
+            ));
             if method.parameters.is_empty() {
                 text.push_str(&format!("  {:width$}    (no parameters yet)\n", ""));
             }
             for p in method.parameters {
-                text.push_str(&format!("  {:width$}    {}={}  {}\n", "", p.name, p.default, p.meaning));
+                text.push_str(&format!(
+                    "  {:width$}    {}={}  {}\n",
+                    "", p.name, p.default, p.meaning
+                ));
             }
         }
     }

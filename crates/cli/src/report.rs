@@ -121,15 +121,30 @@ impl Report {
             ("after.max_z", self.after.max_z),
         ];
         let energies = [("before", &self.before.energies), ("after", &self.after.energies)];
-        let mut bad: Option<String> = fields.iter().find(|(_, v)| !v.is_finite()).map(|(n, _)| n.to_string());
+        let mut bad: Option<String> = fields
+            .iter()
+            .find(|(_, v)| !v.is_finite())
+            .map(|(n, _)| n.to_string());
         for (side, energies) in energies {
             if let (None, Some(e)) = (&bad, energies) {
-                let named = [("e1", e.e1), ("e2", e.e2), ("e3", e.e3), ("ek", e.ek), ("ek_prime", e.ek_prime)];
-                bad = named.iter().find(|(_, v)| !v.is_finite()).map(|(n, _)| format!("{side}.energies.{n}"));
+                let named = [
+                    ("e1", e.e1),
+                    ("e2", e.e2),
+                    ("e3", e.e3),
+                    ("ek", e.ek),
+                    ("ek_prime", e.ek_prime),
+                ];
+                bad = named
+                    .iter()
+                    .find(|(_, v)| !v.is_finite())
+                    .map(|(n, _)| format!("{side}.energies.{n}"));
             }
         }
         match bad {
-            Some(what) => Err(Error::NonFiniteOutput { what: format!("report {what}"), index: 0 }),
+            Some(what) => Err(Error::NonFiniteOutput {
+                what: format!("report {what}"),
+                index: 0,
+            }),
             None => Ok(()),
         }
     }
@@ -137,7 +152,9 @@ impl Report {
     /// The report as pretty JSON, after [`Report::check_finite`].
     pub fn to_json(&self) -> Result<String> {
         self.check_finite()?;
-        let mut text = serde_json::to_string_pretty(self).map_err(|e| Error::Internal { message: e.to_string() })?;
+        let mut text = serde_json::to_string_pretty(self).map_err(|e| Error::Internal {
+            message: e.to_string(),
+        })?;
         text.push('\n');
         Ok(text)
     }
@@ -163,7 +180,9 @@ impl NurbsRecord {
     /// The record as a `curve` value, tagged `"type": "nurbs"`.
     pub fn to_value(&self) -> serde_json::Value {
         let mut value = serde_json::json!({ "type": "nurbs" });
-        if let (Some(map), Ok(serde_json::Value::Object(fields))) = (value.as_object_mut(), serde_json::to_value(self)) {
+        if let (Some(map), Ok(serde_json::Value::Object(fields))) =
+            (value.as_object_mut(), serde_json::to_value(self))
+        {
             map.extend(fields);
         }
         value
@@ -195,7 +214,10 @@ mod tests {
             n: 65,
             iterations: 12,
             before: measures.clone(),
-            after: Measures { inflections: None, ..measures },
+            after: Measures {
+                inflections: None,
+                ..measures
+            },
             s_d: 141.9,
             m_d: 12.6,
             moved: vec![3, 4, 9],
@@ -216,7 +238,17 @@ mod tests {
     fn field_names_match_the_contract() {
         let value: serde_json::Value = serde_json::from_str(&sample().to_json().unwrap()).unwrap();
         let mut top = vec![
-            "method", "kind", "n", "iterations", "before", "after", "s_d", "m_d", "moved", "elapsed_ms", "curve",
+            "method",
+            "kind",
+            "n",
+            "iterations",
+            "before",
+            "after",
+            "s_d",
+            "m_d",
+            "moved",
+            "elapsed_ms",
+            "curve",
         ];
         top.sort();
         assert_eq!(keys(&value), top);
@@ -246,7 +278,9 @@ mod tests {
     fn params_and_extras_appear_when_given() {
         let mut report = sample();
         report.params.insert("p".into(), serde_json::json!(0.999));
-        report.extras.insert("termination".into(), serde_json::json!("converged"));
+        report
+            .extras
+            .insert("termination".into(), serde_json::json!("converged"));
         let value: serde_json::Value = serde_json::from_str(&report.to_json().unwrap()).unwrap();
         assert_eq!(value["params"]["p"], 0.999);
         assert_eq!(value["termination"], "converged");
@@ -257,7 +291,10 @@ mod tests {
     #[test]
     fn nan_is_refused() {
         let mut report = sample();
-        report.after.energies = Some(Energies { ek: f64::NAN, ..Energies::default() });
+        report.after.energies = Some(Energies {
+            ek: f64::NAN,
+            ..Energies::default()
+        });
         let e = report.to_json().unwrap_err();
         assert!(e.to_string().contains("after.energies.ek"), "{e}");
         let mut report = sample();
@@ -267,9 +304,11 @@ mod tests {
 
     #[test]
     fn kinds_are_lowercase() {
-        for (kind, name) in
-            [(ReportKind::Function, "function"), (ReportKind::Parametric, "parametric"), (ReportKind::Surface, "surface")]
-        {
+        for (kind, name) in [
+            (ReportKind::Function, "function"),
+            (ReportKind::Parametric, "parametric"),
+            (ReportKind::Surface, "surface"),
+        ] {
             assert_eq!(serde_json::to_value(kind).unwrap(), name);
         }
     }

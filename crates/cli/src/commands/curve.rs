@@ -62,13 +62,18 @@ pub struct CurveOutcome {
 
 /// SEAM: runs the strategy of `job.method` (crate `fairing`).
 pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
-    Err(Error::NotAvailable { what: format!("method `{}`", job.method.name) })
+    Err(Error::NotAvailable {
+        what: format!("method `{}`", job.method.name),
+    })
 }
 
 /// `s_d` and `m_d`: the sum and the largest of the distances moved. O(n).
 pub fn displacement(before: &Points, after: &Points) -> (f64, f64) {
     let (a, b) = (before.rows(), after.rows());
-    let distances = a.iter().zip(&b).map(|(p, q)| p.iter().zip(q).map(|(u, v)| (u - v).powi(2)).sum::<f64>().sqrt());
+    let distances = a
+        .iter()
+        .zip(&b)
+        .map(|(p, q)| p.iter().zip(q).map(|(u, v)| (u - v).powi(2)).sum::<f64>().sqrt());
     distances.fold((0.0, 0.0), |(sum, max), d| (sum + d, f64::max(max, d)))
 }
 
@@ -77,15 +82,29 @@ pub fn run(args: &FairArgs) -> Result<()> {
     let input = input::read_curve(&args.input)?;
     input.require_at_least(MIN_CURVE_POINTS, "a curve")?;
     let kind = kind::resolve(args.kind, &input)?;
-    let method = registry::find(args.method.as_deref().unwrap_or(default_method(kind)), MethodKind::Curve)?;
+    let method = registry::find(
+        args.method.as_deref().unwrap_or(default_method(kind)),
+        MethodKind::Curve,
+    )?;
     let parameters = Parameters::collect(method, args.config.as_deref(), &args.settings)?;
     let constraints = Constraints::from_args(args, input.len())?;
 
-    let job = CurveJob { input: &input, kind, method, parameters: &parameters, constraints: &constraints };
+    let job = CurveJob {
+        input: &input,
+        kind,
+        method,
+        parameters: &parameters,
+        constraints: &constraints,
+    };
     let outcome = fair(&job)?;
     if outcome.points.len() != input.len() || outcome.points.dimension() != input.points.dimension() {
         return Err(Error::Internal {
-            message: format!("method `{}` returned {} points for {}", method.name, outcome.points.len(), input.len()),
+            message: format!(
+                "method `{}` returned {} points for {}",
+                method.name,
+                outcome.points.len(),
+                input.len()
+            ),
         });
     }
     let before = measure::curve(kind, &input.points)?;

@@ -119,18 +119,30 @@ pub fn run(args: &DemoArgs) -> Result<()> {
             MethodKind::Curve => {
                 let input = input::parse_curve(&source)?;
                 let function = kind::detect(&input.points) == kind::CurveKind::Function;
-                CurvePlot::of_input(dataset.about, &input.points, function).figure().write(&input_plot)?;
+                CurvePlot::of_input(dataset.about, &input.points, function)
+                    .figure()
+                    .write(&input_plot)?;
             }
             MethodKind::Surface => {
                 let input = input::grid::parse(&source)?;
-                let plot = SurfacePlot { title: dataset.about.into(), input: Some(input.grid), ..SurfacePlot::default() };
+                let plot = SurfacePlot {
+                    title: dataset.about.into(),
+                    input: Some(input.grid),
+                    ..SurfacePlot::default()
+                };
                 plot.figure().write(&input_plot)?;
             }
         }
         for method in METHODS.iter().filter(|m| m.kind == dataset.kind) {
             runs += 1;
             let stem = format!("{}-{}", dataset.name, method.name);
-            let run_args = run_args(data_path.display().to_string(), method.name, &args.out, &stem, dataset);
+            let run_args = run_args(
+                data_path.display().to_string(),
+                method.name,
+                &args.out,
+                &stem,
+                dataset,
+            );
             let result = match dataset.kind {
                 MethodKind::Curve => curve::run(&run_args),
                 MethodKind::Surface => surface::run(&run_args),
@@ -147,7 +159,11 @@ pub fn run(args: &DemoArgs) -> Result<()> {
             lines.push(format!("{:22} {:18} {status}", dataset.name, method.name));
         }
     }
-    lines.push(format!("{} of {runs} runs succeeded; outputs in {}", runs - failures, args.out.display()));
+    lines.push(format!(
+        "{} of {runs} runs succeeded; outputs in {}",
+        runs - failures,
+        args.out.display()
+    ));
     if !args.quiet {
         crate::output::write_text("-", &(lines.join("\n") + "\n"))?;
     }

@@ -14,7 +14,11 @@ use crate::report::{Report, ReportKind};
 
 /// Whether a source is a surface grid: five comma-separated columns on its first row.
 fn looks_like_surface(source: &Source) -> bool {
-    let first = source.text.lines().map(str::trim).find(|l| !l.is_empty() && !l.starts_with('#'));
+    let first = source
+        .text
+        .lines()
+        .map(str::trim)
+        .find(|l| !l.is_empty() && !l.starts_with('#'));
     first.is_some_and(|l| l.split(',').count() == 5)
 }
 
@@ -48,7 +52,12 @@ pub fn run(args: &InspectArgs) -> Result<()> {
             };
             plot.figure().write(path)?;
         }
-        Report::inspection(ReportKind::Surface, input.grid.points.len(), measured.measures, measured.surface)
+        Report::inspection(
+            ReportKind::Surface,
+            input.grid.points.len(),
+            measured.measures,
+            measured.surface,
+        )
     } else {
         let input = input::parse_curve(&source)?;
         input.require_at_least(MIN_CURVE_POINTS, "a curve")?;
@@ -72,6 +81,10 @@ pub fn run(args: &InspectArgs) -> Result<()> {
     if let Some(path) = &args.report {
         crate::output::write_text(&path.display().to_string(), &text)?;
     }
-    say(args.quiet, false, &format!("{}: {}", source.name, format_measures(&report)));
+    say(
+        args.quiet,
+        false,
+        &format!("{}: {}", source.name, format_measures(&report)),
+    );
     Ok(())
 }

@@ -38,11 +38,15 @@ pub struct SurfaceMeasurement {
 /// Measures a curve of the given kind (DESIGN.md "Definitions").
 pub fn curve(kind: CurveKind, points: &Points) -> Result<CurveMeasurement> {
     let _ = (kind, points);
-    Err(Error::NotAvailable { what: "the curve indicators (crate fairness)".into() })
+    Err(Error::NotAvailable {
+        what: "the curve indicators (crate fairness)".into(),
+    })
 }
 
 /// Measures a surface grid (DESIGN.md "Definitions", surface kind).
 pub fn surface(grid: &Grid) -> Result<SurfaceMeasurement> {
     let _ = grid;
-    Err(Error::NotAvailable { what: "the surface indicators (crate fairness)".into() })
+    Err(Error::NotAvailable {
+        what: "the surface indicators (crate fairness)".into(),
+    })
 }

@@ -52,7 +52,9 @@ pub struct SurfaceOutcome {
 
 /// SEAM: runs the surface strategy of `job.method` (crate `fairing`).
 pub fn fair(job: &SurfaceJob) -> Result<SurfaceOutcome> {
-    Err(Error::NotAvailable { what: format!("surface method `{}`", job.method.name) })
+    Err(Error::NotAvailable {
+        what: format!("surface method `{}`", job.method.name),
+    })
 }
 
 /// Checks that the grid has an interior point.
@@ -61,7 +63,9 @@ pub fn require_grid(input: &SurfaceInput) -> Result<()> {
     if rows < MIN_GRID.0 || columns < MIN_GRID.1 {
         return Err(Error::Invalid {
             path: input.source.clone(),
-            message: format!("a {rows} × {columns} grid has no interior point; a surface needs at least 3 × 3"),
+            message: format!(
+                "a {rows} × {columns} grid has no interior point; a surface needs at least 3 × 3"
+            ),
         });
     }
     Ok(())
@@ -71,18 +75,33 @@ pub fn require_grid(input: &SurfaceInput) -> Result<()> {
 pub fn run(args: &FairArgs) -> Result<()> {
     let input = input::read_surface(&args.input)?;
     require_grid(&input)?;
-    let method = registry::find(args.method.as_deref().unwrap_or(DEFAULT_METHOD), MethodKind::Surface)?;
+    let method = registry::find(
+        args.method.as_deref().unwrap_or(DEFAULT_METHOD),
+        MethodKind::Surface,
+    )?;
     let parameters = Parameters::collect(method, args.config.as_deref(), &args.settings)?;
     let constraints = Constraints::from_args(args, input.grid.points.len())?;
 
-    let job = SurfaceJob { input: &input, method, parameters: &parameters, constraints: &constraints };
+    let job = SurfaceJob {
+        input: &input,
+        method,
+        parameters: &parameters,
+        constraints: &constraints,
+    };
     let outcome = fair(&job)?;
     if (outcome.grid.rows, outcome.grid.columns) != (input.grid.rows, input.grid.columns) {
-        return Err(Error::Internal { message: format!("method `{}` changed the grid size", method.name) });
+        return Err(Error::Internal {
+            message: format!("method `{}` changed the grid size", method.name),
+        });
     }
     let before = measure::surface(&input.grid)?;
     let after = measure::surface(&outcome.grid)?;
-    let distances = input.grid.points.iter().zip(&outcome.grid.points).map(|(p, q)| (p - q).norm());
+    let distances = input
+        .grid
+        .points
+        .iter()
+        .zip(&outcome.grid.points)
+        .map(|(p, q)| (p - q).norm());
     let (s_d, m_d) = distances.fold((0.0, 0.0), |(sum, max), d| (sum + d, f64::max(max, d)));
     let report = Report {
         method: method.name.into(),

@@ -21,7 +21,12 @@ pub(super) fn parse(source: &Source) -> Result<CurveInput> {
         match lines.next() {
             Some((_, l)) if l.is_empty() => continue,
             Some((_, l)) => break l.to_string(),
-            None => return Err(Error::Empty { path: path.into(), reason: "the file is empty".into() }),
+            None => {
+                return Err(Error::Empty {
+                    path: path.into(),
+                    reason: "the file is empty".into(),
+                })
+            }
         }
     };
     let mut pairs: Vec<(usize, Vec2)> = Vec::new();
@@ -38,12 +43,19 @@ pub(super) fn parse(source: &Source) -> Result<CurveInput> {
             });
         };
         let parse = |field: &str, axis: &str| {
-            number(field).map_err(|problem| Error::Parse { path: path.into(), line, message: format!("{axis}: {problem}") })
+            number(field).map_err(|problem| Error::Parse {
+                path: path.into(),
+                line,
+                message: format!("{axis}: {problem}"),
+            })
         };
         pairs.push((line, Vec2::new(parse(*x, "x")?, parse(*y, "y")?)));
     }
     let Some(&(counts_line, counts)) = pairs.first() else {
-        return Err(Error::Empty { path: path.into(), reason: "no coordinates after the name line".into() });
+        return Err(Error::Empty {
+            path: path.into(),
+            reason: "no coordinates after the name line".into(),
+        });
     };
     if is_count(counts.x) && is_count(counts.y) {
         return lednicer(path, name, counts_line, counts, &pairs[1..]);
@@ -60,7 +72,13 @@ fn is_count(v: f64) -> bool {
     v >= 2.0 && v.fract() == 0.0 && v < 1e9
 }
 
-fn lednicer(path: &str, name: String, counts_line: usize, counts: Vec2, pairs: &[(usize, Vec2)]) -> Result<CurveInput> {
+fn lednicer(
+    path: &str,
+    name: String,
+    counts_line: usize,
+    counts: Vec2,
+    pairs: &[(usize, Vec2)],
+) -> Result<CurveInput> {
     // is_count guarantees small non-negative integers.
     let (upper, lower) = (counts.x as usize, counts.y as usize);
     if upper + lower != pairs.len() {
@@ -74,12 +92,22 @@ fn lednicer(path: &str, name: String, counts_line: usize, counts: Vec2, pairs: &
         });
     }
     let (upper_pairs, lower_pairs) = pairs.split_at(upper);
-    let shared_leading_edge = matches!((upper_pairs.first(), lower_pairs.first()), (Some(a), Some(b)) if a.1 == b.1);
+    let shared_leading_edge =
+        matches!((upper_pairs.first(), lower_pairs.first()), (Some(a), Some(b)) if a.1 == b.1);
     let skip = usize::from(shared_leading_edge);
-    let ordered: Vec<&(usize, Vec2)> = upper_pairs.iter().rev().chain(lower_pairs.iter().skip(skip)).collect();
+    let ordered: Vec<&(usize, Vec2)> = upper_pairs
+        .iter()
+        .rev()
+        .chain(lower_pairs.iter().skip(skip))
+        .collect();
     Ok(CurveInput {
         points: Points::Planar(ordered.iter().map(|(_, p)| *p).collect()),
-        format: InputFormat::Lednicer { name, upper, lower, shared_leading_edge },
+        format: InputFormat::Lednicer {
+            name,
+            upper,
+            lower,
+            shared_leading_edge,
+        },
         source: path.into(),
         lines: ordered.iter().map(|(l, _)| *l).collect(),
     })

@@ -59,7 +59,10 @@ pub fn parse(source: &Source) -> Result<SurfaceInput> {
     let path = source.name.as_str();
     let first = source.text.trim_start();
     if first.starts_with('{') || first.starts_with('[') {
-        return Err(Error::Invalid { path: path.into(), message: "surfaces are read from CSV rows i,j,x,y,z".into() });
+        return Err(Error::Invalid {
+            path: path.into(),
+            message: "surfaces are read from CSV rows i,j,x,y,z".into(),
+        });
     }
     let table = Table::parse(source)?;
     if table.columns != 5 {
@@ -72,7 +75,9 @@ pub fn parse(source: &Source) -> Result<SurfaceInput> {
     let mut cells = Vec::with_capacity(table.rows.len());
     for row in &table.rows {
         let [i, j, x, y, z] = row.values[..] else {
-            return Err(Error::Internal { message: "grid row without 5 values".into() });
+            return Err(Error::Internal {
+                message: "grid row without 5 values".into(),
+            });
         };
         let (Some(i), Some(j)) = (index(i), index(j)) else {
             return Err(Error::Parse {
@@ -126,7 +131,11 @@ pub fn parse(source: &Source) -> Result<SurfaceInput> {
         });
     }
     Ok(SurfaceInput {
-        grid: Grid { rows, columns, points },
+        grid: Grid {
+            rows,
+            columns,
+            points,
+        },
         offset: (i_min, j_min),
         order,
         header: table.header.map(|h| h.text),
@@ -158,14 +167,20 @@ mod tests {
     #[test]
     fn missing_cell_is_named() {
         let e = parse_text("0,0,0,0,0\n0,1,0,1,0\n1,0,1,0,0\n").unwrap_err();
-        assert!(e.to_string().contains("1 of 4 cells missing, the first i=1, j=1"), "{e}");
+        assert!(
+            e.to_string().contains("1 of 4 cells missing, the first i=1, j=1"),
+            "{e}"
+        );
         assert_eq!(e.exit_code(), 2);
     }
 
     #[test]
     fn duplicate_names_both_lines() {
         let e = parse_text("i,j,x,y,z\n0,0,0,0,0\n0,1,0,1,0\n0,0,1,0,0\n").unwrap_err();
-        assert_eq!(e.to_string(), "s.csv:4: cell i=0, j=0 given twice (first at line 2)");
+        assert_eq!(
+            e.to_string(),
+            "s.csv:4: cell i=0, j=0 given twice (first at line 2)"
+        );
     }
 
     #[test]
@@ -184,7 +199,10 @@ mod tests {
 
     #[test]
     fn teapot_net_reads() {
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/surface_utah_teapot/teapot_body_control_net.csv");
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../data/surface_utah_teapot/teapot_body_control_net.csv"
+        );
         let s = crate::input::read_surface(path).unwrap();
         assert_eq!((s.grid.rows, s.grid.columns), (13, 13));
     }

@@ -39,23 +39,11 @@ impl<'de> Visitor<'de> for PointListVisitor {
     fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> std::result::Result<PointList, A::Error> {
         let mut rows: Vec<Vec<f64>> = Vec::with_capacity(seq.size_hint().unwrap_or(0));
         let mut dimension = 0;
-        while let Some(Coordinates(row)) = seq.next_element::<Coordinates>()? {
-            if row.len() != 2 && row.len() != 3 {
-                return Err(de::Error::custom(format!(
-                    "point {} has {} coordinates, expected 2 or 3",
-                    rows.len(),
-                    row.len()
-                )));
-            }
-            if dimension == 0 {
-                dimension = row.len();
-            } else if row.len() != dimension {
-                return Err(de::Error::custom(format!(
-                    "point {} has {} coordinates, the first point has {dimension}",
-                    rows.len(),
-                    row.len()
-                )));
-            }
+        while let Some(Coordinates(row)) = seq.next_element_seed(CoordinatesSeed {
+            index: rows.len(),
+            dimension,
+        })? {
+            dimension = row.len();
             rows.push(row);
         }
         Ok(PointList { dimension, rows })
@@ -65,26 +53,51 @@ impl<'de> Visitor<'de> for PointListVisitor {
 /// One point's coordinates, each finite.
 struct Coordinates(Vec<f64>);
 
-impl<'de> Deserialize<'de> for Coordinates {
-    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> std::result::Result<Self, D::Error> {
-        struct CoordinatesVisitor;
-        impl<'de> Visitor<'de> for CoordinatesVisitor {
-            type Value = Coordinates;
-            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-                f.write_str("a point [x, y] or [x, y, z] of numbers")
+/// Reads one point, checking its length (against the first point's once known) before
+/// serde_json moves past its closing bracket, so that the error names the point's line.
+struct CoordinatesSeed {
+    index: usize,
+    dimension: usize,
+}
+
+impl<'de> de::DeserializeSeed<'de> for CoordinatesSeed {
+    type Value = Coordinates;
+    fn deserialize<D: Deserializer<'de>>(
+        self,
+        deserializer: D,
+    ) -> std::result::Result<Coordinates, D::Error> {
+        deserializer.deserialize_seq(self)
+    }
+}
+
+impl<'de> Visitor<'de> for CoordinatesSeed {
+    type Value = Coordinates;
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("a point [x, y] or [x, y, z] of numbers")
+    }
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> std::result::Result<Coordinates, A::Error> {
+        let mut values = Vec::with_capacity(3);
+        while let Some(v) = seq.next_element::<f64>()? {
+            if !v.is_finite() {
+                return Err(de::Error::custom("coordinate is not finite"));
             }
-            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> std::result::Result<Coordinates, A::Error> {
-                let mut values = Vec::with_capacity(3);
-                while let Some(v) = seq.next_element::<f64>()? {
-                    if !v.is_finite() {
-                        return Err(de::Error::custom("coordinate is not finite"));
-                    }
-                    values.push(v);
-                }
-                Ok(Coordinates(values))
-            }
+            values.push(v);
         }
-        deserializer.deserialize_seq(CoordinatesVisitor)
+        let index = self.index;
+        if values.len() != 2 && values.len() != 3 {
+            return Err(de::Error::custom(format!(
+                "point {index} has {} coordinates, expected 2 or 3",
+                values.len()
+            )));
+        }
+        if self.dimension != 0 && values.len() != self.dimension {
+            return Err(de::Error::custom(format!(
+                "point {index} has {} coordinates, the first point has {}",
+                values.len(),
+                self.dimension
+            )));
+        }
+        Ok(Coordinates(values))
     }
 }
 
@@ -95,9 +108,16 @@ fn json_error(path: &str, e: serde_json::Error) -> Error {
     let suffix = format!(" at line {} column {}", e.line(), e.column());
     let message = text.strip_suffix(&suffix).unwrap_or(&text).to_string();
     if line == 0 {
-        Error::Invalid { path: path.into(), message }
+        Error::Invalid {
+            path: path.into(),
+            message,
+        }
     } else {
-        Error::Parse { path: path.into(), line, message }
+        Error::Parse {
+            path: path.into(),
+            line,
+            message,
+        }
     }
 }
 
@@ -128,9 +148,18 @@ pub(super) fn parse(source: &Source) -> Result<CurveInput> {
         }
     };
     if list.rows.is_empty() {
-        return Err(Error::Empty { path: path.into(), reason: "the `points` array is empty".into() });
+        return Err(Error::Empty {
+            path: path.into(),
+            reason: "the `points` array is empty".into(),
+        });
     }
-    let points = Points::from_rows(list.dimension, &list.rows)
-        .ok_or_else(|| Error::Internal { message: "JSON points of unequal dimension".into() })?;
-    Ok(CurveInput { points, format: InputFormat::Json { document }, source: path.into(), lines: Vec::new() })
+    let points = Points::from_rows(list.dimension, &list.rows).ok_or_else(|| Error::Internal {
+        message: "JSON points of unequal dimension".into(),
+    })?;
+    Ok(CurveInput {
+        points,
+        format: InputFormat::Json { document },
+        source: path.into(),
+        lines: Vec::new(),
+    })
 }

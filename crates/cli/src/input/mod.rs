@@ -199,8 +199,15 @@ impl CurveInput {
     /// An error about point `index`, naming its line when known.
     pub fn point_error(&self, index: usize, message: impl Into<String>) -> Error {
         match self.line_of(index) {
-            Some(line) => Error::Parse { path: self.source.clone(), line, message: message.into() },
-            None => Error::Invalid { path: self.source.clone(), message: format!("point {index}: {}", message.into()) },
+            Some(line) => Error::Parse {
+                path: self.source.clone(),
+                line,
+                message: message.into(),
+            },
+            None => Error::Invalid {
+                path: self.source.clone(),
+                message: format!("point {index}: {}", message.into()),
+            },
         }
     }
 }
@@ -219,18 +226,27 @@ pub struct Source {
 impl Source {
     /// Wraps text already in memory (tests, embedded demo data).
     pub fn from_text(name: &str, text: &str) -> Source {
-        Source { name: name.to_string(), text: text.to_string(), extension: extension_of(name) }
+        Source {
+            name: name.to_string(),
+            text: text.to_string(),
+            extension: extension_of(name),
+        }
     }
 
     /// Reads a file, or standard input for `-`.
     pub fn read(path: &str) -> Result<Source> {
         let (name, bytes) = if path == "-" {
             let mut bytes = Vec::new();
-            std::io::Read::read_to_end(&mut std::io::stdin(), &mut bytes)
-                .map_err(|e| Error::Read { path: "<stdin>".into(), reason: e.to_string() })?;
+            std::io::Read::read_to_end(&mut std::io::stdin(), &mut bytes).map_err(|e| Error::Read {
+                path: "<stdin>".into(),
+                reason: e.to_string(),
+            })?;
             ("<stdin>".to_string(), bytes)
         } else {
-            let bytes = std::fs::read(path).map_err(|e| Error::Read { path: path.into(), reason: io_reason(&e) })?;
+            let bytes = std::fs::read(path).map_err(|e| Error::Read {
+                path: path.into(),
+                reason: io_reason(&e),
+            })?;
             (path.to_string(), bytes)
         };
         let text = match String::from_utf8(bytes) {
@@ -238,11 +254,19 @@ impl Source {
             Err(e) => {
                 let valid = &e.as_bytes()[..e.utf8_error().valid_up_to()];
                 let line = 1 + valid.iter().filter(|b| **b == b'\n').count();
-                return Err(Error::Parse { path: name, line, message: "not UTF-8 text".into() });
+                return Err(Error::Parse {
+                    path: name,
+                    line,
+                    message: "not UTF-8 text".into(),
+                });
             }
         };
         let extension = if path == "-" { None } else { extension_of(path) };
-        Ok(Source { name, text, extension })
+        Ok(Source {
+            name,
+            text,
+            extension,
+        })
     }
 }
 
@@ -262,7 +286,10 @@ pub(crate) fn io_reason(e: &std::io::Error) -> String {
 }
 
 fn extension_of(path: &str) -> Option<String> {
-    std::path::Path::new(path).extension().and_then(|e| e.to_str()).map(|e| e.to_ascii_lowercase())
+    std::path::Path::new(path)
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase())
 }
 
 /// The curve format of a source: by extension (`.json`, `.dat`), else by content.
@@ -277,7 +304,11 @@ fn sniff(source: &Source) -> Sniffed {
     if first.starts_with('{') || first.starts_with('[') {
         return Sniffed::Json;
     }
-    let mut lines = source.text.lines().map(str::trim).filter(|l| !l.is_empty() && !l.starts_with('#'));
+    let mut lines = source
+        .text
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !l.starts_with('#'));
     match lines.next() {
         // A name line with no comma and not all numbers, then whitespace-separated numbers.
         Some(head) if !head.contains(',') && !table::all_numeric(head, Delimiter::Whitespace) => {
@@ -320,7 +351,11 @@ fn parse_curve_table(source: &Source) -> Result<CurveInput> {
     let table = table::Table::parse(source)?;
     let columns = table.columns;
     if columns != 2 && columns != 3 {
-        let hint = if columns == 5 { " (an i,j,x,y,z grid is a surface: use `fair surface`)" } else { "" };
+        let hint = if columns == 5 {
+            " (an i,j,x,y,z grid is a surface: use `fair surface`)"
+        } else {
+            ""
+        };
         return Err(Error::Parse {
             path: source.name.clone(),
             line: table.first_line(),
@@ -333,7 +368,10 @@ fn parse_curve_table(source: &Source) -> Result<CurveInput> {
     })?;
     Ok(CurveInput {
         points,
-        format: InputFormat::Csv { header: table.header.map(|h| h.text), delimiter: table.delimiter },
+        format: InputFormat::Csv {
+            header: table.header.map(|h| h.text),
+            delimiter: table.delimiter,
+        },
         source: source.name.clone(),
         lines: table.rows.iter().map(|r| r.line).collect(),
     })
@@ -355,16 +393,34 @@ mod tests {
     #[test]
     fn csv_with_header() {
         let c = parse("a.csv", "x,y\n0,1\n1, 2\n 2 ,3\n").unwrap();
-        assert_eq!(c.points, Points::Planar(vec![Vec2::new(0., 1.), Vec2::new(1., 2.), Vec2::new(2., 3.)]));
-        assert_eq!(c.format, InputFormat::Csv { header: Some("x,y".into()), delimiter: Delimiter::Comma });
+        assert_eq!(
+            c.points,
+            Points::Planar(vec![Vec2::new(0., 1.), Vec2::new(1., 2.), Vec2::new(2., 3.)])
+        );
+        assert_eq!(
+            c.format,
+            InputFormat::Csv {
+                header: Some("x,y".into()),
+                delimiter: Delimiter::Comma
+            }
+        );
         assert_eq!(c.lines, vec![2, 3, 4]);
     }
 
     #[test]
     fn csv_without_header_spatial() {
         let c = parse("a.csv", "0,1,2\n\n# comment\n3,4,5e-1\n").unwrap();
-        assert_eq!(c.points, Points::Spatial(vec![Vec3::new(0., 1., 2.), Vec3::new(3., 4., 0.5)]));
-        assert_eq!(c.format, InputFormat::Csv { header: None, delimiter: Delimiter::Comma });
+        assert_eq!(
+            c.points,
+            Points::Spatial(vec![Vec3::new(0., 1., 2.), Vec3::new(3., 4., 0.5)])
+        );
+        assert_eq!(
+            c.format,
+            InputFormat::Csv {
+                header: None,
+                delimiter: Delimiter::Comma
+            }
+        );
         assert_eq!(c.lines, vec![1, 4]);
     }
 
@@ -372,7 +428,13 @@ mod tests {
     fn whitespace_columns() {
         let c = parse("a.txt", "0 1\n1\t2\n").unwrap();
         assert_eq!(c.len(), 2);
-        assert_eq!(c.format, InputFormat::Csv { header: None, delimiter: Delimiter::Whitespace });
+        assert_eq!(
+            c.format,
+            InputFormat::Csv {
+                header: None,
+                delimiter: Delimiter::Whitespace
+            }
+        );
     }
 
     #[test]
@@ -429,14 +491,20 @@ mod tests {
     #[test]
     fn missing_file() {
         let e = read_curve("/nonexistent/surely/not/here.csv").unwrap_err();
-        assert_eq!(e.to_string(), "/nonexistent/surely/not/here.csv: cannot read: no such file or directory");
+        assert_eq!(
+            e.to_string(),
+            "/nonexistent/surely/not/here.csv: cannot read: no such file or directory"
+        );
         assert_eq!(e.exit_code(), 2);
     }
 
     #[test]
     fn json_object_and_array() {
         let c = parse("a.json", "{\"name\": \"s\", \"points\": [[0, 1], [2.5, 3]]}").unwrap();
-        assert_eq!(c.points, Points::Planar(vec![Vec2::new(0., 1.), Vec2::new(2.5, 3.)]));
+        assert_eq!(
+            c.points,
+            Points::Planar(vec![Vec2::new(0., 1.), Vec2::new(2.5, 3.)])
+        );
         assert!(matches!(&c.format, InputFormat::Json { document: Some(d) } if d.contains_key("name")));
         let c = parse("-", "[[0, 1, 2], [2, 3, 4]]").unwrap();
         assert_eq!(c.points.dimension(), 3);
@@ -464,9 +532,18 @@ mod tests {
 
     #[test]
     fn selig() {
-        let c = parse("a.dat", "NACA 0012\n 1.0 0.0\n 0.5 0.05\n 0.0 0.0\n 0.5 -0.05\n 1.0 0.0\n").unwrap();
+        let c = parse(
+            "a.dat",
+            "NACA 0012\n 1.0 0.0\n 0.5 0.05\n 0.0 0.0\n 0.5 -0.05\n 1.0 0.0\n",
+        )
+        .unwrap();
         assert_eq!(c.len(), 5);
-        assert_eq!(c.format, InputFormat::Selig { name: "NACA 0012".into() });
+        assert_eq!(
+            c.format,
+            InputFormat::Selig {
+                name: "NACA 0012".into()
+            }
+        );
         assert_eq!(c.lines, vec![2, 3, 4, 5, 6]);
         // sniffed without extension
         let c = parse("-", "my foil\n1 0\n0 0\n1 0.1\n").unwrap();
@@ -493,7 +570,12 @@ mod tests {
         assert_eq!(c.points, Points::Planar(expected));
         assert_eq!(
             c.format,
-            InputFormat::Lednicer { name: "FOIL".into(), upper: 3, lower: 3, shared_leading_edge: true }
+            InputFormat::Lednicer {
+                name: "FOIL".into(),
+                upper: 3,
+                lower: 3,
+                shared_leading_edge: true
+            }
         );
         assert_eq!(c.lines, vec![6, 5, 4, 9, 10]);
         let e = parse("l.dat", "FOIL\n3. 3.\n0 0\n0.5 0.1\n1 0\n0 0\n").unwrap_err();

@@ -70,7 +70,11 @@ impl Table {
     /// Parses a table; fails on the first bad field or row with its line, and with
     /// [`Error::Empty`] when there is no data row.
     pub fn parse(source: &Source) -> Result<Table> {
-        let delimiter = if source.text.contains(',') { Delimiter::Comma } else { Delimiter::Whitespace };
+        let delimiter = if source.text.contains(',') {
+            Delimiter::Comma
+        } else {
+            Delimiter::Whitespace
+        };
         let mut header = None;
         let mut rows: Vec<Row> = Vec::new();
         let mut columns = 0;
@@ -102,7 +106,10 @@ impl Table {
                 return Err(Error::Parse {
                     path: source.name.clone(),
                     line,
-                    message: format!("{} fields, expected {columns} like {what} (line {first})", fields.len()),
+                    message: format!(
+                        "{} fields, expected {columns} like {what} (line {first})",
+                        fields.len()
+                    ),
                 });
             }
             let mut values = Vec::with_capacity(columns);
@@ -110,7 +117,11 @@ impl Table {
                 values.push(number(field).map_err(|problem| Error::Parse {
                     path: source.name.clone(),
                     line,
-                    message: format!("column {} ({}): {problem}", column + 1, column_name(&header, column)),
+                    message: format!(
+                        "column {} ({}): {problem}",
+                        column + 1,
+                        column_name(&header, column)
+                    ),
                 })?);
             }
             rows.push(Row { line, values });
@@ -120,9 +131,17 @@ impl Table {
                 Some(h) => format!("only a header (line {})", h.line),
                 None => "the file is empty".to_string(),
             };
-            return Err(Error::Empty { path: source.name.clone(), reason });
+            return Err(Error::Empty {
+                path: source.name.clone(),
+                reason,
+            });
         }
-        Ok(Table { header, rows, columns, delimiter })
+        Ok(Table {
+            header,
+            rows,
+            columns,
+            delimiter,
+        })
     }
 
     /// The line of the header, or of the first row.
@@ -138,7 +157,9 @@ impl Table {
 fn column_name(header: &Option<Header>, column: usize) -> String {
     match header.as_ref().and_then(|h| h.names.get(column)) {
         Some(name) => name.clone(),
-        None => ["x", "y", "z"].get(column).map_or_else(|| format!("#{}", column + 1), |s| s.to_string()),
+        None => ["x", "y", "z"]
+            .get(column)
+            .map_or_else(|| format!("#{}", column + 1), |s| s.to_string()),
     }
 }
 

@@ -32,7 +32,11 @@ pub struct Panel {
 impl Panel {
     /// An empty panel with a title and a legend.
     pub fn new(title: impl Into<String>) -> Panel {
-        Panel { title: Some(title.into()), legend: true, ..Panel::default() }
+        Panel {
+            title: Some(title.into()),
+            legend: true,
+            ..Panel::default()
+        }
     }
     /// Sets the x-axis title.
     pub fn with_x_label(mut self, label: impl Into<String>) -> Panel {
@@ -80,7 +84,12 @@ pub struct Figure {
 
 impl Default for Figure {
     fn default() -> Figure {
-        Figure { title: None, panels: Vec::new(), columns: 1, panel_size: (720.0, 360.0) }
+        Figure {
+            title: None,
+            panels: Vec::new(),
+            columns: 1,
+            panel_size: (720.0, 360.0),
+        }
     }
 }
 
@@ -194,13 +203,20 @@ fn padded(lo: f64, hi: f64) -> (f64, f64) {
 fn frame_for(panel: &Panel, left: f64, top: f64, width: f64, height: f64) -> Frame {
     let points: Vec<[f64; 2]> = panel.series.iter().flat_map(Series::extent_points).collect();
     let fold = |axis: usize| {
-        points.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| (lo.min(p[axis]), hi.max(p[axis])))
+        points
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(p[axis]), hi.max(p[axis]))
+            })
     };
     let (x0, x1) = fold(0);
     let (y0, y1) = fold(1);
     let mut x = padded(x0, x1);
     let mut y = padded(y0, y1);
-    let (w, h) = ((width - MARGIN_LEFT - MARGIN_RIGHT).max(10.0), (height - MARGIN_TOP - MARGIN_BOTTOM).max(10.0));
+    let (w, h) = (
+        (width - MARGIN_LEFT - MARGIN_RIGHT).max(10.0),
+        (height - MARGIN_TOP - MARGIN_BOTTOM).max(10.0),
+    );
     if panel.equal_aspect {
         // Pixels per unit must agree: widen the axis that would be drawn at the larger scale.
         let (sx, sy) = (w / (x.1 - x.0), h / (y.1 - y.0));
@@ -214,7 +230,14 @@ fn frame_for(panel: &Panel, left: f64, top: f64, width: f64, height: f64) -> Fra
             y = (mid - half, mid + half);
         }
     }
-    Frame { left: left + MARGIN_LEFT, top: top + MARGIN_TOP, width: w, height: h, x, y }
+    Frame {
+        left: left + MARGIN_LEFT,
+        top: top + MARGIN_TOP,
+        width: w,
+        height: h,
+        x,
+        y,
+    }
 }
 
 fn render_panel(svg: &mut String, panel: &Panel, index: usize, left: f64, top: f64, width: f64, height: f64) {
@@ -333,19 +356,34 @@ fn polyline(svg: &mut String, run: &[(f64, f64)], attributes: &str) {
 }
 
 fn render_line(svg: &mut String, line: &Line, frame: &Frame, color: &str) {
-    let dash = if line.dashed { r#" stroke-dasharray="6 4""# } else { "" };
-    let attributes = format!(r#"stroke="{color}" stroke-width="{:.2}"{dash}"#, line.width.max(0.1));
+    let dash = if line.dashed {
+        r#" stroke-dasharray="6 4""#
+    } else {
+        ""
+    };
+    let attributes = format!(
+        r#"stroke="{color}" stroke-width="{:.2}"{dash}"#,
+        line.width.max(0.1)
+    );
     for run in runs(&line.points, frame) {
         polyline(svg, &run, &attributes);
     }
 }
 
 fn render_markers(svg: &mut String, markers: &Markers, frame: &Frame, color: &str) {
-    let fill = if markers.hollow { "none".to_string() } else { color.to_string() };
+    let fill = if markers.hollow {
+        "none".to_string()
+    } else {
+        color.to_string()
+    };
     let _ = writeln!(svg, r#"<g fill="{fill}" stroke="{color}">"#);
     for p in &markers.points {
         if let Some((x, y)) = frame.point(*p) {
-            let _ = writeln!(svg, r#"<circle cx="{x:.2}" cy="{y:.2}" r="{:.2}"/>"#, markers.radius.max(0.5));
+            let _ = writeln!(
+                svg,
+                r#"<circle cx="{x:.2}" cy="{y:.2}" r="{:.2}"/>"#,
+                markers.radius.max(0.5)
+            );
         }
     }
     svg.push_str("</g>\n");
@@ -355,7 +393,8 @@ fn render_bars(svg: &mut String, bars: &Bars, frame: &Frame, color: &str) {
     let half = bars.resolved_width() / 2.0;
     let _ = writeln!(svg, r#"<g fill="{color}" fill-opacity="0.8">"#);
     for (x, h) in bars.x.iter().zip(&bars.heights) {
-        if let (Some((x0, y0)), Some((x1, y1))) = (frame.point([x - half, 0.0]), frame.point([x + half, *h])) {
+        if let (Some((x0, y0)), Some((x1, y1))) = (frame.point([x - half, 0.0]), frame.point([x + half, *h]))
+        {
             let _ = writeln!(
                 svg,
                 r#"<rect x="{:.2}" y="{:.2}" width="{:.2}" height="{:.2}"/>"#,
@@ -378,7 +417,10 @@ fn render_comb(svg: &mut String, comb: &Comb, frame: &Frame, color: &str) {
         }
     }
     if !teeth.is_empty() {
-        let _ = writeln!(svg, r#"<path d="{teeth}" fill="none" stroke="{color}" stroke-width="0.8" stroke-opacity="0.7"/>"#);
+        let _ = writeln!(
+            svg,
+            r#"<path d="{teeth}" fill="none" stroke="{color}" stroke-width="0.8" stroke-opacity="0.7"/>"#
+        );
     }
     for run in runs(&tips, frame) {
         polyline(svg, &run, &format!(r#"stroke="{color}" stroke-width="1.2""#));
@@ -432,7 +474,11 @@ fn render_legend(svg: &mut String, panel: &Panel, frame: &Frame) {
     if entries.is_empty() {
         return;
     }
-    let longest = entries.iter().map(|(_, _, t)| t.chars().count()).max().unwrap_or(0) as f64;
+    let longest = entries
+        .iter()
+        .map(|(_, _, t)| t.chars().count())
+        .max()
+        .unwrap_or(0) as f64;
     let (w, h) = (36.0 + 7.0 * longest, 8.0 + 18.0 * entries.len() as f64);
     let (x, y) = (frame.left + frame.width - w - 8.0, frame.top + 8.0);
     let _ = writeln!(
@@ -443,8 +489,16 @@ fn render_legend(svg: &mut String, panel: &Panel, frame: &Frame) {
         let color = series.color().unwrap_or(Color::palette(*k)).hex();
         let cy = y + 14.0 + 18.0 * row as f64;
         let swatch = match series {
-            Series::Markers(_) => format!(r#"<circle cx="{:.2}" cy="{:.2}" r="3" fill="{color}"/>"#, x + 16.0, cy - 4.0),
-            Series::Bars(_) => format!(r#"<rect x="{:.2}" y="{:.2}" width="12" height="8" fill="{color}"/>"#, x + 10.0, cy - 8.0),
+            Series::Markers(_) => format!(
+                r#"<circle cx="{:.2}" cy="{:.2}" r="3" fill="{color}"/>"#,
+                x + 16.0,
+                cy - 4.0
+            ),
+            Series::Bars(_) => format!(
+                r#"<rect x="{:.2}" y="{:.2}" width="12" height="8" fill="{color}"/>"#,
+                x + 10.0,
+                cy - 8.0
+            ),
             Series::ColorMap(_) => format!(
                 r#"<rect x="{:.2}" y="{:.2}" width="6" height="8" fill="{}"/><rect x="{:.2}" y="{:.2}" width="6" height="8" fill="{}"/>"#,
                 x + 10.0,
@@ -462,7 +516,12 @@ fn render_legend(svg: &mut String, panel: &Panel, frame: &Frame) {
                 cy - 4.0
             ),
         };
-        let _ = writeln!(svg, r#"{swatch}<text x="{:.2}" y="{cy:.2}">{}</text>"#, x + 30.0, escape(text));
+        let _ = writeln!(
+            svg,
+            r#"{swatch}<text x="{:.2}" y="{cy:.2}">{}</text>"#,
+            x + 30.0,
+            escape(text)
+        );
     }
     svg.push_str("</g>\n");
 }

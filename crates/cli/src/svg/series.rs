@@ -20,7 +20,13 @@ pub struct Line {
 impl Line {
     /// A solid line 1.5 px wide.
     pub fn new(points: impl IntoIterator<Item = [f64; 2]>) -> Line {
-        Line { points: points.into_iter().collect(), label: None, color: None, width: 1.5, dashed: false }
+        Line {
+            points: points.into_iter().collect(),
+            label: None,
+            color: None,
+            width: 1.5,
+            dashed: false,
+        }
     }
     /// Sets the legend entry.
     pub fn with_label(mut self, label: impl Into<String>) -> Line {
@@ -62,7 +68,13 @@ pub struct Markers {
 impl Markers {
     /// Filled circles of radius 2.5 px.
     pub fn new(points: impl IntoIterator<Item = [f64; 2]>) -> Markers {
-        Markers { points: points.into_iter().collect(), label: None, color: None, radius: 2.5, hollow: false }
+        Markers {
+            points: points.into_iter().collect(),
+            label: None,
+            color: None,
+            radius: 2.5,
+            hollow: false,
+        }
     }
     /// Sets the legend entry.
     pub fn with_label(mut self, label: impl Into<String>) -> Markers {
@@ -104,7 +116,13 @@ pub struct Bars {
 impl Bars {
     /// Bars at `x` with `heights` (pairs beyond the shorter list are ignored).
     pub fn new(x: Vec<f64>, heights: Vec<f64>) -> Bars {
-        Bars { x, heights, label: None, color: None, width: None }
+        Bars {
+            x,
+            heights,
+            label: None,
+            color: None,
+            width: None,
+        }
     }
     /// Bars at 0, 1, 2, … (point indices).
     pub fn indexed(heights: Vec<f64>) -> Bars {
@@ -133,7 +151,11 @@ impl Bars {
         }
         let mut sorted: Vec<f64> = self.x.iter().copied().filter(|v| v.is_finite()).collect();
         sorted.sort_by(f64::total_cmp);
-        let spacing = sorted.windows(2).map(|w| w[1] - w[0]).filter(|d| *d > 0.0).fold(f64::INFINITY, f64::min);
+        let spacing = sorted
+            .windows(2)
+            .map(|w| w[1] - w[0])
+            .filter(|d| *d > 0.0)
+            .fold(f64::INFINITY, f64::min);
         if spacing.is_finite() {
             0.8 * spacing
         } else {
@@ -163,7 +185,14 @@ pub struct Comb {
 impl Comb {
     /// A comb with scale 1 (entries beyond the shortest list are ignored).
     pub fn new(base: Vec<[f64; 2]>, normals: Vec<[f64; 2]>, lengths: Vec<f64>) -> Comb {
-        Comb { base, normals, lengths, scale: 1.0, label: None, color: None }
+        Comb {
+            base,
+            normals,
+            lengths,
+            scale: 1.0,
+            label: None,
+            color: None,
+        }
     }
     /// Sets the scale factor.
     pub fn with_scale(mut self, scale: f64) -> Comb {
@@ -174,7 +203,9 @@ impl Comb {
     pub fn with_auto_scale(mut self, fraction: f64) -> Comb {
         let extent = |axis: usize| {
             let values = self.base.iter().map(|p| p[axis]).filter(|v| v.is_finite());
-            let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
+            let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(v), hi.max(v))
+            });
             if hi > lo {
                 hi - lo
             } else {
@@ -182,7 +213,11 @@ impl Comb {
             }
         };
         let size = extent(0).max(extent(1));
-        let longest = self.lengths.iter().filter(|l| l.is_finite()).fold(0.0f64, |m, l| m.max(l.abs()));
+        let longest = self
+            .lengths
+            .iter()
+            .filter(|l| l.is_finite())
+            .fold(0.0f64, |m, l| m.max(l.abs()));
         if size > 0.0 && longest > 0.0 {
             self.scale = fraction * size / longest;
         }
@@ -229,7 +264,12 @@ impl ColorMap {
     pub fn indexed(values: Vec<Vec<f64>>) -> ColorMap {
         let rows = values.len() as f64;
         let columns = values.iter().map(Vec::len).max().unwrap_or(0) as f64;
-        ColorMap { values, x_range: (-0.5, rows - 0.5), y_range: (-0.5, columns - 0.5), label: None }
+        ColorMap {
+            values,
+            x_range: (-0.5, rows - 0.5),
+            y_range: (-0.5, columns - 0.5),
+            label: None,
+        }
     }
     /// Sets the legend entry.
     pub fn with_label(mut self, label: impl Into<String>) -> ColorMap {

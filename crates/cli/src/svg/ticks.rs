@@ -52,7 +52,11 @@ pub fn nice_step(min: f64, max: f64, target: usize) -> f64 {
 pub fn labels(ticks: &[f64], step: f64) -> Vec<String> {
     let largest = ticks.iter().fold(0.0f64, |m, t| m.max(t.abs()));
     let scientific = largest >= 1e6 || (step > 0.0 && step < 1e-4);
-    let decimals = if step > 0.0 { (-step.log10().floor()).clamp(0.0, 12.0) as usize } else { 0 };
+    let decimals = if step > 0.0 {
+        (-step.log10().floor()).clamp(0.0, 12.0) as usize
+    } else {
+        0
+    };
     ticks
         .iter()
         .map(|t| {
@@ -81,7 +85,13 @@ mod tests {
 
     #[test]
     fn steps_are_one_two_five() {
-        for (min, max) in [(0.0, 1.0), (-3.7, 12.2), (1e-6, 3e-6), (0.0, 12345.0), (-1.0, -0.99)] {
+        for (min, max) in [
+            (0.0, 1.0),
+            (-3.7, 12.2),
+            (1e-6, 3e-6),
+            (0.0, 12345.0),
+            (-1.0, -0.99),
+        ] {
             for target in [3, 5, 8] {
                 let step = nice_step(min, max, target);
                 let mantissa = step / 10f64.powf(step.log10().floor());
