@@ -19,7 +19,7 @@ pub(super) fn parse(source: &Source) -> Result<CurveInput> {
     let mut lines = source.text.lines().enumerate().map(|(i, l)| (i + 1, l.trim()));
     let name = loop {
         match lines.next() {
-            Some((_, l)) if l.is_empty() => continue,
+            Some((_, "")) => continue,
             Some((_, l)) => break l.to_string(),
             None => {
                 return Err(Error::Empty {
@@ -49,7 +49,7 @@ pub(super) fn parse(source: &Source) -> Result<CurveInput> {
                 message: format!("{axis}: {problem}"),
             })
         };
-        pairs.push((line, Vec2::new(parse(*x, "x")?, parse(*y, "y")?)));
+        pairs.push((line, Vec2::new(parse(x, "x")?, parse(y, "y")?)));
     }
     let Some(&(counts_line, counts)) = pairs.first() else {
         return Err(Error::Empty {
