@@ -1,0 +1,322 @@
+//! The command line of `fair` (DESIGN.md, "The `fair` command"), as clap derive types.
+//!
+//! Values that need more than clap's own parsing (`--set NAME=VALUE`, index lists `2,5,7`,
+//! a positive tolerance) have value parsers here whose messages say what was expected.
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use std::path::PathBuf;
+
+/// The whole command line.
+#[derive(Debug, Clone, Parser)]
+#[command(
+    name = "fair",
+    version,
+    about = "Fair measured curves and surfaces: splines, fairness indicators, fairing strategies",
+    propagate_version = true
+)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Clone, Subcommand)]
+pub enum Command {
+    /// Fair a curve (CSV x,y or x,y,z; JSON {"points": ...}; Selig .dat; - for stdin).
+    Curve(FairArgs),
+    /// Fair a surface grid (CSV i,j,x,y,z).
+    Surface(FairArgs),
+    /// Measure a curve or surface without changing it.
+    Inspect(InspectArgs),
+    /// List every method and its parameters.
+    Methods,
+    /// Run every method on the embedded data sets.
+    Demo(DemoArgs),
+}
+
+/// How to read a curve's points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum KindArg {
+    /// A function y(x): x must increase strictly.
+    Function,
+    /// A parametric curve in 2D or 3D.
+    Parametric,
+    /// Function when x increases strictly (2D), else parametric.
+    #[default]
+    Auto,
+}
+
+/// What to keep at the ends of a curve.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ClampEnds {
+    /// The end points.
+    G0,
+    /// The end points and end tangents.
+    G1,
+    /// The end points, tangents and curvatures.
+    G2,
+}
+
+/// Options of `fair curve` and `fair surface`.
+#[derive(Debug, Clone, Args)]
+pub struct FairArgs {
+    /// Input file, or - for standard input.
+    #[arg(value_name = "INPUT")]
+    pub input: String,
+    /// Fairing method (`fair methods` lists them); default two-phase for functions,
+    /// strain-energy for parametric curves, zhang-cheng for surfaces.
+    #[arg(long, short = 'm', value_name = "M")]
+    pub method: Option<String>,
+    /// How to read the points (curves only).
+    #[arg(long, value_enum, default_value_t = KindArg::Auto)]
+    pub kind: KindArg,
+    /// A TOML file of method parameters (the names `--set` takes).
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+    /// Set one method parameter, e.g. --set p=0.999 (repeatable; overrides --config).
+    #[arg(long = "set", value_name = "NAME=VALUE", value_parser = parse_setting)]
+    pub settings: Vec<Setting>,
+    /// Indices (from 0) of points that must not move, e.g. 2,5,7.
+    #[arg(long, value_name = "LIST", value_parser = parse_index_list)]
+    pub fixed: Option<IndexList>,
+    /// Indices (from 0) of the bad points, for the interactive methods, e.g. 4,5.
+    #[arg(long, value_name = "LIST", value_parser = parse_index_list)]
+    pub points: Option<IndexList>,
+    /// No point moves farther than D.
+    #[arg(long, value_name = "D", value_parser = parse_tolerance)]
+    pub tolerance: Option<f64>,
+    /// Keep the end points (g0), also the end tangents (g1), also the end curvatures (g2).
+    #[arg(long, value_enum, value_name = "G")]
+    pub clamp_ends: Option<ClampEnds>,
+    /// Write the faired points here (same format as INPUT; - for standard output).
+    #[arg(short = 'o', long = "output", value_name = "OUT")]
+    pub output: Option<String>,
+    /// Write the JSON report here.
+    #[arg(long, value_name = "REPORT.json")]
+    pub report: Option<PathBuf>,
+    /// Write an SVG plot here.
+    #[arg(long, value_name = "PLOT.svg")]
+    pub plot: Option<PathBuf>,
+    /// Print nothing on success.
+    #[arg(long, short = 'q')]
+    pub quiet: bool,
+}
+
+/// Options of `fair inspect`.
+#[derive(Debug, Clone, Args)]
+pub struct InspectArgs {
+    /// Input file, or - for standard input.
+    #[arg(value_name = "INPUT")]
+    pub input: String,
+    /// How to read the points.
+    #[arg(long, value_enum, default_value_t = KindArg::Auto)]
+    pub kind: KindArg,
+    /// Read INPUT as a surface grid i,j,x,y,z (also chosen when the CSV header is i,j,x,y,z).
+    #[arg(long)]
+    pub surface: bool,
+    /// Write the JSON report here.
+    #[arg(long, value_name = "REPORT.json")]
+    pub report: Option<PathBuf>,
+    /// Write an SVG plot here.
+    #[arg(long, value_name = "PLOT.svg")]
+    pub plot: Option<PathBuf>,
+    /// Print nothing on success.
+    #[arg(long, short = 'q')]
+    pub quiet: bool,
+}
+
+/// Options of `fair demo`.
+#[derive(Debug, Clone, Args)]
+pub struct DemoArgs {
+    /// Directory for the outputs, reports and plots (created if missing).
+    #[arg(long, value_name = "DIR", default_value = "fair-demo")]
+    pub out: PathBuf,
+    /// Print nothing but errors.
+    #[arg(long, short = 'q')]
+    pub quiet: bool,
+}
+
+/// One `--set NAME=VALUE`.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Setting {
+    /// The parameter name.
+    pub name: String,
+    /// Its value, as text (the method parses it).
+    pub value: String,
+}
+
+/// A comma-separated list of point indices, in the order given, without duplicates.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct IndexList(pub Vec<usize>);
+
+/// Parses `NAME=VALUE`: a name of letters, digits, `_` or `-`, and a non-empty value.
+pub fn parse_setting(text: &str) -> Result<Setting, String> {
+    let Some((name, value)) = text.split_once('=') else {
+        return Err(format!("expected NAME=VALUE, got `{text}`"));
+    };
+    let (name, value) = (name.trim(), value.trim());
+    if name.is_empty()
+        || !name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+    {
+        return Err(format!(
+            "parameter name `{name}` must be letters, digits, `_` or `-`"
+        ));
+    }
+    if value.is_empty() {
+        return Err(format!("parameter `{name}` has an empty value"));
+    }
+    Ok(Setting {
+        name: name.to_string(),
+        value: value.to_string(),
+    })
+}
+
+/// Parses `2,5,7` (spaces allowed) into point indices counted from 0.
+pub fn parse_index_list(text: &str) -> Result<IndexList, String> {
+    let mut indices = Vec::new();
+    for field in text.split(',') {
+        let field = field.trim();
+        let index: usize = field
+            .parse()
+            .map_err(|_| format!("`{field}` in `{text}` is not a point index (a whole number from 0)"))?;
+        if indices.contains(&index) {
+            return Err(format!("index {index} appears twice in `{text}`"));
+        }
+        indices.push(index);
+    }
+    Ok(IndexList(indices))
+}
+
+/// Parses a tolerance: a finite number greater than 0.
+pub fn parse_tolerance(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        Ok(_) => Err(format!("`{text}` must be a finite number greater than 0")),
+        Err(_) => Err(format!("`{text}` is not a number")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(args: &[&str]) -> Result<Cli, clap::Error> {
+        Cli::try_parse_from(std::iter::once("fair").chain(args.iter().copied()))
+    }
+
+    #[test]
+    fn clap_definition_is_consistent() {
+        use clap::CommandFactory;
+        Cli::command().debug_assert();
+    }
+
+    #[test]
+    fn full_curve_command() {
+        let cli = parse(&[
+            "curve",
+            "in.csv",
+            "--method",
+            "batten",
+            "--kind",
+            "function",
+            "--config",
+            "c.toml",
+            "--set",
+            "p=0.9",
+            "--set",
+            "criterion=ek",
+            "--fixed",
+            "2,5,7",
+            "--points",
+            "4, 5",
+            "--tolerance",
+            "0.01",
+            "--clamp-ends",
+            "g1",
+            "-o",
+            "out.csv",
+            "--report",
+            "r.json",
+            "--plot",
+            "p.svg",
+            "--quiet",
+        ])
+        .unwrap();
+        let Command::Curve(a) = cli.command else {
+            panic!("not curve")
+        };
+        assert_eq!(a.input, "in.csv");
+        assert_eq!(a.method.as_deref(), Some("batten"));
+        assert_eq!(a.kind, KindArg::Function);
+        assert_eq!(a.settings.len(), 2);
+        assert_eq!(
+            a.settings[1],
+            Setting {
+                name: "criterion".into(),
+                value: "ek".into()
+            }
+        );
+        assert_eq!(a.fixed, Some(IndexList(vec![2, 5, 7])));
+        assert_eq!(a.points, Some(IndexList(vec![4, 5])));
+        assert_eq!(a.tolerance, Some(0.01));
+        assert_eq!(a.clamp_ends, Some(ClampEnds::G1));
+        assert_eq!(a.output.as_deref(), Some("out.csv"));
+        assert!(a.quiet);
+    }
+
+    #[test]
+    fn other_subcommands() {
+        assert!(matches!(parse(&["methods"]).unwrap().command, Command::Methods));
+        let Command::Demo(d) = parse(&["demo", "--out", "d"]).unwrap().command else {
+            panic!()
+        };
+        assert_eq!(d.out, PathBuf::from("d"));
+        let Command::Inspect(i) = parse(&["inspect", "-", "--kind", "parametric"]).unwrap().command else {
+            panic!()
+        };
+        assert_eq!(i.input, "-");
+        let Command::Surface(s) = parse(&["surface", "s.csv", "--method", "kjellander"])
+            .unwrap()
+            .command
+        else {
+            panic!()
+        };
+        assert_eq!(s.method.as_deref(), Some("kjellander"));
+    }
+
+    #[test]
+    fn bad_values_are_usage_errors() {
+        for args in [
+            &["curve", "a.csv", "--fixed", "1,x"][..],
+            &["curve", "a.csv", "--fixed", "-1"],
+            &["curve", "a.csv", "--fixed", "1,1"],
+            &["curve", "a.csv", "--set", "p"],
+            &["curve", "a.csv", "--set", "=3"],
+            &["curve", "a.csv", "--tolerance", "-1"],
+            &["curve", "a.csv", "--tolerance", "nan"],
+            &["curve", "a.csv", "--clamp-ends", "g3"],
+            &["curve", "a.csv", "--kind", "spline"],
+            &["frobnicate"],
+            &["curve"],
+        ] {
+            let e = parse(args).unwrap_err();
+            assert_eq!(e.exit_code(), 2, "{args:?}");
+        }
+    }
+
+    #[test]
+    fn setting_parser() {
+        assert_eq!(
+            parse_setting("a=b=c").unwrap(),
+            Setting {
+                name: "a".into(),
+                value: "b=c".into()
+            }
+        );
+        assert!(parse_setting("a b=1").is_err());
+        assert!(parse_setting("a=").unwrap_err().contains("empty value"));
+    }
+}

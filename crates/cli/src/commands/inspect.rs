@@ -1,0 +1,90 @@
+//! `fair inspect`: measure a curve or a surface, change nothing.
+//!
+//! A CSV whose header or rows have five columns `i,j,x,y,z` is a surface (or `--surface`);
+//! anything else is a curve. The report has the shape of `fair curve`'s with `method`
+//! `inspect`, `after` equal to `before`, nothing moved.
+
+use crate::args::InspectArgs;
+use crate::commands::{curve::MIN_CURVE_POINTS, measure, say, surface};
+use crate::error::Result;
+use crate::input::{self, Source};
+use crate::kind::{self, CurveKind};
+use crate::plots::{planar_view, CurvePlot, SurfacePlot};
+use crate::report::{Report, ReportKind};
+
+/// Whether a source is a surface grid: five comma-separated columns on its first row.
+fn looks_like_surface(source: &Source) -> bool {
+    let first = source
+        .text
+        .lines()
+        .map(str::trim)
+        .find(|l| !l.is_empty() && !l.starts_with('#'));
+    first.is_some_and(|l| l.split(',').count() == 5)
+}
+
+fn format_measures(report: &Report) -> String {
+    let m = &report.before;
+    let count = |c: Option<usize>| c.map_or("-".to_string(), |c| c.to_string());
+    format!(
+        "{} points, {:?}: inflections {}, vibrations {}, e_s = {:.6e}, max_z = {:.6e}",
+        report.n,
+        report.kind,
+        count(m.inflections),
+        count(m.vibrations),
+        m.e_s,
+        m.max_z
+    )
+}
+
+/// Runs `fair inspect`.
+pub fn run(args: &InspectArgs) -> Result<()> {
+    let source = Source::read(&args.input)?;
+    let report = if args.surface || looks_like_surface(&source) {
+        let input = input::grid::parse(&source)?;
+        surface::require_grid(&input)?;
+        let measured = measure::surface(&input.grid)?;
+        if let Some(path) = &args.plot {
+            let plot = SurfacePlot {
+                title: format!("{} — inspect", input.source),
+                input: Some(input.grid.clone()),
+                faired: None,
+                z: measured.z.clone(),
+            };
+            plot.figure().write(path)?;
+        }
+        Report::inspection(
+            ReportKind::Surface,
+            input.grid.points.len(),
+            measured.measures,
+            measured.surface,
+        )
+    } else {
+        let input = input::parse_curve(&source)?;
+        input.require_at_least(MIN_CURVE_POINTS, "a curve")?;
+        let kind = kind::resolve(args.kind, &input)?;
+        let measured = measure::curve(kind, &input.points)?;
+        if let Some(path) = &args.plot {
+            let plot = CurvePlot {
+                title: format!("{} — inspect", input.source),
+                input: planar_view(&input.points),
+                input_curve: measured.samples.clone(),
+                comb: measured.comb.clone(),
+                z_before: measured.z.clone(),
+                function: kind == CurveKind::Function,
+                ..CurvePlot::default()
+            };
+            plot.figure().write(path)?;
+        }
+        Report::inspection(kind.report_kind(), input.len(), measured.measures, measured.curve)
+    };
+    let text = report.to_json()?;
+    if let Some(path) = &args.report {
+        crate::output::write_text(&path.display().to_string(), &text)?;
+    }
+    say(
+        args.quiet,
+        false,
+        &format!("{}: {}", source.name, format_measures(&report)),
+    );
+    Ok(())
+}

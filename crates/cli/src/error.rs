@@ -1,0 +1,214 @@
+//! The crate's one error type, and the exit status each error maps to.
+//!
+//! Every message is one line in the style `<file>:<line>: <what is wrong>` (the line when it is
+//! known); [`crate::run`] prefixes it with `fair: `.
+
+/// Everything the `fair` command can fail on.
+///
+/// Point indices count from 0, the first data point; line numbers count from 1.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// A command-line usage error (unknown subcommand, bad option value), already one line.
+    #[error("{message}")]
+    Usage {
+        /// clap's first message line, without its `error: ` prefix.
+        message: String,
+    },
+    /// An input file cannot be opened or read (missing file, a directory, no permission).
+    #[error("{path}: cannot read: {reason}")]
+    Read {
+        /// The path as the user gave it.
+        path: String,
+        /// The operating system's reason.
+        reason: String,
+    },
+    /// The input holds no points at all.
+    #[error("{path}: no points: {reason}")]
+    Empty {
+        /// The input file.
+        path: String,
+        /// Why nothing was found (empty file, header only, ...).
+        reason: String,
+    },
+    /// A syntax or value error at a known line of an input file.
+    #[error("{path}:{line}: {message}")]
+    Parse {
+        /// The input file.
+        path: String,
+        /// The line, from 1.
+        line: usize,
+        /// What is wrong there.
+        message: String,
+    },
+    /// An input error that belongs to the whole file rather than to one line (a ragged grid).
+    #[error("{path}: {message}")]
+    Invalid {
+        /// The input file.
+        path: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// Fewer points than the method or indicator needs.
+    #[error("{path}: {found} point{}, {what} needs at least {needed}", plural(*.found))]
+    TooFewPoints {
+        /// The input file.
+        path: String,
+        /// How many points were read.
+        found: usize,
+        /// The minimum.
+        needed: usize,
+        /// What needs them (a method, an indicator, "a curve").
+        what: String,
+    },
+    /// A method name that the registry does not know for this kind of input.
+    #[error("unknown {kind} method `{name}` (known: {known}; `fair methods` lists them)")]
+    UnknownMethod {
+        /// The name given.
+        name: String,
+        /// `curve` or `surface`.
+        kind: &'static str,
+        /// The known names, comma-separated.
+        known: String,
+    },
+    /// A `--set NAME=VALUE` or config-file parameter that the method does not have or cannot parse.
+    #[error("{origin}: {message}")]
+    Parameter {
+        /// Where the parameter came from: `--set`, or `config.toml:3`.
+        origin: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// An option whose value does not fit the input (an index past the last point, say).
+    #[error("{option}: {message}")]
+    Argument {
+        /// The option, e.g. `--fixed`.
+        option: &'static str,
+        /// What is wrong.
+        message: String,
+    },
+    /// A known method (or indicator) whose numerical code is not wired into the command yet.
+    #[error("{what} is not available yet")]
+    NotAvailable {
+        /// The method or piece, e.g. "method `batten`".
+        what: String,
+    },
+    /// A representation cannot be built from the points (repeated points, x not increasing).
+    #[error("{path}: {source}")]
+    Representation {
+        /// The input file.
+        path: String,
+        /// The representation crate's error.
+        source: curve_repr::Error,
+    },
+    /// An output, report or plot file cannot be written.
+    #[error("{path}: cannot write: {reason}")]
+    Write {
+        /// The output path.
+        path: String,
+        /// The operating system's reason.
+        reason: String,
+    },
+    /// A value about to be written is NaN or infinite: the computation failed.
+    #[error("{what}: value {index} is not finite; nothing written")]
+    NonFiniteOutput {
+        /// What was being written (`output`, `report`).
+        what: String,
+        /// Index of the first offending value.
+        index: usize,
+    },
+    /// A failure of the command itself (a bug, a caught panic, a failed computation).
+    #[error("internal error: {message}")]
+    Internal {
+        /// What failed.
+        message: String,
+    },
+}
+
+impl Error {
+    /// The process exit status for this error: 2 for bad input, arguments, unknown methods and
+    /// missing or unwritable files (the user can fix them), 1 for internal failures (including
+    /// methods not available yet and non-finite results).
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            Error::Usage { .. }
+            | Error::Read { .. }
+            | Error::Empty { .. }
+            | Error::Parse { .. }
+            | Error::Invalid { .. }
+            | Error::TooFewPoints { .. }
+            | Error::UnknownMethod { .. }
+            | Error::Parameter { .. }
+            | Error::Argument { .. }
+            | Error::Representation { .. }
+            | Error::Write { .. } => 2,
+            Error::NotAvailable { .. } | Error::NonFiniteOutput { .. } | Error::Internal { .. } => 1,
+        }
+    }
+
+    /// The message on one line: any newline inside a wrapped message becomes `; `.
+    pub fn one_line(&self) -> String {
+        let text = self.to_string();
+        let parts: Vec<&str> = text.lines().map(str::trim).filter(|l| !l.is_empty()).collect();
+        parts.join("; ")
+    }
+}
+
+/// `""` for one, `"s"` otherwise.
+fn plural(count: usize) -> &'static str {
+    if count == 1 {
+        ""
+    } else {
+        "s"
+    }
+}
+
+/// The crate's result type.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parse_error_names_file_and_line() {
+        let e = Error::Parse {
+            path: "a.csv".into(),
+            line: 3,
+            message: "bad".into(),
+        };
+        assert_eq!(e.to_string(), "a.csv:3: bad");
+        assert_eq!(e.exit_code(), 2);
+    }
+
+    #[test]
+    fn internal_failures_exit_one() {
+        assert_eq!(
+            Error::NotAvailable {
+                what: "method `batten`".into()
+            }
+            .exit_code(),
+            1
+        );
+        assert_eq!(Error::Internal { message: "x".into() }.exit_code(), 1);
+    }
+
+    #[test]
+    fn too_few_points_singular() {
+        let e = Error::TooFewPoints {
+            path: "p.csv".into(),
+            found: 1,
+            needed: 3,
+            what: "a curve".into(),
+        };
+        assert_eq!(e.to_string(), "p.csv: 1 point, a curve needs at least 3");
+    }
+
+    #[test]
+    fn one_line_joins_lines() {
+        let e = Error::Internal {
+            message: "a\nb\n".into(),
+        };
+        assert_eq!(e.one_line(), "internal error: a; b");
+    }
+}

@@ -1,0 +1,584 @@
+//! Reading curves and surfaces from files or standard input.
+//!
+//! Formats (DESIGN.md, "The `fair` command"):
+//! - CSV `x,y` or `x,y,z`, header optional (a first row that is not all numbers is a header),
+//!   blank lines and `#` comments skipped, spaces around fields allowed; a file without any
+//!   comma is read as whitespace-separated columns;
+//! - JSON `{"points": [[x, y], ...]}` (other keys are kept and written back), or a bare array
+//!   `[[x, y], ...]`;
+//! - airfoil `.dat`: Selig (a name line, then `x y` pairs around the contour) or Lednicer
+//!   (a name line, a line with the two point counts, then the upper and the lower surface
+//!   each from the leading edge), detected by that counts line; a Lednicer file is turned
+//!   into one Selig-ordered contour and written back as Lednicer;
+//! - surfaces: CSV `i,j,x,y,z` into a rectangular grid ([`grid`]).
+//!
+//! `-` reads standard input; its format is sniffed from the content. Every reader is linear
+//! in the size of the input and names the file and line of the first error.
+
+mod airfoil;
+pub mod grid;
+mod json;
+mod table;
+
+use crate::error::{Error, Result};
+use curve_repr::{Vec2, Vec3};
+
+pub use grid::{Grid, SurfaceInput};
+pub use table::Delimiter;
+
+/// The points of a curve: planar (`x,y`) or spatial (`x,y,z`).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Points {
+    /// Planar points.
+    Planar(Vec<Vec2>),
+    /// Spatial points.
+    Spatial(Vec<Vec3>),
+}
+
+impl Points {
+    /// Number of points.
+    pub fn len(&self) -> usize {
+        match self {
+            Points::Planar(p) => p.len(),
+            Points::Spatial(p) => p.len(),
+        }
+    }
+
+    /// Whether there are no points.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// 2 or 3.
+    pub fn dimension(&self) -> usize {
+        match self {
+            Points::Planar(_) => 2,
+            Points::Spatial(_) => 3,
+        }
+    }
+
+    /// The coordinates of point `index`, if it exists.
+    pub fn coordinates(&self, index: usize) -> Option<Vec<f64>> {
+        match self {
+            Points::Planar(p) => p.get(index).map(|v| vec![v.x, v.y]),
+            Points::Spatial(p) => p.get(index).map(|v| vec![v.x, v.y, v.z]),
+        }
+    }
+
+    /// All points as coordinate rows (for JSON and generic code).
+    pub fn rows(&self) -> Vec<Vec<f64>> {
+        match self {
+            Points::Planar(p) => p.iter().map(|v| vec![v.x, v.y]).collect(),
+            Points::Spatial(p) => p.iter().map(|v| vec![v.x, v.y, v.z]).collect(),
+        }
+    }
+
+    /// Builds points from coordinate rows that all have `dimension` (2 or 3) entries.
+    ///
+    /// Returns `None` for another dimension or a row of the wrong length.
+    pub fn from_rows(dimension: usize, rows: &[Vec<f64>]) -> Option<Points> {
+        match dimension {
+            2 => rows
+                .iter()
+                .map(|r| match r.as_slice() {
+                    [x, y] => Some(Vec2::new(*x, *y)),
+                    _ => None,
+                })
+                .collect::<Option<Vec<_>>>()
+                .map(Points::Planar),
+            3 => rows
+                .iter()
+                .map(|r| match r.as_slice() {
+                    [x, y, z] => Some(Vec3::new(*x, *y, *z)),
+                    _ => None,
+                })
+                .collect::<Option<Vec<_>>>()
+                .map(Points::Spatial),
+            _ => None,
+        }
+    }
+
+    /// Index of the first point with a NaN or infinite coordinate.
+    pub fn first_non_finite(&self) -> Option<usize> {
+        match self {
+            Points::Planar(p) => p.iter().position(|v| !v.iter().all(|c| c.is_finite())),
+            Points::Spatial(p) => p.iter().position(|v| !v.iter().all(|c| c.is_finite())),
+        }
+    }
+}
+
+/// How a curve file was written, remembered so that the output is written the same way.
+#[derive(Debug, Clone, PartialEq)]
+pub enum InputFormat {
+    /// Delimited columns.
+    Csv {
+        /// The header line exactly as read, if the file had one.
+        header: Option<String>,
+        /// Comma or whitespace.
+        delimiter: Delimiter,
+    },
+    /// JSON.
+    Json {
+        /// The original document: an object whose `points` is replaced on output, or `None`
+        /// for a bare top-level array.
+        document: Option<serde_json::Map<String, serde_json::Value>>,
+    },
+    /// Selig airfoil `.dat`: a name line, then the contour.
+    Selig {
+        /// The name line, trimmed.
+        name: String,
+    },
+    /// Lednicer airfoil `.dat`, held in memory as one Selig-ordered contour.
+    Lednicer {
+        /// The name line, trimmed.
+        name: String,
+        /// Points on the upper surface in the file.
+        upper: usize,
+        /// Points on the lower surface in the file.
+        lower: usize,
+        /// Whether both surfaces start at the same leading-edge point, kept once in memory.
+        shared_leading_edge: bool,
+    },
+}
+
+impl InputFormat {
+    /// A short name: `csv`, `json`, `selig`, `lednicer`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            InputFormat::Csv { .. } => "csv",
+            InputFormat::Json { .. } => "json",
+            InputFormat::Selig { .. } => "selig",
+            InputFormat::Lednicer { .. } => "lednicer",
+        }
+    }
+}
+
+/// A curve read from a file: its points, the format to write results in, and where it came from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CurveInput {
+    /// The data points, in file order (Lednicer: Selig order).
+    pub points: Points,
+    /// The format they were read in.
+    pub format: InputFormat,
+    /// The path as given, or `<stdin>`.
+    pub source: String,
+    /// The line of each point, from 1 (empty when the format does not track lines, as JSON).
+    pub lines: Vec<usize>,
+}
+
+impl CurveInput {
+    /// Number of points.
+    pub fn len(&self) -> usize {
+        self.points.len()
+    }
+
+    /// Whether there are no points (never true for a successfully read input).
+    pub fn is_empty(&self) -> bool {
+        self.points.is_empty()
+    }
+
+    /// The line point `index` was read from, when known.
+    pub fn line_of(&self, index: usize) -> Option<usize> {
+        self.lines.get(index).copied()
+    }
+
+    /// Fails with [`Error::TooFewPoints`] when there are fewer than `needed` points; `what`
+    /// names who needs them (`"a curve"`, a method name).
+    pub fn require_at_least(&self, needed: usize, what: &str) -> Result<()> {
+        if self.len() < needed {
+            return Err(Error::TooFewPoints {
+                path: self.source.clone(),
+                found: self.len(),
+                needed,
+                what: what.to_string(),
+            });
+        }
+        Ok(())
+    }
+
+    /// An error about point `index`, naming its line when known.
+    pub fn point_error(&self, index: usize, message: impl Into<String>) -> Error {
+        match self.line_of(index) {
+            Some(line) => Error::Parse {
+                path: self.source.clone(),
+                line,
+                message: message.into(),
+            },
+            None => Error::Invalid {
+                path: self.source.clone(),
+                message: format!("point {index}: {}", message.into()),
+            },
+        }
+    }
+}
+
+/// The text of an input and where it came from.
+#[derive(Debug, Clone)]
+pub struct Source {
+    /// The path as given, or `<stdin>` for `-`.
+    pub name: String,
+    /// The whole content.
+    pub text: String,
+    /// The lower-case file extension, if any.
+    pub extension: Option<String>,
+}
+
+impl Source {
+    /// Wraps text already in memory (tests, embedded demo data).
+    pub fn from_text(name: &str, text: &str) -> Source {
+        Source {
+            name: name.to_string(),
+            text: text.to_string(),
+            extension: extension_of(name),
+        }
+    }
+
+    /// Reads a file, or standard input for `-`.
+    pub fn read(path: &str) -> Result<Source> {
+        let (name, bytes) = if path == "-" {
+            let mut bytes = Vec::new();
+            std::io::Read::read_to_end(&mut std::io::stdin(), &mut bytes).map_err(|e| Error::Read {
+                path: "<stdin>".into(),
+                reason: e.to_string(),
+            })?;
+            ("<stdin>".to_string(), bytes)
+        } else {
+            let bytes = std::fs::read(path).map_err(|e| Error::Read {
+                path: path.into(),
+                reason: io_reason(&e),
+            })?;
+            (path.to_string(), bytes)
+        };
+        let text = match String::from_utf8(bytes) {
+            Ok(text) => text,
+            Err(e) => {
+                let valid = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+                let line = 1 + valid.iter().filter(|b| **b == b'\n').count();
+                return Err(Error::Parse {
+                    path: name,
+                    line,
+                    message: "not UTF-8 text".into(),
+                });
+            }
+        };
+        let extension = if path == "-" { None } else { extension_of(path) };
+        Ok(Source {
+            name,
+            text,
+            extension,
+        })
+    }
+}
+
+/// The operating system's reason for an I/O failure, without the "(os error 2)" suffix.
+pub(crate) fn io_reason(e: &std::io::Error) -> String {
+    match e.kind() {
+        std::io::ErrorKind::NotFound => "no such file or directory".into(),
+        std::io::ErrorKind::PermissionDenied => "permission denied".into(),
+        _ => {
+            let text = e.to_string();
+            match text.find(" (os error") {
+                Some(cut) => text[..cut].to_string(),
+                None => text,
+            }
+        }
+    }
+}
+
+fn extension_of(path: &str) -> Option<String> {
+    std::path::Path::new(path)
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase())
+}
+
+/// The curve format of a source: by extension (`.json`, `.dat`), else by content.
+fn sniff(source: &Source) -> Sniffed {
+    match source.extension.as_deref() {
+        Some("json") => return Sniffed::Json,
+        Some("dat") => return Sniffed::Airfoil,
+        Some("csv") => return Sniffed::Table,
+        _ => {}
+    }
+    let first = source.text.trim_start();
+    if first.starts_with('{') || first.starts_with('[') {
+        return Sniffed::Json;
+    }
+    let mut lines = source
+        .text
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !l.starts_with('#'));
+    match lines.next() {
+        // A name line with no comma and not all numbers, then whitespace-separated numbers.
+        Some(head) if !head.contains(',') && !table::all_numeric(head, Delimiter::Whitespace) => {
+            match lines.next() {
+                Some(next) if !next.contains(',') && table::all_numeric(next, Delimiter::Whitespace) => {
+                    Sniffed::Airfoil
+                }
+                _ => Sniffed::Table,
+            }
+        }
+        _ => Sniffed::Table,
+    }
+}
+
+enum Sniffed {
+    Table,
+    Json,
+    Airfoil,
+}
+
+/// Reads a curve from `path` (`-` for standard input).
+///
+/// Fails with the file and line of the first problem; a file without any point is
+/// [`Error::Empty`]. The minimum number of points is the caller's to check
+/// ([`CurveInput::require_at_least`]).
+pub fn read_curve(path: &str) -> Result<CurveInput> {
+    parse_curve(&Source::read(path)?)
+}
+
+/// Parses a curve from text already read; see [`read_curve`].
+pub fn parse_curve(source: &Source) -> Result<CurveInput> {
+    match sniff(source) {
+        Sniffed::Json => json::parse(source),
+        Sniffed::Airfoil => airfoil::parse(source),
+        Sniffed::Table => parse_curve_table(source),
+    }
+}
+
+fn parse_curve_table(source: &Source) -> Result<CurveInput> {
+    let table = table::Table::parse(source)?;
+    let columns = table.columns;
+    if columns != 2 && columns != 3 {
+        let hint = if columns == 5 {
+            " (an i,j,x,y,z grid is a surface: use `fair surface`)"
+        } else {
+            ""
+        };
+        return Err(Error::Parse {
+            path: source.name.clone(),
+            line: table.first_line(),
+            message: format!("{columns} columns, expected 2 (x,y) or 3 (x,y,z){hint}"),
+        });
+    }
+    let values: Vec<Vec<f64>> = table.rows.iter().map(|r| r.values.clone()).collect();
+    let points = Points::from_rows(columns, &values).ok_or_else(|| Error::Internal {
+        message: "table rows of unequal length".into(),
+    })?;
+    Ok(CurveInput {
+        points,
+        format: InputFormat::Csv {
+            header: table.header.map(|h| h.text),
+            delimiter: table.delimiter,
+        },
+        source: source.name.clone(),
+        lines: table.rows.iter().map(|r| r.line).collect(),
+    })
+}
+
+/// Reads a surface grid `i,j,x,y,z` from `path` (`-` for standard input).
+pub fn read_surface(path: &str) -> Result<SurfaceInput> {
+    grid::parse(&Source::read(path)?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(name: &str, text: &str) -> Result<CurveInput> {
+        parse_curve(&Source::from_text(name, text))
+    }
+
+    #[test]
+    fn csv_with_header() {
+        let c = parse("a.csv", "x,y\n0,1\n1, 2\n 2 ,3\n").unwrap();
+        assert_eq!(
+            c.points,
+            Points::Planar(vec![Vec2::new(0., 1.), Vec2::new(1., 2.), Vec2::new(2., 3.)])
+        );
+        assert_eq!(
+            c.format,
+            InputFormat::Csv {
+                header: Some("x,y".into()),
+                delimiter: Delimiter::Comma
+            }
+        );
+        assert_eq!(c.lines, vec![2, 3, 4]);
+    }
+
+    #[test]
+    fn csv_without_header_spatial() {
+        let c = parse("a.csv", "0,1,2\n\n# comment\n3,4,5e-1\n").unwrap();
+        assert_eq!(
+            c.points,
+            Points::Spatial(vec![Vec3::new(0., 1., 2.), Vec3::new(3., 4., 0.5)])
+        );
+        assert_eq!(
+            c.format,
+            InputFormat::Csv {
+                header: None,
+                delimiter: Delimiter::Comma
+            }
+        );
+        assert_eq!(c.lines, vec![1, 4]);
+    }
+
+    #[test]
+    fn whitespace_columns() {
+        let c = parse("a.txt", "0 1\n1\t2\n").unwrap();
+        assert_eq!(c.len(), 2);
+        assert_eq!(
+            c.format,
+            InputFormat::Csv {
+                header: None,
+                delimiter: Delimiter::Whitespace
+            }
+        );
+    }
+
+    #[test]
+    fn empty_file() {
+        let e = parse("e.csv", "").unwrap_err();
+        assert!(matches!(e, Error::Empty { .. }), "{e}");
+        assert!(e.to_string().starts_with("e.csv: "), "{e}");
+        let e = parse("h.csv", "x,y\n\n").unwrap_err();
+        assert!(matches!(e, Error::Empty { .. }), "{e}");
+    }
+
+    #[test]
+    fn one_point_is_returned_and_caller_decides() {
+        let c = parse("one.csv", "x,y\n1,2\n").unwrap();
+        assert_eq!(c.len(), 1);
+        let e = c.require_at_least(3, "a curve").unwrap_err();
+        assert_eq!(e.to_string(), "one.csv: 1 point, a curve needs at least 3");
+        assert_eq!(e.exit_code(), 2);
+    }
+
+    #[test]
+    fn text_in_number_column_names_line() {
+        let e = parse("t.csv", "x,y\n0,1\n1,abc\n").unwrap_err();
+        assert!(e.to_string().starts_with("t.csv:3: "), "{e}");
+        assert!(e.to_string().contains("abc"), "{e}");
+    }
+
+    #[test]
+    fn nan_and_infinity_are_rejected() {
+        for bad in ["NaN", "inf", "-infinity", "1e999"] {
+            let e = parse("n.csv", &format!("0,1\n1,{bad}\n2,3\n")).unwrap_err();
+            assert!(e.to_string().starts_with("n.csv:2: "), "{e}");
+            assert!(e.to_string().contains("not finite"), "{e}");
+        }
+    }
+
+    #[test]
+    fn mismatched_columns_name_line() {
+        let e = parse("m.csv", "x,y\n0,1\n1,2\n2,3,4\n").unwrap_err();
+        assert!(e.to_string().starts_with("m.csv:4: "), "{e}");
+        assert!(e.to_string().contains("3 fields"), "{e}");
+        let e = parse("m.csv", "x,y,z\n0,1\n").unwrap_err();
+        assert!(e.to_string().starts_with("m.csv:2: "), "{e}");
+    }
+
+    #[test]
+    fn wrong_column_count() {
+        let e = parse("w.csv", "1\n2\n").unwrap_err();
+        assert!(e.to_string().starts_with("w.csv:1: 1 columns"), "{e}");
+        let e = parse("g.csv", "i,j,x,y,z\n0,0,1,2,3\n").unwrap_err();
+        assert!(e.to_string().contains("fair surface"), "{e}");
+    }
+
+    #[test]
+    fn missing_file() {
+        let e = read_curve("/nonexistent/surely/not/here.csv").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "/nonexistent/surely/not/here.csv: cannot read: no such file or directory"
+        );
+        assert_eq!(e.exit_code(), 2);
+    }
+
+    #[test]
+    fn json_object_and_array() {
+        let c = parse("a.json", "{\"name\": \"s\", \"points\": [[0, 1], [2.5, 3]]}").unwrap();
+        assert_eq!(
+            c.points,
+            Points::Planar(vec![Vec2::new(0., 1.), Vec2::new(2.5, 3.)])
+        );
+        assert!(matches!(&c.format, InputFormat::Json { document: Some(d) } if d.contains_key("name")));
+        let c = parse("-", "[[0, 1, 2], [2, 3, 4]]").unwrap();
+        assert_eq!(c.points.dimension(), 3);
+        assert!(matches!(c.format, InputFormat::Json { document: None }));
+    }
+
+    #[test]
+    fn json_errors_name_line() {
+        let e = parse("j.json", "{\"points\": [\n[0, 1],\n[1, \"a\"]\n]}").unwrap_err();
+        assert!(e.to_string().starts_with("j.json:3: "), "{e}");
+        let e = parse("j.json", "{\"points\": [\n[0, 1],\n[1, 2, 3]\n]}").unwrap_err();
+        assert!(e.to_string().starts_with("j.json:3: "), "{e}");
+        assert!(e.to_string().contains("3 coordinates"), "{e}");
+        let e = parse("j.json", "{\"points\": [\n[0, 1],\n[1]\n]}").unwrap_err();
+        assert!(e.to_string().starts_with("j.json:3: "), "{e}");
+        let e = parse("j.json", "{\"points\": [\n[0, 1],\n[1, 2],\n").unwrap_err();
+        assert!(matches!(e, Error::Parse { .. }), "{e}");
+        let e = parse("j.json", "{\"points\": []}").unwrap_err();
+        assert!(matches!(e, Error::Empty { .. }), "{e}");
+        let e = parse("j.json", "{\"pts\": []}").unwrap_err();
+        assert!(e.to_string().contains("points"), "{e}");
+        let e = parse("j.json", "{\"points\": [[0, 1e999]]}").unwrap_err();
+        assert!(e.to_string().starts_with("j.json:1: "), "{e}");
+    }
+
+    #[test]
+    fn selig() {
+        let c = parse(
+            "a.dat",
+            "NACA 0012\n 1.0 0.0\n 0.5 0.05\n 0.0 0.0\n 0.5 -0.05\n 1.0 0.0\n",
+        )
+        .unwrap();
+        assert_eq!(c.len(), 5);
+        assert_eq!(
+            c.format,
+            InputFormat::Selig {
+                name: "NACA 0012".into()
+            }
+        );
+        assert_eq!(c.lines, vec![2, 3, 4, 5, 6]);
+        // sniffed without extension
+        let c = parse("-", "my foil\n1 0\n0 0\n1 0.1\n").unwrap();
+        assert!(matches!(c.format, InputFormat::Selig { .. }));
+        let e = parse("a.dat", "NACA\n1.0 0.0\n0.5 x\n").unwrap_err();
+        assert!(e.to_string().starts_with("a.dat:3: "), "{e}");
+        let e = parse("a.dat", "NACA\n1.0 0.0\n0.5 0.1 0.2\n").unwrap_err();
+        assert!(e.to_string().starts_with("a.dat:3: "), "{e}");
+        let e = parse("a.dat", "NACA\n").unwrap_err();
+        assert!(matches!(e, Error::Empty { .. }), "{e}");
+    }
+
+    #[test]
+    fn lednicer_becomes_selig_order() {
+        let text = "FOIL\n3. 3.\n\n0 0\n0.5 0.1\n1 0\n\n0 0\n0.5 -0.1\n1 0\n";
+        let c = parse("l.dat", text).unwrap();
+        let expected = vec![
+            Vec2::new(1., 0.),
+            Vec2::new(0.5, 0.1),
+            Vec2::new(0., 0.),
+            Vec2::new(0.5, -0.1),
+            Vec2::new(1., 0.),
+        ];
+        assert_eq!(c.points, Points::Planar(expected));
+        assert_eq!(
+            c.format,
+            InputFormat::Lednicer {
+                name: "FOIL".into(),
+                upper: 3,
+                lower: 3,
+                shared_leading_edge: true
+            }
+        );
+        assert_eq!(c.lines, vec![6, 5, 4, 9, 10]);
+        let e = parse("l.dat", "FOIL\n3. 3.\n0 0\n0.5 0.1\n1 0\n0 0\n").unwrap_err();
+        assert!(e.to_string().contains("3 + 3"), "{e}");
+    }
+}

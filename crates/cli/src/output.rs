@@ -1,0 +1,230 @@
+//! Writing faired points back in the format they were read in.
+//!
+//! Numbers are written in Rust's shortest round-trip form, so reading the output back gives
+//! the same `f64`s. Nothing NaN or infinite is ever written: [`Error::NonFiniteOutput`] instead.
+
+use crate::error::{Error, Result};
+use crate::input::{io_reason, CurveInput, Delimiter, Grid, InputFormat, Points, SurfaceInput};
+use std::io::Write;
+
+/// Formats `points` in the format of `input` (header, JSON document, airfoil name).
+///
+/// `points` must have the dimension of the input; a Lednicer input needs the same count.
+pub fn format_curve(input: &CurveInput, points: &Points) -> Result<String> {
+    if let Some(index) = points.first_non_finite() {
+        return Err(Error::NonFiniteOutput {
+            what: "output point".into(),
+            index,
+        });
+    }
+    if points.dimension() != input.points.dimension() {
+        return Err(Error::Internal {
+            message: format!(
+                "output has dimension {}, input {}",
+                points.dimension(),
+                input.points.dimension()
+            ),
+        });
+    }
+    let rows = points.rows();
+    let mut text = String::new();
+    match &input.format {
+        InputFormat::Csv { header, delimiter } => {
+            if let Some(header) = header {
+                text.push_str(header);
+                text.push('\n');
+            }
+            push_rows(&mut text, rows.iter().map(Vec::as_slice), *delimiter);
+        }
+        InputFormat::Json { document } => {
+            let array = serde_json::to_value(&rows).map_err(|e| Error::Internal {
+                message: e.to_string(),
+            })?;
+            let value = match document {
+                Some(map) => {
+                    let mut map = map.clone();
+                    map.insert("points".into(), array);
+                    serde_json::Value::Object(map)
+                }
+                None => array,
+            };
+            text = serde_json::to_string_pretty(&value).map_err(|e| Error::Internal {
+                message: e.to_string(),
+            })?;
+            text.push('\n');
+        }
+        InputFormat::Selig { name } => {
+            text.push_str(name);
+            text.push('\n');
+            push_rows(&mut text, rows.iter().map(Vec::as_slice), Delimiter::Whitespace);
+        }
+        InputFormat::Lednicer {
+            name,
+            upper,
+            lower,
+            shared_leading_edge,
+        } => {
+            let expected = (upper + lower).saturating_sub(usize::from(*shared_leading_edge));
+            if rows.len() != expected || *upper == 0 {
+                return Err(Error::Internal {
+                    message: format!("Lednicer output needs {expected} points, got {}", rows.len()),
+                });
+            }
+            let (upper_rows, rest) = rows.split_at(*upper);
+            let mut lower_rows: Vec<&[f64]> = Vec::with_capacity(*lower);
+            if *shared_leading_edge {
+                lower_rows.extend(upper_rows.last().map(Vec::as_slice));
+            }
+            lower_rows.extend(rest.iter().map(Vec::as_slice));
+            text.push_str(&format!("{name}\n{upper}. {lower}.\n\n"));
+            push_rows(
+                &mut text,
+                upper_rows.iter().rev().map(Vec::as_slice),
+                Delimiter::Whitespace,
+            );
+            text.push('\n');
+            push_rows(&mut text, lower_rows.into_iter(), Delimiter::Whitespace);
+        }
+    }
+    Ok(text)
+}
+
+/// Formats a surface grid in the row order and header of `input`, indices as in the file.
+pub fn format_surface(input: &SurfaceInput, grid: &Grid) -> Result<String> {
+    if let Some(index) = grid.points.iter().position(|p| !p.iter().all(|c| c.is_finite())) {
+        return Err(Error::NonFiniteOutput {
+            what: "output grid point".into(),
+            index,
+        });
+    }
+    let mut text = String::new();
+    if let Some(header) = &input.header {
+        text.push_str(header);
+        text.push('\n');
+    }
+    let separator = input.delimiter.as_str();
+    for &(i, j) in &input.order {
+        let p = grid.get(i, j).ok_or_else(|| Error::Internal {
+            message: format!("output grid has no cell ({i}, {j})"),
+        })?;
+        let (fi, fj) = (i as i64 + input.offset.0, j as i64 + input.offset.1);
+        text.push_str(&format!(
+            "{fi}{separator}{fj}{separator}{}{separator}{}{separator}{}\n",
+            p.x, p.y, p.z
+        ));
+    }
+    Ok(text)
+}
+
+fn push_rows<'a>(text: &mut String, rows: impl Iterator<Item = &'a [f64]>, delimiter: Delimiter) {
+    for row in rows {
+        let fields: Vec<String> = row.iter().map(|v| v.to_string()).collect();
+        text.push_str(&fields.join(delimiter.as_str()));
+        text.push('\n');
+    }
+}
+
+/// Writes text to a file, or to standard output for `-`.
+///
+/// A closed standard output (`fair ... -o - | head`) is not an error.
+pub fn write_text(path: &str, text: &str) -> Result<()> {
+    if path == "-" {
+        let mut stdout = std::io::stdout().lock();
+        return match stdout.write_all(text.as_bytes()).and_then(|()| stdout.flush()) {
+            Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(Error::Write {
+                path: "<stdout>".into(),
+                reason: io_reason(&e),
+            }),
+            _ => Ok(()),
+        };
+    }
+    std::fs::write(path, text).map_err(|e| Error::Write {
+        path: path.into(),
+        reason: io_reason(&e),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::input::{grid, parse_curve, Source};
+    use curve_repr::Vec2;
+
+    fn round_trip(name: &str, text: &str) -> (CurveInput, CurveInput, String) {
+        let input = parse_curve(&Source::from_text(name, text)).unwrap();
+        let written = format_curve(&input, &input.points).unwrap();
+        let again = parse_curve(&Source::from_text(name, &written)).unwrap();
+        (input, again, written)
+    }
+
+    #[test]
+    fn csv_round_trips_with_and_without_header() {
+        let (a, b, w) = round_trip("a.csv", "x,y\n0.1,0.2\n1e-17,3\n");
+        assert_eq!(a, b);
+        assert!(w.starts_with("x,y\n"));
+        let (a, b, w) = round_trip("a.csv", "0.1,0.2,0.3\n1,2,3\n");
+        assert_eq!(a, b);
+        assert!(w.starts_with("0.1,0.2,0.3\n"));
+        let (a, b, _) = round_trip("a.txt", "0.1 0.2\n1 2\n");
+        assert_eq!(a, b);
+    }
+
+    #[test]
+    fn json_round_trips_keeping_other_keys() {
+        let (a, b, w) = round_trip(
+            "a.json",
+            "{\"name\": \"w\", \"points\": [[0.1, 0.2], [0.3, 0.7]]}",
+        );
+        assert_eq!(a.points, b.points);
+        assert_eq!(a.format, b.format);
+        assert!(w.contains("\"name\": \"w\""));
+        let (a, b, _) = round_trip("b.json", "[[0.1, 0.2, 0.3], [1, 2, 3]]");
+        assert_eq!(a, b);
+    }
+
+    #[test]
+    fn selig_and_lednicer_round_trip() {
+        let (a, b, w) = round_trip("a.dat", "NACA 0012\n1 0\n0.5 0.06\n0 0\n0.5 -0.06\n1 0\n");
+        assert_eq!(a.points, b.points);
+        assert_eq!(a.format, b.format);
+        assert!(w.starts_with("NACA 0012\n1 0\n"));
+        let (a, b, w) = round_trip(
+            "l.dat",
+            "FOIL\n3. 3.\n\n0 0\n0.5 0.1\n1 0\n\n0 0\n0.5 -0.1\n1 0\n",
+        );
+        assert_eq!(a.points, b.points);
+        assert_eq!(a.format, b.format);
+        assert!(w.starts_with("FOIL\n3. 3.\n\n0 0\n"), "{w}");
+    }
+
+    #[test]
+    fn moved_points_are_written() {
+        let input = parse_curve(&Source::from_text("a.csv", "x,y\n0,0\n1,1\n")).unwrap();
+        let moved = Points::Planar(vec![Vec2::new(0., 0.5), Vec2::new(1., 1.)]);
+        assert_eq!(format_curve(&input, &moved).unwrap(), "x,y\n0,0.5\n1,1\n");
+    }
+
+    #[test]
+    fn never_writes_nan() {
+        let input = parse_curve(&Source::from_text("a.csv", "0,0\n1,1\n")).unwrap();
+        let bad = Points::Planar(vec![Vec2::new(0., f64::NAN), Vec2::new(1., 1.)]);
+        let e = format_curve(&input, &bad).unwrap_err();
+        assert!(matches!(e, Error::NonFiniteOutput { index: 0, .. }), "{e}");
+    }
+
+    #[test]
+    fn surface_round_trips_in_file_order() {
+        let text = "i,j,x,y,z\n1,21,1,1,5\n0,20,0,0,1\n0,21,0,1,2\n1,20,1,0,3.5\n";
+        let s = grid::parse(&Source::from_text("s.csv", text)).unwrap();
+        assert_eq!(format_surface(&s, &s.grid).unwrap(), text);
+    }
+
+    #[test]
+    fn write_to_missing_directory_fails_cleanly() {
+        let e = write_text("/nonexistent/dir/out.csv", "x").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "/nonexistent/dir/out.csv: cannot write: no such file or directory"
+        );
+    }
+}

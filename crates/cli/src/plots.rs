@@ -1,0 +1,191 @@
+//! The pictures `fair` draws: a curve before and after with its curvature comb and z_i bars;
+//! a surface grid with its z_ij map. Built from plain data so the numerical crates supply
+//! what they have and the rest is left out.
+
+use crate::input::{Grid, Points};
+use crate::svg::{Bars, Color, ColorMap, Comb, Figure, Line, Markers, Panel};
+
+/// A curvature comb in the plane: points, unit normals and signed curvatures.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct CombData {
+    /// Points on the curve (usually densely sampled).
+    pub points: Vec<[f64; 2]>,
+    /// Unit normals there.
+    pub normals: Vec<[f64; 2]>,
+    /// Signed curvature there.
+    pub curvature: Vec<f64>,
+}
+
+/// What a curve plot shows; every field but the input is optional.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct CurvePlot {
+    /// Title of the figure.
+    pub title: String,
+    /// The data points as read.
+    pub input: Vec<[f64; 2]>,
+    /// The faired data points.
+    pub faired: Option<Vec<[f64; 2]>>,
+    /// The input's spline, sampled.
+    pub input_curve: Option<Vec<[f64; 2]>>,
+    /// The faired spline, sampled.
+    pub faired_curve: Option<Vec<[f64; 2]>>,
+    /// Curvature comb of the faired (or, for inspect, the input) curve.
+    pub comb: Option<CombData>,
+    /// z_i per data point before fairing.
+    pub z_before: Option<Vec<f64>>,
+    /// z_i per data point after fairing.
+    pub z_after: Option<Vec<f64>>,
+    /// Whether the points are a function y(x) (axes x, y) or a parametric curve (equal aspect).
+    pub function: bool,
+}
+
+/// The plane a spatial curve is drawn in: (x, y) for planar points, (x, z) for spatial ones
+/// (a ship's sheer in profile). Documented choice; O(n).
+pub fn planar_view(points: &Points) -> Vec<[f64; 2]> {
+    match points {
+        Points::Planar(p) => p.iter().map(|v| [v.x, v.y]).collect(),
+        Points::Spatial(p) => p.iter().map(|v| [v.x, v.z]).collect(),
+    }
+}
+
+impl CurvePlot {
+    /// A plot of the input points only.
+    pub fn of_input(title: impl Into<String>, points: &Points, function: bool) -> CurvePlot {
+        CurvePlot {
+            title: title.into(),
+            input: planar_view(points),
+            function,
+            ..CurvePlot::default()
+        }
+    }
+
+    /// The figure: the curve panel, then a z_i panel when z values are given.
+    pub fn figure(&self) -> Figure {
+        let mut curve = Panel::new("points and curve")
+            .with_x_label("x")
+            .with_y_label("y")
+            .with_equal_aspect(!self.function);
+        if let Some(comb) = &self.comb {
+            curve.push(
+                Comb::new(comb.points.clone(), comb.normals.clone(), comb.curvature.clone())
+                    .with_auto_scale(0.15)
+                    .with_label("curvature comb")
+                    .with_color(Color::rgb(150, 150, 150)),
+            );
+        }
+        match &self.input_curve {
+            Some(c) => curve.push(
+                Line::new(c.clone())
+                    .with_label("input curve")
+                    .with_color(Color::palette(0)),
+            ),
+            None => curve.push(
+                Line::new(self.input.clone())
+                    .with_label("input polygon")
+                    .with_color(Color::palette(0))
+                    .with_width(0.8),
+            ),
+        }
+        if let Some(c) = &self.faired_curve {
+            curve.push(
+                Line::new(c.clone())
+                    .with_label("faired curve")
+                    .with_color(Color::palette(1)),
+            );
+        }
+        curve.push(
+            Markers::new(self.input.clone())
+                .with_label("input points")
+                .with_color(Color::palette(0)),
+        );
+        if let Some(p) = &self.faired {
+            curve.push(
+                Markers::new(p.clone())
+                    .with_label("faired points")
+                    .with_color(Color::palette(1))
+                    .with_hollow(true),
+            );
+        }
+        let mut figure = Figure::new().with_title(self.title.clone()).with_panel(curve);
+        if self.z_before.is_some() || self.z_after.is_some() {
+            let mut z = Panel::new("third-derivative jumps z_i")
+                .with_x_label("point index i")
+                .with_y_label("z_i");
+            if let Some(values) = &self.z_before {
+                z.push(
+                    Bars::indexed(values.clone())
+                        .with_label("before")
+                        .with_color(Color::palette(0)),
+                );
+            }
+            if let Some(values) = &self.z_after {
+                let x = (0..values.len()).map(|i| i as f64 + 0.2).collect();
+                z.push(
+                    Bars::new(x, values.clone())
+                        .with_width(0.4)
+                        .with_label("after")
+                        .with_color(Color::palette(1)),
+                );
+            }
+            figure.push(z);
+        }
+        figure
+    }
+}
+
+/// What a surface plot shows.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct SurfacePlot {
+    /// Title of the figure.
+    pub title: String,
+    /// The grid as read.
+    pub input: Option<Grid>,
+    /// The faired grid.
+    pub faired: Option<Grid>,
+    /// z_ij (rows i, columns j), when measured.
+    pub z: Option<Vec<Vec<f64>>>,
+}
+
+fn grid_lines(grid: &Grid, color: Color, label: &str, panel: &mut Panel) {
+    for i in 0..grid.rows {
+        let row: Vec<[f64; 2]> = (0..grid.columns)
+            .filter_map(|j| grid.get(i, j))
+            .map(|p| [p.x, p.y])
+            .collect();
+        let line = Line::new(row).with_color(color).with_width(0.8);
+        panel.push(if i == 0 { line.with_label(label) } else { line });
+    }
+    for j in 0..grid.columns {
+        let column: Vec<[f64; 2]> = (0..grid.rows)
+            .filter_map(|i| grid.get(i, j))
+            .map(|p| [p.x, p.y])
+            .collect();
+        panel.push(Line::new(column).with_color(color).with_width(0.8));
+    }
+}
+
+impl SurfacePlot {
+    /// The figure: the grid seen from above (x, y), and the z_ij map when given.
+    pub fn figure(&self) -> Figure {
+        let mut view = Panel::new("grid, top view")
+            .with_x_label("x")
+            .with_y_label("y")
+            .with_equal_aspect(true);
+        if let Some(grid) = &self.input {
+            grid_lines(grid, Color::palette(0), "input grid", &mut view);
+        }
+        if let Some(grid) = &self.faired {
+            grid_lines(grid, Color::palette(1), "faired grid", &mut view);
+        }
+        let mut figure = Figure::new().with_title(self.title.clone()).with_panel(view);
+        if let Some(z) = &self.z {
+            figure.push(
+                Panel::new("z_ij")
+                    .with_x_label("i")
+                    .with_y_label("j")
+                    .with(ColorMap::indexed(z.clone()).with_label("z_ij")),
+            );
+        }
+        figure
+    }
+}

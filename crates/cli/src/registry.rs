@@ -1,0 +1,221 @@
+//! The methods `fair` knows: names, what they fair, the paper, and their parameters.
+//!
+//! This is the one list `fair methods` prints and `--method`, `--set` and `--config` are
+//! checked against. Each strategy's engineer fills in its parameters here; the command wires
+//! the name to the strategy in `commands::curve` / `commands::surface`.
+
+use crate::error::{Error, Result};
+
+/// Whether a method fairs curves or surfaces.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MethodKind {
+    /// Curves (function or parametric).
+    Curve,
+    /// Surface grids.
+    Surface,
+}
+
+impl MethodKind {
+    /// `curve` or `surface`.
+    pub fn name(self) -> &'static str {
+        match self {
+            MethodKind::Curve => "curve",
+            MethodKind::Surface => "surface",
+        }
+    }
+}
+
+/// One parameter of a method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ParameterInfo {
+    /// The name `--set` takes.
+    pub name: &'static str,
+    /// Its default, as text.
+    pub default: &'static str,
+    /// What it means, one line.
+    pub meaning: &'static str,
+}
+
+/// One method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MethodInfo {
+    /// The name `--method` takes.
+    pub name: &'static str,
+    /// Curves or surfaces.
+    pub kind: MethodKind,
+    /// The paper (or baseline) it comes from, short.
+    pub paper: &'static str,
+    /// One line on what it does.
+    pub summary: &'static str,
+    /// Its parameters.
+    pub parameters: &'static [ParameterInfo],
+}
+
+impl MethodInfo {
+    /// The parameter called `name`.
+    pub fn parameter(&self, name: &str) -> Option<&ParameterInfo> {
+        self.parameters.iter().find(|p| p.name == name)
+    }
+}
+
+/// Every method, curves first.
+pub const METHODS: &[MethodInfo] = &[
+    MethodInfo {
+        name: "two-phase",
+        kind: MethodKind::Curve,
+        paper: "Han et al., two-phase fairing of spline functions",
+        summary: "coarse phase removes inflections, fine phase removes curvature vibrations",
+        parameters: &[],
+    },
+    MethodInfo {
+        name: "strain-energy",
+        kind: MethodKind::Curve,
+        paper: "Zhang & Cheng, strain-energy point replacement",
+        summary: "replaces one or two bad points to minimise the strain energy",
+        parameters: &[],
+    },
+    MethodInfo {
+        name: "kjellander",
+        kind: MethodKind::Curve,
+        paper: "Kjellander (as a preset of Zhang & Cheng)",
+        summary: "moves a bad point to remove the third-derivative jump",
+        parameters: &[],
+    },
+    MethodInfo {
+        name: "poliakoff",
+        kind: MethodKind::Curve,
+        paper: "Poliakoff (as a preset of Zhang & Cheng)",
+        summary: "moves a bad point to reduce the local strain energy",
+        parameters: &[],
+    },
+    MethodInfo {
+        name: "batten",
+        kind: MethodKind::Curve,
+        paper: "Okada, batten fairing",
+        summary: "a numerical batten through the points within adjustable ranges",
+        parameters: &[],
+    },
+    MethodInfo {
+        name: "nurbs-weights",
+        kind: MethodKind::Curve,
+        paper: "Nowacki et al., fairing NURBS by weights",
+        summary: "changes weights (not points) by Nelder-Mead on an energy criterion",
+        parameters: &[],
+    },
+    MethodInfo {
+        name: "smoothing-spline",
+        kind: MethodKind::Curve,
+        paper: "baseline: smoothing spline (the papers' MST)",
+        summary: "least-squares smoothing spline, a baseline to compare against",
+        parameters: &[],
+    },
+    MethodInfo {
+        name: "sapidis-farin",
+        kind: MethodKind::Curve,
+        paper: "baseline: Sapidis & Farin knot removal and reinsertion",
+        summary: "removes curvature-slope jumps knot by knot, a baseline",
+        parameters: &[],
+    },
+    MethodInfo {
+        name: "zhang-cheng",
+        kind: MethodKind::Surface,
+        paper: "Zhang & Cheng §4, bicubic surface fairing",
+        summary: "replaces one, two or four grid points by strain-energy minimisation",
+        parameters: &[],
+    },
+    MethodInfo {
+        name: "kjellander",
+        kind: MethodKind::Surface,
+        paper: "Kjellander, surface fairing by curve network",
+        summary: "fairs the grid's row and column curves in turn",
+        parameters: &[],
+    },
+];
+
+/// The method called `name` for `kind`, or [`Error::UnknownMethod`] listing the known names.
+pub fn find(name: &str, kind: MethodKind) -> Result<&'static MethodInfo> {
+    METHODS
+        .iter()
+        .find(|m| m.kind == kind && m.name == name)
+        .ok_or_else(|| Error::UnknownMethod {
+            name: name.to_string(),
+            kind: kind.name(),
+            known: METHODS
+                .iter()
+                .filter(|m| m.kind == kind)
+                .map(|m| m.name)
+                .collect::<Vec<_>>()
+                .join(", "),
+        })
+}
+
+/// The table `fair methods` prints: one block per method, its parameters indented below it.
+pub fn table() -> String {
+    let width = METHODS.iter().map(|m| m.name.len()).max().unwrap_or(0);
+    let mut text = String::new();
+    for kind in [MethodKind::Curve, MethodKind::Surface] {
+        text.push_str(&format!("{} methods:\n", kind.name()));
+        for method in METHODS.iter().filter(|m| m.kind == kind) {
+            text.push_str(&format!(
+                "  {:width$}  {} ({})\n",
+                method.name, method.summary, method.paper
+            ));
+            if method.parameters.is_empty() {
+                text.push_str(&format!("  {:width$}    (no parameters yet)\n", ""));
+            }
+            for p in method.parameters {
+                text.push_str(&format!(
+                    "  {:width$}    {}={}  {}\n",
+                    "", p.name, p.default, p.meaning
+                ));
+            }
+        }
+    }
+    text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_design_method_is_known() {
+        for name in [
+            "two-phase",
+            "strain-energy",
+            "kjellander",
+            "poliakoff",
+            "batten",
+            "nurbs-weights",
+            "smoothing-spline",
+            "sapidis-farin",
+        ] {
+            assert_eq!(find(name, MethodKind::Curve).unwrap().name, name);
+        }
+        for name in ["zhang-cheng", "kjellander"] {
+            assert_eq!(find(name, MethodKind::Surface).unwrap().kind, MethodKind::Surface);
+        }
+    }
+
+    #[test]
+    fn unknown_method_lists_known_ones() {
+        let e = find("zhang-cheng", MethodKind::Curve).unwrap_err();
+        assert!(e.to_string().contains("two-phase"), "{e}");
+        assert_eq!(e.exit_code(), 2);
+    }
+
+    #[test]
+    fn names_are_unique_per_kind() {
+        for (i, a) in METHODS.iter().enumerate() {
+            for b in &METHODS[i + 1..] {
+                assert!(!(a.name == b.name && a.kind == b.kind), "{} twice", a.name);
+            }
+        }
+    }
+
+    #[test]
+    fn table_lists_all() {
+        let t = table();
+        assert!(METHODS.iter().all(|m| t.contains(m.name)));
+    }
+}
