@@ -18,8 +18,8 @@
 //! No input makes this crate panic: every constructor validates its input and returns
 //! [`Error`].
 
-pub mod bspline;
 pub mod bicubic_surface;
+pub mod bspline;
 pub mod curve;
 pub mod error;
 pub mod hermite;
@@ -31,8 +31,8 @@ pub mod surface;
 pub mod tridiagonal;
 pub mod vector;
 
-pub use bspline::KnotVector;
 pub use bicubic_surface::{BicubicSplineSurface, BicubicSurfaceSettings, NodeJump};
+pub use bspline::KnotVector;
 pub use curve::{Curve, Interpolant, Side};
 pub use error::{Error, Result};
 pub use hermite::{HermiteEnds, HermiteSettings, HermiteSpline};

@@ -242,10 +242,14 @@ fn kronrod15<F: FnMut(f64) -> f64>(what: &'static str, f: &mut F, a: f64, b: f64
     Ok((kronrod, (kronrod - gauss).abs()))
 }
 
+/// The bisection budget every initial piece gets, whatever [`Adaptive::max_subdivisions`] says.
+pub const SUBDIVISIONS_PER_PIECE: usize = 64;
+
 /// Settings of the adaptive G7K15 integrator.
 ///
 /// Defaults: relative tolerance 10⁻¹⁰, absolute tolerance 0, at most 40 bisections of any
-/// initial piece and 100 000 bisections in all.
+/// initial piece and 100 000 bisections in all, or 64 per initial piece when a curve has more
+/// than about 1 500 pieces (so that the budget grows with the curve, not a fixed cap).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Adaptive {
     /// Relative tolerance on the integral.
@@ -254,7 +258,8 @@ pub struct Adaptive {
     pub absolute_tolerance: f64,
     /// How many times one initial piece may be halved.
     pub max_depth: u32,
-    /// How many bisections may be made in all.
+    /// How many bisections may be made in all (at least [`SUBDIVISIONS_PER_PIECE`] per
+    /// initial piece).
     pub max_subdivisions: usize,
 }
 
@@ -378,6 +383,9 @@ impl Adaptive {
                 depth: 0,
             });
         }
+        let budget = self
+            .max_subdivisions
+            .max(SUBDIVISIONS_PER_PIECE.saturating_mul(breaks.len().saturating_sub(1)));
         let mut subdivisions = 0;
         loop {
             let tolerance = self.absolute_tolerance.max(self.relative_tolerance * total.abs());
@@ -395,7 +403,7 @@ impl Adaptive {
             };
             let reason = if worst.depth >= self.max_depth {
                 Some("maximum depth reached")
-            } else if subdivisions >= self.max_subdivisions {
+            } else if subdivisions >= budget {
                 Some("maximum number of subdivisions reached")
             } else {
                 None
