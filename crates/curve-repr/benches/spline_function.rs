@@ -48,7 +48,7 @@ fn update(c: &mut Criterion) {
         group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
             b.iter(|| {
                 step += 1;
-                let value = y[j] + if step % 2 == 0 { 1e-3 } else { -1e-3 };
+                let value = y[j] + if step.is_multiple_of(2) { 1e-3 } else { -1e-3 };
                 spline.set_y(black_box(&[(j, value)]))
             })
         });

@@ -284,8 +284,10 @@ fn walk<const D: usize>(min: usize, max: usize) -> impl Strategy<Value = Vec<Vec
     })
 }
 
-fn case<const D: usize>(
-) -> impl Strategy<Value = (Vec<Vector<D>>, Vec<(usize, Vector<D>)>, [Vector<D>; 2], usize)> {
+/// One random case: points, moves (index, offset), clamped end tangents, parametrisation.
+type Case<const D: usize> = (Vec<Vector<D>>, Vec<(usize, Vector<D>)>, [Vector<D>; 2], usize);
+
+fn case<const D: usize>() -> impl Strategy<Value = Case<D>> {
     walk::<D>(3, 260).prop_flat_map(|points| {
         let n = points.len();
         let moves = prop::collection::vec((0..n, prop::array::uniform::<_, D>(-1.0f64..1.0)), 1..4).prop_map(
@@ -302,12 +304,7 @@ fn case<const D: usize>(
 }
 
 fn run<const D: usize>(
-    (points, offsets, [start, end], parametrization): (
-        Vec<Vector<D>>,
-        Vec<(usize, Vector<D>)>,
-        [Vector<D>; 2],
-        usize,
-    ),
+    (points, offsets, [start, end], parametrization): Case<D>,
 ) -> Result<(), TestCaseError> {
     let parametrization = [
         Parametrization::Uniform,

@@ -174,7 +174,7 @@ mod tests {
         let data = [1.0, 2.0, 4.0];
         let values: Vec<f64> = boxed.iter().map(|c| c.evaluate(&data[..]).unwrap()).collect();
         assert_eq!(values, vec![3.0, 7.0]);
-        assert_eq!((&boxed[1]).name(), "sum");
+        assert_eq!(boxed[1].name(), "sum");
     }
 
     #[test]

@@ -185,6 +185,8 @@ fn finite_result(what: &'static str, value: f64, breaks: &[f64]) -> Result<f64> 
 
 /// Kronrod nodes of the 15-point rule on [0, 1] (symmetric); the odd ones (1, 3, 5) and the
 /// centre (7) are the 7-point Gauss nodes. QUADPACK's `qk15` values.
+// QUADPACK's tables are kept digit for digit as published, beyond f64's precision.
+#[allow(clippy::excessive_precision)]
 const KRONROD_NODES: [f64; 8] = [
     0.991_455_371_120_812_639_206_854_697_526_329,
     0.949_107_912_342_758_524_526_189_684_047_851,
@@ -196,6 +198,8 @@ const KRONROD_NODES: [f64; 8] = [
     0.0,
 ];
 /// Kronrod weights matching [`KRONROD_NODES`].
+// QUADPACK's tables are kept digit for digit as published, beyond f64's precision.
+#[allow(clippy::excessive_precision)]
 const KRONROD_WEIGHTS: [f64; 8] = [
     0.022_935_322_010_529_224_963_732_008_058_970,
     0.063_092_092_629_978_553_290_700_663_189_204,
@@ -207,6 +211,8 @@ const KRONROD_WEIGHTS: [f64; 8] = [
     0.209_482_141_084_727_828_012_999_174_891_714,
 ];
 /// Gauss weights of the 7-point rule, for Kronrod nodes 1, 3, 5 and the centre 7.
+// QUADPACK's tables are kept digit for digit as published, beyond f64's precision.
+#[allow(clippy::excessive_precision)]
 const GAUSS7_WEIGHTS: [f64; 4] = [
     0.129_484_966_168_869_693_270_611_432_679_082,
     0.279_705_391_489_276_667_901_467_771_423_780,

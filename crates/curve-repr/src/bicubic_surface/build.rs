@@ -261,7 +261,10 @@ fn checked_knots(what: &'static str, knots: &[f64], count: usize) -> Result<Vec<
 }
 
 fn check_increasing(what: &'static str, knots: &[f64]) -> Result<()> {
-    match knots.windows(2).position(|w| !(w[1] > w[0])) {
+    match knots
+        .windows(2)
+        .position(|w| w[1] <= w[0] || w[1].is_nan() || w[0].is_nan())
+    {
         Some(i) => Err(Error::NotIncreasing {
             what,
             index: i + 1,

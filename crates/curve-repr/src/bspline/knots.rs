@@ -127,7 +127,7 @@ impl KnotVector {
             });
         };
         let mut knots = Vec::with_capacity(control_count + degree + 1);
-        knots.extend(std::iter::repeat(first).take(degree + 1));
+        knots.extend(std::iter::repeat_n(first, degree + 1));
         let p = degree as f64;
         // Interior knot count: control_count − p − 1; window of p consecutive parameters
         // starting at index `offset + k`.
@@ -140,7 +140,7 @@ impl KnotVector {
                 .map_or(f64::NAN, |w| w.iter().sum());
             knots.push(sum / p);
         }
-        knots.extend(std::iter::repeat(last).take(degree + 1));
+        knots.extend(std::iter::repeat_n(last, degree + 1));
         Self::new(degree, knots, control_count)
     }
 

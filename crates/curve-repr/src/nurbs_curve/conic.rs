@@ -98,7 +98,7 @@ impl NurbsCurve<3> {
         let singular = Error::Singular {
             what: "building an arc: plane axes must be non-zero and orthogonal",
         };
-        if !(lx > 0.0 && ly > 0.0) || !lx.is_finite() || !ly.is_finite() {
+        if !(lx.is_finite() && ly.is_finite() && lx > 0.0 && ly > 0.0) {
             return Err(singular);
         }
         let (x, y) = (x_axis / lx, y_axis / ly);

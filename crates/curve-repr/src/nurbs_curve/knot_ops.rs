@@ -55,13 +55,11 @@ impl<const D: usize> NurbsCurve<D> {
             .collect();
         let mut uq = Vec::with_capacity(up.len() + r);
         uq.extend_from_slice(&up[..=k]);
-        uq.extend(std::iter::repeat(u).take(r));
+        uq.extend(std::iter::repeat_n(u, r));
         uq.extend_from_slice(&up[k + 1..]);
         let mut qw: Vec<Homogeneous<D>> = vec![(Vector::<D>::zeros(), 0.0); np + 1 + r];
         qw[..=(k - p)].copy_from_slice(&pw[..=(k - p)]);
-        for i in (k - s)..=np {
-            qw[i + r] = pw[i];
-        }
+        qw[(k - s + r)..=(np + r)].copy_from_slice(&pw[(k - s)..=np]);
         let mut rw: Vec<Homogeneous<D>> = pw[(k - p)..=(k - s)].to_vec();
         let mut l = k - p;
         for j in 1..=r {
@@ -73,8 +71,8 @@ impl<const D: usize> NurbsCurve<D> {
             qw[l] = rw[0];
             qw[k + r - j - s] = rw[p - j - s];
         }
-        for i in (l + 1)..(k - s) {
-            qw[i] = rw[i - l];
+        if l + 1 < k - s {
+            qw[(l + 1)..(k - s)].copy_from_slice(&rw[1..(k - s - l)]);
         }
         let weights: Vec<f64> = qw.iter().map(|q| q.1).collect();
         let points: Vec<Vector<D>> = qw.iter().map(|q| q.0 / q.1).collect();

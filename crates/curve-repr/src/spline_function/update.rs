@@ -87,7 +87,7 @@ impl SplineFunction {
         let n = self.x.len();
         let before = (j > 0).then(|| chord_slope(&self.x, &self.y, j - 1));
         let after = (j + 1 < n).then(|| chord_slope(&self.x, &self.y, j));
-        let finite = |m: Option<f64>| m.map_or(true, f64::is_finite);
+        let finite = |m: Option<f64>| m.is_none_or(f64::is_finite);
         finite(before) && finite(after) && finite(before.zip(after).map(|(b, a)| a - b))
     }
 
