@@ -5,12 +5,14 @@
 //! `inspect`, `after` equal to `before`, nothing moved.
 
 use crate::args::InspectArgs;
+use crate::commands::measure::CurvaturePlot;
 use crate::commands::{curve::MIN_CURVE_POINTS, measure, say, surface};
 use crate::error::Result;
 use crate::input::{self, Source};
 use crate::kind::{self, CurveKind};
 use crate::plots::{planar_view, CurvePlot, SurfacePlot};
 use crate::report::{Report, ReportKind};
+use crate::svg::{Color, Line, Markers, Panel};
 
 /// Whether a source is a surface grid: five comma-separated columns on its first row.
 fn looks_like_surface(source: &Source) -> bool {
@@ -20,6 +22,23 @@ fn looks_like_surface(source: &Source) -> bool {
         .map(str::trim)
         .find(|l| !l.is_empty() && !l.starts_with('#'));
     first.is_some_and(|l| l.split(',').count() == 5)
+}
+
+/// The curvature plot panel: the line and the values at the data points.
+pub fn curvature_panel(plot: &CurvaturePlot) -> Panel {
+    Panel::new(plot.title.clone())
+        .with_x_label(plot.x_label.clone())
+        .with_y_label(plot.y_label.clone())
+        .with(
+            Line::new(plot.line.clone())
+                .with_label("curvature")
+                .with_color(Color::palette(0)),
+        )
+        .with(
+            Markers::new(plot.knots.clone())
+                .with_label("at the data points")
+                .with_color(Color::palette(0)),
+        )
 }
 
 fn format_measures(report: &Report) -> String {
@@ -42,7 +61,7 @@ pub fn run(args: &InspectArgs) -> Result<()> {
     let report = if args.surface || looks_like_surface(&source) {
         let input = input::grid::parse(&source)?;
         surface::require_grid(&input)?;
-        let measured = measure::surface(&input.grid)?;
+        let measured = measure::surface(&input.grid).map_err(|e| measure::in_file(e, &input.source))?;
         if let Some(path) = &args.plot {
             let plot = SurfacePlot {
                 title: format!("{} — inspect", input.source),
@@ -62,7 +81,7 @@ pub fn run(args: &InspectArgs) -> Result<()> {
         let input = input::parse_curve(&source)?;
         input.require_at_least(MIN_CURVE_POINTS, "a curve")?;
         let kind = kind::resolve(args.kind, &input)?;
-        let measured = measure::curve(kind, &input.points)?;
+        let measured = measure::curve(kind, &input.points).map_err(|e| measure::in_file(e, &input.source))?;
         if let Some(path) = &args.plot {
             let plot = CurvePlot {
                 title: format!("{} — inspect", input.source),
@@ -73,7 +92,11 @@ pub fn run(args: &InspectArgs) -> Result<()> {
                 function: kind == CurveKind::Function,
                 ..CurvePlot::default()
             };
-            plot.figure().write(path)?;
+            let mut figure = plot.figure();
+            if let Some(curvature) = &measured.curvature {
+                figure.push(curvature_panel(curvature));
+            }
+            figure.write(path)?;
         }
         Report::inspection(kind.report_kind(), input.len(), measured.measures, measured.curve)
     };
