@@ -4,7 +4,9 @@
 //! anything else is a curve. The report has the shape of `fair curve`'s with `method`
 //! `inspect`, `after` equal to `before`, nothing moved.
 
-use crate::args::InspectArgs;
+use std::path::Path;
+
+use crate::args::{InspectArgs, KindArg};
 use crate::commands::measure::CurvaturePlot;
 use crate::commands::{curve::MIN_CURVE_POINTS, measure, say, surface};
 use crate::error::Result;
@@ -58,11 +60,28 @@ fn format_measures(report: &Report) -> String {
 /// Runs `fair inspect`.
 pub fn run(args: &InspectArgs) -> Result<()> {
     let source = Source::read(&args.input)?;
-    let report = if args.surface || looks_like_surface(&source) {
-        let input = input::grid::parse(&source)?;
+    let report = inspect(&source, args.kind, args.surface, args.plot.as_deref())?;
+    let text = report.to_json()?;
+    if let Some(path) = &args.report {
+        crate::output::write_text(&path.display().to_string(), &text)?;
+    }
+    say(
+        args.quiet,
+        false,
+        &format!("{}: {}", source.name, format_measures(&report)),
+    );
+    Ok(())
+}
+
+/// Measures `source` (a surface when `surface` is set or it has five columns, else a curve
+/// of kind `kind`), draws the plot to `plot` if given, and returns the report (checked
+/// finite). The work of `fair inspect` and `fair demo`.
+pub fn inspect(source: &Source, kind_arg: KindArg, surface: bool, plot: Option<&Path>) -> Result<Report> {
+    let report = if surface || looks_like_surface(source) {
+        let input = input::grid::parse(source)?;
         surface::require_grid(&input)?;
         let measured = measure::surface(&input.grid).map_err(|e| measure::in_file(e, &input.source))?;
-        if let Some(path) = &args.plot {
+        if let Some(path) = plot {
             let plot = SurfacePlot {
                 title: format!("{} — inspect", input.source),
                 input: Some(input.grid.clone()),
@@ -78,11 +97,11 @@ pub fn run(args: &InspectArgs) -> Result<()> {
             measured.surface,
         )
     } else {
-        let input = input::parse_curve(&source)?;
+        let input = input::parse_curve(source)?;
         input.require_at_least(MIN_CURVE_POINTS, "a curve")?;
-        let kind = kind::resolve(args.kind, &input)?;
+        let kind = kind::resolve(kind_arg, &input)?;
         let measured = measure::curve(kind, &input.points).map_err(|e| measure::in_file(e, &input.source))?;
-        if let Some(path) = &args.plot {
+        if let Some(path) = plot {
             let plot = CurvePlot {
                 title: format!("{} — inspect", input.source),
                 input: planar_view(&input.points),
@@ -100,14 +119,6 @@ pub fn run(args: &InspectArgs) -> Result<()> {
         }
         Report::inspection(kind.report_kind(), input.len(), measured.measures, measured.curve)
     };
-    let text = report.to_json()?;
-    if let Some(path) = &args.report {
-        crate::output::write_text(&path.display().to_string(), &text)?;
-    }
-    say(
-        args.quiet,
-        false,
-        &format!("{}: {}", source.name, format_measures(&report)),
-    );
-    Ok(())
+    report.check_finite()?;
+    Ok(report)
 }
