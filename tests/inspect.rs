@@ -32,10 +32,11 @@ fn dense_solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
             .unwrap();
         a.swap(k, p);
         b.swap(k, p);
+        let pivot = a[k].clone();
         for i in k + 1..n {
-            let f = a[i][k] / a[k][k];
-            for j in k..n {
-                a[i][j] -= f * a[k][j];
+            let f = a[i][k] / pivot[k];
+            for (entry, above) in a[i][k..].iter_mut().zip(&pivot[k..]) {
+                *entry -= f * above;
             }
             b[i] -= f * b[k];
         }
