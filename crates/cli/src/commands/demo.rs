@@ -7,11 +7,11 @@
 //! of every run. Methods not available yet are listed as such; the command fails with the
 //! first other error, after every run was attempted.
 //!
-//! The interactive methods need `--points`; the demo will name the worst z_i there once the
-//! indicators are wired (TODO for the lead: [`bad_points`]).
+//! The interactive methods need `--points`: the demo names the point of the largest z_i
+//! ([`bad_points`]).
 
 use crate::args::{DemoArgs, FairArgs, KindArg};
-use crate::commands::{curve, inspect, surface};
+use crate::commands::{curve, inspect, measure, surface};
 use crate::error::{Error, Result};
 use crate::input::Source;
 use crate::registry::{MethodKind, METHODS};
@@ -88,10 +88,35 @@ pub const DATASETS: &[Dataset] = &[
     },
 ];
 
-/// SEAM: the bad points to name for the interactive methods (the largest z_i), once the
-/// indicators are wired; `None` leaves `--points` unset.
-pub fn bad_points(_dataset: &Dataset, _method: &str) -> Option<crate::args::IndexList> {
-    None
+/// The methods that replace the points named by `--points` (the interactive ones).
+const POINT_REPLACING: &[&str] = &["strain-energy", "kjellander", "poliakoff", "zhang-cheng"];
+
+/// The bad point the demo names for an interactive method: the point of the largest z_i
+/// (curves; the function kind's z_i = 6|e_i|) or z_ij (surfaces, index i·columns + j, row by
+/// row). `None` for the other methods, or when nothing can be measured (every z zero, or an
+/// error, which the run itself then reports).
+pub fn bad_points(dataset: &Dataset, method: &str) -> Option<crate::args::IndexList> {
+    if !POINT_REPLACING.contains(&method) {
+        return None;
+    }
+    let source = Source::from_text(dataset.name, dataset.text);
+    let z: Vec<f64> = match dataset.kind {
+        MethodKind::Curve => {
+            let input = crate::input::parse_curve(&source).ok()?;
+            let kind = crate::kind::detect(&input.points);
+            measure::curve(kind, &input.points).ok()?.z?
+        }
+        MethodKind::Surface => {
+            let input = crate::input::grid::parse(&source).ok()?;
+            measure::surface(&input.grid).ok()?.z?.concat()
+        }
+    };
+    let (index, largest) =
+        z.iter()
+            .copied()
+            .enumerate()
+            .fold((0, 0.0), |best, (i, v)| if v > best.1 { (i, v) } else { best });
+    (largest > 0.0).then(|| crate::args::IndexList(vec![index]))
 }
 
 fn run_args(input: String, method: &str, out: &std::path::Path, stem: &str, dataset: &Dataset) -> FairArgs {
@@ -224,6 +249,30 @@ pub fn run(args: &DemoArgs) -> Result<()> {
 mod tests {
     use super::*;
     use crate::input;
+
+    #[test]
+    fn bad_point_is_the_largest_jump() {
+        for d in DATASETS {
+            let named = bad_points(d, "strain-energy").or_else(|| bad_points(d, "zhang-cheng"));
+            let index = named.expect("a bad point").0[0];
+            let source = Source::from_text(d.name, d.text);
+            let z = match d.kind {
+                MethodKind::Curve => {
+                    let input = input::parse_curve(&source).unwrap();
+                    measure::curve(crate::kind::detect(&input.points), &input.points)
+                        .unwrap()
+                        .z
+                        .unwrap()
+                }
+                MethodKind::Surface => {
+                    let input = input::grid::parse(&source).unwrap();
+                    measure::surface(&input.grid).unwrap().z.unwrap().concat()
+                }
+            };
+            assert!(z.iter().all(|v| *v <= z[index]), "{}", d.name);
+            assert!(bad_points(d, "two-phase").is_none());
+        }
+    }
 
     #[test]
     fn embedded_data_parses() {
