@@ -53,12 +53,14 @@ pub fn function(x: &[f64], y: &[f64]) -> Result<FairnessSummary> {
 /// chord-length parameters, see [`parametric`]): κ_i at the knots (signed in 2D, unsigned in
 /// 3D), e from (t, κ), inflections (2D only, else `None`), vibrations, `e_s` = ∫ |C″|² dt
 /// (exact, [`HermiteSpline::strain_energy`]), `max_z` = max_i |C‴(t_i+) − C‴(t_i−)|, and the
-/// energies. Builds on [`FairnessSummary::of_parametric_curve`]. O(n).
+/// energies (E1–E3 exact for cubic pieces, Ek and Ek′ adaptive). Builds on
+/// [`FairnessSummary::of_parametric_curve_with_energies`]. O(n).
 pub fn parametric_of<const D: usize>(spline: &HermiteSpline<D>) -> Result<FairnessSummary>
 where
     Vector<D>: CurvatureForm,
 {
-    let mut summary = FairnessSummary::of_parametric_curve(spline)?;
+    let energies = Energies::of_polynomial(spline, 3)?;
+    let mut summary = FairnessSummary::of_parametric_curve_with_energies(spline, energies)?;
     let e_s = spline.strain_energy();
     if e_s.is_finite() {
         summary.e_s = e_s;
@@ -173,6 +175,8 @@ mod tests {
             };
             assert_eq!(summary.vibrations.map(|v| v as u64), set["vibrations"].as_u64());
             assert!(close(summary.e_s, e2), "{} {e2}", summary.e_s);
+            // The exact Gauss–Legendre E2 agrees with the closed-form strain energy.
+            assert!(close(summary.energies.e2, e2), "{} {e2}", summary.energies.e2);
             assert!(close(summary.max_z, z), "{} {z}", summary.max_z);
         }
     }
