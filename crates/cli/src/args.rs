@@ -130,7 +130,7 @@ pub struct InspectArgs {
 #[derive(Debug, Clone, Args)]
 pub struct DemoArgs {
     /// Directory for the outputs, reports and plots (created if missing).
-    #[arg(long, value_name = "DIR", default_value = "fair-demo")]
+    #[arg(long, value_name = "DIR", default_value = "out/demo")]
     pub out: PathBuf,
     /// Print nothing but errors.
     #[arg(long, short = 'q')]

@@ -17,6 +17,8 @@
 //!   strain energies.
 //! - [`displacement`]: Han's S_d and M_d.
 //! - [`report`]: the serde blocks of the `fair` command's report.
+//! - [`xc`]: Han's x–c polyline of a spline function (c_i, e_i, inflections, vibrations, Eq. 18).
+//! - [`summary`]: the report's block of each kind (function, parametric, surface), per DESIGN.md.
 //!
 //! No input makes this crate panic or return NaN: failures are [`Error`]s.
 
@@ -29,7 +31,9 @@ pub mod jumps;
 pub mod quadrature;
 pub mod report;
 pub mod sign;
+pub mod summary;
 pub mod surface;
+pub mod xc;
 
 #[cfg(test)]
 mod test_curves;
@@ -42,3 +46,4 @@ pub use indicator::{Criterion, FnCriterion, LocalIndicator};
 pub use quadrature::{Adaptive, GaussLegendre};
 pub use report::FairnessSummary;
 pub use sign::{sign_change_positions, sign_changes};
+pub use xc::XcPolyline;

@@ -45,12 +45,22 @@ impl FairnessSummary {
         C: Curve<D> + ?Sized,
         Vector<D>: CurvatureForm,
     {
+        Self::of_parametric_curve_with_energies(curve, Energies::of(curve)?)
+    }
+
+    /// [`of_parametric_curve`](Self::of_parametric_curve) with the energies already computed
+    /// (e.g. by [`Energies::of_polynomial`], exact and faster for polynomial pieces);
+    /// `e_s` is their `e2`. O(n).
+    pub fn of_parametric_curve_with_energies<const D: usize, C>(curve: &C, energies: Energies) -> Result<Self>
+    where
+        C: Curve<D> + ?Sized,
+        Vector<D>: CurvatureForm,
+    {
         let kappa = curvature_at_breaks(curve)?;
         let breaks = curve.breaks();
         let inflections = <Vector<D> as CurvatureForm>::SIGNED.then(|| sign_changes(&kappa));
         let vibrations = Some(sign_changes(&curvature_vibrations(&breaks, &kappa)?));
         let max_z = third_derivative_jumps(curve)?.into_iter().fold(0.0, f64::max);
-        let energies = Energies::of(curve)?;
         Ok(FairnessSummary {
             inflections,
             vibrations,

@@ -1,20 +1,21 @@
 //! `fair demo`: every method on the embedded data sets, outputs in one directory.
 //!
-//! For each data set it writes the data (`data/`), a plot of the input, and for each method
-//! of its kind the faired points, the report and the plot, through the same code as
-//! `fair curve` / `fair surface`. Every run is attempted; a summary table is printed; the
-//! command fails with the first error when any run failed.
+//! For each data set it writes the data (`data/`), the `fair inspect` report and plot
+//! (`<name>-inspect.json`, `.svg`), and for each method of its kind the faired points, the
+//! report and the plot, through the same code as `fair curve` / `fair surface`. It prints
+//! the measures in the papers' style (n, inflections, vibrations, e_s, max_z) and the status
+//! of every run. Methods not available yet are listed as such; the command fails with the
+//! first other error, after every run was attempted.
 //!
-//! The interactive methods need `--points`; the demo will name the worst z_i there once the
-//! indicators are wired (TODO for the lead: [`bad_points`]).
+//! The interactive methods need `--points`: the demo names the point of the largest z_i
+//! ([`bad_points`]).
 
 use crate::args::{DemoArgs, FairArgs, KindArg};
-use crate::commands::{curve, surface};
+use crate::commands::{curve, inspect, measure, surface};
 use crate::error::{Error, Result};
-use crate::input::{self, Source};
-use crate::kind;
-use crate::plots::{CurvePlot, SurfacePlot};
+use crate::input::Source;
 use crate::registry::{MethodKind, METHODS};
+use crate::report::ReportKind;
 
 /// One embedded data set.
 #[derive(Debug, Clone, Copy)]
@@ -50,10 +51,22 @@ pub const DATASETS: &[Dataset] = &[
         text: data!("airfoil_ua2-180/ua2-180_upper.csv"),
     },
     Dataset {
+        name: "ua2-180sm-upper",
+        about: "UA(2)-180 upper surface, the published smoothed twin",
+        kind: MethodKind::Curve,
+        text: data!("airfoil_ua2-180/ua2-180sm_upper.csv"),
+    },
+    Dataset {
         name: "r140-upper",
         about: "R140 upper surface, hand-digitised, the roughest",
         kind: MethodKind::Curve,
         text: data!("airfoil_r140/r140_upper.csv"),
+    },
+    Dataset {
+        name: "block-island-wl36",
+        about: "Block Island boat waterline 36 in, from the offsets table",
+        kind: MethodKind::Curve,
+        text: data!("hull_block_island_boat/waterlines/wl_36in.csv"),
     },
     Dataset {
         name: "gunnerus-wl03",
@@ -75,10 +88,35 @@ pub const DATASETS: &[Dataset] = &[
     },
 ];
 
-/// SEAM: the bad points to name for the interactive methods (the largest z_i), once the
-/// indicators are wired; `None` leaves `--points` unset.
-pub fn bad_points(_dataset: &Dataset, _method: &str) -> Option<crate::args::IndexList> {
-    None
+/// The methods that replace the points named by `--points` (the interactive ones).
+const POINT_REPLACING: &[&str] = &["strain-energy", "kjellander", "poliakoff", "zhang-cheng"];
+
+/// The bad point the demo names for an interactive method: the point of the largest z_i
+/// (curves; the function kind's z_i = 6|e_i|) or z_ij (surfaces, index i·columns + j, row by
+/// row). `None` for the other methods, or when nothing can be measured (every z zero, or an
+/// error, which the run itself then reports).
+pub fn bad_points(dataset: &Dataset, method: &str) -> Option<crate::args::IndexList> {
+    if !POINT_REPLACING.contains(&method) {
+        return None;
+    }
+    let source = Source::from_text(dataset.name, dataset.text);
+    let z: Vec<f64> = match dataset.kind {
+        MethodKind::Curve => {
+            let input = crate::input::parse_curve(&source).ok()?;
+            let kind = crate::kind::detect(&input.points);
+            measure::curve(kind, &input.points).ok()?.z?
+        }
+        MethodKind::Surface => {
+            let input = crate::input::grid::parse(&source).ok()?;
+            measure::surface(&input.grid).ok()?.z?.concat()
+        }
+    };
+    let (index, largest) =
+        z.iter()
+            .copied()
+            .enumerate()
+            .fold((0, 0.0), |best, (i, v)| if v > best.1 { (i, v) } else { best });
+    (largest > 0.0).then(|| crate::args::IndexList(vec![index]))
 }
 
 fn run_args(input: String, method: &str, out: &std::path::Path, stem: &str, dataset: &Dataset) -> FairArgs {
@@ -99,40 +137,60 @@ fn run_args(input: String, method: &str, out: &std::path::Path, stem: &str, data
     }
 }
 
+fn count(value: Option<usize>) -> String {
+    value.map_or("-".to_string(), |v| v.to_string())
+}
+
+fn kind_name(kind: ReportKind) -> &'static str {
+    match kind {
+        ReportKind::Function => "function",
+        ReportKind::Parametric => "parametric",
+        ReportKind::Surface => "surface",
+    }
+}
+
 /// Runs `fair demo`.
+///
+/// First `fair inspect` on every data set (report `<name>-inspect.json`, plot
+/// `<name>-inspect.svg`) and a table of the measures in the papers' style; then every method
+/// of the data set's kind. A method that is not available yet is listed as such and is not
+/// a failure; any other error of a run makes the command fail (after every run was tried).
 pub fn run(args: &DemoArgs) -> Result<()> {
     let data_dir = args.out.join("data");
     std::fs::create_dir_all(&data_dir).map_err(|e| Error::Write {
         path: data_dir.display().to_string(),
         reason: crate::input::io_reason(&e),
     })?;
-    let mut lines = vec![format!("{:22} {:18} result", "data set", "method")];
+    let mut measures = vec![format!(
+        "{:20} {:10} {:>4} {:>5} {:>5} {:>12} {:>12}",
+        "data set", "kind", "n", "infl", "vib", "e_s", "max_z"
+    )];
+    let mut lines = vec![format!("{:20} {:18} result", "data set", "method")];
     let mut first_error: Option<Error> = None;
-    let mut failures = 0;
-    let mut runs = 0;
+    let (mut failures, mut unavailable, mut runs) = (0, 0, 0);
     for dataset in DATASETS {
         let data_path = data_dir.join(format!("{}.csv", dataset.name));
         crate::output::write_text(&data_path.display().to_string(), dataset.text)?;
         let source = Source::from_text(&data_path.display().to_string(), dataset.text);
-        let input_plot = args.out.join(format!("{}-input.svg", dataset.name));
-        match dataset.kind {
-            MethodKind::Curve => {
-                let input = input::parse_curve(&source)?;
-                let function = kind::detect(&input.points) == kind::CurveKind::Function;
-                CurvePlot::of_input(dataset.about, &input.points, function)
-                    .figure()
-                    .write(&input_plot)?;
-            }
-            MethodKind::Surface => {
-                let input = input::grid::parse(&source)?;
-                let plot = SurfacePlot {
-                    title: dataset.about.into(),
-                    input: Some(input.grid),
-                    ..SurfacePlot::default()
-                };
-                plot.figure().write(&input_plot)?;
-            }
-        }
+        let stem = args.out.join(format!("{}-inspect", dataset.name));
+        let surface = dataset.kind == MethodKind::Surface;
+        let report = inspect::inspect(&source, KindArg::Auto, surface, Some(&stem.with_extension("svg")))?;
+        crate::output::write_text(
+            &stem.with_extension("json").display().to_string(),
+            &report.to_json()?,
+        )?;
+        let m = &report.before;
+        measures.push(format!(
+            "{:20} {:10} {:>4} {:>5} {:>5} {:>12.4e} {:>12.4e}",
+            dataset.name,
+            kind_name(report.kind),
+            report.n,
+            count(m.inflections),
+            count(m.vibrations),
+            m.e_s,
+            m.max_z
+        ));
+        let mut not_available = Vec::new();
         for method in METHODS.iter().filter(|m| m.kind == dataset.kind) {
             runs += 1;
             let stem = format!("{}-{}", dataset.name, method.name);
@@ -149,6 +207,10 @@ pub fn run(args: &DemoArgs) -> Result<()> {
             };
             let status = match result {
                 Ok(()) => "ok".to_string(),
+                Err(Error::NotAvailable { .. }) => {
+                    not_available.push(method.name);
+                    continue;
+                }
                 Err(e) => {
                     failures += 1;
                     let text = e.one_line();
@@ -156,16 +218,26 @@ pub fn run(args: &DemoArgs) -> Result<()> {
                     text
                 }
             };
-            lines.push(format!("{:22} {:18} {status}", dataset.name, method.name));
+            lines.push(format!("{:20} {:18} {status}", dataset.name, method.name));
+        }
+        if !not_available.is_empty() {
+            unavailable += not_available.len();
+            lines.push(format!(
+                "{:20} {:18} {}",
+                dataset.name,
+                "not available yet:",
+                not_available.join(", ")
+            ));
         }
     }
     lines.push(format!(
-        "{} of {runs} runs succeeded; outputs in {}",
-        runs - failures,
+        "{} of {runs} runs succeeded, {unavailable} not available yet, {failures} failed; outputs in {}",
+        runs - failures - unavailable,
         args.out.display()
     ));
     if !args.quiet {
-        crate::output::write_text("-", &(lines.join("\n") + "\n"))?;
+        let text = measures.join("\n") + "\n\n" + &lines.join("\n") + "\n";
+        crate::output::write_text("-", &text)?;
     }
     match first_error {
         Some(e) => Err(e),
@@ -176,6 +248,31 @@ pub fn run(args: &DemoArgs) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::input;
+
+    #[test]
+    fn bad_point_is_the_largest_jump() {
+        for d in DATASETS {
+            let named = bad_points(d, "strain-energy").or_else(|| bad_points(d, "zhang-cheng"));
+            let index = named.expect("a bad point").0[0];
+            let source = Source::from_text(d.name, d.text);
+            let z = match d.kind {
+                MethodKind::Curve => {
+                    let input = input::parse_curve(&source).unwrap();
+                    measure::curve(crate::kind::detect(&input.points), &input.points)
+                        .unwrap()
+                        .z
+                        .unwrap()
+                }
+                MethodKind::Surface => {
+                    let input = input::grid::parse(&source).unwrap();
+                    measure::surface(&input.grid).unwrap().z.unwrap().concat()
+                }
+            };
+            assert!(z.iter().all(|v| *v <= z[index]), "{}", d.name);
+            assert!(bad_points(d, "two-phase").is_none());
+        }
+    }
 
     #[test]
     fn embedded_data_parses() {

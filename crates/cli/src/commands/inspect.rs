@@ -4,13 +4,17 @@
 //! anything else is a curve. The report has the shape of `fair curve`'s with `method`
 //! `inspect`, `after` equal to `before`, nothing moved.
 
-use crate::args::InspectArgs;
+use std::path::Path;
+
+use crate::args::{InspectArgs, KindArg};
+use crate::commands::measure::CurvaturePlot;
 use crate::commands::{curve::MIN_CURVE_POINTS, measure, say, surface};
 use crate::error::Result;
 use crate::input::{self, Source};
 use crate::kind::{self, CurveKind};
 use crate::plots::{planar_view, CurvePlot, SurfacePlot};
 use crate::report::{Report, ReportKind};
+use crate::svg::{Color, Line, Markers, Panel};
 
 /// Whether a source is a surface grid: five comma-separated columns on its first row.
 fn looks_like_surface(source: &Source) -> bool {
@@ -20,6 +24,23 @@ fn looks_like_surface(source: &Source) -> bool {
         .map(str::trim)
         .find(|l| !l.is_empty() && !l.starts_with('#'));
     first.is_some_and(|l| l.split(',').count() == 5)
+}
+
+/// The curvature plot panel: the line and the values at the data points.
+pub fn curvature_panel(plot: &CurvaturePlot) -> Panel {
+    Panel::new(plot.title.clone())
+        .with_x_label(plot.x_label.clone())
+        .with_y_label(plot.y_label.clone())
+        .with(
+            Line::new(plot.line.clone())
+                .with_label("curvature")
+                .with_color(Color::palette(0)),
+        )
+        .with(
+            Markers::new(plot.knots.clone())
+                .with_label("at the data points")
+                .with_color(Color::palette(0)),
+        )
 }
 
 fn format_measures(report: &Report) -> String {
@@ -39,11 +60,28 @@ fn format_measures(report: &Report) -> String {
 /// Runs `fair inspect`.
 pub fn run(args: &InspectArgs) -> Result<()> {
     let source = Source::read(&args.input)?;
-    let report = if args.surface || looks_like_surface(&source) {
-        let input = input::grid::parse(&source)?;
+    let report = inspect(&source, args.kind, args.surface, args.plot.as_deref())?;
+    let text = report.to_json()?;
+    if let Some(path) = &args.report {
+        crate::output::write_text(&path.display().to_string(), &text)?;
+    }
+    say(
+        args.quiet,
+        false,
+        &format!("{}: {}", source.name, format_measures(&report)),
+    );
+    Ok(())
+}
+
+/// Measures `source` (a surface when `surface` is set or it has five columns, else a curve
+/// of kind `kind`), draws the plot to `plot` if given, and returns the report (checked
+/// finite). The work of `fair inspect` and `fair demo`.
+pub fn inspect(source: &Source, kind_arg: KindArg, surface: bool, plot: Option<&Path>) -> Result<Report> {
+    let report = if surface || looks_like_surface(source) {
+        let input = input::grid::parse(source)?;
         surface::require_grid(&input)?;
-        let measured = measure::surface(&input.grid)?;
-        if let Some(path) = &args.plot {
+        let measured = measure::surface(&input.grid).map_err(|e| measure::in_file(e, &input.source))?;
+        if let Some(path) = plot {
             let plot = SurfacePlot {
                 title: format!("{} — inspect", input.source),
                 input: Some(input.grid.clone()),
@@ -59,11 +97,11 @@ pub fn run(args: &InspectArgs) -> Result<()> {
             measured.surface,
         )
     } else {
-        let input = input::parse_curve(&source)?;
+        let input = input::parse_curve(source)?;
         input.require_at_least(MIN_CURVE_POINTS, "a curve")?;
-        let kind = kind::resolve(args.kind, &input)?;
-        let measured = measure::curve(kind, &input.points)?;
-        if let Some(path) = &args.plot {
+        let kind = kind::resolve(kind_arg, &input)?;
+        let measured = measure::curve(kind, &input.points).map_err(|e| measure::in_file(e, &input.source))?;
+        if let Some(path) = plot {
             let plot = CurvePlot {
                 title: format!("{} — inspect", input.source),
                 input: planar_view(&input.points),
@@ -73,18 +111,14 @@ pub fn run(args: &InspectArgs) -> Result<()> {
                 function: kind == CurveKind::Function,
                 ..CurvePlot::default()
             };
-            plot.figure().write(path)?;
+            let mut figure = plot.figure();
+            if let Some(curvature) = &measured.curvature {
+                figure.push(curvature_panel(curvature));
+            }
+            figure.write(path)?;
         }
         Report::inspection(kind.report_kind(), input.len(), measured.measures, measured.curve)
     };
-    let text = report.to_json()?;
-    if let Some(path) = &args.report {
-        crate::output::write_text(&path.display().to_string(), &text)?;
-    }
-    say(
-        args.quiet,
-        false,
-        &format!("{}: {}", source.name, format_measures(&report)),
-    );
-    Ok(())
+    report.check_finite()?;
+    Ok(report)
 }

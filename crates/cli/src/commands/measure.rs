@@ -1,13 +1,49 @@
-//! SEAM: fairness measures of a curve or a surface (the `fairness` crate).
+//! Fairness measures of a curve or a surface, as DESIGN.md "Definitions" says, through the
+//! `fairness` crate's [`summary`](fairness::summary) module. Both `fair inspect` and the
+//! report's `before`/`after` use them.
 //!
-//! The lead wires these to the indicators and criteria: DESIGN.md defines every field of
-//! [`Measures`] for each kind. Both `fair inspect` and the report's `before`/`after` use them.
+//! - function kind: the spline function with parabolic runout, Han's x–c polyline;
+//! - parametric kind: the natural cubic spline with chord-length parameters (2D or 3D);
+//! - surface kind: the bicubic spline surface with chord-length averaged knots.
+//!
+//! Besides the report's numbers each measurement carries what the plot shows: the spline
+//! sampled densely, its curvature comb, z per data point and the curvature plot (the x–c
+//! polyline for the function kind, κ(t) for the parametric kind).
+//!
+//! Errors of the numerical crates become [`Error::Representation`] or [`Error::Invalid`]
+//! (exit status 2) with the path [`POINTS`]; [`in_file`] puts the input's name there.
+
+use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings, Curve, EndCondition, HermiteSpline};
+use curve_repr::{Side, SplineFunction, Vec2, Vec3, Vector};
+use fairness::summary;
+use fairness::{CurvatureForm, FairnessSummary, XcPolyline};
 
 use crate::error::{Error, Result};
 use crate::input::{Grid, Points};
 use crate::kind::CurveKind;
 use crate::plots::CombData;
-use crate::report::Measures;
+use crate::report::{Energies, Measures};
+
+/// The path that measurement errors carry until [`in_file`] names the input.
+pub const POINTS: &str = "the points";
+
+/// The most samples drawn along a curve (a few per interval, at least 2).
+const MAX_SAMPLES: usize = 4000;
+
+/// A curvature plot: a line and the values at the data points.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct CurvaturePlot {
+    /// Panel title.
+    pub title: String,
+    /// The abscissa's name (`x`, or `t` the chord-length parameter).
+    pub x_label: String,
+    /// The ordinate's name (`c = y''/6`, or `κ`).
+    pub y_label: String,
+    /// The plotted line.
+    pub line: Vec<[f64; 2]>,
+    /// The values at the data points.
+    pub knots: Vec<[f64; 2]>,
+}
 
 /// What measuring a curve gives: the report's numbers and what the plot can show.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -16,12 +52,14 @@ pub struct CurveMeasurement {
     pub measures: Measures,
     /// The spline through the points, as the report's `curve` value.
     pub curve: serde_json::Value,
-    /// The spline sampled densely, for the plot.
+    /// The spline sampled densely, for the plot (in the plot's plane: (x, z) for 3D points).
     pub samples: Option<Vec<[f64; 2]>>,
     /// Its curvature comb.
     pub comb: Option<CombData>,
-    /// z_i per data point.
+    /// z_i per data point (0 at the two ends, where no jump is defined).
     pub z: Option<Vec<f64>>,
+    /// The curvature plot.
+    pub curvature: Option<CurvaturePlot>,
 }
 
 /// What measuring a surface gives.
@@ -31,22 +69,311 @@ pub struct SurfaceMeasurement {
     pub measures: Measures,
     /// The surface, as the report's `curve` value.
     pub surface: serde_json::Value,
-    /// z_ij over the grid (rows i, columns j), for the plot.
+    /// z_ij over the grid (rows i, columns j; 0 on the border, where Eq. 26 is not defined).
     pub z: Option<Vec<Vec<f64>>>,
 }
 
-/// Measures a curve of the given kind (DESIGN.md "Definitions").
+/// Puts `file` in place of [`POINTS`] in a measurement error, so that the message names the
+/// input; other errors are returned unchanged.
+pub fn in_file(error: Error, file: &str) -> Error {
+    match error {
+        Error::Representation { path, source } if path == POINTS => Error::Representation {
+            path: file.to_string(),
+            source,
+        },
+        Error::Invalid { path, message } if path == POINTS => Error::Invalid {
+            path: file.to_string(),
+            message,
+        },
+        other => other,
+    }
+}
+
+fn from_fairness(error: fairness::Error) -> Error {
+    match error {
+        fairness::Error::Curve(source) => Error::Representation {
+            path: POINTS.into(),
+            source,
+        },
+        other => Error::Invalid {
+            path: POINTS.into(),
+            message: other.to_string(),
+        },
+    }
+}
+
+fn from_curve_repr(source: curve_repr::Error) -> Error {
+    Error::Representation {
+        path: POINTS.into(),
+        source,
+    }
+}
+
+fn measures(summary: &FairnessSummary, with_energies: bool) -> Measures {
+    let e = summary.energies;
+    Measures {
+        inflections: summary.inflections,
+        vibrations: summary.vibrations,
+        e_s: summary.e_s,
+        max_z: summary.max_z,
+        energies: with_energies.then_some(Energies {
+            e1: e.e1,
+            e2: e.e2,
+            e3: e.e3,
+            ek: e.ek,
+            ek_prime: e.ek_prime,
+        }),
+    }
+}
+
+/// Sample parameters: `per` points per interval of `breaks`, the last break included.
+fn sample_parameters(breaks: &[f64]) -> Vec<f64> {
+    let intervals = breaks.len().saturating_sub(1).max(1);
+    let per = (MAX_SAMPLES / intervals).clamp(2, 16);
+    let mut t: Vec<f64> = breaks
+        .windows(2)
+        .flat_map(|w| (0..per).map(move |k| w[0] + (w[1] - w[0]) * k as f64 / per as f64))
+        .collect();
+    t.extend(breaks.last());
+    t
+}
+
+/// z per data point from the interior jumps: 0 at both ends.
+fn padded(interior: impl IntoIterator<Item = f64>) -> Vec<f64> {
+    let mut z = vec![0.0];
+    z.extend(interior);
+    z.push(0.0);
+    z
+}
+
+/// Measures a curve of the given kind (DESIGN.md "Definitions"). O(n).
 pub fn curve(kind: CurveKind, points: &Points) -> Result<CurveMeasurement> {
-    let _ = (kind, points);
-    Err(Error::NotAvailable {
-        what: "the curve indicators (crate fairness)".into(),
+    match (kind, points) {
+        (CurveKind::Function, Points::Planar(p)) => function(p),
+        (CurveKind::Function, Points::Spatial(_)) => Err(Error::Invalid {
+            path: POINTS.into(),
+            message: "the function kind needs planar points x,y".into(),
+        }),
+        (CurveKind::Parametric, Points::Planar(p)) => parametric(p, |v| [v.x, v.y], planar_normal),
+        (CurveKind::Parametric, Points::Spatial(p)) => parametric(p, |v| [v.x, v.z], spatial_normal),
+    }
+}
+
+/// The function kind: the runout spline function y(x), its x–c polyline.
+fn function(points: &[Vec2]) -> Result<CurveMeasurement> {
+    let x: Vec<f64> = points.iter().map(|p| p.x).collect();
+    let y: Vec<f64> = points.iter().map(|p| p.y).collect();
+    let spline = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).map_err(from_curve_repr)?;
+    let summary = summary::function_of(&spline).map_err(from_fairness)?;
+    let xc = XcPolyline::of_spline(&spline).map_err(from_fairness)?;
+    let mut samples = Vec::new();
+    let mut comb = CombData::default();
+    for t in sample_parameters(&x) {
+        let (value, slope, second) = (
+            spline.value(t),
+            spline.first_derivative(t),
+            spline.second_derivative(t),
+        );
+        let speed = (1.0 + slope * slope).sqrt();
+        let kappa = second / (speed * speed * speed);
+        if value.is_finite() && kappa.is_finite() && speed.is_finite() {
+            samples.push([t, value]);
+            comb.points.push([t, value]);
+            comb.normals.push([-slope / speed, 1.0 / speed]);
+            comb.curvature.push(kappa);
+        }
+    }
+    let curvature = CurvaturePlot {
+        title: "x–c polyline (c = y''/6)".into(),
+        x_label: "x".into(),
+        y_label: "c".into(),
+        line: x.iter().zip(&xc.c).map(|(x, c)| [*x, *c]).collect(),
+        knots: x.iter().zip(&xc.c).map(|(x, c)| [*x, *c]).collect(),
+    };
+    let curve = serde_json::json!({
+        "type": "spline-function",
+        "end_condition": "parabolic-runout",
+        "x": x,
+        "y": y,
+        "c": xc.c,
+    });
+    Ok(CurveMeasurement {
+        measures: measures(&summary, true),
+        curve,
+        samples: Some(samples),
+        comb: Some(comb),
+        z: Some(padded(xc.e.iter().map(|e| 6.0 * e.abs()))),
+        curvature: Some(curvature),
     })
 }
 
-/// Measures a surface grid (DESIGN.md "Definitions", surface kind).
-pub fn surface(grid: &Grid) -> Result<SurfaceMeasurement> {
-    let _ = grid;
-    Err(Error::NotAvailable {
-        what: "the surface indicators (crate fairness)".into(),
+/// The unit left normal of a planar curve from its first derivative.
+fn planar_normal(jet: &[Vec2; 4]) -> Option<[f64; 2]> {
+    let d = jet[1];
+    let norm = d.norm();
+    (norm > 0.0 && norm.is_finite()).then(|| [-d.y / norm, d.x / norm])
+}
+
+/// The principal normal of a spatial curve seen in the (x, z) plane, unit length there.
+fn spatial_normal(jet: &[Vec3; 4]) -> Option<[f64; 2]> {
+    let (d1, d2) = (jet[1], jet[2]);
+    let speed2 = d1.norm_squared();
+    if !(speed2 > 0.0 && speed2.is_finite()) {
+        return None;
+    }
+    let normal = d2 - d1 * (d2.dot(&d1) / speed2);
+    let projected = [normal.x, normal.z];
+    let norm = projected[0].hypot(projected[1]);
+    (norm > 1e-12 * normal.norm() && norm > 0.0).then(|| [projected[0] / norm, projected[1] / norm])
+}
+
+/// The parametric kind: the natural chord-length spline.
+fn parametric<const D: usize>(
+    points: &[Vector<D>],
+    project: fn(&Vector<D>) -> [f64; 2],
+    normal: fn(&[Vector<D>; 4]) -> Option<[f64; 2]>,
+) -> Result<CurveMeasurement>
+where
+    Vector<D>: CurvatureForm,
+{
+    let spline = HermiteSpline::natural(points).map_err(from_curve_repr)?;
+    let summary = summary::parametric_of(&spline).map_err(from_fairness)?;
+    let breaks = spline.breaks();
+    let kappa = fairness::curvature::curvature_at_breaks(&spline).map_err(from_fairness)?;
+    let jumps = fairness::jumps::third_derivative_jumps(&spline).map_err(from_fairness)?;
+    let mut samples = Vec::new();
+    let mut comb = CombData::default();
+    let mut kappa_line = Vec::new();
+    let last = breaks.last().copied().unwrap_or(0.0);
+    for t in sample_parameters(&breaks) {
+        let side = if t >= last { Side::Left } else { Side::Right };
+        let jet = spline.jet(t, side);
+        let point = project(&jet[0]);
+        if !(point[0].is_finite() && point[1].is_finite()) {
+            continue;
+        }
+        samples.push(point);
+        if let Some(k) = CurvatureForm::curvature(&jet[1], &jet[2]).filter(|k| k.is_finite()) {
+            kappa_line.push([t, k]);
+            if let Some(n) = normal(&jet) {
+                comb.points.push(point);
+                comb.normals.push(n);
+                comb.curvature.push(k);
+            }
+        }
+    }
+    let curvature = CurvaturePlot {
+        title: "curvature κ(t), t chord length".into(),
+        x_label: "t".into(),
+        y_label: "κ".into(),
+        line: kappa_line,
+        knots: breaks.iter().zip(&kappa).map(|(t, k)| [*t, *k]).collect(),
+    };
+    let rows: Vec<Vec<f64>> = points.iter().map(|p| p.iter().copied().collect()).collect();
+    let tangents: Vec<Vec<f64>> = spline
+        .tangents()
+        .iter()
+        .map(|p| p.iter().copied().collect())
+        .collect();
+    let curve = serde_json::json!({
+        "type": "hermite",
+        "ends": "natural",
+        "parametrization": "chord-length",
+        "params": breaks,
+        "points": rows,
+        "tangents": tangents,
+    });
+    Ok(CurveMeasurement {
+        measures: measures(&summary, true),
+        curve,
+        samples: Some(samples),
+        comb: Some(comb),
+        z: Some(padded(jumps)),
+        curvature: Some(curvature),
     })
+}
+
+/// Measures a surface grid (DESIGN.md "Definitions", surface kind). O(m·n).
+pub fn surface(grid: &Grid) -> Result<SurfaceMeasurement> {
+    let surface = BicubicSplineSurface::from_flat(
+        grid.points.clone(),
+        grid.rows,
+        grid.columns,
+        &BicubicSurfaceSettings::default(),
+    )
+    .map_err(from_curve_repr)?;
+    let summary = summary::surface_of(&surface).map_err(from_fairness)?;
+    let z: Vec<Vec<f64>> = (0..grid.rows)
+        .map(|i| {
+            (0..grid.columns)
+                .map(|j| surface.z(i, j).unwrap_or(0.0))
+                .collect()
+        })
+        .collect();
+    let points: Vec<[f64; 3]> = grid.points.iter().map(|p| [p.x, p.y, p.z]).collect();
+    let record = serde_json::json!({
+        "type": "bicubic",
+        "parametrization": "chord-length-averaged",
+        "rows": grid.rows,
+        "columns": grid.columns,
+        "u_knots": surface.u_knots(),
+        "v_knots": surface.v_knots(),
+        "points": points,
+    });
+    Ok(SurfaceMeasurement {
+        measures: measures(&summary, false),
+        surface: record,
+        z: Some(z),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn function_and_parametric_measures_are_finite() {
+        let points = Points::Planar(
+            (0..12)
+                .map(|i| Vec2::new(i as f64 * 0.3, (i as f64 * 0.7).sin()))
+                .collect(),
+        );
+        for kind in [CurveKind::Function, CurveKind::Parametric] {
+            let m = curve(kind, &points).unwrap();
+            assert!(m.measures.e_s.is_finite() && m.measures.e_s > 0.0);
+            assert!(m.measures.inflections.is_some() && m.measures.energies.is_some());
+            assert_eq!(m.z.as_ref().unwrap().len(), 12);
+            let comb = m.comb.unwrap();
+            assert_eq!(comb.points.len(), comb.curvature.len());
+            assert!(!comb.points.is_empty());
+        }
+    }
+
+    #[test]
+    fn repeated_points_name_the_file() {
+        let points = Points::Planar(vec![
+            Vec2::new(0.0, 0.0),
+            Vec2::new(0.0, 0.0),
+            Vec2::new(1.0, 1.0),
+        ]);
+        let e = curve(CurveKind::Parametric, &points).unwrap_err();
+        let e = in_file(e, "bad.csv");
+        assert_eq!(e.exit_code(), 2);
+        assert!(e.one_line().starts_with("bad.csv: "), "{}", e.one_line());
+    }
+
+    #[test]
+    fn spatial_curve_has_no_inflections() {
+        let points = Points::Spatial(
+            (0..10)
+                .map(|i| {
+                    let t = i as f64 * 0.5;
+                    Vec3::new(t.cos(), t.sin(), 0.3 * t)
+                })
+                .collect(),
+        );
+        let m = curve(CurveKind::Parametric, &points).unwrap();
+        assert_eq!(m.measures.inflections, None);
+        assert!(m.measures.vibrations.is_some());
+    }
 }
