@@ -15,6 +15,7 @@
 
 pub mod error;
 pub mod nelder_mead;
+pub mod nurbs_weights;
 pub mod problem;
 pub mod weight_law;
 
@@ -22,5 +23,6 @@ pub use error::{Error, Result};
 pub use nelder_mead::{
     minimize, InitialSimplex, Minimum, NelderMeadSettings, Objective, Observer, Progress, Termination,
 };
+pub use nurbs_weights::{CriterionName, NurbsWeightFairing, NurbsWeightResult};
 pub use problem::{WeightCriterion, WeightProblem, WeightSolution};
 pub use weight_law::{CubicBernstein, LawDescription, PerPoint, WeightLaw};
