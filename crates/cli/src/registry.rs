@@ -100,7 +100,23 @@ pub const METHODS: &[MethodInfo] = &[
         kind: MethodKind::Curve,
         paper: "Nowacki et al., fairing NURBS by weights",
         summary: "changes weights (not points) by Nelder-Mead on an energy criterion",
-        parameters: &[],
+        parameters: &[
+            ParameterInfo {
+                name: "criterion",
+                default: "ek",
+                meaning: "criterion minimised: e1, e2, e3, ek or ek-prime",
+            },
+            ParameterInfo {
+                name: "law",
+                default: "bernstein",
+                meaning: "weight law: bernstein (the paper's 4 cubic coefficients) or per-point",
+            },
+            ParameterInfo {
+                name: "max-iterations",
+                default: "1000",
+                meaning: "Nelder-Mead iterations at most",
+            },
+        ],
     },
     MethodInfo {
         name: "smoothing-spline",

@@ -16,6 +16,8 @@ use crate::registry::{self, MethodInfo, MethodKind};
 use crate::report::Report;
 use std::collections::BTreeMap;
 
+mod nurbs_weights;
+
 /// The fewest points any curve method works on: curvature-slope jumps e_i need three.
 pub const MIN_CURVE_POINTS: usize = 3;
 
@@ -62,9 +64,12 @@ pub struct CurveOutcome {
 
 /// SEAM: runs the strategy of `job.method` (crate `fairing`).
 pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
-    Err(Error::NotAvailable {
-        what: format!("method `{}`", job.method.name),
-    })
+    match job.method.name {
+        "nurbs-weights" => nurbs_weights::fair(job),
+        _ => Err(Error::NotAvailable {
+            what: format!("method `{}`", job.method.name),
+        }),
+    }
 }
 
 /// `s_d` and `m_d`: the sum and the largest of the distances moved. O(n).

@@ -1,0 +1,112 @@
+//! `fair curve --method nurbs-weights` end to end: the points come back unchanged, the report's
+//! curve is a NURBS with positive weights, and the optimised criterion does not rise.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+fn data(relative: &str) -> String {
+    format!("{}/data/{relative}", env!("CARGO_MANIFEST_DIR"))
+}
+
+fn read_rows(path: &str) -> Vec<Vec<f64>> {
+    std::fs::read_to_string(path)
+        .unwrap_or_else(|e| panic!("{path}: {e}"))
+        .lines()
+        .skip(1)
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| l.split(',').map(|x| x.trim().parse::<f64>().unwrap()).collect())
+        .collect()
+}
+
+fn out_dir() -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("fair-nurbs-weights-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn run(criterion: &str, law: &str) {
+    let input = data("airfoil_naca2412/naca2412_upper.csv");
+    let dir = out_dir();
+    let output = dir.join(format!("{criterion}-{law}.csv"));
+    let report = dir.join(format!("{criterion}-{law}.json"));
+    let status = Command::new(env!("CARGO_BIN_EXE_fair"))
+        .args(["curve", &input, "--method", "nurbs-weights", "--quiet"])
+        .args([
+            "--set",
+            &format!("criterion={criterion}"),
+            "--set",
+            &format!("law={law}"),
+        ])
+        .args(["--set", "max-iterations=300"])
+        .arg("-o")
+        .arg(&output)
+        .arg("--report")
+        .arg(&report)
+        .output()
+        .unwrap();
+    assert!(
+        status.status.success(),
+        "{}",
+        String::from_utf8_lossy(&status.stderr)
+    );
+    // The points are the input's, value for value.
+    assert_eq!(read_rows(output.to_str().unwrap()), read_rows(&input));
+    let report: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert_eq!(report["method"], "nurbs-weights");
+    let curve = &report["curve"];
+    assert_eq!(curve["type"], "nurbs");
+    assert_eq!(curve["degree"], 3);
+    let weights = curve["weights"].as_array().unwrap();
+    assert_eq!(weights.len(), curve["control_points"].as_array().unwrap().len());
+    assert!(weights.iter().all(|w| w.as_f64().unwrap() > 0.0));
+    assert_eq!(report["criterion"], criterion);
+    let before = report["criterion_before"].as_f64().unwrap();
+    let after = report["criterion_after"].as_f64().unwrap();
+    assert!(after <= before, "{criterion}: {after} > {before}");
+    // The energy blocks agree with the optimised values.
+    let key = criterion.replace('-', "_");
+    assert_eq!(report["energies_faired"][&key].as_f64().unwrap(), after);
+    assert!(report["max_residual"].as_f64().unwrap() < 1e-9);
+}
+
+#[test]
+fn airfoil_upper_surface_bernstein_ek() {
+    run("ek", "bernstein");
+}
+
+#[test]
+fn airfoil_upper_surface_per_point_e2() {
+    run("e2", "per-point");
+}
+
+#[test]
+fn unknown_criterion_exits_2() {
+    let input = data("airfoil_naca2412/naca2412_upper.csv");
+    let status = Command::new(env!("CARGO_BIN_EXE_fair"))
+        .args([
+            "curve",
+            &input,
+            "--method",
+            "nurbs-weights",
+            "--set",
+            "criterion=e4",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(status.status.code(), Some(2));
+}
+
+#[test]
+fn repeated_point_exits_2_naming_the_file() {
+    let dir = out_dir();
+    let path = dir.join("repeated.csv");
+    std::fs::write(&path, "x,y\n0,0\n1,1\n1,1\n2,0\n3,1\n").unwrap();
+    let status = Command::new(env!("CARGO_BIN_EXE_fair"))
+        .args(["curve", "--kind", "parametric", "--method", "nurbs-weights"])
+        .arg(&path)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&status.stderr);
+    assert_eq!(status.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("repeated.csv"), "{stderr}");
+}
