@@ -100,7 +100,10 @@ impl FairingStrategy<2> for TwoPhase {
             };
             let actual = state.move_point(k, Vec2::new(x, y))?;
             if actual.x != x {
-                return Err(strategy_error("two-phase", format!("a constraint moved x of point {k}")));
+                return Err(strategy_error(
+                    "two-phase",
+                    format!("a constraint moved x of point {k}"),
+                ));
             }
             if actual.y != y {
                 corrections.push((k, actual.y));

@@ -96,8 +96,29 @@ pub fn e_at(spline: &SplineFunction, i: usize) -> f64 {
     }
 }
 
-/// The Phase-1 case at point i, trying large, then medium, then small (module doc). O(1).
+/// The Phase-1 case at point i, trying large, then medium, then small (module doc). A small
+/// case at (i, i + 1) is not reported when a medium or large pattern starts at i + 1: the
+/// sweep reaches it next and the specific rule handles it. O(1).
 pub fn detect(spline: &SplineFunction, i: usize) -> Option<Case> {
+    if let Some(case) = detect_specific(spline, i) {
+        return Some(case);
+    }
+    let n = spline.x().len();
+    if n < 4 || i < 1 || i + 2 > n - 1 {
+        return None;
+    }
+    if e_at(spline, i) * e_at(spline, i + 1) < 0.0 && detect_specific(spline, i + 1).is_none() {
+        return Some(Case {
+            kind: CaseKind::Small,
+            first: i,
+            second: Some(i + 1),
+        });
+    }
+    None
+}
+
+/// The medium and large patterns at i (Cases 2–3, interior and ends). O(1).
+fn detect_specific(spline: &SplineFunction, i: usize) -> Option<Case> {
     let n = spline.x().len();
     if n < 4 || i < 1 || i > n - 2 {
         return None;
@@ -113,8 +134,16 @@ pub fn detect(spline: &SplineFunction, i: usize) -> Option<Case> {
     let opp = |a: Option<f64>, b: Option<f64>| matches!((a, b), (Some(a), Some(b)) if a * b < 0.0);
     let same = |a: Option<f64>, b: Option<f64>| matches!((a, b), (Some(a), Some(b)) if a * b > 0.0);
     let ei = e(ii);
-    let two = |kind| Case { kind, first: i, second: Some(i + 1) };
-    let one = |kind| Case { kind, first: i, second: None };
+    let two = |kind| Case {
+        kind,
+        first: i,
+        second: Some(i + 1),
+    };
+    let one = |kind| Case {
+        kind,
+        first: i,
+        second: None,
+    };
     // Case 3 (large), interior: all six values exist.
     if same(ei, e(ii + 1))
         && opp(ei, e(ii - 1))
@@ -143,10 +172,6 @@ pub fn detect(spline: &SplineFunction, i: usize) -> Option<Case> {
     if ii == last && opp(ei, e(last - 1)) && opp(ei, e(last - 2)) {
         return Some(one(CaseKind::MediumEnd));
     }
-    // Case 1 (small).
-    if opp(ei, e(ii + 1)) {
-        return Some(two(CaseKind::Small));
-    }
     None
 }
 
@@ -171,7 +196,10 @@ pub fn displacement(spline: &SplineFunction, case: Case, lambda: f64) -> Option<
             Some(vec![(i, ok(-lambda * e_at(spline, i) / d)?)])
         }
         (CaseKind::Small, Some(k)) => {
-            let roots = [(e_at(spline, i), s(i, i) - s(i, k)), (e_at(spline, k), s(k, i) - s(k, k))];
+            let roots = [
+                (e_at(spline, i), s(i, i) - s(i, k)),
+                (e_at(spline, k), s(k, i) - s(k, k)),
+            ];
             let sigma = roots
                 .iter()
                 .filter(|(_, d)| *d != 0.0)

@@ -75,16 +75,27 @@ impl TwoPhaseSettings {
             value: value.to_string(),
             reason,
         };
-        for (name, value) in [("coarse_lambda", self.coarse_lambda), ("fine_lambda", self.fine_lambda)] {
+        for (name, value) in [
+            ("coarse_lambda", self.coarse_lambda),
+            ("fine_lambda", self.fine_lambda),
+        ] {
             if !(value > 0.0 && value <= 1.0) {
                 return Err(bad(name, value, "must lie in (0, 1]"));
             }
         }
         if !(self.alpha_divisor.is_finite() && self.alpha_divisor > 0.0) {
-            return Err(bad("alpha_divisor", self.alpha_divisor, "must be finite and positive"));
+            return Err(bad(
+                "alpha_divisor",
+                self.alpha_divisor,
+                "must be finite and positive",
+            ));
         }
         if !(self.max_move_factor.is_finite() && self.max_move_factor > 0.0) {
-            return Err(bad("max_move_factor", self.max_move_factor, "must be finite and positive"));
+            return Err(bad(
+                "max_move_factor",
+                self.max_move_factor,
+                "must be finite and positive",
+            ));
         }
         Ok(())
     }
