@@ -212,7 +212,7 @@ pub fn displacement(spline: &SplineFunction, case: Case, lambda: f64) -> Option<
             let (a, b, c, d) = (s(i, i), s(i, k), s(k, i), s(k, k));
             let det = a * d - b * c;
             let scale = a.hypot(b) * c.hypot(d);
-            if !(det.abs() > 1e-12 * scale) {
+            if !det.is_finite() || det.abs() <= 1e-12 * scale {
                 return None;
             }
             let (ei, ek) = (e_at(spline, i), e_at(spline, k));

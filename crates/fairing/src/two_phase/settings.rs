@@ -22,6 +22,7 @@ pub struct TwoPhaseSettings {
     /// Guard (not in the paper): a case whose displacement |γ| exceeds `max_move_factor` times
     /// the smaller spacing h next to a moved point is skipped. The paper assumes "minor
     /// offsets" (§3.3); near-singular 2×2 systems otherwise move points by absurd amounts.
+    /// The bound is in x units: for data whose y range dwarfs its x spacing, raise it.
     pub max_move_factor: f64,
     /// Guard (not in the paper): points on each side of a case over which inflections and
     /// vibrations are recounted; a move that increases either local count is undone.
