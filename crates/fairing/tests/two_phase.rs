@@ -290,3 +290,34 @@ fn numbers_on_a_noisy_sine() {
         assert!(after.inflections() <= before.inflections());
     }
 }
+
+/// The printed medium end condition "e_2e_3 < 0 and e_3e_4 < 0" (1-based) isolates e_3, which
+/// the interior Case 2 handles; the end case is read as "e_2 differs from e_3 and e_4".
+#[test]
+fn printed_medium_end_pattern_is_the_interior_case() {
+    let x = knots(12);
+    let e: Vec<f64> = [-1.0, 1.0, -1.0, -1.0, -1.0, 1.0, 1.0, 1.0, 1.0, -1.0]
+        .iter()
+        .map(|a| 0.01 * a)
+        .collect();
+    let y = y_with_e(&x, &e);
+    let spline = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap();
+    assert_ne!(detect(&spline, 1).map(|c| c.kind), Some(CaseKind::MediumEnd));
+    assert_eq!(detect(&spline, 2).map(|c| c.kind), Some(CaseKind::Medium));
+}
+
+/// The size guard: with a bound far below the needed moves nothing moves and the cases are
+/// counted as skipped.
+#[test]
+fn move_guard_skips_large_moves() {
+    let x = knots(12);
+    for (e, ..) in patterns() {
+        let y = y_with_e(&x, &e);
+        let mut spline = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap();
+        let settings = TwoPhaseSettings::default().with_max_move_factor(1e-9);
+        let report = coarse_pass(&mut spline, &settings, &|_| true).unwrap();
+        assert!(report.moves.is_empty());
+        assert!(report.skipped > 0);
+        assert_eq!(spline.y(), &y[..]);
+    }
+}
