@@ -14,7 +14,7 @@ pub mod phase1;
 mod settings;
 
 pub use phase1::{coarse_pass, counts, detect, displacement, e_at, Case, CaseKind, PassReport};
-pub use settings::TwoPhaseSettings;
+pub use settings::{CountGuard, TwoPhaseSettings};
 
 use curve_repr::{EndCondition, SplineFunction, Vec2};
 

@@ -35,13 +35,17 @@
 //! `max_move_factor` × the smaller spacing next to the moved point is skipped; a move that
 //! increases the inflection or vibration count within `guard_window` points is undone; and a
 //! pass that increased either global count is undone whole (O(n) once per pass). So a pass
-//! never increases Infl_num or Vib_num (DESIGN.md counts).
+//! never increases Infl_num or Vib_num (DESIGN.md counts) unless the guard is
+//! [`CountGuard::Off`]. Measured on a noisy sine (n = 1000, noise 0.01, λ = 0.8, 50 passes):
+//! vibrations 832 → 334 and inflections 781 → 82 with `Local` (the default), 832 → 284 and
+//! 781 → 32 with `Off` (the paper's rule, not monotone pass by pass in general), 832 → 437 and
+//! 781 → 61 with `Pass` (it stops at the first undone pass).
 
 use curve_repr::SplineFunction;
 use fairness::sign::sign_changes;
 use fairness::xc::e_sensitivity;
 
-use super::TwoPhaseSettings;
+use super::{CountGuard, TwoPhaseSettings};
 use crate::state::strategy_error;
 use crate::Result;
 
@@ -80,6 +84,8 @@ pub struct PassReport {
     pub cases: Vec<Case>,
     /// Cases found but skipped (degenerate system, move too large, not movable, local guard).
     pub skipped: usize,
+    /// Of `skipped`: the moves undone because they increased a local count.
+    pub undone_by_count_guard: usize,
     /// The pass increased a global count and was undone whole.
     pub reverted: bool,
 }
@@ -289,9 +295,10 @@ pub fn coarse_pass(
         let new: Vec<(usize, f64)> = moves.iter().map(|&(k, g)| (k, spline.y()[k] + g)).collect();
         spline.set_y(&new)?;
         let after = local_counts(spline, lo, hi);
-        if after.0 > before.0 || after.1 > before.1 {
+        if settings.count_guard == CountGuard::Local && (after.0 > before.0 || after.1 > before.1) {
             spline.set_y(&old)?;
             report.skipped += 1;
+            report.undone_by_count_guard += 1;
         } else {
             report.moves.extend(moves);
             report.cases.push(case);
@@ -301,7 +308,9 @@ pub fn coarse_pass(
     // Clear the rounding of the windowed updates, then the global guard.
     spline.rebuild()?;
     let after_global = counts(spline);
-    if after_global.0 > before_global.0 || after_global.1 > before_global.1 {
+    if settings.count_guard != CountGuard::Off
+        && (after_global.0 > before_global.0 || after_global.1 > before_global.1)
+    {
         let restore: Vec<(usize, f64)> = report
             .moves
             .iter()

@@ -27,6 +27,19 @@ pub struct TwoPhaseSettings {
     /// Guard (not in the paper): points on each side of a case over which inflections and
     /// vibrations are recounted; a move that increases either local count is undone.
     pub guard_window: usize,
+    /// Which count guards are on (not in the paper). Default [`CountGuard::Local`].
+    pub count_guard: CountGuard,
+}
+
+/// The guards that keep a coarse pass from increasing Infl_num or Vib_num (not in the paper).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CountGuard {
+    /// The paper's rule with only the size guard: a pass may increase the counts.
+    Off,
+    /// A pass that increased a global count is undone whole (O(n) per pass).
+    Pass,
+    /// As `Pass`, and each move that increases a count within `guard_window` points is undone.
+    Local,
 }
 
 impl Default for TwoPhaseSettings {
@@ -38,6 +51,7 @@ impl Default for TwoPhaseSettings {
             max_passes: 50,
             max_move_factor: 0.5,
             guard_window: 16,
+            count_guard: CountGuard::Local,
         }
     }
 }
@@ -66,6 +80,12 @@ impl TwoPhaseSettings {
     /// Sets the recount window of the local guard.
     pub fn with_guard_window(mut self, window: usize) -> Self {
         self.guard_window = window;
+        self
+    }
+
+    /// Sets the count guards.
+    pub fn with_count_guard(mut self, guard: CountGuard) -> Self {
+        self.count_guard = guard;
         self
     }
 
