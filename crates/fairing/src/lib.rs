@@ -19,6 +19,7 @@ pub mod pipeline;
 pub mod state;
 pub mod strategy;
 pub mod trace;
+pub mod two_phase;
 
 pub use constraints::{project_into_ball, Constraints, EndClamp};
 pub use error::{Error, Result};

@@ -1,0 +1,328 @@
+//! Phase 1 of Han's function-segment fairing (Han et al. §4.1, "Coarse fairing – eliminating
+//! unnecessary curvature vibrations"): find short wrong-sign runs of the second differences
+//! e_i of the x–c polyline and move one or two y values so that the targeted e vanishes.
+//!
+//! Indices count from 0 (Han's point k is our k − 1); e_i exists at the interior points
+//! 1 … n − 2 and only those points move (Han §3.3 displaces y_2 … y_{n−1}). Every
+//! displacement comes from the linear model ẽ_i = e_i + Σ_j γ_j ẽ_i^j (Han Eq. 18), which is
+//! exact because c is linear in y: with λ = 1 the targeted e is zero up to rounding.
+//!
+//! The cases (Han's 1-based conditions translated to 0-based point indices):
+//!
+//! | case | condition | moves | target |
+//! |---|---|---|---|
+//! | [`CaseKind::Small`] (Case 1) | e_i e_{i+1} < 0 | γ_i = σ, γ_{i+1} = −σ | ẽ_i ẽ_{i+1} = 0, the root of smaller \|σ\| |
+//! | [`CaseKind::Medium`] (Case 2) | e_{i−1} e_i < 0, e_i e_{i+1} < 0, 2 ≤ i ≤ n − 3 | γ_i = σ | ẽ_i = 0 |
+//! | [`CaseKind::MediumEnd`] (Case 2, end) | i = 1: e_1 e_2 < 0, e_1 e_3 < 0 (mirror at n − 2) | γ_i = σ | ẽ_i = 0 |
+//! | [`CaseKind::Large`] (Case 3) | e_i e_{i+1} > 0 and e_i differs in sign from e_{i−2}, e_{i−1}, e_{i+2}, e_{i+3}, all existing | γ_i = σ, γ_{i+1} = τ | ẽ_i = ẽ_{i+1} = 0 |
+//! | [`CaseKind::LargeEnd`] (Case 3, end) | e_1 e_2 > 0, e_1 e_3 < 0, e_1 e_4 < 0 (mirror at n − 3, n − 2) | γ_1, γ_2 | ẽ_1 = ẽ_2 = 0 |
+//!
+//! Choices where the paper is ambiguous (each tested):
+//! - The large end case prints "e_2e_4 > 0 and e_2e_5 > 0"; its own words ("different sign
+//!   with e_4 and e_5") and the figure need < 0 (papers/README.md typo list).
+//! - The medium end case prints "e_2 e_3 < 0 and e_3 e_4 < 0, then we make e_2 zero". With
+//!   e_3 e_4 < 0 the isolated value is e_3, which the interior Case 2 already handles at
+//!   i = 3; we read it as the analogue of the corrected large end case: e_2 differs in sign
+//!   from e_3 and e_4 (1-based), and e_2 is zeroed.
+//! - Han's Case 3 loop 3 … n − 3 (1-based) reaches e_1 and e_n, which do not exist; we
+//!   require all six e values and leave the runs touching an end to the end case.
+//! - Han runs three separate loops (Cases 1, 2, 3). Case 1's condition holds at every
+//!   vibration, so it would pre-empt Cases 2–3; we sweep once and at each i try the most
+//!   specific pattern first (large, then medium, then small).
+//! - λ scales every case (the paper prints it for Case 1 only).
+//!
+//! Guards (not in the paper, see [`TwoPhaseSettings`]): a case whose |γ| exceeds
+//! `max_move_factor` × the smaller spacing next to the moved point is skipped; a move that
+//! increases the inflection or vibration count within `guard_window` points is undone; and a
+//! pass that increased either global count is undone whole (O(n) once per pass). So a pass
+//! never increases Infl_num or Vib_num (DESIGN.md counts) unless the guard is
+//! [`CountGuard::Off`]. Measured on a noisy sine (n = 1000, noise 0.01, λ = 0.8, 50 passes):
+//! vibrations 832 → 334 and inflections 781 → 82 with `Local` (the default), 832 → 284 and
+//! 781 → 32 with `Off` (the paper's rule, not monotone pass by pass in general), 832 → 437 and
+//! 781 → 61 with `Pass` (it stops at the first undone pass).
+
+use curve_repr::SplineFunction;
+use fairness::sign::sign_changes;
+use fairness::xc::e_sensitivity;
+
+use super::{CountGuard, TwoPhaseSettings};
+use crate::state::strategy_error;
+use crate::Result;
+
+/// Which Phase-1 pattern was found (Han §4.1 Phase 1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum CaseKind {
+    /// Case 1, small curvature vibration: e_i e_{i+1} < 0.
+    Small,
+    /// Case 2, medium curvature vibration at an interior point.
+    Medium,
+    /// Case 2 at an end (point 1 or n − 2).
+    MediumEnd,
+    /// Case 3, large curvature vibration: a run of two e values of one sign.
+    Large,
+    /// Case 3 at an end (points 1, 2 or n − 3, n − 2).
+    LargeEnd,
+}
+
+/// A detected case: its kind and the point(s) it moves (`second` is `None` for one point).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Case {
+    /// The pattern.
+    pub kind: CaseKind,
+    /// The first moved point (0-based).
+    pub first: usize,
+    /// The second moved point, first + 1, for the two-point cases.
+    pub second: Option<usize>,
+}
+
+/// What one coarse pass did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PassReport {
+    /// The applied displacements (point, γ), in order; empty if the pass was undone.
+    pub moves: Vec<(usize, f64)>,
+    /// The cases applied, in order.
+    pub cases: Vec<Case>,
+    /// Cases found but skipped (degenerate system, move too large, not movable, local guard).
+    pub skipped: usize,
+    /// Of `skipped`: the moves undone because they increased a local count.
+    pub undone_by_count_guard: usize,
+    /// The pass increased a global count and was undone whole.
+    pub reverted: bool,
+}
+
+/// e_i at interior point i from the spline's c (0 elsewhere). O(1).
+pub fn e_at(spline: &SplineFunction, i: usize) -> f64 {
+    let (x, c) = (spline.x(), spline.c());
+    match (x.get(i.wrapping_sub(1)), x.get(i), x.get(i + 1)) {
+        (Some(&x0), Some(&x1), Some(&x2)) if i >= 1 => {
+            let (c0, c1, c2) = (c[i - 1], c[i], c[i + 1]);
+            (c2 - c1) / (x2 - x1) - (c1 - c0) / (x1 - x0)
+        }
+        _ => 0.0,
+    }
+}
+
+/// The Phase-1 case at point i, trying large, then medium, then small (module doc). A small
+/// case at (i, i + 1) is not reported when a medium or large pattern starts at i + 1: the
+/// sweep reaches it next and the specific rule handles it. O(1).
+pub fn detect(spline: &SplineFunction, i: usize) -> Option<Case> {
+    if let Some(case) = detect_specific(spline, i) {
+        return Some(case);
+    }
+    let n = spline.x().len();
+    if n < 4 || i < 1 || i + 2 > n - 1 {
+        return None;
+    }
+    if e_at(spline, i) * e_at(spline, i + 1) < 0.0 && detect_specific(spline, i + 1).is_none() {
+        return Some(Case {
+            kind: CaseKind::Small,
+            first: i,
+            second: Some(i + 1),
+        });
+    }
+    None
+}
+
+/// The medium and large patterns at i (Cases 2–3, interior and ends). O(1).
+fn detect_specific(spline: &SplineFunction, i: usize) -> Option<Case> {
+    let n = spline.x().len();
+    if n < 4 || i < 1 || i > n - 2 {
+        return None;
+    }
+    let e = |k: isize| -> Option<f64> {
+        if k >= 1 && (k as usize) <= n - 2 {
+            Some(e_at(spline, k as usize))
+        } else {
+            None
+        }
+    };
+    let ii = i as isize;
+    let opp = |a: Option<f64>, b: Option<f64>| matches!((a, b), (Some(a), Some(b)) if a * b < 0.0);
+    let same = |a: Option<f64>, b: Option<f64>| matches!((a, b), (Some(a), Some(b)) if a * b > 0.0);
+    let ei = e(ii);
+    let two = |kind| Case {
+        kind,
+        first: i,
+        second: Some(i + 1),
+    };
+    let one = |kind| Case {
+        kind,
+        first: i,
+        second: None,
+    };
+    // Case 3 (large), interior: all six values exist.
+    if same(ei, e(ii + 1))
+        && opp(ei, e(ii - 1))
+        && opp(ei, e(ii - 2))
+        && opp(ei, e(ii + 2))
+        && opp(ei, e(ii + 3))
+    {
+        return Some(two(CaseKind::Large));
+    }
+    // Case 3, end: the run (1, 2) or (n − 3, n − 2), corrected sign.
+    if i == 1 && same(ei, e(2)) && opp(ei, e(3)) && opp(ei, e(4)) {
+        return Some(two(CaseKind::LargeEnd));
+    }
+    let last = (n - 2) as isize;
+    if ii == last - 1 && same(ei, e(last)) && opp(ei, e(last - 2)) && opp(ei, e(last - 3)) {
+        return Some(two(CaseKind::LargeEnd));
+    }
+    // Case 2 (medium), interior.
+    if opp(ei, e(ii - 1)) && opp(ei, e(ii + 1)) {
+        return Some(one(CaseKind::Medium));
+    }
+    // Case 2, end.
+    if i == 1 && opp(ei, e(2)) && opp(ei, e(3)) {
+        return Some(one(CaseKind::MediumEnd));
+    }
+    if ii == last && opp(ei, e(last - 1)) && opp(ei, e(last - 2)) {
+        return Some(one(CaseKind::MediumEnd));
+    }
+    None
+}
+
+/// The displacements (point, γ) of Han's rule for `case`, scaled by `lambda`; `None` when the
+/// rule is degenerate (a zero sensitivity, a singular 2×2 system). O(1).
+///
+/// - Small: ẽ_i = e_i + σ(ẽ_i^i − ẽ_i^{i+1}), ẽ_{i+1} = e_{i+1} + σ(ẽ_{i+1}^i − ẽ_{i+1}^{i+1})
+///   (Eq. 18 with γ_i = σ, γ_{i+1} = −σ); σ is the root of smaller |σ| of ẽ_i ẽ_{i+1} = 0.
+/// - Medium: σ = −e_i / ẽ_i^i.
+/// - Large: [ẽ_i^i ẽ_i^{i+1}; ẽ_{i+1}^i ẽ_{i+1}^{i+1}] (σ, τ) = −(e_i, e_{i+1}) by Cramer's
+///   rule, refused when |det| ≤ 1e-12 · (product of the row norms).
+pub fn displacement(spline: &SplineFunction, case: Case, lambda: f64) -> Option<Vec<(usize, f64)>> {
+    let s = |i: usize, j: usize| e_sensitivity(spline, i, j);
+    let i = case.first;
+    let ok = |v: f64| v.is_finite().then_some(v);
+    match (case.kind, case.second) {
+        (CaseKind::Medium | CaseKind::MediumEnd, _) => {
+            let d = s(i, i);
+            if d == 0.0 {
+                return None;
+            }
+            Some(vec![(i, ok(-lambda * e_at(spline, i) / d)?)])
+        }
+        (CaseKind::Small, Some(k)) => {
+            let roots = [
+                (e_at(spline, i), s(i, i) - s(i, k)),
+                (e_at(spline, k), s(k, i) - s(k, k)),
+            ];
+            let sigma = roots
+                .iter()
+                .filter(|(_, d)| *d != 0.0)
+                .map(|(e, d)| -e / d)
+                .filter(|v| v.is_finite())
+                .min_by(|a, b| a.abs().total_cmp(&b.abs()))?;
+            Some(vec![(i, lambda * sigma), (k, -lambda * sigma)])
+        }
+        (CaseKind::Large | CaseKind::LargeEnd, Some(k)) => {
+            let (a, b, c, d) = (s(i, i), s(i, k), s(k, i), s(k, k));
+            let det = a * d - b * c;
+            let scale = a.hypot(b) * c.hypot(d);
+            if !det.is_finite() || det.abs() <= 1e-12 * scale {
+                return None;
+            }
+            let (ei, ek) = (e_at(spline, i), e_at(spline, k));
+            let sigma = (-ei * d + ek * b) / det;
+            let tau = (-ek * a + ei * c) / det;
+            Some(vec![(i, ok(lambda * sigma)?), (k, ok(lambda * tau)?)])
+        }
+        _ => None,
+    }
+}
+
+/// Vibrations and inflections among points lo..=hi (DESIGN.md counts on the slice). O(hi − lo).
+fn local_counts(spline: &SplineFunction, lo: usize, hi: usize) -> (usize, usize) {
+    let n = spline.x().len();
+    let e_interior: Vec<f64> = (lo.max(1)..=hi.min(n.saturating_sub(2)))
+        .map(|k| e_at(spline, k))
+        .collect();
+    let c = spline.c().get(lo..=hi).unwrap_or(&[]);
+    (sign_changes(&e_interior), sign_changes(c))
+}
+
+/// Global (vibrations, inflections) of the spline's x–c polyline (DESIGN.md counts). O(n).
+pub fn counts(spline: &SplineFunction) -> (usize, usize) {
+    let n = spline.x().len();
+    local_counts(spline, 0, n.saturating_sub(1))
+}
+
+/// One coarse pass of Phase 1 over the whole segment (module doc): sweeps i = 1 … n − 2,
+/// applies each detected case whose points are all `movable` and interior, with the guards of
+/// [`TwoPhaseSettings`]. O(n · guard_window).
+///
+/// Errors: bad settings; a failing spline update (the spline is then restored).
+pub fn coarse_pass(
+    spline: &mut SplineFunction,
+    settings: &TwoPhaseSettings,
+    movable: &dyn Fn(usize) -> bool,
+) -> Result<PassReport> {
+    settings.validate()?;
+    let n = spline.x().len();
+    let mut report = PassReport::default();
+    if n < 4 {
+        return Ok(report);
+    }
+    let before_global = counts(spline);
+    let original_y = spline.y().to_vec();
+    let mut i = 1;
+    while i + 1 < n {
+        let Some(case) = detect(spline, i) else {
+            i += 1;
+            continue;
+        };
+        let next = case.second.map_or(i + 1, |k| k + 1);
+        let Some(moves) = displacement(spline, case, settings.coarse_lambda) else {
+            report.skipped += 1;
+            i = next;
+            continue;
+        };
+        let x = spline.x();
+        let allowed = moves.iter().all(|&(k, g)| {
+            k >= 1
+                && k + 1 < n
+                && movable(k)
+                && g.abs() <= settings.max_move_factor * (x[k] - x[k - 1]).min(x[k + 1] - x[k])
+        });
+        if !allowed {
+            report.skipped += 1;
+            i = next;
+            continue;
+        }
+        let lo = case.first.saturating_sub(settings.guard_window + 2);
+        let hi = (case.second.unwrap_or(case.first) + settings.guard_window + 2).min(n - 1);
+        let before = local_counts(spline, lo, hi);
+        let old: Vec<(usize, f64)> = moves.iter().map(|&(k, _)| (k, spline.y()[k])).collect();
+        let new: Vec<(usize, f64)> = moves.iter().map(|&(k, g)| (k, spline.y()[k] + g)).collect();
+        spline.set_y(&new)?;
+        let after = local_counts(spline, lo, hi);
+        if settings.count_guard == CountGuard::Local && (after.0 > before.0 || after.1 > before.1) {
+            spline.set_y(&old)?;
+            report.skipped += 1;
+            report.undone_by_count_guard += 1;
+        } else {
+            report.moves.extend(moves);
+            report.cases.push(case);
+        }
+        i = next;
+    }
+    // Clear the rounding of the windowed updates, then the global guard.
+    spline.rebuild()?;
+    let after_global = counts(spline);
+    if settings.count_guard != CountGuard::Off
+        && (after_global.0 > before_global.0 || after_global.1 > before_global.1)
+    {
+        let restore: Vec<(usize, f64)> = report
+            .moves
+            .iter()
+            .filter_map(|&(k, _)| original_y.get(k).map(|&y| (k, y)))
+            .collect();
+        spline
+            .set_y(&restore)
+            .map_err(|e| strategy_error("two-phase", format!("restoring a pass failed: {e}")))?;
+        spline.rebuild()?;
+        report.moves.clear();
+        report.cases.clear();
+        report.reverted = true;
+    }
+    Ok(report)
+}

@@ -1,0 +1,123 @@
+//! Settings of Han's two-phase fairing (Han et al. §4.1).
+
+use crate::{Error, Result};
+
+/// Settings of [`TwoPhase`](super::TwoPhase) and [`coarse_pass`](super::coarse_pass).
+///
+/// Defaults follow Han et al. §4.1: λ = 0.8 in Phase 1 (printed for Case 1, Step 2; this
+/// implementation applies the same factor to every Phase-1 case, set 1.0 for the paper's
+/// literal Cases 2–3), λ = 0.75 and α = 0 first, then α = min(c̃_{i−1}, c̃_{i+1})/5, in Phase 2
+/// (stored for the fine phase, which is not implemented yet).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TwoPhaseSettings {
+    /// Fraction λ of the computed displacement applied in Phase 1 (Han §4.1 Case 1 Step 2).
+    pub coarse_lambda: f64,
+    /// λ of Phase 2 (Han §4.1 Phase 2 Case 1 Step 2). Not used yet.
+    pub fine_lambda: f64,
+    /// The divisor of Han's α rule, α = min(c̃_{i−1}, c̃_{i+1}) / `alpha_divisor` (5 in the
+    /// paper). Not used yet.
+    pub alpha_divisor: f64,
+    /// Most coarse passes a [`TwoPhase`](super::TwoPhase) stage makes.
+    pub max_passes: usize,
+    /// Guard (not in the paper): a case whose displacement |γ| exceeds `max_move_factor` times
+    /// the smaller spacing h next to a moved point is skipped. The paper assumes "minor
+    /// offsets" (§3.3); near-singular 2×2 systems otherwise move points by absurd amounts.
+    /// The bound is in x units: for data whose y range dwarfs its x spacing, raise it.
+    pub max_move_factor: f64,
+    /// Guard (not in the paper): points on each side of a case over which inflections and
+    /// vibrations are recounted; a move that increases either local count is undone.
+    pub guard_window: usize,
+    /// Which count guards are on (not in the paper). Default [`CountGuard::Local`].
+    pub count_guard: CountGuard,
+}
+
+/// The guards that keep a coarse pass from increasing Infl_num or Vib_num (not in the paper).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CountGuard {
+    /// The paper's rule with only the size guard: a pass may increase the counts.
+    Off,
+    /// A pass that increased a global count is undone whole (O(n) per pass).
+    Pass,
+    /// As `Pass`, and each move that increases a count within `guard_window` points is undone.
+    Local,
+}
+
+impl Default for TwoPhaseSettings {
+    fn default() -> Self {
+        TwoPhaseSettings {
+            coarse_lambda: 0.8,
+            fine_lambda: 0.75,
+            alpha_divisor: 5.0,
+            max_passes: 50,
+            max_move_factor: 0.5,
+            guard_window: 16,
+            count_guard: CountGuard::Local,
+        }
+    }
+}
+
+impl TwoPhaseSettings {
+    /// Sets the Phase-1 λ (must lie in (0, 1]).
+    pub fn with_coarse_lambda(mut self, lambda: f64) -> Self {
+        self.coarse_lambda = lambda;
+        self
+    }
+    /// Sets the Phase-2 λ.
+    pub fn with_fine_lambda(mut self, lambda: f64) -> Self {
+        self.fine_lambda = lambda;
+        self
+    }
+    /// Sets the most coarse passes.
+    pub fn with_max_passes(mut self, passes: usize) -> Self {
+        self.max_passes = passes;
+        self
+    }
+    /// Sets the move-size guard factor (> 0).
+    pub fn with_max_move_factor(mut self, factor: f64) -> Self {
+        self.max_move_factor = factor;
+        self
+    }
+    /// Sets the recount window of the local guard.
+    pub fn with_guard_window(mut self, window: usize) -> Self {
+        self.guard_window = window;
+        self
+    }
+
+    /// Sets the count guards.
+    pub fn with_count_guard(mut self, guard: CountGuard) -> Self {
+        self.count_guard = guard;
+        self
+    }
+
+    /// Checks the ranges: λ in (0, 1], the factors finite and positive.
+    pub fn validate(&self) -> Result<()> {
+        let bad = |name: &'static str, value: f64, reason: &'static str| Error::BadParameter {
+            name,
+            value: value.to_string(),
+            reason,
+        };
+        for (name, value) in [
+            ("coarse_lambda", self.coarse_lambda),
+            ("fine_lambda", self.fine_lambda),
+        ] {
+            if !(value > 0.0 && value <= 1.0) {
+                return Err(bad(name, value, "must lie in (0, 1]"));
+            }
+        }
+        if !(self.alpha_divisor.is_finite() && self.alpha_divisor > 0.0) {
+            return Err(bad(
+                "alpha_divisor",
+                self.alpha_divisor,
+                "must be finite and positive",
+            ));
+        }
+        if !(self.max_move_factor.is_finite() && self.max_move_factor > 0.0) {
+            return Err(bad(
+                "max_move_factor",
+                self.max_move_factor,
+                "must be finite and positive",
+            ));
+        }
+        Ok(())
+    }
+}
