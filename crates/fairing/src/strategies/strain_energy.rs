@@ -64,6 +64,9 @@ pub struct StrainEnergySettings {
     pub parametrization: Parametrization,
     /// Stop when |ΔE| ≤ tolerance · E (Zhang–Cheng step 2.5). Default 1e-6.
     pub tolerance: f64,
+    /// Explicit knots (one per point), overriding `parametrization`: lets several stages
+    /// keep the same knots. Default none.
+    pub parameters: Option<Vec<f64>>,
 }
 
 impl Default for StrainEnergySettings {
@@ -74,6 +77,7 @@ impl Default for StrainEnergySettings {
             pairs: false,
             parametrization: Parametrization::ChordLength,
             tolerance: 1e-6,
+            parameters: None,
         }
     }
 }
@@ -105,6 +109,11 @@ impl StrainEnergySettings {
     /// Sets the parametrisation.
     pub fn with_parametrization(mut self, parametrization: Parametrization) -> Self {
         self.parametrization = parametrization;
+        self
+    }
+    /// Sets explicit knots (one per point).
+    pub fn with_parameters(mut self, parameters: Vec<f64>) -> Self {
+        self.parameters = Some(parameters);
         self
     }
     /// Sets the relative energy tolerance.
@@ -366,7 +375,10 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
                 reason: "must be a non-negative number",
             });
         }
-        let settings = HermiteSettings::new().with_parametrization(self.settings.parametrization);
+        let settings = match &self.settings.parameters {
+            Some(t) => HermiteSettings::new().with_parameters(t.clone()),
+            None => HermiteSettings::new().with_parametrization(self.settings.parametrization),
+        };
         let spline = HermiteSpline::new(state.points(), &settings)?;
         let n = state.len();
         self.z = vec![0.0; n];
