@@ -262,7 +262,48 @@ fn presets_on_a_noisy_arc_lower_the_energy() {
         let mut pipe = Pipeline::new(StrainEnergy::<2>::new(settings)).with_max_iterations(10_000);
         let result = pipe.run(p.clone()).unwrap();
         let e1 = energy(&result.points, &t);
-        eprintln!("{name}: energy {e0:.6e} -> {e1:.6e}");
+        let clean = energy(&noisy_arc::<2>(&[0.0; 200]), &t);
+        let moved = result.points.iter().zip(&p).map(|(a, b)| (a - b).norm()).fold(0.0, f64::max);
+        eprintln!(
+            "{name}: energy {e0:.6e} -> {e1:.6e} (noise-free arc at these knots {clean:.6e}), {} steps, {:?}, max move {moved:.4}",
+            result.iterations, result.termination
+        );
         assert!(e1 < e0);
+    }
+}
+
+/// Eq. (13) as printed, with the cube weights of papers/README.md
+/// (λ = h_{i−1}³/Σ, μ = h_{i+1}³/Σ, Σ = h_{i−1}³ + h_i³ + h_{i+1}³; the OCR-truncated tail of
+/// P̄_{i+1} read as + μP_{i−1} + (1 − μ)P_{i+2}), equals our 2×2 solve on random knots.
+fn check_printed_eq13<const D: usize>(p: &[Vector<D>], par: Parametrization) {
+    let t = params(p, par);
+    let sp = spline_at(p, &t);
+    let m = sp.tangents();
+    for i in 1..p.len() - 2 {
+        let (h0, h1, h2) = (t[i] - t[i - 1], t[i + 1] - t[i], t[i + 2] - t[i + 1]);
+        let sum = h0.powi(3) + h1.powi(3) + h2.powi(3);
+        let (l, mu) = (h0.powi(3) / sum, h2.powi(3) / sum);
+        let a = (m[i - 1] * ((1.0 - l) * h0) + m[i] * ((1.0 - l) * h0 - l * h1)
+            - m[i + 1] * (l * (h1 + h2))
+            - m[i + 2] * (l * h2))
+            * 0.5
+            + p[i - 1] * (1.0 - l)
+            + p[i + 2] * l;
+        let b = (m[i - 1] * (mu * h0) + m[i] * (mu * (h0 + h1)) + m[i + 1] * (mu * h1 - (1.0 - mu) * h2)
+            - m[i + 2] * ((1.0 - mu) * h2))
+            * 0.5
+            + p[i - 1] * mu
+            + p[i + 2] * (1.0 - mu);
+        let (ea, eb) = eq13(&sp, i);
+        assert!((a - ea).norm() < 1e-9 * (1.0 + a.norm()), "printed Eq. 13 P̄_i at {i}: {a:?} vs {ea:?}");
+        assert!((b - eb).norm() < 1e-9 * (1.0 + b.norm()), "printed Eq. 13 P̄_i+1 at {i}: {b:?} vs {eb:?}");
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(32))]
+    #[test]
+    fn printed_eq13_with_cube_weights(n in noise(20, 2), par in par_strategy()) {
+        check_printed_eq13(&noisy_arc::<2>(&n), par);
     }
 }

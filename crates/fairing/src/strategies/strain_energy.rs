@@ -332,9 +332,11 @@ impl<const D: usize> StrainEnergy<D> {
     }
 
     /// Moves `ks` towards `targets` (restraining region in automatic mode, then the state's
-    /// constraints), updates the spline and returns whether anything moved.
-    fn commit(&mut self, state: &mut FairingState<D>, ks: &[usize], targets: &[Vector<D>]) -> Result<bool> {
+    /// constraints), updates the spline and returns (whether anything moved, whether a region
+    /// or constraint cut the move short).
+    fn commit(&mut self, state: &mut FairingState<D>, ks: &[usize], targets: &[Vector<D>]) -> Result<(bool, bool)> {
         let mut moves = Vec::new();
+        let mut limited = false;
         for (&k, t) in ks.iter().zip(targets) {
             if !t.iter().all(|x| x.is_finite()) {
                 return Err(Error::NonFiniteMove { index: k });
@@ -347,15 +349,16 @@ impl<const D: usize> StrainEnergy<D> {
             }
             let before = state.points()[k];
             let to = state.move_point(k, proposed)?;
+            limited |= to != *t;
             if to != before {
                 moves.push((k, to));
             }
         }
         if moves.is_empty() {
-            return Ok(false);
+            return Ok((false, limited));
         }
         self.apply(&moves)?;
-        Ok(true)
+        Ok((true, limited))
     }
 }
 
@@ -453,8 +456,12 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
             }
         };
         let targets = self.target(&ks)?;
-        let moved = self.commit(state, &ks, &targets)?;
-        if !moved && self.settings.mode == Mode::Automatic {
+        let (moved, limited) = self.commit(state, &ks, &targets)?;
+        // Choice where §3.3 is silent: a point whose move its restraining region (or a
+        // constraint) cut short has reached the edge of what it may do; it is retired from
+        // the automatic search, and its step does not count for the stopping test (else the
+        // first saturated worst point, moving by a sliver, would end the whole run).
+        if self.settings.mode == Mode::Automatic && (limited || !moved) {
             for &k in &ks {
                 if let Some(b) = self.blocked.get_mut(k) {
                     *b = true;
