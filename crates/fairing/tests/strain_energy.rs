@@ -60,7 +60,10 @@ fn fd_grad<const D: usize>(f: impl Fn(Vector<D>) -> f64, x: Vector<D>, eps: f64)
     g
 }
 
-fn run_one<const D: usize>(p: &[Vector<D>], settings: StrainEnergySettings) -> (Vec<Vector<D>>, StrainEnergy<D>) {
+fn run_one<const D: usize>(
+    p: &[Vector<D>],
+    settings: StrainEnergySettings,
+) -> (Vec<Vector<D>>, StrainEnergy<D>) {
     let mut state = FairingState::new(p.to_vec(), Constraints::default(), false).unwrap();
     let mut s = StrainEnergy::new(settings);
     s.init(&mut state).unwrap();
@@ -80,7 +83,10 @@ fn check_eq8<const D: usize>(p: &[Vector<D>], par: Parametrization) {
         let best = eq8(&sp, k);
         let g0 = fd_grad(e, p[k], 1e-3);
         let g = fd_grad(e, best, 1e-3);
-        assert!(g.norm() <= 1e-6 * (1.0 + g0.norm()), "Eq. 8 at {k}: grad {g:?} vs {g0:?}");
+        assert!(
+            g.norm() <= 1e-6 * (1.0 + g0.norm()),
+            "Eq. 8 at {k}: grad {g:?} vs {g0:?}"
+        );
     }
 }
 
@@ -98,7 +104,10 @@ fn check_eq13<const D: usize>(p: &[Vector<D>], par: Parametrization) {
         let ga = fd_grad(|x| e(x, b), a, 1e-3);
         let gb = fd_grad(|y| e(a, y), b, 1e-3);
         let g0 = fd_grad(|x| e(x, p[k + 1]), p[k], 1e-3);
-        assert!(ga.norm() + gb.norm() <= 1e-6 * (1.0 + g0.norm()), "Eq. 13 at {k}: {ga:?} {gb:?}");
+        assert!(
+            ga.norm() + gb.norm() <= 1e-6 * (1.0 + g0.norm()),
+            "Eq. 13 at {k}: {ga:?} {gb:?}"
+        );
     }
 }
 
@@ -107,21 +116,41 @@ fn check_limits<const D: usize>(p: &[Vector<D>], par: Parametrization) {
     let n = p.len();
     let k = n / 2;
     // Eq. 11: the spline through the other points, at t_k.
-    let (q, s) = run_one(p, StrainEnergySettings::default().with_parametrization(par).with_mode(Mode::Interactive(vec![k])));
+    let (q, s) = run_one(
+        p,
+        StrainEnergySettings::default()
+            .with_parametrization(par)
+            .with_mode(Mode::Interactive(vec![k])),
+    );
     let (po, to): (Vec<_>, Vec<_>) = (0..n).filter(|&i| i != k).map(|i| (p[i], t[i])).unzip();
     let want = spline_at(&po, &to).jet(t[k], Side::Left)[0];
-    assert!((q[k] - want).norm() < 1e-8 * (1.0 + want.norm()), "Eq. 11: {:?} vs {want:?}", q[k]);
+    assert!(
+        (q[k] - want).norm() < 1e-8 * (1.0 + want.norm()),
+        "Eq. 11: {:?} vs {want:?}",
+        q[k]
+    );
     // and then z_k = 0 (§3.3).
     assert!(s.indicator()[k] < 1e-7 * (1.0 + s.indicator().iter().cloned().fold(0.0, f64::max)));
     // Theorem 1 for the one-point replacement.
     assert!(energy(&q, &t) <= energy(p, &t) * (1.0 + 1e-12));
     // Theorem 3 / Eq. 15: two points.
-    let (q2, _) = run_one(p, StrainEnergySettings::default().with_parametrization(par).with_mode(Mode::Interactive(vec![k, k + 1])));
-    let (po, to): (Vec<_>, Vec<_>) = (0..n).filter(|&i| i != k && i != k + 1).map(|i| (p[i], t[i])).unzip();
+    let (q2, _) = run_one(
+        p,
+        StrainEnergySettings::default()
+            .with_parametrization(par)
+            .with_mode(Mode::Interactive(vec![k, k + 1])),
+    );
+    let (po, to): (Vec<_>, Vec<_>) = (0..n)
+        .filter(|&i| i != k && i != k + 1)
+        .map(|i| (p[i], t[i]))
+        .unzip();
     let sp = spline_at(&po, &to);
     for j in [k, k + 1] {
         let want = sp.jet(t[j], Side::Left)[0];
-        assert!((q2[j] - want).norm() < 1e-8 * (1.0 + want.norm()), "Eq. 15 at {j}");
+        assert!(
+            (q2[j] - want).norm() < 1e-8 * (1.0 + want.norm()),
+            "Eq. 15 at {j}"
+        );
     }
     assert!(energy(&q2, &t) <= energy(p, &t) * (1.0 + 1e-12));
     // Theorem 2: iterating Eq. 8 converges to Eq. 11's point.
@@ -144,7 +173,10 @@ fn check_limits<const D: usize>(p: &[Vector<D>], par: Parametrization) {
             break;
         }
     }
-    assert!((state.points()[k] - q[k]).norm() < 1e-6 * (1.0 + q[k].norm()), "Theorem 2");
+    assert!(
+        (state.points()[k] - q[k]).norm() < 1e-6 * (1.0 + q[k].norm()),
+        "Theorem 2"
+    );
 }
 
 fn check_automatic<const D: usize>(p: &[Vector<D>], par: Parametrization, fixed: usize) {
@@ -169,7 +201,11 @@ fn check_automatic<const D: usize>(p: &[Vector<D>], par: Parametrization, fixed:
         let out = s.step(&mut state).unwrap();
         let e = energy(state.points(), &t);
         assert!(e <= last * (1.0 + 1e-12) + 1e-14, "energy rose {last} -> {e}");
-        assert!((s.energy() - e).abs() <= 1e-8 * (1.0 + e), "local energy {} vs {e}", s.energy());
+        assert!(
+            (s.energy() - e).abs() <= 1e-8 * (1.0 + e),
+            "local energy {} vs {e}",
+            s.energy()
+        );
         last = e;
         if out.done {
             break;
@@ -180,7 +216,10 @@ fn check_automatic<const D: usize>(p: &[Vector<D>], par: Parametrization, fixed:
     assert_eq!(q[0].as_slice(), p[0].as_slice());
     assert_eq!(q[n - 1].as_slice(), p[n - 1].as_slice());
     for k in 0..n {
-        assert!((q[k] - p[k]).norm() <= radii[k] * (1.0 + 1e-9) + 1e-12, "point {k} left its region");
+        assert!(
+            (q[k] - p[k]).norm() <= radii[k] * (1.0 + 1e-9) + 1e-12,
+            "point {k} left its region"
+        );
     }
     // the indicator kept locally equals a fresh one
     let fresh = spline_at(q, &t).third_derivative_jumps();
@@ -226,7 +265,10 @@ fn two_adjacent_bad_points_pair_beats_singles() {
     }
     let par = Parametrization::ChordLength;
     let t = params(&p, par);
-    let (pair, _) = run_one(&p, StrainEnergySettings::default().with_mode(Mode::Interactive(vec![k, k + 1])));
+    let (pair, _) = run_one(
+        &p,
+        StrainEnergySettings::default().with_mode(Mode::Interactive(vec![k, k + 1])),
+    );
     let e_pair = energy(&pair, &t);
     let mut q = p.clone();
     let mut steps = 0;
@@ -240,7 +282,10 @@ fn two_adjacent_bad_points_pair_beats_singles() {
         e_single = energy(&q, &t);
         steps += 1;
         if steps == 1 {
-            assert!(e_single > e_pair * (1.0 + 1e-6), "one single step already as good: {e_single} vs {e_pair}");
+            assert!(
+                e_single > e_pair * (1.0 + 1e-6),
+                "one single step already as good: {e_single} vs {e_pair}"
+            );
         }
     }
     assert!(steps > 1, "singles took {steps} steps");
@@ -251,7 +296,9 @@ fn two_adjacent_bad_points_pair_beats_singles() {
 /// The presets, and the pipeline end to end on a noisy arc (numbers for the report).
 #[test]
 fn presets_on_a_noisy_arc_lower_the_energy() {
-    let noise: Vec<f64> = (0..200).map(|i| 0.2 * ((i as f64) * 12.9898).sin().fract()).collect();
+    let noise: Vec<f64> = (0..200)
+        .map(|i| 0.2 * ((i as f64) * 12.9898).sin().fract())
+        .collect();
     let p = noisy_arc::<2>(&noise);
     for (name, settings) in [
         ("kjellander", StrainEnergySettings::kjellander()),
@@ -263,7 +310,12 @@ fn presets_on_a_noisy_arc_lower_the_energy() {
         let result = pipe.run(p.clone()).unwrap();
         let e1 = energy(&result.points, &t);
         let clean = energy(&noisy_arc::<2>(&[0.0; 200]), &t);
-        let moved = result.points.iter().zip(&p).map(|(a, b)| (a - b).norm()).fold(0.0, f64::max);
+        let moved = result
+            .points
+            .iter()
+            .zip(&p)
+            .map(|(a, b)| (a - b).norm())
+            .fold(0.0, f64::max);
         eprintln!(
             "{name}: energy {e0:.6e} -> {e1:.6e} (noise-free arc at these knots {clean:.6e}), {} steps, {:?}, max move {moved:.4}",
             result.iterations, result.termination
@@ -295,8 +347,14 @@ fn check_printed_eq13<const D: usize>(p: &[Vector<D>], par: Parametrization) {
             + p[i - 1] * mu
             + p[i + 2] * (1.0 - mu);
         let (ea, eb) = eq13(&sp, i);
-        assert!((a - ea).norm() < 1e-9 * (1.0 + a.norm()), "printed Eq. 13 P̄_i at {i}: {a:?} vs {ea:?}");
-        assert!((b - eb).norm() < 1e-9 * (1.0 + b.norm()), "printed Eq. 13 P̄_i+1 at {i}: {b:?} vs {eb:?}");
+        assert!(
+            (a - ea).norm() < 1e-9 * (1.0 + a.norm()),
+            "printed Eq. 13 P̄_i at {i}: {a:?} vs {ea:?}"
+        );
+        assert!(
+            (b - eb).norm() < 1e-9 * (1.0 + b.norm()),
+            "printed Eq. 13 P̄_i+1 at {i}: {b:?} vs {eb:?}"
+        );
     }
 }
 

@@ -87,7 +87,8 @@ impl StrainEnergySettings {
     pub fn kjellander() -> Self {
         Self::default().with_parametrization(Parametrization::Uniform)
     }
-    /// Poliakoff's method: chord-length parameters, one point at a time.
+    /// Poliakoff's method: chord-length parameters, one point at a time (the same as
+    /// [`Default`]).
     pub fn poliakoff() -> Self {
         Self::default().with_parametrization(Parametrization::ChordLength)
     }
@@ -237,13 +238,27 @@ impl<const D: usize> StrainEnergy<D> {
             .as_mut()
             .ok_or_else(|| strategy_error("strain-energy", "step before init"))?;
         spline.move_points(moves)?;
-        let lo = moves.iter().map(|m| m.0).min().unwrap_or(0).saturating_sub(WINDOW);
+        let lo = moves
+            .iter()
+            .map(|m| m.0)
+            .min()
+            .unwrap_or(0)
+            .saturating_sub(WINDOW);
         let hi = moves.iter().map(|m| m.0).max().unwrap_or(0) + WINDOW;
         self.refresh(lo, hi)
     }
 
-    /// The worst unblocked candidate, dropping stale entries.
+    /// The worst unblocked candidate, dropping stale entries. The lazy heap is rebuilt from z
+    /// when stale entries outnumber live ones eightfold (amortised O(1) per pushed entry).
     fn pop_worst(&mut self) -> Option<usize> {
+        if self.heap.len() > 8 * self.z.len() + 1024 {
+            self.heap = self
+                .z
+                .iter()
+                .enumerate()
+                .map(|(k, &z)| Entry(z, k, self.stamp.get(k).copied().unwrap_or(0)))
+                .collect();
+        }
         while let Some(Entry(z, k, st)) = self.heap.pop() {
             if self.stamp.get(k) == Some(&st) && !self.blocked.get(k).copied().unwrap_or(true) {
                 if !z.is_finite() || z <= 0.0 {
@@ -324,17 +339,18 @@ impl<const D: usize> StrainEnergy<D> {
         spline.move_points(&[(m, q)])?;
         let after: Vec<f64> = rows.iter().map(|&r| jump(spline, r)[0]).collect();
         spline.move_points(&[(m, p)])?;
-        Ok(before
-            .iter()
-            .zip(&after)
-            .map(|(b, a)| (a - b) / delta)
-            .collect())
+        Ok(before.iter().zip(&after).map(|(b, a)| (a - b) / delta).collect())
     }
 
     /// Moves `ks` towards `targets` (restraining region in automatic mode, then the state's
     /// constraints), updates the spline and returns (whether anything moved, whether a region
     /// or constraint cut the move short).
-    fn commit(&mut self, state: &mut FairingState<D>, ks: &[usize], targets: &[Vector<D>]) -> Result<(bool, bool)> {
+    fn commit(
+        &mut self,
+        state: &mut FairingState<D>,
+        ks: &[usize],
+        targets: &[Vector<D>],
+    ) -> Result<(bool, bool)> {
         let mut moves = Vec::new();
         let mut limited = false;
         for (&k, t) in ks.iter().zip(targets) {
@@ -371,7 +387,7 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
         if state.is_closed() {
             return Err(strategy_error(&self.name, "closed curves are not supported"));
         }
-        if !(self.settings.tolerance >= 0.0) {
+        if self.settings.tolerance.is_nan() || self.settings.tolerance < 0.0 {
             return Err(Error::BadParameter {
                 name: "tolerance",
                 value: self.settings.tolerance.to_string(),
@@ -387,7 +403,9 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
         self.z = vec![0.0; n];
         self.stamp = vec![0; n];
         self.heap = BinaryHeap::new();
-        self.blocked = (0..n).map(|k| k == 0 || k + 1 >= n || !state.is_movable(k)).collect();
+        self.blocked = (0..n)
+            .map(|k| k == 0 || k + 1 >= n || !state.is_movable(k))
+            .collect();
         self.segment_energy = spline.segment_energies();
         self.energy = self.segment_energy.iter().sum();
         self.spline = Some(spline);
@@ -426,8 +444,16 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
                 };
                 let mut ks = vec![k];
                 if self.settings.pairs {
-                    let zl = if self.blocked.get(k - 1) == Some(&false) { self.z[k - 1] } else { -1.0 };
-                    let zr = if self.blocked.get(k + 1) == Some(&false) { self.z[k + 1] } else { -1.0 };
+                    let zl = if self.blocked.get(k - 1) == Some(&false) {
+                        self.z[k - 1]
+                    } else {
+                        -1.0
+                    };
+                    let zr = if self.blocked.get(k + 1) == Some(&false) {
+                        self.z[k + 1]
+                    } else {
+                        -1.0
+                    };
                     // step 1.3: pair with the neighbour when it is the second worst
                     let second = self.second_worst(k);
                     if second == Some(k + 1) && zr > 0.0 {
@@ -530,7 +556,13 @@ pub fn segment_energy<const D: usize>(spline: &HermiteSpline<D>, s: usize) -> f6
 }
 
 /// ∫_0^h |C''|² of the cubic Hermite segment (P0, M0) → (P1, M1) of length h (Eq. 7's terms).
-pub fn hermite_energy<const D: usize>(p0: Vector<D>, p1: Vector<D>, m0: Vector<D>, m1: Vector<D>, h: f64) -> f64 {
+pub fn hermite_energy<const D: usize>(
+    p0: Vector<D>,
+    p1: Vector<D>,
+    m0: Vector<D>,
+    m1: Vector<D>,
+    h: f64,
+) -> f64 {
     let d = (p1 - p0) / h;
     let a = (d * 6.0 - m0 * 4.0 - m1 * 2.0) / h;
     let b = (m0 * 2.0 + m1 * 4.0 - d * 6.0) / h;
@@ -569,7 +601,14 @@ pub fn eq13<const D: usize>(spline: &HermiteSpline<D>, k: usize) -> (Vector<D>, 
 }
 
 /// Solves [[a, b], [c, d]] (x, y) = (u, v) for vector right-hand sides.
-fn solve2<const D: usize>(a: f64, b: f64, c: f64, d: f64, u: Vector<D>, v: Vector<D>) -> Option<(Vector<D>, Vector<D>)> {
+fn solve2<const D: usize>(
+    a: f64,
+    b: f64,
+    c: f64,
+    d: f64,
+    u: Vector<D>,
+    v: Vector<D>,
+) -> Option<(Vector<D>, Vector<D>)> {
     let det = a * d - b * c;
     if !(det.is_finite() && det.abs() > f64::MIN_POSITIVE) {
         return None;
