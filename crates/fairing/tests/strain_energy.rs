@@ -365,3 +365,79 @@ proptest! {
         check_printed_eq13(&noisy_arc::<2>(&n), par);
     }
 }
+
+/// Automatic mode with pairs (beyond the paper's one-point automatic algorithm): the energy
+/// still never rises, and no point leaves its region.
+fn check_automatic_pairs<const D: usize>(p: &[Vector<D>]) {
+    let t = params(p, Parametrization::ChordLength);
+    let mut state = FairingState::new(p.to_vec(), Constraints::default(), false).unwrap();
+    let mut s = StrainEnergy::new(StrainEnergySettings::default().with_pairs(true));
+    s.init(&mut state).unwrap();
+    let mut last = energy(p, &t);
+    for _ in 0..200 {
+        let out = s.step(&mut state).unwrap();
+        let e = energy(state.points(), &t);
+        assert!(e <= last * (1.0 + 1e-12) + 1e-14, "energy rose {last} -> {e}");
+        last = e;
+        if out.done {
+            break;
+        }
+    }
+    let n = p.len();
+    for k in 1..n - 1 {
+        let (po, to): (Vec<_>, Vec<_>) = (0..n).filter(|&i| i != k).map(|i| (p[i], t[i])).unzip();
+        let r = (spline_at(&po, &to).jet(t[k], Side::Left)[0] - p[k]).norm();
+        assert!((state.points()[k] - p[k]).norm() <= r * (1.0 + 1e-9) + 1e-12);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(16))]
+    #[test]
+    fn automatic_pairs_2d(n in noise(40, 2)) {
+        check_automatic_pairs(&noisy_arc::<2>(&n));
+    }
+}
+
+/// Interactive step 1.3: two listed bad points that are not adjacent are replaced one at a
+/// time, the worse first (each by Eq. 11), so the first step moves exactly one point.
+#[test]
+fn interactive_non_adjacent_points_go_one_at_a_time() {
+    let mut p = noisy_arc::<2>(&[0.0; 2 * 16]);
+    p[4] *= 1.03;
+    p[10] *= 1.06; // the worse one
+    let mut state = FairingState::new(p.clone(), Constraints::default(), false).unwrap();
+    let mut s = StrainEnergy::new(StrainEnergySettings::default().with_mode(Mode::Interactive(vec![4, 10])));
+    s.init(&mut state).unwrap();
+    let first = s.step(&mut state).unwrap();
+    assert!(!first.done);
+    let moved: Vec<usize> = state.take_moves().iter().map(|m| m.index).collect();
+    assert_eq!(moved, vec![10]);
+    let second = s.step(&mut state).unwrap();
+    assert!(second.done);
+    let moved: Vec<usize> = state.take_moves().iter().map(|m| m.index).collect();
+    assert_eq!(moved, vec![4]);
+}
+
+/// Bad settings and inputs are errors, not panics.
+#[test]
+fn bad_inputs_are_errors() {
+    let p = noisy_arc::<2>(&[0.0; 2 * 8]);
+    for mode in [
+        Mode::Interactive(vec![0]),
+        Mode::Interactive(vec![7]),
+        Mode::Interactive(vec![99]),
+    ] {
+        let mut state = FairingState::new(p.clone(), Constraints::default(), false).unwrap();
+        let mut s = StrainEnergy::new(StrainEnergySettings::default().with_mode(mode));
+        assert!(s.init(&mut state).is_err());
+    }
+    let mut state = FairingState::new(p.clone(), Constraints::default(), false).unwrap();
+    let mut s = StrainEnergy::new(StrainEnergySettings::default().with_tolerance(f64::NAN));
+    assert!(s.init(&mut state).is_err());
+    let mut s = StrainEnergy::<2>::new(StrainEnergySettings::default());
+    assert!(s.step(&mut state).is_err(), "step before init");
+    let mut closed = FairingState::new(p, Constraints::default(), true).unwrap();
+    let mut s = StrainEnergy::new(StrainEnergySettings::default());
+    assert!(s.init(&mut closed).is_err());
+}

@@ -436,6 +436,9 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
     }
 
     fn step(&mut self, state: &mut FairingState<D>) -> Result<StepOutcome> {
+        if self.spline.as_ref().map(|s| s.points().len()) != Some(state.len()) {
+            return Err(strategy_error(&self.name, "step before init"));
+        }
         let before = self.energy;
         let ks: Vec<usize> = match self.settings.mode.clone() {
             Mode::Automatic => {
