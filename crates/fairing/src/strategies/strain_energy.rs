@@ -485,7 +485,18 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
             }
         };
         let targets = self.target(&ks)?;
-        let (moved, limited) = self.commit(state, &ks, &targets)?;
+        let old: Vec<Vector<D>> = ks.iter().map(|&k| state.points()[k]).collect();
+        let (mut moved, limited) = self.commit(state, &ks, &targets)?;
+        // Guard for Theorem 1: a single point's energy is isotropic in P_k, so cutting its move
+        // by a convex region never raises E; a pair's is not, so a cut pair move can. Undo it.
+        if moved && self.energy > before {
+            let mut back = Vec::new();
+            for (&k, &p) in ks.iter().zip(&old) {
+                back.push((k, state.move_point(k, p)?));
+            }
+            self.apply(&back)?;
+            moved = false;
+        }
         // Choice where §3.3 is silent: a point whose move its restraining region (or a
         // constraint) cut short has reached the edge of what it may do; it is retired from
         // the automatic search, and its step does not count for the stopping test (else the
