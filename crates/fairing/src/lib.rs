@@ -17,6 +17,7 @@ pub mod observer;
 pub mod partition;
 pub mod pipeline;
 pub mod state;
+pub mod strategies;
 pub mod strategy;
 pub mod trace;
 pub mod two_phase;

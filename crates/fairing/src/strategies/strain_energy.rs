@@ -1,0 +1,631 @@
+//! Zhang–Cheng strain-energy point replacement (Zhang, Zhang & Cheng, *Fairing spline curves
+//! and surfaces by minimizing energy*, CAD 33 (2001) §2–3) on a natural parametric cubic
+//! [`HermiteSpline`], with Kjellander (uniform knots) and Poliakoff (chord length) as presets.
+//!
+//! Notation: J_k = C'''(t_k+) − C'''(t_k−), the third-derivative jump at knot k; the
+//! indicator is z_k = |J_k| (Eq. 17). With the tangents M held fixed, J_k is affine in the
+//! points: ∂J_k/∂P_k = 12(1/h_{k−1}³ + 1/h_k³), ∂J_k/∂P_{k±1} = −12/h³ of the shared
+//! segment. With the tangents re-solved (the C2 spline through the points, knots fixed),
+//! J = K P with K symmetric, and Zhang–Cheng's energy is E = const · Σ P_k·J_k.
+//!
+//! Knots are fixed during fairing: the spline is built once with the chosen
+//! [`Parametrization`] and updated by [`Interpolant::move_points`] (O(window)). The
+//! indicator, the energy and the max-heap are updated only inside [`WINDOW`] knots around a
+//! move, so a step costs O(window · log) independent of n.
+
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+use curve_repr::{HermiteSettings, HermiteSpline, Interpolant, Parametrization, Vector};
+
+use crate::state::strategy_error;
+use crate::{project_into_ball, Error, FairingState, FairingStrategy, Result, StepOutcome};
+
+/// Knots on each side of a move within which tangents (and so jumps and segment energies) can
+/// change: the Hermite update window is at most ~57 knots per side for any spacing
+/// (see curve-repr's `hermite::update`), so 64 covers it.
+pub const WINDOW: usize = 64;
+
+/// How bad points are chosen.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub enum Mode {
+    /// Zhang–Cheng §3.3 algorithm 2: the worst z_i first, each point kept inside its
+    /// restraining circle/sphere of radius |P̄_i − P_i| (Eq. 11 point on the ORIGINAL curve).
+    #[default]
+    Automatic,
+    /// Zhang–Cheng §3.3 algorithm 1: the user's bad points, worst z first; the two worst are
+    /// replaced together (Eq. 13/15) when adjacent (step 1.3). Each listed point is used once
+    /// with [`Replacement::Limit`]; with [`Replacement::Iterated`] the list is kept and the
+    /// stage ends on the energy tolerance.
+    Interactive(Vec<usize>),
+}
+
+/// Which replacement formula a step applies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Replacement {
+    /// The one-step limits: Eq. (11) for one point, Eq. (15) for two.
+    #[default]
+    Limit,
+    /// One application of Eq. (8) for one point, Eq. (13) (cube weights) for two.
+    Iterated,
+}
+
+/// Settings of [`StrainEnergy`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct StrainEnergySettings {
+    /// How bad points are chosen. Default automatic.
+    pub mode: Mode,
+    /// Limit (Eq. 11/15) or one iteration (Eq. 8/13). Default limit.
+    pub replacement: Replacement,
+    /// Whether the automatic mode may replace two adjacent worst points together (beyond
+    /// the paper's automatic algorithm, which moves one). Default false.
+    pub pairs: bool,
+    /// Knot parametrisation, fixed during fairing. Default chord length.
+    pub parametrization: Parametrization,
+    /// Stop when |ΔE| ≤ tolerance · E (Zhang–Cheng step 2.5). Default 1e-6.
+    pub tolerance: f64,
+    /// Explicit knots (one per point), overriding `parametrization`: lets several stages
+    /// keep the same knots. Default none.
+    pub parameters: Option<Vec<f64>>,
+}
+
+impl Default for StrainEnergySettings {
+    fn default() -> Self {
+        Self {
+            mode: Mode::Automatic,
+            replacement: Replacement::Limit,
+            pairs: false,
+            parametrization: Parametrization::ChordLength,
+            tolerance: 1e-6,
+            parameters: None,
+        }
+    }
+}
+
+impl StrainEnergySettings {
+    /// Kjellander's method: uniform parameters, one point at a time (Eq. 8 ≡ Eq. 11 form).
+    pub fn kjellander() -> Self {
+        Self::default().with_parametrization(Parametrization::Uniform)
+    }
+    /// Poliakoff's method: chord-length parameters, one point at a time (the same as
+    /// [`Default`]).
+    pub fn poliakoff() -> Self {
+        Self::default().with_parametrization(Parametrization::ChordLength)
+    }
+    /// Sets the mode.
+    pub fn with_mode(mut self, mode: Mode) -> Self {
+        self.mode = mode;
+        self
+    }
+    /// Sets the replacement formula.
+    pub fn with_replacement(mut self, replacement: Replacement) -> Self {
+        self.replacement = replacement;
+        self
+    }
+    /// Allows pairs in automatic mode.
+    pub fn with_pairs(mut self, pairs: bool) -> Self {
+        self.pairs = pairs;
+        self
+    }
+    /// Sets the parametrisation.
+    pub fn with_parametrization(mut self, parametrization: Parametrization) -> Self {
+        self.parametrization = parametrization;
+        self
+    }
+    /// Sets explicit knots (one per point).
+    pub fn with_parameters(mut self, parameters: Vec<f64>) -> Self {
+        self.parameters = Some(parameters);
+        self
+    }
+    /// Sets the relative energy tolerance.
+    pub fn with_tolerance(mut self, tolerance: f64) -> Self {
+        self.tolerance = tolerance;
+        self
+    }
+}
+
+/// Heap entry: (z, index, stamp); stale entries are skipped lazily.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Entry(f64, usize, u64);
+impl Eq for Entry {}
+impl PartialOrd for Entry {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for Entry {
+    fn cmp(&self, other: &Self) -> Ordering {
+        self.0.total_cmp(&other.0).then(other.1.cmp(&self.1))
+    }
+}
+
+/// Zhang–Cheng strain-energy fairing as a [`FairingStrategy`]. Open curves only.
+#[derive(Clone, Debug)]
+pub struct StrainEnergy<const D: usize> {
+    settings: StrainEnergySettings,
+    name: String,
+    spline: Option<HermiteSpline<D>>,
+    /// z_k for every point (0 at the ends).
+    z: Vec<f64>,
+    stamp: Vec<u64>,
+    heap: BinaryHeap<Entry>,
+    /// Points that can no longer move (stuck on their region); skipped by the automatic mode.
+    blocked: Vec<bool>,
+    /// Restraining radii of the automatic mode.
+    radii: Vec<f64>,
+    segment_energy: Vec<f64>,
+    energy: f64,
+    pending: Vec<usize>,
+}
+
+impl<const D: usize> StrainEnergy<D> {
+    /// A strategy with these settings.
+    pub fn new(settings: StrainEnergySettings) -> Self {
+        let name = match settings.parametrization {
+            Parametrization::Uniform if settings.mode == Mode::Automatic => "kjellander",
+            _ => "strain-energy",
+        };
+        Self {
+            settings,
+            name: name.to_owned(),
+            spline: None,
+            z: Vec::new(),
+            stamp: Vec::new(),
+            heap: BinaryHeap::new(),
+            blocked: Vec::new(),
+            radii: Vec::new(),
+            segment_energy: Vec::new(),
+            energy: 0.0,
+            pending: Vec::new(),
+        }
+    }
+
+    /// The spline through the current points (after [`FairingStrategy::init`]).
+    pub fn spline(&self) -> Option<&HermiteSpline<D>> {
+        self.spline.as_ref()
+    }
+
+    /// The strain energy ∫|C''|² dt kept up to date by local updates.
+    pub fn energy(&self) -> f64 {
+        self.energy
+    }
+
+    /// The indicator z_k = |J_k| (Eq. 17) at every point, kept up to date locally.
+    pub fn indicator(&self) -> &[f64] {
+        &self.z
+    }
+
+    fn spline_ref(&self) -> Result<&HermiteSpline<D>> {
+        self.spline
+            .as_ref()
+            .ok_or_else(|| strategy_error(&self.name, "step before init"))
+    }
+
+    /// Recomputes z and segment energies for knots lo..=hi and updates the heap and energy.
+    fn refresh(&mut self, lo: usize, hi: usize) -> Result<()> {
+        let spline = self.spline_ref()?;
+        let n = spline.points().len();
+        let segs = n.saturating_sub(1);
+        let mut new_e = Vec::new();
+        let seg_hi = hi.min(segs.saturating_sub(1));
+        for s in lo..=seg_hi {
+            new_e.push((s, segment_energy(spline, s)));
+        }
+        let mut new_z = Vec::new();
+        for k in lo.max(1)..=hi.min(n.saturating_sub(2)) {
+            new_z.push((k, jump(spline, k).norm()));
+        }
+        for (s, e) in new_e {
+            if let Some(slot) = self.segment_energy.get_mut(s) {
+                self.energy += e - *slot;
+                *slot = e;
+            }
+        }
+        for (k, z) in new_z {
+            if let (Some(zs), Some(st)) = (self.z.get_mut(k), self.stamp.get_mut(k)) {
+                *zs = z;
+                *st += 1;
+                self.heap.push(Entry(z, k, *st));
+            }
+        }
+        Ok(())
+    }
+
+    /// Moves point `index` of the internal spline (knots fixed) and refreshes the window.
+    fn apply(&mut self, moves: &[(usize, Vector<D>)]) -> Result<()> {
+        let spline = self
+            .spline
+            .as_mut()
+            .ok_or_else(|| strategy_error("strain-energy", "step before init"))?;
+        spline.move_points(moves)?;
+        let lo = moves
+            .iter()
+            .map(|m| m.0)
+            .min()
+            .unwrap_or(0)
+            .saturating_sub(WINDOW);
+        let hi = moves.iter().map(|m| m.0).max().unwrap_or(0) + WINDOW;
+        self.refresh(lo, hi)
+    }
+
+    /// The worst unblocked candidate, dropping stale entries. The lazy heap is rebuilt from z
+    /// when stale entries outnumber live ones eightfold (amortised O(1) per pushed entry).
+    fn pop_worst(&mut self) -> Option<usize> {
+        if self.heap.len() > 8 * self.z.len() + 1024 {
+            self.heap = self
+                .z
+                .iter()
+                .enumerate()
+                .map(|(k, &z)| Entry(z, k, self.stamp.get(k).copied().unwrap_or(0)))
+                .collect();
+        }
+        while let Some(Entry(z, k, st)) = self.heap.pop() {
+            if self.stamp.get(k) == Some(&st) && !self.blocked.get(k).copied().unwrap_or(true) {
+                if !z.is_finite() || z <= 0.0 {
+                    return None;
+                }
+                // keep it in the heap: it is current
+                self.heap.push(Entry(z, k, st));
+                return Some(k);
+            }
+        }
+        None
+    }
+
+    /// Proposed replacement of the points `ks` (one, or two adjacent) per the settings.
+    fn target(&mut self, ks: &[usize]) -> Result<Vec<Vector<D>>> {
+        let spline = self.spline_ref()?;
+        match (self.settings.replacement, ks) {
+            (Replacement::Iterated, [k]) => Ok(vec![eq8(spline, *k)]),
+            (Replacement::Iterated, [k, _]) => {
+                let (a, b) = eq13(spline, *k);
+                Ok(vec![a, b])
+            }
+            (Replacement::Limit, [k]) => {
+                let p = self.limit_one(*k)?;
+                Ok(vec![p])
+            }
+            (Replacement::Limit, [k, _]) => {
+                let (a, b) = self.limit_two(*k)?;
+                Ok(vec![a, b])
+            }
+            _ => Err(strategy_error(&self.name, "bad point set")),
+        }
+    }
+
+    /// Eq. (11): P̄_k = P_k − J_k/K_kk, the point on the spline through the other points.
+    /// J_k is affine in P_k with the same scalar slope K_kk in every coordinate, so K_kk is
+    /// measured exactly (up to rounding) by one probe move of the internal spline along the
+    /// first axis, undone afterwards. O(window).
+    fn limit_one(&mut self, k: usize) -> Result<Vector<D>> {
+        let (p, j0) = {
+            let s = self.spline_ref()?;
+            (s.points()[k], jump(s, k))
+        };
+        let kk = self.probe(k, &[k])?[0];
+        if !(kk.is_finite() && kk.abs() > 0.0) {
+            return Err(strategy_error(&self.name, "singular Eq. 11 (K_kk = 0)"));
+        }
+        Ok(p - j0 / kk)
+    }
+
+    /// Eq. (15): the pair (P̄_k, P̄_{k+1}) making J_k = J_{k+1} = 0 with the tangents re-solved,
+    /// i.e. the spline through the remaining points at t_k, t_{k+1} (Theorem 3). Solves the
+    /// 2×2 block of K measured by two probe moves. O(window).
+    fn limit_two(&mut self, k: usize) -> Result<(Vector<D>, Vector<D>)> {
+        let (p0, p1, j0, j1) = {
+            let s = self.spline_ref()?;
+            (s.points()[k], s.points()[k + 1], jump(s, k), jump(s, k + 1))
+        };
+        let c0 = self.probe(k, &[k, k + 1])?;
+        let c1 = self.probe(k + 1, &[k, k + 1])?;
+        solve2(c0[0], c1[0], c0[1], c1[1], j0, j1)
+            .map(|(d0, d1)| (p0 - d0, p1 - d1))
+            .ok_or_else(|| strategy_error(&self.name, "singular Eq. 15 block"))
+    }
+
+    /// ∂J_r/∂P_m (r in `rows`) with the tangents re-solved: move P_m by δ along axis 0,
+    /// read the change of the jumps, move back. Exact up to rounding (J is linear in P).
+    fn probe(&mut self, m: usize, rows: &[usize]) -> Result<Vec<f64>> {
+        let spline = self
+            .spline
+            .as_mut()
+            .ok_or_else(|| strategy_error("strain-energy", "step before init"))?;
+        let p = spline.points()[m];
+        let before: Vec<f64> = rows.iter().map(|&r| jump(spline, r)[0]).collect();
+        let delta = 1.0 + p.amax();
+        let mut q = p;
+        q[0] += delta;
+        spline.move_points(&[(m, q)])?;
+        let after: Vec<f64> = rows.iter().map(|&r| jump(spline, r)[0]).collect();
+        spline.move_points(&[(m, p)])?;
+        Ok(before.iter().zip(&after).map(|(b, a)| (a - b) / delta).collect())
+    }
+
+    /// Moves `ks` towards `targets` (restraining region in automatic mode, then the state's
+    /// constraints), updates the spline and returns (whether anything moved, whether a region
+    /// or constraint cut the move short).
+    fn commit(
+        &mut self,
+        state: &mut FairingState<D>,
+        ks: &[usize],
+        targets: &[Vector<D>],
+    ) -> Result<(bool, bool)> {
+        let mut moves = Vec::new();
+        let mut limited = false;
+        for (&k, t) in ks.iter().zip(targets) {
+            if !t.iter().all(|x| x.is_finite()) {
+                return Err(Error::NonFiniteMove { index: k });
+            }
+            let mut proposed = *t;
+            if self.settings.mode == Mode::Automatic {
+                if let (Some(o), Some(&r)) = (state.original().get(k), self.radii.get(k)) {
+                    proposed = project_into_ball(o, r, &proposed);
+                }
+            }
+            let before = state.points()[k];
+            let to = state.move_point(k, proposed)?;
+            limited |= to != *t;
+            if to != before {
+                moves.push((k, to));
+            }
+        }
+        if moves.is_empty() {
+            return Ok((false, limited));
+        }
+        self.apply(&moves)?;
+        Ok((true, limited))
+    }
+}
+
+impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn init(&mut self, state: &mut FairingState<D>) -> Result<()> {
+        if state.is_closed() {
+            return Err(strategy_error(&self.name, "closed curves are not supported"));
+        }
+        if self.settings.tolerance.is_nan() || self.settings.tolerance < 0.0 {
+            return Err(Error::BadParameter {
+                name: "tolerance",
+                value: self.settings.tolerance.to_string(),
+                reason: "must be a non-negative number",
+            });
+        }
+        let settings = match &self.settings.parameters {
+            Some(t) => HermiteSettings::new().with_parameters(t.clone()),
+            None => HermiteSettings::new().with_parametrization(self.settings.parametrization),
+        };
+        let spline = HermiteSpline::new(state.points(), &settings)?;
+        let n = state.len();
+        self.z = vec![0.0; n];
+        self.stamp = vec![0; n];
+        self.heap = BinaryHeap::new();
+        self.blocked = (0..n)
+            .map(|k| k == 0 || k + 1 >= n || !state.is_movable(k))
+            .collect();
+        self.segment_energy = spline.segment_energies();
+        self.energy = self.segment_energy.iter().sum();
+        self.spline = Some(spline);
+        self.refresh(0, n)?;
+        if self.settings.mode == Mode::Automatic {
+            // §3.3 step 2.1: radii from the ORIGINAL curve's Eq. (11) points.
+            let mut radii = vec![0.0; n];
+            for (k, r) in radii.iter_mut().enumerate().take(n.saturating_sub(1)).skip(1) {
+                let p = self.limit_one(k)?;
+                *r = (p - state.points()[k]).norm();
+            }
+            self.radii = radii;
+        }
+        if let Mode::Interactive(list) = &self.settings.mode {
+            for &k in list {
+                if k == 0 || k + 1 >= n {
+                    return Err(Error::BadParameter {
+                        name: "bad point",
+                        value: k.to_string(),
+                        reason: "must be an interior point of an open curve",
+                    });
+                }
+            }
+            self.pending = list.clone();
+        }
+        state.criterion = Some(self.energy);
+        Ok(())
+    }
+
+    fn step(&mut self, state: &mut FairingState<D>) -> Result<StepOutcome> {
+        if self.spline.as_ref().map(|s| s.points().len()) != Some(state.len()) {
+            return Err(strategy_error(&self.name, "step before init"));
+        }
+        let before = self.energy;
+        let ks: Vec<usize> = match self.settings.mode.clone() {
+            Mode::Automatic => {
+                let Some(k) = self.pop_worst() else {
+                    return Ok(StepOutcome::done(Some(self.energy)));
+                };
+                let mut ks = vec![k];
+                if self.settings.pairs {
+                    let zl = if self.blocked.get(k - 1) == Some(&false) {
+                        self.z[k - 1]
+                    } else {
+                        -1.0
+                    };
+                    let zr = if self.blocked.get(k + 1) == Some(&false) {
+                        self.z[k + 1]
+                    } else {
+                        -1.0
+                    };
+                    // step 1.3: pair with the neighbour when it is the second worst
+                    let second = self.second_worst(k);
+                    if second == Some(k + 1) && zr > 0.0 {
+                        ks = vec![k, k + 1];
+                    } else if second == Some(k - 1) && zl > 0.0 {
+                        ks = vec![k - 1, k];
+                    }
+                }
+                ks
+            }
+            Mode::Interactive(_) => {
+                if self.pending.is_empty() {
+                    return Ok(StepOutcome::done(Some(self.energy)));
+                }
+                let mut order = self.pending.clone();
+                order.sort_by(|a, b| self.z[*b].total_cmp(&self.z[*a]).then(a.cmp(b)));
+                let first = order[0];
+                let ks = match order.get(1) {
+                    Some(&s) if s.abs_diff(first) == 1 => vec![first.min(s), first.max(s)],
+                    _ => vec![first],
+                };
+                if self.settings.replacement == Replacement::Limit {
+                    self.pending.retain(|k| !ks.contains(k));
+                }
+                ks
+            }
+        };
+        let targets = self.target(&ks)?;
+        let old: Vec<Vector<D>> = ks.iter().map(|&k| state.points()[k]).collect();
+        let (mut moved, limited) = self.commit(state, &ks, &targets)?;
+        // Guard for Theorem 1: a single point's energy is isotropic in P_k, so cutting its move
+        // by a convex region never raises E; a pair's is not, so a cut pair move can. Undo it.
+        if moved && self.energy > before {
+            let mut back = Vec::new();
+            for (&k, &p) in ks.iter().zip(&old) {
+                back.push((k, state.move_point(k, p)?));
+            }
+            self.apply(&back)?;
+            moved = false;
+        }
+        // Choice where §3.3 is silent: a point whose move its restraining region (or a
+        // constraint) cut short has reached the edge of what it may do; it is retired from
+        // the automatic search, and its step does not count for the stopping test (else the
+        // first saturated worst point, moving by a sliver, would end the whole run).
+        if self.settings.mode == Mode::Automatic && (limited || !moved) {
+            for &k in &ks {
+                if let Some(b) = self.blocked.get_mut(k) {
+                    *b = true;
+                }
+            }
+            return Ok(StepOutcome::running(Some(self.energy)));
+        }
+        let change = (before - self.energy).abs();
+        let stop = match self.settings.mode {
+            Mode::Automatic => change <= self.settings.tolerance * before.abs(),
+            Mode::Interactive(_) => {
+                self.pending.is_empty()
+                    || (self.settings.replacement == Replacement::Iterated
+                        && change <= self.settings.tolerance * before.abs())
+            }
+        };
+        Ok(StepOutcome {
+            done: stop,
+            criterion: Some(self.energy),
+        })
+    }
+}
+
+impl<const D: usize> StrainEnergy<D> {
+    /// The second worst unblocked point, looking only at the two neighbours of `k` and the
+    /// heap top after `k`: a neighbour is "second worst" when its z is at least that of every
+    /// other candidate. O(log) amortised.
+    fn second_worst(&mut self, k: usize) -> Option<usize> {
+        let top = self.heap.pop()?;
+        let mut second = None;
+        while let Some(Entry(z, j, st)) = self.heap.peek().copied() {
+            if self.stamp.get(j) == Some(&st) && !self.blocked.get(j).copied().unwrap_or(true) && j != k {
+                second = Some((z, j));
+                break;
+            }
+            self.heap.pop();
+        }
+        self.heap.push(top);
+        let (z2, j2) = second?;
+        for nb in [k + 1, k - 1] {
+            if self.blocked.get(nb) == Some(&false) && self.z.get(nb).copied().unwrap_or(-1.0) >= z2 {
+                return Some(nb);
+            }
+        }
+        Some(j2)
+    }
+}
+
+/// The constant C''' on segment s: (6(M_s + M_{s+1}) − 12 d)/h², d = (P_{s+1} − P_s)/h.
+fn third<const D: usize>(spline: &HermiteSpline<D>, s: usize) -> Vector<D> {
+    let (p, t, m) = (spline.points(), spline.knots(), spline.tangents());
+    let h = t[s + 1] - t[s];
+    let d = (p[s + 1] - p[s]) / h;
+    ((m[s] + m[s + 1]) * 6.0 - d * 12.0) / (h * h)
+}
+
+/// J_k = C'''(t_k+) − C'''(t_k−) at interior point k.
+pub fn jump<const D: usize>(spline: &HermiteSpline<D>, k: usize) -> Vector<D> {
+    third(spline, k) - third(spline, k - 1)
+}
+
+/// ∫_seg |C''|² dt of segment s in closed form (as curve-repr's `segment_energies`).
+pub fn segment_energy<const D: usize>(spline: &HermiteSpline<D>, s: usize) -> f64 {
+    let (p, t, m) = (spline.points(), spline.knots(), spline.tangents());
+    hermite_energy(p[s], p[s + 1], m[s], m[s + 1], t[s + 1] - t[s])
+}
+
+/// ∫_0^h |C''|² of the cubic Hermite segment (P0, M0) → (P1, M1) of length h (Eq. 7's terms).
+pub fn hermite_energy<const D: usize>(
+    p0: Vector<D>,
+    p1: Vector<D>,
+    m0: Vector<D>,
+    m1: Vector<D>,
+    h: f64,
+) -> f64 {
+    let d = (p1 - p0) / h;
+    let a = (d * 6.0 - m0 * 4.0 - m1 * 2.0) / h;
+    let b = (m0 * 2.0 + m1 * 4.0 - d * 6.0) / h;
+    h * (a.norm_squared() + a.dot(&b) + b.norm_squared()) / 3.0
+}
+
+/// Eq. (8) with the corrected weights λ = h_k³/(h_{k−1}³ + h_k³), μ = h_{k−1}³/(h_{k−1}³ + h_k³):
+/// P̄_k = λP_{k−1} + μP_{k+1} + ½h_{k−1}λ(M_{k−1} + M_k) − ½h_kμ(M_k + M_{k+1}),
+/// the minimiser of Eq. (7) with tangents fixed (equivalently J_k = 0 with M fixed). O(1).
+pub fn eq8<const D: usize>(spline: &HermiteSpline<D>, k: usize) -> Vector<D> {
+    let (p, t, m) = (spline.points(), spline.knots(), spline.tangents());
+    let (h0, h1) = (t[k] - t[k - 1], t[k + 1] - t[k]);
+    let s = h0.powi(3) + h1.powi(3);
+    let (l, mu) = (h1.powi(3) / s, h0.powi(3) / s);
+    p[k - 1] * l + p[k + 1] * mu + (m[k - 1] + m[k]) * (0.5 * h0 * l) - (m[k] + m[k + 1]) * (0.5 * h1 * mu)
+}
+
+/// Eq. (13) with cube weights: the minimiser of Eq. (12) over (P̄_k, P̄_{k+1}) with the
+/// tangents fixed, i.e. J_k = J_{k+1} = 0 with M fixed. Each J is affine with slopes
+/// ∂J_k/∂P_k = 12(1/h_{k−1}³ + 1/h_k³), ∂J_k/∂P_{k+1} = −12/h_k³ (and symmetrically);
+/// solving the 2×2 system gives Eq. (13) (λ = h_{k−1}³/Σ, μ = h_{k+1}³/Σ, Σ = h_{k−1}³ + h_k³ +
+/// h_{k+1}³, as papers/README.md corrects). O(1).
+pub fn eq13<const D: usize>(spline: &HermiteSpline<D>, k: usize) -> (Vector<D>, Vector<D>) {
+    let (p, t) = (spline.points(), spline.knots());
+    let (a, b, c) = (
+        (t[k] - t[k - 1]).powi(-3),
+        (t[k + 1] - t[k]).powi(-3),
+        (t[k + 2] - t[k + 1]).powi(-3),
+    );
+    let (j0, j1) = (jump(spline, k), jump(spline, k + 1));
+    let (k00, k01, k11) = (12.0 * (a + b), -12.0 * b, 12.0 * (b + c));
+    match solve2(k00, k01, k01, k11, j0, j1) {
+        Some((d0, d1)) => (p[k] - d0, p[k + 1] - d1),
+        None => (p[k], p[k + 1]),
+    }
+}
+
+/// Solves [[a, b], [c, d]] (x, y) = (u, v) for vector right-hand sides.
+fn solve2<const D: usize>(
+    a: f64,
+    b: f64,
+    c: f64,
+    d: f64,
+    u: Vector<D>,
+    v: Vector<D>,
+) -> Option<(Vector<D>, Vector<D>)> {
+    let det = a * d - b * c;
+    if !(det.is_finite() && det.abs() > f64::MIN_POSITIVE) {
+        return None;
+    }
+    Some(((u * d - v * b) / det, (v * a - u * c) / det))
+}
