@@ -66,6 +66,16 @@ fn run(criterion: &str, law: &str) {
     // The energy blocks agree with the optimised values.
     let key = criterion.replace('-', "_");
     assert_eq!(report["energies_faired"][&key].as_f64().unwrap(), after);
+    // The contract's before/after energies are those of the curve as represented: the NUBS
+    // (unit weights) before, the faired NURBS after, so the optimised one can only fall.
+    // (`criterion_before` is evaluated at the law's identity parameters, whose weights equal
+    // 1 only up to rounding; the energies block at exact unit weights.)
+    let energy_before = report["before"]["energies"][&key].as_f64().unwrap();
+    assert!(
+        (energy_before - before).abs() <= 1e-12 * before.abs(),
+        "{energy_before} {before}"
+    );
+    assert_eq!(report["after"]["energies"][&key].as_f64().unwrap(), after);
     assert!(report["max_residual"].as_f64().unwrap() < 1e-9);
 }
 

@@ -13,7 +13,7 @@ use crate::kind::{self, CurveKind};
 use crate::parameters::Parameters;
 use crate::plots::{planar_view, CurvePlot};
 use crate::registry::{self, MethodInfo, MethodKind};
-use crate::report::Report;
+use crate::report::{Energies, Report};
 use std::collections::BTreeMap;
 
 mod nurbs_weights;
@@ -60,6 +60,11 @@ pub struct CurveOutcome {
     pub curve: serde_json::Value,
     /// Method-specific extras for the report (termination reason, trace, ...).
     pub extras: BTreeMap<String, serde_json::Value>,
+    /// For methods whose curve is not the spline the measures are defined on (nurbs-weights
+    /// changes weights, not points): the energies of the curve as represented before and
+    /// after, which replace the report's `before.energies` and `after.energies` as DESIGN.md
+    /// asks ("energies over the curve as represented").
+    pub represented_energies: Option<(Energies, Energies)>,
 }
 
 /// SEAM: runs the strategy of `job.method` (crate `fairing`).
@@ -112,8 +117,12 @@ pub fn run(args: &FairArgs) -> Result<()> {
             ),
         });
     }
-    let before = measure::curve(kind, &input.points)?;
-    let after = measure::curve(kind, &outcome.points)?;
+    let mut before = measure::curve(kind, &input.points)?;
+    let mut after = measure::curve(kind, &outcome.points)?;
+    if let Some((energies_before, energies_after)) = outcome.represented_energies {
+        before.measures.energies = Some(energies_before);
+        after.measures.energies = Some(energies_after);
+    }
     let (s_d, m_d) = displacement(&input.points, &outcome.points);
     let report = Report {
         method: method.name.into(),

@@ -18,6 +18,7 @@ use super::{CurveJob, CurveOutcome};
 use crate::commands::measure::{in_file, POINTS};
 use crate::error::{Error, Result};
 use crate::input::Points;
+use crate::report::Energies;
 
 /// The criterion names `--set criterion=` takes.
 const CRITERIA: [&str; 5] = ["e1", "e2", "e3", "ek", "ek-prime"];
@@ -40,7 +41,8 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
         Points::Planar(points) => run(points, criterion, &law, max_iterations),
         Points::Spatial(points) => run(points, criterion, &law, max_iterations),
     };
-    let (curve, extras, iterations) = outcome.map_err(|e| in_file(e, &job.input.source))?;
+    let (curve, extras, iterations, represented_energies) =
+        outcome.map_err(|e| in_file(e, &job.input.source))?;
     Ok(CurveOutcome {
         points: job.input.points.clone(),
         iterations,
@@ -48,10 +50,27 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
         elapsed_ms: start.elapsed().as_secs_f64() * 1e3,
         curve,
         extras,
+        represented_energies: Some(represented_energies),
     })
 }
 
-type Run = (serde_json::Value, BTreeMap<String, serde_json::Value>, usize);
+type Run = (
+    serde_json::Value,
+    BTreeMap<String, serde_json::Value>,
+    usize,
+    (Energies, Energies),
+);
+
+/// The report's energies block from the library's.
+fn energies(e: &fairness::Energies) -> Energies {
+    Energies {
+        e1: e.e1,
+        e2: e.e2,
+        e3: e.e3,
+        ek: e.ek,
+        ek_prime: e.ek_prime,
+    }
+}
 
 fn run<const D: usize>(
     points: &[Vector<D>],
@@ -100,7 +119,8 @@ fn describe<const D: usize>(result: NurbsWeightResult<D>) -> Run {
     extras.insert("evaluations".into(), serde_json::json!(result.evaluations));
     extras.insert("max_residual".into(), serde_json::json!(result.max_residual));
     let iterations = usize::try_from(result.iterations).unwrap_or(usize::MAX);
-    (curve, extras, iterations)
+    let represented = (energies(&result.before), energies(&result.after));
+    (curve, extras, iterations, represented)
 }
 
 /// The search's errors, with the path [`POINTS`] that [`in_file`] replaces by the file name.
