@@ -22,20 +22,9 @@ pub enum ReportKind {
     Surface,
 }
 
-/// The energies of a curve as represented (E1–E3 over its own parameter; Ek, Ek' over arc length).
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-pub struct Energies {
-    /// E1: ∫ |C'|² over the curve's parameter.
-    pub e1: f64,
-    /// E2: ∫ |C''|² over the curve's parameter.
-    pub e2: f64,
-    /// E3: ∫ |C'''|² over the curve's parameter.
-    pub e3: f64,
-    /// Ek: ∫ κ² ds.
-    pub ek: f64,
-    /// Ek': ∫ (dκ/ds)² ds.
-    pub ek_prime: f64,
-}
+/// The energies of a curve as represented (E1–E3 over its own parameter; Ek, Ek' over arc
+/// length): the fairness crate's block, serialised as the report's `energies`.
+pub use fairness::Energies;
 
 /// The fairness measures of a curve or surface (see DESIGN.md for each definition).
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]

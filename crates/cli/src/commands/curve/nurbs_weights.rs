@@ -61,17 +61,6 @@ type Run = (
     (Energies, Energies),
 );
 
-/// The report's energies block from the library's.
-fn energies(e: &fairness::Energies) -> Energies {
-    Energies {
-        e1: e.e1,
-        e2: e.e2,
-        e3: e.e3,
-        ek: e.ek,
-        ek_prime: e.ek_prime,
-    }
-}
-
 fn run<const D: usize>(
     points: &[Vector<D>],
     criterion: CriterionName,
@@ -119,7 +108,7 @@ fn describe<const D: usize>(result: NurbsWeightResult<D>) -> Run {
     extras.insert("evaluations".into(), serde_json::json!(result.evaluations));
     extras.insert("max_residual".into(), serde_json::json!(result.max_residual));
     let iterations = usize::try_from(result.iterations).unwrap_or(usize::MAX);
-    let represented = (energies(&result.before), energies(&result.after));
+    let represented = (result.before, result.after);
     (curve, extras, iterations, represented)
 }
 
