@@ -86,5 +86,35 @@ fn indicators(c: &mut Bench) {
     group.finish();
 }
 
-criterion_group!(benches, indicators);
+/// The command's whole measuring path (`fair inspect`): build the spline through n points and
+/// compute every indicator and energy of DESIGN.md's summary. A noisy sine, so that the curve
+/// has many inflections and vibrations, like measured data; the noise is a fixed fraction of
+/// the spacing h, so that every n sees pieces of the same shape (noise of fixed amplitude
+/// would make the curve rougher per piece as n grows, and the quadrature's work per piece
+/// with it).
+fn summaries(c: &mut Bench) {
+    let mut group = c.benchmark_group("summary");
+    group.sample_size(10);
+    for n in [10_000, 100_000, 1_000_000] {
+        let h = 10.0 / n as f64;
+        let x: Vec<f64> = (0..n).map(|i| i as f64 * h).collect();
+        // A deterministic, irregular perturbation (no RNG dependency).
+        let y: Vec<f64> = x
+            .iter()
+            .enumerate()
+            .map(|(i, &x)| x.sin() + 0.1 * h * ((i as f64 * 12.9898).sin() * 43_758.545).fract())
+            .collect();
+        let points: Vec<Vec2> = x.iter().zip(&y).map(|(&x, &y)| Vec2::new(x, y)).collect();
+        group.throughput(Throughput::Elements(n as u64));
+        group.bench_with_input(BenchmarkId::new("function", n), &(&x, &y), |b, (x, y)| {
+            b.iter(|| fairness::summary::function(black_box(x), black_box(y)).unwrap())
+        });
+        group.bench_with_input(BenchmarkId::new("parametric", n), &points, |b, points| {
+            b.iter(|| fairness::summary::parametric(black_box(points)).unwrap())
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, indicators, summaries);
 criterion_main!(benches);
