@@ -98,9 +98,19 @@ pub struct FairArgs {
     /// Write an SVG plot here.
     #[arg(long, value_name = "PLOT.svg")]
     pub plot: Option<PathBuf>,
-    /// Print nothing on success.
+    /// Print nothing on success, and no progress bar.
     #[arg(long, short = 'q')]
     pub quiet: bool,
+    /// Print the config file (TOML) that this command line implies, every parameter with its
+    /// value, and stop without fairing.
+    #[arg(long)]
+    pub print_config: bool,
+    /// Read INPUT as a batch: a JSON-lines stream (one `{"points": ...}` object per line; `-`
+    /// for standard input). A directory, or a file ending in `.jsonl`/`.ndjson`, is a batch
+    /// without this flag. One report line per curve; -o, --report and --plot name
+    /// directories (or, for -o with JSON lines, a JSON-lines file).
+    #[arg(long)]
+    pub batch: bool,
 }
 
 /// Options of `fair inspect`.

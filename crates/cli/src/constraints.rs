@@ -5,6 +5,7 @@
 //! constraint types.
 
 use crate::args::{ClampEnds, FairArgs};
+use crate::config::ConfigConstraints;
 use crate::error::{Error, Result};
 
 /// What must hold while fairing, as given by the user.
@@ -23,6 +24,16 @@ pub struct Constraints {
 impl Constraints {
     /// Reads the options and checks them against `count` points.
     pub fn from_args(args: &FairArgs, count: usize) -> Result<Constraints> {
+        Constraints::from_args_and_config(args, &ConfigConstraints::default(), count)
+    }
+
+    /// Reads the options, falling back on a config file's `[constraints]` for those not given
+    /// on the command line, and checks them against `count` points.
+    pub fn from_args_and_config(
+        args: &FairArgs,
+        config: &ConfigConstraints,
+        count: usize,
+    ) -> Result<Constraints> {
         let check = |option: &'static str, indices: &[usize]| -> Result<()> {
             match indices.iter().find(|i| **i >= count) {
                 Some(i) => Err(Error::Argument {
@@ -36,8 +47,18 @@ impl Constraints {
                 None => Ok(()),
             }
         };
-        let mut fixed = args.fixed.as_ref().map(|l| l.0.clone()).unwrap_or_default();
-        let bad_points = args.points.as_ref().map(|l| l.0.clone()).unwrap_or_default();
+        let mut fixed = args
+            .fixed
+            .as_ref()
+            .map(|l| l.0.clone())
+            .or_else(|| config.fixed.clone())
+            .unwrap_or_default();
+        let bad_points = args
+            .points
+            .as_ref()
+            .map(|l| l.0.clone())
+            .or_else(|| config.points.clone())
+            .unwrap_or_default();
         check("--fixed", &fixed)?;
         check("--points", &bad_points)?;
         if let Some(i) = bad_points.iter().find(|i| fixed.contains(i)) {
@@ -47,11 +68,12 @@ impl Constraints {
             });
         }
         fixed.sort_unstable();
+        fixed.dedup();
         Ok(Constraints {
             fixed,
             bad_points,
-            tolerance: args.tolerance,
-            clamp_ends: args.clamp_ends,
+            tolerance: args.tolerance.or(config.tolerance),
+            clamp_ends: args.clamp_ends.or(config.clamp_ends),
         })
     }
 }

@@ -117,6 +117,17 @@ pub enum Error {
         /// Index of the first offending value.
         index: usize,
     },
+    /// Some curves of a batch failed; each has its own report line with its error.
+    #[error("{failed} of {total} inputs failed (each has an `error` line in the batch report)")]
+    Batch {
+        /// How many inputs failed.
+        failed: usize,
+        /// How many inputs the batch had.
+        total: usize,
+        /// The exit status the failures call for: 2 when every failure was the user's to fix,
+        /// else 1.
+        status: u8,
+    },
     /// A failure of the command itself (a bug, a caught panic, a failed computation).
     #[error("internal error: {message}")]
     Internal {
@@ -142,6 +153,7 @@ impl Error {
             | Error::Argument { .. }
             | Error::Representation { .. }
             | Error::Write { .. } => 2,
+            Error::Batch { status, .. } => *status,
             Error::NotAvailable { .. } | Error::NonFiniteOutput { .. } | Error::Internal { .. } => 1,
         }
     }

@@ -8,7 +8,7 @@
 //! - [`report`] is the JSON report; [`svg`] a small plotting toolkit and [`plots`] the pictures
 //!   built with it;
 //! - [`registry`] lists the methods and their parameters, [`parameters`] reads `--set` and
-//!   `--config`, [`constraints`] checks `--fixed`/`--points`/`--tolerance`/`--clamp-ends`,
+//!   `--config`, [`config`] reads config files (parameters, constraints, pipelines of stages), [`constraints`] checks `--fixed`/`--points`/`--tolerance`/`--clamp-ends`,
 //!   [`kind`] resolves `--kind`.
 //!
 //! The numerical crates plug in at three seams: [`commands::measure`] (indicators),
@@ -20,6 +20,7 @@
 
 pub mod args;
 pub mod commands;
+pub mod config;
 pub mod constraints;
 pub mod error;
 pub mod input;
@@ -27,6 +28,7 @@ pub mod kind;
 pub mod output;
 pub mod parameters;
 pub mod plots;
+pub mod progress;
 pub mod registry;
 pub mod report;
 pub mod svg;

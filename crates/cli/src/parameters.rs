@@ -1,11 +1,13 @@
 //! Method parameters from `--config FILE` (TOML) and `--set NAME=VALUE`, checked against the
 //! method's list in the [`registry`](crate::registry).
 //!
-//! A config file holds `name = value` pairs at the top level (for whatever method runs) and
-//! optionally tables named after a method (`[smoothing-spline]`) that apply only to it.
+//! A config file ([`config`](crate::config), TOML or JSON) holds `name = value` pairs at the
+//! top level (for whatever method runs) and optionally tables named after a method
+//! (`[smoothing-spline]`) that apply only to it.
 //! `--set` overrides the file. Every name must be a parameter of the method.
 
 use crate::args::Setting;
+use crate::config::ConfigFile;
 use crate::error::{Error, Result};
 use crate::registry::MethodInfo;
 use std::collections::BTreeMap;
@@ -33,17 +35,21 @@ impl Parameters {
         config: Option<&std::path::Path>,
         settings: &[Setting],
     ) -> Result<Parameters> {
-        let mut values = BTreeMap::new();
+        let mut values = Vec::new();
         if let Some(path) = config {
-            let name = path.display().to_string();
-            let text = std::fs::read_to_string(path).map_err(|e| Error::Read {
-                path: name.clone(),
-                reason: crate::input::io_reason(&e),
-            })?;
-            for (key, given) in parse_config(&name, &text, method.name)? {
-                values.insert(key, given);
-            }
+            values = ConfigFile::read(path)?.method_values(method.name)?;
         }
+        Parameters::from_values(method, values, settings)
+    }
+
+    /// Parameters for `method` from values already read (a config file's, a pipeline
+    /// stage's), then the `--set`s, which win; every name is checked against the method.
+    pub fn from_values(
+        method: &MethodInfo,
+        given: Vec<(String, Given)>,
+        settings: &[Setting],
+    ) -> Result<Parameters> {
+        let mut values: BTreeMap<String, Given> = given.into_iter().collect();
         for setting in settings {
             values.insert(
                 setting.name.clone(),
@@ -68,6 +74,14 @@ impl Parameters {
             }
         }
         Ok(Parameters { values })
+    }
+
+    /// The given values as (name, text) pairs, for `--print-config`.
+    pub fn given_values(&self) -> Vec<(String, String)> {
+        self.values
+            .iter()
+            .map(|(k, g)| (k.clone(), g.value.clone()))
+            .collect()
     }
 
     /// The raw value of `name`, if given.
@@ -129,79 +143,6 @@ impl Parameters {
             })
             .collect()
     }
-}
-
-fn line_at(text: &str, offset: usize) -> usize {
-    1 + text
-        .as_bytes()
-        .iter()
-        .take(offset)
-        .filter(|b| **b == b'\n')
-        .count()
-}
-
-/// The top-level scalars of a config, then those of the table named `method` (which win).
-fn parse_config(name: &str, text: &str, method: &str) -> Result<Vec<(String, Given)>> {
-    let table: toml::Table = toml::from_str(text).map_err(|e| {
-        let message = e.message().to_string();
-        match e.span() {
-            Some(span) => Error::Parse {
-                path: name.into(),
-                line: line_at(text, span.start),
-                message,
-            },
-            None => Error::Invalid {
-                path: name.into(),
-                message,
-            },
-        }
-    })?;
-    let locate = |key: &str| -> String {
-        // The first line that starts with the key: good enough for a flat file of parameters.
-        let line = text
-            .lines()
-            .position(|l| {
-                let l = l.trim_start();
-                l.strip_prefix(key)
-                    .is_some_and(|rest| rest.trim_start().starts_with('='))
-            })
-            .map_or(0, |i| i + 1);
-        if line > 0 {
-            format!("{name}:{line}")
-        } else {
-            name.to_string()
-        }
-    };
-    let scalar = |key: &str, value: &toml::Value| -> Result<Given> {
-        let text = match value {
-            toml::Value::String(s) => s.clone(),
-            toml::Value::Integer(i) => i.to_string(),
-            toml::Value::Float(f) => f.to_string(),
-            toml::Value::Boolean(b) => b.to_string(),
-            _ => {
-                return Err(Error::Parameter {
-                    origin: locate(key),
-                    message: format!("`{key}` must be a number, string or boolean"),
-                })
-            }
-        };
-        Ok(Given {
-            value: text,
-            origin: locate(key),
-        })
-    };
-    let mut out = Vec::new();
-    for (key, value) in &table {
-        if !value.is_table() {
-            out.push((key.clone(), scalar(key, value)?));
-        }
-    }
-    if let Some(toml::Value::Table(section)) = table.get(method) {
-        for (key, value) in section {
-            out.push((key.clone(), scalar(key, value)?));
-        }
-    }
-    Ok(out)
 }
 
 #[cfg(test)]

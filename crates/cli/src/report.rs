@@ -22,6 +22,17 @@ pub enum ReportKind {
     Surface,
 }
 
+impl ReportKind {
+    /// The name as the report writes it: `function`, `parametric` or `surface`.
+    pub fn name(self) -> &'static str {
+        match self {
+            ReportKind::Function => "function",
+            ReportKind::Parametric => "parametric",
+            ReportKind::Surface => "surface",
+        }
+    }
+}
+
 /// The energies of a curve as represented (E1–E3 over its own parameter; Ek, Ek' over arc
 /// length): the fairness crate's block, serialised as the report's `energies`.
 pub use fairness::Energies;

@@ -2,21 +2,26 @@
 //!
 //! Order of checks (so that the user's mistakes are reported before anything runs): the
 //! input file, the number of points, `--kind`, `--method`, the parameters, the constraints.
-//! Then [`fair`] (the SEAM to the strategies), then the outputs.
+//! Then [`fair`] (the SEAM to the strategies; [`stages`] chains several), then the outputs.
+//! A directory or a JSON-lines stream is a [`batch`].
 
 use crate::args::FairArgs;
 use crate::commands::{measure, say};
+use crate::config::{self, ConfigConstraints, ConfigFile};
 use crate::constraints::Constraints;
 use crate::error::{Error, Result};
 use crate::input::{self, CurveInput, Points};
 use crate::kind::{self, CurveKind};
 use crate::parameters::Parameters;
 use crate::plots::{planar_view, CurvePlot};
+use crate::progress;
 use crate::registry::{self, MethodInfo, MethodKind};
 use crate::report::{Energies, Report};
 use std::collections::BTreeMap;
 
+pub mod batch;
 mod nurbs_weights;
+pub mod stages;
 
 /// The fewest points any curve method works on: curvature-slope jumps e_i need three.
 pub const MIN_CURVE_POINTS: usize = 3;
@@ -87,36 +92,94 @@ pub fn displacement(before: &Points, after: &Points) -> (f64, f64) {
     distances.fold((0.0, 0.0), |(sum, max), d| (sum + d, f64::max(max, d)))
 }
 
-/// Runs `fair curve`.
-pub fn run(args: &FairArgs) -> Result<()> {
-    let input = input::read_curve(&args.input)?;
-    input.require_at_least(MIN_CURVE_POINTS, "a curve")?;
-    let kind = kind::resolve(args.kind, &input)?;
-    let method = registry::find(
-        args.method.as_deref().unwrap_or(default_method(kind)),
-        MethodKind::Curve,
-    )?;
-    let parameters = Parameters::collect(method, args.config.as_deref(), &args.settings)?;
-    let constraints = Constraints::from_args(args, input.len())?;
+/// A faired curve, ready to be written: what one input of `fair curve` produces.
+#[derive(Debug, Clone)]
+pub struct Faired {
+    /// The JSON report.
+    pub report: Report,
+    /// The faired points in the input's format.
+    pub points_text: String,
+    /// The before/after picture.
+    pub plot: CurvePlot,
+}
 
-    let job = CurveJob {
-        input: &input,
-        kind,
-        method,
-        parameters: &parameters,
-        constraints: &constraints,
-    };
-    let outcome = fair(&job)?;
-    if outcome.points.len() != input.len() || outcome.points.dimension() != input.points.dimension() {
-        return Err(Error::Internal {
-            message: format!(
-                "method `{}` returned {} points for {}",
-                method.name,
-                outcome.points.len(),
-                input.len()
-            ),
-        });
+/// What runs: the stages (one for `--method`, several for a config with `[[stage]]`) and the
+/// config file's constraints.
+#[derive(Debug, Clone)]
+pub struct Plan {
+    /// Each stage's method and parameters, in order.
+    pub stages: Vec<(&'static MethodInfo, Parameters)>,
+    /// The config file's `[constraints]` (the command line wins).
+    pub config_constraints: ConfigConstraints,
+}
+
+impl Plan {
+    /// The plan a command line and its config file imply for a curve of `kind`.
+    pub fn new(args: &FairArgs, file: Option<&ConfigFile>, kind: CurveKind) -> Result<Plan> {
+        let config_constraints = file.map(ConfigFile::constraints).transpose()?.unwrap_or_default();
+        if let Some(stages) = file.map(|f| f.stages(MethodKind::Curve)).transpose()?.flatten() {
+            if args.method.is_some() {
+                return Err(Error::Argument {
+                    option: "--method",
+                    message:
+                        "the config file defines a pipeline of [[stage]]s; give either --method or the stages"
+                            .into(),
+                });
+            }
+            if !args.settings.is_empty() {
+                return Err(Error::Argument {
+                    option: "--set",
+                    message: "the config file defines a pipeline; set parameters in its [[stage]] tables"
+                        .into(),
+                });
+            }
+            let stages = stages
+                .into_iter()
+                .map(|stage| {
+                    Ok((
+                        stage.method,
+                        Parameters::from_values(stage.method, stage.values, &[])?,
+                    ))
+                })
+                .collect::<Result<Vec<_>>>()?;
+            return Ok(Plan {
+                stages,
+                config_constraints,
+            });
+        }
+        let method = registry::find(
+            args.method.as_deref().unwrap_or(default_method(kind)),
+            MethodKind::Curve,
+        )?;
+        let values = match file {
+            Some(file) => file.method_values(method.name)?,
+            None => Vec::new(),
+        };
+        let parameters = Parameters::from_values(method, values, &args.settings)?;
+        Ok(Plan {
+            stages: vec![(method, parameters)],
+            config_constraints,
+        })
     }
+
+    /// The report's `method`: the method, or the stages' names joined by `+`.
+    pub fn name(&self) -> String {
+        let names: Vec<&str> = self.stages.iter().map(|(m, _)| m.name).collect();
+        names.join("+")
+    }
+}
+
+/// Reads, checks and fairs one curve input: everything `fair curve` does but writing.
+///
+/// Order of checks: the number of points, `--kind`, the method(s) and parameters, the
+/// constraints; then the stages; then the measures, the report and the output text (so that
+/// nothing is written for a run that fails).
+pub fn process(input: &CurveInput, args: &FairArgs, file: Option<&ConfigFile>) -> Result<Faired> {
+    input.require_at_least(MIN_CURVE_POINTS, "a curve")?;
+    let kind = kind::resolve(args.kind, input)?;
+    let plan = Plan::new(args, file, kind)?;
+    let constraints = Constraints::from_args_and_config(args, &plan.config_constraints, input.len())?;
+    let outcome = stages::run(input, kind, &plan, &constraints)?;
     let mut before = measure::curve(kind, &input.points)?;
     let mut after = measure::curve(kind, &outcome.points)?;
     if let Some((energies_before, energies_after)) = outcome.represented_energies {
@@ -124,8 +187,12 @@ pub fn run(args: &FairArgs) -> Result<()> {
         after.measures.energies = Some(energies_after);
     }
     let (s_d, m_d) = displacement(&input.points, &outcome.points);
+    let params = match plan.stages.as_slice() {
+        [(_, parameters)] => parameters.to_json(),
+        _ => BTreeMap::new(),
+    };
     let report = Report {
-        method: method.name.into(),
+        method: plan.name(),
         kind: kind.report_kind(),
         n: input.len(),
         iterations: outcome.iterations,
@@ -136,43 +203,73 @@ pub fn run(args: &FairArgs) -> Result<()> {
         moved: outcome.moved.clone(),
         elapsed_ms: outcome.elapsed_ms,
         curve: outcome.curve.clone(),
-        params: parameters.to_json(),
+        params,
         extras: outcome.extras.clone(),
     };
+    let points_text = crate::output::format_curve(input, &outcome.points)?;
+    let plot = CurvePlot {
+        title: format!("{} — {}", input.source, report.method),
+        input: planar_view(&input.points),
+        faired: Some(planar_view(&outcome.points)),
+        input_curve: before.samples,
+        faired_curve: after.samples,
+        comb: after.comb,
+        z_before: before.z,
+        z_after: after.z,
+        function: kind == CurveKind::Function,
+    };
+    Ok(Faired {
+        report,
+        points_text,
+        plot,
+    })
+}
+
+/// Runs `fair curve`: one input, or a batch ([`batch`]).
+pub fn run(args: &FairArgs) -> Result<()> {
+    let file = args.config.as_deref().map(ConfigFile::read).transpose()?;
+    if batch::is_batch(args) {
+        return batch::run(args, file.as_ref());
+    }
+    let input = input::read_curve(&args.input)?;
+    if args.print_config {
+        input.require_at_least(MIN_CURVE_POINTS, "a curve")?;
+        let kind = kind::resolve(args.kind, &input)?;
+        let plan = Plan::new(args, file.as_ref(), kind)?;
+        let constraints = Constraints::from_args_and_config(args, &plan.config_constraints, input.len())?;
+        let stages: Vec<_> = plan.stages.iter().map(|(m, p)| (*m, p.given_values())).collect();
+        say(false, false, config::render(&constraints, &stages).trim_end());
+        return Ok(());
+    }
+    let faired = {
+        let _activity = progress::Activity::start(&format!("fairing {}", input.source), args.quiet);
+        process(&input, args, file.as_ref())?
+    };
+    let report = &faired.report;
     // Everything is checked before anything is written.
-    let points_text = crate::output::format_curve(&input, &outcome.points)?;
     let report_text = report.to_json()?;
     if let Some(out) = &args.output {
-        crate::output::write_text(out, &points_text)?;
+        crate::output::write_text(out, &faired.points_text)?;
     }
     if let Some(path) = &args.report {
         crate::output::write_text(&path.display().to_string(), &report_text)?;
     }
     if let Some(path) = &args.plot {
-        let plot = CurvePlot {
-            title: format!("{} — {}", input.source, method.name),
-            input: planar_view(&input.points),
-            faired: Some(planar_view(&outcome.points)),
-            input_curve: before.samples,
-            faired_curve: after.samples,
-            comb: after.comb,
-            z_before: before.z,
-            z_after: after.z,
-            function: kind == CurveKind::Function,
-        };
-        plot.figure().write(path)?;
+        faired.plot.figure().write(path)?;
     }
     say(
         args.quiet,
         args.output.as_deref() == Some("-"),
         &format!(
-            "{}: {} ({} points, {:?}): {} iterations, {} moved, S_d = {s_d:.6e}, M_d = {m_d:.6e}",
+            "{}: {} ({} points, {}): {} iterations, {} moved, S_d = {:.6e}, M_d = {:.6e}",
             input.source,
-            method.name,
+            report.method,
             input.len(),
-            kind,
+            report.kind.name(),
             report.iterations,
-            report.moved.len()
+            report.moved.len(),
+            report.s_d,
+            report.m_d
         ),
     );
     Ok(())

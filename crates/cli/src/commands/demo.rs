@@ -15,7 +15,6 @@ use crate::commands::{curve, inspect, measure, surface};
 use crate::error::{Error, Result};
 use crate::input::Source;
 use crate::registry::{MethodKind, METHODS};
-use crate::report::ReportKind;
 
 /// One embedded data set.
 #[derive(Debug, Clone, Copy)]
@@ -134,19 +133,13 @@ fn run_args(input: String, method: &str, out: &std::path::Path, stem: &str, data
         report: Some(out.join(format!("{stem}.json"))),
         plot: Some(out.join(format!("{stem}.svg"))),
         quiet: true,
+        print_config: false,
+        batch: false,
     }
 }
 
 fn count(value: Option<usize>) -> String {
     value.map_or("-".to_string(), |v| v.to_string())
-}
-
-fn kind_name(kind: ReportKind) -> &'static str {
-    match kind {
-        ReportKind::Function => "function",
-        ReportKind::Parametric => "parametric",
-        ReportKind::Surface => "surface",
-    }
 }
 
 /// Runs `fair demo`.
@@ -183,7 +176,7 @@ pub fn run(args: &DemoArgs) -> Result<()> {
         measures.push(format!(
             "{:20} {:10} {:>4} {:>5} {:>5} {:>12.4e} {:>12.4e}",
             dataset.name,
-            kind_name(report.kind),
+            report.kind.name(),
             report.n,
             count(m.inflections),
             count(m.vibrations),
