@@ -361,6 +361,16 @@ fn demo_exits_0_and_writes_plots() {
     assert!(svgs.len() >= 8, "{} SVGs", svgs.len());
     for entry in svgs {
         let text = std::fs::read_to_string(entry.path()).unwrap();
-        roxmltree::Document::parse(&text).expect("well-formed SVG");
+        let document = roxmltree::Document::parse(&text).expect("well-formed SVG");
+        // Something is drawn: a path or polyline with at least two points.
+        let drawn = document.descendants().any(|n| {
+            let d = n.attribute("d").or_else(|| n.attribute("points")).unwrap_or("");
+            (n.has_tag_name("path") || n.has_tag_name("polyline"))
+                && d.split(|c: char| c.is_ascii_alphabetic() || c == ' ' || c == ',')
+                    .filter(|t| !t.is_empty())
+                    .count()
+                    >= 4
+        });
+        assert!(drawn, "{}: no drawn path", entry.path().display());
     }
 }

@@ -225,6 +225,22 @@ pub fn process(input: &CurveInput, args: &FairArgs, file: Option<&ConfigFile>) -
     })
 }
 
+/// Writes what `-o`, `--report` and `--plot` ask for. The report text is made before anything
+/// is written, so a report that cannot be written as JSON leaves no half-written outputs.
+pub fn write_outputs(args: &FairArgs, faired: &Faired) -> Result<()> {
+    let report_text = faired.report.to_json()?;
+    if let Some(out) = &args.output {
+        crate::output::write_text(out, &faired.points_text)?;
+    }
+    if let Some(path) = &args.report {
+        crate::output::write_text(&path.display().to_string(), &report_text)?;
+    }
+    if let Some(path) = &args.plot {
+        faired.plot.figure().write(path)?;
+    }
+    Ok(())
+}
+
 /// Runs `fair curve`: one input, or a batch ([`batch`]).
 pub fn run(args: &FairArgs) -> Result<()> {
     let file = args.config.as_deref().map(ConfigFile::read).transpose()?;
@@ -245,18 +261,8 @@ pub fn run(args: &FairArgs) -> Result<()> {
         let _activity = progress::Activity::start(&format!("fairing {}", input.source), args.quiet);
         process(&input, args, file.as_ref())?
     };
+    write_outputs(args, &faired)?;
     let report = &faired.report;
-    // Everything is checked before anything is written.
-    let report_text = report.to_json()?;
-    if let Some(out) = &args.output {
-        crate::output::write_text(out, &faired.points_text)?;
-    }
-    if let Some(path) = &args.report {
-        crate::output::write_text(&path.display().to_string(), &report_text)?;
-    }
-    if let Some(path) = &args.plot {
-        faired.plot.figure().write(path)?;
-    }
     say(
         args.quiet,
         args.output.as_deref() == Some("-"),
