@@ -67,6 +67,11 @@ pub struct StrainEnergySettings {
     /// Explicit knots (one per point), overriding `parametrization`: lets several stages
     /// keep the same knots. Default none.
     pub parameters: Option<Vec<f64>>,
+    /// Scale of the automatic mode's restraining radii: point i stays within
+    /// `radius_scale · |P̄_i − P_i|` of its original position (P̄_i from Eq. 11 on the original
+    /// curve). 1 is Zhang–Cheng §3.3; larger lets points travel farther, `f64::INFINITY`
+    /// removes the regions (then a point with P̄_i = P_i is still frozen). Default 1.
+    pub radius_scale: f64,
 }
 
 impl Default for StrainEnergySettings {
@@ -78,6 +83,7 @@ impl Default for StrainEnergySettings {
             parametrization: Parametrization::ChordLength,
             tolerance: 1e-6,
             parameters: None,
+            radius_scale: 1.0,
         }
     }
 }
@@ -120,6 +126,11 @@ impl StrainEnergySettings {
     /// Sets the relative energy tolerance.
     pub fn with_tolerance(mut self, tolerance: f64) -> Self {
         self.tolerance = tolerance;
+        self
+    }
+    /// Sets the scale of the automatic mode's restraining radii (1 = the paper).
+    pub fn with_radius_scale(mut self, scale: f64) -> Self {
+        self.radius_scale = scale;
         self
     }
 }
@@ -394,6 +405,13 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
                 reason: "must be a non-negative number",
             });
         }
+        if self.settings.radius_scale.is_nan() || self.settings.radius_scale < 0.0 {
+            return Err(Error::BadParameter {
+                name: "radius scale",
+                value: self.settings.radius_scale.to_string(),
+                reason: "must be a non-negative number",
+            });
+        }
         let settings = match &self.settings.parameters {
             Some(t) => HermiteSettings::new().with_parameters(t.clone()),
             None => HermiteSettings::new().with_parametrization(self.settings.parametrization),
@@ -415,7 +433,13 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
             let mut radii = vec![0.0; n];
             for (k, r) in radii.iter_mut().enumerate().take(n.saturating_sub(1)).skip(1) {
                 let p = self.limit_one(k)?;
-                *r = (p - state.points()[k]).norm();
+                let distance = (p - state.points()[k]).norm();
+                // 0 · ∞ would be NaN: a point already at its Eq. 11 position stays frozen.
+                *r = if distance > 0.0 {
+                    self.settings.radius_scale * distance
+                } else {
+                    0.0
+                };
             }
             self.radii = radii;
         }
