@@ -430,10 +430,21 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
         self.refresh(0, n)?;
         if self.settings.mode == Mode::Automatic {
             // §3.3 step 2.1: radii from the ORIGINAL curve's Eq. (11) points.
+            // |P̄_k − P_k| = |J_k| / K_kk with K's diagonal in O(n) (not one probe per point).
+            let (diagonal, jumps) = {
+                let spline = self.spline_ref()?;
+                let diagonal = stiffness_diagonal(spline)
+                    .ok_or_else(|| strategy_error(&self.name, "singular tangent system (Eq. 11)"))?;
+                let jumps: Vec<Vector<D>> = (1..n.saturating_sub(1)).map(|k| jump(spline, k)).collect();
+                (diagonal, jumps)
+            };
             let mut radii = vec![0.0; n];
             for (k, r) in radii.iter_mut().enumerate().take(n.saturating_sub(1)).skip(1) {
-                let p = self.limit_one(k)?;
-                let distance = (p - state.points()[k]).norm();
+                let kk = diagonal[k];
+                if !(kk.is_finite() && kk > 0.0) {
+                    return Err(strategy_error(&self.name, "singular Eq. 11 (K_kk = 0)"));
+                }
+                let distance = jumps[k - 1].norm() / kk;
                 // 0 · ∞ would be NaN: a point already at its Eq. 11 position stays frozen.
                 *r = if distance > 0.0 {
                     self.settings.radius_scale * distance
@@ -652,4 +663,106 @@ fn solve2<const D: usize>(
         return None;
     }
     Some(((u * d - v * b) / det, (v * a - u * c) / det))
+}
+
+/// The diagonal K_kk = ∂J_k/∂P_k of the natural spline's stiffness (J = K P, tangents
+/// re-solved, knots fixed) at every point, in O(n); `None` if the tangent system is singular.
+///
+/// E(P, M) = Σ_s ∫|C''|² is a quadratic form whose Hessian is (a scalar matrix) ⊗ I_D; the
+/// natural spline's tangents minimise it over M, so E(P) = Pᵀ K P with K the Schur complement
+/// H_PP − H_PM H_MM⁻¹ H_MP, and this K is the one of J = K P (E = Σ P_k·J_k for a natural
+/// spline, integrating ∫C''·C'' by parts twice). Each segment's 4×4 form in (P_s, P_{s+1},
+/// M_s, M_{s+1}) is read off [`hermite_energy`] exactly (it has no linear part); H_MM is
+/// tridiagonal, SPD, and only its inverse's band |i − j| ≤ 2 is needed, from forward and
+/// backward pivots: (H⁻¹)_ii = 1/(f_i + g_i − a_i), (H⁻¹)_{i+1,i} = −b_i/g_{i+1} (H⁻¹)_ii.
+pub fn stiffness_diagonal<const D: usize>(spline: &HermiteSpline<D>) -> Option<Vec<f64>> {
+    let t = spline.knots();
+    let n = t.len();
+    if n < 2 {
+        return None;
+    }
+    // Q[s] over (p0, p1, m0, m1), from the energy of unit vectors (D = 1).
+    let unit = |i: usize| -> [Vector<1>; 4] {
+        let mut e = [Vector::<1>::zeros(); 4];
+        e[i][0] = 1.0;
+        e
+    };
+    let q: Vec<[[f64; 4]; 4]> = (0..n - 1)
+        .map(|s| {
+            let h = t[s + 1] - t[s];
+            let energy = |e: [Vector<1>; 4]| hermite_energy(e[0], e[1], e[2], e[3], h);
+            let mut m = [[0.0; 4]; 4];
+            for a in 0..4 {
+                m[a][a] = energy(unit(a));
+            }
+            for a in 0..4 {
+                for b in a + 1..4 {
+                    let mut e = unit(a);
+                    e[b][0] = 1.0;
+                    let v = (energy(e) - m[a][a] - m[b][b]) / 2.0;
+                    m[a][b] = v;
+                    m[b][a] = v;
+                }
+            }
+            m
+        })
+        .collect();
+    let (p0, p1, m0, m1) = (0, 1, 2, 3);
+    // H_MM: diagonal a_i, off-diagonal b_i = (i, i+1).
+    let a: Vec<f64> = (0..n)
+        .map(|i| {
+            let left = if i > 0 { q[i - 1][m1][m1] } else { 0.0 };
+            let right = if i + 1 < n { q[i][m0][m0] } else { 0.0 };
+            left + right
+        })
+        .collect();
+    let b: Vec<f64> = (0..n - 1).map(|i| q[i][m0][m1]).collect();
+    let mut f = vec![0.0; n];
+    let mut g = vec![0.0; n];
+    f[0] = a[0];
+    for i in 1..n {
+        f[i] = a[i] - b[i - 1] * b[i - 1] / f[i - 1];
+    }
+    g[n - 1] = a[n - 1];
+    for i in (0..n - 1).rev() {
+        g[i] = a[i] - b[i] * b[i] / g[i + 1];
+    }
+    // Band of G = H_MM⁻¹: G(i, j) for |i − j| ≤ 2.
+    let diag: Vec<f64> = (0..n).map(|i| 1.0 / (f[i] + g[i] - a[i])).collect();
+    let sub1 = |i: usize| -b[i] / g[i + 1] * diag[i]; // G(i+1, i)
+    let band = |i: usize, j: usize| -> f64 {
+        let (lo, hi) = (i.min(j), i.max(j));
+        match hi - lo {
+            0 => diag[lo],
+            1 => sub1(lo),
+            2 => -b[lo + 1] / g[lo + 2] * sub1(lo),
+            _ => 0.0,
+        }
+    };
+    let mut out = vec![0.0; n];
+    for (k, slot) in out.iter_mut().enumerate() {
+        // H_PP(k, k) and the column H_MP(·, k) (rows k−1, k, k+1).
+        let mut hpp = 0.0;
+        let mut column: Vec<(usize, f64)> = Vec::with_capacity(3);
+        if k > 0 {
+            hpp += q[k - 1][p1][p1];
+            column.push((k - 1, q[k - 1][m0][p1]));
+        }
+        if k + 1 < n {
+            hpp += q[k][p0][p0];
+        }
+        let mid = if k > 0 { q[k - 1][m1][p1] } else { 0.0 } + if k + 1 < n { q[k][m0][p0] } else { 0.0 };
+        column.push((k, mid));
+        if k + 1 < n {
+            column.push((k + 1, q[k][m1][p0]));
+        }
+        let mut correction = 0.0;
+        for &(i, u) in &column {
+            for &(j, v) in &column {
+                correction += u * band(i, j) * v;
+            }
+        }
+        *slot = hpp - correction;
+    }
+    out.iter().all(|v| v.is_finite()).then_some(out)
 }
