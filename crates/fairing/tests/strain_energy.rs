@@ -468,3 +468,43 @@ fn bad_inputs_are_errors() {
     let mut s = StrainEnergy::new(StrainEnergySettings::default());
     assert!(s.init(&mut closed).is_err());
 }
+
+/// §5 on random data: on a noisy arc with two adjacent points pushed out together, one
+/// two-point replacement (Eq. 15) reaches an energy that no number of one-point replacements
+/// (Eq. 11) of the same two points goes below, and one single replacement stays strictly
+/// above it: the pair needs one step, singles more.
+fn check_pair_beats_singles(noise: &[f64], k: usize, singles: usize) {
+    let mut p = noisy_arc::<2>(noise);
+    let n = p.len();
+    let k = 1 + k % (n - 3);
+    for j in [k, k + 1] {
+        p[j] *= 1.05;
+    }
+    let t = params(&p, Parametrization::ChordLength);
+    let (pair, _) = run_one(
+        &p,
+        StrainEnergySettings::default().with_mode(Mode::Interactive(vec![k, k + 1])),
+    );
+    let e_pair = energy(&pair, &t);
+    let mut q = p.clone();
+    for step in 0..singles {
+        let j = if step % 2 == 0 { k } else { k + 1 };
+        let settings = StrainEnergySettings::default()
+            .with_mode(Mode::Interactive(vec![j]))
+            .with_parameters(t.clone());
+        q = run_one(&q, settings).0;
+        let e = energy(&q, &t);
+        assert!(e >= e_pair * (1.0 - 1e-10), "singles went below the pair: {e} < {e_pair}");
+        if step == 0 {
+            assert!(e > e_pair * (1.0 + 1e-9), "one single step as good as the pair: {e} vs {e_pair}");
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(32))]
+    #[test]
+    fn pair_beats_singles(n in noise(30, 2), k in 0usize..100, singles in 1usize..30) {
+        check_pair_beats_singles(&n, k, singles);
+    }
+}
