@@ -16,7 +16,9 @@ use crate::registry::{self, MethodInfo, MethodKind};
 use crate::report::{Energies, Report};
 use std::collections::BTreeMap;
 
+mod batten;
 mod nurbs_weights;
+mod strain_energy;
 
 /// The fewest points any curve method works on: curvature-slope jumps e_i need three.
 pub const MIN_CURVE_POINTS: usize = 3;
@@ -71,6 +73,8 @@ pub struct CurveOutcome {
 pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
     match job.method.name {
         "nurbs-weights" => nurbs_weights::fair(job),
+        "strain-energy" | "kjellander" | "poliakoff" => strain_energy::fair(job),
+        "batten" => batten::fair(job),
         _ => Err(Error::NotAvailable {
             what: format!("method `{}`", job.method.name),
         }),
