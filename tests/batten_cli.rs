@@ -99,7 +99,12 @@ fn okada_table_1_setting() {
 /// a prescribed tangent direction is accepted; bad values and options are refused.
 #[test]
 fn ranges_tangents_and_errors() {
-    for args in [&["--set", "range=0.5"][..], &["--tolerance", "0.5"][..]] {
+    for args in [
+        &["--set", "range=0.5"][..],
+        &["--tolerance", "0.5"][..],
+        &["--set", "range=0.5", "--set", "update=solve"][..],
+        &["--set", "range=0.5", "--set", "update=jacobi"][..],
+    ] {
         let (output, rows, report) = run(args);
         assert_ok(&output);
         assert!(report["m_d"].as_f64().unwrap() <= 0.5);
@@ -115,6 +120,7 @@ fn ranges_tangents_and_errors() {
     assert_bad(&run(&["--set", "tangent-directions=5:1,0"]).0, &["tangent-directions", "components"]);
     assert_bad(&run(&["--set", "tangent-directions=50:1,0,0"]).0, &["tangent-directions", "past"]);
     assert_bad(&run(&["--set", "range=-1"]).0, &["range"]);
+    assert_bad(&run(&["--set", "update=newton"]).0, &["update"]);
     assert_bad(&run(&["--points", "3"]).0, &["--points"]);
     assert_bad(&run(&["--clamp-ends", "g1"]).0, &["--clamp-ends"]);
 }

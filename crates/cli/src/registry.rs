@@ -188,6 +188,11 @@ pub const METHODS: &[MethodInfo] = &[
                 meaning: "prescribed tangent directions, INDEX:DX,DY[,DZ] separated by ';'",
             },
             ParameterInfo {
+                name: "update",
+                default: "gauss-seidel",
+                meaning: "Eq. 13 per iteration: gauss-seidel (one sweep), solve (whole system), jacobi",
+            },
+            ParameterInfo {
                 name: "max-iterations",
                 default: "1000",
                 meaning: "batten iterations at most (each: Eq. 12 tangents, Eq. 13 positions)",
@@ -195,7 +200,7 @@ pub const METHODS: &[MethodInfo] = &[
             ParameterInfo {
                 name: "max-sweeps",
                 default: "10000",
-                meaning: "projected Gauss-Seidel sweeps at most when a range binds",
+                meaning: "update=solve: projected Gauss-Seidel sweeps at most when a range binds",
             },
         ],
     },

@@ -4,9 +4,9 @@
 
 use curve_repr::{Vec2, Vector};
 use fairing::strategies::batten::{
-    self, chords, circle_tangent, curvature_signs, end_tangent, energy, eq13_positions, okada_tangents,
+    self, chords, circle_tangent, curvature_signs, end_tangent, energy, eq13_positions, eq13_sweep, okada_tangents,
 };
-use fairing::strategies::{Batten, BattenSettings};
+use fairing::strategies::{Batten, BattenSettings, PositionUpdate};
 use fairing::{Constraints, FairingState, FairingStrategy, Pipeline, TerminationReason};
 use proptest::prelude::*;
 
@@ -173,8 +173,54 @@ fn check_end_tangent<const D: usize>(p0: Vector<D>, p1: Vector<D>, p2: Vector<D>
     assert!(off.norm() <= 1e-9 * w.norm().max(1.0 / (c0 * c0)), "second derivatives differ: {off:?}");
 }
 
+/// One Gauss–Seidel sweep of Eq. 13: each free point is the minimiser of V in its own
+/// position (within its range) given its left neighbour as already updated and its right
+/// neighbour as it was; a Jacobi sweep: given both neighbours as they were. Ranges hold.
+fn check_eq13_sweep<const D: usize>(p: &[Vector<D>], radius: f64, gauss_seidel: bool) {
+    let n = p.len();
+    let t = okada_tangents(p, &[]).unwrap();
+    let movable: Vec<bool> = (0..n).map(|i| i > 0 && i + 1 < n).collect();
+    let q = eq13_sweep(p, &t, &movable, p, &vec![radius; n], gauss_seidel).unwrap();
+    assert_eq!(q[0], p[0]);
+    assert_eq!(q[n - 1], p[n - 1]);
+    let scale = 1.0 + energy(p, &t);
+    for i in 1..n - 1 {
+        // the configuration point i saw: updated left part (Gauss–Seidel) or the old one
+        let mut seen: Vec<Vector<D>> = p.to_vec();
+        if gauss_seidel {
+            seen[..i].copy_from_slice(&q[..i]);
+        }
+        let g = fd_grad(
+            |pi| {
+                let mut r = seen.clone();
+                r[i] = pi;
+                energy(&r, &t)
+            },
+            q[i],
+            1e-5,
+        );
+        let d = q[i] - p[i];
+        assert!(d.norm() <= radius);
+        if d.norm() < radius * (1.0 - 1e-9) {
+            assert!(g.norm() <= 1e-6 * scale, "point {i}: grad {g:?}");
+        } else {
+            let normal = d / d.norm();
+            assert!(g.dot(&normal) <= 1e-6 * scale);
+            assert!((g - normal * g.dot(&normal)).norm() <= 1e-6 * scale);
+        }
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(48))]
+    #[test]
+    fn eq13_sweeps_2d(n in noise(20, 2), r in 0.001f64..1.0, gs in any::<bool>()) {
+        check_eq13_sweep(&noisy_arc::<2>(&n), r, gs);
+    }
+    #[test]
+    fn eq13_sweeps_3d(n in noise(20, 3), r in 0.001f64..1.0, gs in any::<bool>()) {
+        check_eq13_sweep(&noisy_arc::<3>(&n), r, gs);
+    }
     #[test]
     fn eq12_2d(n in noise(30, 2)) { check_eq12(&noisy_arc::<2>(&n)); }
     #[test]
@@ -257,8 +303,12 @@ fn prescribed_tangent_direction() {
     }
 }
 
-fn run_batten<const D: usize>(p: &[Vector<D>], constraints: Constraints) -> (Vec<Vector<D>>, usize, TerminationReason) {
-    let result = Pipeline::new(Batten::<D>::new(BattenSettings::default()))
+fn run_batten<const D: usize>(
+    p: &[Vector<D>],
+    constraints: Constraints,
+    update: PositionUpdate,
+) -> (Vec<Vector<D>>, usize, TerminationReason) {
+    let result = Pipeline::new(Batten::<D>::new(BattenSettings::default().with_position_update(update)))
         .with_constraints(constraints)
         .with_max_iterations(500)
         .run(p.to_vec())
@@ -269,14 +319,15 @@ fn run_batten<const D: usize>(p: &[Vector<D>], constraints: Constraints) -> (Vec
 /// The strategy: ends and fixed points bit for bit, every point within its range, the
 /// position update never raises V at the tangents it was computed with, and the run stops
 /// by the curvature-sign rule (never before two iterations).
-fn check_strategy<const D: usize>(p: &[Vector<D>], fixed: usize, radius: f64) {
+fn check_strategy<const D: usize>(p: &[Vector<D>], fixed: usize, radius: f64, solve: bool) {
+    let update = if solve { PositionUpdate::Solve } else { PositionUpdate::GaussSeidel };
     let n = p.len();
     let fixed = fixed % n;
     let constraints = Constraints::default()
         .with_fixed([fixed])
         .with_restraining_radii(vec![radius; n]);
     let mut state = FairingState::new(p.to_vec(), constraints.clone(), false).unwrap();
-    let mut s = Batten::new(BattenSettings::default());
+    let mut s = Batten::new(BattenSettings::default().with_position_update(update));
     s.init(&mut state).unwrap();
     for m in 0..500 {
         let before = state.points().to_vec();
@@ -295,7 +346,7 @@ fn check_strategy<const D: usize>(p: &[Vector<D>], fixed: usize, radius: f64) {
     for k in 0..n {
         assert!((q[k] - p[k]).norm() <= radius);
     }
-    let (r, _, termination) = run_batten(p, constraints);
+    let (r, _, termination) = run_batten(p, constraints, update);
     assert_eq!(termination, TerminationReason::StrategyDone);
     assert_eq!(r.as_slice(), q);
 }
@@ -303,12 +354,12 @@ fn check_strategy<const D: usize>(p: &[Vector<D>], fixed: usize, radius: f64) {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(24))]
     #[test]
-    fn strategy_2d(n in noise(40, 2), f in 0usize..100, r in 0.01f64..1.0) {
-        check_strategy(&noisy_arc::<2>(&n), f, r);
+    fn strategy_2d(n in noise(40, 2), f in 0usize..100, r in 0.01f64..1.0, solve in any::<bool>()) {
+        check_strategy(&noisy_arc::<2>(&n), f, r, solve);
     }
     #[test]
-    fn strategy_3d(n in noise(40, 3), f in 0usize..100, r in 0.01f64..1.0) {
-        check_strategy(&noisy_arc::<3>(&n), f, r);
+    fn strategy_3d(n in noise(40, 3), f in 0usize..100, r in 0.01f64..1.0, solve in any::<bool>()) {
+        check_strategy(&noisy_arc::<3>(&n), f, r, solve);
     }
 }
 
@@ -318,14 +369,16 @@ proptest! {
 fn unrestricted_batten_removes_wiggles() {
     let noise: Vec<f64> = (0..2 * 25).map(|i| 0.25 * ((i as f64) * 12.9898).sin().fract()).collect();
     let p = noisy_arc::<2>(&noise);
-    let (q, iterations, termination) = run_batten(&p, Constraints::default().with_fixed([8, 16]));
-    assert_eq!(termination, TerminationReason::StrategyDone);
-    assert!(iterations >= 2);
-    let tp = okada_tangents(&p, &[]).unwrap();
-    let tq = okada_tangents(&q, &[]).unwrap();
-    assert!(energy(&q, &tq) < energy(&p, &tp));
-    let signs = curvature_signs(&q, &tq);
-    assert!(signs.iter().all(|&s| s == 1), "{signs:?}");
+    for update in [PositionUpdate::GaussSeidel, PositionUpdate::Solve, PositionUpdate::Jacobi] {
+        let (q, iterations, termination) = run_batten(&p, Constraints::default().with_fixed([8, 16]), update);
+        assert_eq!(termination, TerminationReason::StrategyDone);
+        assert!(iterations >= 2);
+        let tp = okada_tangents(&p, &[]).unwrap();
+        let tq = okada_tangents(&q, &[]).unwrap();
+        assert!(energy(&q, &tq) < energy(&p, &tp), "{update:?}");
+        let signs = curvature_signs(&q, &tq);
+        assert!(signs.iter().all(|&s| s == 1), "{update:?}: {signs:?}");
+    }
 }
 
 /// Bad inputs are errors: too few points, coinciding points, a closed curve, a zero or

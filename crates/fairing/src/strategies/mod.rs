@@ -4,4 +4,4 @@ pub mod batten;
 pub mod strain_energy;
 
 pub use strain_energy::{Mode, Replacement, StrainEnergy, StrainEnergySettings};
-pub use batten::{Batten, BattenSettings, Tangents};
+pub use batten::{Batten, BattenSettings, PositionUpdate, Tangents};

@@ -3,8 +3,10 @@
 //! Parameters (registry): `range` (the adjustable range of every point: it stays within this
 //! distance of its data point; default `inf`, unrestricted as in Okada's Table 1),
 //! `tangent-directions` (prescribed tangent directions, `INDEX:DX,DY[,DZ]` separated by `;`,
-//! default none), `max-iterations` (default 1000), `max-sweeps` (projected Gauss–Seidel
-//! sweeps when a range binds, default 10000).
+//! default none), `update` (how Eq. 13 moves the points each iteration: gauss-seidel, one
+//! sweep of its rows, the default; solve, the whole system; jacobi, one simultaneous sweep),
+//! `max-iterations` (default 1000), `max-sweeps` (projected Gauss–Seidel sweeps when a range
+//! binds under `update=solve`, default 10000).
 //!
 //! Constraints: `--fixed` and `--tolerance` through the library's constraints; the two end
 //! points never move (g0 holds anyway); `--clamp-ends g1|g2` are refused. `--points` has no
@@ -13,7 +15,7 @@
 use std::collections::BTreeMap;
 
 use curve_repr::Vector;
-use fairing::strategies::{batten, Batten, BattenSettings};
+use fairing::strategies::{batten, Batten, BattenSettings, PositionUpdate};
 use fairing::FairingResult;
 
 use super::strain_energy::{library_constraints, points_of, run_strategy};
@@ -53,26 +55,40 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
     };
     let max_iterations = parameters.count("max-iterations", 1000)?;
     let max_sweeps = parameters.count("max-sweeps", 10_000)?;
+    let update = match parameters
+        .choice("update", &["gauss-seidel", "solve", "jacobi"], "gauss-seidel")?
+        .as_str()
+    {
+        "solve" => PositionUpdate::Solve,
+        "jacobi" => PositionUpdate::Jacobi,
+        _ => PositionUpdate::GaussSeidel,
+    };
     let mut constraints = library_constraints(job);
     if range.is_finite() {
         constraints = constraints.with_restraining_radii(vec![range; job.input.len()]);
     }
     match &job.input.points {
         Points::Planar(points) => {
-            let settings = settings::<2>(&directions, max_sweeps);
+            let settings = settings::<2>(&directions, max_sweeps, update);
             let run = run_strategy(job, Batten::new(settings.clone()), points, max_iterations, constraints)?;
             Ok(outcome(run, &settings))
         }
         Points::Spatial(points) => {
-            let settings = settings::<3>(&directions, max_sweeps);
+            let settings = settings::<3>(&directions, max_sweeps, update);
             let run = run_strategy(job, Batten::new(settings.clone()), points, max_iterations, constraints)?;
             Ok(outcome(run, &settings))
         }
     }
 }
 
-fn settings<const D: usize>(directions: &[(usize, Vec<f64>)], max_sweeps: usize) -> BattenSettings<D> {
-    let mut settings = BattenSettings::default().with_max_sweeps(max_sweeps);
+fn settings<const D: usize>(
+    directions: &[(usize, Vec<f64>)],
+    max_sweeps: usize,
+    update: PositionUpdate,
+) -> BattenSettings<D> {
+    let mut settings = BattenSettings::default()
+        .with_max_sweeps(max_sweeps)
+        .with_position_update(update);
     for (i, d) in directions {
         let mut v = Vector::<D>::zeros();
         for (slot, value) in v.iter_mut().zip(d) {
