@@ -57,11 +57,20 @@ fn run(args: &[&str]) -> (Output, Vec<Vec<f64>>, serde_json::Value) {
 }
 
 fn assert_ok(output: &Output) {
-    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
 }
 
 fn assert_bad(output: &Output, words: &[&str]) {
-    assert_eq!(output.status.code(), Some(2), "{}", String::from_utf8_lossy(&output.stderr));
+    assert_eq!(
+        output.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
     let err = String::from_utf8_lossy(&output.stderr);
     for w in words {
         assert!(err.contains(w), "`{w}` not in {err}");
@@ -81,7 +90,12 @@ fn okada_table_1_setting() {
     for i in [0, 2, 5, 7, 10] {
         assert_eq!(rows[i], OKADA[i].to_vec(), "point {i}");
     }
-    let moved: Vec<u64> = report["moved"].as_array().unwrap().iter().map(|v| v.as_u64().unwrap()).collect();
+    let moved: Vec<u64> = report["moved"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_u64().unwrap())
+        .collect();
     assert_eq!(moved, vec![1, 3, 4, 6, 8, 9]);
     let segments = report["curve"]["segments"].as_array().unwrap();
     assert_eq!(segments.len(), 10);
@@ -117,8 +131,14 @@ fn ranges_tangents_and_errors() {
     }
     let (output, _, _) = run(&["--set", "tangent-directions=5:1,0.4,1"]);
     assert_ok(&output);
-    assert_bad(&run(&["--set", "tangent-directions=5:1,0"]).0, &["tangent-directions", "components"]);
-    assert_bad(&run(&["--set", "tangent-directions=50:1,0,0"]).0, &["tangent-directions", "past"]);
+    assert_bad(
+        &run(&["--set", "tangent-directions=5:1,0"]).0,
+        &["tangent-directions", "components"],
+    );
+    assert_bad(
+        &run(&["--set", "tangent-directions=50:1,0,0"]).0,
+        &["tangent-directions", "past"],
+    );
     assert_bad(&run(&["--set", "range=-1"]).0, &["range"]);
     assert_bad(&run(&["--set", "update=newton"]).0, &["update"]);
     assert_bad(&run(&["--points", "3"]).0, &["--points"]);

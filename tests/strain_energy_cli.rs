@@ -82,7 +82,11 @@ fn run(rows: &[Vec<f64>], args: &[&str]) -> Run {
     } else {
         (Vec::new(), serde_json::Value::Null)
     };
-    Run { output, points, report }
+    Run {
+        output,
+        points,
+        report,
+    }
 }
 
 fn ok(run: &Run) {
@@ -94,7 +98,12 @@ fn ok(run: &Run) {
 }
 
 fn bad(run: &Run, words: &[&str]) {
-    assert_eq!(run.output.status.code(), Some(2), "{}", String::from_utf8_lossy(&run.output.stderr));
+    assert_eq!(
+        run.output.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&run.output.stderr)
+    );
     let err = String::from_utf8_lossy(&run.output.stderr);
     assert_eq!(err.trim().lines().count(), 1, "{err}");
     for w in words {
@@ -124,7 +133,10 @@ fn automatic_mode_lowers_energy_and_keeps_fixed_points() {
             ("kjellander", "uniform"),
             ("poliakoff", "chord-length"),
         ] {
-            let r = run(&rows, &["--method", method, "--fixed", "5,20", "--kind", "parametric"]);
+            let r = run(
+                &rows,
+                &["--method", method, "--fixed", "5,20", "--kind", "parametric"],
+            );
             ok(&r);
             assert_eq!(r.report["method"], method);
             assert_eq!(r.report["mode"], "automatic");
@@ -139,7 +151,12 @@ fn automatic_mode_lowers_energy_and_keeps_fixed_points() {
                 .filter(|&i| r.points[i] != rows[i])
                 .map(|i| i as u64)
                 .collect();
-            let moved: Vec<u64> = r.report["moved"].as_array().unwrap().iter().map(|v| v.as_u64().unwrap()).collect();
+            let moved: Vec<u64> = r.report["moved"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_u64().unwrap())
+                .collect();
             assert_eq!(moved, differ);
             assert!(!moved.is_empty());
             assert_eq!(r.report["curve"]["type"], "hermite");
@@ -174,9 +191,23 @@ fn interactive_mode_moves_only_the_named_points() {
 #[test]
 fn tolerance_bounds_every_move() {
     let rows = noisy_arc(40, true);
-    let r = run(&rows, &["--method", "poliakoff", "--tolerance", "0.002", "--set", "radius-scale=10"]);
+    let r = run(
+        &rows,
+        &[
+            "--method",
+            "poliakoff",
+            "--tolerance",
+            "0.002",
+            "--set",
+            "radius-scale=10",
+        ],
+    );
     ok(&r);
-    let worst = rows.iter().zip(&r.points).map(|(a, b)| distance(a, b)).fold(0.0, f64::max);
+    let worst = rows
+        .iter()
+        .zip(&r.points)
+        .map(|(a, b)| distance(a, b))
+        .fold(0.0, f64::max);
     assert!(worst <= 0.002 * (1.0 + 1e-12), "moved {worst}");
     assert!(worst > 0.0);
     assert!((r.report["m_d"].as_f64().unwrap() - worst).abs() < 1e-12);
@@ -192,7 +223,10 @@ fn clamp_ends() {
     assert_eq!(r.points[0], rows[0]);
     assert_eq!(r.points[19], rows[19]);
     for clamp in ["g1", "g2"] {
-        bad(&run(&rows, &["--method", "strain-energy", "--clamp-ends", clamp]), &["--clamp-ends", clamp]);
+        bad(
+            &run(&rows, &["--method", "strain-energy", "--clamp-ends", clamp]),
+            &["--clamp-ends", clamp],
+        );
     }
 }
 
@@ -204,39 +238,83 @@ fn config_file_parameters() {
     let rows = noisy_arc(40, false);
     let dir = temp_dir();
     let config = dir.join("se.toml");
-    std::fs::write(&config, "max-iterations = 100000\n[strain-energy]\nenergy-tolerance = 0.5\n").unwrap();
-    let r = run(&rows, &["--method", "strain-energy", "--config", config.to_str().unwrap()]);
+    std::fs::write(
+        &config,
+        "max-iterations = 100000\n[strain-energy]\nenergy-tolerance = 0.5\n",
+    )
+    .unwrap();
+    let r = run(
+        &rows,
+        &["--method", "strain-energy", "--config", config.to_str().unwrap()],
+    );
     ok(&r);
-    let full = run(&rows, &["--method", "strain-energy", "--set", "energy-tolerance=0"]);
+    let full = run(
+        &rows,
+        &["--method", "strain-energy", "--set", "energy-tolerance=0"],
+    );
     ok(&full);
     let (coarse, fine) = (
         r.report["iterations"].as_u64().unwrap(),
         full.report["iterations"].as_u64().unwrap(),
     );
-    assert!(coarse < fine, "energy-tolerance from the file not applied: {coarse} vs {fine}");
+    assert!(
+        coarse < fine,
+        "energy-tolerance from the file not applied: {coarse} vs {fine}"
+    );
     assert_eq!(r.report["termination"], "StrategyDone");
     let limited = run(&rows, &["--method", "strain-energy", "--set", "max-iterations=3"]);
     ok(&limited);
     assert_eq!(limited.report["iterations"], 3);
     assert_eq!(limited.report["termination"], "MaxIterations");
-    let iterated = run(&rows, &["--method", "strain-energy", "--set", "replacement=iterated", "--set", "pairs=on"]);
+    let iterated = run(
+        &rows,
+        &[
+            "--method",
+            "strain-energy",
+            "--set",
+            "replacement=iterated",
+            "--set",
+            "pairs=on",
+        ],
+    );
     ok(&iterated);
     let (b, a) = energies(&iterated.report);
     assert!(a < b);
     std::fs::write(&config, "[strain-energy]\n\nenergy-tolerance = -1\n").unwrap();
     bad(
-        &run(&rows, &["--method", "strain-energy", "--config", config.to_str().unwrap()]),
+        &run(
+            &rows,
+            &["--method", "strain-energy", "--config", config.to_str().unwrap()],
+        ),
         &["se.toml:3", "energy-tolerance"],
     );
-    bad(&run(&rows, &["--method", "poliakoff", "--set", "pairs=maybe"]), &["pairs"]);
-    bad(&run(&rows, &["--method", "kjellander", "--set", "parametrization=uniform"]), &["parametrization"]);
+    bad(
+        &run(&rows, &["--method", "poliakoff", "--set", "pairs=maybe"]),
+        &["pairs"],
+    );
+    bad(
+        &run(
+            &rows,
+            &["--method", "kjellander", "--set", "parametrization=uniform"],
+        ),
+        &["parametrization"],
+    );
 }
 
 /// Interactive bad points must be interior; indices past the end are refused too.
 #[test]
 fn bad_points_are_refused() {
     let rows = noisy_arc(10, false);
-    bad(&run(&rows, &["--method", "strain-energy", "--points", "0"]), &["--points", "end point"]);
-    bad(&run(&rows, &["--method", "strain-energy", "--points", "9"]), &["--points"]);
-    bad(&run(&rows, &["--method", "strain-energy", "--points", "10"]), &["--points"]);
+    bad(
+        &run(&rows, &["--method", "strain-energy", "--points", "0"]),
+        &["--points", "end point"],
+    );
+    bad(
+        &run(&rows, &["--method", "strain-energy", "--points", "9"]),
+        &["--points"],
+    );
+    bad(
+        &run(&rows, &["--method", "strain-energy", "--points", "10"]),
+        &["--points"],
+    );
 }

@@ -4,7 +4,8 @@
 
 use curve_repr::{Vec2, Vector};
 use fairing::strategies::batten::{
-    self, chords, circle_tangent, curvature_signs, end_tangent, energy, eq13_positions, eq13_sweep, okada_tangents,
+    self, chords, circle_tangent, curvature_signs, end_tangent, energy, eq13_positions, eq13_sweep,
+    okada_tangents,
 };
 use fairing::strategies::{Batten, BattenSettings, PositionUpdate};
 use fairing::{Constraints, FairingState, FairingStrategy, Pipeline, TerminationReason};
@@ -132,8 +133,14 @@ fn check_eq13_ranges<const D: usize>(p: &[Vector<D>], radius: f64) {
         } else {
             let normal = d / d.norm();
             let tangential = g - normal * g.dot(&normal);
-            assert!(g.dot(&normal) <= 1e-6 * scale, "point {i}: gradient points outwards");
-            assert!(tangential.norm() <= 1e-6 * scale, "point {i}: tangential grad {tangential:?}");
+            assert!(
+                g.dot(&normal) <= 1e-6 * scale,
+                "point {i}: gradient points outwards"
+            );
+            assert!(
+                tangential.norm() <= 1e-6 * scale,
+                "point {i}: tangential grad {tangential:?}"
+            );
         }
     }
 }
@@ -170,7 +177,10 @@ fn check_end_tangent<const D: usize>(p0: Vector<D>, p1: Vector<D>, p2: Vector<D>
     }
     let w = (p1 - p0 - x) / (c0 * c0) + (p2 - p1) / (c1 * c1); // must equal b·u2/C1²
     let off = w - u2 * w.dot(&u2);
-    assert!(off.norm() <= 1e-9 * w.norm().max(1.0 / (c0 * c0)), "second derivatives differ: {off:?}");
+    assert!(
+        off.norm() <= 1e-9 * w.norm().max(1.0 / (c0 * c0)),
+        "second derivatives differ: {off:?}"
+    );
 }
 
 /// One Gauss–Seidel sweep of Eq. 13: each free point is the minimiser of V in its own
@@ -247,11 +257,22 @@ fn end_tangent_on_a_circle() {
     for (r, theta) in [(1.0, 0.3), (5.0, 0.05), (2.0, 1.0)] {
         let p = |k: f64| Vec2::new(r * (k * theta).cos(), r * (k * theta).sin());
         let x = end_tangent(p(0.0), p(1.0), p(2.0), None).unwrap();
-        assert!((x.norm() - r * f64::tan(theta)).abs() < 1e-12 * r, "{} vs {}", x.norm(), r * theta.tan());
+        assert!(
+            (x.norm() - r * f64::tan(theta)).abs() < 1e-12 * r,
+            "{} vs {}",
+            x.norm(),
+            r * theta.tan()
+        );
         assert!(x.x.abs() < 1e-12 && x.y > 0.0);
     }
     // collinear points: the chord
-    let x = end_tangent(Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0), Vec2::new(3.0, 0.0), None).unwrap();
+    let x = end_tangent(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(1.0, 0.0),
+        Vec2::new(3.0, 0.0),
+        None,
+    )
+    .unwrap();
     assert!((x - Vec2::new(1.0, 0.0)).norm() < 1e-12);
 }
 
@@ -259,7 +280,9 @@ fn end_tangent_on_a_circle() {
 /// planar S curve changes sign once.
 #[test]
 fn curvature_signs_follow_the_turning() {
-    let ccw: Vec<Vec2> = (0..12).map(|i| Vec2::new((i as f64 * 0.3).cos(), (i as f64 * 0.3).sin())).collect();
+    let ccw: Vec<Vec2> = (0..12)
+        .map(|i| Vec2::new((i as f64 * 0.3).cos(), (i as f64 * 0.3).sin()))
+        .collect();
     let t = okada_tangents(&ccw, &[]).unwrap();
     assert!(curvature_signs(&ccw, &t).iter().all(|&s| s == 1));
     let cw: Vec<Vec2> = ccw.iter().map(|p| Vec2::new(p.x, -p.y)).collect();
@@ -272,7 +295,10 @@ fn curvature_signs_follow_the_turning() {
         })
         .collect();
     let t = okada_tangents(&s_curve, &[]).unwrap();
-    let signs: Vec<i8> = curvature_signs(&s_curve, &t).into_iter().filter(|&s| s != 0).collect();
+    let signs: Vec<i8> = curvature_signs(&s_curve, &t)
+        .into_iter()
+        .filter(|&s| s != 0)
+        .collect();
     assert_eq!(signs.windows(2).filter(|w| w[0] != w[1]).count(), 1, "{signs:?}");
 }
 
@@ -287,7 +313,10 @@ fn prescribed_tangent_direction() {
     let u = t.x[j] / t.x[j].norm();
     assert!((u - dir / dir.norm()).norm() < 1e-12);
     let y = t.y(j - 1).unwrap();
-    assert!((y / y.norm() - u).norm() < 1e-12, "Y_{{j-1}} not along the direction");
+    assert!(
+        (y / y.norm() - u).norm() < 1e-12,
+        "Y_{{j-1}} not along the direction"
+    );
     for i in (1..p.len() - 1).filter(|&i| i != j) {
         let g = fd_grad(
             |xi| {
@@ -308,11 +337,13 @@ fn run_batten<const D: usize>(
     constraints: Constraints,
     update: PositionUpdate,
 ) -> (Vec<Vector<D>>, usize, TerminationReason) {
-    let result = Pipeline::new(Batten::<D>::new(BattenSettings::default().with_position_update(update)))
-        .with_constraints(constraints)
-        .with_max_iterations(500)
-        .run(p.to_vec())
-        .unwrap();
+    let result = Pipeline::new(Batten::<D>::new(
+        BattenSettings::default().with_position_update(update),
+    ))
+    .with_constraints(constraints)
+    .with_max_iterations(500)
+    .run(p.to_vec())
+    .unwrap();
     (result.points, result.iterations, result.termination)
 }
 
@@ -320,7 +351,11 @@ fn run_batten<const D: usize>(
 /// position update never raises V at the tangents it was computed with, and the run stops
 /// by the curvature-sign rule (never before two iterations).
 fn check_strategy<const D: usize>(p: &[Vector<D>], fixed: usize, radius: f64, solve: bool) {
-    let update = if solve { PositionUpdate::Solve } else { PositionUpdate::GaussSeidel };
+    let update = if solve {
+        PositionUpdate::Solve
+    } else {
+        PositionUpdate::GaussSeidel
+    };
     let n = p.len();
     let fixed = fixed % n;
     let constraints = Constraints::default()
@@ -367,9 +402,15 @@ proptest! {
 /// that of the data, and the curvature signs (one plane) are all of one sign.
 #[test]
 fn unrestricted_batten_removes_wiggles() {
-    let noise: Vec<f64> = (0..2 * 25).map(|i| 0.25 * ((i as f64) * 12.9898).sin().fract()).collect();
+    let noise: Vec<f64> = (0..2 * 25)
+        .map(|i| 0.25 * ((i as f64) * 12.9898).sin().fract())
+        .collect();
     let p = noisy_arc::<2>(&noise);
-    for update in [PositionUpdate::GaussSeidel, PositionUpdate::Solve, PositionUpdate::Jacobi] {
+    for update in [
+        PositionUpdate::GaussSeidel,
+        PositionUpdate::Solve,
+        PositionUpdate::Jacobi,
+    ] {
         let (q, iterations, termination) = run_batten(&p, Constraints::default().with_fixed([8, 16]), update);
         assert_eq!(termination, TerminationReason::StrategyDone);
         assert!(iterations >= 2);

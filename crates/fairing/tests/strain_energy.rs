@@ -494,9 +494,15 @@ fn check_pair_beats_singles(noise: &[f64], k: usize, singles: usize) {
             .with_parameters(t.clone());
         q = run_one(&q, settings).0;
         let e = energy(&q, &t);
-        assert!(e >= e_pair * (1.0 - 1e-10), "singles went below the pair: {e} < {e_pair}");
+        assert!(
+            e >= e_pair * (1.0 - 1e-10),
+            "singles went below the pair: {e} < {e_pair}"
+        );
         if step == 0 {
-            assert!(e > e_pair * (1.0 + 1e-9), "one single step as good as the pair: {e} vs {e_pair}");
+            assert!(
+                e > e_pair * (1.0 + 1e-9),
+                "one single step as good as the pair: {e} vs {e_pair}"
+            );
         }
     }
 }

@@ -137,18 +137,19 @@ pub fn chords<const D: usize>(points: &[Vector<D>]) -> Result<Vec<f64>> {
 
 /// The Ferguson coefficients R_{i,0..3} of the segment P_0 → P_1 with end tangents X, Y
 /// (Eq. 1, 6, 7): P(t) = R_0 + R_1 t + R_2 t² + R_3 t³.
-pub fn ferguson<const D: usize>(
-    p0: Vector<D>,
-    p1: Vector<D>,
-    x: Vector<D>,
-    y: Vector<D>,
-) -> [Vector<D>; 4] {
+pub fn ferguson<const D: usize>(p0: Vector<D>, p1: Vector<D>, x: Vector<D>, y: Vector<D>) -> [Vector<D>; 4] {
     [p0, x, (p1 - p0) * 3.0 - x * 2.0 - y, (p0 - p1) * 2.0 + x + y]
 }
 
 /// (1/C³) ∫_0^1 |P̈(t)|² dt of one Ferguson segment, Eq. (5)'s term:
 /// 4(R_2·R_2 + 3 R_2·R_3 + 3 R_3·R_3)/C³ (Okada drops the common factor 4). O(D).
-pub fn segment_energy<const D: usize>(p0: Vector<D>, p1: Vector<D>, x: Vector<D>, y: Vector<D>, c: f64) -> f64 {
+pub fn segment_energy<const D: usize>(
+    p0: Vector<D>,
+    p1: Vector<D>,
+    x: Vector<D>,
+    y: Vector<D>,
+    c: f64,
+) -> f64 {
     let [_, _, r2, r3] = ferguson(p0, p1, x, y);
     4.0 * (r2.dot(&r2) + 3.0 * r2.dot(&r3) + 3.0 * r3.dot(&r3)) / c.powi(3)
 }
@@ -227,7 +228,11 @@ pub fn end_tangent<const D: usize>(
     // On a circle a = R tan θ: it turns negative or explodes when the arc P_0P_1 turns by
     // 90° or more. Where the rule gives no usable magnitude (a ≤ 0, a > 3 C_0, where a
     // Ferguson segment can loop, or non-finite) the chord C_0 is taken instead.
-    let a = if a.is_finite() && a > 0.0 && a <= 3.0 * c0 { a } else { c0 };
+    let a = if a.is_finite() && a > 0.0 && a <= 3.0 * c0 {
+        a
+    } else {
+        c0
+    };
     Some(u0 * a)
 }
 
@@ -253,27 +258,46 @@ fn prescribed_speed<const D: usize>(prev: Vector<D>, p: Vector<D>, next: Vector<
 /// ∂V_i/∂X_i = 0 (Eq. 10), V_i the energy of the two segments at P_i (Eq. 5); rows at a
 /// prescribed point become X_i = its known value, which splits the solve as Step 3 does.
 /// One tridiagonal solve, O(n). Errors: fewer than three points, coinciding points.
-pub fn okada_tangents<const D: usize>(points: &[Vector<D>], directions: &[(usize, Vector<D>)]) -> Result<Tangents<D>> {
+pub fn okada_tangents<const D: usize>(
+    points: &[Vector<D>],
+    directions: &[(usize, Vector<D>)],
+) -> Result<Tangents<D>> {
     let n = points.len();
     if n < 3 {
-        return Err(strategy_error("batten", format!("{n} points; the batten needs at least 3")));
+        return Err(strategy_error(
+            "batten",
+            format!("{n} points; the batten needs at least 3"),
+        ));
     }
     let c = chords(points)?;
     let bad = || strategy_error("batten", "the end tangent's circle is degenerate");
     let direction = |i: usize| directions.iter().rev().find(|(j, _)| *j == i).map(|(_, d)| *d);
     let x0 = end_tangent(points[0], points[1], points[2], direction(0)).ok_or_else(bad)?;
-    let back = end_tangent(points[n - 1], points[n - 2], points[n - 3], direction(n - 1).map(|d| -d))
-        .ok_or_else(bad)?;
+    let back = end_tangent(
+        points[n - 1],
+        points[n - 2],
+        points[n - 3],
+        direction(n - 1).map(|d| -d),
+    )
+    .ok_or_else(bad)?;
     let end = -back;
     // Unknowns X_1..X_{n−2}: row r = i − 1.
     let m = n - 2;
-    let (mut lower, mut diag, mut upper, mut rhs) = (vec![0.0; m], vec![0.0; m], vec![0.0; m], vec![Vector::<D>::zeros(); m]);
+    let (mut lower, mut diag, mut upper, mut rhs) = (
+        vec![0.0; m],
+        vec![0.0; m],
+        vec![0.0; m],
+        vec![Vector::<D>::zeros(); m],
+    );
     for i in 1..=m {
         let r = i - 1;
         if let Some(u) = direction(i) {
             let len = u.norm();
             if !(len > 0.0 && len.is_finite()) {
-                return Err(strategy_error("batten", format!("prescribed tangent at point {i} has no direction")));
+                return Err(strategy_error(
+                    "batten",
+                    format!("prescribed tangent at point {i} has no direction"),
+                ));
             }
             let u = u / len;
             let speed = prescribed_speed(points[i - 1], points[i], points[i + 1], u);
@@ -336,7 +360,12 @@ pub fn eq13_positions<const D: usize>(
     };
     let free = |i: usize| i > 0 && i + 1 < n && movable[i];
     let m = n.saturating_sub(2);
-    let (mut lower, mut diag, mut upper, mut rhs) = (vec![0.0; m], vec![0.0; m], vec![0.0; m], vec![Vector::<D>::zeros(); m]);
+    let (mut lower, mut diag, mut upper, mut rhs) = (
+        vec![0.0; m],
+        vec![0.0; m],
+        vec![0.0; m],
+        vec![Vector::<D>::zeros(); m],
+    );
     for i in 1..n.saturating_sub(1) {
         let r = i - 1;
         if !free(i) {
@@ -519,10 +548,16 @@ impl<const D: usize> FairingStrategy<D> for Batten<D> {
         let n = state.len();
         for (i, d) in &self.settings.tangent_directions {
             if *i >= n {
-                return Err(strategy_error("batten", format!("prescribed tangent at point {i} of {n}")));
+                return Err(strategy_error(
+                    "batten",
+                    format!("prescribed tangent at point {i} of {n}"),
+                ));
             }
             if !(d.norm() > 0.0 && d.iter().all(|v| v.is_finite())) {
-                return Err(strategy_error("batten", format!("prescribed tangent at point {i} has no direction")));
+                return Err(strategy_error(
+                    "batten",
+                    format!("prescribed tangent at point {i} has no direction"),
+                ));
             }
         }
         self.previous = None;
@@ -567,6 +602,9 @@ impl<const D: usize> FairingStrategy<D> for Batten<D> {
         let done = self.iteration >= 2 && self.previous.as_ref() == Some(&signs);
         self.previous = Some(signs);
         self.tangents = Some(tangents);
-        Ok(StepOutcome { done, criterion: Some(criterion) })
+        Ok(StepOutcome {
+            done,
+            criterion: Some(criterion),
+        })
     }
 }

@@ -3,5 +3,5 @@
 pub mod batten;
 pub mod strain_energy;
 
-pub use strain_energy::{Mode, Replacement, StrainEnergy, StrainEnergySettings};
 pub use batten::{Batten, BattenSettings, PositionUpdate, Tangents};
+pub use strain_energy::{Mode, Replacement, StrainEnergy, StrainEnergySettings};

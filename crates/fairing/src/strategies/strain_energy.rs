@@ -692,8 +692,8 @@ pub fn stiffness_diagonal<const D: usize>(spline: &HermiteSpline<D>) -> Option<V
             let h = t[s + 1] - t[s];
             let energy = |e: [Vector<1>; 4]| hermite_energy(e[0], e[1], e[2], e[3], h);
             let mut m = [[0.0; 4]; 4];
-            for a in 0..4 {
-                m[a][a] = energy(unit(a));
+            for (a, row) in m.iter_mut().enumerate() {
+                row[a] = energy(unit(a));
             }
             for a in 0..4 {
                 for b in a + 1..4 {

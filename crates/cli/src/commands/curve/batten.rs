@@ -39,19 +39,21 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
             _ => {
                 return Err(Error::Parameter {
                     origin: given.origin.clone(),
-                    message: format!("`range` = `{}` is not a non-negative number (or inf)", given.value),
+                    message: format!(
+                        "`range` = `{}` is not a non-negative number (or inf)",
+                        given.value
+                    ),
                 })
             }
         },
     };
     let directions = match parameters.get("tangent-directions") {
         None => Vec::new(),
-        Some(given) => parse_directions(&given.value, job.input.points.dimension(), job.input.len()).map_err(
-            |message| Error::Parameter {
+        Some(given) => parse_directions(&given.value, job.input.points.dimension(), job.input.len())
+            .map_err(|message| Error::Parameter {
                 origin: given.origin.clone(),
                 message: format!("`tangent-directions` = `{}`: {message}", given.value),
-            },
-        )?,
+            })?,
     };
     let max_iterations = parameters.count("max-iterations", 1000)?;
     let max_sweeps = parameters.count("max-sweeps", 10_000)?;
@@ -70,12 +72,24 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
     match &job.input.points {
         Points::Planar(points) => {
             let settings = settings::<2>(&directions, max_sweeps, update);
-            let run = run_strategy(job, Batten::new(settings.clone()), points, max_iterations, constraints)?;
+            let run = run_strategy(
+                job,
+                Batten::new(settings.clone()),
+                points,
+                max_iterations,
+                constraints,
+            )?;
             Ok(outcome(run, &settings))
         }
         Points::Spatial(points) => {
             let settings = settings::<3>(&directions, max_sweeps, update);
-            let run = run_strategy(job, Batten::new(settings.clone()), points, max_iterations, constraints)?;
+            let run = run_strategy(
+                job,
+                Batten::new(settings.clone()),
+                points,
+                max_iterations,
+                constraints,
+            )?;
             Ok(outcome(run, &settings))
         }
     }
@@ -100,12 +114,19 @@ fn settings<const D: usize>(
 }
 
 /// Parses `INDEX:DX,DY[,DZ];...` for points of `dimension` coordinates, `count` points.
-fn parse_directions(text: &str, dimension: usize, count: usize) -> std::result::Result<Vec<(usize, Vec<f64>)>, String> {
+fn parse_directions(
+    text: &str,
+    dimension: usize,
+    count: usize,
+) -> std::result::Result<Vec<(usize, Vec<f64>)>, String> {
     let mut out = Vec::new();
     for item in text.split(';').map(str::trim).filter(|s| !s.is_empty()) {
-        let (index, direction) = item
-            .split_once(':')
-            .ok_or_else(|| format!("`{item}` is not INDEX:DX,DY{}", if dimension == 3 { ",DZ" } else { "" }))?;
+        let (index, direction) = item.split_once(':').ok_or_else(|| {
+            format!(
+                "`{item}` is not INDEX:DX,DY{}",
+                if dimension == 3 { ",DZ" } else { "" }
+            )
+        })?;
         let index: usize = index
             .trim()
             .parse()
@@ -119,7 +140,10 @@ fn parse_directions(text: &str, dimension: usize, count: usize) -> std::result::
             .collect::<std::result::Result<_, _>>()
             .map_err(|_| format!("`{direction}` is not a list of numbers"))?;
         if values.len() != dimension {
-            return Err(format!("the direction at point {index} has {} components, the points {dimension}", values.len()));
+            return Err(format!(
+                "the direction at point {index} has {} components, the points {dimension}",
+                values.len()
+            ));
         }
         if !values.iter().all(|v| v.is_finite()) || values.iter().all(|v| *v == 0.0) {
             return Err(format!("the direction at point {index} is zero or not finite"));

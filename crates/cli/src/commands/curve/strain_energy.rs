@@ -80,11 +80,23 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
     let max_iterations = parameters.count("max-iterations", 100_000)?;
     match &job.input.points {
         Points::Planar(points) => {
-            let run = run_strategy(job, StrainEnergy::new(settings.clone()), points, max_iterations, library_constraints(job))?;
+            let run = run_strategy(
+                job,
+                StrainEnergy::new(settings.clone()),
+                points,
+                max_iterations,
+                library_constraints(job),
+            )?;
             Ok(outcome(points, run, &settings))
         }
         Points::Spatial(points) => {
-            let run = run_strategy(job, StrainEnergy::new(settings.clone()), points, max_iterations, library_constraints(job))?;
+            let run = run_strategy(
+                job,
+                StrainEnergy::new(settings.clone()),
+                points,
+                max_iterations,
+                library_constraints(job),
+            )?;
             Ok(outcome(points, run, &settings))
         }
     }
@@ -171,8 +183,15 @@ pub(super) fn from_fairing(error: fairing::Error, file: &str) -> Error {
 }
 
 /// The report's `curve` for a parametric cubic Hermite spline: knots, points and tangents.
-pub(super) fn hermite_json<const D: usize>(spline: &HermiteSpline<D>, parametrization: &str) -> serde_json::Value {
-    let rows = |v: &[Vector<D>]| v.iter().map(|p| p.iter().copied().collect::<Vec<f64>>()).collect::<Vec<_>>();
+pub(super) fn hermite_json<const D: usize>(
+    spline: &HermiteSpline<D>,
+    parametrization: &str,
+) -> serde_json::Value {
+    let rows = |v: &[Vector<D>]| {
+        v.iter()
+            .map(|p| p.iter().copied().collect::<Vec<f64>>())
+            .collect::<Vec<_>>()
+    };
     serde_json::json!({
         "type": "hermite",
         "degree": 3,
@@ -218,8 +237,14 @@ fn outcome<const D: usize>(
     };
     let mut curve = serde_json::Value::Null;
     if let (Some(before), Some(after)) = (spline_at(original), spline_at(&run.points)) {
-        extras.insert("strain_energy_before".into(), serde_json::json!(before.strain_energy()));
-        extras.insert("strain_energy_after".into(), serde_json::json!(after.strain_energy()));
+        extras.insert(
+            "strain_energy_before".into(),
+            serde_json::json!(before.strain_energy()),
+        );
+        extras.insert(
+            "strain_energy_after".into(),
+            serde_json::json!(after.strain_energy()),
+        );
         curve = hermite_json(&after, par);
     }
     let points = points_of(&run.points);
