@@ -50,7 +50,7 @@ fn steps(c: &mut Criterion) {
 fn full_run(c: &mut Criterion) {
     let mut group = c.benchmark_group("strain_energy_full_run");
     group.sample_size(10);
-    for n in [1_000usize, 10_000, 100_000] {
+    for n in [1_000usize, 10_000, 100_000, 1_000_000] {
         let points = noisy_arc(n);
         // Steps taken, printed once for the report (not timed).
         let once = Pipeline::new(StrainEnergy::<2>::new(StrainEnergySettings::poliakoff()))

@@ -423,7 +423,7 @@ fn unrestricted_batten_removes_wiggles() {
 }
 
 /// Bad inputs are errors: too few points, coinciding points, a closed curve, a zero or
-/// out-of-range prescribed direction.
+/// out-of-range prescribed direction, tangents that do not fit the points.
 #[test]
 fn bad_inputs_are_errors() {
     assert!(okada_tangents(&[Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0)], &[]).is_err());
@@ -438,5 +438,15 @@ fn bad_inputs_are_errors() {
         let mut state = FairingState::new(p.clone(), Constraints::default(), false).unwrap();
         assert!(Batten::new(settings).init(&mut state).is_err());
     }
+    // tangents that do not fit the points: an error, not a panic
+    let mut t = okada_tangents(&p, &[]).unwrap();
+    t.chords.pop();
+    let all = vec![true; p.len()];
+    let inf = vec![f64::INFINITY; p.len()];
+    assert!(eq13_positions(&p, &t, &all, &p, &inf, 10).is_err());
+    assert!(eq13_sweep(&p, &t, &all, &p, &inf, true).is_err());
+    assert!(energy(&p, &t).is_finite());
+    assert!(t.y(t.x.len() - 2).is_none());
+    let _ = curvature_signs(&p, &t);
     let _ = batten::ferguson(p[0], p[1], p[0], p[1]);
 }

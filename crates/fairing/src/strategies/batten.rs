@@ -112,7 +112,9 @@ impl<const D: usize> Tangents<D> {
     pub fn y(&self, i: usize) -> Option<Vector<D>> {
         let last = self.x.len().checked_sub(1)?;
         match i.cmp(&last) {
-            std::cmp::Ordering::Less => Some(self.x[i + 1] * (self.chords[i] / self.chords[i + 1])),
+            std::cmp::Ordering::Less => {
+                Some(*self.x.get(i + 1)? * (*self.chords.get(i)? / *self.chords.get(i + 1)?))
+            }
             std::cmp::Ordering::Equal => Some(self.end),
             std::cmp::Ordering::Greater => None,
         }
@@ -164,7 +166,7 @@ pub fn energy<const D: usize>(points: &[Vector<D>], tangents: &Tangents<D>) -> f
                 *points.get(i + 1)?,
                 tangents.x[i],
                 tangents.y(i)?,
-                tangents.chords[i],
+                *tangents.chords.get(i)?,
             ))
         })
         .sum()
@@ -346,7 +348,12 @@ pub fn eq13_positions<const D: usize>(
     max_sweeps: usize,
 ) -> Result<Vec<Vector<D>>> {
     let n = points.len();
-    if tangents.x.len() + 1 != n || movable.len() != n || centers.len() != n || allowed.len() != n {
+    if tangents.x.len() + 1 != n
+        || tangents.chords.len() + 1 != n
+        || movable.len() != n
+        || centers.len() != n
+        || allowed.len() != n
+    {
         return Err(strategy_error("batten", "Eq. 13: inconsistent lengths"));
     }
     let c = &tangents.chords;
@@ -432,7 +439,12 @@ pub fn eq13_sweep<const D: usize>(
     gauss_seidel: bool,
 ) -> Result<Vec<Vector<D>>> {
     let n = points.len();
-    if tangents.x.len() + 1 != n || movable.len() != n || centers.len() != n || allowed.len() != n {
+    if tangents.x.len() + 1 != n
+        || tangents.chords.len() + 1 != n
+        || movable.len() != n
+        || centers.len() != n
+        || allowed.len() != n
+    {
         return Err(strategy_error("batten", "Eq. 13: inconsistent lengths"));
     }
     let c = &tangents.chords;

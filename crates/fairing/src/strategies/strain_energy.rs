@@ -167,6 +167,8 @@ pub struct StrainEnergy<const D: usize> {
     segment_energy: Vec<f64>,
     energy: f64,
     pending: Vec<usize>,
+    /// (K_kk, K_{k,k+1}) of the stage's knots (see [`stiffness_band`]).
+    stiffness: (Vec<f64>, Vec<f64>),
 }
 
 impl<const D: usize> StrainEnergy<D> {
@@ -188,6 +190,7 @@ impl<const D: usize> StrainEnergy<D> {
             segment_energy: Vec::new(),
             energy: 0.0,
             pending: Vec::new(),
+            stiffness: (Vec::new(), Vec::new()),
         }
     }
 
@@ -304,16 +307,13 @@ impl<const D: usize> StrainEnergy<D> {
         }
     }
 
-    /// Eq. (11): P̄_k = P_k − J_k/K_kk, the point on the spline through the other points.
-    /// J_k is affine in P_k with the same scalar slope K_kk in every coordinate, so K_kk is
-    /// measured exactly (up to rounding) by one probe move of the internal spline along the
-    /// first axis, undone afterwards. O(window).
+    /// Eq. (11): P̄_k = P_k − J_k/K_kk, the point on the spline through the other points
+    /// (J_k is affine in P_k with the same scalar slope K_kk in every coordinate; K from
+    /// [`stiffness_band`], computed once per stage since the knots are fixed). O(1).
     fn limit_one(&mut self, k: usize) -> Result<Vector<D>> {
-        let (p, j0) = {
-            let s = self.spline_ref()?;
-            (s.points()[k], jump(s, k))
-        };
-        let kk = self.probe(k, &[k])?[0];
+        let s = self.spline_ref()?;
+        let (p, j0) = (s.points()[k], jump(s, k));
+        let kk = self.stiffness.0.get(k).copied().unwrap_or(f64::NAN);
         if !(kk.is_finite() && kk.abs() > 0.0) {
             return Err(strategy_error(&self.name, "singular Eq. 11 (K_kk = 0)"));
         }
@@ -321,36 +321,17 @@ impl<const D: usize> StrainEnergy<D> {
     }
 
     /// Eq. (15): the pair (P̄_k, P̄_{k+1}) making J_k = J_{k+1} = 0 with the tangents re-solved,
-    /// i.e. the spline through the remaining points at t_k, t_{k+1} (Theorem 3). Solves the
-    /// 2×2 block of K measured by two probe moves. O(window).
+    /// i.e. the spline through the remaining points at t_k, t_{k+1} (Theorem 3): the 2×2 block
+    /// of K (symmetric) solved for the jumps. O(1).
     fn limit_two(&mut self, k: usize) -> Result<(Vector<D>, Vector<D>)> {
-        let (p0, p1, j0, j1) = {
-            let s = self.spline_ref()?;
-            (s.points()[k], s.points()[k + 1], jump(s, k), jump(s, k + 1))
-        };
-        let c0 = self.probe(k, &[k, k + 1])?;
-        let c1 = self.probe(k + 1, &[k, k + 1])?;
-        solve2(c0[0], c1[0], c0[1], c1[1], j0, j1)
+        let s = self.spline_ref()?;
+        let (p0, p1, j0, j1) = (s.points()[k], s.points()[k + 1], jump(s, k), jump(s, k + 1));
+        let (diagonal, upper) = &self.stiffness;
+        let entry = |v: &Vec<f64>, i: usize| v.get(i).copied().unwrap_or(f64::NAN);
+        let (a, b, d) = (entry(diagonal, k), entry(upper, k), entry(diagonal, k + 1));
+        solve2(a, b, b, d, j0, j1)
             .map(|(d0, d1)| (p0 - d0, p1 - d1))
             .ok_or_else(|| strategy_error(&self.name, "singular Eq. 15 block"))
-    }
-
-    /// ∂J_r/∂P_m (r in `rows`) with the tangents re-solved: move P_m by δ along axis 0,
-    /// read the change of the jumps, move back. Exact up to rounding (J is linear in P).
-    fn probe(&mut self, m: usize, rows: &[usize]) -> Result<Vec<f64>> {
-        let spline = self
-            .spline
-            .as_mut()
-            .ok_or_else(|| strategy_error("strain-energy", "step before init"))?;
-        let p = spline.points()[m];
-        let before: Vec<f64> = rows.iter().map(|&r| jump(spline, r)[0]).collect();
-        let delta = 1.0 + p.amax();
-        let mut q = p;
-        q[0] += delta;
-        spline.move_points(&[(m, q)])?;
-        let after: Vec<f64> = rows.iter().map(|&r| jump(spline, r)[0]).collect();
-        spline.move_points(&[(m, p)])?;
-        Ok(before.iter().zip(&after).map(|(b, a)| (a - b) / delta).collect())
     }
 
     /// Moves `ks` towards `targets` (restraining region in automatic mode, then the state's
@@ -426,21 +407,21 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
             .collect();
         self.segment_energy = spline.segment_energies();
         self.energy = self.segment_energy.iter().sum();
+        self.stiffness = stiffness_band(&spline)
+            .ok_or_else(|| strategy_error(&self.name, "singular tangent system (Eq. 11)"))?;
         self.spline = Some(spline);
         self.refresh(0, n)?;
         if self.settings.mode == Mode::Automatic {
             // §3.3 step 2.1: radii from the ORIGINAL curve's Eq. (11) points.
-            // |P̄_k − P_k| = |J_k| / K_kk with K's diagonal in O(n) (not one probe per point).
+            // |P̄_k − P_k| = |J_k| / K_kk with K's diagonal computed in O(n) above.
             let (diagonal, jumps) = {
                 let spline = self.spline_ref()?;
-                let diagonal = stiffness_diagonal(spline)
-                    .ok_or_else(|| strategy_error(&self.name, "singular tangent system (Eq. 11)"))?;
                 let jumps: Vec<Vector<D>> = (1..n.saturating_sub(1)).map(|k| jump(spline, k)).collect();
-                (diagonal, jumps)
+                (self.stiffness.0.clone(), jumps)
             };
             let mut radii = vec![0.0; n];
             for (k, r) in radii.iter_mut().enumerate().take(n.saturating_sub(1)).skip(1) {
-                let kk = diagonal[k];
+                let kk = diagonal.get(k).copied().unwrap_or(f64::NAN);
                 if !(kk.is_finite() && kk > 0.0) {
                     return Err(strategy_error(&self.name, "singular Eq. 11 (K_kk = 0)"));
                 }
@@ -667,6 +648,14 @@ fn solve2<const D: usize>(
 
 /// The diagonal K_kk = ∂J_k/∂P_k of the natural spline's stiffness (J = K P, tangents
 /// re-solved, knots fixed) at every point, in O(n); `None` if the tangent system is singular.
+/// See [`stiffness_band`].
+pub fn stiffness_diagonal<const D: usize>(spline: &HermiteSpline<D>) -> Option<Vec<f64>> {
+    stiffness_band(spline).map(|(diagonal, _)| diagonal)
+}
+
+/// The diagonal K_kk and the first off-diagonal K_{k,k+1} of the natural spline's stiffness
+/// (J = K P, tangents re-solved, knots fixed; K depends on the knots only), in O(n); `None`
+/// if the tangent system is singular.
 ///
 /// E(P, M) = Σ_s ∫|C''|² is a quadratic form whose Hessian is (a scalar matrix) ⊗ I_D; the
 /// natural spline's tangents minimise it over M, so E(P) = Pᵀ K P with K the Schur complement
@@ -674,8 +663,10 @@ fn solve2<const D: usize>(
 /// spline, integrating ∫C''·C'' by parts twice). Each segment's 4×4 form in (P_s, P_{s+1},
 /// M_s, M_{s+1}) is read off [`hermite_energy`] exactly (it has no linear part); H_MM is
 /// tridiagonal, SPD, and only its inverse's band |i − j| ≤ 2 is needed, from forward and
-/// backward pivots: (H⁻¹)_ii = 1/(f_i + g_i − a_i), (H⁻¹)_{i+1,i} = −b_i/g_{i+1} (H⁻¹)_ii.
-pub fn stiffness_diagonal<const D: usize>(spline: &HermiteSpline<D>) -> Option<Vec<f64>> {
+/// backward pivots: (H⁻¹)_ii = 1/(f_i + g_i − a_i), (H⁻¹)_{r,i} = −b_{r−1}/g_r (H⁻¹)_{r−1,i}
+/// for r > i (the band |i − j| ≤ 3 is needed for K_{k,k+1}).
+#[allow(clippy::type_complexity)]
+pub fn stiffness_band<const D: usize>(spline: &HermiteSpline<D>) -> Option<(Vec<f64>, Vec<f64>)> {
     let t = spline.knots();
     let n = t.len();
     if n < 2 {
@@ -736,33 +727,43 @@ pub fn stiffness_diagonal<const D: usize>(spline: &HermiteSpline<D>) -> Option<V
             0 => diag[lo],
             1 => sub1(lo),
             2 => -b[lo + 1] / g[lo + 2] * sub1(lo),
+            3 => b[lo + 2] / g[lo + 3] * b[lo + 1] / g[lo + 2] * sub1(lo),
             _ => 0.0,
         }
     };
-    let mut out = vec![0.0; n];
-    for (k, slot) in out.iter_mut().enumerate() {
-        // H_PP(k, k) and the column H_MP(·, k) (rows k−1, k, k+1).
-        let mut hpp = 0.0;
-        let mut column: Vec<(usize, f64)> = Vec::with_capacity(3);
+    // The column Q_MP(·, k): rows k−1, k, k+1 (those that exist).
+    let column = |k: usize| -> Vec<(usize, f64)> {
+        let mut column = Vec::with_capacity(3);
         if k > 0 {
-            hpp += q[k - 1][p1][p1];
             column.push((k - 1, q[k - 1][m0][p1]));
         }
-        if k + 1 < n {
-            hpp += q[k][p0][p0];
-        }
-        let mid = if k > 0 { q[k - 1][m1][p1] } else { 0.0 } + if k + 1 < n { q[k][m0][p0] } else { 0.0 };
-        column.push((k, mid));
+        let left = if k > 0 { q[k - 1][m1][p1] } else { 0.0 };
+        let right = if k + 1 < n { q[k][m0][p0] } else { 0.0 };
+        column.push((k, left + right));
         if k + 1 < n {
             column.push((k + 1, q[k][m1][p0]));
         }
-        let mut correction = 0.0;
-        for &(i, u) in &column {
-            for &(j, v) in &column {
-                correction += u * band(i, j) * v;
-            }
+        column
+    };
+    let cross = |u: &[(usize, f64)], v: &[(usize, f64)]| -> f64 {
+        u.iter()
+            .map(|&(i, a)| v.iter().map(|&(j, b)| a * band(i, j) * b).sum::<f64>())
+            .sum()
+    };
+    let columns: Vec<Vec<(usize, f64)>> = (0..n).map(column).collect();
+    let mut diagonal = vec![0.0; n];
+    let mut upper = vec![0.0; n - 1];
+    for k in 0..n {
+        let mut qpp = 0.0;
+        if k > 0 {
+            qpp += q[k - 1][p1][p1];
         }
-        *slot = hpp - correction;
+        if k + 1 < n {
+            qpp += q[k][p0][p0];
+            upper[k] = q[k][p0][p1] - cross(&columns[k], &columns[k + 1]);
+        }
+        diagonal[k] = qpp - cross(&columns[k], &columns[k]);
     }
-    out.iter().all(|v| v.is_finite()).then_some(out)
+    let finite = diagonal.iter().chain(&upper).all(|v| v.is_finite());
+    finite.then_some((diagonal, upper))
 }
