@@ -221,6 +221,26 @@ fn check_eq13_sweep<const D: usize>(p: &[Vector<D>], radius: f64, gauss_seidel: 
     }
 }
 
+/// Eq. 12 makes the Ferguson chain C2 in the chord-length parameter s = C_i t: at every
+/// interior point, d²P/ds² = P̈/C² is the same from both segments (and the first derivative
+/// X/C too, by Y_{i−1} = k_i X_i).
+fn check_eq12_c2<const D: usize>(p: &[Vector<D>]) {
+    let t = okada_tangents(p, &[]).unwrap();
+    for i in 1..p.len() - 1 {
+        let [_, _, r2l, r3l] = batten::ferguson(p[i - 1], p[i], t.x[i - 1], t.y(i - 1).unwrap());
+        let [_, _, r2r, _] = batten::ferguson(p[i], p[i + 1], t.x[i], t.y(i).unwrap());
+        let (cl, cr) = (t.chords[i - 1], t.chords[i]);
+        let left = (r2l * 2.0 + r3l * 6.0) / (cl * cl);
+        let right = r2r * 2.0 / (cr * cr);
+        assert!(
+            (left - right).norm() <= 1e-9 * (1.0 + left.norm()),
+            "C2 at {i}: {left:?} vs {right:?}"
+        );
+        let (dl, dr) = (t.y(i - 1).unwrap() / cl, t.x[i] / cr);
+        assert!((dl - dr).norm() <= 1e-12 * (1.0 + dl.norm()));
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(48))]
     #[test]
@@ -233,6 +253,10 @@ proptest! {
     }
     #[test]
     fn eq12_2d(n in noise(30, 2)) { check_eq12(&noisy_arc::<2>(&n)); }
+    #[test]
+    fn eq12_is_c2_2d(n in noise(30, 2)) { check_eq12_c2(&noisy_arc::<2>(&n)); }
+    #[test]
+    fn eq12_is_c2_3d(n in noise(30, 3)) { check_eq12_c2(&noisy_arc::<3>(&n)); }
     #[test]
     fn eq12_3d(n in noise(30, 3)) { check_eq12(&noisy_arc::<3>(&n)); }
     #[test]

@@ -9,6 +9,12 @@
 //! C_{n−1}). The energy of segment i is (1/C_i³) ∫_0^1 |P̈_i(t)|² dt (Eq. 5's terms), i.e.
 //! ∫|d²P/ds²|² ds with s = C_i t: the chord-length strain energy.
 //!
+//! With M_i = X_i / C_i (the derivative in chord length), Eq. 12 is the C2 condition of the
+//! chord-length cubic spline, h_i M_{i−1} + 2(h_{i−1} + h_i) M_i + h_{i−1} M_{i+1} =
+//! 3(h_i d_{i−1} + h_{i−1} d_i) (tested), and Eq. 13's row is Zhang–Cheng's Eq. 8 with
+//! chord-length knots: the batten is a chord-length strain-energy fairing whose knots are
+//! re-measured every iteration and whose end tangents come from circles.
+//!
 //! One iteration (Okada §2.2, Steps 2–6), the `step` of [`Batten`]:
 //! 1. end tangents X_0 and Y_{n−2} from the circle through the three end points
 //!    ([`end_tangent`]); prescribed tangent directions split the tangent solve (Step 3);
