@@ -71,29 +71,138 @@ pub const METHODS: &[MethodInfo] = &[
         name: "strain-energy",
         kind: MethodKind::Curve,
         paper: "Zhang & Cheng, strain-energy point replacement",
-        summary: "replaces one or two bad points to minimise the strain energy",
-        parameters: &[],
+        summary: "replaces one or two bad points to minimise the strain energy (--points: interactive, else automatic)",
+        parameters: &[
+            ParameterInfo {
+                name: "energy-tolerance",
+                default: "1e-6",
+                meaning: "stop when one step changes the strain energy by at most this x E",
+            },
+            ParameterInfo {
+                name: "radius-scale",
+                default: "1",
+                meaning: "automatic mode: restraining radius = this x |Eq. 11 point - P_i| (1 = the paper)",
+            },
+            ParameterInfo {
+                name: "pairs",
+                default: "off",
+                meaning: "automatic mode: on = replace the two worst adjacent points together (Eq. 15)",
+            },
+            ParameterInfo {
+                name: "replacement",
+                default: "limit",
+                meaning: "limit = Eq. 11/15 in one step; iterated = one application of Eq. 8/13 per step",
+            },
+            ParameterInfo {
+                name: "max-iterations",
+                default: "100000",
+                meaning: "replacement steps at most",
+            },
+            ParameterInfo {
+                name: "parametrization",
+                default: "chord-length",
+                meaning: "fixed knots: chord-length, uniform or centripetal",
+            },
+        ],
     },
     MethodInfo {
         name: "kjellander",
         kind: MethodKind::Curve,
         paper: "Kjellander (as a preset of Zhang & Cheng)",
         summary: "moves a bad point to remove the third-derivative jump",
-        parameters: &[],
+        parameters: &[
+            ParameterInfo {
+                name: "energy-tolerance",
+                default: "1e-6",
+                meaning: "stop when one step changes the strain energy by at most this x E",
+            },
+            ParameterInfo {
+                name: "radius-scale",
+                default: "1",
+                meaning: "automatic mode: restraining radius = this x |Eq. 11 point - P_i| (1 = the paper)",
+            },
+            ParameterInfo {
+                name: "pairs",
+                default: "off",
+                meaning: "automatic mode: on = replace the two worst adjacent points together (Eq. 15)",
+            },
+            ParameterInfo {
+                name: "replacement",
+                default: "limit",
+                meaning: "limit = Eq. 11/15 in one step; iterated = one application of Eq. 8/13 per step",
+            },
+            ParameterInfo {
+                name: "max-iterations",
+                default: "100000",
+                meaning: "replacement steps at most",
+            },
+        ],
     },
     MethodInfo {
         name: "poliakoff",
         kind: MethodKind::Curve,
         paper: "Poliakoff (as a preset of Zhang & Cheng)",
         summary: "moves a bad point to reduce the local strain energy",
-        parameters: &[],
+        parameters: &[
+            ParameterInfo {
+                name: "energy-tolerance",
+                default: "1e-6",
+                meaning: "stop when one step changes the strain energy by at most this x E",
+            },
+            ParameterInfo {
+                name: "radius-scale",
+                default: "1",
+                meaning: "automatic mode: restraining radius = this x |Eq. 11 point - P_i| (1 = the paper)",
+            },
+            ParameterInfo {
+                name: "pairs",
+                default: "off",
+                meaning: "automatic mode: on = replace the two worst adjacent points together (Eq. 15)",
+            },
+            ParameterInfo {
+                name: "replacement",
+                default: "limit",
+                meaning: "limit = Eq. 11/15 in one step; iterated = one application of Eq. 8/13 per step",
+            },
+            ParameterInfo {
+                name: "max-iterations",
+                default: "100000",
+                meaning: "replacement steps at most",
+            },
+        ],
     },
     MethodInfo {
         name: "batten",
         kind: MethodKind::Curve,
         paper: "Okada, batten fairing",
         summary: "a numerical batten through the points within adjustable ranges",
-        parameters: &[],
+        parameters: &[
+            ParameterInfo {
+                name: "range",
+                default: "inf",
+                meaning: "adjustable range: no point moves farther than this from its data point",
+            },
+            ParameterInfo {
+                name: "tangent-directions",
+                default: "",
+                meaning: "prescribed tangent directions, INDEX:DX,DY[,DZ] separated by ';'",
+            },
+            ParameterInfo {
+                name: "update",
+                default: "gauss-seidel",
+                meaning: "Eq. 13 per iteration: gauss-seidel (one sweep), solve (whole system), jacobi",
+            },
+            ParameterInfo {
+                name: "max-iterations",
+                default: "1000",
+                meaning: "batten iterations at most (each: Eq. 12 tangents, Eq. 13 positions)",
+            },
+            ParameterInfo {
+                name: "max-sweeps",
+                default: "10000",
+                meaning: "update=solve: projected Gauss-Seidel sweeps at most when a range binds",
+            },
+        ],
     },
     MethodInfo {
         name: "nurbs-weights",

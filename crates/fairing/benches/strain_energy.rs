@@ -1,10 +1,16 @@
-//! Cost of one automatic Zhang–Cheng step against n: it should not grow with n (O(window)).
+//! Zhang–Cheng automatic fairing in release:
+//! - `strain_energy_10_steps/n`: ten automatic steps after `init` (the setup, not timed). The
+//!   time should not grow with n: a step updates the spline, the indicator, the energy and
+//!   the heap only inside a window of knots (O(window · log n) for the heap).
+//! - `strain_energy_full_run/n`: a whole automatic run (init + steps until the energy
+//!   tolerance stops it) through the [`Pipeline`], the "10^5 points under 2 s".
 
 use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion};
 use curve_repr::Vec2;
 use fairing::strategies::{StrainEnergy, StrainEnergySettings};
-use fairing::{Constraints, FairingState, FairingStrategy};
+use fairing::{Constraints, FairingState, FairingStrategy, Pipeline};
 
+/// n points on a circle of radius 100 with pseudo-random radial noise of up to 0.02.
 fn noisy_arc(n: usize) -> Vec<Vec2> {
     (0..n)
         .map(|i| {
@@ -15,9 +21,10 @@ fn noisy_arc(n: usize) -> Vec<Vec2> {
         .collect()
 }
 
-fn bench(c: &mut Criterion) {
+fn steps(c: &mut Criterion) {
     let mut group = c.benchmark_group("strain_energy_10_steps");
-    for n in [1_000usize, 10_000, 100_000] {
+    group.sample_size(10);
+    for n in [1_000usize, 10_000, 100_000, 1_000_000] {
         let points = noisy_arc(n);
         group.bench_with_input(BenchmarkId::from_parameter(n), &points, |b, points| {
             b.iter_batched(
@@ -40,5 +47,39 @@ fn bench(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench);
+fn full_run(c: &mut Criterion) {
+    let mut group = c.benchmark_group("strain_energy_full_run");
+    group.sample_size(10);
+    for n in [1_000usize, 10_000, 100_000, 1_000_000] {
+        let points = noisy_arc(n);
+        // Steps taken, printed once for the report (not timed).
+        let once = Pipeline::new(StrainEnergy::<2>::new(StrainEnergySettings::poliakoff()))
+            .with_trace(false)
+            .with_max_iterations(usize::MAX)
+            .run(points.clone())
+            .unwrap();
+        eprintln!(
+            "n = {n}: {} steps, {} points moved, {:?}",
+            once.iterations,
+            once.moved.len(),
+            once.termination
+        );
+        group.bench_with_input(BenchmarkId::from_parameter(n), &points, |b, points| {
+            b.iter_batched(
+                || points.clone(),
+                |points| {
+                    Pipeline::new(StrainEnergy::<2>::new(StrainEnergySettings::poliakoff()))
+                        .with_trace(false)
+                        .with_max_iterations(usize::MAX)
+                        .run(points)
+                        .unwrap()
+                },
+                BatchSize::LargeInput,
+            )
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, steps, full_run);
 criterion_main!(benches);

@@ -2,7 +2,7 @@
 //! Theorems 1–3, the automatic mode's guarantees and the §5 two-point claim.
 
 use curve_repr::{Curve, HermiteSettings, HermiteSpline, Parametrization, Side, Vector};
-use fairing::strategies::strain_energy::{eq13, eq8, hermite_energy};
+use fairing::strategies::strain_energy::{eq13, eq8, hermite_energy, jump, stiffness_diagonal};
 use fairing::strategies::{Mode, Replacement, StrainEnergy, StrainEnergySettings};
 use fairing::{Constraints, FairingState, FairingStrategy, Pipeline};
 use proptest::prelude::*;
@@ -228,8 +228,35 @@ fn check_automatic<const D: usize>(p: &[Vector<D>], par: Parametrization, fixed:
     }
 }
 
+/// The O(n) diagonal of K (used for the automatic mode's radii) against its defining
+/// condition: P_k − J_k/K_kk is the point at t_k of the spline through the other points
+/// (Eq. 11, Theorem 3's one-point case), for every interior k.
+fn check_stiffness_diagonal<const D: usize>(p: &[Vector<D>], par: Parametrization) {
+    let t = params(p, par);
+    let n = p.len();
+    let sp = spline_at(p, &t);
+    let diagonal = stiffness_diagonal(&sp).unwrap();
+    for k in 1..n - 1 {
+        let got = p[k] - jump(&sp, k) / diagonal[k];
+        let (po, to): (Vec<_>, Vec<_>) = (0..n).filter(|&i| i != k).map(|i| (p[i], t[i])).unzip();
+        let want = spline_at(&po, &to).jet(t[k], Side::Left)[0];
+        assert!(
+            (got - want).norm() < 1e-8 * (1.0 + want.norm()),
+            "K_kk at {k}: {got:?} vs {want:?}"
+        );
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(32))]
+    #[test]
+    fn stiffness_diagonal_2d(n in noise(40, 2), par in par_strategy()) {
+        check_stiffness_diagonal(&noisy_arc::<2>(&n), par);
+    }
+    #[test]
+    fn stiffness_diagonal_3d(n in noise(40, 3), par in par_strategy()) {
+        check_stiffness_diagonal(&noisy_arc::<3>(&n), par);
+    }
     #[test]
     fn closed_forms_2d(n in noise(30, 2), par in par_strategy()) {
         let p = noisy_arc::<2>(&n);
@@ -440,4 +467,50 @@ fn bad_inputs_are_errors() {
     let mut closed = FairingState::new(p, Constraints::default(), true).unwrap();
     let mut s = StrainEnergy::new(StrainEnergySettings::default());
     assert!(s.init(&mut closed).is_err());
+}
+
+/// §5 on random data: on a noisy arc with two adjacent points pushed out together, one
+/// two-point replacement (Eq. 15) reaches an energy that no number of one-point replacements
+/// (Eq. 11) of the same two points goes below, and one single replacement stays strictly
+/// above it: the pair needs one step, singles more.
+fn check_pair_beats_singles(noise: &[f64], k: usize, singles: usize) {
+    let mut p = noisy_arc::<2>(noise);
+    let n = p.len();
+    let k = 1 + k % (n - 3);
+    for j in [k, k + 1] {
+        p[j] *= 1.05;
+    }
+    let t = params(&p, Parametrization::ChordLength);
+    let (pair, _) = run_one(
+        &p,
+        StrainEnergySettings::default().with_mode(Mode::Interactive(vec![k, k + 1])),
+    );
+    let e_pair = energy(&pair, &t);
+    let mut q = p.clone();
+    for step in 0..singles {
+        let j = if step % 2 == 0 { k } else { k + 1 };
+        let settings = StrainEnergySettings::default()
+            .with_mode(Mode::Interactive(vec![j]))
+            .with_parameters(t.clone());
+        q = run_one(&q, settings).0;
+        let e = energy(&q, &t);
+        assert!(
+            e >= e_pair * (1.0 - 1e-10),
+            "singles went below the pair: {e} < {e_pair}"
+        );
+        if step == 0 {
+            assert!(
+                e > e_pair * (1.0 + 1e-9),
+                "one single step as good as the pair: {e} vs {e_pair}"
+            );
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(32))]
+    #[test]
+    fn pair_beats_singles(n in noise(30, 2), k in 0usize..100, singles in 1usize..30) {
+        check_pair_beats_singles(&n, k, singles);
+    }
 }

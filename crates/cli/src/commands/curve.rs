@@ -20,8 +20,10 @@ use crate::report::{Energies, Report};
 use std::collections::BTreeMap;
 
 pub mod batch;
+mod batten;
 mod nurbs_weights;
 pub mod stages;
+mod strain_energy;
 
 /// The fewest points any curve method works on: curvature-slope jumps e_i need three.
 pub const MIN_CURVE_POINTS: usize = 3;
@@ -76,6 +78,8 @@ pub struct CurveOutcome {
 pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
     match job.method.name {
         "nurbs-weights" => nurbs_weights::fair(job),
+        "strain-energy" | "kjellander" | "poliakoff" => strain_energy::fair(job),
+        "batten" => batten::fair(job),
         _ => Err(Error::NotAvailable {
             what: format!("method `{}`", job.method.name),
         }),
@@ -180,6 +184,9 @@ pub fn process(input: &CurveInput, args: &FairArgs, file: Option<&ConfigFile>) -
     let plan = Plan::new(args, file, kind)?;
     let constraints = Constraints::from_args_and_config(args, &plan.config_constraints, input.len())?;
     let outcome = stages::run(input, kind, &plan, &constraints)?;
+    if kind == CurveKind::Function {
+        check_still_a_function(&outcome.points, &plan)?;
+    }
     let mut before = measure::curve(kind, &input.points)?;
     let mut after = measure::curve(kind, &outcome.points)?;
     if let Some((energies_before, energies_after)) = outcome.represented_energies {
@@ -223,6 +230,27 @@ pub fn process(input: &CurveInput, args: &FairArgs, file: Option<&ConfigFile>) -
         points_text,
         plot,
     })
+}
+
+/// Methods for parametric curves (strain-energy, batten) move x as well as y; on function
+/// input the result must still be a function for the function-kind measures. Says which point
+/// broke it and how to ask for parametric measures instead.
+fn check_still_a_function(points: &Points, plan: &Plan) -> Result<()> {
+    let rows = points.rows();
+    let broken = rows.windows(2).position(|w| w[1][0].partial_cmp(&w[0][0]) != Some(std::cmp::Ordering::Greater));
+    match broken {
+        Some(i) => Err(Error::Argument {
+            option: "--kind",
+            message: format!(
+                "`{}` moved x so that it no longer increases at point {} (x = {} then {}); fair this curve with --kind parametric",
+                plan.name(),
+                i + 1,
+                rows[i][0],
+                rows[i + 1][0]
+            ),
+        }),
+        None => Ok(()),
+    }
 }
 
 /// Writes what `-o`, `--report` and `--plot` ask for. The report text is made before anything

@@ -67,6 +67,11 @@ pub struct StrainEnergySettings {
     /// Explicit knots (one per point), overriding `parametrization`: lets several stages
     /// keep the same knots. Default none.
     pub parameters: Option<Vec<f64>>,
+    /// Scale of the automatic mode's restraining radii: point i stays within
+    /// `radius_scale · |P̄_i − P_i|` of its original position (P̄_i from Eq. 11 on the original
+    /// curve). 1 is Zhang–Cheng §3.3; larger lets points travel farther, `f64::INFINITY`
+    /// removes the regions (then a point with P̄_i = P_i is still frozen). Default 1.
+    pub radius_scale: f64,
 }
 
 impl Default for StrainEnergySettings {
@@ -78,6 +83,7 @@ impl Default for StrainEnergySettings {
             parametrization: Parametrization::ChordLength,
             tolerance: 1e-6,
             parameters: None,
+            radius_scale: 1.0,
         }
     }
 }
@@ -122,6 +128,11 @@ impl StrainEnergySettings {
         self.tolerance = tolerance;
         self
     }
+    /// Sets the scale of the automatic mode's restraining radii (1 = the paper).
+    pub fn with_radius_scale(mut self, scale: f64) -> Self {
+        self.radius_scale = scale;
+        self
+    }
 }
 
 /// Heap entry: (z, index, stamp); stale entries are skipped lazily.
@@ -156,6 +167,8 @@ pub struct StrainEnergy<const D: usize> {
     segment_energy: Vec<f64>,
     energy: f64,
     pending: Vec<usize>,
+    /// (K_kk, K_{k,k+1}) of the stage's knots (see [`stiffness_band`]).
+    stiffness: (Vec<f64>, Vec<f64>),
 }
 
 impl<const D: usize> StrainEnergy<D> {
@@ -177,6 +190,7 @@ impl<const D: usize> StrainEnergy<D> {
             segment_energy: Vec::new(),
             energy: 0.0,
             pending: Vec::new(),
+            stiffness: (Vec::new(), Vec::new()),
         }
     }
 
@@ -293,16 +307,13 @@ impl<const D: usize> StrainEnergy<D> {
         }
     }
 
-    /// Eq. (11): P̄_k = P_k − J_k/K_kk, the point on the spline through the other points.
-    /// J_k is affine in P_k with the same scalar slope K_kk in every coordinate, so K_kk is
-    /// measured exactly (up to rounding) by one probe move of the internal spline along the
-    /// first axis, undone afterwards. O(window).
+    /// Eq. (11): P̄_k = P_k − J_k/K_kk, the point on the spline through the other points
+    /// (J_k is affine in P_k with the same scalar slope K_kk in every coordinate; K from
+    /// [`stiffness_band`], computed once per stage since the knots are fixed). O(1).
     fn limit_one(&mut self, k: usize) -> Result<Vector<D>> {
-        let (p, j0) = {
-            let s = self.spline_ref()?;
-            (s.points()[k], jump(s, k))
-        };
-        let kk = self.probe(k, &[k])?[0];
+        let s = self.spline_ref()?;
+        let (p, j0) = (s.points()[k], jump(s, k));
+        let kk = self.stiffness.0.get(k).copied().unwrap_or(f64::NAN);
         if !(kk.is_finite() && kk.abs() > 0.0) {
             return Err(strategy_error(&self.name, "singular Eq. 11 (K_kk = 0)"));
         }
@@ -310,36 +321,17 @@ impl<const D: usize> StrainEnergy<D> {
     }
 
     /// Eq. (15): the pair (P̄_k, P̄_{k+1}) making J_k = J_{k+1} = 0 with the tangents re-solved,
-    /// i.e. the spline through the remaining points at t_k, t_{k+1} (Theorem 3). Solves the
-    /// 2×2 block of K measured by two probe moves. O(window).
+    /// i.e. the spline through the remaining points at t_k, t_{k+1} (Theorem 3): the 2×2 block
+    /// of K (symmetric) solved for the jumps. O(1).
     fn limit_two(&mut self, k: usize) -> Result<(Vector<D>, Vector<D>)> {
-        let (p0, p1, j0, j1) = {
-            let s = self.spline_ref()?;
-            (s.points()[k], s.points()[k + 1], jump(s, k), jump(s, k + 1))
-        };
-        let c0 = self.probe(k, &[k, k + 1])?;
-        let c1 = self.probe(k + 1, &[k, k + 1])?;
-        solve2(c0[0], c1[0], c0[1], c1[1], j0, j1)
+        let s = self.spline_ref()?;
+        let (p0, p1, j0, j1) = (s.points()[k], s.points()[k + 1], jump(s, k), jump(s, k + 1));
+        let (diagonal, upper) = &self.stiffness;
+        let entry = |v: &Vec<f64>, i: usize| v.get(i).copied().unwrap_or(f64::NAN);
+        let (a, b, d) = (entry(diagonal, k), entry(upper, k), entry(diagonal, k + 1));
+        solve2(a, b, b, d, j0, j1)
             .map(|(d0, d1)| (p0 - d0, p1 - d1))
             .ok_or_else(|| strategy_error(&self.name, "singular Eq. 15 block"))
-    }
-
-    /// ∂J_r/∂P_m (r in `rows`) with the tangents re-solved: move P_m by δ along axis 0,
-    /// read the change of the jumps, move back. Exact up to rounding (J is linear in P).
-    fn probe(&mut self, m: usize, rows: &[usize]) -> Result<Vec<f64>> {
-        let spline = self
-            .spline
-            .as_mut()
-            .ok_or_else(|| strategy_error("strain-energy", "step before init"))?;
-        let p = spline.points()[m];
-        let before: Vec<f64> = rows.iter().map(|&r| jump(spline, r)[0]).collect();
-        let delta = 1.0 + p.amax();
-        let mut q = p;
-        q[0] += delta;
-        spline.move_points(&[(m, q)])?;
-        let after: Vec<f64> = rows.iter().map(|&r| jump(spline, r)[0]).collect();
-        spline.move_points(&[(m, p)])?;
-        Ok(before.iter().zip(&after).map(|(b, a)| (a - b) / delta).collect())
     }
 
     /// Moves `ks` towards `targets` (restraining region in automatic mode, then the state's
@@ -394,6 +386,13 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
                 reason: "must be a non-negative number",
             });
         }
+        if self.settings.radius_scale.is_nan() || self.settings.radius_scale < 0.0 {
+            return Err(Error::BadParameter {
+                name: "radius scale",
+                value: self.settings.radius_scale.to_string(),
+                reason: "must be a non-negative number",
+            });
+        }
         let settings = match &self.settings.parameters {
             Some(t) => HermiteSettings::new().with_parameters(t.clone()),
             None => HermiteSettings::new().with_parametrization(self.settings.parametrization),
@@ -408,14 +407,31 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
             .collect();
         self.segment_energy = spline.segment_energies();
         self.energy = self.segment_energy.iter().sum();
+        self.stiffness = stiffness_band(&spline)
+            .ok_or_else(|| strategy_error(&self.name, "singular tangent system (Eq. 11)"))?;
         self.spline = Some(spline);
         self.refresh(0, n)?;
         if self.settings.mode == Mode::Automatic {
             // §3.3 step 2.1: radii from the ORIGINAL curve's Eq. (11) points.
+            // |P̄_k − P_k| = |J_k| / K_kk with K's diagonal computed in O(n) above.
+            let (diagonal, jumps) = {
+                let spline = self.spline_ref()?;
+                let jumps: Vec<Vector<D>> = (1..n.saturating_sub(1)).map(|k| jump(spline, k)).collect();
+                (self.stiffness.0.clone(), jumps)
+            };
             let mut radii = vec![0.0; n];
             for (k, r) in radii.iter_mut().enumerate().take(n.saturating_sub(1)).skip(1) {
-                let p = self.limit_one(k)?;
-                *r = (p - state.points()[k]).norm();
+                let kk = diagonal.get(k).copied().unwrap_or(f64::NAN);
+                if !(kk.is_finite() && kk > 0.0) {
+                    return Err(strategy_error(&self.name, "singular Eq. 11 (K_kk = 0)"));
+                }
+                let distance = jumps[k - 1].norm() / kk;
+                // 0 · ∞ would be NaN: a point already at its Eq. 11 position stays frozen.
+                *r = if distance > 0.0 {
+                    self.settings.radius_scale * distance
+                } else {
+                    0.0
+                };
             }
             self.radii = radii;
         }
@@ -628,4 +644,126 @@ fn solve2<const D: usize>(
         return None;
     }
     Some(((u * d - v * b) / det, (v * a - u * c) / det))
+}
+
+/// The diagonal K_kk = ∂J_k/∂P_k of the natural spline's stiffness (J = K P, tangents
+/// re-solved, knots fixed) at every point, in O(n); `None` if the tangent system is singular.
+/// See [`stiffness_band`].
+pub fn stiffness_diagonal<const D: usize>(spline: &HermiteSpline<D>) -> Option<Vec<f64>> {
+    stiffness_band(spline).map(|(diagonal, _)| diagonal)
+}
+
+/// The diagonal K_kk and the first off-diagonal K_{k,k+1} of the natural spline's stiffness
+/// (J = K P, tangents re-solved, knots fixed; K depends on the knots only), in O(n); `None`
+/// if the tangent system is singular.
+///
+/// E(P, M) = Σ_s ∫|C''|² is a quadratic form whose Hessian is (a scalar matrix) ⊗ I_D; the
+/// natural spline's tangents minimise it over M, so E(P) = Pᵀ K P with K the Schur complement
+/// H_PP − H_PM H_MM⁻¹ H_MP, and this K is the one of J = K P (E = Σ P_k·J_k for a natural
+/// spline, integrating ∫C''·C'' by parts twice). Each segment's 4×4 form in (P_s, P_{s+1},
+/// M_s, M_{s+1}) is read off [`hermite_energy`] exactly (it has no linear part); H_MM is
+/// tridiagonal, SPD, and only its inverse's band |i − j| ≤ 2 is needed, from forward and
+/// backward pivots: (H⁻¹)_ii = 1/(f_i + g_i − a_i), (H⁻¹)_{r,i} = −b_{r−1}/g_r (H⁻¹)_{r−1,i}
+/// for r > i (the band |i − j| ≤ 3 is needed for K_{k,k+1}).
+#[allow(clippy::type_complexity)]
+pub fn stiffness_band<const D: usize>(spline: &HermiteSpline<D>) -> Option<(Vec<f64>, Vec<f64>)> {
+    let t = spline.knots();
+    let n = t.len();
+    if n < 2 {
+        return None;
+    }
+    // Q[s] over (p0, p1, m0, m1), from the energy of unit vectors (D = 1).
+    let unit = |i: usize| -> [Vector<1>; 4] {
+        let mut e = [Vector::<1>::zeros(); 4];
+        e[i][0] = 1.0;
+        e
+    };
+    let q: Vec<[[f64; 4]; 4]> = (0..n - 1)
+        .map(|s| {
+            let h = t[s + 1] - t[s];
+            let energy = |e: [Vector<1>; 4]| hermite_energy(e[0], e[1], e[2], e[3], h);
+            let mut m = [[0.0; 4]; 4];
+            for (a, row) in m.iter_mut().enumerate() {
+                row[a] = energy(unit(a));
+            }
+            for a in 0..4 {
+                for b in a + 1..4 {
+                    let mut e = unit(a);
+                    e[b][0] = 1.0;
+                    let v = (energy(e) - m[a][a] - m[b][b]) / 2.0;
+                    m[a][b] = v;
+                    m[b][a] = v;
+                }
+            }
+            m
+        })
+        .collect();
+    let (p0, p1, m0, m1) = (0, 1, 2, 3);
+    // H_MM: diagonal a_i, off-diagonal b_i = (i, i+1).
+    let a: Vec<f64> = (0..n)
+        .map(|i| {
+            let left = if i > 0 { q[i - 1][m1][m1] } else { 0.0 };
+            let right = if i + 1 < n { q[i][m0][m0] } else { 0.0 };
+            left + right
+        })
+        .collect();
+    let b: Vec<f64> = (0..n - 1).map(|i| q[i][m0][m1]).collect();
+    let mut f = vec![0.0; n];
+    let mut g = vec![0.0; n];
+    f[0] = a[0];
+    for i in 1..n {
+        f[i] = a[i] - b[i - 1] * b[i - 1] / f[i - 1];
+    }
+    g[n - 1] = a[n - 1];
+    for i in (0..n - 1).rev() {
+        g[i] = a[i] - b[i] * b[i] / g[i + 1];
+    }
+    // Band of G = H_MM⁻¹: G(i, j) for |i − j| ≤ 2.
+    let diag: Vec<f64> = (0..n).map(|i| 1.0 / (f[i] + g[i] - a[i])).collect();
+    let sub1 = |i: usize| -b[i] / g[i + 1] * diag[i]; // G(i+1, i)
+    let band = |i: usize, j: usize| -> f64 {
+        let (lo, hi) = (i.min(j), i.max(j));
+        match hi - lo {
+            0 => diag[lo],
+            1 => sub1(lo),
+            2 => -b[lo + 1] / g[lo + 2] * sub1(lo),
+            3 => b[lo + 2] / g[lo + 3] * b[lo + 1] / g[lo + 2] * sub1(lo),
+            _ => 0.0,
+        }
+    };
+    // The column Q_MP(·, k): rows k−1, k, k+1 (those that exist).
+    let column = |k: usize| -> Vec<(usize, f64)> {
+        let mut column = Vec::with_capacity(3);
+        if k > 0 {
+            column.push((k - 1, q[k - 1][m0][p1]));
+        }
+        let left = if k > 0 { q[k - 1][m1][p1] } else { 0.0 };
+        let right = if k + 1 < n { q[k][m0][p0] } else { 0.0 };
+        column.push((k, left + right));
+        if k + 1 < n {
+            column.push((k + 1, q[k][m1][p0]));
+        }
+        column
+    };
+    let cross = |u: &[(usize, f64)], v: &[(usize, f64)]| -> f64 {
+        u.iter()
+            .map(|&(i, a)| v.iter().map(|&(j, b)| a * band(i, j) * b).sum::<f64>())
+            .sum()
+    };
+    let columns: Vec<Vec<(usize, f64)>> = (0..n).map(column).collect();
+    let mut diagonal = vec![0.0; n];
+    let mut upper = vec![0.0; n - 1];
+    for k in 0..n {
+        let mut qpp = 0.0;
+        if k > 0 {
+            qpp += q[k - 1][p1][p1];
+        }
+        if k + 1 < n {
+            qpp += q[k][p0][p0];
+            upper[k] = q[k][p0][p1] - cross(&columns[k], &columns[k + 1]);
+        }
+        diagonal[k] = qpp - cross(&columns[k], &columns[k]);
+    }
+    let finite = diagonal.iter().chain(&upper).all(|v| v.is_finite());
+    finite.then_some((diagonal, upper))
 }
