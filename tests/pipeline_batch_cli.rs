@@ -287,3 +287,57 @@ fn a_json_lines_stream_on_standard_input_gives_one_line_per_curve() {
     assert_eq!(lines[3]["source"], "<stdin>:5");
     assert!(!stderr(&out).contains("panicked"));
 }
+
+#[test]
+fn a_pipeline_that_moves_points_keeps_fixed_points_and_the_tolerance_band_over_all_stages() {
+    let dir = temp_dir("moving");
+    let config = dir.join("pipeline.toml");
+    let band = 0.05;
+    std::fs::write(
+        &config,
+        format!(
+            "[constraints]\nfixed = [3, 9]\ntolerance = {band}\n\n[[stage]]\nmethod = \"strain-energy\"\n\n[[stage]]\nmethod = \"batten\"\n"
+        ),
+    )
+    .unwrap();
+    let input = data("hull_block_island_boat/sheer_3d.csv");
+    let output = dir.join("out.csv");
+    let report = dir.join("report.json");
+    let out = fair(&[
+        "curve",
+        &input,
+        "--config",
+        config.to_str().unwrap(),
+        "-o",
+        output.to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+        "-q",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let before = rows(Path::new(&input));
+    let after = rows(&output);
+    assert_eq!(before.len(), after.len());
+    for i in [3, 9] {
+        assert_eq!(before[i], after[i], "fixed point {i} moved");
+    }
+    let largest = before
+        .iter()
+        .zip(&after)
+        .map(|(a, b)| a.iter().zip(b).map(|(u, v)| (u - v).powi(2)).sum::<f64>().sqrt())
+        .fold(0.0, f64::max);
+    assert!(largest <= band * (1.0 + 1e-12), "moved {largest} > {band}");
+    let report = json(&report);
+    assert_eq!(report["method"], "strain-energy+batten");
+    let stages = report["stages"].as_array().unwrap();
+    assert_eq!(stages.len(), 2);
+    // The first stage moved points; the second got only what the first left of the band.
+    assert!(stages[0]["moved"].as_u64().unwrap() > 0, "{stages:?}");
+    let first = stages[0]["m_d"].as_f64().unwrap();
+    let second = stages[1]["m_d"].as_f64().unwrap_or(0.0);
+    assert!(second <= band - first + 1e-12, "{first} + {second} > {band}");
+    let moved: Vec<usize> = serde_json::from_value(report["moved"].clone()).unwrap();
+    let differ: Vec<usize> = (0..before.len()).filter(|&i| before[i] != after[i]).collect();
+    assert_eq!(moved, differ);
+    assert!((report["m_d"].as_f64().unwrap() - largest).abs() < 1e-12);
+}

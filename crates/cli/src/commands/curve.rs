@@ -237,7 +237,9 @@ pub fn process(input: &CurveInput, args: &FairArgs, file: Option<&ConfigFile>) -
 /// broke it and how to ask for parametric measures instead.
 fn check_still_a_function(points: &Points, plan: &Plan) -> Result<()> {
     let rows = points.rows();
-    let broken = rows.windows(2).position(|w| w[1][0].partial_cmp(&w[0][0]) != Some(std::cmp::Ordering::Greater));
+    let broken = rows
+        .windows(2)
+        .position(|w| w[1][0].partial_cmp(&w[0][0]) != Some(std::cmp::Ordering::Greater));
     match broken {
         Some(i) => Err(Error::Argument {
             option: "--kind",
