@@ -8,11 +8,10 @@
 //! S_d, M_d, the energy before → after, the largest jump after and the time. Methods not available yet are listed as such; the command fails with the
 //! first other error, after every run was attempted.
 //!
-//! The interactive methods need `--points`: the demo names the point of the largest z_i
-//! ([`bad_points`]).
+//! Every method runs in its automatic mode with its default parameters (no `--points`).
 
 use crate::args::{DemoArgs, FairArgs, KindArg};
-use crate::commands::{curve, inspect, measure, surface};
+use crate::commands::{curve, inspect, surface};
 use crate::error::{Error, Result};
 use crate::input::Source;
 use crate::registry::{MethodKind, METHODS};
@@ -89,38 +88,7 @@ pub const DATASETS: &[Dataset] = &[
     },
 ];
 
-/// The methods that replace the points named by `--points` (the interactive ones).
-const POINT_REPLACING: &[&str] = &["strain-energy", "kjellander", "poliakoff", "zhang-cheng"];
-
-/// The bad point the demo names for an interactive method: the point of the largest z_i
-/// (curves; the function kind's z_i = 6|e_i|) or z_ij (surfaces, index i·columns + j, row by
-/// row). `None` for the other methods, or when nothing can be measured (every z zero, or an
-/// error, which the run itself then reports).
-pub fn bad_points(dataset: &Dataset, method: &str) -> Option<crate::args::IndexList> {
-    if !POINT_REPLACING.contains(&method) {
-        return None;
-    }
-    let source = Source::from_text(dataset.name, dataset.text);
-    let z: Vec<f64> = match dataset.kind {
-        MethodKind::Curve => {
-            let input = crate::input::parse_curve(&source).ok()?;
-            let kind = crate::kind::detect(&input.points);
-            measure::curve(kind, &input.points).ok()?.z?
-        }
-        MethodKind::Surface => {
-            let input = crate::input::grid::parse(&source).ok()?;
-            measure::surface(&input.grid).ok()?.z?.concat()
-        }
-    };
-    let (index, largest) =
-        z.iter()
-            .copied()
-            .enumerate()
-            .fold((0, 0.0), |best, (i, v)| if v > best.1 { (i, v) } else { best });
-    (largest > 0.0).then(|| crate::args::IndexList(vec![index]))
-}
-
-fn run_args(input: String, method: &str, out: &std::path::Path, stem: &str, dataset: &Dataset) -> FairArgs {
+fn run_args(input: String, method: &str, out: &std::path::Path, stem: &str) -> FairArgs {
     FairArgs {
         input,
         method: Some(method.to_string()),
@@ -128,7 +96,7 @@ fn run_args(input: String, method: &str, out: &std::path::Path, stem: &str, data
         config: None,
         settings: Vec::new(),
         fixed: None,
-        points: bad_points(dataset, method),
+        points: None,
         tolerance: None,
         clamp_ends: None,
         output: Some(out.join(format!("{stem}.csv")).display().to_string()),
@@ -236,13 +204,7 @@ pub fn run(args: &DemoArgs) -> Result<()> {
         for method in METHODS.iter().filter(|m| m.kind == dataset.kind) {
             runs += 1;
             let stem = format!("{}-{}", dataset.name, method.name);
-            let run_args = run_args(
-                data_path.display().to_string(),
-                method.name,
-                &args.out,
-                &stem,
-                dataset,
-            );
+            let run_args = run_args(data_path.display().to_string(), method.name, &args.out, &stem);
             let result = match dataset.kind {
                 MethodKind::Curve => fair_curve(&run_args).map(Some),
                 MethodKind::Surface => surface::run(&run_args).map(|()| None),
@@ -292,30 +254,6 @@ pub fn run(args: &DemoArgs) -> Result<()> {
 mod tests {
     use super::*;
     use crate::input;
-
-    #[test]
-    fn bad_point_is_the_largest_jump() {
-        for d in DATASETS {
-            let named = bad_points(d, "strain-energy").or_else(|| bad_points(d, "zhang-cheng"));
-            let index = named.expect("a bad point").0[0];
-            let source = Source::from_text(d.name, d.text);
-            let z = match d.kind {
-                MethodKind::Curve => {
-                    let input = input::parse_curve(&source).unwrap();
-                    measure::curve(crate::kind::detect(&input.points), &input.points)
-                        .unwrap()
-                        .z
-                        .unwrap()
-                }
-                MethodKind::Surface => {
-                    let input = input::grid::parse(&source).unwrap();
-                    measure::surface(&input.grid).unwrap().z.unwrap().concat()
-                }
-            };
-            assert!(z.iter().all(|v| *v <= z[index]), "{}", d.name);
-            assert!(bad_points(d, "two-phase").is_none());
-        }
-    }
 
     #[test]
     fn embedded_data_parses() {
