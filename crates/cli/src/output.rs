@@ -4,7 +4,7 @@
 //! the same `f64`s. Nothing NaN or infinite is ever written: [`Error::NonFiniteOutput`] instead.
 
 use crate::error::{Error, Result};
-use crate::input::{io_reason, CurveInput, Delimiter, Grid, InputFormat, Points, SurfaceInput};
+use crate::input::{io_reason, CurveInput, Delimiter, Grid, InputFormat, Labels, Points, SurfaceInput};
 use std::io::Write;
 
 /// Formats `points` in the format of `input` (header, JSON document, airfoil name).
@@ -29,12 +29,19 @@ pub fn format_curve(input: &CurveInput, points: &Points) -> Result<String> {
     let rows = points.rows();
     let mut text = String::new();
     match &input.format {
-        InputFormat::Csv { header, delimiter } => {
+        InputFormat::Csv {
+            header,
+            delimiter,
+            labels,
+        } => {
             if let Some(header) = header {
                 text.push_str(header);
                 text.push('\n');
             }
-            push_rows(&mut text, rows.iter().map(Vec::as_slice), *delimiter);
+            match labels {
+                None => push_rows(&mut text, rows.iter().map(Vec::as_slice), *delimiter),
+                Some(labels) => push_labelled_rows(&mut text, &rows, labels, *delimiter)?,
+            }
         }
         InputFormat::Json { document } => {
             let array = serde_json::to_value(&rows).map_err(|e| Error::Internal {
@@ -122,6 +129,39 @@ fn push_rows<'a>(text: &mut String, rows: impl Iterator<Item = &'a [f64]>, delim
         text.push_str(&fields.join(delimiter.as_str()));
         text.push('\n');
     }
+}
+
+/// Rows with their label columns back in place, in the file's column order.
+fn push_labelled_rows(
+    text: &mut String,
+    rows: &[Vec<f64>],
+    labels: &Labels,
+    delimiter: Delimiter,
+) -> Result<()> {
+    if labels.texts.len() != rows.len() {
+        return Err(Error::Internal {
+            message: format!(
+                "{} rows for {} labelled input rows",
+                rows.len(),
+                labels.texts.len()
+            ),
+        });
+    }
+    for (row, texts) in rows.iter().zip(&labels.texts) {
+        let (mut values, mut words) = (row.iter(), texts.iter());
+        let fields: Vec<String> = (0..labels.columns)
+            .map(|column| {
+                if labels.positions.contains(&column) {
+                    words.next().cloned().unwrap_or_default()
+                } else {
+                    values.next().map(f64::to_string).unwrap_or_default()
+                }
+            })
+            .collect();
+        text.push_str(&fields.join(delimiter.as_str()));
+        text.push('\n');
+    }
+    Ok(())
 }
 
 /// Writes text to a file, or to standard output for `-`.

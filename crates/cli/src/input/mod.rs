@@ -107,6 +107,17 @@ impl Points {
     }
 }
 
+/// The label columns of a CSV curve (a header `x,y,z,source` has one), written back unchanged.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Labels {
+    /// Fields per row in the file.
+    pub columns: usize,
+    /// Indices (from 0) of the label columns.
+    pub positions: Vec<usize>,
+    /// Each row's label texts, in column order.
+    pub texts: Vec<Vec<String>>,
+}
+
 /// How a curve file was written, remembered so that the output is written the same way.
 #[derive(Debug, Clone, PartialEq)]
 pub enum InputFormat {
@@ -116,6 +127,9 @@ pub enum InputFormat {
         header: Option<String>,
         /// Comma or whitespace.
         delimiter: Delimiter,
+        /// Text columns carried through (`x,y,z,source`), or `None` when every column is a
+        /// coordinate.
+        labels: Option<Labels>,
     },
     /// JSON.
     Json {
@@ -348,8 +362,8 @@ pub fn parse_curve(source: &Source) -> Result<CurveInput> {
 }
 
 fn parse_curve_table(source: &Source) -> Result<CurveInput> {
-    let table = table::Table::parse(source)?;
-    let columns = table.columns;
+    let table = table::Table::parse_labelled(source, &["x", "y", "z"])?;
+    let columns = table.numeric_columns();
     if columns != 2 && columns != 3 {
         let hint = if columns == 5 {
             " (an i,j,x,y,z grid is a surface: use `fair surface`)"
@@ -369,6 +383,11 @@ fn parse_curve_table(source: &Source) -> Result<CurveInput> {
     Ok(CurveInput {
         points,
         format: InputFormat::Csv {
+            labels: (!table.label_columns.is_empty()).then(|| Labels {
+                columns: table.columns,
+                positions: table.label_columns.clone(),
+                texts: table.rows.iter().map(|r| r.labels.clone()).collect(),
+            }),
             header: table.header.map(|h| h.text),
             delimiter: table.delimiter,
         },
@@ -401,7 +420,8 @@ mod tests {
             c.format,
             InputFormat::Csv {
                 header: Some("x,y".into()),
-                delimiter: Delimiter::Comma
+                delimiter: Delimiter::Comma,
+                labels: None
             }
         );
         assert_eq!(c.lines, vec![2, 3, 4]);
@@ -418,10 +438,38 @@ mod tests {
             c.format,
             InputFormat::Csv {
                 header: None,
-                delimiter: Delimiter::Comma
+                delimiter: Delimiter::Comma,
+                labels: None
             }
         );
         assert_eq!(c.lines, vec![1, 4]);
+    }
+
+    #[test]
+    fn label_columns_are_carried_and_written_back() {
+        let text = "x,y,z,source\n1,0.75,0,buttock\n1,9,4.125,waterline\n1,18,8.75,buttock\n";
+        let c = parse("station.csv", text).unwrap();
+        assert_eq!(c.len(), 3);
+        assert_eq!(c.points.dimension(), 3);
+        let Points::Spatial(points) = &c.points else {
+            panic!("3D points expected")
+        };
+        assert_eq!(points[1], Vec3::new(1.0, 9.0, 4.125));
+        // Written back with the labels in place, moved values where they were.
+        let mut moved = points.clone();
+        moved[1].y = 9.5;
+        let written = crate::output::format_curve(&c, &Points::Spatial(moved)).unwrap();
+        assert_eq!(
+            written,
+            "x,y,z,source\n1,0.75,0,buttock\n1,9.5,4.125,waterline\n1,18,8.75,buttock\n"
+        );
+        // A label in a coordinate column is still an error naming the line.
+        let e = parse("station.csv", "x,y,z,source\n1,2,3,a\n1,oops,3,b\n").unwrap_err();
+        assert!(
+            e.one_line().starts_with("station.csv:3: column 2 (y)"),
+            "{}",
+            e.one_line()
+        );
     }
 
     #[test]
@@ -432,7 +480,8 @@ mod tests {
             c.format,
             InputFormat::Csv {
                 header: None,
-                delimiter: Delimiter::Whitespace
+                delimiter: Delimiter::Whitespace,
+                labels: None
             }
         );
     }
