@@ -3,3 +3,9 @@
 pub mod strain_energy;
 
 pub use strain_energy::{Mode, Replacement, StrainEnergy, StrainEnergySettings};
+pub mod smoothing_spline;
+
+pub use smoothing_spline::{
+    fit_parametric, SmoothingDomain, SmoothingRule, SmoothingSettings, SmoothingSpline,
+    SmoothingSplineFairing,
+};
