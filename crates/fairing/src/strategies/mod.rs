@@ -9,3 +9,6 @@ pub use smoothing_spline::{
     fit_parametric, SmoothingDomain, SmoothingRule, SmoothingSettings, SmoothingSpline,
     SmoothingSplineFairing,
 };
+pub mod sapidis_farin;
+
+pub use sapidis_farin::{KnotStep, SapidisFarin, SapidisFarinSettings, SapidisFarinStop};
