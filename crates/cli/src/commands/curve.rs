@@ -17,6 +17,9 @@ use crate::report::{Energies, Report};
 use std::collections::BTreeMap;
 
 mod nurbs_weights;
+mod sapidis_farin;
+mod smoothing_spline;
+mod strategy_run;
 
 /// The fewest points any curve method works on: curvature-slope jumps e_i need three.
 pub const MIN_CURVE_POINTS: usize = 3;
@@ -71,6 +74,8 @@ pub struct CurveOutcome {
 pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
     match job.method.name {
         "nurbs-weights" => nurbs_weights::fair(job),
+        "smoothing-spline" => smoothing_spline::fair(job),
+        "sapidis-farin" => sapidis_farin::fair(job),
         _ => Err(Error::NotAvailable {
             what: format!("method `{}`", job.method.name),
         }),

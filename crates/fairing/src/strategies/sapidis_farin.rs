@@ -102,6 +102,9 @@ pub enum SapidisFarinStop {
     NoCandidate,
 }
 
+/// A faired curve and the data points' new positions (index, position).
+type FairedKnot<const D: usize> = (NurbsCurve<D>, Vec<(usize, Vector<D>)>);
+
 /// Sapidis–Farin knot removal and reinsertion as a [`FairingStrategy`] (module docs).
 #[derive(Clone, Debug)]
 pub struct SapidisFarin<const D: usize> {
@@ -210,7 +213,7 @@ where
         r: usize,
         state: &FairingState<D>,
         constraints: &Constraints,
-    ) -> Result<Option<(NurbsCurve<D>, Vec<(usize, Vector<D>)>)>> {
+    ) -> Result<Option<FairedKnot<D>>> {
         let knots = curve.knots();
         let first_interior = curve.degree() + 1;
         let last_interior = knots.len() - curve.degree() - 2;
@@ -228,7 +231,7 @@ where
         for i in start..end {
             let to = faired.point(self.params[i]);
             let distance = (to - state.original()[i]).norm();
-            if !(distance <= constraints.allowed_distance(i)) {
+            if distance.is_nan() || distance > constraints.allowed_distance(i) {
                 return Ok(None);
             }
             moves.push((i, to));
@@ -313,9 +316,9 @@ where
             let jump_before = self.jumps[r];
             let knots = faired.knots().to_vec();
             let interior = Self::interior(&faired);
-            for k in r - 2..=r + 2 {
+            for (k, &u) in knots.iter().enumerate().take(r + 3).skip(r - 2) {
                 if interior.binary_search(&k).is_ok() {
-                    self.jumps[k] = Self::jump_at(&faired, knots[k])?;
+                    self.jumps[k] = Self::jump_at(&faired, u)?;
                 }
             }
             for (i, to) in moves {

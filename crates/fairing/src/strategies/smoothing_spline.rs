@@ -347,7 +347,7 @@ fn validate<const D: usize>(t: &[f64], y: &[Vector<D>], weights: Option<&[f64]>)
                 }
                 .into());
             }
-            if let Some(index) = w.iter().position(|w| !(*w > 0.0)) {
+            if let Some(index) = w.iter().position(|w| w.is_nan() || *w <= 0.0) {
                 return Err(Error::BadParameter {
                     name: "weights",
                     value: format!("w[{index}] = {}", w[index]),
