@@ -210,3 +210,23 @@ fn sapidis_farin_bad_parameter_exits_2() {
     );
     assert_eq!(out.status.code(), Some(2));
 }
+
+#[test]
+fn sapidis_farin_on_a_function_keeps_x() {
+    let input = airfoil();
+    let (out, rows, report) = fair(
+        &input,
+        "sapidis-farin",
+        &["--fixed", "4", "--set", "max-iterations=40"],
+        "sf-airfoil",
+    );
+    assert_ok(&out);
+    assert_eq!(report["kind"], "function");
+    assert_eq!(report["curve"]["parametrization"], "x");
+    let original = read_rows(&input);
+    assert_eq!(rows[4], original[4]);
+    for (a, b) in rows.iter().zip(&original) {
+        assert_eq!(a[0], b[0]);
+    }
+    assert!(!report["moved"].as_array().unwrap().is_empty());
+}

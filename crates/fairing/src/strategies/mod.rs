@@ -6,8 +6,7 @@ pub use strain_energy::{Mode, Replacement, StrainEnergy, StrainEnergySettings};
 pub mod smoothing_spline;
 
 pub use smoothing_spline::{
-    fit_parametric, SmoothingDomain, SmoothingRule, SmoothingSettings, SmoothingSpline,
-    SmoothingSplineFairing,
+    fit_parametric, CurveDomain, SmoothingRule, SmoothingSettings, SmoothingSpline, SmoothingSplineFairing,
 };
 pub mod sapidis_farin;
 

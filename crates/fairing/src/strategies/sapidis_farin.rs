@@ -16,6 +16,13 @@
 //! Book A9.1, [`Interpolation`]). Only P_{r−2} changes, and N_{r−2} is zero outside
 //! (U_{r−2}, U_{r+2}), so the curve changes only there.
 //!
+//! Functions y(x) ([`CurveDomain::Function`]): the B-spline interpolates the points (x_i, y_i)
+//! at the parameters u_i = (x_i − x_0)/(x_{n−1} − x_0). Its x-coordinate interpolates data
+//! linear in u, which cubic interpolation reproduces, so x(u) is linear; a knot of a linear
+//! function is removable exactly, so every step keeps x(u) linear (up to round-off) and the
+//! curve stays the graph of a function parametrised by its abscissa. The faired data points
+//! keep their x bit for bit (only y is taken from the curve).
+//!
 //! Data points: the method moves control points, not data points. Data point i keeps its
 //! parameter t_i and is mapped to the faired curve, P̃_i = C̃(t_i); after a step only the data
 //! points with t_i in (U_{r−2}, U_{r+2}) are updated (the others are left bit for bit).
@@ -39,6 +46,7 @@
 use curve_repr::{Interpolation, InterpolationSettings, NurbsCurve, Parametrization, Side, Vector};
 use fairness::curvature::{curvature_slope_at, CurvatureForm};
 
+use super::CurveDomain;
 use crate::state::strategy_error;
 use crate::{Constraints, EndClamp, Error, FairingState, FairingStrategy, Result, StepOutcome};
 
@@ -53,6 +61,8 @@ pub struct SapidisFarinSettings {
     pub tolerance: f64,
     /// Steps at most (the strategy reports done after that many).
     pub max_iterations: usize,
+    /// A function y(x) (parameters from x, x kept) or a parametric curve (chord length).
+    pub domain: CurveDomain,
 }
 
 impl Default for SapidisFarinSettings {
@@ -60,6 +70,7 @@ impl Default for SapidisFarinSettings {
         Self {
             tolerance: 1e-3,
             max_iterations: 1000,
+            domain: CurveDomain::Parametric,
         }
     }
 }
@@ -68,6 +79,12 @@ impl SapidisFarinSettings {
     /// Sets the relative tolerance.
     pub fn with_tolerance(mut self, tolerance: f64) -> Self {
         self.tolerance = tolerance;
+        self
+    }
+
+    /// Sets the domain (function or parametric curve).
+    pub fn with_domain(mut self, domain: CurveDomain) -> Self {
+        self.domain = domain;
         self
     }
 
@@ -229,7 +246,10 @@ where
         let faired = Self::fair_knot(curve, r)?;
         let mut moves = Vec::with_capacity(end.saturating_sub(start));
         for i in start..end {
-            let to = faired.point(self.params[i]);
+            let mut to = faired.point(self.params[i]);
+            if self.settings.domain == CurveDomain::Function {
+                to[0] = state.points()[i][0];
+            }
             let distance = (to - state.original()[i]).norm();
             if distance.is_nan() || distance > constraints.allowed_distance(i) {
                 return Ok(None);
@@ -260,10 +280,7 @@ where
                 constraint: "a closed curve (the B-spline is open and clamped)".into(),
             });
         }
-        let SapidisFarinSettings {
-            tolerance,
-            max_iterations: _,
-        } = self.settings;
+        let tolerance = self.settings.tolerance;
         if !(tolerance >= 0.0 && tolerance.is_finite()) {
             return Err(Error::BadParameter {
                 name: "tolerance",
@@ -271,11 +288,23 @@ where
                 reason: "must be a finite non-negative number",
             });
         }
-        let interpolation = Interpolation::with_parametrization(
-            state.points(),
-            Parametrization::ChordLength,
-            InterpolationSettings::default(),
-        )?;
+        let interpolation = match self.settings.domain {
+            CurveDomain::Parametric => Interpolation::with_parametrization(
+                state.points(),
+                Parametrization::ChordLength,
+                InterpolationSettings::default(),
+            )?,
+            CurveDomain::Function => {
+                if D < 2 {
+                    return Err(strategy_error(
+                        NAME,
+                        "a function y(x) needs points with at least 2 coordinates",
+                    ));
+                }
+                let x: Vec<f64> = state.points().iter().map(|p| p[0]).collect();
+                Interpolation::new(state.points(), &x, InterpolationSettings::default())?
+            }
+        };
         let curve = interpolation.nubs()?;
         self.params = interpolation.params().to_vec();
         self.jumps = vec![0.0; curve.knots().len()];

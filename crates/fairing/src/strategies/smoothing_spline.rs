@@ -530,10 +530,11 @@ impl<const D: usize> Curve<D> for SmoothingSpline<D> {
     }
 }
 
-/// Whether the strategy fairs a function y(x) or a parametric curve.
+/// Whether a strategy fairs a function y(x) or a parametric curve (used by the smoothing
+/// spline and Sapidis–Farin).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
-pub enum SmoothingDomain {
+pub enum CurveDomain {
     /// Coordinate 0 is the abscissa x (strictly increasing, kept bit for bit); the other
     /// coordinates are smoothed as functions of x.
     Function,
@@ -560,7 +561,7 @@ pub enum SmoothingDomain {
 #[derive(Clone, Debug, Default)]
 pub struct SmoothingSplineFairing<const D: usize> {
     settings: SmoothingSettings,
-    domain: SmoothingDomain,
+    domain: CurveDomain,
     fit: Option<SmoothingSpline<D>>,
     reweights: usize,
     clipped: usize,
@@ -572,7 +573,7 @@ impl<const D: usize> SmoothingSplineFairing<D> {
 
     /// A strategy with `settings` (its `weights` are the user's, before constraints) on
     /// `domain`.
-    pub fn new(settings: SmoothingSettings, domain: SmoothingDomain) -> Self {
+    pub fn new(settings: SmoothingSettings, domain: CurveDomain) -> Self {
         Self {
             settings,
             domain,
@@ -600,10 +601,10 @@ impl<const D: usize> SmoothingSplineFairing<D> {
     /// Parameters and data of the current points for the domain.
     fn data(&self, points: &[Vector<D>]) -> Result<(Vec<f64>, Vec<Vector<D>>)> {
         match self.domain {
-            SmoothingDomain::Parametric => {
+            CurveDomain::Parametric => {
                 Ok((Parametrization::ChordLength.parameters(points)?, points.to_vec()))
             }
-            SmoothingDomain::Function => {
+            CurveDomain::Function => {
                 if D < 2 {
                     return Err(strategy_error(
                         NAME,
@@ -654,7 +655,7 @@ impl<const D: usize> FairingStrategy<D> for SmoothingSplineFairing<D> {
         let original = state.original().to_vec();
         let target = |fit: &SmoothingSpline<D>, i: usize| -> Vector<D> {
             let mut v = fit.values[i];
-            if self.domain == SmoothingDomain::Function {
+            if self.domain == CurveDomain::Function {
                 v[0] = y[i][0];
             }
             v

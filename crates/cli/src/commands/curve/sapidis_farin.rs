@@ -5,12 +5,13 @@
 //!
 //! Parameters (registry): `tolerance` (stop when the largest curvature-slope jump is at most
 //! this fraction of the initial one; default 1e-3) and `max-iterations` (knots faired at most;
-//! default 1000). A function y(x) is faired as a planar curve (its x may move a little).
+//! default 1000). A function y(x) is faired as the graph of a B-spline parametrised by its
+//! abscissa, x kept; a parametric curve over chord length.
 
 use std::collections::BTreeMap;
 
 use curve_repr::Vector;
-use fairing::strategies::{SapidisFarin, SapidisFarinSettings, SapidisFarinStop};
+use fairing::strategies::{CurveDomain, SapidisFarin, SapidisFarinSettings, SapidisFarinStop};
 use fairness::curvature::CurvatureForm;
 
 use super::strategy_run::{fairing_constraints, from_fairing, run};
@@ -18,6 +19,7 @@ use super::{CurveJob, CurveOutcome};
 use crate::commands::measure::in_file;
 use crate::error::{Error, Result};
 use crate::input::Points;
+use crate::kind::CurveKind;
 
 /// Reads the parameters, runs the fairing, describes it.
 pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
@@ -36,7 +38,11 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
     let max_iterations = parameters.count("max-iterations", defaults.max_iterations)?;
     let settings = SapidisFarinSettings::default()
         .with_tolerance(tolerance)
-        .with_max_iterations(max_iterations);
+        .with_max_iterations(max_iterations)
+        .with_domain(match job.kind {
+            CurveKind::Function => CurveDomain::Function,
+            CurveKind::Parametric => CurveDomain::Parametric,
+        });
     let constraints = fairing_constraints(job.constraints);
     let outcome =
         match &job.input.points {
@@ -88,7 +94,11 @@ where
     };
     if let Some(object) = curve.as_object_mut() {
         object.insert("params".into(), serde_json::json!(strategy.params()));
-        object.insert("parametrization".into(), serde_json::json!("chord-length"));
+        let parametrization = match settings.domain {
+            CurveDomain::Function => "x",
+            CurveDomain::Parametric => "chord-length",
+        };
+        object.insert("parametrization".into(), serde_json::json!(parametrization));
     }
     let stop = match strategy.stop() {
         Some(SapidisFarinStop::Tolerance) => "tolerance",

@@ -14,7 +14,7 @@
 use std::collections::BTreeMap;
 
 use curve_repr::Vector;
-use fairing::strategies::{SmoothingDomain, SmoothingRule, SmoothingSettings, SmoothingSplineFairing};
+use fairing::strategies::{CurveDomain, SmoothingRule, SmoothingSettings, SmoothingSplineFairing};
 
 use super::strategy_run::{fairing_constraints, from_fairing, run};
 use super::{CurveJob, CurveOutcome};
@@ -44,8 +44,8 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
         }
     }
     let domain = match job.kind {
-        CurveKind::Function => SmoothingDomain::Function,
-        CurveKind::Parametric => SmoothingDomain::Parametric,
+        CurveKind::Function => CurveDomain::Function,
+        CurveKind::Parametric => CurveDomain::Parametric,
     };
     let constraints = fairing_constraints(job.constraints);
     let outcome =
@@ -79,7 +79,7 @@ type Described = (
 fn fit<const D: usize>(
     points: &[Vector<D>],
     settings: SmoothingSettings,
-    domain: SmoothingDomain,
+    domain: CurveDomain,
     constraints: fairing::Constraints,
 ) -> fairing::Result<(Vec<Vector<D>>, Described)> {
     let mut strategy = SmoothingSplineFairing::<D>::new(settings, domain);
@@ -95,8 +95,8 @@ fn fit<const D: usize>(
     let curve = serde_json::json!({
         "type": "natural-cubic-spline",
         "parametrization": match domain {
-            SmoothingDomain::Function => "x",
-            SmoothingDomain::Parametric => "chord-length",
+            CurveDomain::Function => "x",
+            CurveDomain::Parametric => "chord-length",
         },
         "knots": spline.knots(),
         "values": coordinates(spline.values()),

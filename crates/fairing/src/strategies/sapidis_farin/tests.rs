@@ -178,3 +178,36 @@ fn closed_curves_and_bad_tolerance_are_rejected() {
     let mut strategy = SapidisFarin::<2>::new(SapidisFarinSettings::default().with_tolerance(f64::NAN));
     assert!(strategy.init(&mut state).is_err());
 }
+
+#[test]
+fn function_domain_keeps_x_and_a_linear_abscissa() {
+    let points: Vec<Vec2> = (0..30)
+        .map(|k| {
+            let x = k as f64 * 0.1 + 0.03 * (noise(k + 3) + 0.5);
+            Vec2::new(x, (2.0 * x).sin() + 0.01 * noise(k))
+        })
+        .collect();
+    let settings = SapidisFarinSettings::default()
+        .with_domain(CurveDomain::Function)
+        .with_max_iterations(80);
+    let mut state = FairingState::new(points.clone(), Constraints::default(), false).unwrap();
+    let mut strategy = SapidisFarin::<2>::new(settings);
+    strategy.init(&mut state).unwrap();
+    let initial = strategy.max_jump();
+    while !strategy.step(&mut state).unwrap().done {}
+    assert!(!strategy.history().is_empty());
+    assert!(strategy.max_jump() < initial);
+    for (a, b) in points.iter().zip(state.points()) {
+        assert_eq!(a[0], b[0]);
+    }
+    // x(u) stays the affine map of the parameters: the curve is the graph of y(x).
+    let curve = strategy.curve().unwrap();
+    let (x0, x1) = (points[0][0], points[29][0]);
+    for k in 0..=200 {
+        let u = f64::from(k) / 200.0;
+        assert!((curve.point(u)[0] - (x0 + u * (x1 - x0))).abs() < 1e-9, "u = {u}");
+    }
+    for (i, p) in state.points().iter().enumerate() {
+        assert!((curve.point(strategy.params()[i])[1] - p[1]).abs() < 1e-9);
+    }
+}

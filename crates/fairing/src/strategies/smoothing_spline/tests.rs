@@ -351,10 +351,8 @@ fn strategy_moves_points_onto_the_spline_and_keeps_fixed_ones() {
     let constraints = Constraints::default()
         .with_fixed([4, 17])
         .with_end_clamp(EndClamp::G0);
-    let strategy = SmoothingSplineFairing::<2>::new(
-        SmoothingSettings::default().with_p(0.5),
-        SmoothingDomain::Parametric,
-    );
+    let strategy =
+        SmoothingSplineFairing::<2>::new(SmoothingSettings::default().with_p(0.5), CurveDomain::Parametric);
     let result = Pipeline::new(strategy)
         .with_constraints(constraints)
         .run(points.clone())
@@ -378,10 +376,8 @@ fn strategy_moves_points_onto_the_spline_and_keeps_fixed_ones() {
 fn strategy_function_domain_keeps_x_and_tolerance() {
     let (x, y, _) = sample(40);
     let points: Vec<Vec2> = x.iter().zip(&y).map(|(x, y)| Vec2::new(*x, *y)).collect();
-    let free = SmoothingSplineFairing::<2>::new(
-        SmoothingSettings::default().with_p(0.05),
-        SmoothingDomain::Function,
-    );
+    let free =
+        SmoothingSplineFairing::<2>::new(SmoothingSettings::default().with_p(0.05), CurveDomain::Function);
     let unconstrained = Pipeline::new(free).run(points.clone()).unwrap();
     let largest = points
         .iter()
@@ -389,10 +385,8 @@ fn strategy_function_domain_keeps_x_and_tolerance() {
         .map(|(a, b)| (a - b).norm())
         .fold(0.0, f64::max);
     let tolerance = 0.3 * largest;
-    let mut strategy = SmoothingSplineFairing::<2>::new(
-        SmoothingSettings::default().with_p(0.05),
-        SmoothingDomain::Function,
-    );
+    let mut strategy =
+        SmoothingSplineFairing::<2>::new(SmoothingSettings::default().with_p(0.05), CurveDomain::Function);
     let constraints = Constraints::default().with_tolerance(tolerance);
     let mut state = FairingState::new(points.clone(), constraints, false).unwrap();
     strategy.init(&mut state).unwrap();
