@@ -393,6 +393,7 @@ fn strategy_function_domain_keeps_x_and_tolerance() {
     assert!(strategy.step(&mut state).unwrap().done);
     state.check().unwrap();
     assert!(strategy.reweights() > 0);
+    assert_eq!(strategy.clipped(), 0, "reweighting alone met the band");
     for (a, b) in points.iter().zip(state.points()) {
         assert_eq!(a[0], b[0], "x is kept");
         assert!((a - b).norm() <= tolerance);
@@ -409,4 +410,28 @@ fn strategy_rejects_derivative_clamps_and_closed_curves() {
     let mut strategy = SmoothingSplineFairing::<2>::default();
     let mut state = FairingState::new(noisy_arc(10), Constraints::default(), true).unwrap();
     assert!(strategy.init(&mut state).is_err());
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(32))]
+
+    /// Random spacing, data, weights and p: the banded solve equals the dense normal equations.
+    #[test]
+    fn random_data_agrees_with_dense(
+        steps in proptest::collection::vec(0.05f64..3.0, 4..40),
+        seed in 0usize..10_000,
+        p in 1e-3f64..=1.0,
+    ) {
+        let mut x = vec![0.0];
+        for s in &steps {
+            let last = x[x.len() - 1];
+            x.push(last + s);
+        }
+        let n = x.len();
+        let y: Vec<f64> = (0..n).map(|k| 3.0 * noise(seed + k)).collect();
+        let w: Vec<f64> = (0..n).map(|k| 0.2 + 2.0 * (noise(seed + 5 * k) + 0.5)).collect();
+        let fit = SmoothingSpline::fit_function(&x, &y, &SmoothingSettings::default().with_p(p).with_weights(w.clone())).unwrap();
+        let dense = dense_fit(&x, &y, &w, p, &[]);
+        proptest::prop_assert!(max_difference(&scalars(&fit), &dense) < 1e-9);
+    }
 }
