@@ -61,9 +61,9 @@ fn assert_ok(output: &Output) {
     );
 }
 
-/// A noisy helix written as x,y,z CSV.
-fn helix() -> PathBuf {
-    let path = out_dir().join("helix.csv");
+/// A noisy helix written as x,y,z CSV (one file per test: tests run in parallel).
+fn helix(tag: &str) -> PathBuf {
+    let path = out_dir().join(format!("helix-{tag}.csv"));
     let mut text = String::from("x,y,z\n");
     for k in 0..60 {
         let s = k as f64 * 0.2;
@@ -144,7 +144,7 @@ fn smoothing_spline_p_one_interpolates_and_bad_p_exits_2() {
 
 #[test]
 fn smoothing_spline_parametric_3d_with_tolerance() {
-    let input = helix();
+    let input = helix("tolerance");
     let tolerance = 0.004;
     let (out, rows, report) = fair(
         &input,
@@ -174,7 +174,7 @@ fn smoothing_spline_parametric_3d_with_tolerance() {
 
 #[test]
 fn sapidis_farin_keeps_fixed_points_and_lowers_the_largest_jump() {
-    let input = helix();
+    let input = helix("fixed");
     let (out, rows, report) = fair(
         &input,
         "sapidis-farin",
@@ -200,10 +200,15 @@ fn sapidis_farin_keeps_fixed_points_and_lowers_the_largest_jump() {
 
 #[test]
 fn sapidis_farin_bad_parameter_exits_2() {
-    let (out, _, _) = fair(&helix(), "sapidis-farin", &["--set", "tolerance=-1"], "sf-bad");
+    let (out, _, _) = fair(
+        &helix("bad"),
+        "sapidis-farin",
+        &["--set", "tolerance=-1"],
+        "sf-bad",
+    );
     assert_eq!(out.status.code(), Some(2));
     let (out, _, _) = fair(
-        &helix(),
+        &helix("bad2"),
         "sapidis-farin",
         &["--set", "max-iterations=many"],
         "sf-bad2",
@@ -229,4 +234,39 @@ fn sapidis_farin_on_a_function_keeps_x() {
         assert_eq!(a[0], b[0]);
     }
     assert!(!report["moved"].as_array().unwrap().is_empty());
+}
+
+#[test]
+fn end_clamps_the_methods_cannot_honour_exit_2_and_those_they_can_are_kept() {
+    let input = airfoil();
+    let (out, _, _) = fair(&input, "smoothing-spline", &["--clamp-ends", "g1"], "ss-g1");
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("naca2412_upper.csv") && stderr.contains("g1"),
+        "{stderr}"
+    );
+    // Sapidis-Farin keeps G2 ends: end points unchanged, first and last knots never faired.
+    let spiral = helix("g2");
+    let (out, rows, report) = fair(
+        &spiral,
+        "sapidis-farin",
+        &["--clamp-ends", "g2", "--set", "max-iterations=50"],
+        "sf-g2",
+    );
+    assert_ok(&out);
+    let original = read_rows(&spiral);
+    assert_eq!(rows[0], original[0]);
+    assert_eq!(rows[59], original[59]);
+    let knots: Vec<f64> = report["curve"]["knots"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let (first, last) = (knots[4], knots[knots.len() - 5]);
+    for step in report["steps"].as_array().unwrap() {
+        let k = step["knot"].as_f64().unwrap();
+        assert!(k != first && k != last, "end knot {k} faired under g2");
+    }
 }
