@@ -547,8 +547,8 @@ pub enum CurveDomain {
 /// the smoothing spline (its value at the point's parameter), then reports done.
 ///
 /// Constraints:
-/// - fixed points and clamped ends (G0) get weight +∞, i.e. they are interpolation
-///   constraints of the fit: the spline passes through them exactly and they do not move.
+/// - fixed points, clamped ends (G0) and points with a zero restraining radius or tolerance
+///   get weight +∞, i.e. they are interpolation constraints of the fit: the spline passes through them exactly and they do not move.
 ///   G1/G2 clamps are rejected ([`Error::ConstraintUnsupported`]). Closed curves are rejected.
 /// - the tolerance band and restraining radii (one ball per point, the smaller of the two):
 ///   p is chosen once, on the user's weights; then, up to [`SmoothingSplineFairing::MAX_REWEIGHTS`]
@@ -646,7 +646,8 @@ impl<const D: usize> FairingStrategy<D> for SmoothingSplineFairing<D> {
         validate(&t, &y, Some(&weights))?;
         let first = SmoothingSpline::fit(&t, &y, &user)?;
         let (p, rule, gcv) = (first.p, first.rule, first.gcv);
-        let frozen = |i: usize| constraints.fixed().contains(&i) || constraints.is_clamped_end(i, n);
+        // Fixed points, clamped ends and zero radii: interpolation constraints.
+        let frozen = |i: usize| !constraints.is_movable(i, n);
         for (i, w) in weights.iter_mut().enumerate() {
             if frozen(i) {
                 *w = f64::INFINITY;

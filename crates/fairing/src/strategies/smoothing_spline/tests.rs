@@ -435,3 +435,24 @@ proptest::proptest! {
         proptest::prop_assert!(max_difference(&scalars(&fit), &dense) < 1e-9);
     }
 }
+
+#[test]
+fn zero_radius_points_are_interpolated_not_clipped() {
+    let points = noisy_arc(25);
+    let mut radii = vec![f64::INFINITY; 25];
+    radii[11] = 0.0;
+    let constraints = Constraints::default().with_restraining_radii(radii);
+    let mut strategy =
+        SmoothingSplineFairing::<2>::new(SmoothingSettings::default().with_p(0.3), CurveDomain::Parametric);
+    let mut state = FairingState::new(points.clone(), constraints, false).unwrap();
+    strategy.init(&mut state).unwrap();
+    strategy.step(&mut state).unwrap();
+    state.check().unwrap();
+    assert_eq!(state.points()[11], points[11]);
+    assert_eq!(
+        strategy.fit().unwrap().values()[11],
+        points[11],
+        "the spline passes through it"
+    );
+    assert_eq!(strategy.clipped(), 0);
+}
