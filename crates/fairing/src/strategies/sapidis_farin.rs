@@ -7,7 +7,8 @@
 //! deviation (the two computations of the new control points, from the left and from the
 //! right, are both kept, as A5.8 does), then insert u again (A5.1). Reinsertion gives back
 //! P_{r−3} and P_{r−1} (up to round-off) and changes only P_{r−2}, to the blend of its left and
-//! right computations with the insertion ratio α = (u − U_{r−2})/(U_{r+1} − U_{r−2}): that is
+//! right computations with the insertion ratio α = (u − U_{r−2})/(U_{r+2} − U_{r−2}) (A5.1 on the
+//! knot vector without u, whose index r + 1 holds U_{r+2}): that is
 //! Sapidis–Farin's new control point. The curve between removal and reinsertion has no knot
 //! at u, so the faired curve is C3 there: its third-derivative jump at u vanishes.
 //!
