@@ -232,14 +232,36 @@ pub const METHODS: &[MethodInfo] = &[
         kind: MethodKind::Curve,
         paper: "baseline: smoothing spline (the papers' MST)",
         summary: "least-squares smoothing spline, a baseline to compare against",
-        parameters: &[],
+        parameters: &[
+            ParameterInfo {
+                name: "p",
+                default: "auto",
+                meaning: "smoothing parameter in [0, 1] (csaps: 0 LSQ line, 1 interpolation) or auto",
+            },
+            ParameterInfo {
+                name: "rule",
+                default: "gcv",
+                meaning: "how auto chooses p: gcv (generalised cross-validation) or trace (csaps's rule)",
+            },
+        ],
     },
     MethodInfo {
         name: "sapidis-farin",
         kind: MethodKind::Curve,
         paper: "baseline: Sapidis & Farin knot removal and reinsertion",
         summary: "removes curvature-slope jumps knot by knot, a baseline",
-        parameters: &[],
+        parameters: &[
+            ParameterInfo {
+                name: "tolerance",
+                default: "1e-3",
+                meaning: "stop when the largest curvature-slope jump is this fraction of the initial one",
+            },
+            ParameterInfo {
+                name: "max-iterations",
+                default: "1000",
+                meaning: "knots faired (removed and reinserted) at most",
+            },
+        ],
     },
     MethodInfo {
         name: "zhang-cheng",

@@ -22,8 +22,11 @@ use std::collections::BTreeMap;
 pub mod batch;
 mod batten;
 mod nurbs_weights;
+mod sapidis_farin;
+mod smoothing_spline;
 pub mod stages;
 mod strain_energy;
+mod strategy_run;
 
 /// The fewest points any curve method works on: curvature-slope jumps e_i need three.
 pub const MIN_CURVE_POINTS: usize = 3;
@@ -80,6 +83,8 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
         "nurbs-weights" => nurbs_weights::fair(job),
         "strain-energy" | "kjellander" | "poliakoff" => strain_energy::fair(job),
         "batten" => batten::fair(job),
+        "smoothing-spline" => smoothing_spline::fair(job),
+        "sapidis-farin" => sapidis_farin::fair(job),
         _ => Err(Error::NotAvailable {
             what: format!("method `{}`", job.method.name),
         }),

@@ -1,0 +1,134 @@
+//! `--method sapidis-farin`: Sapidis & Farin's knot removal and reinsertion on the cubic
+//! interpolating B-spline, via [`fairing::strategies::SapidisFarin`]. The data points are
+//! mapped to the faired curve at their parameters; knots whose fairing would move a fixed
+//! point or leave the tolerance band are skipped.
+//!
+//! Parameters (registry): `tolerance` (stop when the largest curvature-slope jump is at most
+//! this fraction of the initial one; default 1e-3) and `max-iterations` (knots faired at most;
+//! default 1000). A function y(x) is faired as the graph of a B-spline parametrised by its
+//! abscissa, x kept; a parametric curve over chord length.
+
+use std::collections::BTreeMap;
+
+use curve_repr::Vector;
+use fairing::strategies::{CurveDomain, SapidisFarin, SapidisFarinSettings, SapidisFarinStop};
+use fairness::curvature::CurvatureForm;
+
+use super::strategy_run::{fairing_constraints, from_fairing, run};
+use super::{CurveJob, CurveOutcome};
+use crate::commands::measure::in_file;
+use crate::error::{Error, Result};
+use crate::input::Points;
+use crate::kind::CurveKind;
+
+/// Reads the parameters, runs the fairing, describes it.
+pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
+    let parameters = job.parameters;
+    let defaults = SapidisFarinSettings::default();
+    let tolerance = parameters.number("tolerance", defaults.tolerance)?;
+    if tolerance < 0.0 {
+        return Err(Error::Parameter {
+            origin: parameters
+                .get("tolerance")
+                .map(|g| g.origin.clone())
+                .unwrap_or_default(),
+            message: format!("`tolerance` = {tolerance} must not be negative"),
+        });
+    }
+    let max_iterations = parameters.count("max-iterations", defaults.max_iterations)?;
+    let settings = SapidisFarinSettings::default()
+        .with_tolerance(tolerance)
+        .with_max_iterations(max_iterations)
+        .with_domain(match job.kind {
+            CurveKind::Function => CurveDomain::Function,
+            CurveKind::Parametric => CurveDomain::Parametric,
+        });
+    let constraints = fairing_constraints(job.constraints);
+    let outcome =
+        match &job.input.points {
+            Points::Planar(points) => fair_points(points, settings, constraints)
+                .map(|(points, rest)| (Points::Planar(points), rest)),
+            Points::Spatial(points) => fair_points(points, settings, constraints)
+                .map(|(points, rest)| (Points::Spatial(points), rest)),
+        };
+    let (points, (curve, extras, moved, iterations, elapsed_ms)) =
+        outcome.map_err(|e| in_file(from_fairing(e), &job.input.source))?;
+    Ok(CurveOutcome {
+        points,
+        iterations,
+        moved,
+        elapsed_ms,
+        curve,
+        extras,
+        represented_energies: None,
+    })
+}
+
+type Described = (
+    serde_json::Value,
+    BTreeMap<String, serde_json::Value>,
+    Vec<usize>,
+    usize,
+    f64,
+);
+
+fn fair_points<const D: usize>(
+    points: &[Vector<D>],
+    settings: SapidisFarinSettings,
+    constraints: fairing::Constraints,
+) -> fairing::Result<(Vec<Vector<D>>, Described)>
+where
+    Vector<D>: CurvatureForm,
+{
+    let mut strategy = SapidisFarin::<D>::new(settings);
+    // One more step than knots to fair: the last one reports done.
+    let result = run(
+        &mut strategy,
+        points.to_vec(),
+        constraints,
+        settings.max_iterations.saturating_add(1),
+    )?;
+    let mut curve = match strategy.curve() {
+        Some(curve) => serde_json::to_value(curve).unwrap_or(serde_json::Value::Null),
+        None => serde_json::Value::Null,
+    };
+    if let Some(object) = curve.as_object_mut() {
+        object.insert("params".into(), serde_json::json!(strategy.params()));
+        let parametrization = match settings.domain {
+            CurveDomain::Function => "x",
+            CurveDomain::Parametric => "chord-length",
+        };
+        object.insert("parametrization".into(), serde_json::json!(parametrization));
+    }
+    let stop = match strategy.stop() {
+        Some(SapidisFarinStop::Tolerance) => "tolerance",
+        Some(SapidisFarinStop::MaxIterations) => "max-iterations",
+        Some(SapidisFarinStop::NoCandidate) => "no-candidate",
+        None => "max-iterations",
+    };
+    let steps: Vec<serde_json::Value> = strategy
+        .history()
+        .iter()
+        .map(|s| serde_json::json!({"knot": s.knot, "jump_before": s.jump_before, "max_jump_after": s.max_jump_after}))
+        .collect();
+    let mut extras = BTreeMap::new();
+    extras.insert("tolerance".into(), serde_json::json!(settings.tolerance));
+    extras.insert(
+        "max_jump_before".into(),
+        serde_json::json!(strategy.initial_max_jump()),
+    );
+    extras.insert("max_jump_after".into(), serde_json::json!(strategy.max_jump()));
+    extras.insert("knots_faired".into(), serde_json::json!(strategy.history().len()));
+    extras.insert("stop".into(), serde_json::json!(stop));
+    extras.insert("steps".into(), serde_json::Value::Array(steps));
+    Ok((
+        result.points,
+        (
+            curve,
+            extras,
+            result.moved,
+            strategy.history().len(),
+            result.elapsed_ms,
+        ),
+    ))
+}

@@ -1,0 +1,110 @@
+//! Running one `fairing` strategy from the command: the user's constraints in the fairing
+//! crate's types, the step loop with its limit and final constraint check, and the fairing
+//! crate's errors as the command's (exit status 2 for what the input or the options cause).
+//!
+//! The loop is run here rather than by [`fairing::Pipeline`] because the command reads the
+//! strategy's own results (its p, its knot history) after the run, and the pipeline owns its
+//! stages.
+
+use std::collections::BTreeSet;
+use std::time::Instant;
+
+use curve_repr::Vector;
+use fairing::{EndClamp, FairingState, FairingStrategy};
+
+use crate::args::ClampEnds;
+use crate::commands::measure::POINTS;
+use crate::constraints::Constraints;
+use crate::error::Error;
+
+/// The user's constraints as the fairing crate's: fixed points, the tolerance band and the
+/// end clamp (`--points` is for the interactive methods and ignored here).
+pub fn fairing_constraints(constraints: &Constraints) -> fairing::Constraints {
+    let mut out = fairing::Constraints::default().with_fixed(constraints.fixed.iter().copied());
+    if let Some(d) = constraints.tolerance {
+        out = out.with_tolerance(d);
+    }
+    let clamp = match constraints.clamp_ends {
+        None => EndClamp::None,
+        Some(ClampEnds::G0) => EndClamp::G0,
+        Some(ClampEnds::G1) => EndClamp::G1,
+        Some(ClampEnds::G2) => EndClamp::G2,
+    };
+    out.with_end_clamp(clamp)
+}
+
+/// A fairing error as the command's, with the path [`POINTS`] that
+/// [`in_file`](crate::commands::measure::in_file) replaces by the file name. A constraint the
+/// result breaks is a bug (exit 1); everything else is the input's or the options' (exit 2).
+pub fn from_fairing(error: fairing::Error) -> Error {
+    match error {
+        fairing::Error::Repr(source) => Error::Representation {
+            path: POINTS.into(),
+            source,
+        },
+        error @ fairing::Error::ConstraintViolated { .. } => Error::Internal {
+            message: error.to_string(),
+        },
+        other => Error::Invalid {
+            path: POINTS.into(),
+            message: other.to_string(),
+        },
+    }
+}
+
+/// What a run gives back.
+#[derive(Debug, Clone)]
+pub struct Run<const D: usize> {
+    /// The faired points.
+    pub points: Vec<Vector<D>>,
+    /// Indices of the points whose final position differs from the original.
+    pub moved: Vec<usize>,
+    /// Steps made.
+    pub iterations: usize,
+    /// Time of init and steps, in milliseconds.
+    pub elapsed_ms: f64,
+    /// `strategy-done` or `max-iterations`.
+    pub termination: &'static str,
+}
+
+/// Runs `strategy` on `points` (open curve) until it is done or has made `max_iterations`
+/// steps, then checks the result against the constraints. O(steps × step cost).
+pub fn run<const D: usize, S: FairingStrategy<D>>(
+    strategy: &mut S,
+    points: Vec<Vector<D>>,
+    constraints: fairing::Constraints,
+    max_iterations: usize,
+) -> fairing::Result<Run<D>> {
+    strategy.supports(&constraints)?;
+    let mut state = FairingState::new(points, constraints, false)?;
+    let start = Instant::now();
+    strategy.init(&mut state)?;
+    let mut termination = "max-iterations";
+    let mut iterations = 0;
+    while iterations < max_iterations {
+        state.iteration = iterations;
+        let outcome = strategy.step(&mut state)?;
+        iterations += 1;
+        if outcome.done {
+            termination = "strategy-done";
+            break;
+        }
+    }
+    let elapsed_ms = start.elapsed().as_secs_f64() * 1e3;
+    state.check()?;
+    let moved: BTreeSet<usize> = state
+        .points()
+        .iter()
+        .zip(state.original())
+        .enumerate()
+        .filter(|(_, (a, b))| a != b)
+        .map(|(i, _)| i)
+        .collect();
+    Ok(Run {
+        points: state.points().to_vec(),
+        moved: moved.into_iter().collect(),
+        iterations,
+        elapsed_ms,
+        termination,
+    })
+}

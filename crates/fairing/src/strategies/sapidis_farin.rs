@@ -1,0 +1,373 @@
+//! Sapidis–Farin fairing (Sapidis & Farin, *Automatic fairing algorithm for B-spline curves*,
+//! CAD 22 (1990)), the baseline Han et al. §5 call SF: on the cubic B-spline through the data,
+//! the interior knot with the largest curvature-slope jump |dκ/ds(u+) − dκ/ds(u−)| (Zhang–Cheng
+//! Eq. 16) is removed and reinserted, and this is repeated.
+//!
+//! One step at a simple knot u = U_r: remove u once with The NURBS Book A5.8 accepting any
+//! deviation (the two computations of the new control points, from the left and from the
+//! right, are both kept, as A5.8 does), then insert u again (A5.1). Reinsertion gives back
+//! P_{r−3} and P_{r−1} (up to round-off) and changes only P_{r−2}, to the blend of its left and
+//! right computations with the insertion ratio α = (u − U_{r−2})/(U_{r+2} − U_{r−2}) (A5.1 on the
+//! knot vector without u, whose index r + 1 holds U_{r+2}): that is
+//! Sapidis–Farin's new control point. The curve between removal and reinsertion has no knot
+//! at u, so the faired curve is C3 there: its third-derivative jump at u vanishes.
+//!
+//! The representation is the cubic non-rational B-spline (NURBS with unit weights) that
+//! interpolates the data at chord-length parameters in [0, 1] with averaged knots (The NURBS
+//! Book A9.1, [`Interpolation`]). Only P_{r−2} changes, and N_{r−2} is zero outside
+//! (U_{r−2}, U_{r+2}), so the curve changes only there.
+//!
+//! Functions y(x) ([`CurveDomain::Function`]): the B-spline interpolates the points (x_i, y_i)
+//! at the parameters u_i = (x_i − x_0)/(x_{n−1} − x_0). Its x-coordinate interpolates data
+//! linear in u, which cubic interpolation reproduces, so x(u) is linear; a knot of a linear
+//! function is removable exactly, so every step keeps x(u) linear (up to round-off) and the
+//! curve stays the graph of a function parametrised by its abscissa. The faired data points
+//! keep their x bit for bit (only y is taken from the curve).
+//!
+//! Data points: the method moves control points, not data points. Data point i keeps its
+//! parameter t_i and is mapped to the faired curve, P̃_i = C̃(t_i); after a step only the data
+//! points with t_i in (U_{r−2}, U_{r+2}) are updated (the others are left bit for bit).
+//!
+//! Constraints, honoured by choosing among knots (never by a partial step, which would not
+//! make the knot C3):
+//! - a fixed data point (or a clamped end) is never moved: a knot whose support interval
+//!   (U_{r−2}, U_{r+2}) holds a frozen point's parameter is not a candidate;
+//! - tolerance band and restraining radii: a knot whose step would carry a data point out of
+//!   its ball (around its ORIGINAL position) is not a candidate;
+//! - end clamps: P_0, P_1, P_{n−2}, P_{n−1} never change (r − 2 ≥ 2 and ≤ n − 3), so the end
+//!   points and end tangents of the curve are kept (G0, G1); for G2 the first and last
+//!   interior knots (which change P_2 and P_{n−3}) are excluded;
+//! - closed curves are rejected.
+//!
+//! At each step the candidate with the largest jump is faired; the strategy is done when the
+//! largest jump over all interior knots is at most `tolerance` × the largest jump of the
+//! initial curve, or when no knot is a candidate. Cost per step: O(n) (the knot operations
+//! copy the control points), the jumps are updated only at the five knots U_{r−2} … U_{r+2}.
+
+use curve_repr::{Interpolation, InterpolationSettings, NurbsCurve, Parametrization, Side, Vector};
+use fairness::curvature::{curvature_slope_at, CurvatureForm};
+
+use super::CurveDomain;
+use crate::state::strategy_error;
+use crate::{Constraints, EndClamp, Error, FairingState, FairingStrategy, Result, StepOutcome};
+
+/// The strategy's name, as `fair methods` lists it.
+pub const NAME: &str = "sapidis-farin";
+
+/// Settings of [`SapidisFarin`]. Default: tolerance 1e-3 (relative), max iterations 1000.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SapidisFarinSettings {
+    /// Stop when the largest curvature-slope jump is at most this fraction of the initial
+    /// largest jump (a relative tolerance, since the jump's unit is 1/length²).
+    pub tolerance: f64,
+    /// Steps at most (the strategy reports done after that many).
+    pub max_iterations: usize,
+    /// A function y(x) (parameters from x, x kept) or a parametric curve (chord length).
+    pub domain: CurveDomain,
+}
+
+impl Default for SapidisFarinSettings {
+    fn default() -> Self {
+        Self {
+            tolerance: 1e-3,
+            max_iterations: 1000,
+            domain: CurveDomain::Parametric,
+        }
+    }
+}
+
+impl SapidisFarinSettings {
+    /// Sets the relative tolerance.
+    pub fn with_tolerance(mut self, tolerance: f64) -> Self {
+        self.tolerance = tolerance;
+        self
+    }
+
+    /// Sets the domain (function or parametric curve).
+    pub fn with_domain(mut self, domain: CurveDomain) -> Self {
+        self.domain = domain;
+        self
+    }
+
+    /// Sets the step limit.
+    pub fn with_max_iterations(mut self, max_iterations: usize) -> Self {
+        self.max_iterations = max_iterations;
+        self
+    }
+}
+
+/// One faired knot.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct KnotStep {
+    /// The knot's value u.
+    pub knot: f64,
+    /// Its index r in the full knot vector.
+    pub index: usize,
+    /// Its curvature-slope jump before the step.
+    pub jump_before: f64,
+    /// The largest jump over all interior knots after the step.
+    pub max_jump_after: f64,
+}
+
+/// Why the strategy stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SapidisFarinStop {
+    /// The largest jump fell below the tolerance.
+    Tolerance,
+    /// The step limit was reached.
+    MaxIterations,
+    /// No knot can be faired without breaking a constraint.
+    NoCandidate,
+}
+
+/// A faired curve and the data points' new positions (index, position).
+type FairedKnot<const D: usize> = (NurbsCurve<D>, Vec<(usize, Vector<D>)>);
+
+/// Sapidis–Farin knot removal and reinsertion as a [`FairingStrategy`] (module docs).
+#[derive(Clone, Debug)]
+pub struct SapidisFarin<const D: usize> {
+    settings: SapidisFarinSettings,
+    curve: Option<NurbsCurve<D>>,
+    params: Vec<f64>,
+    /// Jump at each interior knot index r (indexed by r; 0 elsewhere).
+    jumps: Vec<f64>,
+    initial_max: f64,
+    history: Vec<KnotStep>,
+    stop: Option<SapidisFarinStop>,
+}
+
+impl<const D: usize> SapidisFarin<D>
+where
+    Vector<D>: CurvatureForm,
+{
+    /// A strategy with `settings`.
+    pub fn new(settings: SapidisFarinSettings) -> Self {
+        Self {
+            settings,
+            curve: None,
+            params: Vec::new(),
+            jumps: Vec::new(),
+            initial_max: 0.0,
+            history: Vec::new(),
+            stop: None,
+        }
+    }
+
+    /// The current B-spline (after `init`).
+    pub fn curve(&self) -> Option<&NurbsCurve<D>> {
+        self.curve.as_ref()
+    }
+
+    /// The data points' parameters t_i on the curve.
+    pub fn params(&self) -> &[f64] {
+        &self.params
+    }
+
+    /// Every step made, in order.
+    pub fn history(&self) -> &[KnotStep] {
+        &self.history
+    }
+
+    /// Why the strategy stopped, once it has.
+    pub fn stop(&self) -> Option<SapidisFarinStop> {
+        self.stop
+    }
+
+    /// The largest jump of the initial curve.
+    pub fn initial_max_jump(&self) -> f64 {
+        self.initial_max
+    }
+
+    /// The largest current jump over the interior knots.
+    pub fn max_jump(&self) -> f64 {
+        self.jumps.iter().copied().fold(0.0, f64::max)
+    }
+
+    /// |dκ/ds(u+) − dκ/ds(u−)| at knot u of `curve`.
+    pub fn jump_at(curve: &NurbsCurve<D>, u: f64) -> Result<f64> {
+        let slope = |side| {
+            curvature_slope_at(curve, u, side)
+                .map_err(|e| strategy_error(NAME, format!("curvature slope at knot {u}: {e}")))
+        };
+        let jump = (slope(Side::Right)? - slope(Side::Left)?).abs();
+        if jump.is_finite() {
+            Ok(jump)
+        } else {
+            Err(strategy_error(
+                NAME,
+                format!("curvature-slope jump at knot {u} is not finite"),
+            ))
+        }
+    }
+
+    /// Indices r of the simple interior knots.
+    fn interior(curve: &NurbsCurve<D>) -> Vec<usize> {
+        let knots = curve.knots();
+        let p = curve.degree();
+        (p + 1..knots.len().saturating_sub(p + 1))
+            .filter(|&r| knots[r - 1] < knots[r] && knots[r] < knots[r + 1])
+            .collect()
+    }
+
+    /// The faired curve at knot r: remove once (A5.8, any deviation accepted), reinsert.
+    pub fn fair_knot(curve: &NurbsCurve<D>, r: usize) -> Result<NurbsCurve<D>> {
+        let u = curve
+            .knots()
+            .get(r)
+            .copied()
+            .ok_or_else(|| strategy_error(NAME, format!("knot index {r} out of range")))?;
+        let (removed, count) = curve.remove_knot(u, 1, f64::MAX)?;
+        if count != 1 {
+            return Err(strategy_error(NAME, format!("knot {u} could not be removed")));
+        }
+        Ok(removed.insert_knot(u, 1)?)
+    }
+
+    /// Whether knot r may be faired under `constraints`, and the data points' new positions
+    /// (index, position) if so.
+    fn try_knot(
+        &self,
+        curve: &NurbsCurve<D>,
+        r: usize,
+        state: &FairingState<D>,
+        constraints: &Constraints,
+    ) -> Result<Option<FairedKnot<D>>> {
+        let knots = curve.knots();
+        let first_interior = curve.degree() + 1;
+        let last_interior = knots.len() - curve.degree() - 2;
+        if constraints.end_clamp() == EndClamp::G2 && (r == first_interior || r == last_interior) {
+            return Ok(None);
+        }
+        let (low, high) = (knots[r - 2], knots[r + 2]);
+        let start = self.params.partition_point(|&t| t <= low);
+        let end = self.params.partition_point(|&t| t < high);
+        if (start..end).any(|i| !state.is_movable(i)) {
+            return Ok(None);
+        }
+        let faired = Self::fair_knot(curve, r)?;
+        let mut moves = Vec::with_capacity(end.saturating_sub(start));
+        for i in start..end {
+            let mut to = faired.point(self.params[i]);
+            if self.settings.domain == CurveDomain::Function {
+                to[0] = state.points()[i][0];
+            }
+            let distance = (to - state.original()[i]).norm();
+            if distance.is_nan() || distance > constraints.allowed_distance(i) {
+                return Ok(None);
+            }
+            moves.push((i, to));
+        }
+        Ok(Some((faired, moves)))
+    }
+}
+
+impl<const D: usize> FairingStrategy<D> for SapidisFarin<D>
+where
+    Vector<D>: CurvatureForm,
+{
+    fn name(&self) -> &str {
+        NAME
+    }
+
+    /// Every end clamp is honoured (module docs); the default rejects G1 and G2.
+    fn supports(&self, _constraints: &Constraints) -> Result<()> {
+        Ok(())
+    }
+
+    fn init(&mut self, state: &mut FairingState<D>) -> Result<()> {
+        if state.is_closed() {
+            return Err(Error::ConstraintUnsupported {
+                strategy: NAME.into(),
+                constraint: "a closed curve (the B-spline is open and clamped)".into(),
+            });
+        }
+        let tolerance = self.settings.tolerance;
+        if !(tolerance >= 0.0 && tolerance.is_finite()) {
+            return Err(Error::BadParameter {
+                name: "tolerance",
+                value: tolerance.to_string(),
+                reason: "must be a finite non-negative number",
+            });
+        }
+        let interpolation = match self.settings.domain {
+            CurveDomain::Parametric => Interpolation::with_parametrization(
+                state.points(),
+                Parametrization::ChordLength,
+                InterpolationSettings::default(),
+            )?,
+            CurveDomain::Function => {
+                if D < 2 {
+                    return Err(strategy_error(
+                        NAME,
+                        "a function y(x) needs points with at least 2 coordinates",
+                    ));
+                }
+                let x: Vec<f64> = state.points().iter().map(|p| p[0]).collect();
+                Interpolation::new(state.points(), &x, InterpolationSettings::default())?
+            }
+        };
+        let curve = interpolation.nubs()?;
+        self.params = interpolation.params().to_vec();
+        self.jumps = vec![0.0; curve.knots().len()];
+        for r in Self::interior(&curve) {
+            self.jumps[r] = Self::jump_at(&curve, curve.knots()[r])?;
+        }
+        self.initial_max = self.max_jump();
+        self.curve = Some(curve);
+        self.history.clear();
+        self.stop = None;
+        state.criterion = Some(self.initial_max);
+        Ok(())
+    }
+
+    fn step(&mut self, state: &mut FairingState<D>) -> Result<StepOutcome> {
+        let Some(curve) = self.curve.clone() else {
+            return Err(strategy_error(NAME, "step before init"));
+        };
+        let max = self.max_jump();
+        if max <= self.settings.tolerance * self.initial_max || self.initial_max == 0.0 {
+            self.stop = Some(SapidisFarinStop::Tolerance);
+            return Ok(StepOutcome::done(Some(max)));
+        }
+        if self.history.len() >= self.settings.max_iterations {
+            self.stop = Some(SapidisFarinStop::MaxIterations);
+            return Ok(StepOutcome::done(Some(max)));
+        }
+        let constraints = state.constraints().clone();
+        let mut candidates: Vec<usize> = Self::interior(&curve);
+        candidates.sort_by(|a, b| self.jumps[*b].total_cmp(&self.jumps[*a]));
+        for r in candidates {
+            if self.jumps[r] == 0.0 {
+                break;
+            }
+            let Some((faired, moves)) = self.try_knot(&curve, r, state, &constraints)? else {
+                continue;
+            };
+            let jump_before = self.jumps[r];
+            let knots = faired.knots().to_vec();
+            let interior = Self::interior(&faired);
+            for (k, &u) in knots.iter().enumerate().take(r + 3).skip(r - 2) {
+                if interior.binary_search(&k).is_ok() {
+                    self.jumps[k] = Self::jump_at(&faired, u)?;
+                }
+            }
+            for (i, to) in moves {
+                state.move_point(i, to)?;
+            }
+            self.curve = Some(faired);
+            let max_jump_after = self.max_jump();
+            self.history.push(KnotStep {
+                knot: knots[r],
+                index: r,
+                jump_before,
+                max_jump_after,
+            });
+            return Ok(StepOutcome::running(Some(max_jump_after)));
+        }
+        self.stop = Some(SapidisFarinStop::NoCandidate);
+        Ok(StepOutcome::done(Some(max)))
+    }
+}
+
+#[cfg(test)]
+mod tests;
