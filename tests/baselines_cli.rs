@@ -243,7 +243,7 @@ fn end_clamps_the_methods_cannot_honour_exit_2_and_those_they_can_are_kept() {
     assert_eq!(out.status.code(), Some(2));
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
-        stderr.contains("naca2412_upper.csv") && stderr.contains("g1"),
+        stderr.contains("--clamp-ends") && stderr.contains("g1"),
         "{stderr}"
     );
     // Sapidis-Farin keeps G2 ends: end points unchanged, first and last knots never faired.

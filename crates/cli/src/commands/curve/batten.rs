@@ -18,7 +18,8 @@ use curve_repr::Vector;
 use fairing::strategies::{batten, Batten, BattenSettings, PositionUpdate};
 use fairing::FairingResult;
 
-use super::strain_energy::{library_constraints, points_of, run_strategy};
+use super::strain_energy::points_of;
+use super::strategy_run::{fairing_constraints, run_strategy};
 use super::{CurveJob, CurveOutcome};
 use crate::error::{Error, Result};
 use crate::input::Points;
@@ -65,7 +66,7 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
         "jacobi" => PositionUpdate::Jacobi,
         _ => PositionUpdate::GaussSeidel,
     };
-    let mut constraints = library_constraints(job);
+    let mut constraints = fairing_constraints(job.constraints);
     if range.is_finite() {
         constraints = constraints.with_restraining_radii(vec![range; job.input.len()]);
     }

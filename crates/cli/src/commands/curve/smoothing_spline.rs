@@ -18,7 +18,6 @@ use fairing::strategies::{CurveDomain, SmoothingRule, SmoothingSettings, Smoothi
 
 use super::strategy_run::{fairing_constraints, from_fairing, run};
 use super::{CurveJob, CurveOutcome};
-use crate::commands::measure::in_file;
 use crate::error::{Error, Result};
 use crate::input::Points;
 use crate::kind::CurveKind;
@@ -56,7 +55,7 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
                 .map(|(points, rest)| (Points::Spatial(points), rest)),
         };
     let (points, (curve, extras, moved, iterations, elapsed_ms)) =
-        outcome.map_err(|e| in_file(from_fairing(e), &job.input.source))?;
+        outcome.map_err(|e| from_fairing(e, &job.input.source))?;
     Ok(CurveOutcome {
         points,
         iterations,

@@ -22,10 +22,10 @@ use std::collections::BTreeMap;
 
 use curve_repr::{HermiteSettings, HermiteSpline, Parametrization, Vector};
 use fairing::strategies::{Mode, Replacement, StrainEnergy, StrainEnergySettings};
-use fairing::{EndClamp, FairingResult, FairingStrategy, Pipeline};
+use fairing::FairingResult;
 
+use super::strategy_run::{fairing_constraints, run_strategy};
 use super::{CurveJob, CurveOutcome};
-use crate::args::ClampEnds;
 use crate::error::{Error, Result};
 use crate::input::Points;
 use crate::parameters::Parameters;
@@ -85,7 +85,7 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
                 StrainEnergy::new(settings.clone()),
                 points,
                 max_iterations,
-                library_constraints(job),
+                fairing_constraints(job.constraints),
             )?;
             Ok(outcome(points, run, &settings))
         }
@@ -95,7 +95,7 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
                 StrainEnergy::new(settings.clone()),
                 points,
                 max_iterations,
-                library_constraints(job),
+                fairing_constraints(job.constraints),
             )?;
             Ok(outcome(points, run, &settings))
         }
@@ -115,71 +115,6 @@ pub(super) fn non_negative(parameters: &Parameters, name: &str, default: f64) ->
         });
     }
     Ok(value)
-}
-
-/// The library's constraints from the command line's: fixed points, tolerance band, end clamp.
-pub(super) fn library_constraints(job: &CurveJob) -> fairing::Constraints {
-    let c = job.constraints;
-    let mut constraints = fairing::Constraints::default().with_fixed(c.fixed.iter().copied());
-    if let Some(d) = c.tolerance {
-        constraints = constraints.with_tolerance(d);
-    }
-    let clamp = match c.clamp_ends {
-        None => EndClamp::None,
-        Some(ClampEnds::G0) => EndClamp::G0,
-        Some(ClampEnds::G1) => EndClamp::G1,
-        Some(ClampEnds::G2) => EndClamp::G2,
-    };
-    constraints.with_end_clamp(clamp)
-}
-
-/// Runs one point-moving strategy through the [`Pipeline`] with the job's constraints,
-/// mapping the library's errors to the command's (naming the input file or the option).
-pub(super) fn run_strategy<const D: usize>(
-    job: &CurveJob,
-    strategy: impl FairingStrategy<D>,
-    points: &[Vector<D>],
-    max_iterations: usize,
-    constraints: fairing::Constraints,
-) -> Result<FairingResult<D>> {
-    if let Err(e) = strategy.supports(&constraints) {
-        return Err(Error::Argument {
-            option: "--clamp-ends",
-            message: format!("not supported by `{}`: {e}", job.method.name),
-        });
-    }
-    Pipeline::new(strategy)
-        .with_constraints(constraints)
-        .with_max_iterations(max_iterations)
-        .with_trace(false)
-        .run(points.to_vec())
-        .map_err(|e| from_fairing(e, &job.input.source))
-}
-
-/// The library's errors as the command's: representation errors and strategy failures on
-/// the data name the file (exit 2); constraint violations of the result are internal.
-pub(super) fn from_fairing(error: fairing::Error, file: &str) -> Error {
-    match error {
-        fairing::Error::Repr(source) => Error::Representation {
-            path: file.to_string(),
-            source,
-        },
-        fairing::Error::ConstraintUnsupported { .. } => Error::Argument {
-            option: "--clamp-ends",
-            message: error.to_string(),
-        },
-        fairing::Error::BadParameter { .. } | fairing::Error::BadConstraint { .. } => Error::Parameter {
-            origin: "--set".into(),
-            message: error.to_string(),
-        },
-        fairing::Error::Strategy { .. } => Error::Invalid {
-            path: file.to_string(),
-            message: error.to_string(),
-        },
-        other => Error::Internal {
-            message: other.to_string(),
-        },
-    }
 }
 
 /// The report's `curve` for a parametric cubic Hermite spline: knots, points and tangents.

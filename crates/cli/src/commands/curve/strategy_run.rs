@@ -2,20 +2,21 @@
 //! crate's types, the step loop with its limit and final constraint check, and the fairing
 //! crate's errors as the command's (exit status 2 for what the input or the options cause).
 //!
-//! The loop is run here rather than by [`fairing::Pipeline`] because the command reads the
-//! strategy's own results (its p, its knot history) after the run, and the pipeline owns its
+//! Two ways to run: [`run_strategy`] through [`fairing::Pipeline`] (strain-energy, batten),
+//! and [`run`], a plain loop for strategies whose own results (the smoothing spline's p,
+//! Sapidis–Farin's knot history) the command reads after the run — the pipeline owns its
 //! stages.
 
 use std::collections::BTreeSet;
 use std::time::Instant;
 
 use curve_repr::Vector;
-use fairing::{EndClamp, FairingState, FairingStrategy};
+use fairing::{EndClamp, FairingResult, FairingState, FairingStrategy, Pipeline};
 
+use super::CurveJob;
 use crate::args::ClampEnds;
-use crate::commands::measure::POINTS;
 use crate::constraints::Constraints;
-use crate::error::Error;
+use crate::error::{Error, Result};
 
 /// The user's constraints as the fairing crate's: fixed points, the tolerance band and the
 /// end clamp (`--points` is for the interactive methods and ignored here).
@@ -33,20 +34,28 @@ pub fn fairing_constraints(constraints: &Constraints) -> fairing::Constraints {
     out.with_end_clamp(clamp)
 }
 
-/// A fairing error as the command's, with the path [`POINTS`] that
-/// [`in_file`](crate::commands::measure::in_file) replaces by the file name. A constraint the
-/// result breaks is a bug (exit 1); everything else is the input's or the options' (exit 2).
-pub fn from_fairing(error: fairing::Error) -> Error {
+/// The library's errors as the command's: representation errors and strategy failures on
+/// the data name the file (exit 2), an unsupported end clamp names `--clamp-ends` and a bad
+/// setting `--set` (exit 2); a constraint the result breaks is a bug (exit 1).
+pub fn from_fairing(error: fairing::Error, file: &str) -> Error {
     match error {
         fairing::Error::Repr(source) => Error::Representation {
-            path: POINTS.into(),
+            path: file.to_string(),
             source,
+        },
+        fairing::Error::ConstraintUnsupported { .. } => Error::Argument {
+            option: "--clamp-ends",
+            message: error.to_string(),
+        },
+        fairing::Error::BadParameter { .. } | fairing::Error::BadConstraint { .. } => Error::Parameter {
+            origin: "--set".into(),
+            message: error.to_string(),
         },
         error @ fairing::Error::ConstraintViolated { .. } => Error::Internal {
             message: error.to_string(),
         },
         other => Error::Invalid {
-            path: POINTS.into(),
+            path: file.to_string(),
             message: other.to_string(),
         },
     }
@@ -107,4 +116,27 @@ pub fn run<const D: usize, S: FairingStrategy<D>>(
         elapsed_ms,
         termination,
     })
+}
+
+/// Runs one point-moving strategy through the [`Pipeline`] with the job's constraints,
+/// mapping the library's errors to the command's (naming the input file or the option).
+pub fn run_strategy<const D: usize>(
+    job: &CurveJob,
+    strategy: impl FairingStrategy<D>,
+    points: &[Vector<D>],
+    max_iterations: usize,
+    constraints: fairing::Constraints,
+) -> Result<FairingResult<D>> {
+    if let Err(e) = strategy.supports(&constraints) {
+        return Err(Error::Argument {
+            option: "--clamp-ends",
+            message: format!("not supported by `{}`: {e}", job.method.name),
+        });
+    }
+    Pipeline::new(strategy)
+        .with_constraints(constraints)
+        .with_max_iterations(max_iterations)
+        .with_trace(false)
+        .run(points.to_vec())
+        .map_err(|e| from_fairing(e, &job.input.source))
 }
