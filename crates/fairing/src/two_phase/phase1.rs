@@ -62,16 +62,28 @@ pub enum CaseKind {
     Large,
     /// Case 3 at an end (points 1, 2 or n − 3, n − 2).
     LargeEnd,
+    /// Phase 2, Case 1, small curve vibration: c_i differs in sign from both neighbours
+    /// ([`phase2`](super::phase2)).
+    SmallCurve,
+    /// Phase 2, Case 2, large curve vibration: a run c_i, c_{i+1} of one sign.
+    LargeCurve,
+    /// Phase 2, Case 2 at an end: c_0 = c_1 (runout) differ from c_2 and c_3 (mirror at
+    /// n − 1); moves point 1 (or n − 2) only.
+    LargeCurveEnd,
+    /// Beyond the paper (option): a wrong-sign run of three or more c values.
+    WrongSignRun,
 }
 
-/// A detected case: its kind and the point(s) it moves (`second` is `None` for one point).
+/// A detected case: its kind and the point(s) it targets (`second` is `None` for one point).
+/// Phase 1 moves exactly the targeted points; Phase 2 also moves the run's neighbours.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Case {
     /// The pattern.
     pub kind: CaseKind,
     /// The first moved point (0-based).
     pub first: usize,
-    /// The second moved point, first + 1, for the two-point cases.
+    /// The second moved point, first + 1, for the two-point cases; for the Phase-2 cases the
+    /// last point of the wrong-sign run (`None` for a run of one).
     pub second: Option<usize>,
 }
 
@@ -257,6 +269,30 @@ pub fn coarse_pass(
     movable: &dyn Fn(usize) -> bool,
 ) -> Result<PassReport> {
     settings.validate()?;
+    let lambda = settings.coarse_lambda;
+    let find = |spline: &SplineFunction, i: usize| {
+        let case = detect(spline, i)?;
+        Some((case, displacement(spline, case, lambda)))
+    };
+    guarded_pass(spline, settings, movable, 1, &find)
+}
+
+/// A detector for [`guarded_pass`]: the case starting at point i (if any) and its moves
+/// (`None` when the rule is degenerate).
+pub(super) type Finder<'a> = dyn Fn(&SplineFunction, usize) -> Option<(Case, Option<Vec<(usize, f64)>>)> + 'a;
+
+/// The sweep shared by both phases: from `start`, at each i ask `find`; apply the moves if
+/// every moved point is interior, `movable` and within the size guard, then the local count
+/// guard; continue after the case's last point (`second`, else `first`), else at i + 1.
+/// Ends with a rebuild (clears the rounding of the windowed updates) and the pass guard.
+/// O(n · guard_window) plus the finder's cost.
+pub(super) fn guarded_pass(
+    spline: &mut SplineFunction,
+    settings: &TwoPhaseSettings,
+    movable: &dyn Fn(usize) -> bool,
+    start: usize,
+    find: &Finder<'_>,
+) -> Result<PassReport> {
     let n = spline.x().len();
     let mut report = PassReport::default();
     if n < 4 {
@@ -264,34 +300,38 @@ pub fn coarse_pass(
     }
     let before_global = counts(spline);
     let original_y = spline.y().to_vec();
-    let mut i = 1;
-    while i + 1 < n {
-        let Some(case) = detect(spline, i) else {
+    let mut i = start;
+    while i < n {
+        let Some((case, moves)) = find(spline, i) else {
             i += 1;
             continue;
         };
-        let next = case.second.map_or(i + 1, |k| k + 1);
-        let Some(moves) = displacement(spline, case, settings.coarse_lambda) else {
+        let next = case.second.unwrap_or(case.first).max(i) + 1;
+        i = next;
+        let Some(moves) = moves else {
             report.skipped += 1;
-            i = next;
             continue;
         };
         let x = spline.x();
-        let allowed = moves.iter().all(|&(k, g)| {
-            k >= 1
-                && k + 1 < n
-                && movable(k)
-                && g.abs() <= settings.max_move_factor * (x[k] - x[k - 1]).min(x[k + 1] - x[k])
-        });
+        let allowed = !moves.is_empty()
+            && moves.iter().all(|&(k, g)| {
+                k >= 1
+                    && k + 1 < n
+                    && movable(k)
+                    && g.is_finite()
+                    && g.abs() <= settings.max_move_factor * (x[k] - x[k - 1]).min(x[k + 1] - x[k])
+            });
         if !allowed {
             report.skipped += 1;
-            i = next;
             continue;
         }
-        let lo = case.first.saturating_sub(settings.guard_window + 2);
-        let hi = (case.second.unwrap_or(case.first) + settings.guard_window + 2).min(n - 1);
+        let (Some(lo), Some(hi)) = (moves.iter().map(|m| m.0).min(), moves.iter().map(|m| m.0).max()) else {
+            continue;
+        };
+        let lo = lo.saturating_sub(settings.guard_window + 2);
+        let hi = (hi + settings.guard_window + 2).min(n - 1);
         let before = local_counts(spline, lo, hi);
-        let old: Vec<(usize, f64)> = moves.iter().map(|&(k, _)| (k, spline.y()[k])).collect();
+        let old: Vec<(usize, f64)> = moves.iter().rev().map(|&(k, _)| (k, spline.y()[k])).collect();
         let new: Vec<(usize, f64)> = moves.iter().map(|&(k, g)| (k, spline.y()[k] + g)).collect();
         spline.set_y(&new)?;
         let after = local_counts(spline, lo, hi);
@@ -303,7 +343,6 @@ pub fn coarse_pass(
             report.moves.extend(moves);
             report.cases.push(case);
         }
-        i = next;
     }
     // Clear the rounding of the windowed updates, then the global guard.
     spline.rebuild()?;
