@@ -4,7 +4,7 @@
 
 use curve_repr::{EndCondition, SplineFunction};
 use fairing::two_phase::{
-    detect_fine, fine_displacement, fine_pass, full_pass, Case, CaseKind, TwoPhaseSettings,
+    detect_fine, fair_function, fine_displacement, fine_pass, full_pass, Case, CaseKind, TwoPhaseSettings,
 };
 use fairness::xc::XcPolyline;
 use proptest::prelude::*;
@@ -262,8 +262,10 @@ fn noisy(n: usize, amplitude: f64, seed: u64) -> (Vec<f64>, Vec<f64>) {
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(48))]
-    /// A full pass (coarse then fine) never increases Infl_num or Vib_num (DESIGN.md counts on
-    /// a fresh solve), fixed points and the ends never move; with and without long runs.
+    /// A full pass (coarse then fine) never increases Infl_num, nor Vib_num with the paper's
+    /// rules (DESIGN.md counts on a fresh solve); fixed points and the ends never move. With the
+    /// long-run option the fine pass ranks inflections first and may trade vibrations for
+    /// them, so only Infl_num is asserted there.
     #[test]
     fn a_full_pass_never_increases_the_counts(n in 8usize..200, amplitude in 0.0f64..0.05, seed in 0u64..1000, long in proptest::bool::ANY) {
         let (x, y) = noisy(n, amplitude, seed);
@@ -273,7 +275,7 @@ proptest! {
         let movable = |k: usize| k % 7 != 3;
         let (coarse, fine) = full_pass(&mut s, &settings, &movable).unwrap();
         let after = XcPolyline::of_points(&x, s.y()).unwrap();
-        prop_assert!(after.vibrations() <= before.vibrations());
+        prop_assert!(long || after.vibrations() <= before.vibrations());
         prop_assert!(after.inflections() <= before.inflections());
         for (k, (new, old)) in s.y().iter().zip(&y).enumerate() {
             if k % 7 == 3 || k == 0 || k == n - 1 {
@@ -301,39 +303,74 @@ fn fine_pass_removes_the_pattern_inflections() {
     }
 }
 
+/// The long-run option against the faithful rule on a dense noisy sine (n = 2000, noise
+/// N(0, 0.01²), h = 0.1): both reduce the inflections; the option leaves fewer. (The 10^5-point
+/// numbers are printed by `cargo bench --bench two_phase`.)
 #[test]
-fn numbers_on_a_noisy_sine() {
-    for (n, max_run) in [(2000usize, 2usize), (2000, 16)] {
-        let (x, y) = noisy(n, 0.01, 3);
-        let clean: Vec<f64> = x.iter().map(|t| (t / 2.0).sin()).collect();
-        let c0 = XcPolyline::of_points(&x, &clean).unwrap();
-        let b = XcPolyline::of_points(&x, &y).unwrap();
+fn long_runs_leave_fewer_inflections() {
+    let (x, y) = noisy(2000, 0.01, 3);
+    let before = XcPolyline::of_points(&x, &y).unwrap();
+    let run = |settings: TwoPhaseSettings| {
         let mut s = spline(&x, &y);
-        let settings = TwoPhaseSettings::default().with_max_run(max_run);
-        let mut passes = 0;
-        for _ in 0..settings.max_passes {
-            passes += 1;
-            let (coarse, fine) = full_pass(&mut s, &settings, &|_| true).unwrap();
-            let mut kinds = std::collections::BTreeMap::new();
-            for c in coarse.cases.iter().chain(&fine.cases) {
-                *kinds.entry(format!("{:?}", c.kind)).or_insert(0) += 1;
-            }
-            if passes % 10 == 1 {
-                println!("pass {passes}: {kinds:?} coarse skipped {} undone {} rev {} fine skipped {} undone {} rev {}", coarse.skipped, coarse.undone_by_count_guard, coarse.reverted, fine.skipped, fine.undone_by_count_guard, fine.reverted);
-            }
-            if coarse.moves.is_empty() && fine.moves.is_empty() {
-                break;
-            }
-        }
-        let a = XcPolyline::of_points(&x, s.y()).unwrap();
-        println!(
-            "n {n} max_run {max_run}: passes {passes}, infl {} -> {} (clean {}), vib {} -> {} (clean {})",
-            b.inflections(),
-            a.inflections(),
-            c0.inflections(),
-            b.vibrations(),
-            a.vibrations(),
-            c0.vibrations()
-        );
+        fair_function(&mut s, &settings, &|_| true).unwrap();
+        XcPolyline::of_points(&x, s.y()).unwrap()
+    };
+    let faithful = run(TwoPhaseSettings::default());
+    let option = run(TwoPhaseSettings::default().with_max_run(64));
+    println!(
+        "inflections {} -> {} (faithful), {} (runs ≤ 64); vibrations {} -> {}, {}",
+        before.inflections(),
+        faithful.inflections(),
+        option.inflections(),
+        before.vibrations(),
+        faithful.vibrations(),
+        option.vibrations()
+    );
+    assert!(faithful.inflections() < before.inflections());
+    assert!(faithful.vibrations() < before.vibrations());
+    assert!(option.inflections() < faithful.inflections());
+}
+
+/// The long-run option: a run of four wrong-sign c values between longer, larger flanks is
+/// found only with `max_run` ≥ 4; its smooth bump brings every member to α or beyond and the
+/// worst exactly to α (fresh solves), with the α rule read from the fresh neighbours.
+#[test]
+fn a_long_run_reaches_alpha() {
+    let x = uniform(30);
+    let mut c = vec![0.01; 30];
+    for (k, v) in [(12, -0.002), (13, -0.003), (14, -0.0035), (15, -0.002)] {
+        c[k] = v;
     }
+    let y = y_with_c(&x, &c);
+    let s = spline(&x, &y);
+    assert_eq!(detect_fine(&s, 12, 2), None);
+    let case = detect_fine(&s, 12, 8).unwrap();
+    assert_eq!(
+        case,
+        Case {
+            kind: CaseKind::WrongSignRun,
+            first: 12,
+            second: Some(15)
+        }
+    );
+    let settings = TwoPhaseSettings::default().with_max_run(8);
+    let moves = fine_displacement(&s, case, &settings).unwrap();
+    let moves0 = fine_displacement(&s, case, &settings.clone().with_alpha_divisor(f64::INFINITY)).unwrap();
+    let alpha = alpha_from_fresh(&x, &y, &moves0, &[11, 16], 1.0);
+    assert!(alpha > 0.0);
+    let c1 = fresh_c(&x, &apply(&y, &moves));
+    let worst = (12..=15).map(|k| c1[k]).fold(f64::INFINITY, f64::min);
+    assert!((worst - alpha).abs() < 1e-9, "{worst} vs {alpha}");
+    assert_eq!(
+        XcPolyline::of_points(&x, &apply(&y, &moves))
+            .unwrap()
+            .inflections(),
+        0
+    );
+    // A run with a flank of smaller area is not the noise: left alone.
+    let mut c2 = c.clone();
+    c2[11] = 0.0001;
+    c2[10] = -0.01;
+    let s2 = spline(&x, &y_with_c(&x, &c2));
+    assert_eq!(detect_fine(&s2, 12, 8), None);
 }

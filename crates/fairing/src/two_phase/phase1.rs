@@ -274,7 +274,7 @@ pub fn coarse_pass(
         let case = detect(spline, i)?;
         Some((case, displacement(spline, case, lambda)))
     };
-    guarded_pass(spline, settings, movable, 1, &find)
+    guarded_pass(spline, settings, movable, 1, false, &find)
 }
 
 /// A detector for [`guarded_pass`]: the case starting at point i (if any) and its moves
@@ -285,14 +285,25 @@ pub(super) type Finder<'a> = dyn Fn(&SplineFunction, usize) -> Option<(Case, Opt
 /// every moved point is interior, `movable` and within the size guard, then the local count
 /// guard; continue after the case's last point (`second`, else `first`), else at i + 1.
 /// Ends with a rebuild (clears the rounding of the windowed updates) and the pass guard.
+/// The guards refuse a move (pass) that increases either count, or with `inflections_first`
+/// one that increases the inflections or leaves them equal and increases the vibrations.
 /// O(n · guard_window) plus the finder's cost.
 pub(super) fn guarded_pass(
     spline: &mut SplineFunction,
     settings: &TwoPhaseSettings,
     movable: &dyn Fn(usize) -> bool,
     start: usize,
+    inflections_first: bool,
     find: &Finder<'_>,
 ) -> Result<PassReport> {
+    // (vibrations, inflections) before and after.
+    let worse = |before: (usize, usize), after: (usize, usize)| {
+        if inflections_first {
+            after.1 > before.1 || (after.1 == before.1 && after.0 > before.0)
+        } else {
+            after.0 > before.0 || after.1 > before.1
+        }
+    };
     let n = spline.x().len();
     let mut report = PassReport::default();
     if n < 4 {
@@ -335,7 +346,7 @@ pub(super) fn guarded_pass(
         let new: Vec<(usize, f64)> = moves.iter().map(|&(k, g)| (k, spline.y()[k] + g)).collect();
         spline.set_y(&new)?;
         let after = local_counts(spline, lo, hi);
-        if settings.count_guard == CountGuard::Local && (after.0 > before.0 || after.1 > before.1) {
+        if settings.count_guard == CountGuard::Local && worse(before, after) {
             spline.set_y(&old)?;
             report.skipped += 1;
             report.undone_by_count_guard += 1;
@@ -347,9 +358,7 @@ pub(super) fn guarded_pass(
     // Clear the rounding of the windowed updates, then the global guard.
     spline.rebuild()?;
     let after_global = counts(spline);
-    if settings.count_guard != CountGuard::Off
-        && (after_global.0 > before_global.0 || after_global.1 > before_global.1)
-    {
+    if settings.count_guard != CountGuard::Off && worse(before_global, after_global) {
         let restore: Vec<(usize, f64)> = report
             .moves
             .iter()
