@@ -20,7 +20,37 @@ fn noisy_segment(n: usize) -> (Vec<f64>, Vec<f64>) {
     (x, y)
 }
 
+/// Prints the counts the long-run option is measured by (once, not timed): a 10^5-point
+/// noisy segment faired with the paper's rules and with `max_run` = 64.
+fn print_counts() {
+    use fairness::xc::XcPolyline;
+    let n = 100_000;
+    let (x, y) = noisy_segment(n);
+    let clean: Vec<f64> = x.iter().map(|t| (t / 2.0).sin()).collect();
+    let count = |y: &[f64]| XcPolyline::of_points(&x, y).map(|p| (p.inflections(), p.vibrations()));
+    eprintln!(
+        "n = {n}: clean (inflections, vibrations) {:?}, noisy {:?}",
+        count(&clean),
+        count(&y)
+    );
+    for (name, settings) in [
+        ("paper", TwoPhaseSettings::default()),
+        ("max_run 64", TwoPhaseSettings::default().with_max_run(64)),
+        (
+            "max_run 64, guard off",
+            TwoPhaseSettings::default()
+                .with_max_run(64)
+                .with_count_guard(fairing::two_phase::CountGuard::Off),
+        ),
+    ] {
+        let mut spline = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).expect("spline");
+        let passes = fair_function(&mut spline, &settings, &|_| true).expect("fairing");
+        eprintln!("  {name}: {passes} passes, faired {:?}", count(spline.y()));
+    }
+}
+
 fn bench(c: &mut Criterion) {
+    print_counts();
     let mut group = c.benchmark_group("two_phase_full_fairing");
     group.sample_size(10);
     let settings = TwoPhaseSettings::default();
