@@ -17,6 +17,7 @@ use crate::report::{Energies, Report};
 use std::collections::BTreeMap;
 
 mod nurbs_weights;
+mod two_phase;
 
 /// The fewest points any curve method works on: curvature-slope jumps e_i need three.
 pub const MIN_CURVE_POINTS: usize = 3;
@@ -71,6 +72,7 @@ pub struct CurveOutcome {
 pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
     match job.method.name {
         "nurbs-weights" => nurbs_weights::fair(job),
+        "two-phase" => two_phase::fair(job),
         _ => Err(Error::NotAvailable {
             what: format!("method `{}`", job.method.name),
         }),
