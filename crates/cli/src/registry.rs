@@ -112,6 +112,11 @@ pub const METHODS: &[MethodInfo] = &[
                 meaning: "longest wrong-sign run of c fixed; > 2 turns on the long-run option",
             },
             ParameterInfo {
+                name: "stall-passes",
+                default: "0",
+                meaning: "stop after this many passes that reduce no count (0: never)",
+            },
+            ParameterInfo {
                 name: "segment-passes",
                 default: "3",
                 meaning: "parametric input: partition-fair-blend passes (Han 4.2.4)",

@@ -40,18 +40,34 @@ pub fn full_pass(
     Ok((coarse, fine))
 }
 
-/// Fairs a function segment in place: [`full_pass`]es until one applies no case or after
-/// `max_passes`; returns the number of passes made. O(max_passes · n · guard_window).
+/// Fairs a function segment in place: [`full_pass`]es until one applies no case, after
+/// `max_passes`, or (if `stall_passes` > 0) after `stall_passes` consecutive passes that
+/// reduced neither count; returns the number of passes made.
+/// O(max_passes · n · guard_window).
 pub fn fair_function(
     spline: &mut SplineFunction,
     settings: &TwoPhaseSettings,
     movable: &dyn Fn(usize) -> bool,
 ) -> Result<usize> {
     settings.validate()?;
+    let mut best = counts(spline);
+    let mut stalled = 0;
     for pass in 1..=settings.max_passes {
         let (coarse, fine) = full_pass(spline, settings, movable)?;
         if coarse.moves.is_empty() && fine.moves.is_empty() {
             return Ok(pass);
+        }
+        if settings.stall_passes > 0 {
+            let now = counts(spline);
+            if now.0 < best.0 || now.1 < best.1 {
+                stalled = 0;
+            } else {
+                stalled += 1;
+                if stalled >= settings.stall_passes {
+                    return Ok(pass);
+                }
+            }
+            best = (best.0.min(now.0), best.1.min(now.1));
         }
     }
     Ok(settings.max_passes)

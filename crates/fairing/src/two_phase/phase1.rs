@@ -42,6 +42,7 @@
 //! 781 → 61 with `Pass` (it stops at the first undone pass).
 
 use curve_repr::SplineFunction;
+#[cfg(doc)]
 use fairness::sign::sign_changes;
 use fairness::xc::e_sensitivity;
 
@@ -245,11 +246,24 @@ pub fn displacement(spline: &SplineFunction, case: Case, lambda: f64) -> Option<
 /// Vibrations and inflections among points lo..=hi (DESIGN.md counts on the slice). O(hi − lo).
 fn local_counts(spline: &SplineFunction, lo: usize, hi: usize) -> (usize, usize) {
     let n = spline.x().len();
-    let e_interior: Vec<f64> = (lo.max(1)..=hi.min(n.saturating_sub(2)))
-        .map(|k| e_at(spline, k))
-        .collect();
-    let c = spline.c().get(lo..=hi).unwrap_or(&[]);
-    (sign_changes(&e_interior), sign_changes(c))
+    let e = (lo.max(1)..=hi.min(n.saturating_sub(2))).map(|k| e_at(spline, k));
+    let c = spline.c().get(lo..=hi).unwrap_or(&[]).iter().copied();
+    (changes(e), changes(c))
+}
+
+/// [`sign_changes`] without allocating (the same drop rule: values with |v| ≤ 1e-12 · max|v|
+/// over the sequence are skipped). Two sweeps of the iterator. O(len).
+fn changes(values: impl Iterator<Item = f64> + Clone) -> usize {
+    let level = 1e-12 * values.clone().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut previous = 0.0f64;
+    let mut count = 0;
+    for v in values.filter(|v| v.abs() > level) {
+        if previous * v < 0.0 {
+            count += 1;
+        }
+        previous = v;
+    }
+    count
 }
 
 /// Global (vibrations, inflections) of the spline's x–c polyline (DESIGN.md counts). O(n).
@@ -373,4 +387,25 @@ pub(super) fn guarded_pass(
         report.reverted = true;
     }
     Ok(report)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::changes;
+    use fairness::sign::sign_changes;
+
+    #[test]
+    fn changes_agree_with_the_design_count() {
+        let cases: [&[f64]; 6] = [
+            &[1.0, 0.0, -1.0],
+            &[0.0, 0.0],
+            &[1e-20, 1.0, -1e-20, 2.0],
+            &[-1.0, 2.0, -3.0, 4.0, 0.0, 5.0, -1e-13, -6.0],
+            &[],
+            &[3.0, -2.0, 1e-11, -1.0, 2.0],
+        ];
+        for v in cases {
+            assert_eq!(changes(v.iter().copied()), sign_changes(v), "{v:?}");
+        }
+    }
 }

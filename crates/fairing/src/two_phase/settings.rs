@@ -27,6 +27,11 @@ pub struct TwoPhaseSettings {
     /// the angle between its rows is at least this; otherwise the well-posed mean-row rule of
     /// [`phase2`](super::phase2) is used (the printed system is singular for uniform spacing).
     pub pair_min_sine: f64,
+    /// Not in the paper: a stage also stops after this many consecutive full passes that
+    /// reduced neither Infl_num nor Vib_num (0: never; only "no case applies" and
+    /// `max_passes` stop it, as in the paper). With λ < 1 the small cases keep shrinking |e|
+    /// without changing a count, so on noisy data most late passes are such passes.
+    pub stall_passes: usize,
     /// Longest wrong-sign run of c values Phase 2 handles. 2 is the paper (Cases 1–2); larger
     /// values turn on the option beyond the paper for runs of 3 … `max_run` points.
     pub max_run: usize,
@@ -62,6 +67,7 @@ impl Default for TwoPhaseSettings {
             max_passes: 50,
             pair_min_sine: 0.05,
             max_run: 2,
+            stall_passes: 0,
             max_move_factor: 0.5,
             guard_window: 16,
             count_guard: CountGuard::Local,
@@ -93,6 +99,11 @@ impl TwoPhaseSettings {
     /// Sets the longest wrong-sign run Phase 2 handles (2 = the paper).
     pub fn with_max_run(mut self, run: usize) -> Self {
         self.max_run = run;
+        self
+    }
+    /// Sets the stall limit (0: off).
+    pub fn with_stall_passes(mut self, passes: usize) -> Self {
+        self.stall_passes = passes;
         self
     }
     /// Sets the most full passes.

@@ -50,6 +50,7 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
         count_guard,
         pair_min_sine: p.number("pair-min-sine", defaults.pair_min_sine)?,
         max_run: p.count("max-run", defaults.max_run)?,
+        stall_passes: p.count("stall-passes", defaults.stall_passes)?,
     };
     settings.validate().map_err(|e| Error::Parameter {
         origin: "--set".into(),
