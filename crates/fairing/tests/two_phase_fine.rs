@@ -374,3 +374,40 @@ fn a_long_run_reaches_alpha() {
     let s2 = spline(&x, &y_with_c(&x, &c2));
     assert_eq!(detect_fine(&s2, 12, 8), None);
 }
+
+/// `stall_passes`: a run that stops early has, replayed pass by pass, reduced neither count
+/// in its last `k` passes, and had reduced one in the pass before them (or started there).
+#[test]
+fn stall_stop_matches_its_definition() {
+    let (x, y) = noisy(400, 0.01, 21);
+    let k = 2;
+    let settings = TwoPhaseSettings::default().with_stall_passes(k);
+    let mut s = spline(&x, &y);
+    let passes = fair_function(&mut s, &settings, &|_| true).unwrap();
+    assert!(passes < settings.max_passes, "did not stall in {passes} passes");
+    let count = |s: &SplineFunction| {
+        let p = XcPolyline::of_points(&x, s.y()).unwrap();
+        (p.vibrations(), p.inflections())
+    };
+    let mut replay = spline(&x, &y);
+    let mut history = vec![count(&replay)];
+    for _ in 0..passes {
+        full_pass(&mut replay, &settings, &|_| true).unwrap();
+        history.push(count(&replay));
+    }
+    assert_eq!(replay.y(), s.y());
+    let best_before = |p: usize| {
+        let v = history[..p].iter().map(|h| h.0).min().unwrap();
+        let i = history[..p].iter().map(|h| h.1).min().unwrap();
+        (v, i)
+    };
+    for p in passes - k + 1..=passes {
+        let (v, i) = best_before(p);
+        assert!(history[p].0 >= v && history[p].1 >= i, "pass {p} reduced a count");
+    }
+    let p = passes - k;
+    if p > 0 {
+        let (v, i) = best_before(p);
+        assert!(history[p].0 < v || history[p].1 < i, "pass {p} reduced nothing");
+    }
+}

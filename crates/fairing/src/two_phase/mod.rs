@@ -50,33 +50,52 @@ pub fn fair_function(
     movable: &dyn Fn(usize) -> bool,
 ) -> Result<usize> {
     settings.validate()?;
-    let mut best = counts(spline);
-    let mut stalled = 0;
+    let mut stall = Stall::new(spline);
     for pass in 1..=settings.max_passes {
         let (coarse, fine) = full_pass(spline, settings, movable)?;
-        if coarse.moves.is_empty() && fine.moves.is_empty() {
+        if (coarse.moves.is_empty() && fine.moves.is_empty()) || stall.stop(spline, settings.stall_passes) {
             return Ok(pass);
-        }
-        if settings.stall_passes > 0 {
-            let now = counts(spline);
-            if now.0 < best.0 || now.1 < best.1 {
-                stalled = 0;
-            } else {
-                stalled += 1;
-                if stalled >= settings.stall_passes {
-                    return Ok(pass);
-                }
-            }
-            best = (best.0.min(now.0), best.1.min(now.1));
         }
     }
     Ok(settings.max_passes)
 }
 
+/// The bookkeeping of `stall_passes`: the lowest counts seen and the passes since either fell.
+#[derive(Clone, Copy, Debug, Default)]
+struct Stall {
+    best: (usize, usize),
+    stalled: usize,
+}
+
+impl Stall {
+    fn new(spline: &SplineFunction) -> Self {
+        Stall {
+            best: counts(spline),
+            stalled: 0,
+        }
+    }
+
+    /// After a pass: whether `limit` (> 0) passes in a row reduced neither count. O(n) if on.
+    fn stop(&mut self, spline: &SplineFunction, limit: usize) -> bool {
+        if limit == 0 {
+            return false;
+        }
+        let now = counts(spline);
+        if now.0 < self.best.0 || now.1 < self.best.1 {
+            self.stalled = 0;
+        } else {
+            self.stalled += 1;
+        }
+        self.best = (self.best.0.min(now.0), self.best.1.min(now.1));
+        self.stalled >= limit
+    }
+}
+
 /// Han's two-phase fairing of a function segment: points are (x, y) with x strictly
 /// increasing, only y moves, the spline is [`SplineFunction`] with parabolic runout (Han's end
 /// condition). Each [`step`](FairingStrategy::step) is one [`full_pass`] (coarse, then fine);
-/// the stage is done when a pass applies no case or after `max_passes` passes.
+/// the stage is done when a pass applies no case, after `max_passes` passes, or when
+/// `stall_passes` (if > 0) passes in a row reduced neither count.
 ///
 /// With λ < 1 the small case shrinks |e| geometrically and keeps finding work, so on noisy
 /// data the stage usually runs all `max_passes`; use
@@ -95,6 +114,7 @@ pub struct TwoPhase {
     settings: TwoPhaseSettings,
     spline: Option<SplineFunction>,
     passes: usize,
+    stall: Stall,
 }
 
 impl TwoPhase {
@@ -104,6 +124,7 @@ impl TwoPhase {
             settings,
             spline: None,
             passes: 0,
+            stall: Stall::default(),
         }
     }
 
@@ -135,6 +156,7 @@ impl FairingStrategy<2> for TwoPhase {
         }
         let spline = spline_of(state.points())?;
         state.criterion = Some(counts(&spline).0 as f64);
+        self.stall = Stall::new(&spline);
         self.spline = Some(spline);
         self.passes = 0;
         Ok(())
@@ -174,7 +196,9 @@ impl FairingStrategy<2> for TwoPhase {
         self.passes += 1;
         let criterion = Some(counts(spline).0 as f64);
         state.criterion = criterion;
-        if (coarse.moves.is_empty() && fine.moves.is_empty()) || self.passes >= settings.max_passes {
+        let stalled = self.stall.stop(spline, settings.stall_passes);
+        if (coarse.moves.is_empty() && fine.moves.is_empty()) || stalled || self.passes >= settings.max_passes
+        {
             Ok(StepOutcome::done(criterion))
         } else {
             Ok(StepOutcome::running(criterion))
