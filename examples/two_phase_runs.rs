@@ -2,7 +2,8 @@
 //! long-run option (wrong-sign runs of more than two points, `max_run`), counted as DESIGN.md
 //! defines. y = sin(x/2) + N(0, 0.01²) at x = 0.1 k, k < n.
 //!
-//! Run: `cargo run --release --example two_phase_runs [n]` (default n = 100000)
+//! Run: `cargo run --release --example two_phase_runs [n] [paper]` (default n = 100000; with
+//! `paper`, only the paper's settings: the timing of one full fairing at large n)
 
 use curve_repr::{EndCondition, SplineFunction};
 use fairing::two_phase::{fair_function, CountGuard, TwoPhaseSettings};
@@ -47,7 +48,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             base.clone().with_max_run(64).with_count_guard(CountGuard::Off),
         ),
     ];
-    for (name, settings) in variants {
+    let paper_only = std::env::args().nth(2).as_deref() == Some("paper");
+    for (name, settings) in variants.into_iter().take(if paper_only { 1 } else { usize::MAX }) {
         let mut spline = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout)?;
         let start = std::time::Instant::now();
         let passes = fair_function(&mut spline, &settings, &|_| true)?;
