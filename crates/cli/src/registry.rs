@@ -64,8 +64,79 @@ pub const METHODS: &[MethodInfo] = &[
         name: "two-phase",
         kind: MethodKind::Curve,
         paper: "Han et al., two-phase fairing of spline functions",
-        summary: "coarse phase removes inflections, fine phase removes curvature vibrations",
-        parameters: &[],
+        summary: "coarse phase removes curvature vibrations, fine phase removes inflections",
+        parameters: &[
+            ParameterInfo {
+                name: "coarse-lambda",
+                default: "0.8",
+                meaning: "fraction of each Phase-1 displacement applied, in (0, 1]",
+            },
+            ParameterInfo {
+                name: "fine-lambda",
+                default: "0.75",
+                meaning: "Phase 2 Case 1: the neighbours move by -lambda times the centre's move",
+            },
+            ParameterInfo {
+                name: "alpha-divisor",
+                default: "5",
+                meaning: "alpha rule: alpha = smaller neighbouring c / alpha-divisor",
+            },
+            ParameterInfo {
+                name: "max-passes",
+                default: "50",
+                meaning: "full passes (coarse then fine) at most, per function segment",
+            },
+            ParameterInfo {
+                name: "max-move-factor",
+                default: "0.5",
+                meaning: "guard: skip a case moving a point by more than this times the spacing",
+            },
+            ParameterInfo {
+                name: "guard-window",
+                default: "16",
+                meaning: "points on each side over which a move's counts are rechecked",
+            },
+            ParameterInfo {
+                name: "count-guard",
+                default: "local",
+                meaning: "undo moves (local) or passes (pass) that raise a count, or none (off)",
+            },
+            ParameterInfo {
+                name: "pair-min-sine",
+                default: "0.05",
+                meaning: "Phase 2 Case 2 solved exactly only if its 2x2 system is this well posed",
+            },
+            ParameterInfo {
+                name: "max-run",
+                default: "2",
+                meaning: "longest wrong-sign run of c fixed; > 2 turns on the long-run option",
+            },
+            ParameterInfo {
+                name: "stall-passes",
+                default: "0",
+                meaning: "stop after this many passes that reduce no count (0: never)",
+            },
+            ParameterInfo {
+                name: "segment-passes",
+                default: "3",
+                meaning: "parametric input: partition-fair-blend passes (Han 4.2.4)",
+            },
+            ParameterInfo {
+                name: "turning-limit",
+                default: "180",
+                meaning: "parametric input: largest turning angle of a segment, degrees",
+            },
+            ParameterInfo {
+                name: "overlap",
+                default: "5",
+                meaning: "parametric input: points shared by adjacent segments",
+            },
+            ParameterInfo {
+                name: "closed",
+                default: "false",
+                meaning: "parametric input: true for a closed curve (last point joins the first)",
+            },
+        ],
     },
     MethodInfo {
         name: "strain-energy",

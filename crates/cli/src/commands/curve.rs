@@ -27,6 +27,7 @@ mod smoothing_spline;
 pub mod stages;
 mod strain_energy;
 mod strategy_run;
+mod two_phase;
 
 /// The fewest points any curve method works on: curvature-slope jumps e_i need three.
 pub const MIN_CURVE_POINTS: usize = 3;
@@ -85,6 +86,7 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
         "batten" => batten::fair(job),
         "smoothing-spline" => smoothing_spline::fair(job),
         "sapidis-farin" => sapidis_farin::fair(job),
+        "two-phase" => two_phase::fair(job),
         _ => Err(Error::NotAvailable {
             what: format!("method `{}`", job.method.name),
         }),

@@ -1,38 +1,110 @@
 //! Han et al.'s coarse-to-fine fairing of a function segment (Han et al. §4.1).
 //!
-//! - [`TwoPhaseSettings`]: λ, α rule, passes, guards.
+//! - [`TwoPhaseSettings`]: λ of both phases, the α rule, passes, guards, the long-run option.
 //! - [`phase1`]: Phase 1, coarse fairing of curvature vibrations (small, medium, large;
 //!   interior and end cases), [`coarse_pass`].
-//! - [`TwoPhase`]: a [`FairingStrategy<2>`] for function segments that runs coarse passes.
-//!
-//! **Not implemented yet:** Phase 2 (fine fairing of inflections, small and large curve
-//! vibrations with the α rule), runs of more than two wrong-sign values, the arbitrary-curve
-//! pipeline of §4.2 (use [`SegmentedFairing`](crate::SegmentedFairing) around this strategy
-//! once Phase 2 exists). [`TwoPhase`] today is "Phase 1 only".
+//! - [`phase2`]: Phase 2, fine fairing of inflections (small and large curve vibrations,
+//!   interior and end cases, the α rule, a well-posed Case 2), [`fine_pass`]; as an option
+//!   beyond the paper, wrong-sign runs of more than two points.
+//! - [`full_pass`] / [`fair_function`]: the phases alternating (coarse, then fine) until a
+//!   full pass applies no case or `max_passes` is reached.
+//! - [`TwoPhase`]: a [`FairingStrategy<2>`] for function segments (one full pass per step),
+//!   and a [`SegmentFairer`] so that
+//!   [`SegmentedFairing`](crate::SegmentedFairing)`::new(TwoPhase::default())` fairs arbitrary
+//!   open or closed planar curves (Han §4.2).
 
 pub mod phase1;
+pub mod phase2;
 mod settings;
 
 pub use phase1::{coarse_pass, counts, detect, displacement, e_at, Case, CaseKind, PassReport};
+pub use phase2::{detect_fine, fine_displacement, fine_pass, zero_level};
 pub use settings::{CountGuard, TwoPhaseSettings};
 
 use curve_repr::{EndCondition, SplineFunction, Vec2};
 
+use crate::partition::SegmentFairer;
 use crate::state::strategy_error;
 use crate::{reject_derivative_clamps, Constraints, FairingState, FairingStrategy, Result, StepOutcome};
 
+/// One full pass: a [`coarse_pass`] then a [`fine_pass`] (Han §4.1: "the two primary phases
+/// are performed in an alternative way iteratively"). Returns both reports.
+/// O(n · guard_window).
+pub fn full_pass(
+    spline: &mut SplineFunction,
+    settings: &TwoPhaseSettings,
+    movable: &dyn Fn(usize) -> bool,
+) -> Result<(PassReport, PassReport)> {
+    let coarse = coarse_pass(spline, settings, movable)?;
+    let fine = fine_pass(spline, settings, movable)?;
+    Ok((coarse, fine))
+}
+
+/// Fairs a function segment in place: [`full_pass`]es until one applies no case, after
+/// `max_passes`, or (if `stall_passes` > 0) after `stall_passes` consecutive passes that
+/// reduced neither count; returns the number of passes made.
+/// O(max_passes · n · guard_window).
+pub fn fair_function(
+    spline: &mut SplineFunction,
+    settings: &TwoPhaseSettings,
+    movable: &dyn Fn(usize) -> bool,
+) -> Result<usize> {
+    settings.validate()?;
+    let mut stall = Stall::new(spline);
+    for pass in 1..=settings.max_passes {
+        let (coarse, fine) = full_pass(spline, settings, movable)?;
+        if (coarse.moves.is_empty() && fine.moves.is_empty()) || stall.stop(spline, settings.stall_passes) {
+            return Ok(pass);
+        }
+    }
+    Ok(settings.max_passes)
+}
+
+/// The bookkeeping of `stall_passes`: the lowest counts seen and the passes since either fell.
+#[derive(Clone, Copy, Debug, Default)]
+struct Stall {
+    best: (usize, usize),
+    stalled: usize,
+}
+
+impl Stall {
+    fn new(spline: &SplineFunction) -> Self {
+        Stall {
+            best: counts(spline),
+            stalled: 0,
+        }
+    }
+
+    /// After a pass: whether `limit` (> 0) passes in a row reduced neither count. O(n) if on.
+    fn stop(&mut self, spline: &SplineFunction, limit: usize) -> bool {
+        if limit == 0 {
+            return false;
+        }
+        let now = counts(spline);
+        if now.0 < self.best.0 || now.1 < self.best.1 {
+            self.stalled = 0;
+        } else {
+            self.stalled += 1;
+        }
+        self.best = (self.best.0.min(now.0), self.best.1.min(now.1));
+        self.stalled >= limit
+    }
+}
+
 /// Han's two-phase fairing of a function segment: points are (x, y) with x strictly
 /// increasing, only y moves, the spline is [`SplineFunction`] with parabolic runout (Han's end
-/// condition). Each [`step`](FairingStrategy::step) is one [`coarse_pass`]; the stage is done
-/// when a pass applies no case or after `max_passes` passes.
+/// condition). Each [`step`](FairingStrategy::step) is one [`full_pass`] (coarse, then fine);
+/// the stage is done when a pass applies no case, after `max_passes` passes, or when
+/// `stall_passes` (if > 0) passes in a row reduced neither count.
 ///
 /// With λ < 1 the small case shrinks |e| geometrically and keeps finding work, so on noisy
-/// data the stage usually runs all `max_passes` (measured: 50 passes on a noisy sine); use
+/// data the stage usually runs all `max_passes`; use
 /// [`Pipeline::with_tolerance`](crate::Pipeline::with_tolerance)`(0.0)` to stop once a pass
 /// leaves the vibration count (the reported criterion) unchanged.
 ///
-/// Phase 2 is not implemented: the result has Phase 1's fewer curvature vibrations, and its
-/// inflections are not reduced beyond what Phase 1 does.
+/// As a [`SegmentFairer`] it runs [`fair_function`] on each segment of a
+/// [`SegmentedFairing`](crate::SegmentedFairing) (the `fixed` flags are honoured; the
+/// segment's end points never move).
 ///
 /// Constraints: fixed points, radii and tolerance are honoured through
 /// [`FairingState::move_point`] (a shortened move is read back into the spline); G1/G2 end
@@ -42,6 +114,7 @@ pub struct TwoPhase {
     settings: TwoPhaseSettings,
     spline: Option<SplineFunction>,
     passes: usize,
+    stall: Stall,
 }
 
 impl TwoPhase {
@@ -51,6 +124,7 @@ impl TwoPhase {
             settings,
             spline: None,
             passes: 0,
+            stall: Stall::default(),
         }
     }
 
@@ -72,16 +146,17 @@ impl FairingStrategy<2> for TwoPhase {
     }
 
     fn supports(&self, constraints: &Constraints) -> Result<()> {
-        reject_derivative_clamps(self.name(), constraints)
+        reject_derivative_clamps("two-phase", constraints)
     }
 
     fn init(&mut self, state: &mut FairingState<2>) -> Result<()> {
         self.settings.validate()?;
         if state.is_closed() {
-            return Err(strategy_error(self.name(), "a function segment cannot be closed"));
+            return Err(strategy_error("two-phase", "a function segment cannot be closed"));
         }
         let spline = spline_of(state.points())?;
         state.criterion = Some(counts(&spline).0 as f64);
+        self.stall = Stall::new(&spline);
         self.spline = Some(spline);
         self.passes = 0;
         Ok(())
@@ -93,10 +168,10 @@ impl FairingStrategy<2> for TwoPhase {
             return Err(strategy_error("two-phase", "step before init"));
         };
         let movable = |k: usize| state.is_movable(k);
-        let report = coarse_pass(spline, &settings, &movable)?;
+        let (coarse, fine) = full_pass(spline, &settings, &movable)?;
         // Write the moves into the state; read back what the constraints allowed.
         let mut corrections = Vec::new();
-        let mut touched: Vec<usize> = report.moves.iter().map(|&(k, _)| k).collect();
+        let mut touched: Vec<usize> = coarse.moves.iter().chain(&fine.moves).map(|&(k, _)| k).collect();
         touched.sort_unstable();
         touched.dedup();
         for k in touched {
@@ -121,10 +196,33 @@ impl FairingStrategy<2> for TwoPhase {
         self.passes += 1;
         let criterion = Some(counts(spline).0 as f64);
         state.criterion = criterion;
-        if report.moves.is_empty() || self.passes >= settings.max_passes {
+        let stalled = self.stall.stop(spline, settings.stall_passes);
+        if (coarse.moves.is_empty() && fine.moves.is_empty()) || stalled || self.passes >= settings.max_passes
+        {
             Ok(StepOutcome::done(criterion))
         } else {
             Ok(StepOutcome::running(criterion))
         }
+    }
+}
+
+impl SegmentFairer for TwoPhase {
+    fn name(&self) -> &str {
+        "two-phase"
+    }
+
+    fn min_points(&self) -> usize {
+        5
+    }
+
+    /// Runs [`fair_function`] on the segment; points with `fixed[j]` never move.
+    fn fair(&mut self, x: &[f64], y: &mut [f64], fixed: &[bool]) -> Result<()> {
+        let mut spline = SplineFunction::new(x, y, EndCondition::ParabolicRunout)?;
+        let movable = |k: usize| !fixed.get(k).copied().unwrap_or(true);
+        fair_function(&mut spline, &self.settings, &movable)?;
+        for (out, &v) in y.iter_mut().zip(spline.y()) {
+            *out = v;
+        }
+        Ok(())
     }
 }

@@ -42,6 +42,7 @@
 //! 781 → 61 with `Pass` (it stops at the first undone pass).
 
 use curve_repr::SplineFunction;
+#[cfg(doc)]
 use fairness::sign::sign_changes;
 use fairness::xc::e_sensitivity;
 
@@ -62,16 +63,28 @@ pub enum CaseKind {
     Large,
     /// Case 3 at an end (points 1, 2 or n − 3, n − 2).
     LargeEnd,
+    /// Phase 2, Case 1, small curve vibration: c_i differs in sign from both neighbours
+    /// ([`phase2`](super::phase2)).
+    SmallCurve,
+    /// Phase 2, Case 2, large curve vibration: a run c_i, c_{i+1} of one sign.
+    LargeCurve,
+    /// Phase 2, Case 2 at an end: c_0 = c_1 (runout) differ from c_2 and c_3 (mirror at
+    /// n − 1); moves point 1 (or n − 2) only.
+    LargeCurveEnd,
+    /// Beyond the paper (option): a wrong-sign run of three or more c values.
+    WrongSignRun,
 }
 
-/// A detected case: its kind and the point(s) it moves (`second` is `None` for one point).
+/// A detected case: its kind and the point(s) it targets (`second` is `None` for one point).
+/// Phase 1 moves exactly the targeted points; Phase 2 also moves the run's neighbours.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Case {
     /// The pattern.
     pub kind: CaseKind,
     /// The first moved point (0-based).
     pub first: usize,
-    /// The second moved point, first + 1, for the two-point cases.
+    /// The second moved point, first + 1, for the two-point cases; for the Phase-2 cases the
+    /// last point of the wrong-sign run (`None` for a run of one).
     pub second: Option<usize>,
 }
 
@@ -233,11 +246,24 @@ pub fn displacement(spline: &SplineFunction, case: Case, lambda: f64) -> Option<
 /// Vibrations and inflections among points lo..=hi (DESIGN.md counts on the slice). O(hi − lo).
 fn local_counts(spline: &SplineFunction, lo: usize, hi: usize) -> (usize, usize) {
     let n = spline.x().len();
-    let e_interior: Vec<f64> = (lo.max(1)..=hi.min(n.saturating_sub(2)))
-        .map(|k| e_at(spline, k))
-        .collect();
-    let c = spline.c().get(lo..=hi).unwrap_or(&[]);
-    (sign_changes(&e_interior), sign_changes(c))
+    let e = (lo.max(1)..=hi.min(n.saturating_sub(2))).map(|k| e_at(spline, k));
+    let c = spline.c().get(lo..=hi).unwrap_or(&[]).iter().copied();
+    (changes(e), changes(c))
+}
+
+/// [`sign_changes`] without allocating (the same drop rule: values with |v| ≤ 1e-12 · max|v|
+/// over the sequence are skipped). Two sweeps of the iterator. O(len).
+fn changes(values: impl Iterator<Item = f64> + Clone) -> usize {
+    let level = 1e-12 * values.clone().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut previous = 0.0f64;
+    let mut count = 0;
+    for v in values.filter(|v| v.abs() > level) {
+        if previous * v < 0.0 {
+            count += 1;
+        }
+        previous = v;
+    }
+    count
 }
 
 /// Global (vibrations, inflections) of the spline's x–c polyline (DESIGN.md counts). O(n).
@@ -257,6 +283,41 @@ pub fn coarse_pass(
     movable: &dyn Fn(usize) -> bool,
 ) -> Result<PassReport> {
     settings.validate()?;
+    let lambda = settings.coarse_lambda;
+    let find = |spline: &SplineFunction, i: usize| {
+        let case = detect(spline, i)?;
+        Some((case, displacement(spline, case, lambda)))
+    };
+    guarded_pass(spline, settings, movable, 1, false, &find)
+}
+
+/// A detector for [`guarded_pass`]: the case starting at point i (if any) and its moves
+/// (`None` when the rule is degenerate).
+pub(super) type Finder<'a> = dyn Fn(&SplineFunction, usize) -> Option<(Case, Option<Vec<(usize, f64)>>)> + 'a;
+
+/// The sweep shared by both phases: from `start`, at each i ask `find`; apply the moves if
+/// every moved point is interior, `movable` and within the size guard, then the local count
+/// guard; continue after the case's last point (`second`, else `first`), else at i + 1.
+/// Ends with a rebuild (clears the rounding of the windowed updates) and the pass guard.
+/// The guards refuse a move (pass) that increases either count, or with `inflections_first`
+/// one that increases the inflections or leaves them equal and increases the vibrations.
+/// O(n · guard_window) plus the finder's cost.
+pub(super) fn guarded_pass(
+    spline: &mut SplineFunction,
+    settings: &TwoPhaseSettings,
+    movable: &dyn Fn(usize) -> bool,
+    start: usize,
+    inflections_first: bool,
+    find: &Finder<'_>,
+) -> Result<PassReport> {
+    // (vibrations, inflections) before and after.
+    let worse = |before: (usize, usize), after: (usize, usize)| {
+        if inflections_first {
+            after.1 > before.1 || (after.1 == before.1 && after.0 > before.0)
+        } else {
+            after.0 > before.0 || after.1 > before.1
+        }
+    };
     let n = spline.x().len();
     let mut report = PassReport::default();
     if n < 4 {
@@ -264,38 +325,42 @@ pub fn coarse_pass(
     }
     let before_global = counts(spline);
     let original_y = spline.y().to_vec();
-    let mut i = 1;
-    while i + 1 < n {
-        let Some(case) = detect(spline, i) else {
+    let mut i = start;
+    while i < n {
+        let Some((case, moves)) = find(spline, i) else {
             i += 1;
             continue;
         };
-        let next = case.second.map_or(i + 1, |k| k + 1);
-        let Some(moves) = displacement(spline, case, settings.coarse_lambda) else {
+        let next = case.second.unwrap_or(case.first).max(i) + 1;
+        i = next;
+        let Some(moves) = moves else {
             report.skipped += 1;
-            i = next;
             continue;
         };
         let x = spline.x();
-        let allowed = moves.iter().all(|&(k, g)| {
-            k >= 1
-                && k + 1 < n
-                && movable(k)
-                && g.abs() <= settings.max_move_factor * (x[k] - x[k - 1]).min(x[k + 1] - x[k])
-        });
+        let allowed = !moves.is_empty()
+            && moves.iter().all(|&(k, g)| {
+                k >= 1
+                    && k + 1 < n
+                    && movable(k)
+                    && g.is_finite()
+                    && g.abs() <= settings.max_move_factor * (x[k] - x[k - 1]).min(x[k + 1] - x[k])
+            });
         if !allowed {
             report.skipped += 1;
-            i = next;
             continue;
         }
-        let lo = case.first.saturating_sub(settings.guard_window + 2);
-        let hi = (case.second.unwrap_or(case.first) + settings.guard_window + 2).min(n - 1);
+        let (Some(lo), Some(hi)) = (moves.iter().map(|m| m.0).min(), moves.iter().map(|m| m.0).max()) else {
+            continue;
+        };
+        let lo = lo.saturating_sub(settings.guard_window + 2);
+        let hi = (hi + settings.guard_window + 2).min(n - 1);
         let before = local_counts(spline, lo, hi);
-        let old: Vec<(usize, f64)> = moves.iter().map(|&(k, _)| (k, spline.y()[k])).collect();
+        let old: Vec<(usize, f64)> = moves.iter().rev().map(|&(k, _)| (k, spline.y()[k])).collect();
         let new: Vec<(usize, f64)> = moves.iter().map(|&(k, g)| (k, spline.y()[k] + g)).collect();
         spline.set_y(&new)?;
         let after = local_counts(spline, lo, hi);
-        if settings.count_guard == CountGuard::Local && (after.0 > before.0 || after.1 > before.1) {
+        if settings.count_guard == CountGuard::Local && worse(before, after) {
             spline.set_y(&old)?;
             report.skipped += 1;
             report.undone_by_count_guard += 1;
@@ -303,14 +368,11 @@ pub fn coarse_pass(
             report.moves.extend(moves);
             report.cases.push(case);
         }
-        i = next;
     }
     // Clear the rounding of the windowed updates, then the global guard.
     spline.rebuild()?;
     let after_global = counts(spline);
-    if settings.count_guard != CountGuard::Off
-        && (after_global.0 > before_global.0 || after_global.1 > before_global.1)
-    {
+    if settings.count_guard != CountGuard::Off && worse(before_global, after_global) {
         let restore: Vec<(usize, f64)> = report
             .moves
             .iter()
@@ -325,4 +387,25 @@ pub fn coarse_pass(
         report.reverted = true;
     }
     Ok(report)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::changes;
+    use fairness::sign::sign_changes;
+
+    #[test]
+    fn changes_agree_with_the_design_count() {
+        let cases: [&[f64]; 6] = [
+            &[1.0, 0.0, -1.0],
+            &[0.0, 0.0],
+            &[1e-20, 1.0, -1e-20, 2.0],
+            &[-1.0, 2.0, -3.0, 4.0, 0.0, 5.0, -1e-13, -6.0],
+            &[],
+            &[3.0, -2.0, 1e-11, -1.0, 2.0],
+        ];
+        for v in cases {
+            assert_eq!(changes(v.iter().copied()), sign_changes(v), "{v:?}");
+        }
+    }
 }

@@ -7,18 +7,35 @@ use crate::{Error, Result};
 /// Defaults follow Han et al. §4.1: λ = 0.8 in Phase 1 (printed for Case 1, Step 2; this
 /// implementation applies the same factor to every Phase-1 case, set 1.0 for the paper's
 /// literal Cases 2–3), λ = 0.75 and α = 0 first, then α = min(c̃_{i−1}, c̃_{i+1})/5, in Phase 2
-/// (stored for the fine phase, which is not implemented yet).
+/// ([`phase2`](super::phase2)). Fields marked "not in the paper" are this implementation's
+/// guards and options; their defaults keep the paper's behaviour except where it is ill-posed.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TwoPhaseSettings {
     /// Fraction λ of the computed displacement applied in Phase 1 (Han §4.1 Case 1 Step 2).
     pub coarse_lambda: f64,
-    /// λ of Phase 2 (Han §4.1 Phase 2 Case 1 Step 2). Not used yet.
+    /// λ of Phase 2 (Han §4.1 Phase 2 Case 1 Steps 1–2): the neighbours of a small curve
+    /// vibration move by γ_{i±1} = −λσ while γ_i = σ (a ratio of the pattern, not a damping:
+    /// c̃_i reaches α exactly). 0.75 in the paper.
     pub fine_lambda: f64,
     /// The divisor of Han's α rule, α = min(c̃_{i−1}, c̃_{i+1}) / `alpha_divisor` (5 in the
-    /// paper). Not used yet.
+    /// paper; [`phase2`](super::phase2) says how "min" is read).
     pub alpha_divisor: f64,
-    /// Most coarse passes a [`TwoPhase`](super::TwoPhase) stage makes.
+    /// Most full passes (one coarse and one fine pass each) a [`TwoPhase`](super::TwoPhase)
+    /// stage makes.
     pub max_passes: usize,
+    /// Not in the paper: Phase 2 Case 2's 2 × 2 system is solved exactly only when the sine of
+    /// the angle between its rows is at least this; otherwise the well-posed mean-row rule of
+    /// [`phase2`](super::phase2) is used (the printed system is singular for uniform spacing).
+    pub pair_min_sine: f64,
+    /// Not in the paper: a stage also stops after this many consecutive full passes that
+    /// reduced neither Infl_num nor Vib_num (0: never; only "no case applies" and
+    /// `max_passes` stop it, as in the paper). With λ < 1 the small cases keep shrinking |e|
+    /// without changing a count, so on noisy data most late passes are such passes.
+    pub stall_passes: usize,
+    /// Longest wrong-sign run of c values Phase 2 handles. 2 is the paper (Cases 1–2); larger
+    /// values turn on the option beyond the paper for runs of 3 … `max_run` points (and rank
+    /// inflections first in the fine pass's guards); 0 and 1 act as 2.
+    pub max_run: usize,
     /// Guard (not in the paper): a case whose displacement |γ| exceeds `max_move_factor` times
     /// the smaller spacing h next to a moved point is skipped. The paper assumes "minor
     /// offsets" (§3.3); near-singular 2×2 systems otherwise move points by absurd amounts.
@@ -49,6 +66,9 @@ impl Default for TwoPhaseSettings {
             fine_lambda: 0.75,
             alpha_divisor: 5.0,
             max_passes: 50,
+            pair_min_sine: 0.05,
+            max_run: 2,
+            stall_passes: 0,
             max_move_factor: 0.5,
             guard_window: 16,
             count_guard: CountGuard::Local,
@@ -67,7 +87,27 @@ impl TwoPhaseSettings {
         self.fine_lambda = lambda;
         self
     }
-    /// Sets the most coarse passes.
+    /// Sets the α-rule divisor (> 0).
+    pub fn with_alpha_divisor(mut self, divisor: f64) -> Self {
+        self.alpha_divisor = divisor;
+        self
+    }
+    /// Sets the conditioning threshold of Phase 2 Case 2 (in [0, 1]).
+    pub fn with_pair_min_sine(mut self, sine: f64) -> Self {
+        self.pair_min_sine = sine;
+        self
+    }
+    /// Sets the longest wrong-sign run Phase 2 handles (2 = the paper).
+    pub fn with_max_run(mut self, run: usize) -> Self {
+        self.max_run = run;
+        self
+    }
+    /// Sets the stall limit (0: off).
+    pub fn with_stall_passes(mut self, passes: usize) -> Self {
+        self.stall_passes = passes;
+        self
+    }
+    /// Sets the most full passes.
     pub fn with_max_passes(mut self, passes: usize) -> Self {
         self.max_passes = passes;
         self
@@ -110,6 +150,9 @@ impl TwoPhaseSettings {
                 self.alpha_divisor,
                 "must be finite and positive",
             ));
+        }
+        if !(0.0..=1.0).contains(&self.pair_min_sine) {
+            return Err(bad("pair_min_sine", self.pair_min_sine, "must lie in [0, 1]"));
         }
         if !(self.max_move_factor.is_finite() && self.max_move_factor > 0.0) {
             return Err(bad(

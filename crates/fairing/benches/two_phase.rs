@@ -1,0 +1,67 @@
+//! Two-phase fairing (Han §4.1) of a noisy function segment against n: time per point should
+//! be flat (every move is a windowed O(1) update, never a rebuild; one rebuild per pass).
+//!
+//! - `two_phase_full_fairing`: one full fairing, [`fair_function`] with the default settings
+//!   (coarse and fine passes alternating until no case applies or 50 passes), n = 10^3 … 10^5
+//!   (10^6 takes minutes per iteration: see the closing note of the branch);
+//! - `two_phase_one_full_pass`: one coarse and one fine pass on the raw noisy data (the
+//!   busiest pass), n = 10^3 … 10^6.
+
+use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion, Throughput};
+use curve_repr::{EndCondition, SplineFunction};
+use fairing::two_phase::{fair_function, full_pass, TwoPhaseSettings};
+use rand::SeedableRng;
+use rand_distr::{Distribution, Normal};
+
+/// y = sin(x/2) + N(0, 0.01²) at x = 0.1 k.
+fn noisy_segment(n: usize) -> (Vec<f64>, Vec<f64>) {
+    let mut rng = rand::rngs::StdRng::seed_from_u64(11);
+    let normal = Normal::new(0.0, 0.01).expect("valid normal");
+    let x: Vec<f64> = (0..n).map(|k| 0.1 * k as f64).collect();
+    let y = x
+        .iter()
+        .map(|t| (t / 2.0).sin() + normal.sample(&mut rng))
+        .collect();
+    (x, y)
+}
+
+fn bench(c: &mut Criterion) {
+    let mut group = c.benchmark_group("two_phase_full_fairing");
+    group.sample_size(10);
+    let settings = TwoPhaseSettings::default();
+    for n in [1_000usize, 10_000, 100_000] {
+        let (x, y) = noisy_segment(n);
+        group.throughput(Throughput::Elements(n as u64));
+        group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
+            b.iter_batched(
+                || SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).expect("spline"),
+                |mut spline| {
+                    fair_function(&mut spline, &settings, &|_| true).expect("fairing");
+                    spline
+                },
+                BatchSize::PerIteration,
+            )
+        });
+    }
+    group.finish();
+    let mut group = c.benchmark_group("two_phase_one_full_pass");
+    group.sample_size(10);
+    for n in [1_000usize, 10_000, 100_000, 1_000_000] {
+        let (x, y) = noisy_segment(n);
+        group.throughput(Throughput::Elements(n as u64));
+        group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
+            b.iter_batched(
+                || SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).expect("spline"),
+                |mut spline| {
+                    full_pass(&mut spline, &settings, &|_| true).expect("pass");
+                    spline
+                },
+                BatchSize::PerIteration,
+            )
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

@@ -1,0 +1,61 @@
+//! Han's two-phase fairing on a dense noisy function segment: the paper's rules against the
+//! long-run option (wrong-sign runs of more than two points, `max_run`), counted as DESIGN.md
+//! defines. y = sin(x/2) + N(0, 0.01²) at x = 0.1 k, k < n.
+//!
+//! Run: `cargo run --release --example two_phase_runs [n] [paper]` (default n = 100000; with
+//! `paper`, only the paper's settings: the timing of one full fairing at large n)
+
+use curve_repr::{EndCondition, SplineFunction};
+use fairing::two_phase::{fair_function, CountGuard, TwoPhaseSettings};
+use fairness::xc::XcPolyline;
+use rand::SeedableRng;
+use rand_distr::{Distribution, Normal};
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let n: usize = std::env::args()
+        .nth(1)
+        .map(|a| a.parse())
+        .transpose()?
+        .unwrap_or(100_000);
+    let mut rng = rand::rngs::StdRng::seed_from_u64(11);
+    let normal = Normal::new(0.0, 0.01)?;
+    let x: Vec<f64> = (0..n).map(|k| 0.1 * k as f64).collect();
+    let clean: Vec<f64> = x.iter().map(|t| (t / 2.0).sin()).collect();
+    let y: Vec<f64> = clean.iter().map(|v| v + normal.sample(&mut rng)).collect();
+    let count = |y: &[f64]| XcPolyline::of_points(&x, y).map(|p| (p.inflections(), p.vibrations()));
+    let rms =
+        |y: &[f64]| (y.iter().zip(&clean).map(|(a, b)| (a - b) * (a - b)).sum::<f64>() / n as f64).sqrt();
+    println!("n = {n}");
+    println!(
+        "{:<40} {:>11} {:>11} {:>9} {:>7}",
+        "", "inflections", "vibrations", "rms", "passes"
+    );
+    let (ci, cv) = count(&clean)?;
+    println!("{:<40} {ci:>11} {cv:>11} {:>9.2e} {:>7}", "clean", 0.0, "");
+    let (ni, nv) = count(&y)?;
+    println!("{:<40} {ni:>11} {nv:>11} {:>9.2e} {:>7}", "noisy", rms(&y), "");
+    let base = TwoPhaseSettings::default();
+    let variants = [
+        ("paper (max_run 2)", base.clone()),
+        ("paper, stall 3", base.clone().with_stall_passes(3)),
+        (
+            "max_run 64, stall 3",
+            base.clone().with_max_run(64).with_stall_passes(3),
+        ),
+        ("max_run 64", base.clone().with_max_run(64)),
+        (
+            "max_run 64, guard off",
+            base.clone().with_max_run(64).with_count_guard(CountGuard::Off),
+        ),
+    ];
+    let paper_only = std::env::args().nth(2).as_deref() == Some("paper");
+    for (name, settings) in variants.into_iter().take(if paper_only { 1 } else { usize::MAX }) {
+        let mut spline = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout)?;
+        let start = std::time::Instant::now();
+        let passes = fair_function(&mut spline, &settings, &|_| true)?;
+        eprintln!("{name}: {:.2} s", start.elapsed().as_secs_f64());
+        let (i, v) = count(spline.y())?;
+        println!("{name:<40} {i:>11} {v:>11} {:>9.2e} {passes:>7}", rms(spline.y()));
+    }
+    Ok(())
+}
