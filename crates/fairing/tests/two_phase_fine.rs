@@ -264,7 +264,7 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(48))]
     /// A full pass (coarse then fine) never increases Infl_num, nor Vib_num with the paper's
     /// rules (DESIGN.md counts on a fresh solve); fixed points and the ends never move. With the
-    /// long-run option the fine pass ranks inflections first and may trade vibrations for
+    /// long-run option the fine pass guards inflections only and may trade vibrations for
     /// them, so only Infl_num is asserted there.
     #[test]
     fn a_full_pass_never_increases_the_counts(n in 8usize..200, amplitude in 0.0f64..0.05, seed in 0u64..1000, long in proptest::bool::ANY) {
