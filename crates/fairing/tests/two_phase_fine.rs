@@ -110,7 +110,9 @@ fn alpha_from_fresh(x: &[f64], y: &[f64], moves0: &[(usize, f64)], neighbours: &
 /// The defining conditions (Han Phase 2 Cases 1–2 and the end case) on fresh spline solves:
 /// the targeted c values equal α exactly (non-uniform knots: Case 2's system is well
 /// conditioned and solved exactly); α follows the α rule; only the pattern's points move,
-/// with Case 1's ratio −λ.
+/// with Case 1's ratio −λ. The end cases move point 1 (n − 2), Han's j = 2 (n − 1), where the
+/// printed sensitivities Eq. 14–15 are wrong (papers/README.md): reaching α exactly on a fresh
+/// solve there checks the corrected ones.
 #[test]
 fn each_fine_case_reaches_alpha() {
     let x = knots(12);
