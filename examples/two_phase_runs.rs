@@ -37,12 +37,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let base = TwoPhaseSettings::default();
     let variants = [
         ("paper (max_run 2)", base.clone()),
-        ("paper, stall 3", base.clone().with_stall_passes(3)),
+        ("max_run 64", base.clone().with_max_run(64)),
+        (
+            "max_run 64, 200 passes",
+            base.clone().with_max_run(64).with_max_passes(200),
+        ),
         (
             "max_run 64, stall 3",
             base.clone().with_max_run(64).with_stall_passes(3),
         ),
-        ("max_run 64", base.clone().with_max_run(64)),
         (
             "max_run 64, guard off",
             base.clone().with_max_run(64).with_count_guard(CountGuard::Off),

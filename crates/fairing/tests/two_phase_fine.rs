@@ -110,7 +110,9 @@ fn alpha_from_fresh(x: &[f64], y: &[f64], moves0: &[(usize, f64)], neighbours: &
 /// The defining conditions (Han Phase 2 Cases 1–2 and the end case) on fresh spline solves:
 /// the targeted c values equal α exactly (non-uniform knots: Case 2's system is well
 /// conditioned and solved exactly); α follows the α rule; only the pattern's points move,
-/// with Case 1's ratio −λ.
+/// with Case 1's ratio −λ. The end cases move point 1 (n − 2), Han's j = 2 (n − 1), where the
+/// printed sensitivities Eq. 14–15 are wrong (papers/README.md): reaching α exactly on a fresh
+/// solve there checks the corrected ones.
 #[test]
 fn each_fine_case_reaches_alpha() {
     let x = knots(12);
@@ -264,7 +266,7 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(48))]
     /// A full pass (coarse then fine) never increases Infl_num, nor Vib_num with the paper's
     /// rules (DESIGN.md counts on a fresh solve); fixed points and the ends never move. With the
-    /// long-run option the fine pass ranks inflections first and may trade vibrations for
+    /// long-run option the fine pass guards inflections only and may trade vibrations for
     /// them, so only Infl_num is asserted there.
     #[test]
     fn a_full_pass_never_increases_the_counts(n in 8usize..200, amplitude in 0.0f64..0.05, seed in 0u64..1000, long in proptest::bool::ANY) {

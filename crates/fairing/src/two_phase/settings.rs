@@ -33,8 +33,8 @@ pub struct TwoPhaseSettings {
     /// without changing a count, so on noisy data most late passes are such passes.
     pub stall_passes: usize,
     /// Longest wrong-sign run of c values Phase 2 handles. 2 is the paper (Cases 1–2); larger
-    /// values turn on the option beyond the paper for runs of 3 … `max_run` points (and rank
-    /// inflections first in the fine pass's guards); 0 and 1 act as 2.
+    /// values turn on the option beyond the paper for runs of 3 … `max_run` points (and make
+    /// the fine pass's count guards look at inflections only); 0 and 1 act as 2.
     pub max_run: usize,
     /// Guard (not in the paper): a case whose displacement |γ| exceeds `max_move_factor` times
     /// the smaller spacing h next to a moved point is skipped. The paper assumes "minor
