@@ -22,6 +22,7 @@ pub mod args;
 pub mod commands;
 pub mod constraints;
 pub mod error;
+pub mod highlight;
 pub mod input;
 pub mod kind;
 pub mod output;
