@@ -23,8 +23,9 @@
 //!   point (the surface form of Kjellander's curve rule, which zeroes the jump), kept in its
 //!   sphere; a point whose move its sphere cut short is retired, as in the curve strategy.
 //!
-//! Within a step, moves go to the iso-parametric spline [`Network`] (u-line j and v-line i of
-//! the moved point re-solved in a window of knots, O(1) in the grid size); at the end of the
+//! Within a step, moves go to the iso-parametric spline [`Network`] (the tangents of u-line j
+//! and v-line i of the moved point updated by the natural spline's measured response to a
+//! unit move, in a window of knots: O(1) in the grid size); at the end of the
 //! step the surface is rebuilt through [`BicubicSplineSurface::move_points`] (the rows,
 //! columns and twists the paper says change). The thin-plate option, which reads the twists,
 //! rebuilds the surface after every move. An automatic step costs O(m·n·window).
@@ -518,9 +519,12 @@ impl Run<'_> {
             all_moves.extend(moves);
         }
         // Keep each node's last position only.
-        let mut last: Vec<((usize, usize), Vec3)> = Vec::new();
+        let mut seen = vec![false; u_count * v_count];
+        let mut last: Vec<((usize, usize), Vec3)> = Vec::with_capacity(all_moves.len());
         for (node, p) in all_moves.into_iter().rev() {
-            if !last.iter().any(|(n, _)| *n == node) {
+            let slot = &mut seen[node.0 * v_count + node.1];
+            if !*slot {
+                *slot = true;
                 last.push((node, p));
             }
         }

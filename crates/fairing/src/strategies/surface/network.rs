@@ -3,48 +3,84 @@
 //! (P_{i,0}..P_{i,n} over v_0..v_n), with their tangents M^u, M^v, third-derivative jumps and
 //! strain energies kept up to date by local updates.
 //!
-//! These curves are exactly the knot lines of [`BicubicSplineSurface`] (its module docs: every
-//! u-line S(·, v_j) is the natural spline through row j), so z_ij (Eq. 26), the objectives of
-//! Eq. 18, 22, 24 and the network strain energy are read here without the twists, which only
-//! the thin-plate variant needs. A move of P_ij re-solves u-line j and v-line i through
-//! [`Interpolant::move_points`] (a window of knots independent of the grid size) and updates
-//! the energy from the segments in that window: a move costs O(1) in the grid size.
+//! These curves are exactly the knot lines of [`BicubicSplineSurface`](curve_repr::BicubicSplineSurface)
+//! (its module docs: every u-line S(·, v_j) is the natural spline through row j), so z_ij
+//! (Eq. 26), the objectives of Eq. 18, 22, 24 and the network strain energy are read here
+//! without the twists, which only the thin-plate variant needs.
+//!
+//! Every u-line has the same knots, so the same linear map A_u takes its points to its
+//! tangents (M^u_{·,j} = A_u P_{·,j}, Eq. 2 with free ends). Moving P_ij by δ therefore adds
+//! δ·(A_u e_i)_k to M^u_{k,j}: the response A_u e_i is measured once per i (a unit move on a
+//! zero [`HermiteSpline`] over the knots, which re-solves only the window whose change exceeds
+//! 1e-17 relative, see curve-repr's `hermite::update`) and a move is then two short vector
+//! updates, plus the segment energies in the response's window. A move costs O(window), a
+//! constant (~30 knots per side for uniform knots, at most ~57).
 
 use curve_repr::{HermiteSettings, HermiteSpline, Interpolant, Vec3, Vector};
 
-use super::super::strain_energy::{jump, segment_energy, WINDOW};
-use crate::Result;
+use super::super::strain_energy::hermite_energy;
+use crate::{Error, Result};
 
-/// K_{i,i} and K_{i,i+1} of the natural spline's jump map J = K P along one knot vector (the
-/// tangents re-solved): J_i changes by K_{i,i'} per unit move of P_{i'}. Index 0 and the last
-/// are unused (no jump at the ends).
+/// The response of one knot vector's natural splines to unit point moves, and the stiffness
+/// J = K P read from it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Stiffness {
-    /// K_{i,i}, per knot.
+    /// K_{i,i}, per knot (0 at the two ends, where there is no jump).
     pub diagonal: Vec<f64>,
     /// K_{i,i+1} = K_{i+1,i} (K is symmetric), per knot.
     pub upper: Vec<f64>,
+    /// For each knot i: the first index lo and the values ∂M_k/∂P_i for k = lo, lo + 1, …
+    /// (zero outside).
+    response: Vec<(usize, Vec<f64>)>,
+    /// The knot steps h_k = t_{k+1} − t_k.
+    steps: Vec<f64>,
+}
+
+/// C''' on a Hermite segment: (6(M_0 + M_1) − 12(P_1 − P_0)/h)/h².
+fn third(p0: Vec3, p1: Vec3, m0: Vec3, m1: Vec3, h: f64) -> Vec3 {
+    ((m0 + m1) * 6.0 - (p1 - p0) * (12.0 / h)) / (h * h)
 }
 
 impl Stiffness {
-    /// Measures K by moving one point at a time of the zero scalar spline over `knots` to 1
-    /// and reading the jumps next to it (J is linear in P, so the response is exact up to
-    /// rounding). O(len · window).
+    /// Measures the responses by moving one point at a time of the zero scalar natural
+    /// spline over `knots` to 1 (the tangents are linear in the points, so the response is
+    /// exact up to rounding), and K_{i,i}, K_{i,i+1} from the jumps next to it.
+    /// O(len · window).
     pub fn new(knots: &[f64]) -> Result<Self> {
         let len = knots.len();
         let settings = HermiteSettings::<1>::new().with_parameters(knots.to_vec());
         let mut line = HermiteSpline::new(&vec![Vector::<1>::zeros(); len], &settings)?;
+        let steps: Vec<f64> = knots.windows(2).map(|w| w[1] - w[0]).collect();
         let mut diagonal = vec![0.0; len];
         let mut upper = vec![0.0; len];
-        for i in 1..len.saturating_sub(1) {
+        let mut response = Vec::with_capacity(len);
+        for i in 0..len {
             line.move_points(&[(i, Vector::<1>::new(1.0))])?;
-            diagonal[i] = jump(&line, i)[0];
-            if i + 2 < len {
-                upper[i] = jump(&line, i + 1)[0];
+            let tangents: Vec<f64> = line.tangents().iter().map(|t| t[0]).collect();
+            let lo = tangents.iter().position(|&t| t != 0.0).unwrap_or(i);
+            let hi = tangents.iter().rposition(|&t| t != 0.0).unwrap_or(i);
+            response.push((lo, tangents[lo..=hi.max(lo)].to_vec()));
+            let point = |k: usize| Vec3::new(if k == i { 1.0 } else { 0.0 }, 0.0, 0.0);
+            let tangent = |k: usize| Vec3::new(tangents[k], 0.0, 0.0);
+            let jump = |k: usize| {
+                third(point(k), point(k + 1), tangent(k), tangent(k + 1), steps[k])
+                    - third(point(k - 1), point(k), tangent(k - 1), tangent(k), steps[k - 1])
+            };
+            if i >= 1 && i + 1 < len {
+                diagonal[i] = jump(i)[0];
+            }
+            if i >= 2 {
+                // K_{i−1,i} = ∂J_{i−1}/∂P_i.
+                upper[i - 1] = jump(i - 1)[0];
             }
             line.move_points(&[(i, Vector::<1>::zeros())])?;
         }
-        Ok(Self { diagonal, upper })
+        Ok(Self {
+            diagonal,
+            upper,
+            response,
+            steps,
+        })
     }
 
     /// K_{a,b} for |a − b| ≤ 1, else 0 (the far entries are not needed: the groups of
@@ -67,12 +103,16 @@ pub struct Network {
     v_count: usize,
     u_knots: Vec<f64>,
     v_knots: Vec<f64>,
-    /// u-line j: the natural spline through P_{0,j}..P_{m,j}.
-    u_lines: Vec<HermiteSpline<3>>,
-    /// v-line i: the natural spline through P_{i,0}..P_{i,n}.
-    v_lines: Vec<HermiteSpline<3>>,
-    u_segment_energy: Vec<Vec<f64>>,
-    v_segment_energy: Vec<Vec<f64>>,
+    /// P_ij at i·(n+1) + j.
+    points: Vec<Vec3>,
+    /// M^u_ij at i·(n+1) + j.
+    u_tangents: Vec<Vec3>,
+    /// M^v_ij at i·(n+1) + j.
+    v_tangents: Vec<Vec3>,
+    /// Energy of u-line segment (i, j) (from u_i to u_{i+1}) at i·(n+1) + j.
+    u_segment_energy: Vec<f64>,
+    /// Energy of v-line segment (i, j) (from v_j to v_{j+1}) at i·(n+1) + j.
+    v_segment_energy: Vec<f64>,
     energy: f64,
     u_stiffness: Stiffness,
     v_stiffness: Stiffness,
@@ -93,31 +133,54 @@ impl Network {
         }
         let u_settings = HermiteSettings::<3>::new().with_parameters(u_knots.to_vec());
         let v_settings = HermiteSettings::<3>::new().with_parameters(v_knots.to_vec());
-        let mut u_lines = Vec::with_capacity(v_count);
+        let mut u_tangents = vec![Vec3::zeros(); points.len()];
         for j in 0..v_count {
             let line: Vec<Vec3> = points.iter().skip(j).step_by(v_count).copied().collect();
-            u_lines.push(HermiteSpline::new(&line, &u_settings)?);
+            let spline = HermiteSpline::new(&line, &u_settings)?;
+            for (i, t) in spline.tangents().iter().enumerate() {
+                u_tangents[i * v_count + j] = *t;
+            }
         }
-        let mut v_lines = Vec::with_capacity(u_count);
+        let mut v_tangents = Vec::with_capacity(points.len());
         for line in points.chunks(v_count) {
-            v_lines.push(HermiteSpline::new(line, &v_settings)?);
+            v_tangents.extend_from_slice(HermiteSpline::new(line, &v_settings)?.tangents());
         }
-        let u_segment_energy: Vec<Vec<f64>> = u_lines.iter().map(HermiteSpline::segment_energies).collect();
-        let v_segment_energy: Vec<Vec<f64>> = v_lines.iter().map(HermiteSpline::segment_energies).collect();
-        let energy = u_segment_energy.iter().chain(&v_segment_energy).flatten().sum();
-        Ok(Self {
+        let mut network = Self {
             u_count,
             v_count,
             u_knots: u_knots.to_vec(),
             v_knots: v_knots.to_vec(),
-            u_lines,
-            v_lines,
-            u_segment_energy,
-            v_segment_energy,
-            energy,
+            points: points.to_vec(),
+            u_tangents,
+            v_tangents,
+            u_segment_energy: vec![0.0; points.len()],
+            v_segment_energy: vec![0.0; points.len()],
+            energy: 0.0,
             u_stiffness: Stiffness::new(u_knots)?,
             v_stiffness: Stiffness::new(v_knots)?,
-        })
+        };
+        for i in 0..u_count {
+            for j in 0..v_count {
+                if i + 1 < u_count {
+                    network.u_segment_energy[i * v_count + j] = network.u_segment(i, j);
+                }
+                if j + 1 < v_count {
+                    network.v_segment_energy[i * v_count + j] = network.v_segment(i, j);
+                }
+            }
+        }
+        network.resum_energy();
+        Ok(network)
+    }
+
+    fn u_segment(&self, i: usize, j: usize) -> f64 {
+        let (a, b) = (i * self.v_count + j, (i + 1) * self.v_count + j);
+        hermite_energy(self.points[a], self.points[b], self.u_tangents[a], self.u_tangents[b], self.u_stiffness.steps[i])
+    }
+
+    fn v_segment(&self, i: usize, j: usize) -> f64 {
+        let (a, b) = (i * self.v_count + j, i * self.v_count + j + 1);
+        hermite_energy(self.points[a], self.points[b], self.v_tangents[a], self.v_tangents[b], self.v_stiffness.steps[j])
     }
 
     /// (m + 1, n + 1).
@@ -137,32 +200,34 @@ impl Network {
 
     /// P_ij (callers keep i, j inside the grid).
     pub fn point(&self, i: usize, j: usize) -> Vec3 {
-        self.u_lines[j].points()[i]
+        self.points[i * self.v_count + j]
     }
 
     /// M^u_ij = ∂S/∂u(u_i, v_j).
     pub fn u_tangent(&self, i: usize, j: usize) -> Vec3 {
-        self.u_lines[j].tangents()[i]
+        self.u_tangents[i * self.v_count + j]
     }
 
     /// M^v_ij = ∂S/∂v(u_i, v_j).
     pub fn v_tangent(&self, i: usize, j: usize) -> Vec3 {
-        self.v_lines[i].tangents()[j]
+        self.v_tangents[i * self.v_count + j]
     }
 
-    /// All points, flat (index i·(n+1) + j). O(m·n).
-    pub fn points(&self) -> Vec<Vec3> {
-        self.v_lines.iter().flat_map(|line| line.points().iter().copied()).collect()
+    /// All points, flat (index i·(n+1) + j).
+    pub fn points(&self) -> &[Vec3] {
+        &self.points
     }
 
     /// ∂³S/∂u³(u_i+, v_j) − ∂³S/∂u³(u_i−, v_j) at an interior node.
     pub fn u_jump(&self, i: usize, j: usize) -> Vec3 {
-        jump(&self.u_lines[j], i)
+        let (p, m, h) = (|k: usize| self.point(k, j), |k: usize| self.u_tangent(k, j), &self.u_stiffness.steps);
+        third(p(i), p(i + 1), m(i), m(i + 1), h[i]) - third(p(i - 1), p(i), m(i - 1), m(i), h[i - 1])
     }
 
     /// ∂³S/∂v³(u_i, v_j+) − ∂³S/∂v³(u_i, v_j−) at an interior node.
     pub fn v_jump(&self, i: usize, j: usize) -> Vec3 {
-        jump(&self.v_lines[i], j)
+        let (p, m, h) = (|k: usize| self.point(i, k), |k: usize| self.v_tangent(i, k), &self.v_stiffness.steps);
+        third(p(j), p(j + 1), m(j), m(j + 1), h[j]) - third(p(j - 1), p(j), m(j - 1), m(j), h[j - 1])
     }
 
     /// z_ij = |u jump| + |v jump| (Eq. 26, corrected in papers/README.md), interior nodes.
@@ -186,58 +251,68 @@ impl Network {
         &self.v_stiffness
     }
 
-    /// The u-line j.
-    pub fn u_line(&self, j: usize) -> &HermiteSpline<3> {
-        &self.u_lines[j]
-    }
-
-    /// The v-line i.
-    pub fn v_line(&self, i: usize) -> &HermiteSpline<3> {
-        &self.v_lines[i]
-    }
-
-    /// Moves points `((i, j), position)`, re-solving the u-lines j and v-lines i they lie on
-    /// (windowed), and updates the energy. O(moves · window).
+    /// Moves points `((i, j), position)` one after another, updating the tangents of u-line j
+    /// and v-line i by the measured responses and the energy from the segments in their
+    /// windows. O(moves · window). Fails with [`Error::NonFiniteMove`] (flat index) on a
+    /// position or an energy that is not finite, leaving that move undone, or
+    /// [`Error::BadConstraint`] on a node outside the grid.
     pub fn move_points(&mut self, moves: &[((usize, usize), Vec3)]) -> Result<()> {
-        let mut rows: Vec<usize> = moves.iter().map(|m| m.0 .1).collect();
-        rows.sort_unstable();
-        rows.dedup();
-        let mut columns: Vec<usize> = moves.iter().map(|m| m.0 .0).collect();
-        columns.sort_unstable();
-        columns.dedup();
-        for &j in &rows {
-            let line_moves: Vec<(usize, Vec3)> = moves.iter().filter(|m| m.0 .1 == j).map(|m| (m.0 .0, m.1)).collect();
-            self.u_lines[j].move_points(&line_moves)?;
-            let (lo, hi) = window(&line_moves, self.u_count);
-            for s in lo..hi {
-                let e = segment_energy(&self.u_lines[j], s);
-                self.energy += e - self.u_segment_energy[j][s];
-                self.u_segment_energy[j][s] = e;
+        for &((i, j), position) in moves {
+            if i >= self.u_count || j >= self.v_count {
+                return Err(Error::BadConstraint {
+                    reason: format!("node ({i}, {j}) is outside the {} × {} grid", self.u_count, self.v_count),
+                });
             }
-        }
-        for &i in &columns {
-            let line_moves: Vec<(usize, Vec3)> = moves.iter().filter(|m| m.0 .0 == i).map(|m| (m.0 .1, m.1)).collect();
-            self.v_lines[i].move_points(&line_moves)?;
-            let (lo, hi) = window(&line_moves, self.v_count);
-            for s in lo..hi {
-                let e = segment_energy(&self.v_lines[i], s);
-                self.energy += e - self.v_segment_energy[i][s];
-                self.v_segment_energy[i][s] = e;
+            let index = i * self.v_count + j;
+            if position.iter().any(|c| !c.is_finite()) {
+                return Err(Error::NonFiniteMove { index });
+            }
+            let old = self.points[index];
+            let energy = self.energy;
+            self.shift(i, j, position - old);
+            if !self.energy.is_finite() {
+                self.shift(i, j, old - position);
+                self.points[index] = old;
+                self.energy = energy;
+                self.resum_energy();
+                return Err(Error::NonFiniteMove { index });
             }
         }
         Ok(())
     }
 
-    /// Recomputes the energy from every segment (drops the rounding the local updates gather).
-    /// O(m·n).
-    pub fn resum_energy(&mut self) {
-        self.energy = self.u_segment_energy.iter().chain(&self.v_segment_energy).flatten().sum();
+    /// Adds `delta` to P_ij and its responses to the tangents; refreshes the energies.
+    fn shift(&mut self, i: usize, j: usize, delta: Vec3) {
+        let vc = self.v_count;
+        self.points[i * vc + j] += delta;
+        let (u_lo, u_values) = &self.u_stiffness.response[i];
+        for (offset, &r) in u_values.iter().enumerate() {
+            self.u_tangents[(u_lo + offset) * vc + j] += delta * r;
+        }
+        let (v_lo, v_values) = &self.v_stiffness.response[j];
+        for (offset, &r) in v_values.iter().enumerate() {
+            self.v_tangents[i * vc + v_lo + offset] += delta * r;
+        }
+        // Segments touching a changed tangent or the moved point.
+        let (u_lo, u_hi) = ((*u_lo).min(i).saturating_sub(1), (u_lo + u_values.len()).max(i + 1).min(self.u_count - 1));
+        for k in u_lo..u_hi {
+            let e = self.u_segment(k, j);
+            let slot = &mut self.u_segment_energy[k * vc + j];
+            self.energy += e - *slot;
+            *slot = e;
+        }
+        let (v_lo, v_hi) = ((*v_lo).min(j).saturating_sub(1), (v_lo + v_values.len()).max(j + 1).min(self.v_count - 1));
+        for k in v_lo..v_hi {
+            let e = self.v_segment(i, k);
+            let slot = &mut self.v_segment_energy[i * vc + k];
+            self.energy += e - *slot;
+            *slot = e;
+        }
     }
-}
 
-/// The segments [lo, hi) whose energy a move of these line indices can change.
-fn window(moves: &[(usize, Vec3)], count: usize) -> (usize, usize) {
-    let lo = moves.iter().map(|m| m.0).min().unwrap_or(0).saturating_sub(WINDOW);
-    let hi = (moves.iter().map(|m| m.0).max().unwrap_or(0) + WINDOW).min(count.saturating_sub(1));
-    (lo, hi)
+    /// Recomputes the energy as the sum of the stored segment energies (drops the rounding
+    /// that the local updates gather). O(m·n).
+    pub fn resum_energy(&mut self) {
+        self.energy = self.u_segment_energy.iter().chain(&self.v_segment_energy).sum();
+    }
 }
