@@ -23,7 +23,8 @@ pub fn boundary_curves(u_count: usize, v_count: usize) -> Vec<Vec<(usize, usize)
 /// the automatic curve algorithm (chord-length knots, restraining circles, relative energy
 /// tolerance `tolerance`); `is_fixed` nodes and the corners (the curves' end points, which the
 /// curve method never moves) stay put, and no point moves farther than `max_distance`.
-/// Returns the moves made and the steps taken. O(perimeter) per step.
+/// A boundary curve with two equal consecutive points (a degenerate edge, a pole) is left
+/// as it is. Returns the moves made and the steps taken. O(perimeter) per step.
 pub fn fair_boundary(
     points: &mut [Vec3],
     u_count: usize,
@@ -36,6 +37,11 @@ pub fn fair_boundary(
     let mut steps = 0;
     for curve in boundary_curves(u_count, v_count) {
         let line: Vec<Vec3> = curve.iter().map(|&(i, j)| points[i * v_count + j]).collect();
+        // A boundary collapsed to a point in places (a pole, as the teapot's bottom row) has
+        // no chord-length curve through it: it is left as it is.
+        if line.windows(2).any(|w| w[0] == w[1]) {
+            continue;
+        }
         let fixed = curve.iter().enumerate().filter(|(_, &(i, j))| is_fixed(i, j)).map(|(k, _)| k);
         let mut constraints = Constraints::default().with_fixed(fixed);
         if let Some(distance) = max_distance {

@@ -21,7 +21,11 @@
 //! - **Kjellander** ([`SurfaceFairingSettings::kjellander`]): uniform knots, one point per
 //!   step, the interior point of largest z_ij (or of the user's list), moved to its Eq. 21
 //!   point (the surface form of Kjellander's curve rule, which zeroes the jump), kept in its
-//!   sphere; a point whose move its sphere cut short is retired, as in the curve strategy.
+//!   sphere; a point its sphere holds (target outside, point already on the border) is passed
+//!   over for the next worst. The energy tolerance applies to the change over as many steps
+//!   as there are candidate points (a sweep's worth). The paper does not print Kjellander's
+//!   surface formula; with uniform knots on a square grid K_u[i,i] = K_v[j,j], so this point
+//!   is also the mean of the u-curve's and the v-curve's own Kjellander points.
 //!
 //! Within a step, moves go to the iso-parametric spline [`Network`] (the tangents of u-line j
 //! and v-line i of the moved point updated by the natural spline's measured response to a
@@ -234,7 +238,6 @@ struct Run<'a> {
     surface: BicubicSplineSurface,
     original: Vec<Vec3>,
     radii: Option<Vec<f64>>,
-    blocked: Vec<bool>,
 }
 
 impl SurfaceFairing {
@@ -338,7 +341,6 @@ impl SurfaceFairing {
             surface,
             original,
             radii: None,
-            blocked: vec![false; u_count * v_count],
         };
         if settings.mode == SurfaceMode::Automatic {
             run.radii = Some(run.restraining_radii()?);
@@ -359,7 +361,18 @@ impl SurfaceFairing {
                 termination = TerminationReason::StrategyDone;
                 break;
             }
-            if counts && (before - after).abs() <= settings.tolerance * before.abs() {
+            // One point per step (Kjellander): the tolerance applies to the change over as
+            // many steps as there are candidate points (a sweep's worth), else one small
+            // point would stop the run.
+            let (reference, enough) = if settings.one_point_per_step {
+                let span = run.candidate_count().max(1);
+                let k = history.len();
+                let reference = if k > span { history[k - 1 - span].energy } else { start.energy };
+                (reference, k >= span)
+            } else {
+                (before, true)
+            };
+            if counts && enough && (reference - after).abs() <= settings.tolerance * reference.abs() {
                 termination = TerminationReason::Converged;
                 break;
             }
@@ -400,6 +413,24 @@ impl Run<'_> {
     fn is_movable(&self, i: usize, j: usize) -> bool {
         let (u_count, v_count) = self.shape();
         i >= 1 && j >= 1 && i + 1 < u_count && j + 1 < v_count && !self.settings.fixed.contains(&(i, j))
+    }
+
+    /// How many points a step chooses from: the movable interior points (automatic) or the
+    /// movable named points (interactive).
+    fn candidate_count(&self) -> usize {
+        let (u_count, v_count) = self.shape();
+        match &self.settings.mode {
+            SurfaceMode::Automatic => (1..u_count - 1)
+                .flat_map(|i| (1..v_count - 1).map(move |j| (i, j)))
+                .filter(|&(i, j)| self.is_movable(i, j))
+                .count(),
+            SurfaceMode::Interactive(list) => {
+                let mut list: Vec<(usize, usize)> = list.iter().copied().filter(|&(i, j)| self.is_movable(i, j)).collect();
+                list.sort_unstable();
+                list.dedup();
+                list.len()
+            }
+        }
     }
 
     /// Step 2.2: |P̄_ij − P_ij| with P̄ from Eq. 21, on the surface after step 2.1.
@@ -476,7 +507,7 @@ impl Run<'_> {
         let candidates: Vec<(usize, usize)> = match &self.settings.mode {
             SurfaceMode::Automatic => (1..u_count - 1)
                 .flat_map(|i| (1..v_count - 1).map(move |j| (i, j)))
-                .filter(|&(i, j)| self.is_movable(i, j) && !self.blocked[i * v_count + j])
+                .filter(|&(i, j)| self.is_movable(i, j))
                 .collect(),
             SurfaceMode::Interactive(list) => {
                 let mut list: Vec<(usize, usize)> = list.iter().copied().filter(|&(i, j)| self.is_movable(i, j)).collect();
@@ -490,19 +521,13 @@ impl Run<'_> {
         order.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
         let mut all_moves = Vec::new();
         if self.settings.one_point_per_step {
-            let automatic = self.settings.mode == SurfaceMode::Automatic;
+            // Kjellander: the worst point that can still move (one its sphere holds at the
+            // border, with its target outside, is passed over in this step).
             for &(node, _) in &order {
-                let (moves, limited) = self.move_group(&[node])?;
-                if automatic && (limited || moves.is_empty()) {
-                    // As the curve strategy: a point its sphere stopped is retired, and its
-                    // step does not count for the stopping test.
-                    self.blocked[node.0 * v_count + node.1] = true;
-                    if moves.is_empty() {
-                        continue;
-                    }
-                    return Ok((moves, false));
+                let (moves, _) = self.move_group(&[node])?;
+                if !moves.is_empty() {
+                    return Ok((moves, true));
                 }
-                return Ok((moves, true));
             }
             return Ok((all_moves, false));
         }
