@@ -31,7 +31,8 @@ fn panel() -> Net {
             (0..13)
                 .map(|j| {
                     let (x, y) = (100.0 * i as f64, 75.0 * j as f64);
-                    let z = 60.0 * (1.0 - ((x - 600.0) / 700.0).powi(2)) + 25.0 * (y / 900.0).powi(2) + 0.02 * x;
+                    let z =
+                        60.0 * (1.0 - ((x - 600.0) / 700.0).powi(2)) + 25.0 * (y / 900.0).powi(2) + 0.02 * x;
                     Vec3::new(x, y, z)
                 })
                 .collect()
@@ -85,10 +86,18 @@ fn energy_of(points: &[Vec3], rows: usize, columns: usize) -> Result<f64, Box<dy
 
 fn z_map(s: &BicubicSplineSurface) -> Vec<Vec<f64>> {
     let (rows, columns) = s.shape();
-    (0..rows).map(|i| (0..columns).map(|j| s.z(i, j).unwrap_or(0.0)).collect()).collect()
+    (0..rows)
+        .map(|i| (0..columns).map(|j| s.z(i, j).unwrap_or(0.0)).collect())
+        .collect()
 }
 
-fn write_plot(dir: &Path, name: &str, title: &str, input: &BicubicSplineSurface, faired: &BicubicSplineSurface) -> Result<PathBuf, Box<dyn Error>> {
+fn write_plot(
+    dir: &Path,
+    name: &str,
+    title: &str,
+    input: &BicubicSplineSurface,
+    faired: &BicubicSplineSurface,
+) -> Result<PathBuf, Box<dyn Error>> {
     let (rows, columns) = input.shape();
     let plot = SurfacePlot {
         title: title.into(),
@@ -105,10 +114,16 @@ fn write_plot(dir: &Path, name: &str, title: &str, input: &BicubicSplineSurface,
 
 /// Steps of a one-point run until its report energy is at most `target`: runs of growing
 /// length, each from the start (a Kjellander step is cheap). `None` if not reached.
-fn steps_to_reach(settings: &SurfaceFairingSettings, net: &Net, target: f64, limit: usize) -> Result<Option<usize>, Box<dyn Error>> {
+fn steps_to_reach(
+    settings: &SurfaceFairingSettings,
+    net: &Net,
+    target: f64,
+    limit: usize,
+) -> Result<Option<usize>, Box<dyn Error>> {
     let (rows, columns) = (net.len(), net[0].len());
     let reaches = |steps: usize| -> Result<bool, Box<dyn Error>> {
-        let result = SurfaceFairing::new(settings.clone().with_max_steps(steps).with_tolerance(0.0)).run(net)?;
+        let result =
+            SurfaceFairing::new(settings.clone().with_max_steps(steps).with_tolerance(0.0)).run(net)?;
         Ok(energy_of(result.surface.points(), rows, columns)? <= target)
     };
     if !reaches(limit)? {
@@ -127,7 +142,12 @@ fn steps_to_reach(settings: &SurfaceFairingSettings, net: &Net, target: f64, lim
     Ok(Some(hi))
 }
 
-fn summary(name: &str, before: &BicubicSplineSurface, result: &SurfaceFairingResult, clean: Option<&[Vec3]>) -> Result<(), Box<dyn Error>> {
+fn summary(
+    name: &str,
+    before: &BicubicSplineSurface,
+    result: &SurfaceFairingResult,
+    clean: Option<&[Vec3]>,
+) -> Result<(), Box<dyn Error>> {
     let (rows, columns) = before.shape();
     let after = &result.surface;
     let e0 = before.network_strain_energy();
@@ -176,24 +196,46 @@ fn door_panel(dir: &Path) -> Result<(), Box<dyn Error>> {
 
     let bad: Vec<(usize, usize)> = BUMPS.iter().map(|b| b.0).collect();
     let interactive = SurfaceMode::Interactive(bad.clone());
-    let zc_i = SurfaceFairing::new(SurfaceFairingSettings::zhang_cheng().with_mode(interactive.clone())).run(&net)?;
-    summary("Zhang–Cheng interactive (bumps)", &before, &zc_i, Some(&clean_points))?;
+    let zc_i = SurfaceFairing::new(SurfaceFairingSettings::zhang_cheng().with_mode(interactive.clone()))
+        .run(&net)?;
+    summary(
+        "Zhang–Cheng interactive (bumps)",
+        &before,
+        &zc_i,
+        Some(&clean_points),
+    )?;
     let kj_i_settings = SurfaceFairingSettings::kjellander().with_mode(interactive);
     let kj_i = SurfaceFairing::new(kj_i_settings.clone()).run(&net)?;
-    summary("Kjellander interactive (bumps)", &before, &kj_i, Some(&clean_points))?;
+    summary(
+        "Kjellander interactive (bumps)",
+        &before,
+        &kj_i,
+        Some(&clean_points),
+    )?;
 
     // Steps to the same energy: Zhang–Cheng's final energy as the target. Each count is
     // found by bisection over the step limit (energy never rises from step to step).
     let (rows, columns) = before.shape();
     for (label, zc_settings, kj_settings) in [
-        ("automatic", SurfaceFairingSettings::zhang_cheng(), SurfaceFairingSettings::kjellander()),
-        ("interactive", SurfaceFairingSettings::zhang_cheng().with_mode(SurfaceMode::Interactive(bad.clone())), kj_i_settings),
+        (
+            "automatic",
+            SurfaceFairingSettings::zhang_cheng(),
+            SurfaceFairingSettings::kjellander(),
+        ),
+        (
+            "interactive",
+            SurfaceFairingSettings::zhang_cheng().with_mode(SurfaceMode::Interactive(bad.clone())),
+            kj_i_settings,
+        ),
     ] {
         // The common level: the higher of the two methods' final energies (each run to its
         // own stop), plus 1e-6 relative.
         let zc_final = SurfaceFairing::new(zc_settings.clone()).run(&net)?;
         let kj_final = SurfaceFairing::new(kj_settings.clone()).run(&net)?;
-        let (zc_e, kj_e) = (energy_of(zc_final.surface.points(), rows, columns)?, energy_of(kj_final.surface.points(), rows, columns)?);
+        let (zc_e, kj_e) = (
+            energy_of(zc_final.surface.points(), rows, columns)?,
+            energy_of(kj_final.surface.points(), rows, columns)?,
+        );
         let target = zc_e.max(kj_e) * (1.0 + 1e-6);
         let zc_steps = steps_to_reach(&zc_settings, &net, target, zc_final.steps.max(1))?;
         let kj_steps = steps_to_reach(&kj_settings, &net, target, kj_final.steps.max(1))?;
@@ -205,7 +247,14 @@ fn door_panel(dir: &Path) -> Result<(), Box<dyn Error>> {
             kj_steps.map_or("not reached".to_string(), |s| s.to_string()),
         );
         let energy_after = |settings: &SurfaceFairingSettings, steps: usize| -> Result<f64, Box<dyn Error>> {
-            energy_of(SurfaceFairing::new(settings.clone().with_max_steps(steps).with_tolerance(0.0)).run(&net)?.surface.points(), rows, columns)
+            energy_of(
+                SurfaceFairing::new(settings.clone().with_max_steps(steps).with_tolerance(0.0))
+                    .run(&net)?
+                    .surface
+                    .points(),
+                rows,
+                columns,
+            )
         };
         println!(
             "{:<12} e_s after 1, 2, 4, 8 steps: Zhang–Cheng {:.4e} {:.4e} {:.4e} {:.4e}; Kjellander {:.4e} {:.4e} {:.4e} {:.4e}",
@@ -220,11 +269,38 @@ fn door_panel(dir: &Path) -> Result<(), Box<dyn Error>> {
             energy_after(&kj_settings, 8)?,
         );
     }
-    println!("wrote {}", write_plot(dir, "door_panel_zhang_cheng.svg", "door panel: Zhang–Cheng automatic", &before, &zc.surface)?.display());
-    println!("wrote {}", write_plot(dir, "door_panel_kjellander.svg", "door panel: Kjellander automatic", &before, &kj.surface)?.display());
     println!(
         "wrote {}",
-        write_plot(dir, "door_panel_zhang_cheng_interactive.svg", "door panel: Zhang–Cheng interactive", &before, &zc_i.surface)?.display()
+        write_plot(
+            dir,
+            "door_panel_zhang_cheng.svg",
+            "door panel: Zhang–Cheng automatic",
+            &before,
+            &zc.surface
+        )?
+        .display()
+    );
+    println!(
+        "wrote {}",
+        write_plot(
+            dir,
+            "door_panel_kjellander.svg",
+            "door panel: Kjellander automatic",
+            &before,
+            &kj.surface
+        )?
+        .display()
+    );
+    println!(
+        "wrote {}",
+        write_plot(
+            dir,
+            "door_panel_zhang_cheng_interactive.svg",
+            "door panel: Zhang–Cheng interactive",
+            &before,
+            &zc_i.surface
+        )?
+        .display()
     );
     Ok(())
 }
@@ -260,7 +336,17 @@ fn twisted_strip(dir: &Path) -> Result<(), Box<dyn Error>> {
     summary("Zhang–Cheng automatic", &before, &zc, Some(&flat(&clean)))?;
     let kj = SurfaceFairing::new(SurfaceFairingSettings::kjellander()).run(&noisy)?;
     summary("Kjellander automatic", &before, &kj, Some(&flat(&clean)))?;
-    println!("wrote {}", write_plot(dir, "twisted_strip.svg", "twisted 26 × 9 strip: Zhang–Cheng automatic", &before, &zc.surface)?.display());
+    println!(
+        "wrote {}",
+        write_plot(
+            dir,
+            "twisted_strip.svg",
+            "twisted 26 × 9 strip: Zhang–Cheng automatic",
+            &before,
+            &zc.surface
+        )?
+        .display()
+    );
     Ok(())
 }
 
@@ -269,7 +355,10 @@ fn read_net(relative: &str) -> Result<Net, Box<dyn Error>> {
     let text = std::fs::read_to_string(&path)?;
     let mut cells = Vec::new();
     for line in text.lines().skip(1).filter(|l| !l.trim().is_empty()) {
-        let f: Vec<f64> = line.split(',').map(|x| x.trim().parse()).collect::<Result<_, _>>()?;
+        let f: Vec<f64> = line
+            .split(',')
+            .map(|x| x.trim().parse())
+            .collect::<Result<_, _>>()?;
         if f.len() != 5 {
             return Err(format!("{path}: expected i,j,x,y,z").into());
         }
@@ -297,7 +386,14 @@ fn bezier_surface(net: &Net) -> Result<NurbsSurface, Box<dyn Error>> {
         k
     };
     let weights = vec![vec![1.0; net[0].len()]; net.len()];
-    Ok(NurbsSurface::new(3, 3, knots(net.len()), knots(net[0].len()), net.clone(), weights)?)
+    Ok(NurbsSurface::new(
+        3,
+        3,
+        knots(net.len()),
+        knots(net[0].len()),
+        net.clone(),
+        weights,
+    )?)
 }
 
 fn teapot(dir: &Path) -> Result<(), Box<dyn Error>> {
@@ -326,11 +422,21 @@ fn teapot(dir: &Path) -> Result<(), Box<dyn Error>> {
         }
         best
     };
-    println!("{:<34} worst node before {:?}, after {:?}", "", worst(&before), worst(&surface(&zc.surface.grid())?));
+    println!(
+        "{:<34} worst node before {:?}, after {:?}",
+        "",
+        worst(&before),
+        worst(&surface(&zc.surface.grid())?)
+    );
     let after = zc.surface.grid();
-    let seam = (0..net.len()).map(|i| (after[i][0] - after[i][12]).norm()).fold(0.0, f64::max);
+    let seam = (0..net.len())
+        .map(|i| (after[i][0] - after[i][12]).norm())
+        .fold(0.0, f64::max);
     let pole = after[12].iter().map(|p| p.norm()).fold(0.0, f64::max);
-    println!("{:<34} seam |P_i,0 − P_i,12| max {seam:.3e}; pole row max |P| {pole:.3e}", "");
+    println!(
+        "{:<34} seam |P_i,0 − P_i,12| max {seam:.3e}; pole row max |P| {pole:.3e}",
+        ""
+    );
     // The Bézier surface of the faired net against the original one, on a 25 × 25 sample.
     let (original, faired) = (bezier_surface(&net)?, bezier_surface(&after)?);
     let mut deviation: f64 = 0.0;
@@ -341,14 +447,32 @@ fn teapot(dir: &Path) -> Result<(), Box<dyn Error>> {
             deviation = deviation.max((original.eval(u, v) - faired.eval(u, v)).norm());
         }
     }
-    println!("{:<34} Bézier surface moved at most {deviation:.4} (teapot height 3.15)", "");
-    println!("wrote {}", write_plot(dir, "teapot_body_net.svg", "teapot body control net: Zhang–Cheng automatic", &before, &zc.surface)?.display());
+    println!(
+        "{:<34} Bézier surface moved at most {deviation:.4} (teapot height 3.15)",
+        ""
+    );
+    println!(
+        "wrote {}",
+        write_plot(
+            dir,
+            "teapot_body_net.svg",
+            "teapot body control net: Zhang–Cheng automatic",
+            &before,
+            &zc.surface
+        )?
+        .display()
+    );
     // Highlight lines of the rim-to-side quarter of the Bézier surface (one light plane
     // cannot face a closed body of revolution): u ∈ [0, 3] (rim, body), v ∈ [0, 1].
     let quarter = |s: &NurbsSurface| Quarter(s.clone());
-    let light = LightSetup::for_surface(&quarter(&original), &HighlightSettings::default()).ok_or("no light")?;
-    let mut figure = Figure::new().with_title("teapot body, one quarter: highlight lines of the Bézier surface");
-    for (title, s, c) in [("original net", &original, Color::palette(0)), ("faired net", &faired, Color::palette(1))] {
+    let light =
+        LightSetup::for_surface(&quarter(&original), &HighlightSettings::default()).ok_or("no light")?;
+    let mut figure =
+        Figure::new().with_title("teapot body, one quarter: highlight lines of the Bézier surface");
+    for (title, s, c) in [
+        ("original net", &original, Color::palette(0)),
+        ("faired net", &faired, Color::palette(1)),
+    ] {
         let mut panel = Panel::new(title).with_equal_aspect(true).with_legend(false);
         for line in light.lines(&quarter(s), 160) {
             panel.push(Line::new(line).with_color(c).with_width(0.9));
@@ -368,13 +492,25 @@ impl curve_repr::Surface for Quarter {
     fn domain(&self) -> ((f64, f64), (f64, f64)) {
         ((0.0, 3.0), (0.0, 1.0))
     }
-    fn partial_from(&self, u: f64, v: f64, du: usize, dv: usize, su: curve_repr::Side, sv: curve_repr::Side) -> Option<Vec3> {
+    fn partial_from(
+        &self,
+        u: f64,
+        v: f64,
+        du: usize,
+        dv: usize,
+        su: curve_repr::Side,
+        sv: curve_repr::Side,
+    ) -> Option<Vec3> {
         self.0.partial_from(u, v, du, dv, su, sv)
     }
 }
 
 fn main() -> Result<(), Box<dyn Error>> {
-    let dir = PathBuf::from(std::env::args().nth(1).unwrap_or_else(|| format!("{}/target/door_panel", env!("CARGO_MANIFEST_DIR"))));
+    let dir = PathBuf::from(
+        std::env::args()
+            .nth(1)
+            .unwrap_or_else(|| format!("{}/target/door_panel", env!("CARGO_MANIFEST_DIR"))),
+    );
     std::fs::create_dir_all(&dir)?;
     door_panel(&dir)?;
     twisted_strip(&dir)?;

@@ -45,7 +45,10 @@ fn read_grid(path: &Path) -> Vec<[f64; 5]> {
 }
 
 fn fair(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fair")).args(args).output().unwrap()
+    Command::new(env!("CARGO_BIN_EXE_fair"))
+        .args(args)
+        .output()
+        .unwrap()
 }
 
 struct Run {
@@ -59,9 +62,20 @@ fn fair_surface(name: &str, extra: &[&str]) -> (Run, Vec<[f64; 5]>, PathBuf) {
     let (out, report, plot) = (dir.join("out.csv"), dir.join("report.json"), dir.join("plot.svg"));
     let mut args = vec!["surface", input.to_str().unwrap(), "--quiet"];
     args.extend_from_slice(extra);
-    args.extend(["-o", out.to_str().unwrap(), "--report", report.to_str().unwrap(), "--plot", plot.to_str().unwrap()]);
+    args.extend([
+        "-o",
+        out.to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+        "--plot",
+        plot.to_str().unwrap(),
+    ]);
     let result = fair(&args);
-    assert!(result.status.success(), "{name}: {}", String::from_utf8_lossy(&result.stderr));
+    assert!(
+        result.status.success(),
+        "{name}: {}",
+        String::from_utf8_lossy(&result.stderr)
+    );
     let report: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
     (
         Run {
@@ -88,31 +102,63 @@ fn zhang_cheng_automatic_fairs_the_grid_and_draws_highlight_lines() {
     assert_eq!(r["method"], "zhang-cheng");
     assert_eq!(r["kind"], "surface");
     assert_eq!(r["mode"], "automatic");
-    let (z0, z1) = (r["before"]["max_z"].as_f64().unwrap(), r["after"]["max_z"].as_f64().unwrap());
-    let (e0, e1) = (r["before"]["e_s"].as_f64().unwrap(), r["after"]["e_s"].as_f64().unwrap());
+    let (z0, z1) = (
+        r["before"]["max_z"].as_f64().unwrap(),
+        r["after"]["max_z"].as_f64().unwrap(),
+    );
+    let (e0, e1) = (
+        r["before"]["e_s"].as_f64().unwrap(),
+        r["after"]["e_s"].as_f64().unwrap(),
+    );
     assert!(z1 < 0.2 * z0, "max z {z0} -> {z1}");
     assert!(e1 < e0, "e_s {e0} -> {e1}");
     // Energy never rises step by step.
-    let energies: Vec<f64> = r["energy_per_step"].as_array().unwrap().iter().map(|e| e.as_f64().unwrap()).collect();
+    let energies: Vec<f64> = r["energy_per_step"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| e.as_f64().unwrap())
+        .collect();
     assert!(energies.windows(2).all(|w| w[1] <= w[0] * (1.0 + 1e-12)));
     assert_eq!(r["iterations"].as_u64().unwrap() as usize, energies.len());
     // The report's moved list names exactly the points that moved; corners never move.
-    let moved: Vec<usize> = r["moved"].as_array().unwrap().iter().map(|k| k.as_u64().unwrap() as usize).collect();
-    let actually: Vec<usize> = (0..input.len()).filter(|&k| distance(&run.output[k], &input[k]) > 0.0).collect();
+    let moved: Vec<usize> = r["moved"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|k| k.as_u64().unwrap() as usize)
+        .collect();
+    let actually: Vec<usize> = (0..input.len())
+        .filter(|&k| distance(&run.output[k], &input[k]) > 0.0)
+        .collect();
     assert_eq!(moved, actually);
     for k in [0, 7, 64, 71] {
         assert!(!moved.contains(&k));
     }
     // s_d and m_d are the displacements.
-    let m_d = run.output.iter().zip(&input).map(|(a, b)| distance(a, b)).fold(0.0, f64::max);
+    let m_d = run
+        .output
+        .iter()
+        .zip(&input)
+        .map(|(a, b)| distance(a, b))
+        .fold(0.0, f64::max);
     assert!((r["m_d"].as_f64().unwrap() - m_d).abs() <= 1e-9 * (1.0 + m_d));
     assert_eq!(r["curve"]["rows"], 9);
     assert_eq!(r["curve"]["columns"], 8);
     // The plot: highlight lines before and after, and both z_ij maps.
     let svg = std::fs::read_to_string(plot).unwrap();
     let doc = roxmltree::Document::parse(&svg).unwrap();
-    let text: String = doc.descendants().filter(|n| n.is_text()).map(|n| n.text().unwrap_or("")).collect();
-    for title in ["highlight lines, input", "highlight lines, faired", "z_ij, input", "z_ij, faired"] {
+    let text: String = doc
+        .descendants()
+        .filter(|n| n.is_text())
+        .map(|n| n.text().unwrap_or(""))
+        .collect();
+    for title in [
+        "highlight lines, input",
+        "highlight lines, faired",
+        "z_ij, input",
+        "z_ij, faired",
+    ] {
         assert!(text.contains(title), "{title}");
     }
     assert!(doc.descendants().filter(|n| n.has_tag_name("polyline")).count() > 40);
@@ -137,7 +183,10 @@ fn kjellander_preset_runs_one_point_per_step() {
 #[test]
 fn constraints_hold() {
     // Grid index k = i * 8 + j: node (3, 3) is 27, (6, 5) is 53.
-    let (run, input, _) = fair_surface("fixed", &["--method", "zhang-cheng", "--fixed", "27", "--tolerance", "0.2"]);
+    let (run, input, _) = fair_surface(
+        "fixed",
+        &["--method", "zhang-cheng", "--fixed", "27", "--tolerance", "0.2"],
+    );
     assert_eq!(distance(&run.output[27], &input[27]), 0.0);
     for (a, b) in run.output.iter().zip(&input) {
         assert!(distance(a, b) <= 0.2 * (1.0 + 1e-12));
@@ -159,9 +208,30 @@ fn bad_options_exit_2_with_one_line() {
     let input = input.to_str().unwrap();
     for args in [
         vec!["surface", input, "--method", "zhang-cheng", "--points", "0"],
-        vec!["surface", input, "--method", "zhang-cheng", "--set", "objective=thin-plate"],
-        vec!["surface", input, "--method", "zhang-cheng", "--set", "replacement=halfway"],
-        vec!["surface", input, "--method", "kjellander", "--set", "energy-tolerance=-1"],
+        vec![
+            "surface",
+            input,
+            "--method",
+            "zhang-cheng",
+            "--set",
+            "objective=thin-plate",
+        ],
+        vec![
+            "surface",
+            input,
+            "--method",
+            "zhang-cheng",
+            "--set",
+            "replacement=halfway",
+        ],
+        vec![
+            "surface",
+            input,
+            "--method",
+            "kjellander",
+            "--set",
+            "energy-tolerance=-1",
+        ],
     ] {
         let result = fair(&args);
         assert_eq!(result.status.code(), Some(2), "{args:?}");

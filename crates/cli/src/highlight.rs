@@ -105,7 +105,10 @@ impl LightSetup {
         }
         let normal = normal.try_normalize(1e-12)?;
         let centroid = points.iter().sum::<Vec3>() / points.len() as f64;
-        let (low, high) = points.iter().fold((Vec3::repeat(f64::INFINITY), Vec3::repeat(f64::NEG_INFINITY)), |(l, h), p| (l.inf(p), h.sup(p)));
+        let (low, high) = points.iter().fold(
+            (Vec3::repeat(f64::INFINITY), Vec3::repeat(f64::NEG_INFINITY)),
+            |(l, h), p| (l.inf(p), h.sup(p)),
+        );
         let diagonal = (high - low).norm();
         // Principal direction in the plane normal to the mean normal (power iteration).
         let mut direction = settings.light_direction.unwrap_or_else(|| {
@@ -144,8 +147,12 @@ impl LightSetup {
                 .filter_map(|(u, v)| setup.highlight(surface, u, v))
                 .collect()
         };
-        let (lo, hi) = values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &v| (l.min(v), h.max(v)));
-        if !(hi > lo) {
+        let (lo, hi) = values
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &v| {
+                (l.min(v), h.max(v))
+            });
+        if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
             return Some(setup);
         }
         let lines = settings.lines.max(1);
@@ -186,7 +193,11 @@ impl LightSetup {
         let (us, vs) = sample_grid(surface, samples.max(8));
         let values: Vec<Vec<f64>> = us
             .iter()
-            .map(|&u| vs.iter().map(|&v| self.highlight(surface, u, v).unwrap_or(f64::NAN)).collect())
+            .map(|&u| {
+                vs.iter()
+                    .map(|&v| self.highlight(surface, u, v).unwrap_or(f64::NAN))
+                    .collect()
+            })
             .collect();
         let mut out = Vec::new();
         for &level in &self.levels {
@@ -236,7 +247,11 @@ pub fn marching_squares(values: &[Vec<f64>], level: f64) -> Vec<Vec<[f64; 2]>> {
     let above = |x: f64| x > level;
     let crossing = |key: Key| -> [f64; 2] {
         let (a, b, along_a) = key;
-        let (p, q) = if along_a { (values[a][b], values[a + 1][b]) } else { (values[a][b], values[a][b + 1]) };
+        let (p, q) = if along_a {
+            (values[a][b], values[a + 1][b])
+        } else {
+            (values[a][b], values[a][b + 1])
+        };
         let t = ((level - p) / (q - p)).clamp(0.0, 1.0);
         if along_a {
             [a as f64 + t, b as f64]
@@ -251,7 +266,12 @@ pub fn marching_squares(values: &[Vec<f64>], level: f64) -> Vec<Vec<[f64; 2]>> {
     };
     for a in 0..rows - 1 {
         for b in 0..columns - 1 {
-            let corners = [values[a][b], values[a + 1][b], values[a + 1][b + 1], values[a][b + 1]];
+            let corners = [
+                values[a][b],
+                values[a + 1][b],
+                values[a + 1][b + 1],
+                values[a][b + 1],
+            ];
             if corners.iter().any(|c| !c.is_finite()) {
                 continue;
             }
@@ -298,7 +318,10 @@ pub fn marching_squares(values: &[Vec<f64>], level: f64) -> Vec<Vec<[f64; 2]>> {
         used.insert(start, true);
         let mut current = start;
         loop {
-            let next = links[&current].iter().copied().find(|k| !used.get(k).copied().unwrap_or(false));
+            let next = links[&current]
+                .iter()
+                .copied()
+                .find(|k| !used.get(k).copied().unwrap_or(false));
             match next {
                 Some(k) => {
                     used.insert(k, true);
@@ -330,7 +353,11 @@ mod tests {
     fn marching_squares_traces_a_circle() {
         let n = 41;
         let values: Vec<Vec<f64>> = (0..n)
-            .map(|a| (0..n).map(|b| ((a as f64 - 20.0).powi(2) + (b as f64 - 20.0).powi(2)).sqrt()).collect())
+            .map(|a| {
+                (0..n)
+                    .map(|b| ((a as f64 - 20.0).powi(2) + (b as f64 - 20.0).powi(2)).sqrt())
+                    .collect()
+            })
             .collect();
         let lines = marching_squares(&values, 12.3);
         assert_eq!(lines.len(), 1);
@@ -342,7 +369,9 @@ mod tests {
             assert!((r - 12.3).abs() < 0.05, "{r}");
         }
         // Two lines for a level that cuts the square's corners off twice (open chains).
-        let saddle: Vec<Vec<f64>> = (0..n).map(|a| (0..n).map(|b| (a as f64 - 20.0) * (b as f64 - 20.0)).collect()).collect();
+        let saddle: Vec<Vec<f64>> = (0..n)
+            .map(|a| (0..n).map(|b| (a as f64 - 20.0) * (b as f64 - 20.0)).collect())
+            .collect();
         let lines = marching_squares(&saddle, 50.0);
         assert_eq!(lines.len(), 2);
         for line in &lines {
@@ -355,10 +384,18 @@ mod tests {
     /// A bumpy height field as a bicubic surface.
     fn bump() -> BicubicSplineSurface {
         let grid: Vec<Vec<Vec3>> = (0..9)
-            .map(|i| (0..9).map(|j| {
-                let (x, y) = (i as f64, j as f64);
-                Vec3::new(x, y, 0.4 * (-((x - 4.0).powi(2) + (y - 4.0).powi(2)) / 4.0).exp() + 0.05 * x)
-            }).collect())
+            .map(|i| {
+                (0..9)
+                    .map(|j| {
+                        let (x, y) = (i as f64, j as f64);
+                        Vec3::new(
+                            x,
+                            y,
+                            0.4 * (-((x - 4.0).powi(2) + (y - 4.0).powi(2)) / 4.0).exp() + 0.05 * x,
+                        )
+                    })
+                    .collect()
+            })
             .collect();
         BicubicSplineSurface::new(&grid).unwrap()
     }
@@ -383,7 +420,11 @@ mod tests {
                         let (mut a, mut b) = (w[0], w[1]);
                         for _ in 0..60 {
                             let m = 0.5 * (a + b);
-                            if f(m).unwrap() * f(a).unwrap() <= 0.0 { b = m } else { a = m }
+                            if f(m).unwrap() * f(a).unwrap() <= 0.0 {
+                                b = m
+                            } else {
+                                a = m
+                            }
                         }
                         let u = 0.5 * (a + b);
                         // Distance between the normal line and light line k (skew-line formula).
@@ -409,7 +450,13 @@ mod tests {
         assert!(lines.len() >= setup.levels.len());
         // On a plane every normal line is parallel, so h is affine in the point and the
         // highlight lines are straight: h at a midpoint is the mean of h at the ends.
-        let flat: Vec<Vec<Vec3>> = (0..4).map(|i| (0..4).map(|j| Vec3::new(i as f64, j as f64, 0.3 * i as f64)).collect()).collect();
+        let flat: Vec<Vec<Vec3>> = (0..4)
+            .map(|i| {
+                (0..4)
+                    .map(|j| Vec3::new(i as f64, j as f64, 0.3 * i as f64))
+                    .collect()
+            })
+            .collect();
         let flat = BicubicSplineSurface::new(&flat).unwrap();
         let h = |u: f64, v: f64| setup.highlight(&flat, u, v).unwrap();
         let (a, b) = ((0.2, 0.4), (2.6, 1.9));

@@ -4,8 +4,8 @@
 
 use crate::highlight::{HighlightSettings, LightSetup};
 use crate::input::{Grid, Points};
-use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings};
 use crate::svg::{Bars, Color, ColorMap, Comb, Figure, Line, Markers, Panel};
+use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings};
 
 /// A curvature comb in the plane: points, unit normals and signed curvatures.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -199,7 +199,11 @@ impl SurfacePlot {
             );
         }
         if let Some(z) = &self.z {
-            let title = if self.z_before.is_some() { "z_ij, faired" } else { "z_ij" };
+            let title = if self.z_before.is_some() {
+                "z_ij, faired"
+            } else {
+                "z_ij"
+            };
             figure.push(
                 Panel::new(title)
                     .with_x_label("i")
@@ -215,7 +219,13 @@ impl SurfacePlot {
     /// surface cannot be built through.
     pub fn highlight_panels(&self) -> Vec<Panel> {
         let surface_of = |grid: &Grid| {
-            BicubicSplineSurface::from_flat(grid.points.clone(), grid.rows, grid.columns, &BicubicSurfaceSettings::default()).ok()
+            BicubicSplineSurface::from_flat(
+                grid.points.clone(),
+                grid.rows,
+                grid.columns,
+                &BicubicSurfaceSettings::default(),
+            )
+            .ok()
         };
         let Some(input) = self.input.as_ref().and_then(surface_of) else {
             return Vec::new();

@@ -5,4 +5,6 @@ pub mod strain_energy;
 pub use strain_energy::{Mode, Replacement, StrainEnergy, StrainEnergySettings};
 pub mod surface;
 
-pub use surface::{Objective, SurfaceFairing, SurfaceFairingResult, SurfaceFairingSettings, SurfaceMode, SurfaceStep};
+pub use surface::{
+    Objective, SurfaceFairing, SurfaceFairingResult, SurfaceFairingSettings, SurfaceMode, SurfaceStep,
+};

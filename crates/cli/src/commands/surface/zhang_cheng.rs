@@ -29,7 +29,14 @@ pub fn fair(job: &SurfaceJob) -> Result<SurfaceOutcome> {
         SurfaceFairingSettings::zhang_cheng()
     };
     let default_parametrization = if kjellander { "uniform" } else { "chord-length" };
-    settings.parametrization = match p.choice("parametrization", &["chord-length", "uniform"], default_parametrization)?.as_str() {
+    settings.parametrization = match p
+        .choice(
+            "parametrization",
+            &["chord-length", "uniform"],
+            default_parametrization,
+        )?
+        .as_str()
+    {
         "uniform" => Parametrization::Uniform,
         _ => Parametrization::ChordLength,
     };
@@ -37,7 +44,10 @@ pub fn fair(job: &SurfaceJob) -> Result<SurfaceOutcome> {
         "iterated" => Replacement::Iterated,
         _ => Replacement::Limit,
     };
-    settings.objective = match p.choice("objective", &["network", "thin-plate"], "network")?.as_str() {
+    settings.objective = match p
+        .choice("objective", &["network", "thin-plate"], "network")?
+        .as_str()
+    {
         "thin-plate" => Objective::ThinPlate,
         _ => Objective::Network,
     };
@@ -52,7 +62,8 @@ pub fn fair(job: &SurfaceJob) -> Result<SurfaceOutcome> {
     settings.fixed = job.constraints.fixed.iter().map(|&k| node(k)).collect();
     settings.max_distance = job.constraints.tolerance;
     if !job.constraints.bad_points.is_empty() {
-        settings.mode = SurfaceMode::Interactive(job.constraints.bad_points.iter().map(|&k| node(k)).collect());
+        settings.mode =
+            SurfaceMode::Interactive(job.constraints.bad_points.iter().map(|&k| node(k)).collect());
     }
     let rows: Vec<Vec<Vec3>> = grid.points.chunks(columns).map(<[Vec3]>::to_vec).collect();
     let result = SurfaceFairing::new(settings.clone())
@@ -75,11 +86,24 @@ pub fn fair(job: &SurfaceJob) -> Result<SurfaceOutcome> {
     extras.insert("boundary_steps".into(), serde_json::json!(result.boundary_steps));
     extras.insert(
         "mode".into(),
-        serde_json::json!(if matches!(settings.mode, SurfaceMode::Automatic) { "automatic" } else { "interactive" }),
+        serde_json::json!(if matches!(settings.mode, SurfaceMode::Automatic) {
+            "automatic"
+        } else {
+            "interactive"
+        }),
     );
-    extras.insert("network_energy_start".into(), serde_json::json!(result.start.energy));
-    extras.insert("energy_per_step".into(), serde_json::json!(result.history.iter().map(|s| s.energy).collect::<Vec<_>>()));
-    extras.insert("max_z_per_step".into(), serde_json::json!(result.history.iter().map(|s| s.max_z).collect::<Vec<_>>()));
+    extras.insert(
+        "network_energy_start".into(),
+        serde_json::json!(result.start.energy),
+    );
+    extras.insert(
+        "energy_per_step".into(),
+        serde_json::json!(result.history.iter().map(|s| s.energy).collect::<Vec<_>>()),
+    );
+    extras.insert(
+        "max_z_per_step".into(),
+        serde_json::json!(result.history.iter().map(|s| s.max_z).collect::<Vec<_>>()),
+    );
     Ok(SurfaceOutcome {
         grid: Grid {
             rows: grid.rows,
@@ -98,7 +122,10 @@ pub fn fair(job: &SurfaceJob) -> Result<SurfaceOutcome> {
 /// the options).
 fn from_fairing(error: fairing::Error, file: &str) -> Error {
     match error {
-        fairing::Error::Repr(source) => Error::Representation { path: file.to_string(), source },
+        fairing::Error::Repr(source) => Error::Representation {
+            path: file.to_string(),
+            source,
+        },
         other => Error::Invalid {
             path: file.to_string(),
             message: other.to_string(),

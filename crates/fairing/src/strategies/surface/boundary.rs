@@ -3,6 +3,7 @@
 
 use curve_repr::Vec3;
 
+use super::NodeMove;
 use crate::strategies::{StrainEnergy, StrainEnergySettings};
 use crate::{Constraints, Pipeline, Result};
 
@@ -11,12 +12,7 @@ use crate::{Constraints, Pipeline, Result};
 pub fn boundary_curves(u_count: usize, v_count: usize) -> Vec<Vec<(usize, usize)>> {
     let along_u = |j: usize| (0..u_count).map(|i| (i, j)).collect::<Vec<_>>();
     let along_v = |i: usize| (0..v_count).map(|j| (i, j)).collect::<Vec<_>>();
-    vec![
-        along_u(0),
-        along_u(v_count - 1),
-        along_v(0),
-        along_v(u_count - 1),
-    ]
+    vec![along_u(0), along_u(v_count - 1), along_v(0), along_v(u_count - 1)]
 }
 
 /// Fairs every boundary curve of the flat grid `points` (index i·v_count + j) in place with
@@ -32,7 +28,7 @@ pub fn fair_boundary(
     tolerance: f64,
     max_distance: Option<f64>,
     is_fixed: impl Fn(usize, usize) -> bool,
-) -> Result<(Vec<((usize, usize), Vec3)>, usize)> {
+) -> Result<(Vec<NodeMove>, usize)> {
     let mut moves = Vec::new();
     let mut steps = 0;
     for curve in boundary_curves(u_count, v_count) {
@@ -42,7 +38,11 @@ pub fn fair_boundary(
         if line.windows(2).any(|w| w[0] == w[1]) {
             continue;
         }
-        let fixed = curve.iter().enumerate().filter(|(_, &(i, j))| is_fixed(i, j)).map(|(k, _)| k);
+        let fixed = curve
+            .iter()
+            .enumerate()
+            .filter(|(_, &(i, j))| is_fixed(i, j))
+            .map(|(k, _)| k);
         let mut constraints = Constraints::default().with_fixed(fixed);
         if let Some(distance) = max_distance {
             constraints = constraints.with_tolerance(distance);

@@ -53,13 +53,17 @@ fn reciprocal_steps(knots: &[f64], k: usize) -> (f64, f64) {
 /// α_ij of Eq. 20.
 pub fn alpha(network: &Network, i: usize, j: usize) -> Vec3 {
     let (a, b) = reciprocal_steps(network.u_knots(), i);
-    network.u_tangent(i - 1, j) * (a * a) - network.u_tangent(i, j) * (b * b - a * a) - network.u_tangent(i + 1, j) * (b * b)
+    network.u_tangent(i - 1, j) * (a * a)
+        - network.u_tangent(i, j) * (b * b - a * a)
+        - network.u_tangent(i + 1, j) * (b * b)
 }
 
 /// β_ij of Eq. 20 (M^v throughout, papers/README.md).
 pub fn beta(network: &Network, i: usize, j: usize) -> Vec3 {
     let (a, b) = reciprocal_steps(network.v_knots(), j);
-    network.v_tangent(i, j - 1) * (a * a) - network.v_tangent(i, j) * (b * b - a * a) - network.v_tangent(i, j + 1) * (b * b)
+    network.v_tangent(i, j - 1) * (a * a)
+        - network.v_tangent(i, j) * (b * b - a * a)
+        - network.v_tangent(i, j + 1) * (b * b)
 }
 
 /// τ_ij of Eq. 20.
@@ -123,7 +127,13 @@ pub fn limit_targets(network: &Network, group: &[(usize, usize)]) -> Option<Vec<
         }
     }
     let deltas = solve(&matrix, &rhs, size)?;
-    Some(group.iter().zip(deltas).map(|(&(i, j), d)| network.point(i, j) + d).collect())
+    Some(
+        group
+            .iter()
+            .zip(deltas)
+            .map(|(&(i, j), d)| network.point(i, j) + d)
+            .collect(),
+    )
 }
 
 /// Gaussian elimination with partial pivoting on the leading `size` × `size` block, vector
@@ -131,18 +141,24 @@ pub fn limit_targets(network: &Network, group: &[(usize, usize)]) -> Option<Vec<
 pub(crate) fn solve(matrix: &[[f64; 4]; 4], rhs: &[Vec3; 4], size: usize) -> Option<Vec<Vec3>> {
     let mut a = *matrix;
     let mut b = *rhs;
-    let scale = a.iter().take(size).flat_map(|row| row.iter().take(size)).fold(0.0f64, |m, x| m.max(x.abs()));
+    let scale = a
+        .iter()
+        .take(size)
+        .flat_map(|row| row.iter().take(size))
+        .fold(0.0f64, |m, x| m.max(x.abs()));
     for column in 0..size {
         let pivot = (column..size).max_by(|&p, &q| a[p][column].abs().total_cmp(&a[q][column].abs()))?;
-        if !(a[pivot][column].abs() > 1e-14 * scale) {
+        let magnitude = a[pivot][column].abs();
+        if magnitude.is_nan() || magnitude <= 1e-14 * scale {
             return None;
         }
         a.swap(column, pivot);
         b.swap(column, pivot);
         for row in column + 1..size {
             let factor = a[row][column] / a[column][column];
-            for k in column..size {
-                a[row][k] -= factor * a[column][k];
+            let pivot_row = a[column];
+            for (x, p) in a[row][column..size].iter_mut().zip(&pivot_row[column..size]) {
+                *x -= factor * p;
             }
             let pivot_rhs = b[column];
             b[row] -= pivot_rhs * factor;

@@ -53,6 +53,9 @@ use crate::{project_into_ball, Error, Result, TerminationReason};
 pub use closed_form::{fixed_tangent_targets, limit_targets, Group};
 pub use network::{Network, Stiffness};
 
+/// A move of grid node (i, j) to a new position.
+pub type NodeMove = ((usize, usize), Vec3);
+
 /// How bad points are chosen.
 #[derive(Clone, Debug, PartialEq, Default)]
 pub enum SurfaceMode {
@@ -267,7 +270,7 @@ impl SurfaceFairing {
     /// interior node ([`Error::BadConstraint`]).
     pub fn run(&self, grid: &[Vec<Vec3>]) -> Result<SurfaceFairingResult> {
         let settings = &self.settings;
-        if !(settings.tolerance >= 0.0) {
+        if settings.tolerance.is_nan() || settings.tolerance < 0.0 {
             return Err(Error::BadParameter {
                 name: "tolerance",
                 value: settings.tolerance.to_string(),
@@ -275,7 +278,7 @@ impl SurfaceFairing {
             });
         }
         if let Some(d) = settings.max_distance {
-            if !(d >= 0.0) {
+            if d.is_nan() || d < 0.0 {
                 return Err(Error::BadParameter {
                     name: "max_distance",
                     value: d.to_string(),
@@ -287,7 +290,8 @@ impl SurfaceFairing {
             return Err(Error::BadParameter {
                 name: "objective",
                 value: "thin-plate".into(),
-                reason: "the thin-plate objective (Eq. 27-29) has no limit form; use the iterated replacement",
+                reason:
+                    "the thin-plate objective (Eq. 27-29) has no limit form; use the iterated replacement",
             });
         }
         let start_time = Instant::now();
@@ -303,7 +307,11 @@ impl SurfaceFairing {
                 reason: "surface fairing needs at least 3 × 3 points (an interior point)",
             });
         }
-        if let Some(&(i, j)) = settings.fixed.iter().find(|&&(i, j)| i >= u_count || j >= v_count) {
+        if let Some(&(i, j)) = settings
+            .fixed
+            .iter()
+            .find(|&&(i, j)| i >= u_count || j >= v_count)
+        {
             return Err(Error::BadConstraint {
                 reason: format!("fixed node ({i}, {j}) is outside the {u_count} × {v_count} grid"),
             });
@@ -314,7 +322,9 @@ impl SurfaceFairing {
                 .find(|&&(i, j)| i == 0 || j == 0 || i + 1 >= u_count || j + 1 >= v_count)
             {
                 return Err(Error::BadConstraint {
-                    reason: format!("bad point ({i}, {j}) is not an interior node of the {u_count} × {v_count} grid"),
+                    reason: format!(
+                        "bad point ({i}, {j}) is not an interior node of the {u_count} × {v_count} grid"
+                    ),
                 });
             }
         }
@@ -367,7 +377,11 @@ impl SurfaceFairing {
             let (reference, enough) = if settings.one_point_per_step {
                 let span = run.candidate_count().max(1);
                 let k = history.len();
-                let reference = if k > span { history[k - 1 - span].energy } else { start.energy };
+                let reference = if k > span {
+                    history[k - 1 - span].energy
+                } else {
+                    start.energy
+                };
                 (reference, k >= span)
             } else {
                 (before, true)
@@ -425,7 +439,11 @@ impl Run<'_> {
                 .filter(|&(i, j)| self.is_movable(i, j))
                 .count(),
             SurfaceMode::Interactive(list) => {
-                let mut list: Vec<(usize, usize)> = list.iter().copied().filter(|&(i, j)| self.is_movable(i, j)).collect();
+                let mut list: Vec<(usize, usize)> = list
+                    .iter()
+                    .copied()
+                    .filter(|&(i, j)| self.is_movable(i, j))
+                    .collect();
                 list.sort_unstable();
                 list.dedup();
                 list.len()
@@ -462,7 +480,7 @@ impl Run<'_> {
     /// (automatic mode) and in the distance limit; fixed nodes are never in a group. Returns
     /// the moves made and whether a region cut any of them short. A group move that would
     /// raise the network energy (possible only when a region cuts a pair or block) is undone.
-    fn move_group(&mut self, group: &[(usize, usize)]) -> Result<(Vec<((usize, usize), Vec3)>, bool)> {
+    fn move_group(&mut self, group: &[(usize, usize)]) -> Result<(Vec<NodeMove>, bool)> {
         let targets = self.targets(group)?;
         let v_count = self.shape().1;
         let mut moves = Vec::new();
@@ -490,7 +508,10 @@ impl Run<'_> {
         }
         let before = self.network.energy();
         self.network.move_points(&moves)?;
-        if group.len() > 1 && self.settings.objective == Objective::Network && self.network.energy() > before * (1.0 + 4.0 * f64::EPSILON) {
+        if group.len() > 1
+            && self.settings.objective == Objective::Network
+            && self.network.energy() > before * (1.0 + 4.0 * f64::EPSILON)
+        {
             self.network.move_points(&undo)?;
             return Ok((Vec::new(), true));
         }
@@ -502,7 +523,7 @@ impl Run<'_> {
 
     /// One step; returns the moves (last position of each node) and whether the step counts
     /// for the tolerance test.
-    fn step(&mut self) -> Result<(Vec<((usize, usize), Vec3)>, bool)> {
+    fn step(&mut self) -> Result<(Vec<NodeMove>, bool)> {
         let (u_count, v_count) = self.shape();
         let candidates: Vec<(usize, usize)> = match &self.settings.mode {
             SurfaceMode::Automatic => (1..u_count - 1)
@@ -510,14 +531,21 @@ impl Run<'_> {
                 .filter(|&(i, j)| self.is_movable(i, j))
                 .collect(),
             SurfaceMode::Interactive(list) => {
-                let mut list: Vec<(usize, usize)> = list.iter().copied().filter(|&(i, j)| self.is_movable(i, j)).collect();
+                let mut list: Vec<(usize, usize)> = list
+                    .iter()
+                    .copied()
+                    .filter(|&(i, j)| self.is_movable(i, j))
+                    .collect();
                 list.sort_unstable();
                 list.dedup();
                 list
             }
         };
         // Steps 1.2 / 2.3: sort by z_ij, largest first (ties by index, for reproducibility).
-        let mut order: Vec<((usize, usize), f64)> = candidates.iter().map(|&(i, j)| ((i, j), self.network.z(i, j))).collect();
+        let mut order: Vec<((usize, usize), f64)> = candidates
+            .iter()
+            .map(|&(i, j)| ((i, j), self.network.z(i, j)))
+            .collect();
         order.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
         let mut all_moves = Vec::new();
         if self.settings.one_point_per_step {
@@ -545,7 +573,7 @@ impl Run<'_> {
         }
         // Keep each node's last position only.
         let mut seen = vec![false; u_count * v_count];
-        let mut last: Vec<((usize, usize), Vec3)> = Vec::with_capacity(all_moves.len());
+        let mut last: Vec<NodeMove> = Vec::with_capacity(all_moves.len());
         for (node, p) in all_moves.into_iter().rev() {
             let slot = &mut seen[node.0 * v_count + node.1];
             if !*slot {

@@ -175,12 +175,24 @@ impl Network {
 
     fn u_segment(&self, i: usize, j: usize) -> f64 {
         let (a, b) = (i * self.v_count + j, (i + 1) * self.v_count + j);
-        hermite_energy(self.points[a], self.points[b], self.u_tangents[a], self.u_tangents[b], self.u_stiffness.steps[i])
+        hermite_energy(
+            self.points[a],
+            self.points[b],
+            self.u_tangents[a],
+            self.u_tangents[b],
+            self.u_stiffness.steps[i],
+        )
     }
 
     fn v_segment(&self, i: usize, j: usize) -> f64 {
         let (a, b) = (i * self.v_count + j, i * self.v_count + j + 1);
-        hermite_energy(self.points[a], self.points[b], self.v_tangents[a], self.v_tangents[b], self.v_stiffness.steps[j])
+        hermite_energy(
+            self.points[a],
+            self.points[b],
+            self.v_tangents[a],
+            self.v_tangents[b],
+            self.v_stiffness.steps[j],
+        )
     }
 
     /// (m + 1, n + 1).
@@ -220,13 +232,21 @@ impl Network {
 
     /// ∂³S/∂u³(u_i+, v_j) − ∂³S/∂u³(u_i−, v_j) at an interior node.
     pub fn u_jump(&self, i: usize, j: usize) -> Vec3 {
-        let (p, m, h) = (|k: usize| self.point(k, j), |k: usize| self.u_tangent(k, j), &self.u_stiffness.steps);
+        let (p, m, h) = (
+            |k: usize| self.point(k, j),
+            |k: usize| self.u_tangent(k, j),
+            &self.u_stiffness.steps,
+        );
         third(p(i), p(i + 1), m(i), m(i + 1), h[i]) - third(p(i - 1), p(i), m(i - 1), m(i), h[i - 1])
     }
 
     /// ∂³S/∂v³(u_i, v_j+) − ∂³S/∂v³(u_i, v_j−) at an interior node.
     pub fn v_jump(&self, i: usize, j: usize) -> Vec3 {
-        let (p, m, h) = (|k: usize| self.point(i, k), |k: usize| self.v_tangent(i, k), &self.v_stiffness.steps);
+        let (p, m, h) = (
+            |k: usize| self.point(i, k),
+            |k: usize| self.v_tangent(i, k),
+            &self.v_stiffness.steps,
+        );
         third(p(j), p(j + 1), m(j), m(j + 1), h[j]) - third(p(j - 1), p(j), m(j - 1), m(j), h[j - 1])
     }
 
@@ -260,7 +280,10 @@ impl Network {
         for &((i, j), position) in moves {
             if i >= self.u_count || j >= self.v_count {
                 return Err(Error::BadConstraint {
-                    reason: format!("node ({i}, {j}) is outside the {} × {} grid", self.u_count, self.v_count),
+                    reason: format!(
+                        "node ({i}, {j}) is outside the {} × {} grid",
+                        self.u_count, self.v_count
+                    ),
                 });
             }
             let index = i * self.v_count + j;
@@ -294,14 +317,20 @@ impl Network {
             self.v_tangents[i * vc + v_lo + offset] += delta * r;
         }
         // Segments touching a changed tangent or the moved point.
-        let (u_lo, u_hi) = ((*u_lo).min(i).saturating_sub(1), (u_lo + u_values.len()).max(i + 1).min(self.u_count - 1));
+        let (u_lo, u_hi) = (
+            (*u_lo).min(i).saturating_sub(1),
+            (u_lo + u_values.len()).max(i + 1).min(self.u_count - 1),
+        );
         for k in u_lo..u_hi {
             let e = self.u_segment(k, j);
             let slot = &mut self.u_segment_energy[k * vc + j];
             self.energy += e - *slot;
             *slot = e;
         }
-        let (v_lo, v_hi) = ((*v_lo).min(j).saturating_sub(1), (v_lo + v_values.len()).max(j + 1).min(self.v_count - 1));
+        let (v_lo, v_hi) = (
+            (*v_lo).min(j).saturating_sub(1),
+            (v_lo + v_values.len()).max(j + 1).min(self.v_count - 1),
+        );
         for k in v_lo..v_hi {
             let e = self.v_segment(i, k);
             let slot = &mut self.v_segment_energy[i * vc + k];

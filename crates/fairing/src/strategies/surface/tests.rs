@@ -52,10 +52,22 @@ fn local_energy(network: &Network, group: &[(usize, usize)], positions: &[Vec3])
     segments_v.dedup();
     let mut e = 0.0;
     for (l, j) in segments_u {
-        e += hermite_energy(point(l, j), point(l + 1, j), network.u_tangent(l, j), network.u_tangent(l + 1, j), uk[l + 1] - uk[l]);
+        e += hermite_energy(
+            point(l, j),
+            point(l + 1, j),
+            network.u_tangent(l, j),
+            network.u_tangent(l + 1, j),
+            uk[l + 1] - uk[l],
+        );
     }
     for (i, k) in segments_v {
-        e += hermite_energy(point(i, k), point(i, k + 1), network.v_tangent(i, k), network.v_tangent(i, k + 1), vk[k + 1] - vk[k]);
+        e += hermite_energy(
+            point(i, k),
+            point(i, k + 1),
+            network.v_tangent(i, k),
+            network.v_tangent(i, k + 1),
+            vk[k + 1] - vk[k],
+        );
     }
     e
 }
@@ -80,7 +92,12 @@ fn norm(g: &[Vec3]) -> f64 {
     g.iter().map(|v| v.norm_squared()).sum::<f64>().sqrt()
 }
 
-const GROUPS: [&[(usize, usize)]; 4] = [&[(3, 2)], &[(3, 2), (4, 2)], &[(4, 3), (4, 4)], &[(3, 2), (4, 2), (3, 3), (4, 3)]];
+const GROUPS: [&[(usize, usize)]; 4] = [
+    &[(3, 2)],
+    &[(3, 2), (4, 2)],
+    &[(4, 3), (4, 4)],
+    &[(3, 2), (4, 2), (3, 3), (4, 3)],
+];
 
 #[test]
 fn eq20_23_25_minimise_their_objectives_with_tangents_held() {
@@ -91,15 +108,27 @@ fn eq20_23_25_minimise_their_objectives_with_tangents_held() {
         let f = |p: &[Vec3]| local_energy(&network, group, p);
         let g_target = norm(&gradient(&f, &targets, 1e-5));
         let g_original = norm(&gradient(&f, &original, 1e-5));
-        assert!(g_original > 1e-2, "{group:?}: the bump must be visible, |grad| {g_original}");
-        assert!(g_target < 1e-7 * g_original, "{group:?}: |grad| {g_target} vs {g_original}");
+        assert!(
+            g_original > 1e-2,
+            "{group:?}: the bump must be visible, |grad| {g_original}"
+        );
+        assert!(
+            g_target < 1e-7 * g_original,
+            "{group:?}: |grad| {g_target} vs {g_original}"
+        );
         // And a minimum, not a saddle: every nearby point is worse.
         let e = f(&targets);
         for k in 0..24 {
             let perturbed: Vec<Vec3> = targets
                 .iter()
                 .enumerate()
-                .map(|(a, p)| p + Vec3::new(((k + a) as f64).sin(), ((3 * k + a) as f64).cos(), (k as f64 * 0.37).sin()) * 1e-3)
+                .map(|(a, p)| {
+                    p + Vec3::new(
+                        ((k + a) as f64).sin(),
+                        ((3 * k + a) as f64).cos(),
+                        (k as f64 * 0.37).sin(),
+                    ) * 1e-3
+                })
                 .collect();
             assert!(f(&perturbed) > e, "{group:?}");
         }
@@ -114,7 +143,11 @@ fn eq20_as_printed_is_the_one_point_case() {
     let (ua, ub) = (1.0 / (uk[i] - uk[i - 1]), 1.0 / (uk[i + 1] - uk[i]));
     let (va, vb) = (1.0 / (vk[j] - vk[j - 1]), 1.0 / (vk[j + 1] - vk[j]));
     let p = |a, b| network.point(a, b);
-    let printed = ((p(i - 1, j) * ua.powi(3) + p(i + 1, j) * ub.powi(3) + p(i, j - 1) * va.powi(3) + p(i, j + 1) * vb.powi(3)) * 2.0
+    let printed = ((p(i - 1, j) * ua.powi(3)
+        + p(i + 1, j) * ub.powi(3)
+        + p(i, j - 1) * va.powi(3)
+        + p(i, j + 1) * vb.powi(3))
+        * 2.0
         + closed_form::alpha(&network, i, j)
         + closed_form::beta(&network, i, j))
         / closed_form::tau(&network, i, j);
@@ -127,11 +160,17 @@ fn limits_zero_the_jump_sum_with_tangents_resolved() {
     let (_, network) = network_of(&bumpy(8, 7));
     for group in GROUPS {
         let targets = limit_targets(&network, group).unwrap();
-        let before: f64 = group.iter().map(|&(i, j)| (network.u_jump(i, j) + network.v_jump(i, j)).norm()).sum();
+        let before: f64 = group
+            .iter()
+            .map(|&(i, j)| (network.u_jump(i, j) + network.v_jump(i, j)).norm())
+            .sum();
         let mut moved = network.clone();
         let moves: Vec<_> = group.iter().copied().zip(targets).collect();
         moved.move_points(&moves).unwrap();
-        let after: f64 = group.iter().map(|&(i, j)| (moved.u_jump(i, j) + moved.v_jump(i, j)).norm()).sum();
+        let after: f64 = group
+            .iter()
+            .map(|&(i, j)| (moved.u_jump(i, j) + moved.v_jump(i, j)).norm())
+            .sum();
         assert!(before > 1e-1, "{group:?}");
         assert!(after < 1e-10 * before, "{group:?}: {after} vs {before}");
         // The limit minimises the whole network energy over the group.
@@ -159,13 +198,20 @@ fn iterating_eq20_converges_to_the_eq21_limit() {
         network.move_points(&[(node, next)]).unwrap();
     }
     let reached = network.point(node.0, node.1);
-    assert!((reached - limit).norm() < 1e-9 * (limit - start).norm(), "{reached:?} vs {limit:?}");
+    assert!(
+        (reached - limit).norm() < 1e-9 * (limit - start).norm(),
+        "{reached:?} vs {limit:?}"
+    );
 }
 
 #[test]
 fn network_matches_the_surface_after_moves() {
     let (mut surface, mut network) = network_of(&bumpy(9, 8));
-    let moves = [((2, 3), Vec3::new(1.0, 2.0, 0.5)), ((6, 3), Vec3::new(7.0, 2.5, -0.2)), ((6, 5), Vec3::new(6.5, 4.0, 0.1))];
+    let moves = [
+        ((2, 3), Vec3::new(1.0, 2.0, 0.5)),
+        ((6, 3), Vec3::new(7.0, 2.5, -0.2)),
+        ((6, 5), Vec3::new(6.5, 4.0, 0.1)),
+    ];
     network.move_points(&moves).unwrap();
     surface.move_points(&moves).unwrap();
     let e = surface.network_strain_energy();
@@ -219,15 +265,28 @@ fn thin_plate_targets_minimise_eq27_29() {
     for group in GROUPS {
         let targets = thin_plate_targets(&surface, group).unwrap().unwrap();
         let energy = |p: &[Vec3]| {
-            let deltas = group.iter().zip(p).map(|(&(i, j), q)| q - surface.point(i, j).unwrap()).collect();
-            let displaced = Displaced { base: &surface, group, deltas };
-            let mut cells: Vec<(usize, usize)> = group.iter().flat_map(|&(i, j)| [(i - 1, j - 1), (i - 1, j), (i, j - 1), (i, j)]).collect();
+            let deltas = group
+                .iter()
+                .zip(p)
+                .map(|(&(i, j), q)| q - surface.point(i, j).unwrap())
+                .collect();
+            let displaced = Displaced {
+                base: &surface,
+                group,
+                deltas,
+            };
+            let mut cells: Vec<(usize, usize)> = group
+                .iter()
+                .flat_map(|&(i, j)| [(i - 1, j - 1), (i - 1, j), (i, j - 1), (i, j)])
+                .collect();
             cells.sort_unstable();
             cells.dedup();
             let (uk, vk) = (surface.u_knots(), surface.v_knots());
             cells
                 .iter()
-                .map(|&(l, k)| thin_plate_cell(&displaced, (uk[l], uk[l + 1]), (vk[k], vk[k + 1]), &rule).unwrap())
+                .map(|&(l, k)| {
+                    thin_plate_cell(&displaced, (uk[l], uk[l + 1]), (vk[k], vk[k + 1]), &rule).unwrap()
+                })
                 .sum::<f64>()
         };
         let original: Vec<Vec3> = group.iter().map(|&(i, j)| surface.point(i, j).unwrap()).collect();
@@ -242,7 +301,12 @@ fn grouping_follows_step_1_3() {
     let groups = group_bad_points(&[(3, 3), (3, 4), (5, 5), (6, 6), (2, 2), (8, 1)]);
     assert_eq!(
         groups,
-        vec![vec![(3, 3), (3, 4)], vec![(5, 5), (6, 5), (5, 6), (6, 6)], vec![(2, 2)], vec![(8, 1)]]
+        vec![
+            vec![(3, 3), (3, 4)],
+            vec![(5, 5), (6, 5), (5, 6), (6, 6)],
+            vec![(2, 2)],
+            vec![(8, 1)]
+        ]
     );
 }
 
@@ -253,7 +317,11 @@ fn spheres_hold(result: &SurfaceFairingResult) {
         for j in 1..v_count - 1 {
             let k = i * v_count + j;
             let moved = (result.surface.points()[k] - result.original[k]).norm();
-            assert!(moved <= radii[k] * (1.0 + 1e-12), "({i}, {j}) moved {moved} > {}", radii[k]);
+            assert!(
+                moved <= radii[k] * (1.0 + 1e-12),
+                "({i}, {j}) moved {moved} > {}",
+                radii[k]
+            );
         }
     }
 }
@@ -268,7 +336,11 @@ fn automatic_energy_never_rises_and_points_stay_in_their_spheres() {
         let result = SurfaceFairing::new(settings.clone()).run(&bumpy(10, 9)).unwrap();
         let mut previous = result.start.energy;
         for step in &result.history {
-            assert!(step.energy <= previous * (1.0 + 1e-12), "{settings:?}: {} > {previous}", step.energy);
+            assert!(
+                step.energy <= previous * (1.0 + 1e-12),
+                "{settings:?}: {} > {previous}",
+                step.energy
+            );
             previous = step.energy;
         }
         assert!(previous < 0.9 * result.start.energy, "{settings:?}");
@@ -289,7 +361,9 @@ fn automatic_energy_never_rises_and_points_stay_in_their_spheres() {
 #[test]
 fn fixed_points_and_distance_limit_hold() {
     let fixed = [(3, 2), (0, 4), (4, 4)];
-    let settings = SurfaceFairingSettings::zhang_cheng().with_fixed(fixed).with_max_distance(0.05);
+    let settings = SurfaceFairingSettings::zhang_cheng()
+        .with_fixed(fixed)
+        .with_max_distance(0.05);
     let grid = bumpy(10, 9);
     let result = SurfaceFairing::new(settings).run(&grid).unwrap();
     for (i, j) in fixed {
@@ -326,12 +400,22 @@ fn interactive_moves_only_the_named_points() {
                 }
             }
         }
-        assert!(result.moved.iter().all(|node| allowed.contains(node)), "{objective:?}: {:?}", result.moved);
+        assert!(
+            result.moved.iter().all(|node| allowed.contains(node)),
+            "{objective:?}: {:?}",
+            result.moved
+        );
         assert!(!result.moved.contains(&(3, 3)) && !result.moved.contains(&(6, 2)));
         assert!(!result.moved.is_empty());
         let before = BicubicSplineSurface::new(&grid).unwrap();
-        let z_before = bad.iter().map(|&(i, j)| before.z(i, j).unwrap()).fold(0.0, f64::max);
-        let z_after = bad.iter().map(|&(i, j)| result.surface.z(i, j).unwrap()).fold(0.0, f64::max);
+        let z_before = bad
+            .iter()
+            .map(|&(i, j)| before.z(i, j).unwrap())
+            .fold(0.0, f64::max);
+        let z_after = bad
+            .iter()
+            .map(|&(i, j)| result.surface.z(i, j).unwrap())
+            .fold(0.0, f64::max);
         assert!(z_after < 0.5 * z_before, "{objective:?}: {z_after} vs {z_before}");
     }
 }
@@ -340,13 +424,25 @@ fn interactive_moves_only_the_named_points() {
 fn bad_settings_are_errors() {
     let grid = bumpy(5, 5);
     let run = |s: SurfaceFairingSettings| SurfaceFairing::new(s).run(&grid);
-    assert!(matches!(run(SurfaceFairingSettings::default().with_tolerance(f64::NAN)), Err(Error::BadParameter { .. })));
-    assert!(matches!(run(SurfaceFairingSettings::default().with_fixed([(5, 0)])), Err(Error::BadConstraint { .. })));
+    assert!(matches!(
+        run(SurfaceFairingSettings::default().with_tolerance(f64::NAN)),
+        Err(Error::BadParameter { .. })
+    ));
+    assert!(matches!(
+        run(SurfaceFairingSettings::default().with_fixed([(5, 0)])),
+        Err(Error::BadConstraint { .. })
+    ));
     assert!(matches!(
         run(SurfaceFairingSettings::default().with_mode(SurfaceMode::Interactive(vec![(0, 2)]))),
         Err(Error::BadConstraint { .. })
     ));
-    assert!(matches!(run(SurfaceFairingSettings::default().with_objective(Objective::ThinPlate)), Err(Error::BadParameter { .. })));
-    let small = vec![vec![Vec3::zeros(), Vec3::x()], vec![Vec3::y(), Vec3::new(1.0, 1.0, 0.0)]];
+    assert!(matches!(
+        run(SurfaceFairingSettings::default().with_objective(Objective::ThinPlate)),
+        Err(Error::BadParameter { .. })
+    ));
+    let small = vec![
+        vec![Vec3::zeros(), Vec3::x()],
+        vec![Vec3::y(), Vec3::new(1.0, 1.0, 0.0)],
+    ];
     assert!(SurfaceFairing::default().run(&small).is_err());
 }

@@ -32,7 +32,11 @@ const GAUSS: [(f64, f64); 4] = [
 /// The Hermite value function of the corner at offset `far` (0: φ0, 1: ψ0) and its first and
 /// second derivatives at s.
 pub fn value_basis(far: bool, s: f64) -> [f64; 3] {
-    let near = [1.0 - 3.0 * s * s + 2.0 * s * s * s, -6.0 * s + 6.0 * s * s, -6.0 + 12.0 * s];
+    let near = [
+        1.0 - 3.0 * s * s + 2.0 * s * s * s,
+        -6.0 * s + 6.0 * s * s,
+        -6.0 + 12.0 * s,
+    ];
     if far {
         [1.0 - near[0], -near[1], -near[2]]
     } else {
@@ -43,7 +47,10 @@ pub fn value_basis(far: bool, s: f64) -> [f64; 3] {
 /// The thin-plate minimiser (Eq. 27 / 28 / 29) for a group of interior nodes of `surface`:
 /// `Ok(None)` for an empty or oversized group, a node outside the interior, or a singular
 /// system; errors only on a surface that cannot be evaluated.
-pub fn thin_plate_targets(surface: &BicubicSplineSurface, group: &[(usize, usize)]) -> Result<Option<Vec<Vec3>>> {
+pub fn thin_plate_targets(
+    surface: &BicubicSplineSurface,
+    group: &[(usize, usize)],
+) -> Result<Option<Vec<Vec3>>> {
     let (u_count, v_count) = surface.shape();
     if group.is_empty()
         || group.len() > 4
@@ -77,7 +84,9 @@ pub fn thin_plate_targets(surface: &BicubicSplineSurface, group: &[(usize, usize
                     surface
                         .partial(u, v, du, dv)
                         .filter(|p| p.iter().all(|c| c.is_finite()))
-                        .ok_or(crate::Error::NonFiniteMove { index: l * v_count + k })
+                        .ok_or(crate::Error::NonFiniteMove {
+                            index: l * v_count + k,
+                        })
                 };
                 let (suu, suv, svv) = (second(2, 0)?, second(1, 1)?, second(0, 2)?);
                 let weight = ws * wt * hu * hv;
@@ -85,7 +94,14 @@ pub fn thin_plate_targets(surface: &BicubicSplineSurface, group: &[(usize, usize
                     .iter()
                     .map(|&(a, far_u, far_v)| {
                         let (f, g) = (value_basis(far_u, s), value_basis(far_v, t));
-                        (a, [f[2] * g[0] / (hu * hu), f[1] * g[1] / (hu * hv), f[0] * g[2] / (hv * hv)])
+                        (
+                            a,
+                            [
+                                f[2] * g[0] / (hu * hu),
+                                f[1] * g[1] / (hu * hv),
+                                f[0] * g[2] / (hv * hv),
+                            ],
+                        )
                     })
                     .collect();
                 for &(a, la) in &operators {
