@@ -446,3 +446,72 @@ fn bad_settings_are_errors() {
     ];
     assert!(SurfaceFairing::default().run(&small).is_err());
 }
+
+#[test]
+fn boundary_curves_are_faired_by_the_curve_method_first() {
+    use crate::strategies::{StrainEnergy, StrainEnergySettings};
+    use crate::{Constraints, Pipeline};
+    let mut grid = bumpy(9, 8);
+    // Put noise on the boundary so that step 2.1 has something to do.
+    for (j, p) in grid[0].iter_mut().enumerate() {
+        p.z += 0.05 * ((j * 7) as f64).sin();
+    }
+    for (i, row) in grid.iter_mut().enumerate() {
+        row[7].z += 0.04 * ((i * 5) as f64).cos();
+    }
+    let settings = SurfaceFairingSettings::zhang_cheng().with_max_steps(0);
+    let result = SurfaceFairing::new(settings).run(&grid).unwrap();
+    assert!(result.boundary_steps > 0);
+    let faired = result.surface.grid();
+    for curve in boundary::boundary_curves(9, 8) {
+        let line: Vec<Vec3> = curve.iter().map(|&(i, j)| grid[i][j]).collect();
+        let expected = Pipeline::new(StrainEnergy::<3>::new(StrainEnergySettings::default()))
+            .with_constraints(Constraints::default())
+            .run(line)
+            .unwrap()
+            .points;
+        for (&(i, j), p) in curve.iter().zip(&expected) {
+            assert_eq!(faired[i][j], *p, "({i}, {j})");
+        }
+    }
+    // Nothing inside moved (no step was allowed).
+    for i in 1..8 {
+        for j in 1..7 {
+            assert_eq!(faired[i][j], grid[i][j]);
+        }
+    }
+}
+
+mod properties {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(24))]
+
+        /// Random 4–7 × 4–7 grids with random heights: the automatic run never raises the
+        /// energy, keeps every point in its sphere and every fixed node in place.
+        #[test]
+        fn automatic_runs_keep_their_promises(
+            rows in 4usize..8,
+            columns in 4usize..8,
+            heights in proptest::collection::vec(-1.0f64..1.0, 49),
+            fixed_index in 0usize..49,
+            kjellander in any::<bool>(),
+        ) {
+            let grid: Vec<Vec<Vec3>> = (0..rows)
+                .map(|i| (0..columns).map(|j| Vec3::new(i as f64 * (1.0 + 0.1 * j as f64), j as f64, heights[i * 7 + j])).collect())
+                .collect();
+            let fixed = (fixed_index % rows, (fixed_index / 7) % columns);
+            let base = if kjellander { SurfaceFairingSettings::kjellander().with_max_steps(300) } else { SurfaceFairingSettings::zhang_cheng() };
+            let result = SurfaceFairing::new(base.with_fixed([fixed])).run(&grid).unwrap();
+            let mut previous = result.start.energy;
+            for step in &result.history {
+                prop_assert!(step.energy <= previous * (1.0 + 1e-12) + 1e-300);
+                previous = step.energy;
+            }
+            spheres_hold(&result);
+            prop_assert_eq!(result.surface.point(fixed.0, fixed.1).unwrap(), grid[fixed.0][fixed.1]);
+        }
+    }
+}
