@@ -45,7 +45,7 @@ mod tests;
 use std::collections::BTreeSet;
 use std::time::{Duration, Instant};
 
-use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings, Parametrization, Vec3};
+use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings, NurbsSurface, Parametrization, Vec3};
 
 use crate::strategies::Replacement;
 use crate::{project_into_ball, Error, Result, TerminationReason};
@@ -232,6 +232,42 @@ pub struct SurfaceFairingResult {
 #[derive(Clone, Debug, Default)]
 pub struct SurfaceFairing {
     settings: SurfaceFairingSettings,
+}
+
+impl SurfaceFairing {
+    /// Fairs a B-spline or NURBS surface through the bicubic spline surface interpolating its
+    /// control points (Zhang–Cheng §4.5): the control net is faired as a grid, and the result
+    /// is the surface of the same degrees, knots and weights on the faired net. Fails as
+    /// [`run`](Self::run) does on the net. O(as `run`).
+    pub fn run_control_net(&self, surface: &NurbsSurface) -> Result<(NurbsSurface, SurfaceFairingResult)> {
+        let (rows, columns) = surface.net_size();
+        let net: Vec<Vec<Vec3>> = (0..rows)
+            .map(|i| {
+                (0..columns)
+                    .map(|j| surface.control_point(i, j).unwrap_or_default())
+                    .collect()
+            })
+            .collect();
+        let weights: Vec<Vec<f64>> = (0..rows)
+            .map(|i| {
+                (0..columns)
+                    .map(|j| surface.weight(i, j).unwrap_or(1.0))
+                    .collect()
+            })
+            .collect();
+        let result = self.run(&net)?;
+        let (degree_u, degree_v) = surface.degrees();
+        let (knots_u, knots_v) = surface.knot_vectors();
+        let faired = NurbsSurface::new(
+            degree_u,
+            degree_v,
+            knots_u.knots().to_vec(),
+            knots_v.knots().to_vec(),
+            result.surface.grid(),
+            weights,
+        )?;
+        Ok((faired, result))
+    }
 }
 
 /// State of one run.

@@ -515,3 +515,38 @@ mod properties {
         }
     }
 }
+
+#[test]
+fn a_nurbs_surface_is_faired_through_its_control_net() {
+    use curve_repr::NurbsSurface;
+    let net = bumpy(7, 6);
+    let weights: Vec<Vec<f64>> = (0..7)
+        .map(|i| (0..6).map(|j| 1.0 + 0.1 * ((i + j) % 3) as f64).collect())
+        .collect();
+    let knots_u = vec![0.0, 0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 4.0, 4.0, 4.0, 4.0];
+    let knots_v = vec![0.0, 0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 3.0, 3.0, 3.0];
+    let nurbs = NurbsSurface::new(
+        3,
+        3,
+        knots_u.clone(),
+        knots_v.clone(),
+        net.clone(),
+        weights.clone(),
+    )
+    .unwrap();
+    let fairing = SurfaceFairing::new(SurfaceFairingSettings::zhang_cheng());
+    let (faired, result) = fairing.run_control_net(&nurbs).unwrap();
+    let direct = fairing.run(&net).unwrap();
+    assert!(!result.moved.is_empty());
+    assert_eq!(faired.knot_vectors().0.knots(), &knots_u[..]);
+    assert_eq!(faired.knot_vectors().1.knots(), &knots_v[..]);
+    for i in 0..7 {
+        for j in 0..6 {
+            assert_eq!(
+                faired.control_point(i, j).unwrap(),
+                direct.surface.point(i, j).unwrap()
+            );
+            assert_eq!(faired.weight(i, j).unwrap(), weights[i][j]);
+        }
+    }
+}
