@@ -154,7 +154,7 @@ fn summary(
     let e1 = energy_of(after.points(), rows, columns)?;
     let (z0, z1) = (before.max_z(), surface(&after.grid())?.max_z());
     println!(
-        "{name:<34} steps {:>6} (+{:>4} boundary)  e_s {:>11.4e} -> {:>11.4e} ({:>5.1} %)  max z {:>10.4e} -> {:>10.4e} (-{:>5.1} %)  moved {:>3}  {:?}",
+        "{name:<34} steps {:>6} (+{:>4} boundary)  e_s {:>11.4e} -> {:>11.4e} ({:>5.1} %)  max z {:>10.4e} -> {:>10.4e} ({:>+6.1} %)  moved {:>3}  {:?}",
         result.steps,
         result.boundary_steps,
         e0,
@@ -162,13 +162,13 @@ fn summary(
         100.0 * (e0 - e1) / e0,
         z0,
         z1,
-        100.0 * (z0 - z1) / z0,
+        100.0 * (z1 - z0) / z0,
         result.moved.len(),
         result.termination,
     );
     if let Some(clean) = clean {
         println!(
-            "{:<34} RMS distance to the bump-free net: {:.4} mm before, {:.4} mm after",
+            "{:<34} RMS distance to the clean (bump-free) net: {:.4} before, {:.4} after",
             "",
             rms(before.points(), clean),
             rms(after.points(), clean)

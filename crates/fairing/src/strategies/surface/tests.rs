@@ -540,13 +540,13 @@ fn a_nurbs_surface_is_faired_through_its_control_net() {
     assert!(!result.moved.is_empty());
     assert_eq!(faired.knot_vectors().0.knots(), &knots_u[..]);
     assert_eq!(faired.knot_vectors().1.knots(), &knots_v[..]);
-    for i in 0..7 {
-        for j in 0..6 {
+    for (i, row) in weights.iter().enumerate() {
+        for (j, &w) in row.iter().enumerate() {
             assert_eq!(
                 faired.control_point(i, j).unwrap(),
                 direct.surface.point(i, j).unwrap()
             );
-            assert_eq!(faired.weight(i, j).unwrap(), weights[i][j]);
+            assert_eq!(faired.weight(i, j).unwrap(), w);
         }
     }
 }
