@@ -1,8 +1,15 @@
 //! Zhang–Cheng §5's first experiment, rebuilt: a smooth 13 × 13 "door panel" with three local
 //! bumps (one point, an adjacent pair, a diagonal pair), faired automatically and
 //! interactively by Zhang–Cheng and by Kjellander's one-point method; then a twisted 26 × 9
-//! strip with noise, and the Utah teapot's body control net (data/surface_utah_teapot), a
-//! real Bézier net faired through the bicubic interpolant of its control points (§4.5).
+//! strip with noise, the Utah teapot's body control net (data/surface_utah_teapot), a real
+//! Bézier net faired through the bicubic interpolant of its control points (§4.5), and the
+//! pixel-digitised PX121 hull offsets (data/hull_px121).
+//!
+//! Finding on the teapot: its net is stitched from Bézier patches whose seams are G1 only
+//! because the control legs across them are collinear. The interpolant of the net knows
+//! nothing of that, so fairing moves seam points off those lines and the faired Bézier
+//! surface creases at the seams (teapot_highlights.svg shows it). §4.5's rule is sound for a
+//! B-spline net with simple knots, not for a composite Bézier net.
 //!
 //! The paper's panel is not published; ours is a doubly curved sheet 1200 × 900 mm with bumps
 //! of 2–3 mm. A Zhang–Cheng step fairs every point (automatic) or every group of bad points
@@ -465,7 +472,7 @@ fn teapot(dir: &Path) -> Result<(), Box<dyn Error>> {
         .display()
     );
     // Highlight lines of the rim-to-side quarter of the Bézier surface (one light plane
-    // cannot face a closed body of revolution): u ∈ [0, 3] (rim, body), v ∈ [0, 1].
+    // cannot face a closed body of revolution): u ∈ [1, 3] (upper and lower body), v ∈ [0, 1].
     let quarter = |s: &NurbsSurface| Quarter(s.clone());
     let light =
         LightSetup::for_surface(&quarter(&original), &HighlightSettings::default()).ok_or("no light")?;
@@ -487,12 +494,12 @@ fn teapot(dir: &Path) -> Result<(), Box<dyn Error>> {
     Ok(())
 }
 
-/// The part u ∈ [0, 3], v ∈ [0, 1] of a teapot body surface.
+/// The part u ∈ [1, 3], v ∈ [0, 1] of a teapot body surface.
 struct Quarter(NurbsSurface);
 
 impl curve_repr::Surface for Quarter {
     fn domain(&self) -> ((f64, f64), (f64, f64)) {
-        ((0.0, 3.0), (0.0, 1.0))
+        ((1.0, 3.0), (0.0, 1.0))
     }
     fn partial_from(
         &self,
@@ -507,6 +514,64 @@ impl curve_repr::Surface for Quarter {
     }
 }
 
+/// The Ulstein PX121 half-breadth table (pixel-digitised, data/hull_px121): waterlines 3–7,
+/// the rows with all 11 stations, as a 5 × 11 grid in metres.
+fn px121(dir: &Path) -> Result<(), Box<dyn Error>> {
+    println!(
+        "== Ulstein PX121 hull offsets, waterlines 3-7 × 11 stations (data/hull_px121, pixel-quantised)"
+    );
+    let path = format!("{}/data/hull_px121/offsets_m.csv", env!("CARGO_MANIFEST_DIR"));
+    let mut net = vec![vec![Vec3::zeros(); 11]; 5];
+    let mut seen = 0;
+    for line in std::fs::read_to_string(&path)?.lines().skip(1) {
+        let f: Vec<f64> = line
+            .split(',')
+            .map(|x| x.trim().parse())
+            .collect::<Result<_, _>>()?;
+        let (i, j) = (f[0] as usize, f[1] as usize);
+        if (3..=7).contains(&i) && j < 11 {
+            net[i - 3][j] = Vec3::new(f[2], f[3], f[4]);
+            seen += 1;
+        }
+    }
+    if seen != 55 {
+        return Err(format!("{path}: expected 55 cells in waterlines 3-7, found {seen}").into());
+    }
+    let before = surface(&net)?;
+    for (label, settings) in [
+        ("Zhang–Cheng automatic", SurfaceFairingSettings::zhang_cheng()),
+        ("Kjellander automatic", SurfaceFairingSettings::kjellander()),
+    ] {
+        let result = SurfaceFairing::new(settings).run(&net)?;
+        summary(label, &before, &result, None)?;
+        let m_d = before
+            .points()
+            .iter()
+            .zip(result.surface.points())
+            .map(|(p, q)| (p - q).norm())
+            .fold(0.0, f64::max);
+        println!(
+            "{:<34} largest move {m_d:.4} m (quantisation step 9 m / 1140 = {:.4} m)",
+            "",
+            9.0 / 1140.0
+        );
+        if label.starts_with("Zhang") {
+            println!(
+                "wrote {}",
+                write_plot(
+                    dir,
+                    "px121_hull.svg",
+                    "PX121 hull offsets: Zhang–Cheng automatic",
+                    &before,
+                    &result.surface
+                )?
+                .display()
+            );
+        }
+    }
+    Ok(())
+}
+
 fn main() -> Result<(), Box<dyn Error>> {
     let dir = PathBuf::from(
         std::env::args()
@@ -517,5 +582,6 @@ fn main() -> Result<(), Box<dyn Error>> {
     door_panel(&dir)?;
     twisted_strip(&dir)?;
     teapot(&dir)?;
+    px121(&dir)?;
     Ok(())
 }

@@ -89,7 +89,8 @@ fn sample_grid<S: Surface + ?Sized>(surface: &S, samples: usize) -> (Vec<f64>, V
 impl LightSetup {
     /// A light plane above `surface` (along its mean normal, one bounding-box diagonal away),
     /// light lines along `settings.light_direction` or the principal direction of the sampled
-    /// points, spaced so that `settings.lines` lines span the range of h on this surface; the
+    /// points, spaced so that `settings.lines` lines span the 2nd–98th percentile of h on this
+    /// surface; the
     /// view looks along the mean normal. `None` when the surface has no usable normal.
     pub fn for_surface<S: Surface + ?Sized>(surface: &S, settings: &HighlightSettings) -> Option<LightSetup> {
         let (us, vs) = sample_grid(surface, 24);
@@ -147,11 +148,17 @@ impl LightSetup {
                 .filter_map(|(u, v)| setup.highlight(surface, u, v))
                 .collect()
         };
-        let (lo, hi) = values
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &v| {
-                (l.min(v), h.max(v))
-            });
+        // The 2nd to 98th percentile of h: normals that graze the light plane send h far out
+        // and would leave every line but one outside the surface's typical range.
+        let mut sorted = values;
+        sorted.sort_by(f64::total_cmp);
+        let quantile = |q: f64| {
+            let last = sorted.len().saturating_sub(1);
+            sorted.get((last as f64 * q).round() as usize).copied()
+        };
+        let (Some(lo), Some(hi)) = (quantile(0.02), quantile(0.98)) else {
+            return Some(setup);
+        };
         if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
             return Some(setup);
         }
