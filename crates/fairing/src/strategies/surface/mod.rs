@@ -4,12 +4,12 @@
 //!
 //! The surface is the [`BicubicSplineSurface`] through a grid P_ij (i = 0..m along u,
 //! j = 0..n along v); the knots are fixed while fairing. A bad point is moved to the minimiser
-//! of the strain energy of the iso-parametric curves through it ([`closed_form`]: one point
+//! of the strain energy of the iso-parametric curves through it (`closed_form`: one point
 //! Eq. 18–20 and its limit Eq. 21, an adjacent pair Eq. 22–23, a 2×2 block Eq. 24–25), or of
-//! the thin-plate energy of the patches around it ([`thin_plate`], Eq. 27–29) as an option.
+//! the thin-plate energy of the patches around it (`thin_plate`, Eq. 27–29) as an option.
 //!
 //! - **Automatic** (§4.4, algorithm 2): the boundary curves are faired first with the curve
-//!   method ([`boundary`]); each interior point gets a restraining sphere of radius
+//!   method (`boundary`); each interior point gets a restraining sphere of radius
 //!   |P̄_ij − P_ij| (P̄ from Eq. 21 on the surface after step 2.1); then every step computes
 //!   z_ij (Eq. 26) at the interior points and fairs them all, from the largest z_ij down, each
 //!   kept in its sphere; the surface is rebuilt (2.5) and the run stops when the network
@@ -27,17 +27,19 @@
 //!   surface formula; with uniform knots on a square grid K_u[i,i] = K_v[j,j], so this point
 //!   is also the mean of the u-curve's and the v-curve's own Kjellander points.
 //!
-//! Within a step, moves go to the iso-parametric spline [`Network`] (the tangents of u-line j
+//! Within a step, moves go to the iso-parametric spline network (`network::Network`) (the tangents of u-line j
 //! and v-line i of the moved point updated by the natural spline's measured response to a
 //! unit move, in a window of knots: O(1) in the grid size); at the end of the
 //! step the surface is rebuilt through [`BicubicSplineSurface::move_points`] (the rows,
 //! columns and twists the paper says change). The thin-plate option, which reads the twists,
 //! rebuilds the surface after every move. An automatic step costs O(m·n·window).
 
-pub mod boundary;
-pub mod closed_form;
-pub mod network;
-pub mod thin_plate;
+// The building blocks index the grid directly (their callers validate it first), so they
+// stay inside the crate; `SurfaceFairing` is the checked entry point.
+pub(crate) mod boundary;
+pub(crate) mod closed_form;
+pub(crate) mod network;
+pub(crate) mod thin_plate;
 
 #[cfg(test)]
 mod tests;
@@ -50,8 +52,9 @@ use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings, NurbsSurface, Par
 use crate::strategies::Replacement;
 use crate::{project_into_ball, Error, Result, TerminationReason};
 
-pub use closed_form::{fixed_tangent_targets, limit_targets, Group};
-pub use network::{Network, Stiffness};
+pub use closed_form::Group;
+use closed_form::{fixed_tangent_targets, limit_targets};
+use network::Network;
 
 /// A move of grid node (i, j) to a new position.
 pub type NodeMove = ((usize, usize), Vec3);

@@ -225,11 +225,6 @@ impl Network {
         self.v_tangents[i * self.v_count + j]
     }
 
-    /// All points, flat (index i·(n+1) + j).
-    pub fn points(&self) -> &[Vec3] {
-        &self.points
-    }
-
     /// ∂³S/∂u³(u_i+, v_j) − ∂³S/∂u³(u_i−, v_j) at an interior node.
     pub fn u_jump(&self, i: usize, j: usize) -> Vec3 {
         let (p, m, h) = (
