@@ -23,6 +23,7 @@ pub mod commands;
 pub mod config;
 pub mod constraints;
 pub mod error;
+pub mod highlight;
 pub mod input;
 pub mod kind;
 pub mod output;

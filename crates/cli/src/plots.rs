@@ -2,8 +2,10 @@
 //! a surface grid with its z_ij map. Built from plain data so the numerical crates supply
 //! what they have and the rest is left out.
 
+use crate::highlight::{HighlightSettings, LightSetup};
 use crate::input::{Grid, Points};
 use crate::svg::{Bars, Color, ColorMap, Comb, Figure, Line, Markers, Panel};
+use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings};
 
 /// A curvature comb in the plane: points, unit normals and signed curvatures.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -142,8 +144,13 @@ pub struct SurfacePlot {
     pub input: Option<Grid>,
     /// The faired grid.
     pub faired: Option<Grid>,
-    /// z_ij (rows i, columns j), when measured.
+    /// z_ij (rows i, columns j), when measured (of the faired grid when there is one).
     pub z: Option<Vec<Vec<f64>>>,
+    /// z_ij of the input grid, when a faired grid's z is in `z`.
+    pub z_before: Option<Vec<Vec<f64>>>,
+    /// Draw highlight lines ([`crate::highlight`]) of the input's and the faired grid's
+    /// bicubic spline surfaces, under one light set up on the input.
+    pub highlights: bool,
 }
 
 fn grid_lines(grid: &Grid, color: Color, label: &str, panel: &mut Panel) {
@@ -178,14 +185,72 @@ impl SurfacePlot {
             grid_lines(grid, Color::palette(1), "faired grid", &mut view);
         }
         let mut figure = Figure::new().with_title(self.title.clone()).with_panel(view);
-        if let Some(z) = &self.z {
+        if self.highlights {
+            for panel in self.highlight_panels() {
+                figure.push(panel);
+            }
+        }
+        if let Some(z) = &self.z_before {
             figure.push(
-                Panel::new("z_ij")
+                Panel::new("z_ij, input")
+                    .with_x_label("i")
+                    .with_y_label("j")
+                    .with(ColorMap::indexed(z.clone()).with_label("z_ij")),
+            );
+        }
+        if let Some(z) = &self.z {
+            let title = if self.z_before.is_some() {
+                "z_ij, faired"
+            } else {
+                "z_ij"
+            };
+            figure.push(
+                Panel::new(title)
                     .with_x_label("i")
                     .with_y_label("j")
                     .with(ColorMap::indexed(z.clone()).with_label("z_ij")),
             );
         }
         figure
+    }
+
+    /// Highlight-line panels of the input and the faired grid (Beier–Chen, 20 light lines),
+    /// both under the light set up on the input's surface; none for a grid the bicubic
+    /// surface cannot be built through.
+    pub fn highlight_panels(&self) -> Vec<Panel> {
+        let surface_of = |grid: &Grid| {
+            BicubicSplineSurface::from_flat(
+                grid.points.clone(),
+                grid.rows,
+                grid.columns,
+                &BicubicSurfaceSettings::default(),
+            )
+            .ok()
+        };
+        let Some(input) = self.input.as_ref().and_then(surface_of) else {
+            return Vec::new();
+        };
+        let settings = HighlightSettings::default();
+        let Some(light) = LightSetup::for_surface(&input, &settings) else {
+            return Vec::new();
+        };
+        let mut panels = Vec::new();
+        let faired = self.faired.as_ref().and_then(surface_of);
+        for (title, surface, color) in [
+            ("highlight lines, input", Some(&input), Color::palette(0)),
+            ("highlight lines, faired", faired.as_ref(), Color::palette(1)),
+        ] {
+            let Some(surface) = surface else { continue };
+            let mut panel = Panel::new(title)
+                .with_x_label("along the light lines")
+                .with_y_label("across")
+                .with_equal_aspect(true)
+                .with_legend(false);
+            for line in light.lines(surface, settings.samples) {
+                panel.push(Line::new(line).with_color(color).with_width(0.9));
+            }
+            panels.push(panel);
+        }
+        panels
     }
 }

@@ -338,15 +338,77 @@ pub const METHODS: &[MethodInfo] = &[
         name: "zhang-cheng",
         kind: MethodKind::Surface,
         paper: "Zhang & Cheng §4, bicubic surface fairing",
-        summary: "replaces one, two or four grid points by strain-energy minimisation",
-        parameters: &[],
+        summary: "automatic: boundary curves, then every interior point per step, largest z_ij first, in restraining spheres; with --points: the named points in pairs and 2x2 blocks (step 1.3)",
+        parameters: &[
+            ParameterInfo {
+                name: "replacement",
+                default: "limit",
+                meaning: "limit (Eq. 21 and its pair/block analogues, solved once) or iterated (one application of Eq. 20/23/25)",
+            },
+            ParameterInfo {
+                name: "objective",
+                default: "network",
+                meaning: "network (curve strain energy, Eq. 18-25) or thin-plate (Eq. 27-29; needs replacement=iterated)",
+            },
+            ParameterInfo {
+                name: "boundary",
+                default: "on",
+                meaning: "on: fair the boundary curves first with the curve method (automatic mode, step 2.1); off: keep them",
+            },
+            ParameterInfo {
+                name: "energy-tolerance",
+                default: "1e-6",
+                meaning: "stop when the network strain energy changes by at most this fraction in one step",
+            },
+            ParameterInfo {
+                name: "max-steps",
+                default: "1000",
+                meaning: "step limit",
+            },
+            ParameterInfo {
+                name: "parametrization",
+                default: "chord-length",
+                meaning: "knots, averaged over the grid lines and fixed while fairing: chord-length or uniform",
+            },
+        ],
     },
     MethodInfo {
         name: "kjellander",
         kind: MethodKind::Surface,
-        paper: "Kjellander, surface fairing by curve network",
-        summary: "fairs the grid's row and column curves in turn",
-        parameters: &[],
+        paper: "Kjellander (as a preset of Zhang & Cheng §4)",
+        summary: "one point per step: the interior point of largest z_ij moved to zero its jumps (uniform knots), in its restraining sphere",
+        parameters: &[
+            ParameterInfo {
+                name: "replacement",
+                default: "limit",
+                meaning: "limit (Eq. 21 and its pair/block analogues, solved once) or iterated (one application of Eq. 20/23/25)",
+            },
+            ParameterInfo {
+                name: "objective",
+                default: "network",
+                meaning: "network (curve strain energy, Eq. 18-25) or thin-plate (Eq. 27-29; needs replacement=iterated)",
+            },
+            ParameterInfo {
+                name: "boundary",
+                default: "off",
+                meaning: "on: fair the boundary curves first with the curve method (automatic mode, step 2.1); off: keep them",
+            },
+            ParameterInfo {
+                name: "energy-tolerance",
+                default: "1e-6",
+                meaning: "stop when the network strain energy changes by at most this fraction in one step",
+            },
+            ParameterInfo {
+                name: "max-steps",
+                default: "100000",
+                meaning: "step limit",
+            },
+            ParameterInfo {
+                name: "parametrization",
+                default: "uniform",
+                meaning: "knots, averaged over the grid lines and fixed while fairing: chord-length or uniform",
+            },
+        ],
     },
 ];
 

@@ -87,6 +87,8 @@ pub fn inspect(source: &Source, kind_arg: KindArg, surface: bool, plot: Option<&
                 input: Some(input.grid.clone()),
                 faired: None,
                 z: measured.z.clone(),
+                z_before: None,
+                highlights: true,
             };
             plot.figure().write(path)?;
         }

@@ -13,6 +13,8 @@ use crate::registry::{self, MethodInfo, MethodKind};
 use crate::report::{Report, ReportKind};
 use std::collections::BTreeMap;
 
+mod zhang_cheng;
+
 /// The default surface method.
 pub const DEFAULT_METHOD: &str = "zhang-cheng";
 
@@ -52,9 +54,12 @@ pub struct SurfaceOutcome {
 
 /// SEAM: runs the surface strategy of `job.method` (crate `fairing`).
 pub fn fair(job: &SurfaceJob) -> Result<SurfaceOutcome> {
-    Err(Error::NotAvailable {
-        what: format!("surface method `{}`", job.method.name),
-    })
+    match job.method.name {
+        "zhang-cheng" | "kjellander" => zhang_cheng::fair(job),
+        _ => Err(Error::NotAvailable {
+            what: format!("surface method `{}`", job.method.name),
+        }),
+    }
 }
 
 /// Checks that the grid has an interior point.
@@ -132,6 +137,8 @@ pub fn run(args: &FairArgs) -> Result<()> {
             input: Some(input.grid.clone()),
             faired: Some(outcome.grid.clone()),
             z: after.z,
+            z_before: before.z.clone(),
+            highlights: true,
         };
         plot.figure().write(path)?;
     }

@@ -1,0 +1,41 @@
+//! Automatic Zhang–Cheng fairing of a whole 200 × 200 net (boundary curves, restraining
+//! spheres, every interior point each step, energy tolerance 1e-6), and of smaller nets to
+//! show the growth. Target: the 200 × 200 run under 5 s in release.
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use curve_repr::Vec3;
+use fairing::strategies::{SurfaceFairing, SurfaceFairingSettings};
+
+/// A smooth surface over a square with deterministic pseudo-random bumps on every point.
+fn noisy_net(size: usize) -> Vec<Vec<Vec3>> {
+    (0..size)
+        .map(|i| {
+            (0..size)
+                .map(|j| {
+                    let (x, y) = (i as f64 / 10.0, j as f64 / 10.0);
+                    let noise = 0.01 * ((i * 7919 + j * 104_729) as f64 * 12.9898).sin().fract();
+                    Vec3::new(x, y, (0.3 * x).sin() * (0.2 * y).cos() + noise)
+                })
+                .collect()
+        })
+        .collect()
+}
+
+fn bench(c: &mut Criterion) {
+    let mut group = c.benchmark_group("surface_automatic");
+    group.sample_size(10);
+    for size in [50usize, 100, 200] {
+        let net = noisy_net(size);
+        group.bench_with_input(BenchmarkId::from_parameter(size), &net, |b, net| {
+            b.iter(|| {
+                SurfaceFairing::new(SurfaceFairingSettings::zhang_cheng())
+                    .run(net)
+                    .unwrap()
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

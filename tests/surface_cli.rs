@@ -1,0 +1,242 @@
+//! `fair surface --method zhang-cheng | kjellander` end to end: the grid comes back the same
+//! size, the report shows the fairing (max z_ij and e_s fall), the constraints hold, the plot
+//! has its highlight-line panels, and bad options exit 2 with one line.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn out_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("fair-surface-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A 9 × 8 height field with two bumps, as `i,j,x,y,z`.
+fn write_grid(dir: &Path) -> PathBuf {
+    let mut text = String::from("i,j,x,y,z\n");
+    for i in 0..9 {
+        for j in 0..8 {
+            let (x, y) = (i as f64 * 10.0, j as f64 * 8.0);
+            let bump = match (i, j) {
+                (3, 3) => 1.5,
+                (6, 5) => -1.0,
+                _ => 0.0,
+            };
+            let z = 0.02 * x * x / 10.0 + 0.1 * y + bump;
+            text.push_str(&format!("{i},{j},{x},{y},{z}\n"));
+        }
+    }
+    let path = dir.join("panel.csv");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn read_grid(path: &Path) -> Vec<[f64; 5]> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|x| x.trim().parse().unwrap()).collect();
+            [v[0], v[1], v[2], v[3], v[4]]
+        })
+        .collect()
+}
+
+fn fair(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_fair"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+struct Run {
+    output: Vec<[f64; 5]>,
+    report: serde_json::Value,
+}
+
+fn fair_surface(name: &str, extra: &[&str]) -> (Run, Vec<[f64; 5]>, PathBuf) {
+    let dir = out_dir(name);
+    let input = write_grid(&dir);
+    let (out, report, plot) = (dir.join("out.csv"), dir.join("report.json"), dir.join("plot.svg"));
+    let mut args = vec!["surface", input.to_str().unwrap(), "--quiet"];
+    args.extend_from_slice(extra);
+    args.extend([
+        "-o",
+        out.to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+        "--plot",
+        plot.to_str().unwrap(),
+    ]);
+    let result = fair(&args);
+    assert!(
+        result.status.success(),
+        "{name}: {}",
+        String::from_utf8_lossy(&result.stderr)
+    );
+    let report: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    (
+        Run {
+            output: read_grid(&out),
+            report,
+        },
+        read_grid(&input),
+        plot,
+    )
+}
+
+fn distance(a: &[f64; 5], b: &[f64; 5]) -> f64 {
+    ((a[2] - b[2]).powi(2) + (a[3] - b[3]).powi(2) + (a[4] - b[4]).powi(2)).sqrt()
+}
+
+#[test]
+fn zhang_cheng_automatic_fairs_the_grid_and_draws_highlight_lines() {
+    let (run, input, plot) = fair_surface("automatic", &["--method", "zhang-cheng"]);
+    assert_eq!(run.output.len(), input.len());
+    for (a, b) in run.output.iter().zip(&input) {
+        assert_eq!((a[0], a[1]), (b[0], b[1]), "same order");
+    }
+    let r = &run.report;
+    assert_eq!(r["method"], "zhang-cheng");
+    assert_eq!(r["kind"], "surface");
+    assert_eq!(r["mode"], "automatic");
+    let (z0, z1) = (
+        r["before"]["max_z"].as_f64().unwrap(),
+        r["after"]["max_z"].as_f64().unwrap(),
+    );
+    let (e0, e1) = (
+        r["before"]["e_s"].as_f64().unwrap(),
+        r["after"]["e_s"].as_f64().unwrap(),
+    );
+    assert!(z1 < 0.2 * z0, "max z {z0} -> {z1}");
+    assert!(e1 < e0, "e_s {e0} -> {e1}");
+    // Energy never rises step by step.
+    let energies: Vec<f64> = r["energy_per_step"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| e.as_f64().unwrap())
+        .collect();
+    assert!(energies.windows(2).all(|w| w[1] <= w[0] * (1.0 + 1e-12)));
+    assert_eq!(r["iterations"].as_u64().unwrap() as usize, energies.len());
+    // The report's moved list names exactly the points that moved; corners never move.
+    let moved: Vec<usize> = r["moved"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|k| k.as_u64().unwrap() as usize)
+        .collect();
+    let actually: Vec<usize> = (0..input.len())
+        .filter(|&k| distance(&run.output[k], &input[k]) > 0.0)
+        .collect();
+    assert_eq!(moved, actually);
+    for k in [0, 7, 64, 71] {
+        assert!(!moved.contains(&k));
+    }
+    // s_d and m_d are the displacements.
+    let m_d = run
+        .output
+        .iter()
+        .zip(&input)
+        .map(|(a, b)| distance(a, b))
+        .fold(0.0, f64::max);
+    assert!((r["m_d"].as_f64().unwrap() - m_d).abs() <= 1e-9 * (1.0 + m_d));
+    assert_eq!(r["curve"]["rows"], 9);
+    assert_eq!(r["curve"]["columns"], 8);
+    // The plot: highlight lines before and after, and both z_ij maps.
+    let svg = std::fs::read_to_string(plot).unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let text: String = doc
+        .descendants()
+        .filter(|n| n.is_text())
+        .map(|n| n.text().unwrap_or(""))
+        .collect();
+    for title in [
+        "highlight lines, input",
+        "highlight lines, faired",
+        "z_ij, input",
+        "z_ij, faired",
+    ] {
+        assert!(text.contains(title), "{title}");
+    }
+    assert!(doc.descendants().filter(|n| n.has_tag_name("polyline")).count() > 40);
+}
+
+#[test]
+fn kjellander_preset_runs_one_point_per_step() {
+    let (run, input, _) = fair_surface("kjellander", &["--method", "kjellander"]);
+    let r = &run.report;
+    assert_eq!(r["method"], "kjellander");
+    assert!(r["after"]["max_z"].as_f64().unwrap() < r["before"]["max_z"].as_f64().unwrap());
+    // One point per step: each step's energy record follows one move; boundary untouched.
+    for (a, b) in run.output.iter().zip(&input) {
+        let boundary = a[0] == 0.0 || a[0] == 8.0 || a[1] == 0.0 || a[1] == 7.0;
+        if boundary {
+            assert_eq!(distance(a, b), 0.0);
+        }
+    }
+    assert_eq!(r["boundary_steps"], 0);
+}
+
+#[test]
+fn constraints_hold() {
+    // Grid index k = i * 8 + j: node (3, 3) is 27, (6, 5) is 53.
+    let (run, input, _) = fair_surface(
+        "fixed",
+        &["--method", "zhang-cheng", "--fixed", "27", "--tolerance", "0.2"],
+    );
+    assert_eq!(distance(&run.output[27], &input[27]), 0.0);
+    for (a, b) in run.output.iter().zip(&input) {
+        assert!(distance(a, b) <= 0.2 * (1.0 + 1e-12));
+    }
+    let (run, input, _) = fair_surface("interactive", &["--method", "zhang-cheng", "--points", "27,53"]);
+    assert_eq!(run.report["mode"], "interactive");
+    for (k, (a, b)) in run.output.iter().zip(&input).enumerate() {
+        if k != 27 && k != 53 {
+            assert_eq!(distance(a, b), 0.0, "point {k} moved");
+        }
+    }
+    assert!(distance(&run.output[27], &input[27]) > 0.5);
+}
+
+#[test]
+fn bad_options_exit_2_with_one_line() {
+    let dir = out_dir("bad");
+    let input = write_grid(&dir);
+    let input = input.to_str().unwrap();
+    for args in [
+        vec!["surface", input, "--method", "zhang-cheng", "--points", "0"],
+        vec![
+            "surface",
+            input,
+            "--method",
+            "zhang-cheng",
+            "--set",
+            "objective=thin-plate",
+        ],
+        vec![
+            "surface",
+            input,
+            "--method",
+            "zhang-cheng",
+            "--set",
+            "replacement=halfway",
+        ],
+        vec![
+            "surface",
+            input,
+            "--method",
+            "kjellander",
+            "--set",
+            "energy-tolerance=-1",
+        ],
+    ] {
+        let result = fair(&args);
+        assert_eq!(result.status.code(), Some(2), "{args:?}");
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
+        assert!(!stderr.contains("panicked"));
+    }
+}
