@@ -1,5 +1,5 @@
 //! Nelder–Mead downhill simplex minimisation: a small adapter over argmin's
-//! [`NelderMead`](argmin::solver::neldermead::NelderMead).
+//! `NelderMead`.
 //!
 //! Nowacki et al. (1996, §3) find the NURBS weight-law parameters k0..k3 with "the well known
 //! simplex method of downhill search by Nelder and Mead": an unconstrained, derivative-free

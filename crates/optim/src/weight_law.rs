@@ -182,7 +182,7 @@ impl<L: WeightLaw + ?Sized> WeightLaw for Box<L> {
 /// The paper's law: w_i = Σ_j k_j B_j(i/n), cubic Bernstein basis, n + 1 control points
 /// (Nowacki et al. 1996, §3).
 ///
-/// Parameters κ_0..κ_3 with k_j = [`positive_weight`](κ_j) = e^{κ_j} (clamped). Since the
+/// Parameters κ_0..κ_3 with k_j = `positive_weight(κ_j)` = e^{κ_j} (clamped). Since the
 /// Bernstein basis is non-negative and sums to one, every w_i lies in [min k_j, max k_j]: the
 /// weights are positive because the k_j are, and the law itself is exactly the paper's cubic
 /// (only its coefficients are restricted to k_j > 0, which is what makes positivity hold for

@@ -1,5 +1,5 @@
 //! Fairness measures of a curve or a surface, as DESIGN.md "Definitions" says, through the
-//! `fairness` crate's [`summary`](fairness::summary) module. Both `fair inspect` and the
+//! `fairness` crate's `summary` module. Both `fair inspect` and the
 //! report's `before`/`after` use them.
 //!
 //! - function kind: the spline function with parabolic runout, Han's x–c polyline;

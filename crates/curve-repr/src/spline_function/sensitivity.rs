@@ -43,7 +43,7 @@
 //! |c̃_i^j| ≤ 2 · max(|c̃_{j−1}^j|, |c̃_{j+1}^j|) · 2^{−(|i−j|−1)}.
 //!
 //! **Long products.** The products Π a_k over long ranges underflow, and computing them costs
-//! O(|i − j|); [`LogProducts`] keeps prefix sums of ln|a_k| in double-double (so that a short
+//! O(|i − j|); `LogProducts` keeps prefix sums of ln|a_k| in double-double (so that a short
 //! range near the end of a long spline is not the difference of two large, rounded sums),
 //! with prefix counts of negative and zero factors for the sign.
 

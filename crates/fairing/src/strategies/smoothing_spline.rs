@@ -10,8 +10,8 @@
 //! p = 0 giving the weighted least-squares straight line, p = 1 the natural interpolating
 //! cubic spline. The minimiser is a natural cubic spline with knots t_i (Reinsch 1967); with
 //! h_i = t_{i+1} − t_i, Q the n×(n−2) matrix of second divided differences
-//! (Q[i−1][i] = 1/h_{i−1}, Q[i][i] = −1/h_{i−1} − 1/h_i, Q[i+1][i] = 1/h_i), R the
-//! (n−2)×(n−2) tridiagonal matrix R[i][i] = (h_{i−1} + h_i)/3, R[i][i+1] = h_i/6, and
+//! (`Q[i−1][i] = 1/h_{i−1}`, `Q[i][i] = −1/h_{i−1} − 1/h_i`, `Q[i+1][i] = 1/h_i`), R the
+//! (n−2)×(n−2) tridiagonal matrix `R[i][i] = (h_{i−1} + h_i)/3`, `R[i][i+1] = h_i/6`, and
 //! Σ = W⁻¹ = diag(1/w_i), the solution is (Reinsch's equations, as csaps solves them, scaled
 //! by 1/6):
 //!
@@ -19,7 +19,7 @@
 //!
 //! with γ the second derivatives at the interior knots (0 at both ends) and f the spline's
 //! values at the knots. The matrix is symmetric positive definite and pentadiagonal, so the
-//! solve is a banded LDLᵀ in O(n) ([`pentadiagonal`]).
+//! solve is a banded LDLᵀ in O(n).
 //!
 //! A weight w_i = +∞ (σ_i = 0) makes point i an interpolation constraint: f_i = y_i exactly,
 //! bit for bit. This is how [`SmoothingSplineFairing`] honours fixed points and clamped ends.

@@ -24,7 +24,7 @@
 //!   sphere; a point its sphere holds (target outside, point already on the border) is passed
 //!   over for the next worst. The energy tolerance applies to the change over as many steps
 //!   as there are candidate points (a sweep's worth). The paper does not print Kjellander's
-//!   surface formula; with uniform knots on a square grid K_u[i,i] = K_v[j,j], so this point
+//!   surface formula; with uniform knots on a square grid `K_u[i,i] = K_v[j,j]`, so this point
 //!   is also the mean of the u-curve's and the v-curve's own Kjellander points.
 //!
 //! Within a step, moves go to the iso-parametric spline network (`network::Network`) (the tangents of u-line j
