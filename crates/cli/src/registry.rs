@@ -58,6 +58,10 @@ impl MethodInfo {
     }
 }
 
+/// Curve methods that fair planar curves only (Han's two-phase works on y(x) and on planar
+/// curves through bisector frames); the others take 2D and 3D points.
+pub const PLANAR_ONLY: &[&str] = &["two-phase"];
+
 /// Every method, curves first.
 pub const METHODS: &[MethodInfo] = &[
     MethodInfo {

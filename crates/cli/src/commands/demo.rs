@@ -14,7 +14,7 @@ use crate::args::{DemoArgs, FairArgs, KindArg};
 use crate::commands::{curve, inspect, surface};
 use crate::error::{Error, Result};
 use crate::input::Source;
-use crate::registry::{MethodKind, METHODS};
+use crate::registry::{MethodKind, METHODS, PLANAR_ONLY};
 use crate::report::Report;
 
 /// One embedded data set.
@@ -120,6 +120,14 @@ fn fair_curve(args: &FairArgs) -> Result<Report> {
     Ok(faired.report)
 }
 
+/// Fairs one embedded surface as `fair surface` would and returns its report.
+fn fair_surface(args: &FairArgs) -> Result<Report> {
+    let input = crate::input::read_surface(&args.input)?;
+    let faired = surface::process(&input, args, None)?;
+    surface::write_outputs(args, &faired)?;
+    Ok(faired.report)
+}
+
 /// `b→a` for a count before and after.
 fn change(before: Option<usize>, after: Option<usize>) -> String {
     format!("{}→{}", count(before), count(after))
@@ -201,17 +209,25 @@ pub fn run(args: &DemoArgs) -> Result<()> {
             m.max_z
         ));
         let mut not_available = Vec::new();
+        let spatial = dataset.kind == MethodKind::Curve
+            && crate::input::parse_curve(&source).is_ok_and(|c| c.points.dimension() == 3);
         for method in METHODS.iter().filter(|m| m.kind == dataset.kind) {
+            if spatial && PLANAR_ONLY.contains(&method.name) {
+                lines.push(format!(
+                    "{:20} {:18} does not apply: fairs planar curves only",
+                    dataset.name, method.name
+                ));
+                continue;
+            }
             runs += 1;
             let stem = format!("{}-{}", dataset.name, method.name);
             let run_args = run_args(data_path.display().to_string(), method.name, &args.out, &stem);
             let result = match dataset.kind {
-                MethodKind::Curve => fair_curve(&run_args).map(Some),
-                MethodKind::Surface => surface::run(&run_args).map(|()| None),
+                MethodKind::Curve => fair_curve(&run_args),
+                MethodKind::Surface => fair_surface(&run_args),
             };
             let status = match result {
-                Ok(Some(report)) => row(&report),
-                Ok(None) => "ok".to_string(),
+                Ok(report) => row(&report),
                 Err(Error::NotAvailable { .. }) => {
                     not_available.push(method.name);
                     continue;

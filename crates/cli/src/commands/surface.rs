@@ -4,6 +4,7 @@
 
 use crate::args::FairArgs;
 use crate::commands::{measure, say};
+use crate::config::ConfigFile;
 use crate::constraints::Constraints;
 use crate::error::{Error, Result};
 use crate::input::{self, Grid, SurfaceInput};
@@ -76,19 +77,52 @@ pub fn require_grid(input: &SurfaceInput) -> Result<()> {
     Ok(())
 }
 
-/// Runs `fair surface`.
-pub fn run(args: &FairArgs) -> Result<()> {
-    let input = input::read_surface(&args.input)?;
-    require_grid(&input)?;
+/// A faired surface, ready to be written.
+#[derive(Debug, Clone)]
+pub struct FairedSurface {
+    /// The JSON report.
+    pub report: Report,
+    /// The faired grid in the input's format.
+    pub grid_text: String,
+    /// The before/after picture (grid, highlight lines, z_ij maps).
+    pub plot: SurfacePlot,
+}
+
+/// The method, its parameters and the constraints a command line and its config file give for
+/// a grid of `count` points. A config may set the method's parameters and `[constraints]`;
+/// pipelines of `[[stage]]`s are for curves and are refused.
+fn plan(
+    args: &FairArgs,
+    file: Option<&ConfigFile>,
+    count: usize,
+) -> Result<(&'static MethodInfo, Parameters, Constraints)> {
     let method = registry::find(
         args.method.as_deref().unwrap_or(DEFAULT_METHOD),
         MethodKind::Surface,
     )?;
-    let parameters = Parameters::collect(method, args.config.as_deref(), &args.settings)?;
-    let constraints = Constraints::from_args(args, input.grid.points.len())?;
+    let (values, config_constraints) = match file {
+        Some(file) => {
+            if file.table.contains_key(crate::config::STAGE_KEY) {
+                return Err(Error::Parameter {
+                    origin: file.name.clone(),
+                    message: "pipelines of [[stage]]s are for curves; a surface config sets one method's parameters".into(),
+                });
+            }
+            (file.method_values(method.name)?, file.constraints()?)
+        }
+        None => (Vec::new(), Default::default()),
+    };
+    let parameters = Parameters::from_values(method, values, &args.settings)?;
+    let constraints = Constraints::from_args_and_config(args, &config_constraints, count)?;
+    Ok((method, parameters, constraints))
+}
 
+/// Checks and fairs one surface input: everything `fair surface` does but writing.
+pub fn process(input: &SurfaceInput, args: &FairArgs, file: Option<&ConfigFile>) -> Result<FairedSurface> {
+    require_grid(input)?;
+    let (method, parameters, constraints) = plan(args, file, input.grid.points.len())?;
     let job = SurfaceJob {
-        input: &input,
+        input,
         method,
         parameters: &parameters,
         constraints: &constraints,
@@ -123,36 +157,73 @@ pub fn run(args: &FairArgs) -> Result<()> {
         params: parameters.to_json(),
         extras: outcome.extras.clone(),
     };
-    let grid_text = crate::output::format_surface(&input, &outcome.grid)?;
-    let report_text = report.to_json()?;
+    let grid_text = crate::output::format_surface(input, &outcome.grid)?;
+    let plot = SurfacePlot {
+        title: format!("{} — {}", input.source, method.name),
+        input: Some(input.grid.clone()),
+        faired: Some(outcome.grid.clone()),
+        z: after.z,
+        z_before: before.z.clone(),
+        highlights: true,
+    };
+    Ok(FairedSurface {
+        report,
+        grid_text,
+        plot,
+    })
+}
+
+/// Writes what `-o`, `--report` and `--plot` ask for, the report text made first.
+pub fn write_outputs(args: &FairArgs, faired: &FairedSurface) -> Result<()> {
+    let report_text = faired.report.to_json()?;
     if let Some(out) = &args.output {
-        crate::output::write_text(out, &grid_text)?;
+        crate::output::write_text(out, &faired.grid_text)?;
     }
     if let Some(path) = &args.report {
         crate::output::write_text(&path.display().to_string(), &report_text)?;
     }
     if let Some(path) = &args.plot {
-        let plot = SurfacePlot {
-            title: format!("{} — {}", input.source, method.name),
-            input: Some(input.grid.clone()),
-            faired: Some(outcome.grid.clone()),
-            z: after.z,
-            z_before: before.z.clone(),
-            highlights: true,
-        };
-        plot.figure().write(path)?;
+        faired.plot.figure().write(path)?;
     }
+    Ok(())
+}
+
+/// Runs `fair surface`.
+pub fn run(args: &FairArgs) -> Result<()> {
+    if args.batch || std::path::Path::new(&args.input).is_dir() {
+        return Err(Error::Argument {
+            option: "INPUT",
+            message: "batches (a directory, --batch) are for `fair curve`; give one grid file".into(),
+        });
+    }
+    let file = args.config.as_deref().map(ConfigFile::read).transpose()?;
+    let input = input::read_surface(&args.input)?;
+    if args.print_config {
+        require_grid(&input)?;
+        let (method, parameters, constraints) = plan(args, file.as_ref(), input.grid.points.len())?;
+        let text = crate::config::render(&constraints, &[(method, parameters.given_values())]);
+        say(false, false, text.trim_end());
+        return Ok(());
+    }
+    let faired = {
+        let _activity = crate::progress::Activity::start(&format!("fairing {}", input.source), args.quiet);
+        process(&input, args, file.as_ref())?
+    };
+    write_outputs(args, &faired)?;
+    let report = &faired.report;
     say(
         args.quiet,
         args.output.as_deref() == Some("-"),
         &format!(
-            "{}: {} ({} × {} grid): {} iterations, {} moved, S_d = {s_d:.6e}, M_d = {m_d:.6e}",
+            "{}: {} ({} × {} grid): {} iterations, {} moved, S_d = {:.6e}, M_d = {:.6e}",
             input.source,
-            method.name,
+            report.method,
             input.grid.rows,
             input.grid.columns,
             report.iterations,
-            report.moved.len()
+            report.moved.len(),
+            report.s_d,
+            report.m_d
         ),
     );
     Ok(())
