@@ -18,6 +18,22 @@ pub struct CombData {
     pub curvature: Vec<f64>,
 }
 
+/// A curvature plot: a line and the values at the data points (Han's x–c polyline for a
+/// function, κ over the chord-length parameter for a parametric curve).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct CurvaturePlot {
+    /// Panel title.
+    pub title: String,
+    /// The abscissa's name (`x`, or `t` the chord-length parameter).
+    pub x_label: String,
+    /// The ordinate's name (`c = y''/6`, or `κ`).
+    pub y_label: String,
+    /// The plotted line.
+    pub line: Vec<[f64; 2]>,
+    /// The values at the data points.
+    pub knots: Vec<[f64; 2]>,
+}
+
 /// What a curve plot shows; every field but the input is optional.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct CurvePlot {
@@ -39,6 +55,10 @@ pub struct CurvePlot {
     pub z_after: Option<Vec<f64>>,
     /// Whether the points are a function y(x) (axes x, y) or a parametric curve (equal aspect).
     pub function: bool,
+    /// The curvature plot of the input.
+    pub curvature_before: Option<CurvaturePlot>,
+    /// The curvature plot of the result.
+    pub curvature_after: Option<CurvaturePlot>,
 }
 
 /// The plane a spatial curve is drawn in: (x, y) for planar points, (x, z) for spatial ones
@@ -131,7 +151,37 @@ impl CurvePlot {
             }
             figure.push(z);
         }
+        if let Some(panel) = self.curvature_panel() {
+            figure.push(panel);
+        }
         figure
+    }
+
+    /// The curvature plot: the input's, and the result's over it when there is one.
+    fn curvature_panel(&self) -> Option<Panel> {
+        let first = self.curvature_before.as_ref().or(self.curvature_after.as_ref())?;
+        let mut panel = Panel::new(first.title.clone())
+            .with_x_label(first.x_label.clone())
+            .with_y_label(first.y_label.clone());
+        let both = self.curvature_before.is_some() && self.curvature_after.is_some();
+        for (plot, name, color, hollow) in [
+            (&self.curvature_before, "input", 0, false),
+            (&self.curvature_after, "faired", 1, true),
+        ] {
+            let Some(plot) = plot else { continue };
+            let label = if both { name } else { "curvature" };
+            panel.push(
+                Line::new(plot.line.clone())
+                    .with_label(label)
+                    .with_color(Color::palette(color)),
+            );
+            panel.push(
+                Markers::new(plot.knots.clone())
+                    .with_color(Color::palette(color))
+                    .with_hollow(hollow),
+            );
+        }
+        Some(panel)
     }
 }
 
@@ -190,12 +240,29 @@ impl SurfacePlot {
                 figure.push(panel);
             }
         }
+        // Before and after share one colour scale, so that the maps compare.
+        let shared = [&self.z_before, &self.z]
+            .into_iter()
+            .flatten()
+            .flat_map(|z| z.iter().flatten().copied())
+            .filter(|v| v.is_finite())
+            .fold(None, |range: Option<(f64, f64)>, v| match range {
+                None => Some((v, v)),
+                Some((lo, hi)) => Some((lo.min(v), hi.max(v))),
+            });
+        let map = |z: &Vec<Vec<f64>>| {
+            let map = ColorMap::indexed(z.clone()).with_label("z_ij");
+            match shared {
+                Some((lo, hi)) => map.with_scale(lo, hi),
+                None => map,
+            }
+        };
         if let Some(z) = &self.z_before {
             figure.push(
                 Panel::new("z_ij, input")
                     .with_x_label("i")
                     .with_y_label("j")
-                    .with(ColorMap::indexed(z.clone()).with_label("z_ij")),
+                    .with(map(z)),
             );
         }
         if let Some(z) = &self.z {
@@ -204,12 +271,7 @@ impl SurfacePlot {
             } else {
                 "z_ij"
             };
-            figure.push(
-                Panel::new(title)
-                    .with_x_label("i")
-                    .with_y_label("j")
-                    .with(ColorMap::indexed(z.clone()).with_label("z_ij")),
-            );
+            figure.push(Panel::new(title).with_x_label("i").with_y_label("j").with(map(z)));
         }
         figure
     }

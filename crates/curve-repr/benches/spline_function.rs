@@ -9,6 +9,16 @@ use std::hint::black_box;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use curve_repr::{EndCondition, SplineFunction};
 
+/// Under `cargo test` (no `--bench` flag) only the smallest size runs: the bench code is
+/// checked there, not timed, and the suite stays fast.
+fn sizes<T: Copy>(all: &[T]) -> Vec<T> {
+    if std::env::args().any(|a| a == "--bench") {
+        all.to_vec()
+    } else {
+        all[..1].to_vec()
+    }
+}
+
 fn data(n: usize) -> (Vec<f64>, Vec<f64>) {
     let mut x = Vec::with_capacity(n);
     let mut t = 0.0;
@@ -25,7 +35,7 @@ fn data(n: usize) -> (Vec<f64>, Vec<f64>) {
 
 fn build(c: &mut Criterion) {
     let mut group = c.benchmark_group("spline_function/build");
-    for n in [1_000, 10_000, 100_000, 1_000_000] {
+    for n in sizes(&[1_000, 10_000, 100_000, 1_000_000]) {
         let (x, y) = data(n);
         group.throughput(Throughput::Elements(n as u64));
         group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
@@ -37,7 +47,7 @@ fn build(c: &mut Criterion) {
 
 fn update(c: &mut Criterion) {
     let mut group = c.benchmark_group("spline_function/update_one_point");
-    for n in [1_000, 10_000, 100_000, 1_000_000] {
+    for n in sizes(&[1_000, 10_000, 100_000, 1_000_000]) {
         let (x, y) = data(n);
         let Ok(mut spline) = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout) else {
             return;

@@ -13,6 +13,16 @@ use fairing::two_phase::{fair_function, full_pass, TwoPhaseSettings};
 use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
 
+/// Under `cargo test` (no `--bench` flag) only the smallest size runs: the bench code is
+/// checked there, not timed, and the suite stays fast.
+fn sizes<T: Copy>(all: &[T]) -> Vec<T> {
+    if std::env::args().any(|a| a == "--bench") {
+        all.to_vec()
+    } else {
+        all[..1].to_vec()
+    }
+}
+
 /// y = sin(x/2) + N(0, 0.01²) at x = 0.1 k.
 fn noisy_segment(n: usize) -> (Vec<f64>, Vec<f64>) {
     let mut rng = rand::rngs::StdRng::seed_from_u64(11);
@@ -29,7 +39,7 @@ fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("two_phase_full_fairing");
     group.sample_size(10);
     let settings = TwoPhaseSettings::default();
-    for n in [1_000usize, 10_000, 100_000] {
+    for n in sizes(&[1_000usize, 10_000, 100_000]) {
         let (x, y) = noisy_segment(n);
         group.throughput(Throughput::Elements(n as u64));
         group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
@@ -46,7 +56,7 @@ fn bench(c: &mut Criterion) {
     group.finish();
     let mut group = c.benchmark_group("two_phase_one_full_pass");
     group.sample_size(10);
-    for n in [1_000usize, 10_000, 100_000, 1_000_000] {
+    for n in sizes(&[1_000usize, 10_000, 100_000, 1_000_000]) {
         let (x, y) = noisy_segment(n);
         group.throughput(Throughput::Elements(n as u64));
         group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {

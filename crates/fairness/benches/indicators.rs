@@ -10,6 +10,16 @@ use fairness::jumps::{curvature_slope_jumps, curvature_vibrations, third_derivat
 use fairness::{sign_changes, Energies};
 use std::hint::black_box;
 
+/// Under `cargo test` (no `--bench` flag) only the smallest size runs: the bench code is
+/// checked there, not timed, and the suite stays fast.
+fn sizes<T: Copy>(all: &[T]) -> Vec<T> {
+    if std::env::args().any(|a| a == "--bench") {
+        all.to_vec()
+    } else {
+        all[..1].to_vec()
+    }
+}
+
 /// y on piece i is a_i0 + a_i1 τ + a_i2 τ² + a_i3 τ³, τ = t − i.
 struct Wiggle {
     pieces: Vec<[f64; 4]>,
@@ -62,7 +72,7 @@ impl Curve<2> for Wiggle {
 fn indicators(c: &mut Bench) {
     let mut group = c.benchmark_group("indicators");
     group.sample_size(10);
-    for n in [10_000, 100_000, 1_000_000] {
+    for n in sizes(&[10_000, 100_000, 1_000_000]) {
         let curve = Wiggle::new(n);
         group.throughput(Throughput::Elements(n as u64));
         group.bench_with_input(BenchmarkId::new("jumps", n), &curve, |b, curve| {
@@ -95,7 +105,7 @@ fn indicators(c: &mut Bench) {
 fn summaries(c: &mut Bench) {
     let mut group = c.benchmark_group("summary");
     group.sample_size(10);
-    for n in [10_000, 100_000, 1_000_000] {
+    for n in sizes(&[10_000, 100_000, 1_000_000]) {
         let h = 10.0 / n as f64;
         let x: Vec<f64> = (0..n).map(|i| i as f64 * h).collect();
         // A deterministic, irregular perturbation (no RNG dependency).

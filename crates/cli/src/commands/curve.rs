@@ -231,6 +231,8 @@ pub fn process(input: &CurveInput, args: &FairArgs, file: Option<&ConfigFile>) -
         z_before: before.z,
         z_after: after.z,
         function: kind == CurveKind::Function,
+        curvature_before: before.curvature,
+        curvature_after: after.curvature,
     };
     Ok(Faired {
         report,

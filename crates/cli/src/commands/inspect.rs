@@ -7,14 +7,12 @@
 use std::path::Path;
 
 use crate::args::{InspectArgs, KindArg};
-use crate::commands::measure::CurvaturePlot;
 use crate::commands::{curve::MIN_CURVE_POINTS, measure, say, surface};
 use crate::error::Result;
 use crate::input::{self, Source};
 use crate::kind::{self, CurveKind};
 use crate::plots::{planar_view, CurvePlot, SurfacePlot};
 use crate::report::{Report, ReportKind};
-use crate::svg::{Color, Line, Markers, Panel};
 
 /// Whether a source is a surface grid: five comma-separated columns on its first row.
 fn looks_like_surface(source: &Source) -> bool {
@@ -24,23 +22,6 @@ fn looks_like_surface(source: &Source) -> bool {
         .map(str::trim)
         .find(|l| !l.is_empty() && !l.starts_with('#'));
     first.is_some_and(|l| l.split(',').count() == 5)
-}
-
-/// The curvature plot panel: the line and the values at the data points.
-pub fn curvature_panel(plot: &CurvaturePlot) -> Panel {
-    Panel::new(plot.title.clone())
-        .with_x_label(plot.x_label.clone())
-        .with_y_label(plot.y_label.clone())
-        .with(
-            Line::new(plot.line.clone())
-                .with_label("curvature")
-                .with_color(Color::palette(0)),
-        )
-        .with(
-            Markers::new(plot.knots.clone())
-                .with_label("at the data points")
-                .with_color(Color::palette(0)),
-        )
 }
 
 fn format_measures(report: &Report) -> String {
@@ -111,13 +92,10 @@ pub fn inspect(source: &Source, kind_arg: KindArg, surface: bool, plot: Option<&
                 comb: measured.comb.clone(),
                 z_before: measured.z.clone(),
                 function: kind == CurveKind::Function,
+                curvature_before: measured.curvature.clone(),
                 ..CurvePlot::default()
             };
-            let mut figure = plot.figure();
-            if let Some(curvature) = &measured.curvature {
-                figure.push(curvature_panel(curvature));
-            }
-            figure.write(path)?;
+            plot.figure().write(path)?;
         }
         Report::inspection(kind.report_kind(), input.len(), measured.measures, measured.curve)
     };

@@ -30,20 +30,7 @@ pub const POINTS: &str = "the points";
 /// The most samples drawn along a curve (a few per interval, at least 2).
 const MAX_SAMPLES: usize = 4000;
 
-/// A curvature plot: a line and the values at the data points.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct CurvaturePlot {
-    /// Panel title.
-    pub title: String,
-    /// The abscissa's name (`x`, or `t` the chord-length parameter).
-    pub x_label: String,
-    /// The ordinate's name (`c = y''/6`, or `κ`).
-    pub y_label: String,
-    /// The plotted line.
-    pub line: Vec<[f64; 2]>,
-    /// The values at the data points.
-    pub knots: Vec<[f64; 2]>,
-}
+pub use crate::plots::CurvaturePlot;
 
 /// What measuring a curve gives: the report's numbers and what the plot can show.
 #[derive(Debug, Clone, PartialEq, Default)]

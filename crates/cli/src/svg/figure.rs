@@ -437,7 +437,11 @@ fn render_color_map(svg: &mut String, map: &ColorMap, frame: &Frame) {
         for (j, v) in row.iter().enumerate() {
             let x = map.x_range.0 + dx * i as f64;
             let y = map.y_range.0 + dy * j as f64;
-            let t = if hi > lo { (v - lo) / (hi - lo) } else { 0.5 };
+            let t = if hi > lo {
+                ((v - lo) / (hi - lo)).clamp(0.0, 1.0)
+            } else {
+                0.5
+            };
             if let (Some((x0, y0)), Some((x1, y1))) = (frame.point([x, y]), frame.point([x + dx, y + dy])) {
                 let _ = writeln!(
                     svg,

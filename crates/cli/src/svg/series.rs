@@ -257,6 +257,9 @@ pub struct ColorMap {
     pub y_range: (f64, f64),
     /// Legend entry (the value range is appended).
     pub label: Option<String>,
+    /// The value range the colours span, when fixed (so that two maps compare); else the
+    /// values' own range.
+    pub scale: Option<(f64, f64)>,
 }
 
 impl ColorMap {
@@ -269,15 +272,25 @@ impl ColorMap {
             x_range: (-0.5, rows - 0.5),
             y_range: (-0.5, columns - 0.5),
             label: None,
+            scale: None,
         }
+    }
+    /// Fixes the value range the colours span (values outside are clamped to its ends).
+    pub fn with_scale(mut self, low: f64, high: f64) -> ColorMap {
+        self.scale = (low.is_finite() && high.is_finite() && low <= high).then_some((low, high));
+        self
     }
     /// Sets the legend entry.
     pub fn with_label(mut self, label: impl Into<String>) -> ColorMap {
         self.label = Some(label.into());
         self
     }
-    /// The smallest and largest finite value, if any.
+    /// The range the colours span: the fixed scale, else the smallest and largest finite
+    /// value, if any.
     pub fn value_range(&self) -> Option<(f64, f64)> {
+        if self.scale.is_some() {
+            return self.scale;
+        }
         let finite = self.values.iter().flatten().copied().filter(|v| v.is_finite());
         finite.fold(None, |range, v| match range {
             None => Some((v, v)),
