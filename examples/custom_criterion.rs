@@ -36,9 +36,26 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let spline = HermiteSpline::natural(&points)?;
     let criteria: Vec<Box<dyn Criterion<HermiteSpline<2>>>> = vec![Box::new(MaxSpeed)];
     for criterion in &criteria {
-        println!("{} = {:.6}", criterion.name(), criterion.evaluate(&spline)?);
+        let value = criterion.evaluate(&spline)?;
+        println!("{} = {:.6}", criterion.name(), value);
+        // The same number by another route: the Hermite spline's stored knot tangents.
+        let from_tangents = spline.tangents().iter().map(|t| t.norm()).fold(0.0, f64::max);
+        assert!(
+            (value - from_tangents).abs() <= 1e-12 * from_tangents,
+            "{value} {from_tangents}"
+        );
     }
     let energies = Energies::of(&spline)?;
     println!("built-in: E2 = {:.6}, Ek = {:.6}", energies.e2, energies.ek);
     Ok(())
+}
+
+// `cargo test` runs this example (`test = true` in Cargo.toml), so the code the README shows
+// is checked, not only compiled.
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_example_runs_and_its_assertions_hold() {
+        super::main().unwrap();
+    }
 }

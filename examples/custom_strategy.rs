@@ -90,3 +90,13 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     assert_eq!(result.points[14], points[14]);
     Ok(())
 }
+
+// `cargo test` runs this example (`test = true` in Cargo.toml), so the code the README shows
+// is checked, not only compiled.
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_example_runs_and_its_assertions_hold() {
+        super::main().unwrap();
+    }
+}
