@@ -207,7 +207,11 @@ pub fn run(args: &FairArgs, file: Option<&ConfigFile>) -> Result<()> {
     let results: Vec<Result<Faired>> = items
         .par_iter()
         .map(|item| {
-            let result = item.read().and_then(|input| process(&input, args, file));
+            // A report with a non-finite number is that curve's failure, never a `null` line.
+            let result = item
+                .read()
+                .and_then(|input| process(&input, args, file))
+                .and_then(|faired| faired.report.check_finite().map(|()| faired));
             bar.inc(1);
             result
         })
