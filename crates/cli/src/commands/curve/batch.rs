@@ -177,6 +177,12 @@ pub fn run(args: &FairArgs, file: Option<&ConfigFile>) -> Result<()> {
             message: "give one curve, not a batch, to print the config it implies".into(),
         });
     }
+    if args.output.as_deref() == Some("-") {
+        return Err(Error::Argument {
+            option: "-o",
+            message: "a batch writes its report lines to standard output; give -o a directory or file".into(),
+        });
+    }
     let items = items(args)?;
     let directory_batch = Path::new(&args.input).is_dir() && !args.batch;
     for (option, dir) in [
@@ -196,12 +202,6 @@ pub fn run(args: &FairArgs, file: Option<&ConfigFile>) -> Result<()> {
                 ),
             })?;
         }
-    }
-    if args.output.as_deref() == Some("-") {
-        return Err(Error::Argument {
-            option: "-o",
-            message: "a batch writes its report lines to standard output; give -o a directory or file".into(),
-        });
     }
     let bar = progress::bar(items.len() as u64, args.quiet, "fairing");
     let results: Vec<Result<Faired>> = items
