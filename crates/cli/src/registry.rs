@@ -58,6 +58,42 @@ impl MethodInfo {
     }
 }
 
+/// The strain-energy family's parameters: `strain-energy` takes them all, its presets
+/// `kjellander` and `poliakoff` (whose knots are fixed) all but `parametrization`, the last.
+const STRAIN_ENERGY: &[ParameterInfo] = &[
+    ParameterInfo {
+        name: "energy-tolerance",
+        default: "1e-6",
+        meaning: "stop when one step changes the strain energy by at most this x E",
+    },
+    ParameterInfo {
+        name: "radius-scale",
+        default: "1",
+        meaning: "automatic mode: restraining radius = this x |Eq. 11 point - P_i| (1 = the paper)",
+    },
+    ParameterInfo {
+        name: "pairs",
+        default: "off",
+        meaning: "automatic mode: on = replace the two worst adjacent points together (Eq. 15)",
+    },
+    ParameterInfo {
+        name: "replacement",
+        default: "limit",
+        meaning: "limit = Eq. 11/15 in one step; iterated = one application of Eq. 8/13 per step",
+    },
+    ParameterInfo {
+        name: "max-iterations",
+        default: "100000",
+        meaning: "replacement steps at most",
+    },
+    ParameterInfo {
+        name: "parametrization",
+        default: "chord-length",
+        meaning: "fixed knots: chord-length, uniform or centripetal",
+    },
+];
+const STRAIN_ENERGY_PRESETS: &[ParameterInfo] = STRAIN_ENERGY.split_at(STRAIN_ENERGY.len() - 1).0;
+
 /// Curve methods that fair planar curves only (Han's two-phase works on y(x) and on planar
 /// curves through bisector frames); the others take 2D and 3D points.
 pub const PLANAR_ONLY: &[&str] = &["two-phase"];
@@ -147,104 +183,21 @@ pub const METHODS: &[MethodInfo] = &[
         kind: MethodKind::Curve,
         paper: "Zhang & Cheng, strain-energy point replacement",
         summary: "replaces one or two bad points to minimise the strain energy (--points: interactive, else automatic)",
-        parameters: &[
-            ParameterInfo {
-                name: "energy-tolerance",
-                default: "1e-6",
-                meaning: "stop when one step changes the strain energy by at most this x E",
-            },
-            ParameterInfo {
-                name: "radius-scale",
-                default: "1",
-                meaning: "automatic mode: restraining radius = this x |Eq. 11 point - P_i| (1 = the paper)",
-            },
-            ParameterInfo {
-                name: "pairs",
-                default: "off",
-                meaning: "automatic mode: on = replace the two worst adjacent points together (Eq. 15)",
-            },
-            ParameterInfo {
-                name: "replacement",
-                default: "limit",
-                meaning: "limit = Eq. 11/15 in one step; iterated = one application of Eq. 8/13 per step",
-            },
-            ParameterInfo {
-                name: "max-iterations",
-                default: "100000",
-                meaning: "replacement steps at most",
-            },
-            ParameterInfo {
-                name: "parametrization",
-                default: "chord-length",
-                meaning: "fixed knots: chord-length, uniform or centripetal",
-            },
-        ],
+        parameters: STRAIN_ENERGY,
     },
     MethodInfo {
         name: "kjellander",
         kind: MethodKind::Curve,
         paper: "Kjellander (as a preset of Zhang & Cheng)",
         summary: "moves a bad point to remove the third-derivative jump",
-        parameters: &[
-            ParameterInfo {
-                name: "energy-tolerance",
-                default: "1e-6",
-                meaning: "stop when one step changes the strain energy by at most this x E",
-            },
-            ParameterInfo {
-                name: "radius-scale",
-                default: "1",
-                meaning: "automatic mode: restraining radius = this x |Eq. 11 point - P_i| (1 = the paper)",
-            },
-            ParameterInfo {
-                name: "pairs",
-                default: "off",
-                meaning: "automatic mode: on = replace the two worst adjacent points together (Eq. 15)",
-            },
-            ParameterInfo {
-                name: "replacement",
-                default: "limit",
-                meaning: "limit = Eq. 11/15 in one step; iterated = one application of Eq. 8/13 per step",
-            },
-            ParameterInfo {
-                name: "max-iterations",
-                default: "100000",
-                meaning: "replacement steps at most",
-            },
-        ],
+        parameters: STRAIN_ENERGY_PRESETS,
     },
     MethodInfo {
         name: "poliakoff",
         kind: MethodKind::Curve,
         paper: "Poliakoff (as a preset of Zhang & Cheng)",
         summary: "moves a bad point to reduce the local strain energy",
-        parameters: &[
-            ParameterInfo {
-                name: "energy-tolerance",
-                default: "1e-6",
-                meaning: "stop when one step changes the strain energy by at most this x E",
-            },
-            ParameterInfo {
-                name: "radius-scale",
-                default: "1",
-                meaning: "automatic mode: restraining radius = this x |Eq. 11 point - P_i| (1 = the paper)",
-            },
-            ParameterInfo {
-                name: "pairs",
-                default: "off",
-                meaning: "automatic mode: on = replace the two worst adjacent points together (Eq. 15)",
-            },
-            ParameterInfo {
-                name: "replacement",
-                default: "limit",
-                meaning: "limit = Eq. 11/15 in one step; iterated = one application of Eq. 8/13 per step",
-            },
-            ParameterInfo {
-                name: "max-iterations",
-                default: "100000",
-                meaning: "replacement steps at most",
-            },
-        ],
+        parameters: STRAIN_ENERGY_PRESETS,
     },
     MethodInfo {
         name: "batten",
@@ -460,6 +413,18 @@ pub fn table() -> String {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn strain_energy_presets_take_all_but_the_parametrization() {
+        let full = find("strain-energy", MethodKind::Curve).unwrap();
+        assert!(full.parameter("parametrization").is_some());
+        for preset in ["kjellander", "poliakoff"] {
+            let method = find(preset, MethodKind::Curve).unwrap();
+            assert!(method.parameter("parametrization").is_none(), "{preset}");
+            assert_eq!(method.parameters.len(), full.parameters.len() - 1);
+        }
+    }
+
     use super::*;
 
     #[test]
