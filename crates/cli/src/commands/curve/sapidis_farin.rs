@@ -14,10 +14,9 @@ use curve_repr::Vector;
 use fairing::strategies::{CurveDomain, SapidisFarin, SapidisFarinSettings, SapidisFarinStop};
 use fairness::curvature::CurvatureForm;
 
-use super::strategy_run::{fairing_constraints, from_fairing, run};
+use super::strategy_run::{by_dimension, fairing_constraints, run, Described};
 use super::{CurveJob, CurveOutcome};
 use crate::error::{Error, Result};
-use crate::input::Points;
 use crate::kind::CurveKind;
 
 /// Reads the parameters, runs the fairing, describes it.
@@ -43,33 +42,13 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
             CurveKind::Parametric => CurveDomain::Parametric,
         });
     let constraints = fairing_constraints(job.constraints);
-    let outcome =
-        match &job.input.points {
-            Points::Planar(points) => fair_points(points, settings, constraints)
-                .map(|(points, rest)| (Points::Planar(points), rest)),
-            Points::Spatial(points) => fair_points(points, settings, constraints)
-                .map(|(points, rest)| (Points::Spatial(points), rest)),
-        };
-    let (points, (curve, extras, moved, iterations, elapsed_ms)) =
-        outcome.map_err(|e| from_fairing(e, &job.input.source))?;
-    Ok(CurveOutcome {
-        points,
-        iterations,
-        moved,
-        elapsed_ms,
-        curve,
-        extras,
-        represented_energies: None,
-    })
+    let planar_constraints = constraints.clone();
+    by_dimension(
+        job,
+        move |points| fair_points(points, settings, planar_constraints),
+        move |points| fair_points(points, settings, constraints),
+    )
 }
-
-type Described = (
-    serde_json::Value,
-    BTreeMap<String, serde_json::Value>,
-    Vec<usize>,
-    usize,
-    f64,
-);
 
 fn fair_points<const D: usize>(
     points: &[Vector<D>],
@@ -122,12 +101,12 @@ where
     extras.insert("steps".into(), serde_json::Value::Array(steps));
     Ok((
         result.points,
-        (
+        Described {
             curve,
             extras,
-            result.moved,
-            strategy.history().len(),
-            result.elapsed_ms,
-        ),
+            moved: result.moved,
+            iterations: strategy.history().len(),
+            elapsed_ms: result.elapsed_ms,
+        },
     ))
 }

@@ -16,10 +16,9 @@ use std::collections::BTreeMap;
 use curve_repr::Vector;
 use fairing::strategies::{CurveDomain, SmoothingRule, SmoothingSettings, SmoothingSplineFairing};
 
-use super::strategy_run::{fairing_constraints, from_fairing, run};
+use super::strategy_run::{by_dimension, fairing_constraints, run, Described};
 use super::{CurveJob, CurveOutcome};
 use crate::error::{Error, Result};
-use crate::input::Points;
 use crate::kind::CurveKind;
 
 /// Reads the parameters, runs the fit, describes it.
@@ -47,33 +46,14 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
         CurveKind::Parametric => CurveDomain::Parametric,
     };
     let constraints = fairing_constraints(job.constraints);
-    let outcome =
-        match &job.input.points {
-            Points::Planar(points) => fit(points, settings, domain, constraints)
-                .map(|(points, rest)| (Points::Planar(points), rest)),
-            Points::Spatial(points) => fit(points, settings, domain, constraints)
-                .map(|(points, rest)| (Points::Spatial(points), rest)),
-        };
-    let (points, (curve, extras, moved, iterations, elapsed_ms)) =
-        outcome.map_err(|e| from_fairing(e, &job.input.source))?;
-    Ok(CurveOutcome {
-        points,
-        iterations,
-        moved,
-        elapsed_ms,
-        curve,
-        extras,
-        represented_energies: None,
-    })
+    let planar_settings = settings.clone();
+    let planar_constraints = constraints.clone();
+    by_dimension(
+        job,
+        move |points| fit(points, planar_settings, domain, planar_constraints),
+        move |points| fit(points, settings, domain, constraints),
+    )
 }
-
-type Described = (
-    serde_json::Value,
-    BTreeMap<String, serde_json::Value>,
-    Vec<usize>,
-    usize,
-    f64,
-);
 
 fn fit<const D: usize>(
     points: &[Vector<D>],
@@ -114,6 +94,12 @@ fn fit<const D: usize>(
     extras.insert("termination".into(), serde_json::json!(result.termination));
     Ok((
         result.points,
-        (curve, extras, result.moved, result.iterations, result.elapsed_ms),
+        Described {
+            curve,
+            extras,
+            moved: result.moved,
+            iterations: result.iterations,
+            elapsed_ms: result.elapsed_ms,
+        },
     ))
 }

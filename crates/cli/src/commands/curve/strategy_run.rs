@@ -10,13 +10,14 @@
 use std::collections::BTreeSet;
 use std::time::Instant;
 
-use curve_repr::Vector;
+use curve_repr::{Vec2, Vec3, Vector};
 use fairing::{EndClamp, FairingResult, FairingState, FairingStrategy, Pipeline};
 
-use super::CurveJob;
+use super::{CurveJob, CurveOutcome};
 use crate::args::ClampEnds;
 use crate::constraints::Constraints;
 use crate::error::{Error, Result};
+use crate::input::Points;
 
 /// The user's constraints as the fairing crate's: fixed points, the tolerance band and the
 /// end clamp (`--points` is for the interactive methods and ignored here).
@@ -139,4 +140,42 @@ pub fn run_strategy<const D: usize>(
         .with_trace(false)
         .run(points.to_vec())
         .map_err(|e| from_fairing(e, &job.input.source))
+}
+
+/// A strategy's run described for the report: everything of a [`CurveOutcome`] but the points.
+#[derive(Debug, Clone)]
+pub struct Described {
+    /// The faired curve for the report's `curve`.
+    pub curve: serde_json::Value,
+    /// Method-specific extras.
+    pub extras: std::collections::BTreeMap<String, serde_json::Value>,
+    /// Indices of the points that moved.
+    pub moved: Vec<usize>,
+    /// Iterations (steps) made.
+    pub iterations: usize,
+    /// Time of the fairing itself, in milliseconds.
+    pub elapsed_ms: f64,
+}
+
+/// Runs `planar` or `spatial` on the job's points, whichever they are, and makes the command's
+/// outcome; the library's errors name the input file.
+pub fn by_dimension(
+    job: &CurveJob,
+    planar: impl FnOnce(&[Vec2]) -> fairing::Result<(Vec<Vec2>, Described)>,
+    spatial: impl FnOnce(&[Vec3]) -> fairing::Result<(Vec<Vec3>, Described)>,
+) -> Result<CurveOutcome> {
+    let result = match &job.input.points {
+        Points::Planar(points) => planar(points).map(|(p, d)| (Points::Planar(p), d)),
+        Points::Spatial(points) => spatial(points).map(|(p, d)| (Points::Spatial(p), d)),
+    };
+    let (points, described) = result.map_err(|e| from_fairing(e, &job.input.source))?;
+    Ok(CurveOutcome {
+        points,
+        iterations: described.iterations,
+        moved: described.moved,
+        elapsed_ms: described.elapsed_ms,
+        curve: described.curve,
+        extras: described.extras,
+        represented_energies: None,
+    })
 }
