@@ -274,7 +274,20 @@ pub fn displacement(spline: &SplineFunction, case: Case, lambda: f64) -> Option<
 fn local_counts(spline: &SplineFunction, lo: usize, hi: usize, scratch: &mut Vec<f64>) -> (usize, usize) {
     let n = spline.x().len();
     scratch.clear();
-    scratch.extend((lo.max(1)..=hi.min(n.saturating_sub(2))).map(|k| e_at(spline, k)));
+    // e_k as in `e_at`, over slices (the same operations, so the same values).
+    let (first, last) = (lo.max(1), hi.min(n.saturating_sub(2)));
+    if let (Some(x), Some(c)) = (
+        spline.x().get(first.saturating_sub(1)..last + 2),
+        spline.c().get(first.saturating_sub(1)..last + 2),
+    ) {
+        if first <= last {
+            scratch.extend(
+                x.windows(3)
+                    .zip(c.windows(3))
+                    .map(|(x, c)| (c[2] - c[1]) / (x[2] - x[1]) - (c[1] - c[0]) / (x[1] - x[0])),
+            );
+        }
+    }
     let c = spline.c().get(lo..=hi).unwrap_or(&[]);
     (changes(scratch.iter().copied()), changes(c.iter().copied()))
 }
