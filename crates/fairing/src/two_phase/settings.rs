@@ -50,6 +50,14 @@ pub struct TwoPhaseSettings {
     /// max|e| (Phase 1) and |c_i| ≤ max(`detection_floor`, 1e-12) · max|c| (Phase 2) as zero:
     /// such a value starts and joins no case. 0 is the paper (Phase 1 reads only exact zeros
     /// as zero; Phase 2 the DESIGN.md level 1e-12). The counts (DESIGN.md) are unchanged.
+    ///
+    /// With a floor the small cases that λ < 1 only shrinks stop being found, so a fairing of
+    /// noise ends by "no case applies" instead of running `max_passes`; but it ends with more
+    /// sign changes. Measured (y = sin(x/2) + N(0, 0.01²), x = 0.1 k, n = 10^5; vibrations /
+    /// inflections, passes until no move): 0 → 36833 / 23372 after all 50 passes; 1e-4 →
+    /// 40065 / 24436, no move after ~27; 1e-3 → 42847 / 26862, ~20; 1e-2 → 49387 / 34432,
+    /// ~11. The default is 0 (the paper) because every floor tried leaves more inflections
+    /// than the paper's rules reach in 50 passes.
     pub detection_floor: f64,
 }
 
