@@ -518,3 +518,41 @@ fn many_windowed_updates_on_a_long_spline_stay_at_the_rebuild() {
         }
     }
 }
+
+/// `set_y_within` truncates each column at `window` entries per side: the difference from a
+/// rebuild is within the decay bound 2 · max(|c̃_{j−1}^j|, |c̃_{j+1}^j|) · 2^{−window} of the
+/// move (plus rounding), and it is not zero for a short window (the truncation is real).
+#[test]
+fn a_short_update_window_stays_within_the_decay_bound() {
+    let x = uneven_x(300);
+    let y: Vec<f64> = x.iter().map(|t| (0.05 * t).sin()).collect();
+    let j = 150;
+    let delta = 0.7;
+    for window in [4usize, 8, 32] {
+        let mut spline = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap();
+        let before = spline.clone();
+        spline.set_y_within(&[(j, y[j] + delta)], window).unwrap();
+        let mut moved = y.clone();
+        moved[j] += delta;
+        let rebuilt = SplineFunction::new(&x, &moved, EndCondition::ParabolicRunout).unwrap();
+        let central = before
+            .sensitivity(j - 1, j)
+            .abs()
+            .max(before.sensitivity(j + 1, j).abs());
+        let bound = delta * 2.0 * central * 0.5f64.powi(window as i32);
+        let scale = rebuilt.c().iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let worst = spline
+            .c()
+            .iter()
+            .zip(rebuilt.c())
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0f64, f64::max);
+        assert!(
+            worst <= bound + 1e-12 * scale,
+            "window {window}: {worst} > {bound}"
+        );
+        if window == 4 {
+            assert!(worst > 1e-12 * scale, "window 4 should truncate visibly");
+        }
+    }
+}

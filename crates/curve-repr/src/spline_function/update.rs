@@ -26,6 +26,15 @@ impl SplineFunction {
     /// [`Error::NonFinite`] on a non-finite value, and [`Error::InvalidMove`] if the move
     /// overflows a chord slope or c.
     pub fn set_y(&mut self, moves: &[(usize, f64)]) -> Result<()> {
+        self.set_y_within(moves, UPDATE_WINDOW)
+    }
+
+    /// [`set_y`](SplineFunction::set_y) with the sensitivity columns truncated to `window`
+    /// (at least 1) entries on each side of each moved point instead of [`UPDATE_WINDOW`]:
+    /// every neglected entry is below 2 · max(|c̃_{j−1}^j|, |c̃_{j+1}^j|) · 2^{−window} of the
+    /// move's own effect (0.27^window for uniform knots). For callers that make very many
+    /// small moves and [`rebuild`](SplineFunction::rebuild) afterwards. O(window) per move.
+    pub fn set_y_within(&mut self, moves: &[(usize, f64)], window: usize) -> Result<()> {
         let n = self.x.len();
         for &(index, value) in moves {
             if index >= n {
@@ -50,7 +59,7 @@ impl SplineFunction {
             if delta == 0.0 {
                 continue;
             }
-            let column = match self.sensitivity_column(j, UPDATE_WINDOW) {
+            let column = match self.sensitivity_column(j, window) {
                 Some(column) if delta.is_finite() && self.slopes_are_finite_around(j) => column,
                 _ => {
                     self.undo(saved_y, saved_c);

@@ -100,7 +100,9 @@ impl Stall {
 /// With λ < 1 the small case shrinks |e| geometrically and keeps finding work, so on noisy
 /// data the stage usually runs all `max_passes`; use
 /// [`Pipeline::with_tolerance`](crate::Pipeline::with_tolerance)`(0.0)` to stop once a pass
-/// leaves the vibration count (the reported criterion) unchanged.
+/// leaves the vibration count (the reported criterion) unchanged, or a
+/// [`TwoPhaseSettings::detection_floor`] > 0 so that the shrinking cases stop being found
+/// (fewer passes, more sign changes left: measured in its doc).
 ///
 /// As a [`SegmentFairer`] it runs [`fair_function`] on each segment of a
 /// [`SegmentedFairing`](crate::SegmentedFairing) (the `fixed` flags are honoured; the

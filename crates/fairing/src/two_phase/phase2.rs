@@ -382,7 +382,7 @@ pub fn fine_pass(
     movable: &dyn Fn(usize) -> bool,
 ) -> Result<PassReport> {
     settings.validate()?;
-    let zero = zero_level(spline);
+    let zero = zero_level(spline).max(settings.detection_floor * 1e12 * zero_level(spline));
     let find = |spline: &SplineFunction, i: usize| {
         let case = detect_with(spline, i, settings.max_run, zero)?;
         Some((case, fine_with(spline, case, settings, zero)))
