@@ -354,21 +354,10 @@ pub fn eq13_positions<const D: usize>(
     max_sweeps: usize,
 ) -> Result<Vec<Vector<D>>> {
     let n = points.len();
-    if tangents.x.len() + 1 != n
-        || tangents.chords.len() + 1 != n
-        || movable.len() != n
-        || centers.len() != n
-        || allowed.len() != n
-    {
-        return Err(strategy_error("batten", "Eq. 13: inconsistent lengths"));
-    }
-    let c = &tangents.chords;
-    let y = |i: usize| tangents.y(i).unwrap_or_else(Vector::zeros);
+    check_eq13_lengths(n, tangents, movable, centers, allowed)?;
     // Row of interior point i: coefficients (lo, di, up) and right-hand side.
     let row = |i: usize| {
-        let k = c[i - 1] / c[i];
-        let k3 = k * k * k;
-        let b = tangents.x[i - 1] + tangents.x[i] * (k * (1.0 - k * k)) - y(i) * k3;
+        let (k3, b) = eq13_row(tangents, i);
         (-2.0, 2.0 * (1.0 + k3), -2.0 * k3, b)
     };
     let free = |i: usize| i > 0 && i + 1 < n && movable[i];
@@ -432,6 +421,37 @@ pub fn eq13_positions<const D: usize>(
     Ok(out)
 }
 
+/// Eq. (13) at interior point i, −2P_{i−1} + 2(1 + k³)P_i − 2k³P_{i+1} = b with
+/// k = C_{i−1}/C_i and b = X_{i−1} + k(1 − k²)X_i − k³Y_i: returns (k³, b). O(1).
+fn eq13_row<const D: usize>(tangents: &Tangents<D>, i: usize) -> (f64, Vector<D>) {
+    let k = tangents.chords[i - 1] / tangents.chords[i];
+    let k3 = k * k * k;
+    let y = tangents.y(i).unwrap_or_else(Vector::zeros);
+    (
+        k3,
+        tangents.x[i - 1] + tangents.x[i] * (k * (1.0 - k * k)) - y * k3,
+    )
+}
+
+/// The argument lengths Eq. (13)'s solvers need: n points, n − 1 chords and tangents.
+fn check_eq13_lengths<const D: usize>(
+    n: usize,
+    tangents: &Tangents<D>,
+    movable: &[bool],
+    centers: &[Vector<D>],
+    allowed: &[f64],
+) -> Result<()> {
+    if tangents.x.len() + 1 != n
+        || tangents.chords.len() + 1 != n
+        || movable.len() != n
+        || centers.len() != n
+        || allowed.len() != n
+    {
+        return Err(strategy_error("batten", "Eq. 13: inconsistent lengths"));
+    }
+    Ok(())
+}
+
 /// One sweep of Eq. (13) row by row ([`PositionUpdate::GaussSeidel`] or
 /// [`PositionUpdate::Jacobi`]): point i goes to the solution of its own row, projected into
 /// its range (`allowed[i]` around `centers[i]`), with the neighbours as updated so far
@@ -445,24 +465,13 @@ pub fn eq13_sweep<const D: usize>(
     gauss_seidel: bool,
 ) -> Result<Vec<Vector<D>>> {
     let n = points.len();
-    if tangents.x.len() + 1 != n
-        || tangents.chords.len() + 1 != n
-        || movable.len() != n
-        || centers.len() != n
-        || allowed.len() != n
-    {
-        return Err(strategy_error("batten", "Eq. 13: inconsistent lengths"));
-    }
-    let c = &tangents.chords;
+    check_eq13_lengths(n, tangents, movable, centers, allowed)?;
     let mut out = points.to_vec();
     for i in 1..n.saturating_sub(1) {
         if !movable[i] {
             continue;
         }
-        let k = c[i - 1] / c[i];
-        let k3 = k * k * k;
-        let y = tangents.y(i).unwrap_or_else(Vector::zeros);
-        let b = tangents.x[i - 1] + tangents.x[i] * (k * (1.0 - k * k)) - y * k3;
+        let (k3, b) = eq13_row(tangents, i);
         let prev = if gauss_seidel { out[i - 1] } else { points[i - 1] };
         let p = (b + prev * 2.0 + points[i + 1] * (2.0 * k3)) / (2.0 * (1.0 + k3));
         if p.iter().any(|v| !v.is_finite()) {
