@@ -6,7 +6,7 @@
 //! A directory or a JSON-lines stream is a [`batch`].
 
 use crate::args::FairArgs;
-use crate::commands::{measure, say};
+use crate::commands::{measure, say, write_results};
 use crate::config::{self, ConfigConstraints, ConfigFile};
 use crate::constraints::Constraints;
 use crate::error::{Error, Result};
@@ -264,22 +264,6 @@ fn check_still_a_function(points: &Points, plan: &Plan) -> Result<()> {
     }
 }
 
-/// Writes what `-o`, `--report` and `--plot` ask for. The report text is made before anything
-/// is written, so a report that cannot be written as JSON leaves no half-written outputs.
-pub fn write_outputs(args: &FairArgs, faired: &Faired) -> Result<()> {
-    let report_text = faired.report.to_json()?;
-    if let Some(out) = &args.output {
-        crate::output::write_text(out, &faired.points_text)?;
-    }
-    if let Some(path) = &args.report {
-        crate::output::write_text(&path.display().to_string(), &report_text)?;
-    }
-    if let Some(path) = &args.plot {
-        faired.plot.figure().write(path)?;
-    }
-    Ok(())
-}
-
 /// Runs `fair curve`: one input, or a batch ([`batch`]).
 pub fn run(args: &FairArgs) -> Result<()> {
     let file = args.config.as_deref().map(ConfigFile::read).transpose()?;
@@ -300,7 +284,7 @@ pub fn run(args: &FairArgs) -> Result<()> {
         let _activity = progress::Activity::start(&format!("fairing {}", input.source), args.quiet);
         process(&input, args, file.as_ref())?
     };
-    write_outputs(args, &faired)?;
+    write_results(args, &faired.report, &faired.points_text, || faired.plot.figure())?;
     let report = &faired.report;
     say(
         args.quiet,

@@ -11,7 +11,7 @@
 //! Every method runs in its automatic mode with its default parameters (no `--points`).
 
 use crate::args::{DemoArgs, FairArgs, KindArg};
-use crate::commands::{curve, inspect, surface};
+use crate::commands::{curve, inspect, surface, write_results};
 use crate::error::{Error, Result};
 use crate::input::Source;
 use crate::registry::{MethodKind, METHODS, PLANAR_ONLY};
@@ -116,7 +116,7 @@ fn count(value: Option<usize>) -> String {
 fn fair_curve(args: &FairArgs) -> Result<Report> {
     let input = crate::input::read_curve(&args.input)?;
     let faired = curve::process(&input, args, None)?;
-    curve::write_outputs(args, &faired)?;
+    write_results(args, &faired.report, &faired.points_text, || faired.plot.figure())?;
     Ok(faired.report)
 }
 
@@ -124,7 +124,7 @@ fn fair_curve(args: &FairArgs) -> Result<Report> {
 fn fair_surface(args: &FairArgs) -> Result<Report> {
     let input = crate::input::read_surface(&args.input)?;
     let faired = surface::process(&input, args, None)?;
-    surface::write_outputs(args, &faired)?;
+    write_results(args, &faired.report, &faired.grid_text, || faired.plot.figure())?;
     Ok(faired.report)
 }
 

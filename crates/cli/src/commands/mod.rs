@@ -39,3 +39,25 @@ pub(crate) fn say(quiet: bool, points_on_stdout: bool, text: &str) {
         let _ = writeln!(std::io::stdout(), "{text}");
     }
 }
+
+/// Writes what `-o`, `--report` and `--plot` ask for: the faired points (or grid) as text,
+/// the report and the picture. The report text is made (and checked finite) before anything
+/// is written, so a failing report leaves no half-written outputs.
+pub(crate) fn write_results(
+    args: &crate::args::FairArgs,
+    report: &crate::report::Report,
+    points_text: &str,
+    figure: impl FnOnce() -> crate::svg::Figure,
+) -> Result<()> {
+    let report_text = report.to_json()?;
+    if let Some(out) = &args.output {
+        crate::output::write_text(out, points_text)?;
+    }
+    if let Some(path) = &args.report {
+        crate::output::write_text(&path.display().to_string(), &report_text)?;
+    }
+    if let Some(path) = &args.plot {
+        figure().write(path)?;
+    }
+    Ok(())
+}

@@ -3,7 +3,7 @@
 //! Same order of checks as `fair curve`; `--kind` does not apply to surfaces and is ignored.
 
 use crate::args::FairArgs;
-use crate::commands::{measure, say};
+use crate::commands::{measure, say, write_results};
 use crate::config::ConfigFile;
 use crate::constraints::Constraints;
 use crate::error::{Error, Result};
@@ -173,21 +173,6 @@ pub fn process(input: &SurfaceInput, args: &FairArgs, file: Option<&ConfigFile>)
     })
 }
 
-/// Writes what `-o`, `--report` and `--plot` ask for, the report text made first.
-pub fn write_outputs(args: &FairArgs, faired: &FairedSurface) -> Result<()> {
-    let report_text = faired.report.to_json()?;
-    if let Some(out) = &args.output {
-        crate::output::write_text(out, &faired.grid_text)?;
-    }
-    if let Some(path) = &args.report {
-        crate::output::write_text(&path.display().to_string(), &report_text)?;
-    }
-    if let Some(path) = &args.plot {
-        faired.plot.figure().write(path)?;
-    }
-    Ok(())
-}
-
 /// Runs `fair surface`.
 pub fn run(args: &FairArgs) -> Result<()> {
     if args.batch || std::path::Path::new(&args.input).is_dir() {
@@ -209,7 +194,7 @@ pub fn run(args: &FairArgs) -> Result<()> {
         let _activity = crate::progress::Activity::start(&format!("fairing {}", input.source), args.quiet);
         process(&input, args, file.as_ref())?
     };
-    write_outputs(args, &faired)?;
+    write_results(args, &faired.report, &faired.grid_text, || faired.plot.figure())?;
     let report = &faired.report;
     say(
         args.quiet,
