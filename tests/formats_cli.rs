@@ -57,6 +57,31 @@ fn numbers(line: &str) -> Vec<f64> {
         .collect()
 }
 
+/// Writes `text` to a fresh file called `file_name`, runs `fair curve FILE -o OUT -q`, asserts
+/// success and returns what was written to OUT.
+fn round_trip(file_name: &str, text: &str) -> String {
+    let dir = temp_dir(file_name);
+    let input = dir.join(file_name);
+    std::fs::write(&input, text).unwrap();
+    let output = dir.join(format!("out-{file_name}"));
+    let run = fair(
+        &[
+            "curve",
+            input.to_str().unwrap(),
+            "-o",
+            output.to_str().unwrap(),
+            "-q",
+        ],
+        None,
+    );
+    assert!(
+        run.status.success(),
+        "{file_name}: {}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    std::fs::read_to_string(&output).unwrap()
+}
+
 fn check_rows(lines: &[&str], expected: &[[f64; 2]]) {
     assert_eq!(lines.len(), expected.len());
     for (line, point) in lines.iter().zip(expected) {
@@ -117,26 +142,7 @@ fn csv_without_header_and_whitespace_separated() {
             .iter()
             .map(|p| format!("{}{separator}{}\n", p[0], p[1]))
             .collect();
-        let dir = temp_dir(name);
-        let input = dir.join(name);
-        std::fs::write(&input, &text).unwrap();
-        let output = dir.join(format!("out-{name}"));
-        let run = fair(
-            &[
-                "curve",
-                input.to_str().unwrap(),
-                "-o",
-                output.to_str().unwrap(),
-                "-q",
-            ],
-            None,
-        );
-        assert!(
-            run.status.success(),
-            "{name}: {}",
-            String::from_utf8_lossy(&run.stderr)
-        );
-        let written = std::fs::read_to_string(&output).unwrap();
+        let written = round_trip(name, &text);
         let lines: Vec<&str> = written.lines().collect();
         check_rows(&lines, &pts);
         assert_eq!(lines[0].contains(','), separator == ",", "{name}: {}", lines[0]);
@@ -147,23 +153,8 @@ fn csv_without_header_and_whitespace_separated() {
 fn json_document_keeps_its_other_keys() {
     let pts = points();
     let document = serde_json::json!({ "name": "NACA 2412 upper", "units": "chord", "points": pts });
-    let dir = temp_dir("json");
-    let input = dir.join("in.json");
-    std::fs::write(&input, document.to_string()).unwrap();
-    let output = dir.join("out.json");
-    let run = fair(
-        &[
-            "curve",
-            input.to_str().unwrap(),
-            "-o",
-            output.to_str().unwrap(),
-            "-q",
-        ],
-        None,
-    );
-    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     let written: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&output).unwrap()).unwrap();
+        serde_json::from_str(&round_trip("in.json", &document.to_string())).unwrap();
     assert_eq!(written["name"], "NACA 2412 upper");
     assert_eq!(written["units"], "chord");
     let got: Vec<[f64; 2]> = serde_json::from_value(written["points"].clone()).unwrap();
@@ -191,22 +182,7 @@ fn selig_airfoil_keeps_its_name_line() {
             [v[0], v[1]]
         })
         .collect();
-    let dir = temp_dir("selig");
-    let input = dir.join("naca2412.dat");
-    std::fs::write(&input, &text).unwrap();
-    let output = dir.join("out.dat");
-    let run = fair(
-        &[
-            "curve",
-            input.to_str().unwrap(),
-            "-o",
-            output.to_str().unwrap(),
-            "-q",
-        ],
-        None,
-    );
-    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
-    let written = std::fs::read_to_string(&output).unwrap();
+    let written = round_trip("naca2412.dat", &text);
     let lines: Vec<&str> = written.lines().collect();
     assert_eq!(lines[0], "NACA 2412 upper (Selig format)");
     check_rows(&lines[1..], &expected);
