@@ -556,3 +556,63 @@ fn a_short_update_window_stays_within_the_decay_bound() {
         }
     }
 }
+
+/// `local_y_change`: a δc that meets the two moment conditions is made by a y move on the same
+/// points, checked by rebuilding the spline from y + δy (the defining condition: c changes by
+/// δc there and nowhere else), for every end condition; a δc that violates them is refused.
+#[test]
+fn a_local_change_of_c_comes_from_a_local_y_move() {
+    let x = uneven_x(30);
+    let y: Vec<f64> = x.iter().map(|t| (0.7 * t).sin() + 0.1 * t * t).collect();
+    for end in [
+        EndCondition::ParabolicRunout,
+        EndCondition::Natural,
+        EndCondition::Clamped {
+            start_slope: 0.3,
+            end_slope: -1.0,
+        },
+    ] {
+        let spline = SplineFunction::new(&x, &y, end).unwrap();
+        for (first, len) in [(2usize, 4usize), (9, 7), (20, 8)] {
+            // Free entries, then the first two solved so that both moments vanish.
+            let mut dc: Vec<f64> = (0..len).map(|k| ((k * 7 + first) % 5) as f64 * 0.1 - 0.2).collect();
+            let origin = x[first];
+            let (mut s1, mut s2) = (0.0, 0.0);
+            for k in 2..len {
+                let (w1, w2) = spline.moment_weights(first + k, origin);
+                s1 += w1 * dc[k];
+                s2 += w2 * dc[k];
+            }
+            let (a1, a2) = spline.moment_weights(first, origin);
+            let (b1, b2) = spline.moment_weights(first + 1, origin);
+            let det = a1 * b2 - b1 * a2;
+            dc[0] = (-s1 * b2 + b1 * s2) / det;
+            dc[1] = (-a1 * s2 + a2 * s1) / det;
+            let dy = spline.local_y_change(first, &dc).unwrap();
+            assert_eq!(dy.len(), len);
+            let mut moved = y.clone();
+            for (k, d) in dy.iter().enumerate() {
+                moved[first + k] += d;
+            }
+            let rebuilt = SplineFunction::new(&x, &moved, end).unwrap();
+            for k in 0..x.len() {
+                let want = if (first..first + len).contains(&k) { dc[k - first] } else { 0.0 };
+                let got = rebuilt.c()[k] - spline.c()[k];
+                assert!((got - want).abs() < 1e-10, "{end:?} window {first}+{len} at {k}: {got} vs {want}");
+            }
+            // Breaking one moment: refused.
+            let mut bad = dc.clone();
+            bad[len / 2] += 0.05;
+            assert!(matches!(spline.local_y_change(first, &bad), Err(Error::InvalidMove { .. })));
+        }
+        // Too close to an end, empty, non-finite.
+        assert!(spline.local_y_change(1, &[0.0; 4]).is_err());
+        assert!(spline.local_y_change(x.len() - 3, &[0.0; 2]).is_err());
+        assert!(spline.local_y_change(x.len() - 4, &[0.0; 2]).is_ok());
+        assert!(spline.local_y_change(5, &[]).is_err());
+        assert!(matches!(
+            spline.local_y_change(5, &[0.0, f64::NAN, 0.0]),
+            Err(Error::NonFinite { .. })
+        ));
+    }
+}

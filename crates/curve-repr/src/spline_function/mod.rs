@@ -37,8 +37,9 @@ use crate::{Curve, Error, Interpolant, Result, Side, Vec2};
 /// (x, y(x)) with parameter x; as an [`Interpolant<2>`] its points are (x_i, y_i) at
 /// parameters x_i, and only y may move.
 ///
-/// Building costs O(n) time and memory (about 13 numbers per point: x, y, c, the
-/// elimination factors and pivots, and the prefix sums that make every sensitivity O(1)).
+/// Building costs O(n) time and memory (about 16 numbers per point: x, y, c, the
+/// elimination factors and pivots, the three central sensitivities of each column and the
+/// prefix sums that make every sensitivity O(1)).
 #[derive(Clone, Debug)]
 pub struct SplineFunction {
     x: Vec<f64>,
@@ -48,6 +49,10 @@ pub struct SplineFunction {
     elimination: Elimination,
     forward_log: LogProducts,
     backward_log: LogProducts,
+    /// (c̃_{j−1}^j, c̃_j^j, c̃_{j+1}^j) for every j: they depend on x and the end condition
+    /// only, so they are computed once (O(n)) and every sensitivity look-up is O(1) without a
+    /// division.
+    central: Vec<[f64; 3]>,
 }
 
 impl SplineFunction {
@@ -102,7 +107,7 @@ impl SplineFunction {
         let c = elimination.solve(x, y, effective)?;
         let forward_log = LogProducts::new(&elimination.forward_factor);
         let backward_log = LogProducts::new(&elimination.backward_factor);
-        Ok(Self {
+        let mut spline = Self {
             x: x.to_vec(),
             y: y.to_vec(),
             c,
@@ -110,7 +115,10 @@ impl SplineFunction {
             elimination,
             forward_log,
             backward_log,
-        })
+            central: Vec::new(),
+        };
+        spline.central = (0..x.len()).map(|j| spline.compute_central_sensitivities(j)).collect();
+        Ok(spline)
     }
 
     /// Recomputes c from x and y with a full O(n) solve, clearing the rounding that many

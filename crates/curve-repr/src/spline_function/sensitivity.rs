@@ -147,10 +147,22 @@ pub struct SensitivityColumn {
     pub values: Vec<f64>,
 }
 
+/// Distances |i − j| up to which [`SplineFunction::sensitivity`] multiplies the elimination
+/// factors directly instead of going through the logarithms.
+const SHORT_RANGE: usize = 8;
+
 impl SplineFunction {
     /// The three central entries (c̃_{j−1}^j, c̃_j^j, c̃_{j+1}^j) (Eq. 14–15 generalised, see
-    /// the module doc); entries that do not exist (j = 0 or n − 1) are 0. Callers keep j < n.
+    /// the module doc), as cached at construction; entries that do not exist (j = 0 or n − 1)
+    /// are 0. Callers keep j < n. O(1).
+    #[inline]
     fn central_sensitivities(&self, j: usize) -> [f64; 3] {
+        self.central[j]
+    }
+
+    /// [`central_sensitivities`](Self::central_sensitivities) computed from the elimination
+    /// (run once per j at construction). Callers keep j < n.
+    pub(super) fn compute_central_sensitivities(&self, j: usize) -> [f64; 3] {
         let n = self.x.len();
         let x = &self.x;
         let end = self.effective_end();
@@ -200,9 +212,24 @@ impl SplineFunction {
             previous
         } else if i == j + 1 {
             next
+        } else if i == 0 && j >= 2 {
+            // The end entry from its neighbour, so that c̃_0 = c̃_1 holds exactly for runout
+            // (a_0 = −1) whichever way the neighbour is computed.
+            -self.sensitivity(1, j) * self.elimination.forward_factor[0]
+        } else if i + 1 == n && j + 2 < n {
+            -self.sensitivity(n - 2, j) * self.elimination.backward_factor[n - 1]
         } else if i < j {
-            // c̃_i = c̃_{j−1} Π_{k=i}^{j−2} (−a_k)  (Eq. 16)
-            previous * self.forward_log.alternating_product(i, j - 1)
+            // c̃_i = c̃_{j−1} Π_{k=i}^{j−2} (−a_k)  (Eq. 16); short ranges multiplied directly
+            // (exact to rounding, no exp), long ones through the logarithms.
+            if j - i <= SHORT_RANGE {
+                let a = &self.elimination.forward_factor;
+                (i..j - 1).rev().fold(previous, |value, k| -value * a[k])
+            } else {
+                previous * self.forward_log.alternating_product(i, j - 1)
+            }
+        } else if i - j <= SHORT_RANGE {
+            let a = &self.elimination.backward_factor;
+            (j + 2..=i).fold(next, |value, k| -value * a[k])
         } else {
             // c̃_i = c̃_{j+1} Π_{k=j+2}^{i} (−a*_k)  (Eq. 17)
             next * self.backward_log.alternating_product(j + 2, i + 1)

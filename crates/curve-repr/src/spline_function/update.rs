@@ -22,9 +22,11 @@ impl SplineFunction {
     /// change); call [`rebuild`](SplineFunction::rebuild) now and then to clear what
     /// accumulates over very many updates.
     ///
-    /// Fails, leaving the spline unchanged, with [`Error::IndexOutOfRange`] on an index ≥ n,
-    /// [`Error::NonFinite`] on a non-finite value, and [`Error::InvalidMove`] if the move
-    /// overflows a chord slope or c.
+    /// Fails with [`Error::IndexOutOfRange`] on an index ≥ n, [`Error::NonFinite`] on a
+    /// non-finite value, and [`Error::InvalidMove`] if the move overflows a chord slope or c.
+    /// A failure leaves y unchanged and c as before (bit for bit when no windowed update
+    /// preceded it since the last build; otherwise up to that update's rounding, c being
+    /// rebuilt from y).
     pub fn set_y(&mut self, moves: &[(usize, f64)]) -> Result<()> {
         self.set_y_within(moves, UPDATE_WINDOW)
     }
@@ -48,6 +50,70 @@ impl SplineFunction {
                 return Err(Error::NonFinite { what: "y", index });
             }
         }
+        // Up to 8 moves (the usual case) are written in place without allocating; if one
+        // overflows, y is restored and c rebuilt from it (the same solve that made it, so c is
+        // as before up to the rounding of earlier windowed updates). More moves take the path
+        // that saves every overwritten value.
+        let mut saved = [(0usize, 0.0f64); 8];
+        if moves.len() > saved.len() {
+            return self.set_y_saving(moves, window);
+        }
+        for (k, &(j, value)) in moves.iter().enumerate() {
+            saved[k] = (j, self.y[j]);
+            let delta = value - self.y[j];
+            self.y[j] = value;
+            let finite = delta.is_finite()
+                && self.slopes_are_finite_around(j)
+                && (delta == 0.0 || self.add_column_within(j, delta, window));
+            if !finite {
+                for &(j, old) in saved[..=k].iter().rev() {
+                    self.y[j] = old;
+                }
+                self.rebuild()?;
+                return Err(Error::InvalidMove {
+                    index: j,
+                    reason: "the move overflows",
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// c ← c + δ · c̃^j over `window` (≥ 1) entries on each side of j, the column generated in
+    /// place by the recurrences Eq. 16–17 (the entries of
+    /// [`sensitivity_column`](SplineFunction::sensitivity_column), without allocating).
+    /// Callers keep j < n. Returns whether every updated entry is finite.
+    fn add_column_within(&mut self, j: usize, delta: f64, window: usize) -> bool {
+        let n = self.x.len();
+        let window = window.max(1);
+        let [previous, centre, next] = self.central[j];
+        self.c[j] += delta * centre;
+        let first = j.saturating_sub(window);
+        if j > first {
+            let a = &self.elimination.forward_factor;
+            let mut value = delta * previous;
+            self.c[j - 1] += value;
+            for i in (first..j - 1).rev() {
+                value *= -a[i];
+                self.c[i] += value;
+            }
+        }
+        let last = (j + window).min(n - 1);
+        if j < last {
+            let a = &self.elimination.backward_factor;
+            let mut value = delta * next;
+            self.c[j + 1] += value;
+            for i in j + 2..=last {
+                value *= -a[i];
+                self.c[i] += value;
+            }
+        }
+        self.c[first..=last].iter().all(|c| c.is_finite())
+    }
+
+    /// [`set_y_within`](SplineFunction::set_y_within) that saves every value it overwrites, so
+    /// that a move that overflows leaves the spline exactly as it was.
+    fn set_y_saving(&mut self, moves: &[(usize, f64)], window: usize) -> Result<()> {
         // Everything overwritten, in order, to undo a move that overflows.
         let mut saved_y: Vec<(usize, f64)> = Vec::with_capacity(moves.len());
         let mut saved_c: Vec<(usize, Vec<f64>)> = Vec::with_capacity(moves.len());
@@ -113,5 +179,80 @@ impl SplineFunction {
                 window.copy_from_slice(&values);
             }
         }
+    }
+}
+
+impl SplineFunction {
+    /// The y change that changes c by exactly `dc` on the points `first .. first + dc.len()`
+    /// and nowhere else: δy on the same points, δy = 0 elsewhere. O(dc.len()).
+    ///
+    /// A local y change has a local c change only for special δc: with r = T δc the change
+    /// of the right-hand sides of the three-moment rows (Han Eq. 4,
+    /// h_{k−1}δc_{k−1} + 2(h_{k−1} + h_k)δc_k + h_k δc_{k+1} = δm_k − δm_{k−1}), the slope
+    /// changes δm_k = Σ_{l ≤ k} r_l must vanish after the window (Σ_k r_k = 0, "∫ δy'' = 0")
+    /// and so must δy_{k+1} = Σ_{l ≤ k} h_l δm_l (Σ_k x_k r_k = 0 given the first, "∫ x δy'' = 0").
+    /// [`moment_weights`](SplineFunction::moment_weights) gives these two conditions as
+    /// weights on δc.
+    ///
+    /// The window must keep two points from each end (first ≥ 2, last ≤ n − 3), so that no end
+    /// row (any [`EndCondition`](super::EndCondition)) changes. Fails with
+    /// [`Error::InvalidMove`] if it does not, or if `dc` violates the two conditions by more
+    /// than 1e-9 of its scale (then no local y change gives it), and with
+    /// [`Error::NonFinite`] on a non-finite entry.
+    pub fn local_y_change(&self, first: usize, dc: &[f64]) -> Result<Vec<f64>> {
+        let n = self.x.len();
+        let last = first + dc.len().max(1) - 1;
+        if dc.is_empty() || first < 2 || last + 3 > n {
+            return Err(Error::InvalidMove {
+                index: first,
+                reason: "a local change of c must keep two points from each end",
+            });
+        }
+        if let Some(k) = dc.iter().position(|v| !v.is_finite()) {
+            return Err(Error::NonFinite {
+                what: "change of c",
+                index: first + k,
+            });
+        }
+        let x = &self.x;
+        let h = |k: usize| x[k + 1] - x[k];
+        let at = |k: usize| if (first..=last).contains(&k) { dc[k - first] } else { 0.0 };
+        // Rows first − 1 … last + 1 change; integrate twice from δy_{first−1} = 0.
+        let (mut slope, mut dy) = (0.0, 0.0);
+        let (mut r_scale, mut dy_scale) = (0.0f64, 0.0f64);
+        let mut out = Vec::with_capacity(dc.len());
+        for k in first - 1..=last + 1 {
+            let r = h(k - 1) * at(k - 1) + 2.0 * (h(k - 1) + h(k)) * at(k) + h(k) * at(k + 1);
+            r_scale = r_scale.max(r.abs());
+            slope += r;
+            dy += h(k) * slope;
+            dy_scale = dy_scale.max(dy.abs());
+            if k < last {
+                out.push(dy);
+            }
+        }
+        // Now slope = δm_{last+1} and dy = δy_{last+2}; both must vanish.
+        let span = x[last + 1] - x[first - 1];
+        if slope.abs() > 1e-9 * r_scale * dc.len() as f64 || dy.abs() > 1e-9 * (dy_scale + r_scale * span * span) {
+            return Err(Error::InvalidMove {
+                index: first,
+                reason: "the change of c is not the change of a local y move (its two moments do not vanish)",
+            });
+        }
+        Ok(out)
+    }
+
+    /// The weights (w1_j, w2_j) of the two conditions on a local change of c
+    /// ([`local_y_change`](SplineFunction::local_y_change)): Σ_j w1_j δc_j = 0 and
+    /// Σ_j w2_j δc_j = 0 with w1_j = 3(h_{j−1} + h_j) (the column sums of the three-moment
+    /// rows) and w2_j = (x_{j−1} − o)h_{j−1} + 2(x_j − o)(h_{j−1} + h_j) + (x_{j+1} − o)h_j (the
+    /// same rows weighted by x − o; o is any origin, chosen near the window for accuracy).
+    /// Callers keep 1 ≤ j ≤ n − 2. O(1).
+    pub fn moment_weights(&self, j: usize, origin: f64) -> (f64, f64) {
+        let x = &self.x;
+        let (before, after) = (x[j] - x[j - 1], x[j + 1] - x[j]);
+        let w1 = 3.0 * (before + after);
+        let w2 = (x[j - 1] - origin) * before + 2.0 * (x[j] - origin) * (before + after) + (x[j + 1] - origin) * after;
+        (w1, w2)
     }
 }

@@ -115,6 +115,19 @@ pub fn e_at(spline: &SplineFunction, i: usize) -> f64 {
     }
 }
 
+/// The reciprocal spacings 1/(x_{k+1} − x_k), computed once per pass so that the e values
+/// of the sweep and the guards cost multiplications only. O(n).
+pub(super) fn inverse_steps(x: &[f64]) -> Vec<f64> {
+    x.windows(2).map(|w| 1.0 / (w[1] - w[0])).collect()
+}
+
+/// e_k from c and the reciprocal spacings (the formula of [`e_at`], multiplied instead of
+/// divided: equal to it up to rounding). Callers keep 1 ≤ k ≤ n − 2.
+#[inline]
+pub(super) fn e_fast(c: &[f64], inverse: &[f64], k: usize) -> f64 {
+    (c[k + 1] - c[k]) * inverse[k] - (c[k] - c[k - 1]) * inverse[k - 1]
+}
+
 /// The Phase-1 case at point i, trying large, then medium, then small (module doc). A small
 /// case at (i, i + 1) is not reported when a medium or large pattern starts at i + 1: the
 /// sweep reaches it next and the specific rule handles it. O(1).
@@ -125,15 +138,19 @@ pub fn detect(spline: &SplineFunction, i: usize) -> Option<Case> {
 /// [`detect`] with the e values of magnitude ≤ `zero` read as 0 (no sign: they start and
 /// join no case; [`TwoPhaseSettings::detection_floor`]). `zero` = 0 is [`detect`]. O(1).
 pub(super) fn detect_above(spline: &SplineFunction, i: usize, zero: f64) -> Option<Case> {
-    let e_at = |spline: &SplineFunction, k: usize| floored(e_at(spline, k), zero);
-    if let Some(case) = detect_specific(spline, i, zero) {
+    detect_by(spline.x().len(), i, zero, &|k| e_at(spline, k))
+}
+
+/// [`detect_above`] on a segment of n points whose e values `e(k)` gives (k interior). O(1).
+fn detect_by(n: usize, i: usize, zero: f64, e: &impl Fn(usize) -> f64) -> Option<Case> {
+    let e_at = |k: usize| floored(e(k), zero);
+    if let Some(case) = detect_specific(n, i, zero, e) {
         return Some(case);
     }
-    let n = spline.x().len();
     if n < 4 || i < 1 || i + 2 > n - 1 {
         return None;
     }
-    if e_at(spline, i) * e_at(spline, i + 1) < 0.0 && detect_specific(spline, i + 1, zero).is_none() {
+    if e_at(i) * e_at(i + 1) < 0.0 && detect_specific(n, i + 1, zero, e).is_none() {
         return Some(Case {
             kind: CaseKind::Small,
             first: i,
@@ -163,14 +180,13 @@ pub(super) fn e_floor(spline: &SplineFunction, floor: f64) -> f64 {
 }
 
 /// The medium and large patterns at i (Cases 2–3, interior and ends). O(1).
-fn detect_specific(spline: &SplineFunction, i: usize, zero: f64) -> Option<Case> {
-    let n = spline.x().len();
+fn detect_specific(n: usize, i: usize, zero: f64, e_raw: &impl Fn(usize) -> f64) -> Option<Case> {
     if n < 4 || i < 1 || i > n - 2 {
         return None;
     }
     let e = |k: isize| -> Option<f64> {
         if k >= 1 && (k as usize) <= n - 2 {
-            Some(floored(e_at(spline, k as usize), zero))
+            Some(floored(e_raw(k as usize), zero))
         } else {
             None
         }
@@ -292,10 +308,67 @@ fn local_counts(spline: &SplineFunction, lo: usize, hi: usize, scratch: &mut Vec
     (changes(scratch.iter().copied()), changes(c.iter().copied()))
 }
 
+/// The values the local count guard compares: e_k for the interior k of lo..=hi, then c_k for
+/// k in lo..=hi (e by [`e_fast`]). O(hi − lo).
+fn window_values(c: &[f64], inverse: &[f64], lo: usize, hi: usize, out: &mut Vec<f64>) -> usize {
+    let n = c.len();
+    out.clear();
+    let (first, last) = (lo.max(1), hi.min(n.saturating_sub(2)));
+    if first <= last {
+        out.extend((first..=last).map(|k| e_fast(c, inverse, k)));
+    }
+    let split = out.len();
+    out.extend_from_slice(&c[lo..=hi]);
+    split
+}
+
+/// How much a move changed the sign-change count of a window: (count after) − (count before),
+/// exact zeros skipped. Only the stretch between the first and the last entry whose sign
+/// changed, widened to the nearest non-zero entry on each side, is recounted: outside it both
+/// sequences have the same signs. O(len).
+///
+/// Unlike the DESIGN.md count it drops no small value (no 1e-12 · max level): a move that
+/// drives a value towards zero is judged by its sign, so that the guard never rewards hiding
+/// a sign change below the drop level. The pass guard ([`counts`]) is DESIGN.md's.
+fn count_change(before: &[f64], after: &[f64]) -> isize {
+    let sign = |v: f64| i8::from(v > 0.0) - i8::from(v < 0.0);
+    let (mut first, mut last) = (usize::MAX, 0);
+    for (k, (&b, &a)) in before.iter().zip(after).enumerate() {
+        // Same sign unless the product is ≤ 0 (an underflowing product only costs a recount).
+        if a * b <= 0.0 && a != b {
+            first = first.min(k);
+            last = k;
+        }
+    }
+    if first == usize::MAX {
+        return 0;
+    }
+    let lo = (0..first).rev().find(|&k| before[k] != 0.0).unwrap_or(first);
+    let hi = (last + 1..before.len())
+        .find(|&k| before[k] != 0.0)
+        .unwrap_or(last);
+    let count = |values: &[f64]| {
+        let mut previous = 0i8;
+        let mut changes = 0isize;
+        for &v in values {
+            let s = sign(v);
+            if s != 0 {
+                changes += isize::from(previous * s < 0);
+                previous = s;
+            }
+        }
+        changes
+    };
+    count(&after[lo..=hi]) - count(&before[lo..=hi])
+}
+
 /// Entries kept on each side of a moved point by the windowed updates inside a pass
-/// ([`SplineFunction::set_y_within`]): the neglected part is below 2^−32 ≈ 2e-10 of the move's
-/// effect (0.27^32 ≈ 5e-19 on uniform knots), and every pass ends with a rebuild.
-const PASS_UPDATE_WINDOW: usize = 32;
+/// ([`SplineFunction::set_y_within`]): the neglected part is below 2 · 2^−20 ≈ 2e-6 of the
+/// move's effect for the most uneven knots and 0.27^20 ≈ 3e-12 on uniform ones. Inside a pass
+/// c is read only to detect cases and by the local guard (whose window is `guard_window` + 2 =
+/// 18 points by default, inside this one); every pass ends with an exact rebuild and the
+/// exact global count guard, so no result depends on the truncation.
+const PASS_UPDATE_WINDOW: usize = 20;
 
 /// [`sign_changes`] without allocating (the same drop rule: values with |v| ≤ 1e-12 · max|v|
 /// over the sequence are skipped). One sweep that skips exact zeros and tracks the extreme
@@ -347,8 +420,9 @@ pub fn coarse_pass(
     settings.validate()?;
     let lambda = settings.coarse_lambda;
     let zero = e_floor(spline, settings.detection_floor);
-    let find = |spline: &SplineFunction, i: usize| {
-        let case = detect_above(spline, i, zero)?;
+    let find = |spline: &SplineFunction, inverse: &[f64], i: usize| {
+        let c = spline.c();
+        let case = detect_by(c.len(), i, zero, &|k| e_fast(c, inverse, k))?;
         Some((case, displacement(spline, case, lambda)))
     };
     guarded_pass(spline, settings, movable, 1, false, &find)
@@ -356,7 +430,9 @@ pub fn coarse_pass(
 
 /// A detector for [`guarded_pass`]: the case starting at point i (if any) and its moves
 /// (`None` when the rule is degenerate).
-pub(super) type Finder<'a> = dyn Fn(&SplineFunction, usize) -> Option<(Case, Option<Vec<(usize, f64)>>)> + 'a;
+/// The finder gets the reciprocal spacings of [`inverse_steps`] too.
+pub(super) type Finder<'a> =
+    dyn Fn(&SplineFunction, &[f64], usize) -> Option<(Case, Option<Vec<(usize, f64)>>)> + 'a;
 
 /// The sweep shared by both phases: from `start`, at each i ask `find`; apply the moves if
 /// every moved point is interior, `movable` and within the size guard, then the local count
@@ -375,13 +451,13 @@ pub(super) fn guarded_pass(
     inflections_first: bool,
     find: &Finder<'_>,
 ) -> Result<PassReport> {
-    // (vibrations, inflections) before and after.
+    // Whether changes of (vibrations, inflections) make a move or pass worse.
+    let worse_by = |vibrations: isize, inflections: isize| {
+        inflections > 0 || (!inflections_first && vibrations > 0)
+    };
     let worse = |before: (usize, usize), after: (usize, usize)| {
-        if inflections_first {
-            after.1 > before.1
-        } else {
-            after.0 > before.0 || after.1 > before.1
-        }
+        let change = |a: usize, b: usize| if b > a { 1 } else { 0 };
+        worse_by(change(before.0, after.0), change(before.1, after.1))
     };
     let n = spline.x().len();
     let mut report = PassReport::default();
@@ -390,10 +466,12 @@ pub(super) fn guarded_pass(
     }
     let before_global = counts(spline);
     let original_y = spline.y().to_vec();
-    let mut scratch = Vec::new();
+    let inverse = inverse_steps(spline.x());
+    let (mut before, mut after) = (Vec::new(), Vec::new());
+    let (mut old, mut new) = (Vec::new(), Vec::new());
     let mut i = start;
     while i < n {
-        let Some((case, moves)) = find(spline, i) else {
+        let Some((case, moves)) = find(spline, &inverse, i) else {
             i += 1;
             continue;
         };
@@ -421,12 +499,25 @@ pub(super) fn guarded_pass(
         };
         let lo = lo.saturating_sub(settings.guard_window + 2);
         let hi = (hi + settings.guard_window + 2).min(n - 1);
-        let before = local_counts(spline, lo, hi, &mut scratch);
-        let old: Vec<(usize, f64)> = moves.iter().rev().map(|&(k, _)| (k, spline.y()[k])).collect();
-        let new: Vec<(usize, f64)> = moves.iter().map(|&(k, g)| (k, spline.y()[k] + g)).collect();
+        let guard = settings.count_guard == CountGuard::Local;
+        let split = if guard {
+            window_values(spline.c(), &inverse, lo, hi, &mut before)
+        } else {
+            0
+        };
+        old.clear();
+        old.extend(moves.iter().rev().map(|&(k, _)| (k, spline.y()[k])));
+        new.clear();
+        new.extend(moves.iter().map(|&(k, g)| (k, spline.y()[k] + g)));
         spline.set_y_within(&new, PASS_UPDATE_WINDOW)?;
-        let after = local_counts(spline, lo, hi, &mut scratch);
-        if settings.count_guard == CountGuard::Local && worse(before, after) {
+        // The local guard: recount only where some value changed sign.
+        let increased = guard && {
+            window_values(spline.c(), &inverse, lo, hi, &mut after);
+            let (e_before, c_before) = before.split_at(split);
+            let (e_after, c_after) = after.split_at(split);
+            worse_by(count_change(e_before, e_after), count_change(c_before, c_after))
+        };
+        if increased {
             spline.set_y_within(&old, PASS_UPDATE_WINDOW)?;
             report.skipped += 1;
             report.undone_by_count_guard += 1;
