@@ -157,6 +157,11 @@ pub const METHODS: &[MethodInfo] = &[
                 meaning: "stop after this many passes that reduce no count (0: never)",
             },
             ParameterInfo {
+                name: "min-gain",
+                default: "0",
+                meaning: "stop after a pass lowering inflections + vibrations by less than this fraction (0: never)",
+            },
+            ParameterInfo {
                 name: "segment-passes",
                 default: "3",
                 meaning: "parametric input: partition-fair-blend passes (Han 4.2.4)",

@@ -575,13 +575,15 @@ fn a_local_change_of_c_comes_from_a_local_y_move() {
         let spline = SplineFunction::new(&x, &y, end).unwrap();
         for (first, len) in [(2usize, 4usize), (9, 7), (20, 8)] {
             // Free entries, then the first two solved so that both moments vanish.
-            let mut dc: Vec<f64> = (0..len).map(|k| ((k * 7 + first) % 5) as f64 * 0.1 - 0.2).collect();
+            let mut dc: Vec<f64> = (0..len)
+                .map(|k| ((k * 7 + first) % 5) as f64 * 0.1 - 0.2)
+                .collect();
             let origin = x[first];
             let (mut s1, mut s2) = (0.0, 0.0);
-            for k in 2..len {
+            for (k, d) in dc.iter().enumerate().skip(2) {
                 let (w1, w2) = spline.moment_weights(first + k, origin);
-                s1 += w1 * dc[k];
-                s2 += w2 * dc[k];
+                s1 += w1 * d;
+                s2 += w2 * d;
             }
             let (a1, a2) = spline.moment_weights(first, origin);
             let (b1, b2) = spline.moment_weights(first + 1, origin);
@@ -596,14 +598,24 @@ fn a_local_change_of_c_comes_from_a_local_y_move() {
             }
             let rebuilt = SplineFunction::new(&x, &moved, end).unwrap();
             for k in 0..x.len() {
-                let want = if (first..first + len).contains(&k) { dc[k - first] } else { 0.0 };
+                let want = if (first..first + len).contains(&k) {
+                    dc[k - first]
+                } else {
+                    0.0
+                };
                 let got = rebuilt.c()[k] - spline.c()[k];
-                assert!((got - want).abs() < 1e-10, "{end:?} window {first}+{len} at {k}: {got} vs {want}");
+                assert!(
+                    (got - want).abs() < 1e-10,
+                    "{end:?} window {first}+{len} at {k}: {got} vs {want}"
+                );
             }
             // Breaking one moment: refused.
             let mut bad = dc.clone();
             bad[len / 2] += 0.05;
-            assert!(matches!(spline.local_y_change(first, &bad), Err(Error::InvalidMove { .. })));
+            assert!(matches!(
+                spline.local_y_change(first, &bad),
+                Err(Error::InvalidMove { .. })
+            ));
         }
         // Too close to an end, empty, non-finite.
         assert!(spline.local_y_change(1, &[0.0; 4]).is_err());

@@ -334,15 +334,19 @@ fn long_runs_leave_fewer_inflections() {
 }
 
 /// The long-run option: a run of four wrong-sign c values between longer, larger flanks is
-/// found only with `max_run` ≥ 4; its smooth bump brings every member to α or beyond and the
-/// worst exactly to α (fresh solves), with the α rule read from the fresh neighbours.
+/// found only with `max_run` ≥ 4. Its move, checked on a fresh spline through the moved points:
+/// every member of the run becomes α = (the smaller neighbour)/5 with the neighbours' sign,
+/// each flank is scaled by one factor in [1/5, 1), c is unchanged outside the run and its
+/// flanks, and Infl_num falls by exactly 2.
 #[test]
-fn a_long_run_reaches_alpha() {
+fn a_long_run_is_absorbed_into_its_flanks() {
     let x = uniform(30);
     let mut c = vec![0.01; 30];
     for (k, v) in [(12, -0.002), (13, -0.003), (14, -0.0035), (15, -0.002)] {
         c[k] = v;
     }
+    // A wrong-sign point far away, so that the count does not end at zero.
+    c[25] = -0.004;
     let y = y_with_c(&x, &c);
     let s = spline(&x, &y);
     assert_eq!(detect_fine(&s, 12, 2), None);
@@ -357,24 +361,42 @@ fn a_long_run_reaches_alpha() {
     );
     let settings = TwoPhaseSettings::default().with_max_run(8);
     let moves = fine_displacement(&s, case, &settings).unwrap();
-    let moves0 = fine_displacement(&s, case, &settings.clone().with_alpha_divisor(f64::INFINITY)).unwrap();
-    let alpha = alpha_from_fresh(&x, &y, &moves0, &[11, 16], 1.0);
-    assert!(alpha > 0.0);
-    let c1 = fresh_c(&x, &apply(&y, &moves));
-    let worst = (12..=15).map(|k| c1[k]).fold(f64::INFINITY, f64::min);
-    assert!((worst - alpha).abs() < 1e-9, "{worst} vs {alpha}");
-    assert_eq!(
-        XcPolyline::of_points(&x, &apply(&y, &moves))
-            .unwrap()
-            .inflections(),
-        0
+    let (lo, hi) = (
+        moves.iter().map(|m| m.0).min().unwrap(),
+        moves.iter().map(|m| m.0).max().unwrap(),
     );
-    // A run with a flank of smaller area is not the noise: left alone.
+    assert!(lo < 11 && hi > 16 && lo >= 2 && hi <= 27, "{lo}..{hi}");
+    let moved = apply(&y, &moves);
+    let c0 = fresh_c(&x, &y);
+    let c1 = fresh_c(&x, &moved);
+    let alpha = c0[11].abs().min(c0[16].abs()) / 5.0;
+    for (k, v) in c1.iter().enumerate().take(16).skip(12) {
+        assert!((v - alpha).abs() < 1e-12, "run at {k}: {v} vs {alpha}");
+    }
+    for (flank, range) in [("left", lo..12), ("right", 16..hi + 1)] {
+        let ratios: Vec<f64> = range.map(|k| c1[k] / c0[k]).collect();
+        assert!(
+            ratios.iter().all(|r| (r - ratios[0]).abs() < 1e-9),
+            "{flank}: {ratios:?}"
+        );
+        assert!(
+            ratios[0] >= 0.2 - 1e-12 && ratios[0] < 1.0,
+            "{flank}: {}",
+            ratios[0]
+        );
+    }
+    for k in (0..lo).chain(hi + 1..30) {
+        assert!((c1[k] - c0[k]).abs() < 1e-12, "outside at {k}");
+    }
+    let count = |y: &[f64]| XcPolyline::of_points(&x, y).unwrap().inflections();
+    assert_eq!(count(&moved) + 2, count(&y));
+    // A flank too small to take the run's area (it would have to change sign): refused.
     let mut c2 = c.clone();
     c2[11] = 0.0001;
     c2[10] = -0.01;
     let s2 = spline(&x, &y_with_c(&x, &c2));
-    assert_eq!(detect_fine(&s2, 12, 8), None);
+    let case2 = detect_fine(&s2, 12, 8).unwrap();
+    assert_eq!(fine_displacement(&s2, case2, &settings), None);
 }
 
 /// `stall_passes`: a run that stops early has, replayed pass by pass, reduced neither count

@@ -117,7 +117,9 @@ impl SplineFunction {
             backward_log,
             central: Vec::new(),
         };
-        spline.central = (0..x.len()).map(|j| spline.compute_central_sensitivities(j)).collect();
+        spline.central = (0..x.len())
+            .map(|j| spline.compute_central_sensitivities(j))
+            .collect();
         Ok(spline)
     }
 

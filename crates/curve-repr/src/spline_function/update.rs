@@ -103,9 +103,9 @@ impl SplineFunction {
             let a = &self.elimination.backward_factor;
             let mut value = delta * next;
             self.c[j + 1] += value;
-            for i in j + 2..=last {
-                value *= -a[i];
-                self.c[i] += value;
+            for (c, factor) in self.c[j + 2..=last].iter_mut().zip(&a[j + 2..=last]) {
+                value *= -factor;
+                *c += value;
             }
         }
         self.c[first..=last].iter().all(|c| c.is_finite())
@@ -216,7 +216,13 @@ impl SplineFunction {
         }
         let x = &self.x;
         let h = |k: usize| x[k + 1] - x[k];
-        let at = |k: usize| if (first..=last).contains(&k) { dc[k - first] } else { 0.0 };
+        let at = |k: usize| {
+            if (first..=last).contains(&k) {
+                dc[k - first]
+            } else {
+                0.0
+            }
+        };
         // Rows first − 1 … last + 1 change; integrate twice from δy_{first−1} = 0.
         let (mut slope, mut dy) = (0.0, 0.0);
         let (mut r_scale, mut dy_scale) = (0.0f64, 0.0f64);
@@ -233,7 +239,9 @@ impl SplineFunction {
         }
         // Now slope = δm_{last+1} and dy = δy_{last+2}; both must vanish.
         let span = x[last + 1] - x[first - 1];
-        if slope.abs() > 1e-9 * r_scale * dc.len() as f64 || dy.abs() > 1e-9 * (dy_scale + r_scale * span * span) {
+        if slope.abs() > 1e-9 * r_scale * dc.len() as f64
+            || dy.abs() > 1e-9 * (dy_scale + r_scale * span * span)
+        {
             return Err(Error::InvalidMove {
                 index: first,
                 reason: "the change of c is not the change of a local y move (its two moments do not vanish)",
@@ -252,7 +260,9 @@ impl SplineFunction {
         let x = &self.x;
         let (before, after) = (x[j] - x[j - 1], x[j + 1] - x[j]);
         let w1 = 3.0 * (before + after);
-        let w2 = (x[j - 1] - origin) * before + 2.0 * (x[j] - origin) * (before + after) + (x[j + 1] - origin) * after;
+        let w2 = (x[j - 1] - origin) * before
+            + 2.0 * (x[j] - origin) * (before + after)
+            + (x[j + 1] - origin) * after;
         (w1, w2)
     }
 }

@@ -41,8 +41,9 @@ pub fn full_pass(
 }
 
 /// Fairs a function segment in place: [`full_pass`]es until one applies no case, after
-/// `max_passes`, or (if `stall_passes` > 0) after `stall_passes` consecutive passes that
-/// reduced neither count; returns the number of passes made.
+/// `max_passes`, (if `stall_passes` > 0) after `stall_passes` consecutive passes that
+/// reduced neither count, or (if `min_gain` > 0) after a pass that lowered the sum of the
+/// counts by less than that fraction; returns the number of passes made.
 /// O(max_passes · n · guard_window).
 pub fn fair_function(
     spline: &mut SplineFunction,
@@ -53,41 +54,54 @@ pub fn fair_function(
     let mut stall = Stall::new(spline);
     for pass in 1..=settings.max_passes {
         let (coarse, fine) = full_pass(spline, settings, movable)?;
-        if (coarse.moves.is_empty() && fine.moves.is_empty()) || stall.stop(spline, settings.stall_passes) {
+        if (coarse.moves.is_empty() && fine.moves.is_empty()) || stall.stop(spline, settings) {
             return Ok(pass);
         }
     }
     Ok(settings.max_passes)
 }
 
-/// The bookkeeping of `stall_passes`: the lowest counts seen and the passes since either fell.
+/// The bookkeeping of `stall_passes` and `min_gain`: the lowest counts seen, the passes since
+/// either fell, and the counts after the last pass.
 #[derive(Clone, Copy, Debug, Default)]
 struct Stall {
     best: (usize, usize),
     stalled: usize,
+    last: (usize, usize),
 }
 
 impl Stall {
     fn new(spline: &SplineFunction) -> Self {
+        let now = counts(spline);
         Stall {
-            best: counts(spline),
+            best: now,
             stalled: 0,
+            last: now,
         }
     }
 
-    /// After a pass: whether `limit` (> 0) passes in a row reduced neither count. O(n) if on.
-    fn stop(&mut self, spline: &SplineFunction, limit: usize) -> bool {
-        if limit == 0 {
+    /// After a pass: whether `stall_passes` (> 0) passes in a row reduced neither count, or
+    /// the pass lowered their sum by less than `min_gain` (> 0) of it. O(n) if either is on.
+    fn stop(&mut self, spline: &SplineFunction, settings: &TwoPhaseSettings) -> bool {
+        let limit = settings.stall_passes;
+        if limit == 0 && settings.min_gain <= 0.0 {
             return false;
         }
         let now = counts(spline);
+        let (before, after) = (self.last.0 + self.last.1, now.0 + now.1);
+        self.last = now;
+        let small_gain = settings.min_gain > 0.0
+            && (before.saturating_sub(after) as f64) < settings.min_gain * before as f64;
+        if limit == 0 {
+            return small_gain;
+        }
         if now.0 < self.best.0 || now.1 < self.best.1 {
             self.stalled = 0;
         } else {
             self.stalled += 1;
         }
         self.best = (self.best.0.min(now.0), self.best.1.min(now.1));
-        self.stalled >= limit
+        self.stalled >= limit || small_gain
     }
 }
 
@@ -198,7 +212,7 @@ impl FairingStrategy<2> for TwoPhase {
         self.passes += 1;
         let criterion = Some(counts(spline).0 as f64);
         state.criterion = criterion;
-        let stalled = self.stall.stop(spline, settings.stall_passes);
+        let stalled = self.stall.stop(spline, &settings);
         if (coarse.moves.is_empty() && fine.moves.is_empty()) || stalled || self.passes >= settings.max_passes
         {
             Ok(StepOutcome::done(criterion))

@@ -452,9 +452,8 @@ pub(super) fn guarded_pass(
     find: &Finder<'_>,
 ) -> Result<PassReport> {
     // Whether changes of (vibrations, inflections) make a move or pass worse.
-    let worse_by = |vibrations: isize, inflections: isize| {
-        inflections > 0 || (!inflections_first && vibrations > 0)
-    };
+    let worse_by =
+        |vibrations: isize, inflections: isize| inflections > 0 || (!inflections_first && vibrations > 0);
     let worse = |before: (usize, usize), after: (usize, usize)| {
         let change = |a: usize, b: usize| if b > a { 1 } else { 0 };
         worse_by(change(before.0, after.0), change(before.1, after.1))

@@ -14,7 +14,7 @@
 //! | [`CaseKind::SmallCurve`] (Case 1) | c_{i−1}, c_{i+1} have sign −s | γ_i = σ, γ_{i±1} = −λσ | c̃_i = α |
 //! | [`CaseKind::LargeCurve`] (Case 2) | c_i, c_{i+1} of sign s; c_{i−2}, c_{i−1}, c_{i+2}, c_{i+3} of sign −s | γ_i = γ_{i+1} = σ, γ_{i−1} = γ_{i+2} = τ | c̃_i = c̃_{i+1} = α |
 //! | [`CaseKind::LargeCurveEnd`] (Case 2, end) | c_0 = c_1 of sign s, c_2, c_3 of sign −s (mirror at n − 1) | γ_1 = σ | c̃_1 = α (c̃_0 = c̃_1 by the runout) |
-//! | [`CaseKind::WrongSignRun`] (option, not in the paper) | c_i … c_{i+k−1} of sign s, 3 ≤ k ≤ `max_run`, c_{i−1}, c_{i+k} of sign −s, the run's ∫\|y''\| below each flank's | γ_j = σ w_j (smooth bump) | every c̃ of the run reaches α or beyond |
+//! | [`CaseKind::WrongSignRun`] (option, not in the paper) | c_i … c_{i+k−1} of sign s, 3 ≤ k ≤ `max_run`, c_{i−1}, c_{i+k} of sign −s | the exact local y move of the absorption below (run and flanks) | every c̃ of the run = α, the flanks scaled by 1 − μ, c elsewhere unchanged |
 //!
 //! **The α rule** (Han Case 1 Step 3, Case 2 Step 4): solve with α = 0; if neither neighbour
 //! (c̃_{i−1}, c̃_{i+1}, resp. c̃_{i−1}, c̃_{i+2}) changed sign, solve again with
@@ -44,32 +44,38 @@
 //!
 //! **Runs of more than two points** (option `max_run` > 2; the paper leaves them, "they can be
 //! avoided very well by our alternative two-phases fairing", which dense noisy data refutes).
-//! Which of two alternating runs is the noise? The one with less ∫|y''|: a run is handled only
-//! if Σ|c_j|(x_{j+1} − x_{j−1})/2 over it is below that of each flanking run (scanned as far as
-//! the run is long; Han's Case 2 asks the analogue, c_{i+3}, of its right flank). The move is
-//! the smooth bump γ_j = σ (1 − u_j²)², u_j = (x_j − m)/L, m the midpoint of the neighbours
-//! x_{i−1}, x_{i+k} and L = √3 · (x_{i+k} − x_{i−1})/2, over the points with |u| < 1: its
-//! second derivative is positive exactly between the neighbours (zero at them), so the run
-//! shifts in c together, the neighbours stay nearly unchanged and the unavoidable
-//! compensation (∫ w'' = 0 for a local move) spreads over the flanks instead of piling on two
-//! knots. σ by the "worst member reaches α" rule and the same α rule. Runs touching an end are
-//! left alone. With the option on, the fine pass's count guards look at inflections only (a
-//! move may add vibrations if it adds no inflection; Phase 1 then works on them), so a full
-//! pass never increases Infl_num but may increase Vib_num.
+//! Such a run is *absorbed into its flanks* by a move designed in c rather than in y. A y move
+//! on finitely many points changes c only locally when the change δc meets two moment
+//! conditions, ∫ δy'' = 0 and ∫ x δy'' = 0 in their discrete form
+//! ([`SplineFunction::local_y_change`], derived from the three-moment rows, Han Eq. 4); then
+//! the y move is found by integrating twice, exactly. The move sets every c of the run to
+//! α = s_flank · min(|c_{i−1}|, |c_{i+k}|)/`alpha_divisor` (the α rule's fifth of the smaller
+//! neighbour) and scales each flank (the adjacent runs of the other sign, up to `max_run`
+//! points each) by one factor 1 − μ_L, 1 − μ_R; the two factors solve the 2 × 2 moment
+//! system ([`absorption_factors`]). The move is made only if 0 < μ ≤ 1 − 1/`alpha_divisor`:
+//! each flank keeps its sign and at least a fifth of itself. This is a lever rule: the run's
+//! ∫|y''|, weighted by its distance to the other flank, must be smaller than each flank's, the
+//! condition that says which of two alternating runs is the noise. When it is made, c changes
+//! on the run and its flanks only, all of them end with the flanks' sign, and Infl_num falls
+//! by exactly 2 (tested on a fresh spline). Runs within two points of an end are left alone.
+//! With the option on, the fine pass's count guards look at inflections only (a move may add
+//! vibrations if it adds no inflection; Phase 1 then works on them), so a full pass never
+//! increases Infl_num but may increase Vib_num.
 //!
-//! Measured (`examples/two_phase_runs.rs`: y = sin(x/2) + N(0, 0.01²) at x = 0.1k, 50 full
-//! passes), inflections / vibrations / RMS distance to the clean sine:
+//! Measured (`cargo run --release --example two_phase_runs [n]`: y = sin(x/2) + N(0, 0.01²) at
+//! x = 0.1k, up to 50 full passes), inflections / vibrations / RMS distance to the clean sine:
 //!
 //! | n | clean | noisy | paper (`max_run` 2) | `max_run` 64 | `max_run` 64, [`CountGuard::Off`](super::CountGuard::Off) |
 //! |---|---|---|---|---|---|
-//! | 10^4 | 159 / 166 | 7953 / 8290 / 9.9e-3 | 2219 / 3673 / 6.4e-3 | 1291 / 3426 / 1.4e-2 | 627 / 2906 / 5.3e-2 |
-//! | 10^5 | 1591 / 1595 | 79536 / 83342 / 1.0e-2 | 23372 / 36833 / 6.6e-3 | 12946 / 34617 / 1.4e-2 | 6678 / 29804 / 5.7e-2 |
+//! | 10^4 | 159 / 166 | 7953 / 8290 / 9.9e-3 | 2271 / 3684 / 6.5e-3 | 937 / 3881 / 2.0e-2 | 298 / 2566 / 4.4e-2 |
+//! | 10^5 | 1591 / 1595 | 79536 / 83342 / 1.0e-2 | 23312 / 37022 / 6.6e-3 | 9676 / 39273 / 2.2e-2 | 3175 / 25733 / 4.3e-2 |
 //!
-//! The option removes 45 % of the inflections the paper's rules leave (70 % without guards)
-//! but does **not** bring the count close to the clean curve's (8× it with the guards, 4×
-//! without), and it moves the points farther from the clean curve than the noise itself. At
-//! this noise the x–c polyline's noise is ten times its trend and every local move's
-//! compensation flips another value; 200 passes change nothing (it stops at 70).
+//! The absorption leaves 41 % of the inflections the paper's rules leave (the earlier smooth
+//! y bump with the same guards left 55 %: 12946 at 10^5); without the count guards it ends at
+//! 2× the clean curve's count (the bump: 4×). It moves the points farther from the clean curve
+//! than the noise itself (RMS 2–4× the noise's): at this noise the x–c polyline's noise is
+//! ten times its trend, and absorbing runs of the noise's scale moves y by up to half a
+//! spacing (the size guard). Near the clean count, but not at it, and not closer to the truth.
 //!
 //! Detection: a run is recognised at its first point, values with |c| ≤ 1e-12 · max|c| count
 //! as zero (DESIGN.md) and end a run without starting a case. The sweep visits i = 0 … n − 1
@@ -145,40 +151,9 @@ fn detect_with(spline: &SplineFunction, i: usize, max_run: usize, zero: f64) -> 
         1 => Some(case(CaseKind::SmallCurve, i)),
         2 if i >= 2 && sg(i - 2) == -s && sg(i + 3) == -s => Some(case(CaseKind::LargeCurve, last)),
         2 => None,
-        _ if len <= max_run && run_is_smaller_than_flanks(spline, i, last, zero) => {
-            Some(case(CaseKind::WrongSignRun, last))
-        }
+        _ if len <= max_run => Some(case(CaseKind::WrongSignRun, last)),
         _ => None,
     }
-}
-
-/// ∫|y''| over a run of c values, Σ |c_j| (x_{j+1} − x_{j−1})/2 (one-sided at the ends).
-fn run_area(spline: &SplineFunction, first: usize, last: usize) -> f64 {
-    let (x, c) = (spline.x(), spline.c());
-    let n = x.len();
-    (first..=last.min(n - 1))
-        .map(|j| c[j].abs() * (x[(j + 1).min(n - 1)] - x[j.saturating_sub(1)]) / 2.0)
-        .sum()
-}
-
-/// The long-run option's test that the run at first..=last is the noise, not the trend: its
-/// area (∫|y''|) is below that of each flanking run (scanned up to `first − last + 1` points
-/// further, so O(run)). Han's Case 2 asks the same of its right flank (c_{i+3}).
-fn run_is_smaller_than_flanks(spline: &SplineFunction, first: usize, last: usize, zero: f64) -> bool {
-    let c = spline.c();
-    let n = c.len();
-    let len = last - first + 1;
-    let s = sign(c[first], zero);
-    let mut lo = first - 1;
-    while lo > 0 && first - lo <= len && sign(c[lo - 1], zero) == -s {
-        lo -= 1;
-    }
-    let mut hi = last + 1;
-    while hi + 1 < n && hi - last <= len && sign(c[hi + 1], zero) == -s {
-        hi += 1;
-    }
-    let area = run_area(spline, first, last);
-    area < run_area(spline, lo, first - 1) && area < run_area(spline, last + 1, hi)
 }
 
 /// A move pattern: (point, weight).
@@ -271,40 +246,9 @@ fn plan(spline: &SplineFunction, case: Case, lambda: f64) -> Option<Plan> {
             neighbours: vec![i - 1],
             goal,
         },
-        CaseKind::WrongSignRun => Plan {
-            patterns: vec![smooth_bump(x, i, last)?],
-            fallback: Vec::new(),
-            targets,
-            neighbours: vec![i - 1, last + 1],
-            goal,
-        },
         _ => return None,
     };
     Some(p)
-}
-
-/// The long-run pattern: w(u) = (1 − u²)² with u = (x − m)/L, m the midpoint of the run's
-/// neighbours x_{i−1}, x_{last+1} and L = √3 · (x_{last+1} − x_{i−1})/2, so that w'' > 0
-/// exactly between the neighbours (w'' = 0 at |u| = 1/√3): the run shifts in c together, the
-/// neighbours are left nearly unchanged and the compensation (∫ w'' = 0) spreads smoothly over
-/// the flanks. Points with |u| < 1 move; `None` if that reaches an end point.
-fn smooth_bump(x: &[f64], first: usize, last: usize) -> Option<Pattern> {
-    let (a, b) = (*x.get(first.checked_sub(1)?)?, *x.get(last + 1)?);
-    let m = (a + b) / 2.0;
-    let l = 3f64.sqrt() * (b - a) / 2.0;
-    let lo = x.partition_point(|&v| v <= m - l);
-    let hi = x.partition_point(|&v| v < m + l);
-    if lo == 0 || hi >= x.len() {
-        return None;
-    }
-    Some(
-        (lo..hi)
-            .map(|j| {
-                let u = (x[j] - m) / l;
-                (j, (1.0 - u * u) * (1.0 - u * u))
-            })
-            .collect(),
-    )
 }
 
 /// The moves that bring the plan's targets to α (module doc: exact for one pattern and a
@@ -352,6 +296,9 @@ fn fine_with(
     settings: &TwoPhaseSettings,
     zero: f64,
 ) -> Option<Vec<(usize, f64)>> {
+    if case.kind == CaseKind::WrongSignRun {
+        return absorb(spline, case, settings, zero);
+    }
     let plan = plan(spline, case, settings.fine_lambda)?;
     let first = solve(spline, &plan, 0.0, settings.pair_min_sine)?;
     // Neighbours after the α = 0 move (Eq. 13); α rule if none changed sign.
@@ -372,6 +319,91 @@ fn fine_with(
     solve(spline, &plan, alpha, settings.pair_min_sine)
 }
 
+/// The long-run option's move (module doc, "Runs of more than two points"): the wrong-sign
+/// run `case.first ..= case.second` takes the constant α of the neighbours' sign, and its two
+/// flanks (the neighbouring runs of that sign, up to `max_run` points each, kept two points
+/// from the ends) shrink by the factors 1 − μ_L and 1 − μ_R that make the change of c local
+/// (the two moment conditions of [`SplineFunction::local_y_change`], a 2 × 2 system in
+/// μ_L, μ_R). Refused (`None`) unless 0 < μ ≤ 1 − 1/`alpha_divisor`, so that the flanks keep
+/// their sign and at least |α| ([`absorption_factors`]). The y move is exact and local: c
+/// changes on the run and its flanks only, every value there ends with the neighbours' sign,
+/// and Infl_num falls by exactly 2. O(run + flanks).
+fn absorb(
+    spline: &SplineFunction,
+    case: Case,
+    settings: &TwoPhaseSettings,
+    zero: f64,
+) -> Option<Vec<(usize, f64)>> {
+    let c = spline.c();
+    let n = c.len();
+    let (i, last) = (case.first, case.second?);
+    let goal = -sign(*c.get(i)?, zero);
+    let cap = settings.max_run.max(2);
+    if i < 3 || last + 4 > n || sign(c[i - 1], zero) != goal || sign(c[last + 1], zero) != goal {
+        return None;
+    }
+    let mut lo = i - 1;
+    while lo > 2 && i - lo < cap && sign(c[lo - 1], zero) == goal {
+        lo -= 1;
+    }
+    let mut hi = last + 1;
+    while hi + 4 <= n && hi - last < cap && sign(c[hi + 1], zero) == goal {
+        hi += 1;
+    }
+    let alpha = f64::from(goal) * c[i - 1].abs().min(c[last + 1].abs()) / settings.alpha_divisor;
+    let (left, right) = absorption_factors(spline, lo, i, last, hi, alpha)?;
+    let limit = 1.0 - 1.0 / settings.alpha_divisor;
+    if !(left > 0.0 && left <= limit && right > 0.0 && right <= limit) {
+        return None;
+    }
+    let dc: Vec<f64> = (lo..=hi)
+        .map(|k| {
+            if k < i {
+                -left * c[k]
+            } else if k <= last {
+                alpha - c[k]
+            } else {
+                -right * c[k]
+            }
+        })
+        .collect();
+    let dy = spline.local_y_change(lo, &dc).ok()?;
+    Some((lo..=hi).zip(dy).filter(|&(_, d)| d != 0.0).collect())
+}
+
+/// The flank factors (μ_L, μ_R) of [`absorb`]: the change of c that is −μ_L c on lo..i−1,
+/// α − c on the run i..=last and −μ_R c on last+1..=hi meets both moment conditions of
+/// [`SplineFunction::local_y_change`] (weights [`SplineFunction::moment_weights`] about the
+/// run's middle). `None` if the 2 × 2 system is singular. O(hi − lo).
+pub fn absorption_factors(
+    spline: &SplineFunction,
+    lo: usize,
+    i: usize,
+    last: usize,
+    hi: usize,
+    alpha: f64,
+) -> Option<(f64, f64)> {
+    let (x, c) = (spline.x(), spline.c());
+    let origin = (x[i] + x[last]) / 2.0;
+    let sums = |range: std::ops::RangeInclusive<usize>, value: &dyn Fn(usize) -> f64| {
+        range.fold((0.0, 0.0), |(s1, s2), k| {
+            let (w1, w2) = spline.moment_weights(k, origin);
+            (s1 + w1 * value(k), s2 + w2 * value(k))
+        })
+    };
+    let (l1, l2) = sums(lo..=i - 1, &|k| c[k]);
+    let (f1, f2) = sums(last + 1..=hi, &|k| c[k]);
+    let (r1, r2) = sums(i..=last, &|k| alpha - c[k]);
+    // μ_L (l1, l2) + μ_R (f1, f2) = (r1, r2).
+    let det = l1 * f2 - f1 * l2;
+    if !det.is_finite() || det.abs() <= 1e-12 * l1.hypot(l2) * f1.hypot(f2) {
+        return None;
+    }
+    let left = (r1 * f2 - f1 * r2) / det;
+    let right = (l1 * r2 - r1 * l2) / det;
+    (left.is_finite() && right.is_finite()).then_some((left, right))
+}
+
 /// One fine pass of Phase 2 over the whole segment (module doc), with the guards of
 /// [`TwoPhaseSettings`]. O(n · guard_window) (O(n · max_run²) with long runs).
 ///
@@ -383,7 +415,7 @@ pub fn fine_pass(
 ) -> Result<PassReport> {
     settings.validate()?;
     let zero = zero_level(spline).max(settings.detection_floor * 1e12 * zero_level(spline));
-    let find = |spline: &SplineFunction, i: usize| {
+    let find = |spline: &SplineFunction, _: &[f64], i: usize| {
         let case = detect_with(spline, i, settings.max_run, zero)?;
         Some((case, fine_with(spline, case, settings, zero)))
     };

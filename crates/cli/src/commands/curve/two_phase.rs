@@ -51,6 +51,7 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
         pair_min_sine: p.number("pair-min-sine", defaults.pair_min_sine)?,
         max_run: p.count("max-run", defaults.max_run)?,
         stall_passes: p.count("stall-passes", defaults.stall_passes)?,
+        min_gain: p.number("min-gain", defaults.min_gain)?,
         detection_floor: defaults.detection_floor,
     };
     settings.validate().map_err(|e| Error::Parameter {
