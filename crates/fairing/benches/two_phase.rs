@@ -37,34 +37,9 @@ fn noisy_segment(n: usize) -> (Vec<f64>, Vec<f64>) {
     (x, y)
 }
 
-fn bench(c: &mut Criterion) {
-    for (name, settings) in [
-        ("two_phase_full_fairing", TwoPhaseSettings::default()),
-        (
-            "two_phase_full_fairing_min_gain",
-            TwoPhaseSettings::default().with_min_gain(0.005),
-        ),
-    ] {
-        let mut group = c.benchmark_group(name);
-        group.sample_size(10);
-        for n in sizes(&[1_000usize, 10_000, 100_000, 1_000_000]) {
-            let (x, y) = noisy_segment(n);
-            group.throughput(Throughput::Elements(n as u64));
-            group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
-                b.iter_batched(
-                    || SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).expect("spline"),
-                    |mut spline| {
-                        fair_function(&mut spline, &settings, &|_| true).expect("fairing");
-                        spline
-                    },
-                    BatchSize::PerIteration,
-                )
-            });
-        }
-        group.finish();
-    }
-    let settings = TwoPhaseSettings::default();
-    let mut group = c.benchmark_group("two_phase_one_full_pass");
+/// One group: `run` on a fresh noisy segment at every size.
+fn group(c: &mut Criterion, name: &str, run: &dyn Fn(&mut SplineFunction)) {
+    let mut group = c.benchmark_group(name);
     group.sample_size(10);
     for n in sizes(&[1_000usize, 10_000, 100_000, 1_000_000]) {
         let (x, y) = noisy_segment(n);
@@ -73,7 +48,7 @@ fn bench(c: &mut Criterion) {
             b.iter_batched(
                 || SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).expect("spline"),
                 |mut spline| {
-                    full_pass(&mut spline, &settings, &|_| true).expect("pass");
+                    run(&mut spline);
                     spline
                 },
                 BatchSize::PerIteration,
@@ -81,6 +56,20 @@ fn bench(c: &mut Criterion) {
         });
     }
     group.finish();
+}
+
+fn bench(c: &mut Criterion) {
+    let paper = TwoPhaseSettings::default();
+    let min_gain = TwoPhaseSettings::default().with_min_gain(0.005);
+    group(c, "two_phase_full_fairing", &|spline| {
+        fair_function(spline, &paper, &|_| true).expect("fairing");
+    });
+    group(c, "two_phase_full_fairing_min_gain", &|spline| {
+        fair_function(spline, &min_gain, &|_| true).expect("fairing");
+    });
+    group(c, "two_phase_one_full_pass", &|spline| {
+        full_pass(spline, &paper, &|_| true).expect("pass");
+    });
 }
 
 criterion_group!(benches, bench);

@@ -435,3 +435,38 @@ fn stall_stop_matches_its_definition() {
         assert!(history[p].0 < v || history[p].1 < i, "pass {p} reduced nothing");
     }
 }
+
+/// `min_gain`: replayed pass by pass (DESIGN.md counts), every pass before the last removed
+/// at least `min_gain` of the sign changes it started with, and the last removed less.
+#[test]
+fn min_gain_stop_matches_its_definition() {
+    let (x, y) = noisy(600, 0.01, 5);
+    let gain = 0.02;
+    let settings = TwoPhaseSettings::default().with_min_gain(gain);
+    let mut s = spline(&x, &y);
+    let passes = fair_function(&mut s, &settings, &|_| true).unwrap();
+    assert!(
+        passes > 1 && passes < settings.max_passes,
+        "stopped after {passes} passes"
+    );
+    let total = |s: &SplineFunction| {
+        let p = XcPolyline::of_points(&x, s.y()).unwrap();
+        (p.vibrations() + p.inflections()) as f64
+    };
+    let mut replay = spline(&x, &y);
+    for pass in 1..=passes {
+        let before = total(&replay);
+        full_pass(&mut replay, &settings, &|_| true).unwrap();
+        let removed = before - total(&replay);
+        if pass < passes {
+            assert!(
+                removed >= gain * before,
+                "pass {pass} removed {removed} of {before}"
+            );
+        } else {
+            assert!(removed < gain * before, "last pass removed {removed} of {before}");
+        }
+    }
+    assert_eq!(replay.y(), s.y());
+    assert!(TwoPhaseSettings::default().with_min_gain(1.0).validate().is_err());
+}

@@ -33,7 +33,9 @@
 //!
 //! Guards (not in the paper, see [`TwoPhaseSettings`]): a case whose |γ| exceeds
 //! `max_move_factor` × the smaller spacing next to the moved point is skipped; a move that
-//! increases the inflection or vibration count within `guard_window` points is undone; and a
+//! increases the inflection or vibration count within `guard_window` points is undone (counted
+//! by sign, without DESIGN.md's drop level, so that a move is never credited for pushing a
+//! sign change below it; recounted only where a sign changed); and a
 //! pass that increased either global count is undone whole (O(n) once per pass). So a pass
 //! never increases Infl_num or Vib_num (DESIGN.md counts) unless the guard is
 //! [`CountGuard::Off`]. Measured on a noisy sine (n = 1000, noise 0.01, λ = 0.8, 50 passes):
@@ -366,8 +368,10 @@ fn count_change(before: &[f64], after: &[f64]) -> isize {
 /// ([`SplineFunction::set_y_within`]): the neglected part is below 2 · 2^−20 ≈ 2e-6 of the
 /// move's effect for the most uneven knots and 0.27^20 ≈ 3e-12 on uniform ones. Inside a pass
 /// c is read only to detect cases and by the local guard (whose window is `guard_window` + 2 =
-/// 18 points by default, inside this one); every pass ends with an exact rebuild and the
-/// exact global count guard, so no result depends on the truncation.
+/// 18 points by default, inside this one; a larger `guard_window` reads values that the
+/// truncated updates left stale). The truncation can change a decision inside a pass (which
+/// case is found, whether the guard undoes it), never a promise: every pass ends with an
+/// exact rebuild and the exact global count guard.
 const PASS_UPDATE_WINDOW: usize = 20;
 
 /// [`sign_changes`] without allocating (the same drop rule: values with |v| ≤ 1e-12 · max|v|
