@@ -371,8 +371,9 @@ fn absorb(
     Some((lo..=hi).zip(dy).filter(|&(_, d)| d != 0.0).collect())
 }
 
-/// The flank factors (μ_L, μ_R) of [`absorb`]: the change of c that is −μ_L c on lo..i−1,
-/// α − c on the run i..=last and −μ_R c on last+1..=hi meets both moment conditions of
+/// The flank factors (μ_L, μ_R) of the long-run absorption (module doc): the change of c that
+/// is −μ_L c on lo..i−1, α − c on the run i..=last and −μ_R c on last+1..=hi meets both
+/// moment conditions of
 /// [`SplineFunction::local_y_change`] (weights [`SplineFunction::moment_weights`] about the
 /// run's middle). `None` if the 2 × 2 system is singular. O(hi − lo).
 pub fn absorption_factors(
