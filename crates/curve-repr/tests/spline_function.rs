@@ -628,3 +628,39 @@ fn a_local_change_of_c_comes_from_a_local_y_move() {
         ));
     }
 }
+
+/// `change_c_locally` leaves the spline that a full build through the moved points gives, and
+/// `undo_local_change` restores y bit for bit.
+#[test]
+fn a_local_change_of_c_is_applied_and_undone() {
+    let x = uneven_x(24);
+    let y: Vec<f64> = x.iter().map(|t| (0.9 * t).cos()).collect();
+    let mut spline = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap();
+    let (first, len) = (6usize, 6usize);
+    let origin = x[first];
+    let mut dc = vec![0.0, 0.0, 0.3, -0.1, 0.2, 0.05];
+    let (mut s1, mut s2) = (0.0, 0.0);
+    for (k, d) in dc.iter().enumerate().skip(2) {
+        let (w1, w2) = spline.moment_weights(first + k, origin);
+        s1 += w1 * d;
+        s2 += w2 * d;
+    }
+    let (a1, a2) = spline.moment_weights(first, origin);
+    let (b1, b2) = spline.moment_weights(first + 1, origin);
+    let det = a1 * b2 - b1 * a2;
+    dc[0] = (-s1 * b2 + b1 * s2) / det;
+    dc[1] = (-a1 * s2 + a2 * s1) / det;
+    let c0 = spline.c().to_vec();
+    let change = spline.change_c_locally(first, &dc).unwrap();
+    assert_eq!(change.first(), first);
+    assert_eq!(change.dy().len(), len);
+    let rebuilt = SplineFunction::new(&x, spline.y(), EndCondition::ParabolicRunout).unwrap();
+    for (k, (a, b)) in spline.c().iter().zip(rebuilt.c()).enumerate() {
+        assert!((a - b).abs() < 1e-12, "c at {k}: {a} vs {b}");
+    }
+    spline.undo_local_change(&change);
+    assert_eq!(spline.y(), &y[..]);
+    for (a, b) in spline.c().iter().zip(&c0) {
+        assert!((a - b).abs() < 1e-14);
+    }
+}

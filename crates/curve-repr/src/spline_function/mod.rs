@@ -18,7 +18,7 @@ pub mod update;
 
 pub use end_condition::EndCondition;
 pub use sensitivity::SensitivityColumn;
-pub use update::UPDATE_WINDOW;
+pub use update::{LocalChange, UPDATE_WINDOW};
 
 use recurrence::{chord_slope, effective_end, step, Elimination};
 use sensitivity::LogProducts;

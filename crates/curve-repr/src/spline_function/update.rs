@@ -266,3 +266,79 @@ impl SplineFunction {
         (w1, w2)
     }
 }
+
+/// A change of c made by [`SplineFunction::change_c_locally`], kept so that
+/// [`SplineFunction::undo_local_change`] can restore y exactly.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LocalChange {
+    first: usize,
+    old_y: Vec<f64>,
+    dy: Vec<f64>,
+    dc: Vec<f64>,
+}
+
+impl LocalChange {
+    /// The first changed point.
+    pub fn first(&self) -> usize {
+        self.first
+    }
+
+    /// The y change δy_k of the points first, first + 1, … .
+    pub fn dy(&self) -> &[f64] {
+        &self.dy
+    }
+}
+
+impl SplineFunction {
+    /// Changes c by exactly `dc` on the points `first .. first + dc.len()` and nowhere else,
+    /// moving y by [`local_y_change`](SplineFunction::local_y_change): y += δy and c += δc on
+    /// those points, no solve. The result is the spline through the moved points up to
+    /// rounding. O(dc.len()).
+    ///
+    /// Fails as `local_y_change` does, and with [`Error::InvalidMove`] (the spline unchanged)
+    /// if a moved y or c overflows.
+    pub fn change_c_locally(&mut self, first: usize, dc: &[f64]) -> Result<LocalChange> {
+        let dy = self.local_y_change(first, dc)?;
+        let range = first..first + dc.len();
+        let finite = self.y[range.clone()]
+            .iter()
+            .zip(&dy)
+            .all(|(y, d)| (y + d).is_finite())
+            && self.c[range.clone()]
+                .iter()
+                .zip(dc)
+                .all(|(c, d)| (c + d).is_finite());
+        if !finite {
+            return Err(Error::InvalidMove {
+                index: first,
+                reason: "the local change overflows",
+            });
+        }
+        let old_y = self.y[range.clone()].to_vec();
+        for (y, d) in self.y[range.clone()].iter_mut().zip(&dy) {
+            *y += d;
+        }
+        for (c, d) in self.c[range].iter_mut().zip(dc) {
+            *c += d;
+        }
+        Ok(LocalChange {
+            first,
+            old_y,
+            dy,
+            dc: dc.to_vec(),
+        })
+    }
+
+    /// Undoes a [`change_c_locally`](SplineFunction::change_c_locally): y as it was, bit for
+    /// bit, and c −= δc (as it was up to rounding). Meant for the change just made; a change
+    /// that does not fit this spline's length is ignored. O(len).
+    pub fn undo_local_change(&mut self, change: &LocalChange) {
+        let range = change.first..change.first + change.old_y.len();
+        if let (Some(y), Some(c)) = (self.y.get_mut(range.clone()), self.c.get_mut(range)) {
+            y.copy_from_slice(&change.old_y);
+            for (c, d) in c.iter_mut().zip(&change.dc) {
+                *c -= d;
+            }
+        }
+    }
+}

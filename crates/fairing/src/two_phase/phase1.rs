@@ -427,7 +427,7 @@ pub fn coarse_pass(
     let find = |spline: &SplineFunction, inverse: &[f64], i: usize| {
         let c = spline.c();
         let case = detect_by(c.len(), i, zero, &|k| e_fast(c, inverse, k))?;
-        Some((case, displacement(spline, case, lambda)))
+        Some((case, displacement(spline, case, lambda).map(Proposal::from)))
     };
     guarded_pass(spline, settings, movable, 1, false, &find)
 }
@@ -435,8 +435,25 @@ pub fn coarse_pass(
 /// A detector for [`guarded_pass`]: the case starting at point i (if any) and its moves
 /// (`None` when the rule is degenerate).
 /// The finder gets the reciprocal spacings of [`inverse_steps`] too.
-pub(super) type Finder<'a> =
-    dyn Fn(&SplineFunction, &[f64], usize) -> Option<(Case, Option<Vec<(usize, f64)>>)> + 'a;
+pub(super) type Finder<'a> = dyn Fn(&SplineFunction, &[f64], usize) -> Option<(Case, Option<Proposal>)> + 'a;
+
+/// What a finder proposes: the moves (point, γ), and for a move designed in c (the long-run
+/// absorption) its exact change of c, (first point, δc), which the pass applies with
+/// [`SplineFunction::change_c_locally`] instead of through truncated sensitivity columns.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Proposal {
+    pub moves: Vec<(usize, f64)>,
+    pub c_change: Option<(usize, Vec<f64>)>,
+}
+
+impl From<Vec<(usize, f64)>> for Proposal {
+    fn from(moves: Vec<(usize, f64)>) -> Self {
+        Proposal {
+            moves,
+            c_change: None,
+        }
+    }
+}
 
 /// The sweep shared by both phases: from `start`, at each i ask `find`; apply the moves if
 /// every moved point is interior, `movable` and within the size guard, then the local count
@@ -474,13 +491,13 @@ pub(super) fn guarded_pass(
     let (mut old, mut new) = (Vec::new(), Vec::new());
     let mut i = start;
     while i < n {
-        let Some((case, moves)) = find(spline, &inverse, i) else {
+        let Some((case, proposal)) = find(spline, &inverse, i) else {
             i += 1;
             continue;
         };
         let next = case.second.unwrap_or(case.first).max(i) + 1;
         i = next;
-        let Some(moves) = moves else {
+        let Some(Proposal { moves, c_change }) = proposal else {
             report.skipped += 1;
             continue;
         };
@@ -508,11 +525,23 @@ pub(super) fn guarded_pass(
         } else {
             0
         };
-        old.clear();
-        old.extend(moves.iter().rev().map(|&(k, _)| (k, spline.y()[k])));
-        new.clear();
-        new.extend(moves.iter().map(|&(k, g)| (k, spline.y()[k] + g)));
-        spline.set_y_within(&new, PASS_UPDATE_WINDOW)?;
+        let local = match &c_change {
+            Some((first, dc)) => match spline.change_c_locally(*first, dc) {
+                Ok(change) => Some(change),
+                Err(_) => {
+                    report.skipped += 1;
+                    continue;
+                }
+            },
+            None => {
+                old.clear();
+                old.extend(moves.iter().rev().map(|&(k, _)| (k, spline.y()[k])));
+                new.clear();
+                new.extend(moves.iter().map(|&(k, g)| (k, spline.y()[k] + g)));
+                spline.set_y_within(&new, PASS_UPDATE_WINDOW)?;
+                None
+            }
+        };
         // The local guard: recount only where some value changed sign.
         let increased = guard && {
             window_values(spline.c(), &inverse, lo, hi, &mut after);
@@ -521,7 +550,10 @@ pub(super) fn guarded_pass(
             worse_by(count_change(e_before, e_after), count_change(c_before, c_after))
         };
         if increased {
-            spline.set_y_within(&old, PASS_UPDATE_WINDOW)?;
+            match &local {
+                Some(change) => spline.undo_local_change(change),
+                None => spline.set_y_within(&old, PASS_UPDATE_WINDOW)?,
+            }
             report.skipped += 1;
             report.undone_by_count_guard += 1;
         } else {

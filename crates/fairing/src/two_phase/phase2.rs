@@ -67,10 +67,10 @@
 //!
 //! | n | clean | noisy | paper (`max_run` 2) | `max_run` 64 | `max_run` 64, [`CountGuard::Off`](super::CountGuard::Off) |
 //! |---|---|---|---|---|---|
-//! | 10^4 | 159 / 166 | 7953 / 8290 / 9.9e-3 | 2271 / 3684 / 6.5e-3 | 937 / 3881 / 2.0e-2 | 298 / 2566 / 4.4e-2 |
-//! | 10^5 | 1591 / 1595 | 79536 / 83342 / 1.0e-2 | 23312 / 37022 / 6.6e-3 | 9676 / 39273 / 2.2e-2 | 3175 / 25733 / 4.3e-2 |
+//! | 10^4 | 159 / 166 | 7953 / 8290 / 9.9e-3 | 2271 / 3684 / 6.5e-3 | 959 / 3907 / 2.1e-2 | 298 / 2569 / 4.4e-2 |
+//! | 10^5 | 1591 / 1595 | 79536 / 83342 / 1.0e-2 | 23312 / 37022 / 6.6e-3 | 9738 / 39191 / 2.1e-2 | 3175 / 25703 / 4.3e-2 |
 //!
-//! The absorption leaves 41 % of the inflections the paper's rules leave (the earlier smooth
+//! The absorption leaves 42 % of the inflections the paper's rules leave (the earlier smooth
 //! y bump with the same guards left 55 %: 12946 at 10^5); without the count guards it ends at
 //! 2× the clean curve's count (the bump: 4×). It moves the points farther from the clean curve
 //! than the noise itself (RMS 2–4× the noise's): at this noise the x–c polyline's noise is
@@ -84,7 +84,7 @@
 
 use curve_repr::SplineFunction;
 
-use super::phase1::{guarded_pass, Case, CaseKind, PassReport};
+use super::phase1::{guarded_pass, Case, CaseKind, PassReport, Proposal};
 use super::TwoPhaseSettings;
 use crate::Result;
 
@@ -287,7 +287,7 @@ pub fn fine_displacement(
     case: Case,
     settings: &TwoPhaseSettings,
 ) -> Option<Vec<(usize, f64)>> {
-    fine_with(spline, case, settings, zero_level(spline))
+    fine_with(spline, case, settings, zero_level(spline)).map(|p| p.moves)
 }
 
 fn fine_with(
@@ -295,7 +295,7 @@ fn fine_with(
     case: Case,
     settings: &TwoPhaseSettings,
     zero: f64,
-) -> Option<Vec<(usize, f64)>> {
+) -> Option<Proposal> {
     if case.kind == CaseKind::WrongSignRun {
         return absorb(spline, case, settings, zero);
     }
@@ -311,12 +311,12 @@ fn fine_with(
                 .map(|&(j, g)| g * spline.sensitivity(m, j))
                 .sum::<f64>();
         if f64::from(sign(predicted, zero)) != plan.goal {
-            return Some(first);
+            return Some(first.into());
         }
         smallest = smallest.min(predicted.abs());
     }
     let alpha = plan.goal * smallest / settings.alpha_divisor;
-    solve(spline, &plan, alpha, settings.pair_min_sine)
+    solve(spline, &plan, alpha, settings.pair_min_sine).map(Proposal::from)
 }
 
 /// The long-run option's move (module doc, "Runs of more than two points"): the wrong-sign
@@ -327,13 +327,9 @@ fn fine_with(
 /// μ_L, μ_R). Refused (`None`) unless 0 < μ ≤ 1 − 1/`alpha_divisor`, so that the flanks keep
 /// their sign and at least |α| ([`absorption_factors`]). The y move is exact and local: c
 /// changes on the run and its flanks only, every value there ends with the neighbours' sign,
-/// and Infl_num falls by exactly 2. O(run + flanks).
-fn absorb(
-    spline: &SplineFunction,
-    case: Case,
-    settings: &TwoPhaseSettings,
-    zero: f64,
-) -> Option<Vec<(usize, f64)>> {
+/// and Infl_num falls by exactly 2; the pass applies it exactly, with
+/// [`SplineFunction::change_c_locally`]. O(run + flanks).
+fn absorb(spline: &SplineFunction, case: Case, settings: &TwoPhaseSettings, zero: f64) -> Option<Proposal> {
     let c = spline.c();
     let n = c.len();
     let (i, last) = (case.first, case.second?);
@@ -368,7 +364,10 @@ fn absorb(
         })
         .collect();
     let dy = spline.local_y_change(lo, &dc).ok()?;
-    Some((lo..=hi).zip(dy).filter(|&(_, d)| d != 0.0).collect())
+    Some(Proposal {
+        moves: (lo..=hi).zip(dy).filter(|&(_, d)| d != 0.0).collect(),
+        c_change: Some((lo, dc)),
+    })
 }
 
 /// The flank factors (μ_L, μ_R) of the long-run absorption (module doc): the change of c that
