@@ -1,10 +1,11 @@
 //! Han's two-phase fairing on a dense noisy function segment: the paper's rules against the
 //! long-run option (wrong-sign runs of more than two points, `max_run`), counted as DESIGN.md
-//! defines. y = sin(x/2) + N(0, 0.01²) at x = 0.1 k, k < n.
+//! defines, with the RMS distance to the clean curve. y = sin(x/2) + N(0, σ²) at x = 0.1 k,
+//! k < n.
 //!
-//! Run: `cargo run --release --example two_phase_runs [n] [paper]` (default n = 100000; with
-//! `paper`, only the paper's settings with and without `min_gain`: the timing of one full
-//! fairing at large n)
+//! Run: `cargo run --release --example two_phase_runs [n] [all|paper] [σ]` (defaults n = 100000,
+//! all, σ = 0.01; with `paper`, only the paper's settings with and without `min_gain`: the
+//! timing of one full fairing at large n)
 
 use curve_repr::{EndCondition, SplineFunction};
 use fairing::two_phase::{fair_function, CountGuard, TwoPhaseSettings};
@@ -19,7 +20,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .transpose()?
         .unwrap_or(100_000);
     let mut rng = rand::rngs::StdRng::seed_from_u64(11);
-    let normal = Normal::new(0.0, 0.01)?;
+    let sigma: f64 = std::env::args()
+        .nth(3)
+        .map(|a| a.parse())
+        .transpose()?
+        .unwrap_or(0.01);
+    let normal = Normal::new(0.0, sigma)?;
     let x: Vec<f64> = (0..n).map(|k| 0.1 * k as f64).collect();
     let clean: Vec<f64> = x.iter().map(|t| (t / 2.0).sin()).collect();
     let y: Vec<f64> = clean.iter().map(|v| v + normal.sample(&mut rng)).collect();
@@ -36,7 +42,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let rms =
         |y: &[f64]| (y.iter().zip(&clean).map(|(a, b)| (a - b) * (a - b)).sum::<f64>() / n as f64).sqrt();
-    println!("n = {n}");
+    println!("n = {n}, noise {sigma}");
     println!(
         "{:<34} {:>11} {:>11} {:>10} {:>9} {:>7} {:>8}",
         "", "inflections", "vibrations", "vib@1e-6", "rms", "passes", "time"
@@ -55,6 +61,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         (
             "max_run 64, min_gain 0.005",
             base.clone().with_max_run(64).with_min_gain(0.005),
+        ),
+        (
+            "max_run 64, max_move_factor 0.2",
+            base.clone().with_max_run(64).with_max_move_factor(0.2),
         ),
         (
             "max_run 64, guard off",

@@ -29,14 +29,46 @@ use crate::{reject_derivative_clamps, Constraints, FairingState, FairingStrategy
 
 /// One full pass: a [`coarse_pass`] then a [`fine_pass`] (Han §4.1: "the two primary phases
 /// are performed in an alternative way iteratively"). Returns both reports.
-/// O(n · guard_window).
+///
+/// With the long-run option (`max_run` > 2) and a count guard on, the coarse pass works for
+/// the fine pass that follows: its moves are not count-guarded one by one (it runs with
+/// [`CountGuard::Off`]), and instead the full pass is undone whole (both reports empty and
+/// `reverted`) if it ends with more inflections than it started with. Phase 1 of the noise
+/// turns many short wrong-sign runs of c into runs that the absorption can take, on the way
+/// adding inflections that Phase 2 then removes; guarding each coarse move stops that
+/// (measured in [`phase2`]'s table). O(n · guard_window).
 pub fn full_pass(
     spline: &mut SplineFunction,
     settings: &TwoPhaseSettings,
     movable: &dyn Fn(usize) -> bool,
 ) -> Result<(PassReport, PassReport)> {
-    let coarse = coarse_pass(spline, settings, movable)?;
-    let fine = fine_pass(spline, settings, movable)?;
+    if settings.max_run <= 2 || settings.count_guard == CountGuard::Off {
+        let coarse = coarse_pass(spline, settings, movable)?;
+        let fine = fine_pass(spline, settings, movable)?;
+        return Ok((coarse, fine));
+    }
+    let inflections = counts(spline).1;
+    let saved = spline.y().to_vec();
+    let open = settings.clone().with_count_guard(CountGuard::Off);
+    let mut coarse = coarse_pass(spline, &open, movable)?;
+    let mut fine = fine_pass(spline, settings, movable)?;
+    if counts(spline).1 > inflections {
+        let restore: Vec<(usize, f64)> = coarse
+            .moves
+            .iter()
+            .chain(&fine.moves)
+            .map(|&(k, _)| (k, saved[k]))
+            .collect();
+        spline
+            .set_y(&restore)
+            .map_err(|e| strategy_error("two-phase", format!("restoring a pass failed: {e}")))?;
+        spline.rebuild()?;
+        for report in [&mut coarse, &mut fine] {
+            report.moves.clear();
+            report.cases.clear();
+            report.reverted = true;
+        }
+    }
     Ok((coarse, fine))
 }
 

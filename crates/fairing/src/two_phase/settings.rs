@@ -43,7 +43,8 @@ pub struct TwoPhaseSettings {
     pub min_gain: f64,
     /// Longest wrong-sign run of c values Phase 2 handles. 2 is the paper (Cases 1–2); larger
     /// values turn on the option beyond the paper for runs of 3 … `max_run` points (and make
-    /// the fine pass's count guards look at inflections only); 0 and 1 act as 2.
+    /// the count guards look at inflections only, the coarse pass's through the whole
+    /// [`full_pass`](super::full_pass)); 0 and 1 act as 2.
     pub max_run: usize,
     /// Guard (not in the paper): a case whose displacement |γ| exceeds `max_move_factor` times
     /// the smaller spacing h next to a moved point is skipped. The paper assumes "minor
