@@ -557,6 +557,53 @@ fn a_short_update_window_stays_within_the_decay_bound() {
     }
 }
 
+/// `add_column_to` judges a move without making it: on any range, c plus the columns it adds
+/// equals what `set_y_within` with the same window leaves there, bit for bit, for one move and
+/// for moves in sequence (including one index moved twice), at the ends and inside, and the
+/// spline it reads is unchanged.
+#[test]
+fn a_move_judged_before_it_is_made_matches_the_windowed_update() {
+    let x = uneven_x(120);
+    let y: Vec<f64> = x.iter().map(|t| (0.3 * t).sin() + 0.01 * t).collect();
+    for end in [EndCondition::ParabolicRunout, EndCondition::Natural] {
+        let spline = SplineFunction::new(&x, &y, end).unwrap();
+        let move_sets: [&[(usize, f64)]; 5] = [
+            &[(60, 0.3)],
+            &[(0, -0.2)],
+            &[(119, 0.4), (118, -0.1)],
+            &[(30, 0.25), (31, -0.25), (29, 0.1)],
+            &[(70, 0.2), (71, 0.1), (70, -0.05)],
+        ];
+        for moves in move_sets {
+            for (window, first, len) in [
+                (20usize, 0usize, 120usize),
+                (8, 25, 40),
+                (3, 55, 9),
+                (64, 100, 20),
+            ] {
+                let mut made = spline.clone();
+                let new: Vec<(usize, f64)> = moves.iter().map(|&(k, g)| (k, y[k] + g)).collect();
+                made.set_y_within(&new, window).unwrap();
+                let mut out = spline.c()[first..first + len].to_vec();
+                let mut current = y.clone();
+                for &(k, value) in &new {
+                    spline.add_column_to(k, value - current[k], window, first, &mut out);
+                    current[k] = value;
+                }
+                for (i, (a, b)) in out.iter().zip(&made.c()[first..first + len]).enumerate() {
+                    assert_eq!(
+                        a.to_bits(),
+                        b.to_bits(),
+                        "{end:?} {moves:?} w {window}: c[{}]",
+                        first + i
+                    );
+                }
+                assert_eq!(spline.y(), &y[..]);
+            }
+        }
+    }
+}
+
 /// `local_y_change`: a δc that meets the two moment conditions is made by a y move on the same
 /// points, checked by rebuilding the spline from y + δy (the defining condition: c changes by
 /// δc there and nowhere else), for every end condition; a δc that violates them is refused.

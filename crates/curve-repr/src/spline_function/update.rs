@@ -111,6 +111,49 @@ impl SplineFunction {
         self.c[first..=last].iter().all(|c| c.is_finite())
     }
 
+    /// Adds δ · c̃_k^j, truncated to `window` (≥ 1) entries on each side of j as
+    /// [`set_y_within`](SplineFunction::set_y_within) truncates it, to `out[k − first]` for
+    /// every such k in `first .. first + out.len()`; the spline is not changed. With `out`
+    /// holding c over that range and δ = (new y_j) − y_j, `out` ends with what `set_y_within`
+    /// would leave there, bit for bit (the same recurrence, the same operations in the same
+    /// order), so that a caller can judge a move before making it. Out-of-range j adds
+    /// nothing. O(window).
+    pub fn add_column_to(&self, j: usize, delta: f64, window: usize, first: usize, out: &mut [f64]) {
+        let n = self.x.len();
+        if j >= n {
+            return;
+        }
+        let window = window.max(1);
+        let end = first + out.len();
+        let mut put = |k: usize, value: f64| {
+            if (first..end).contains(&k) {
+                out[k - first] += value;
+            }
+        };
+        let [previous, centre, next] = self.central[j];
+        put(j, delta * centre);
+        let low = j.saturating_sub(window).max(first);
+        if j > low {
+            let a = &self.elimination.forward_factor;
+            let mut value = delta * previous;
+            put(j - 1, value);
+            for i in (low..j - 1).rev() {
+                value *= -a[i];
+                put(i, value);
+            }
+        }
+        let high = (j + window).min(n - 1).min(end.saturating_sub(1));
+        if j < high {
+            let a = &self.elimination.backward_factor;
+            let mut value = delta * next;
+            put(j + 1, value);
+            for (k, factor) in a.iter().enumerate().take(high + 1).skip(j + 2) {
+                value *= -factor;
+                put(k, value);
+            }
+        }
+    }
+
     /// [`set_y_within`](SplineFunction::set_y_within) that saves every value it overwrites, so
     /// that a move that overflows leaves the spline exactly as it was.
     fn set_y_saving(&mut self, moves: &[(usize, f64)], window: usize) -> Result<()> {

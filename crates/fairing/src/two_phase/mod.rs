@@ -42,17 +42,28 @@ pub fn full_pass(
     settings: &TwoPhaseSettings,
     movable: &dyn Fn(usize) -> bool,
 ) -> Result<(PassReport, PassReport)> {
+    full_pass_from(spline, settings, movable, None)
+}
+
+/// [`full_pass`] given the spline's [`counts`] if the caller knows them (the last pass's fine
+/// [`PassReport::counts`]).
+fn full_pass_from(
+    spline: &mut SplineFunction,
+    settings: &TwoPhaseSettings,
+    movable: &dyn Fn(usize) -> bool,
+    known: Option<(usize, usize)>,
+) -> Result<(PassReport, PassReport)> {
     if settings.max_run <= 2 || settings.count_guard == CountGuard::Off {
-        let coarse = coarse_pass(spline, settings, movable)?;
-        let fine = fine_pass(spline, settings, movable)?;
+        let coarse = phase1::coarse_pass_from(spline, settings, movable, known)?;
+        let fine = phase2::fine_pass_from(spline, settings, movable, Some(coarse.counts))?;
         return Ok((coarse, fine));
     }
-    let inflections = counts(spline).1;
+    let start = known.unwrap_or_else(|| counts(spline));
     let saved = spline.y().to_vec();
     let open = settings.clone().with_count_guard(CountGuard::Off);
-    let mut coarse = coarse_pass(spline, &open, movable)?;
-    let mut fine = fine_pass(spline, settings, movable)?;
-    if counts(spline).1 > inflections {
+    let mut coarse = phase1::coarse_pass_from(spline, &open, movable, Some(start))?;
+    let mut fine = phase2::fine_pass_from(spline, settings, movable, Some(coarse.counts))?;
+    if fine.counts.1 > start.1 {
         let restore: Vec<(usize, f64)> = coarse
             .moves
             .iter()
@@ -63,10 +74,12 @@ pub fn full_pass(
             .set_y(&restore)
             .map_err(|e| strategy_error("two-phase", format!("restoring a pass failed: {e}")))?;
         spline.rebuild()?;
+        let now = counts(spline);
         for report in [&mut coarse, &mut fine] {
             report.moves.clear();
             report.cases.clear();
             report.reverted = true;
+            report.counts = now;
         }
     }
     Ok((coarse, fine))
@@ -83,10 +96,12 @@ pub fn fair_function(
     movable: &dyn Fn(usize) -> bool,
 ) -> Result<usize> {
     settings.validate()?;
-    let mut stall = Stall::new(spline);
+    let mut now = counts(spline);
+    let mut stall = Stall::new(now);
     for pass in 1..=settings.max_passes {
-        let (coarse, fine) = full_pass(spline, settings, movable)?;
-        if (coarse.moves.is_empty() && fine.moves.is_empty()) || stall.stop(spline, settings) {
+        let (coarse, fine) = full_pass_from(spline, settings, movable, Some(now))?;
+        now = fine.counts;
+        if (coarse.moves.is_empty() && fine.moves.is_empty()) || stall.stop(now, settings) {
             return Ok(pass);
         }
     }
@@ -103,8 +118,7 @@ struct Stall {
 }
 
 impl Stall {
-    fn new(spline: &SplineFunction) -> Self {
-        let now = counts(spline);
+    fn new(now: (usize, usize)) -> Self {
         Stall {
             best: now,
             stalled: 0,
@@ -113,13 +127,13 @@ impl Stall {
     }
 
     /// After a pass: whether `stall_passes` (> 0) passes in a row reduced neither count, or
-    /// the pass lowered their sum by less than `min_gain` (> 0) of it. O(n) if either is on.
-    fn stop(&mut self, spline: &SplineFunction, settings: &TwoPhaseSettings) -> bool {
+    /// the pass lowered their sum by less than `min_gain` (> 0) of it; `now`: the counts after
+    /// the pass. O(1).
+    fn stop(&mut self, now: (usize, usize), settings: &TwoPhaseSettings) -> bool {
         let limit = settings.stall_passes;
         if limit == 0 && settings.min_gain <= 0.0 {
             return false;
         }
-        let now = counts(spline);
         let (before, after) = (self.last.0 + self.last.1, now.0 + now.1);
         self.last = now;
         let small_gain = settings.min_gain > 0.0
@@ -163,6 +177,8 @@ pub struct TwoPhase {
     spline: Option<SplineFunction>,
     passes: usize,
     stall: Stall,
+    /// The spline's (vibrations, inflections) after the last pass.
+    counts: Option<(usize, usize)>,
 }
 
 impl TwoPhase {
@@ -173,6 +189,7 @@ impl TwoPhase {
             spline: None,
             passes: 0,
             stall: Stall::default(),
+            counts: None,
         }
     }
 
@@ -203,8 +220,10 @@ impl FairingStrategy<2> for TwoPhase {
             return Err(strategy_error("two-phase", "a function segment cannot be closed"));
         }
         let spline = spline_of(state.points())?;
-        state.criterion = Some(counts(&spline).0 as f64);
-        self.stall = Stall::new(&spline);
+        let now = counts(&spline);
+        state.criterion = Some(now.0 as f64);
+        self.stall = Stall::new(now);
+        self.counts = Some(now);
         self.spline = Some(spline);
         self.passes = 0;
         Ok(())
@@ -216,7 +235,8 @@ impl FairingStrategy<2> for TwoPhase {
             return Err(strategy_error("two-phase", "step before init"));
         };
         let movable = |k: usize| state.is_movable(k);
-        let (coarse, fine) = full_pass(spline, &settings, &movable)?;
+        let (coarse, fine) = full_pass_from(spline, &settings, &movable, self.counts)?;
+        let mut now = fine.counts;
         // Write the moves into the state; read back what the constraints allowed.
         let mut corrections = Vec::new();
         let mut touched: Vec<usize> = coarse.moves.iter().chain(&fine.moves).map(|&(k, _)| k).collect();
@@ -240,11 +260,13 @@ impl FairingStrategy<2> for TwoPhase {
         if !corrections.is_empty() {
             spline.set_y(&corrections)?;
             spline.rebuild()?;
+            now = counts(spline);
         }
+        self.counts = Some(now);
         self.passes += 1;
-        let criterion = Some(counts(spline).0 as f64);
+        let criterion = Some(now.0 as f64);
         state.criterion = criterion;
-        let stalled = self.stall.stop(spline, &settings);
+        let stalled = self.stall.stop(now, &settings);
         if (coarse.moves.is_empty() && fine.moves.is_empty()) || stalled || self.passes >= settings.max_passes
         {
             Ok(StepOutcome::done(criterion))

@@ -33,15 +33,16 @@
 //!
 //! Guards (not in the paper, see [`TwoPhaseSettings`]): a case whose |γ| exceeds
 //! `max_move_factor` × the smaller spacing next to the moved point is skipped; a move that
-//! increases the inflection or vibration count within `guard_window` points is undone (counted
-//! by sign, without DESIGN.md's drop level, so that a move is never credited for pushing a
-//! sign change below it; recounted only where a sign changed); and a
-//! pass that increased either global count is undone whole (O(n) once per pass). So a pass
-//! never increases Infl_num or Vib_num (DESIGN.md counts) unless the guard is
-//! [`CountGuard::Off`]. Measured on a noisy sine (n = 1000, noise 0.01, λ = 0.8, 50 passes):
-//! vibrations 832 → 334 and inflections 781 → 82 with `Local` (the default), 832 → 284 and
-//! 781 → 32 with `Off` (the paper's rule, not monotone pass by pass in general), 832 → 437 and
-//! 781 → 61 with `Pass` (it stops at the first undone pass).
+//! would increase the inflection or vibration count within `guard_window` points is refused
+//! (judged before it is made, on c as the windowed update would leave it; counted by sign,
+//! without DESIGN.md's drop level, so that a move is never credited for pushing a sign change
+//! below it; recounted only where a sign changed); and a pass that increased either global
+//! count is undone whole (O(n) once per pass). So a pass never increases Infl_num or Vib_num
+//! (DESIGN.md counts) unless the guard is [`CountGuard::Off`]. Measured on a noisy sine
+//! (y = sin(x/2) + N(0, 0.01²), x = 0.1k, n = 1000; vibrations / inflections): 820 / 785 →
+//! 360 / 215 after 50 passes with `Local` (the default); → 245 / 171 with `Off` (the paper's
+//! rule, not monotone pass by pass in general); → 467 / 257 with `Pass`, which stops after 7
+//! passes, at the first undone pass.
 
 use curve_repr::SplineFunction;
 #[cfg(doc)]
@@ -99,10 +100,14 @@ pub struct PassReport {
     pub cases: Vec<Case>,
     /// Cases found but skipped (degenerate system, move too large, not movable, local guard).
     pub skipped: usize,
-    /// Of `skipped`: the moves undone because they increased a local count.
+    /// Of `skipped`: the moves refused (or, designed in c, undone) because they increased a
+    /// local count.
     pub undone_by_count_guard: usize,
     /// The pass increased a global count and was undone whole.
     pub reverted: bool,
+    /// Global (vibrations, inflections) after the pass (DESIGN.md counts, as [`counts`]), so
+    /// that a caller need not count again.
+    pub counts: (usize, usize),
 }
 
 /// e_i at interior point i from the spline's c (0 elsewhere). O(1).
@@ -311,16 +316,31 @@ fn local_counts(spline: &SplineFunction, lo: usize, hi: usize, scratch: &mut Vec
 }
 
 /// The values the local count guard compares: e_k for the interior k of lo..=hi, then c_k for
-/// k in lo..=hi (e by [`e_fast`]). O(hi − lo).
-fn window_values(c: &[f64], inverse: &[f64], lo: usize, hi: usize, out: &mut Vec<f64>) -> usize {
-    let n = c.len();
+/// k in lo..=hi (e by [`e_fast`]). `c[k − offset]` holds c_k (0 for the whole sequence), and
+/// it covers lo − 1 ..= hi + 1 within the n points. Returns where the c values start.
+/// O(hi − lo).
+fn window_values(
+    c: &[f64],
+    offset: usize,
+    n: usize,
+    inverse: &[f64],
+    lo: usize,
+    hi: usize,
+    out: &mut Vec<f64>,
+) -> usize {
     out.clear();
     let (first, last) = (lo.max(1), hi.min(n.saturating_sub(2)));
     if first <= last {
-        out.extend((first..=last).map(|k| e_fast(c, inverse, k)));
+        let c = &c[first - 1 - offset..=last + 1 - offset];
+        // The operations of `e_fast`, so the same values, over windows (no index checks).
+        out.extend(
+            c.windows(3)
+                .zip(inverse[first - 1..=last].windows(2))
+                .map(|(c, h)| (c[2] - c[1]) * h[1] - (c[1] - c[0]) * h[0]),
+        );
     }
     let split = out.len();
-    out.extend_from_slice(&c[lo..=hi]);
+    out.extend_from_slice(&c[lo - offset..=hi - offset]);
     split
 }
 
@@ -333,31 +353,25 @@ fn window_values(c: &[f64], inverse: &[f64], lo: usize, hi: usize, out: &mut Vec
 /// drives a value towards zero is judged by its sign, so that the guard never rewards hiding
 /// a sign change below the drop level. The pass guard ([`counts`]) is DESIGN.md's.
 fn count_change(before: &[f64], after: &[f64]) -> isize {
-    let sign = |v: f64| i8::from(v > 0.0) - i8::from(v < 0.0);
-    let (mut first, mut last) = (usize::MAX, 0);
-    for (k, (&b, &a)) in before.iter().zip(after).enumerate() {
-        // Same sign unless the product is ≤ 0 (an underflowing product only costs a recount).
-        if a * b <= 0.0 && a != b {
-            first = first.min(k);
-            last = k;
-        }
-    }
-    if first == usize::MAX {
+    // Same sign unless the product is ≤ 0 (an underflowing product only costs a recount).
+    let flipped = |(b, a): (&f64, &f64)| a * b <= 0.0 && a != b;
+    let Some(first) = before.iter().zip(after).position(flipped) else {
         return 0;
-    }
-    let lo = (0..first).rev().find(|&k| before[k] != 0.0).unwrap_or(first);
-    let hi = (last + 1..before.len())
-        .find(|&k| before[k] != 0.0)
-        .unwrap_or(last);
+    };
+    let last = before.iter().zip(after).rposition(flipped).unwrap_or(first);
+    let lo = before[..first].iter().rposition(|&v| v != 0.0).unwrap_or(first);
+    let hi = before[last + 1..]
+        .iter()
+        .position(|&v| v != 0.0)
+        .map_or(last, |k| last + 1 + k);
     let count = |values: &[f64]| {
-        let mut previous = 0i8;
+        let mut previous = 0.0f64;
         let mut changes = 0isize;
         for &v in values {
-            let s = sign(v);
-            if s != 0 {
-                changes += isize::from(previous * s < 0);
-                previous = s;
-            }
+            // Branch-free, by sign (a product of tiny values could underflow): an exact zero
+            // has no sign and keeps the previous one.
+            changes += isize::from(v != 0.0 && previous != 0.0 && (v < 0.0) != (previous < 0.0));
+            previous = if v != 0.0 { v } else { previous };
         }
         changes
     };
@@ -421,6 +435,17 @@ pub fn coarse_pass(
     settings: &TwoPhaseSettings,
     movable: &dyn Fn(usize) -> bool,
 ) -> Result<PassReport> {
+    coarse_pass_from(spline, settings, movable, None)
+}
+
+/// [`coarse_pass`] given the spline's [`counts`] if the caller knows them (the last pass's
+/// [`PassReport::counts`]). O(n · guard_window).
+pub(super) fn coarse_pass_from(
+    spline: &mut SplineFunction,
+    settings: &TwoPhaseSettings,
+    movable: &dyn Fn(usize) -> bool,
+    known: Option<(usize, usize)>,
+) -> Result<PassReport> {
     settings.validate()?;
     let lambda = settings.coarse_lambda;
     let zero = e_floor(spline, settings.detection_floor);
@@ -429,7 +454,7 @@ pub fn coarse_pass(
         let case = detect_by(c.len(), i, zero, &|k| e_fast(c, inverse, k))?;
         Some((case, displacement(spline, case, lambda).map(Proposal::from)))
     };
-    guarded_pass(spline, settings, movable, 1, false, &find)
+    guarded_pass(spline, settings, movable, 1, false, known, &find)
 }
 
 /// A detector for [`guarded_pass`]: the case starting at point i (if any) and its moves
@@ -470,6 +495,7 @@ pub(super) fn guarded_pass(
     movable: &dyn Fn(usize) -> bool,
     start: usize,
     inflections_first: bool,
+    known: Option<(usize, usize)>,
     find: &Finder<'_>,
 ) -> Result<PassReport> {
     // Whether changes of (vibrations, inflections) make a move or pass worse.
@@ -482,13 +508,14 @@ pub(super) fn guarded_pass(
     let n = spline.x().len();
     let mut report = PassReport::default();
     if n < 4 {
+        report.counts = known.unwrap_or_else(|| counts(spline));
         return Ok(report);
     }
-    let before_global = counts(spline);
+    let before_global = known.unwrap_or_else(|| counts(spline));
     let original_y = spline.y().to_vec();
     let inverse = inverse_steps(spline.x());
     let (mut before, mut after) = (Vec::new(), Vec::new());
-    let (mut old, mut new) = (Vec::new(), Vec::new());
+    let (mut new, mut trial) = (Vec::new(), Vec::new());
     let mut i = start;
     while i < n {
         let Some((case, proposal)) = find(spline, &inverse, i) else {
@@ -521,45 +548,60 @@ pub(super) fn guarded_pass(
         let hi = (hi + settings.guard_window + 2).min(n - 1);
         let guard = settings.count_guard == CountGuard::Local;
         let split = if guard {
-            window_values(spline.c(), &inverse, lo, hi, &mut before)
+            window_values(spline.c(), 0, n, &inverse, lo, hi, &mut before)
         } else {
             0
         };
-        let local = match &c_change {
-            Some((first, dc)) => match spline.change_c_locally(*first, dc) {
-                Ok(change) => Some(change),
-                Err(_) => {
-                    report.skipped += 1;
-                    continue;
-                }
-            },
-            None => {
-                old.clear();
-                old.extend(moves.iter().rev().map(|&(k, _)| (k, spline.y()[k])));
-                new.clear();
-                new.extend(moves.iter().map(|&(k, g)| (k, spline.y()[k] + g)));
-                spline.set_y_within(&new, PASS_UPDATE_WINDOW)?;
-                None
-            }
-        };
-        // The local guard: recount only where some value changed sign.
-        let increased = guard && {
-            window_values(spline.c(), &inverse, lo, hi, &mut after);
+        // Whether the move, made, would increase a count within the window (recounted only
+        // where some value changed sign).
+        let worse_window = |before: &[f64], after: &[f64]| {
             let (e_before, c_before) = before.split_at(split);
             let (e_after, c_after) = after.split_at(split);
             worse_by(count_change(e_before, e_after), count_change(c_before, c_after))
         };
-        if increased {
-            match &local {
-                Some(change) => spline.undo_local_change(change),
-                None => spline.set_y_within(&old, PASS_UPDATE_WINDOW)?,
+        if let Some((first, dc)) = &c_change {
+            // A move designed in c: made exactly, judged, undone if worse.
+            let Ok(change) = spline.change_c_locally(*first, dc) else {
+                report.skipped += 1;
+                continue;
+            };
+            if guard && {
+                window_values(spline.c(), 0, n, &inverse, lo, hi, &mut after);
+                worse_window(&before, &after)
+            } {
+                spline.undo_local_change(&change);
+                report.skipped += 1;
+                report.undone_by_count_guard += 1;
+                continue;
             }
-            report.skipped += 1;
-            report.undone_by_count_guard += 1;
         } else {
-            report.moves.extend(moves);
-            report.cases.push(case);
+            new.clear();
+            new.extend(moves.iter().map(|&(k, g)| (k, spline.y()[k] + g)));
+            if guard {
+                // Judged before it is made: c over the window as the windowed update would
+                // leave it (bit for bit, `add_column_to`), so a refused move costs no undo.
+                let (base, top) = (lo.saturating_sub(1), (hi + 1).min(n - 1));
+                trial.clear();
+                trial.extend_from_slice(&spline.c()[base..=top]);
+                let y = spline.y();
+                for (m, &(k, value)) in new.iter().enumerate() {
+                    let current = new[..m].iter().rev().find(|p| p.0 == k).map_or(y[k], |p| p.1);
+                    let delta = value - current;
+                    if delta != 0.0 {
+                        spline.add_column_to(k, delta, PASS_UPDATE_WINDOW, base, &mut trial);
+                    }
+                }
+                window_values(&trial, base, n, &inverse, lo, hi, &mut after);
+                if worse_window(&before, &after) {
+                    report.skipped += 1;
+                    report.undone_by_count_guard += 1;
+                    continue;
+                }
+            }
+            spline.set_y_within(&new, PASS_UPDATE_WINDOW)?;
         }
+        report.moves.extend(moves);
+        report.cases.push(case);
     }
     // Clear the rounding of the windowed updates, then the global guard.
     spline.rebuild()?;
@@ -577,6 +619,9 @@ pub(super) fn guarded_pass(
         report.moves.clear();
         report.cases.clear();
         report.reverted = true;
+        report.counts = counts(spline);
+    } else {
+        report.counts = after_global;
     }
     Ok(report)
 }

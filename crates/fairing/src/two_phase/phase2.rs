@@ -424,11 +424,21 @@ pub fn fine_pass(
     settings: &TwoPhaseSettings,
     movable: &dyn Fn(usize) -> bool,
 ) -> Result<PassReport> {
+    fine_pass_from(spline, settings, movable, None)
+}
+
+/// [`fine_pass`] given the spline's [`counts`](super::counts) if the caller knows them.
+pub(super) fn fine_pass_from(
+    spline: &mut SplineFunction,
+    settings: &TwoPhaseSettings,
+    movable: &dyn Fn(usize) -> bool,
+    known: Option<(usize, usize)>,
+) -> Result<PassReport> {
     settings.validate()?;
     let zero = zero_level(spline).max(settings.detection_floor * 1e12 * zero_level(spline));
     let find = |spline: &SplineFunction, _: &[f64], i: usize| {
         let case = detect_with(spline, i, settings.max_run, zero)?;
         Some((case, fine_with(spline, case, settings, zero)))
     };
-    guarded_pass(spline, settings, movable, 0, settings.max_run > 2, &find)
+    guarded_pass(spline, settings, movable, 0, settings.max_run > 2, known, &find)
 }

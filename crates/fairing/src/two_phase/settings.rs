@@ -52,7 +52,7 @@ pub struct TwoPhaseSettings {
     /// The bound is in x units: for data whose y range dwarfs its x spacing, raise it.
     pub max_move_factor: f64,
     /// Guard (not in the paper): points on each side of a case over which inflections and
-    /// vibrations are recounted; a move that increases either local count is undone.
+    /// vibrations are recounted; a move that would increase either local count is refused.
     pub guard_window: usize,
     /// Which count guards are on (not in the paper). Default [`CountGuard::Local`].
     pub count_guard: CountGuard,
@@ -78,7 +78,8 @@ pub enum CountGuard {
     Off,
     /// A pass that increased a global count is undone whole (O(n) per pass).
     Pass,
-    /// As `Pass`, and each move that increases a count within `guard_window` points is undone.
+    /// As `Pass`, and each move that would increase a count within `guard_window` points is
+    /// refused.
     Local,
 }
 
