@@ -3,8 +3,10 @@
 //! passes never increase Infl_num / Vib_num; the long-run option.
 
 use curve_repr::{EndCondition, SplineFunction};
+use fairing::two_phase::phase2::absorption_factors;
 use fairing::two_phase::{
-    detect_fine, fair_function, fine_displacement, fine_pass, full_pass, Case, CaseKind, TwoPhaseSettings,
+    coarse_pass, detect_fine, fair_function, fine_displacement, fine_pass, full_pass, Case, CaseKind,
+    TwoPhaseSettings,
 };
 use fairness::xc::XcPolyline;
 use proptest::prelude::*;
@@ -306,74 +308,98 @@ fn fine_pass_removes_the_pattern_inflections() {
 }
 
 /// The long-run option against the faithful rule on a dense noisy sine (n = 2000, noise
-/// N(0, 0.01²), h = 0.1): both reduce the inflections; the option leaves fewer, and ends
-/// within twice the clean sine's count, the issue's "close to the clean curve's count" (the
-/// faithful rule ends at ~15×; the 10^4 and 10^5 numbers are printed by
-/// `examples/two_phase_runs.rs`).
+/// N(0, 0.01²), h = 0.1): both reduce the inflections; the option leaves fewer, within 1.5×
+/// the clean sine's count (the issue's "close to the clean curve's count"; the faithful rule
+/// ends at ~15×); with the smaller size guard (`max_move_factor` 0.2) it ends closer to the
+/// clean sine than the noisy points are (RMS), under twice the clean count. The 10^4 and 10^5
+/// numbers are printed by `examples/two_phase_runs.rs`.
 #[test]
 fn long_runs_leave_fewer_inflections() {
     let (x, y) = noisy(2000, 0.01, 3);
     let clean: Vec<f64> = x.iter().map(|t| (t / 2.0).sin()).collect();
     let clean_count = XcPolyline::of_points(&x, &clean).unwrap().inflections();
+    let rms = |y: &[f64]| {
+        let sum: f64 = y.iter().zip(&clean).map(|(a, b)| (a - b) * (a - b)).sum();
+        (sum / y.len() as f64).sqrt()
+    };
     let before = XcPolyline::of_points(&x, &y).unwrap();
     let run = |settings: TwoPhaseSettings| {
         let mut s = spline(&x, &y);
         fair_function(&mut s, &settings, &|_| true).unwrap();
-        XcPolyline::of_points(&x, s.y()).unwrap()
+        (XcPolyline::of_points(&x, s.y()).unwrap(), rms(s.y()))
     };
-    let faithful = run(TwoPhaseSettings::default());
-    let option = run(TwoPhaseSettings::default().with_max_run(64));
+    let (faithful, _) = run(TwoPhaseSettings::default());
+    let (option, _) = run(TwoPhaseSettings::default().with_max_run(64));
+    let (near, near_rms) = run(TwoPhaseSettings::default()
+        .with_max_run(64)
+        .with_max_move_factor(0.2));
     println!(
-        "inflections {} -> {} (faithful), {} (runs ≤ 64), clean {clean_count}; vibrations {} -> {}, {}",
+        "inflections {} -> {} (faithful), {} (runs ≤ 64), {} (and size 0.2), clean {clean_count}; \
+         vibrations {} -> {}, {}; rms {:.2e} -> {near_rms:.2e}",
         before.inflections(),
         faithful.inflections(),
         option.inflections(),
+        near.inflections(),
         before.vibrations(),
         faithful.vibrations(),
-        option.vibrations()
+        option.vibrations(),
+        rms(&y),
     );
     assert!(faithful.inflections() < before.inflections());
     assert!(faithful.vibrations() < before.vibrations());
     assert!(option.inflections() < faithful.inflections());
     assert!(
-        option.inflections() <= 2 * clean_count,
+        2 * option.inflections() <= 3 * clean_count,
         "{} against the clean {clean_count}",
         option.inflections()
     );
+    // The smaller size guard: closer to the truth than the data, under twice the clean count
+    // (measured 49 against 31 here, against 33 with the default size guard).
+    assert!(near_rms < rms(&y), "{near_rms} against the noise's {}", rms(&y));
+    assert!(
+        near.inflections() < 2 * clean_count,
+        "{} against the clean {clean_count}",
+        near.inflections()
+    );
 }
 
-/// The long-run option's full-pass guard: replayed pass by pass, every full pass either
-/// lowers or keeps Infl_num (DESIGN.md count on a fresh solve), or is undone whole: both
-/// reports empty and marked `reverted`, y back bit for bit. The run below meets an undone
-/// pass before 50 passes (the guard is exercised, not assumed).
+/// The long-run option's full-pass guard: replayed pass by pass, no full pass raises
+/// Infl_num (DESIGN.md count on a fresh solve), and a pass whose unguarded coarse half would
+/// (marked `reverted` on its coarse report) ends exactly where a coarse pass with the count
+/// guards on, then the fine pass, take the spline from the state before it (replayed on a
+/// copy, y compared bit for bit). The run below meets such a pass (the redo is exercised,
+/// not assumed).
 #[test]
-fn a_long_run_full_pass_that_adds_inflections_is_undone() {
+fn a_long_run_full_pass_that_adds_inflections_is_redone_guarded() {
     let (x, y) = noisy(2000, 0.01, 3);
     let settings = TwoPhaseSettings::default().with_max_run(64);
     let inflections = |y: &[f64]| XcPolyline::of_points(&x, y).unwrap().inflections();
     let mut s = spline(&x, &y);
-    let mut undone = 0;
+    let mut redone = 0;
     for _ in 0..50 {
-        let before = s.y().to_vec();
-        let (coarse, fine) = full_pass(&mut s, &settings, &|_| true).unwrap();
-        assert_eq!(coarse.reverted, fine.reverted);
+        let before = s.clone();
+        let (coarse, _) = full_pass(&mut s, &settings, &|_| true).unwrap();
+        assert!(inflections(s.y()) <= inflections(before.y()));
         if coarse.reverted {
-            assert!(coarse.moves.is_empty() && fine.moves.is_empty());
-            assert!(coarse.cases.is_empty() && fine.cases.is_empty());
-            assert!(s.y().iter().zip(&before).all(|(a, b)| a.to_bits() == b.to_bits()));
-            undone += 1;
-            break;
+            let mut replay = before.clone();
+            coarse_pass(&mut replay, &settings, &|_| true).unwrap();
+            fine_pass(&mut replay, &settings, &|_| true).unwrap();
+            assert!(replay
+                .y()
+                .iter()
+                .zip(s.y())
+                .all(|(a, b)| a.to_bits() == b.to_bits()));
+            redone += 1;
         }
-        assert!(inflections(s.y()) <= inflections(&before));
     }
-    assert_eq!(undone, 1, "no full pass was undone in 50");
+    assert!(redone > 0, "no full pass was redone in 50");
 }
 
 /// The long-run option: a run of four wrong-sign c values between longer, larger flanks is
 /// found only with `max_run` ≥ 4. Its move, checked on a fresh spline through the moved points:
 /// every member of the run becomes α = (the smaller neighbour)/5 with the neighbours' sign,
 /// each flank is scaled by one factor in [1/5, 1), c is unchanged outside the run and its
-/// flanks, and Infl_num falls by exactly 2.
+/// flanks, Infl_num falls by exactly 2, and no narrower pair of flanks could have done it.
 #[test]
 fn a_long_run_is_absorbed_into_its_flanks() {
     let x = uniform(30);
@@ -426,6 +452,18 @@ fn a_long_run_is_absorbed_into_its_flanks() {
     }
     let count = |y: &[f64]| XcPolyline::of_points(&x, y).unwrap().inflections();
     assert_eq!(count(&moved) + 2, count(&y));
+    // The flanks are the shortest that can take the run: every narrower extent, grown one
+    // point per side, needs a flank factor outside (0, 4/5] (or a singular system).
+    let width = (12 - lo).max(hi - 15);
+    // Here one point per flank cannot take the run (so the check below is not empty).
+    assert!(width >= 2, "{lo}..={hi}");
+    for narrower in 1..width {
+        let factors = absorption_factors(&s, 12 - narrower, 12, 15, 15 + narrower, alpha);
+        assert!(
+            factors.is_none_or(|(l, r)| !(l > 0.0 && l <= 0.8 && r > 0.0 && r <= 0.8)),
+            "width {narrower} < {width} would do: {factors:?}"
+        );
+    }
     // A flank too small to take the run's area (it would have to change sign): refused.
     let mut c2 = c.clone();
     c2[11] = 0.0001;

@@ -32,11 +32,12 @@ use crate::{reject_derivative_clamps, Constraints, FairingState, FairingStrategy
 ///
 /// With the long-run option (`max_run` > 2) and a count guard on, the coarse pass works for
 /// the fine pass that follows: its moves are not count-guarded one by one (it runs with
-/// [`CountGuard::Off`]), and instead the full pass is undone whole (both reports empty and
-/// `reverted`) if it ends with more inflections than it started with. Phase 1 of the noise
-/// turns many short wrong-sign runs of c into runs that the absorption can take, on the way
-/// adding inflections that Phase 2 then removes; guarding each coarse move stops that
-/// (measured in [`phase2`]'s table). O(n · guard_window).
+/// [`CountGuard::Off`]); if the full pass then ends with more inflections than it started
+/// with, it is undone and redone with the coarse moves guarded (the coarse report is then
+/// marked `reverted`), so a full pass never raises Infl_num. On noise, Phase 1 turns short
+/// wrong-sign runs of c into runs that the absorption can take, adding inflections on the way
+/// that Phase 2 then removes; guarding every coarse move stops that (measured in [`phase2`]'s
+/// table). O(n · guard_window), twice for a redone pass.
 pub fn full_pass(
     spline: &mut SplineFunction,
     settings: &TwoPhaseSettings,
@@ -61,27 +62,25 @@ fn full_pass_from(
     let start = known.unwrap_or_else(|| counts(spline));
     let saved = spline.y().to_vec();
     let open = settings.clone().with_count_guard(CountGuard::Off);
-    let mut coarse = phase1::coarse_pass_from(spline, &open, movable, Some(start))?;
-    let mut fine = phase2::fine_pass_from(spline, settings, movable, Some(coarse.counts))?;
-    if fine.counts.1 > start.1 {
-        let restore: Vec<(usize, f64)> = coarse
-            .moves
-            .iter()
-            .chain(&fine.moves)
-            .map(|&(k, _)| (k, saved[k]))
-            .collect();
-        spline
-            .set_y(&restore)
-            .map_err(|e| strategy_error("two-phase", format!("restoring a pass failed: {e}")))?;
-        spline.rebuild()?;
-        let now = counts(spline);
-        for report in [&mut coarse, &mut fine] {
-            report.moves.clear();
-            report.cases.clear();
-            report.reverted = true;
-            report.counts = now;
-        }
+    let coarse = phase1::coarse_pass_from(spline, &open, movable, Some(start))?;
+    let fine = phase2::fine_pass_from(spline, settings, movable, Some(coarse.counts))?;
+    if fine.counts.1 <= start.1 {
+        return Ok((coarse, fine));
     }
+    // More inflections: undo, and redo the pass with each coarse move guarded.
+    let restore: Vec<(usize, f64)> = coarse
+        .moves
+        .iter()
+        .chain(&fine.moves)
+        .map(|&(k, _)| (k, saved[k]))
+        .collect();
+    spline
+        .set_y(&restore)
+        .map_err(|e| strategy_error("two-phase", format!("restoring a pass failed: {e}")))?;
+    spline.rebuild()?;
+    let mut coarse = phase1::coarse_pass_from(spline, settings, movable, None)?;
+    let fine = phase2::fine_pass_from(spline, settings, movable, Some(coarse.counts))?;
+    coarse.reverted = true;
     Ok((coarse, fine))
 }
 

@@ -50,22 +50,29 @@
 //! ([`SplineFunction::local_y_change`], derived from the three-moment rows, Han Eq. 4); then
 //! the y move is found by integrating twice, exactly. The move sets every c of the run to
 //! α = s_flank · min(|c_{i−1}|, |c_{i+k}|)/`alpha_divisor` (the α rule's fifth of the smaller
-//! neighbour) and scales each flank (the adjacent runs of the other sign, up to `max_run`
-//! points each) by one factor 1 − μ_L, 1 − μ_R; the two factors solve the 2 × 2 moment
-//! system ([`absorption_factors`]). The move is made only if 0 < μ ≤ 1 − 1/`alpha_divisor`:
-//! each flank keeps its sign and at least a fifth of itself. This is a lever rule: the run's
-//! ∫|y''|, weighted by its distance to the other flank, must be smaller than each flank's, the
-//! condition that says which of two alternating runs is the noise. When it is made, c changes
-//! on the run and its flanks only, all of them end with the flanks' sign, and Infl_num falls
-//! by exactly 2 (tested on a fresh spline). Runs within two points of an end are left alone.
+//! neighbour) and scales each flank (points next to the run within the adjacent runs of the
+//! other sign, up to `max_run` of them) by one factor 1 − μ_L, 1 − μ_R; the two factors solve
+//! the 2 × 2 moment system ([`absorption_factors`]). It needs 0 < μ ≤ 1 − 1/`alpha_divisor`:
+//! each flank keeps its sign and at least a fifth of itself, a lever rule (the run's ∫|y''|,
+//! weighted by its distance to the other flank, must be smaller than each flank's: the
+//! condition that says which of two alternating runs is the noise). The flanks are the
+//! *shortest* that qualify, grown one point per side at a time: δy is the double integral of
+//! δc, so wide flanks move y far (at n = 10^5 in the table below, flanks as wide as their runs
+//! (up to `max_run`) ended at RMS 2.1e-2 and 2133 inflections for σ = 0.01, 2.8e-3 and 1615
+//! for σ = 0.001; the shortest at 1.2e-2 / 1909 and 1.4e-3 / 1611). When the move is made,
+//! c changes on the run and its flanks only, all of them end with the flanks' sign, and
+//! Infl_num falls by exactly 2 (tested on a fresh spline). Runs within two points of an end
+//! are left alone.
+//!
 //! With the option on, the fine pass's count guards look at inflections only (a move may add
 //! vibrations if it adds no inflection; Phase 1 then works on them), and in a
-//! [`full_pass`](super::full_pass) the coarse pass is not count-guarded move by move: the
-//! full pass is undone whole if it ends with more inflections than it began with. On noise,
-//! Phase 1 turns short wrong-sign runs into runs the absorption can take, adding inflections on
-//! the way that Phase 2 removes; guarding each coarse move blocked that (9738 inflections
-//! left at 10^5 below, against 2233). So a full pass never increases Infl_num but may
-//! increase Vib_num, and a fairing ends at the first undone pass (the next would repeat it).
+//! [`full_pass`](super::full_pass) the coarse pass first runs without count guards; a full
+//! pass that ends with more inflections than it began with is undone and redone with the
+//! coarse moves guarded. On noise, Phase 1 turns short wrong-sign runs into runs the
+//! absorption can take, adding inflections on the way that Phase 2 removes; guarding every
+//! coarse move blocked that (with wide flanks: 9738 inflections left at 10^5, σ = 0.01,
+//! against 2133 with the full-pass guard). So a full pass never increases Infl_num but may
+//! increase Vib_num.
 //!
 //! Measured (`cargo run --release --example two_phase_runs [n] all [σ]`: y = sin(x/2) +
 //! N(0, σ²) at x = 0.1k, up to 50 full passes), inflections / vibrations / RMS distance to the
@@ -73,20 +80,20 @@
 //!
 //! | σ, n | clean | noisy | paper (`max_run` 2) | `max_run` 64 | `max_run` 64, `max_move_factor` 0.2 | `max_run` 64, [`CountGuard::Off`](super::CountGuard::Off) |
 //! |---|---|---|---|---|---|---|
-//! | 0.01, 10^4 | 159 / 166 | 7953 / 8290 / 9.9e-3 | 2271 / 3684 / 6.5e-3 | 252 / 3223 / 2.1e-2 | 372 / 3067 / 1.1e-2 | 298 / 2569 / 4.4e-2 |
-//! | 0.01, 10^5 | 1591 / 1595 | 79536 / 83342 / 1.0e-2 | 23312 / 37022 / 6.6e-3 | **2233** / 29763 / 2.1e-2 | 3591 / 27605 / 1.2e-2 | 3175 / 25703 / 4.3e-2 |
-//! | 0.001, 10^4 | 159 / 166 | 7165 / 8290 / 9.9e-4 | 367 / 3380 / 8.9e-4 | 165 / 3507 / 2.4e-3 | 165 / 3507 / 1.7e-3 | 165 / 2720 / 1.8e-2 |
-//! | 0.001, 10^5 | 1591 / 1595 | 72301 / 83342 / 1.0e-3 | 3839 / 33662 / 9.5e-4 | **1629** / 32523 / 2.8e-3 | 1627 / 32545 / 2.0e-3 | 1673 / 27270 / 1.8e-2 |
+//! | 0.01, 10^4 | 159 / 166 | 7953 / 8290 / 9.9e-3 | 2271 / 3684 / 6.5e-3 | 228 / 2544 / 1.1e-2 | 202 / 2420 / 7.7e-3 | 220 / 2590 / 3.1e-2 |
+//! | 0.01, 10^5 | 1591 / 1595 | 79536 / 83342 / 1.0e-2 | 23302 / 37028 / 6.6e-3 | **1909** / 24079 / 1.2e-2 | 1995 / 23751 / 7.5e-3 | 2093 / 25371 / 3.0e-2 |
+//! | 0.001, 10^4 | 159 / 166 | 7165 / 8290 / 9.9e-4 | 367 / 3380 / 8.9e-4 | 161 / 2878 / 1.2e-3 | 161 / 2882 / 9.8e-4 | 169 / 2694 / 1.0e-2 |
+//! | 0.001, 10^5 | 1591 / 1595 | 72301 / 83342 / 1.0e-3 | 3839 / 33662 / 9.5e-4 | **1611** / 26133 / 1.4e-3 | 1609 / 26137 / 1.2e-3 | 1635 / 26672 / 1.1e-2 |
 //!
-//! At σ = 0.01 the option leaves 1.4× the clean curve's inflections where the paper's rules
-//! leave 15× (a fifth of the noisy input's count was the reference); at σ = 0.001,
-//! 1.02×. It moves the points farther from the clean curve than the noise itself (RMS 2–3× σ):
-//! at σ = 0.01 the x–c polyline's noise is ten times its trend, and absorbing runs of the
-//! noise's scale moves y by up to half a spacing (the size guard). A smaller size guard
-//! trades inflections for distance (`max_move_factor` 0.2: RMS ≈ σ at σ = 0.01, 1.6× the
-//! inflections). The paper's rules stay closer to the truth than the noise and leave many more
-//! inflections. Without the count guards the option ends farther from the truth with as many or
-//! more inflections (fewer vibrations).
+//! At σ = 0.01 the option leaves 1.2× the clean curve's inflections where the paper's rules
+//! leave 15× (the reference was a fifth of the noisy input's count); at σ = 0.001,
+//! 1.01×, and it leaves fewer vibrations too. The price is distance: with the default size
+//! guard (a move up to half a spacing) the points end about as far from the clean curve as the
+//! noise (RMS 1.2–1.4 σ) where the paper's rules end at 0.65–0.95 σ; a smaller size guard
+//! (`max_move_factor` 0.2) ends closer to the truth than the noisy data (0.75–0.98 σ) with
+//! about as many inflections at 10^4 and 10^5 points (at n = 2000, σ = 0.01: 49 against 33;
+//! clean 31). Without the count guards the option ends 3–10× farther from the
+//! truth with more inflections.
 //!
 //! Detection: a run is recognised at its first point, values with |c| ≤ 1e-12 · max|c| count
 //! as zero (DESIGN.md) and end a run without starting a case. The sweep visits i = 0 … n − 1
@@ -332,16 +339,19 @@ fn fine_with(
 
 /// The long-run option's move (module doc, "Runs of more than two points"): the wrong-sign
 /// run `case.first ..= case.second` takes the constant α of the neighbours' sign, and its two
-/// flanks (the neighbouring runs of that sign, up to `max_run` points each, kept two points
-/// from the ends) shrink by the factors 1 − μ_L and 1 − μ_R that make the change of c local
-/// (the two moment conditions of [`SplineFunction::local_y_change`], a 2 × 2 system in
-/// μ_L, μ_R). Refused (`None`) unless 0 < μ ≤ 1 − 1/`alpha_divisor`, so that the flanks keep
-/// their sign and at least |α| ([`absorption_factors`]). The y move is exact and local: c
-/// changes on the run and its flanks only, every value there ends with the neighbours' sign,
-/// and Infl_num falls by exactly 2; the pass applies it exactly, with
+/// flanks (within the neighbouring runs of that sign, up to `max_run` points each, kept two
+/// points from the ends) shrink by the factors 1 − μ_L and 1 − μ_R that make the change of c
+/// local (the two moment conditions of [`SplineFunction::local_y_change`], a 2 × 2 system in
+/// μ_L, μ_R). The flanks are the shortest that can take the run: grown one point per side at
+/// a time (a side stops at the end of its run), the first extent with 0 < μ ≤
+/// 1 − 1/`alpha_divisor` on both sides is taken, so that the flanks keep their sign and at
+/// least |α|, and the y move, the double integral of δc, spreads no farther than it must;
+/// `None` if no extent qualifies ([`absorption_factors`] solves one extent). The y move is
+/// exact and local: c changes on the run and its flanks only, every value there ends with the
+/// neighbours' sign, and Infl_num falls by exactly 2; the pass applies it exactly, with
 /// [`SplineFunction::change_c_locally`]. O(run + flanks).
 fn absorb(spline: &SplineFunction, case: Case, settings: &TwoPhaseSettings, zero: f64) -> Option<Proposal> {
-    let c = spline.c();
+    let (x, c) = (spline.x(), spline.c());
     let n = c.len();
     let (i, last) = (case.first, case.second?);
     let goal = -sign(*c.get(i)?, zero);
@@ -349,20 +359,49 @@ fn absorb(spline: &SplineFunction, case: Case, settings: &TwoPhaseSettings, zero
     if i < 3 || last + 4 > n || sign(c[i - 1], zero) != goal || sign(c[last + 1], zero) != goal {
         return None;
     }
-    let mut lo = i - 1;
-    while lo > 2 && i - lo < cap && sign(c[lo - 1], zero) == goal {
-        lo -= 1;
+    // The widest flanks: the neighbouring runs of the goal's sign, capped.
+    let mut lo_max = i - 1;
+    while lo_max > 2 && i - lo_max < cap && sign(c[lo_max - 1], zero) == goal {
+        lo_max -= 1;
     }
-    let mut hi = last + 1;
-    while hi + 4 <= n && hi - last < cap && sign(c[hi + 1], zero) == goal {
-        hi += 1;
+    let mut hi_max = last + 1;
+    while hi_max + 4 <= n && hi_max - last < cap && sign(c[hi_max + 1], zero) == goal {
+        hi_max += 1;
     }
     let alpha = f64::from(goal) * c[i - 1].abs().min(c[last + 1].abs()) / settings.alpha_divisor;
-    let (left, right) = absorption_factors(spline, lo, i, last, hi, alpha)?;
     let limit = 1.0 - 1.0 / settings.alpha_divisor;
-    if !(left > 0.0 && left <= limit && right > 0.0 && right <= limit) {
-        return None;
+    let origin = (x[i] + x[last]) / 2.0;
+    let add = |sum: &mut (f64, f64), k: usize, value: f64| {
+        let (w1, w2) = spline.moment_weights(k, origin);
+        sum.0 += w1 * value;
+        sum.1 += w2 * value;
+    };
+    let mut run = (0.0, 0.0);
+    for k in i..=last {
+        add(&mut run, k, alpha - c[k]);
     }
+    let (mut left_sum, mut right_sum) = ((0.0, 0.0), (0.0, 0.0));
+    let (mut lo, mut hi) = (i, last);
+    let (left, right) = loop {
+        let grow_left = lo > lo_max;
+        if grow_left {
+            lo -= 1;
+            add(&mut left_sum, lo, c[lo]);
+        }
+        let grow_right = hi < hi_max;
+        if grow_right {
+            hi += 1;
+            add(&mut right_sum, hi, c[hi]);
+        }
+        if !grow_left && !grow_right {
+            return None;
+        }
+        if let Some((left, right)) = flank_factors(left_sum, right_sum, run) {
+            if left > 0.0 && left <= limit && right > 0.0 && right <= limit {
+                break (left, right);
+            }
+        }
+    };
     let dc: Vec<f64> = (lo..=hi)
         .map(|k| {
             if k < i {
@@ -402,17 +441,24 @@ pub fn absorption_factors(
             (s1 + w1 * value(k), s2 + w2 * value(k))
         })
     };
-    let (l1, l2) = sums(lo..=i - 1, &|k| c[k]);
-    let (f1, f2) = sums(last + 1..=hi, &|k| c[k]);
-    let (r1, r2) = sums(i..=last, &|k| alpha - c[k]);
-    // μ_L (l1, l2) + μ_R (f1, f2) = (r1, r2).
+    flank_factors(
+        sums(lo..=i - 1, &|k| c[k]),
+        sums(last + 1..=hi, &|k| c[k]),
+        sums(i..=last, &|k| alpha - c[k]),
+    )
+}
+
+/// μ_L (l1, l2) + μ_R (f1, f2) = (r1, r2) from the moment sums of the left flank, the right
+/// flank and the run's change; `None` if singular or not finite. O(1).
+fn flank_factors(left: (f64, f64), right: (f64, f64), run: (f64, f64)) -> Option<(f64, f64)> {
+    let ((l1, l2), (f1, f2), (r1, r2)) = (left, right, run);
     let det = l1 * f2 - f1 * l2;
     if !det.is_finite() || det.abs() <= 1e-12 * l1.hypot(l2) * f1.hypot(f2) {
         return None;
     }
-    let left = (r1 * f2 - f1 * r2) / det;
-    let right = (l1 * r2 - r1 * l2) / det;
-    (left.is_finite() && right.is_finite()).then_some((left, right))
+    let mu_left = (r1 * f2 - f1 * r2) / det;
+    let mu_right = (l1 * r2 - r1 * l2) / det;
+    (mu_left.is_finite() && mu_right.is_finite()).then_some((mu_left, mu_right))
 }
 
 /// One fine pass of Phase 2 over the whole segment (module doc), with the guards of
