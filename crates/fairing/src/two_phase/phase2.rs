@@ -377,8 +377,8 @@ fn absorb(spline: &SplineFunction, case: Case, settings: &TwoPhaseSettings, zero
         sum.1 += w2 * value;
     };
     let mut run = (0.0, 0.0);
-    for k in i..=last {
-        add(&mut run, k, alpha - c[k]);
+    for (k, &value) in c.iter().enumerate().take(last + 1).skip(i) {
+        add(&mut run, k, alpha - value);
     }
     let (mut left_sum, mut right_sum) = ((0.0, 0.0), (0.0, 0.0));
     let (mut lo, mut hi) = (i, last);
