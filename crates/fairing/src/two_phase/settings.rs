@@ -37,9 +37,9 @@ pub struct TwoPhaseSettings {
     /// paper alternates the phases "iteratively" and names no stop; with λ < 1 cases never run
     /// out on noisy data, and late passes mostly shrink |e| of vibrations they do not remove.
     /// Measured on the noisy sine of `examples/two_phase_runs.rs`, 0.005 against no stop
-    /// (inflections / vibrations, passes): n = 10^5, 23968 / 39201 after 15 passes against
-    /// 23312 / 37022 after 50; n = 10^6, 239322 / 390402 after 15 (6.4 s) against
-    /// 233364 / 369021 after 50 (20.2 s).
+    /// (inflections / vibrations, passes): n = 10^5, 23958 / 39201 after 15 passes against
+    /// 23302 / 37028 after 48 (a pass that applied nothing); n = 10^6, 239356 / 390392 after
+    /// 15 (5.8 s) against 233380 / 369009 after 50 (17.0 s).
     pub min_gain: f64,
     /// Longest wrong-sign run of c values Phase 2 handles. 2 is the paper (Cases 1–2); larger
     /// values turn on the option beyond the paper for runs of 3 … `max_run` points (and make
