@@ -95,8 +95,8 @@
 //! clean 31). The option is meant for dense noisy data: on the sparse real curves of
 //! `examples/han_tables.rs` it removes more inflections than the paper's rules but moves the
 //! points much farther (UA(2)-180 upper: 1 inflection against 3, RMS distance to the
-//! database's smoothed twin 3.7e-3 against 5.3e-4, the input's 4.4e-4). Without the count guards the option ends 3–10× farther from the
-//! truth with more inflections.
+//! database's smoothed twin 3.7e-3 against 5.3e-4, the input's 4.4e-4). Without the count
+//! guards the option ends 3–10× farther from the truth with about as many inflections.
 //!
 //! Detection: a run is recognised at its first point, values with |c| ≤ 1e-12 · max|c| count
 //! as zero (DESIGN.md) and end a run without starting a case. The sweep visits i = 0 … n − 1
