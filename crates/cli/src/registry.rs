@@ -139,7 +139,7 @@ pub const METHODS: &[MethodInfo] = &[
             ParameterInfo {
                 name: "count-guard",
                 default: "local",
-                meaning: "undo moves (local) or passes (pass) that raise a count, or none (off)",
+                meaning: "refuse moves (local) or undo passes (pass) that raise a count, or none (off)",
             },
             ParameterInfo {
                 name: "pair-min-sine",
@@ -149,7 +149,7 @@ pub const METHODS: &[MethodInfo] = &[
             ParameterInfo {
                 name: "max-run",
                 default: "2",
-                meaning: "longest wrong-sign run of c fixed; > 2 turns on the long-run option",
+                meaning: "longest wrong-sign run of c fixed; > 2 turns on the long-run option (dense noisy data)",
             },
             ParameterInfo {
                 name: "stall-passes",
