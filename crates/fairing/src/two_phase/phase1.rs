@@ -353,18 +353,48 @@ fn window_values(
 /// drives a value towards zero is judged by its sign, so that the guard never rewards hiding
 /// a sign change below the drop level. The pass guard ([`counts`]) is DESIGN.md's.
 fn count_change(before: &[f64], after: &[f64]) -> isize {
+    match (sign_mask(before), sign_mask(after)) {
+        (Some(b), Some(a)) if before.len() == after.len() => {
+            // No exact zero in either window (the usual case): with the sign bits of each
+            // sequence in a word, the sign changes of a stretch are the set bits of s ^ (s >> 1)
+            // within it, and only the stretch from the first to the last flipped sign (one
+            // entry wider on each side) can differ.
+            let flipped = a ^ b;
+            if flipped == 0 {
+                return 0;
+            }
+            let (first, last) = (flipped.trailing_zeros(), 63 - flipped.leading_zeros());
+            let lo = first.saturating_sub(1);
+            let hi = (last + 1).min(before.len() as u32 - 1);
+            // Bits k with lo ≤ k < hi: the pairs (k, k + 1) inside lo..=hi.
+            let pairs = (1u64 << hi) - (1u64 << lo);
+            let count = |s: u64| ((s ^ (s >> 1)) & pairs).count_ones() as isize;
+            count(a) - count(b)
+        }
+        _ => count_change_with_zeros(before, after),
+    }
+}
+
+/// The sign bits of `values` (bit k set when values[k] < 0), if there are at most 64 values
+/// and none is an exact zero (which has no sign). O(len).
+fn sign_mask(values: &[f64]) -> Option<u64> {
+    if values.len() > 64 {
+        return None;
+    }
+    let (mut mask, mut signless) = (0u64, false);
+    for (k, &v) in values.iter().enumerate() {
+        // The sign bit is v < 0 for every v but ±0 and NaN, which `signless` catches.
+        mask |= (v.to_bits() >> 63) << k;
+        signless |= v == 0.0 || v.is_nan();
+    }
+    (!signless).then_some(mask)
+}
+
+/// [`count_change`] for windows with exact zeros or more than 64 values: the same count, by a
+/// scan. O(len).
+fn count_change_with_zeros(before: &[f64], after: &[f64]) -> isize {
     // Same sign unless the product is ≤ 0 (an underflowing product only costs a recount).
     let flipped = |(b, a): (&f64, &f64)| a * b <= 0.0 && a != b;
-    // A branch-free count first (it vectorises): most moves flip no sign in a window.
-    if before
-        .iter()
-        .zip(after)
-        .map(|p| u32::from(flipped(p)))
-        .sum::<u32>()
-        == 0
-    {
-        return 0;
-    }
     let Some(first) = before.iter().zip(after).position(flipped) else {
         return 0;
     };
@@ -638,7 +668,7 @@ pub(super) fn guarded_pass(
 
 #[cfg(test)]
 mod tests {
-    use super::{changes, detect, detect_above, e_at, CaseKind};
+    use super::{changes, count_change, count_change_with_zeros, detect, detect_above, e_at, CaseKind};
     use curve_repr::{EndCondition, SplineFunction};
     use fairness::sign::sign_changes;
 
@@ -659,6 +689,44 @@ mod tests {
             Some(CaseKind::Medium)
         );
         assert!(detect_above(&spline, 5, 1.01 * e5).is_none_or(|c| c.first != 5));
+    }
+
+    /// The guard's count change equals the difference of two plain by-sign counts (exact
+    /// zeros skipped) on windows with and without zeros, tiny and huge values, up to and past
+    /// the 64 values of the bit-mask path.
+    #[test]
+    fn count_change_is_the_difference_of_the_sign_counts() {
+        let plain = |v: &[f64]| {
+            let signs: Vec<bool> = v.iter().filter(|x| **x != 0.0).map(|x| *x < 0.0).collect();
+            signs.windows(2).filter(|w| w[0] != w[1]).count() as isize
+        };
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        for trial in 0..4000 {
+            let len = [2usize, 5, 37, 63, 64, 65, 90][trial % 7];
+            let value = |r: u64| match r % 11 {
+                0 => 0.0,
+                1 => 1e-300,
+                2 => -1e-300,
+                3 => 1e300,
+                _ => (r % 2001) as f64 / 1000.0 - 1.0,
+            };
+            let before: Vec<f64> = (0..len).map(|_| value(next())).collect();
+            // After: a few entries changed, as a move changes a window.
+            let mut after = before.clone();
+            for _ in 0..(next() % 6) {
+                let k = (next() % len as u64) as usize;
+                after[k] = value(next());
+            }
+            let want = plain(&after) - plain(&before);
+            assert_eq!(count_change(&before, &after), want, "{before:?} -> {after:?}");
+            assert_eq!(count_change_with_zeros(&before, &after), want);
+        }
     }
 
     #[test]
