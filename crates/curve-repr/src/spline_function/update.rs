@@ -80,34 +80,19 @@ impl SplineFunction {
     }
 
     /// c ← c + δ · c̃^j over `window` (≥ 1) entries on each side of j, the column generated in
-    /// place by the recurrences Eq. 16–17 (the entries of
+    /// place by the recurrences Eq. 16–17 ([`Column::add`], the entries of
     /// [`sensitivity_column`](SplineFunction::sensitivity_column), without allocating).
     /// Callers keep j < n. Returns whether every updated entry is finite.
     fn add_column_within(&mut self, j: usize, delta: f64, window: usize) -> bool {
         let n = self.x.len();
         let window = window.max(1);
-        let [previous, centre, next] = self.central[j];
-        self.c[j] += delta * centre;
-        let first = j.saturating_sub(window);
-        if j > first {
-            let a = &self.elimination.forward_factor;
-            let mut value = delta * previous;
-            self.c[j - 1] += value;
-            for i in (first..j - 1).rev() {
-                value *= -a[i];
-                self.c[i] += value;
-            }
-        }
-        let last = (j + window).min(n - 1);
-        if j < last {
-            let a = &self.elimination.backward_factor;
-            let mut value = delta * next;
-            self.c[j + 1] += value;
-            for (c, factor) in self.c[j + 2..=last].iter_mut().zip(&a[j + 2..=last]) {
-                value *= -factor;
-                *c += value;
-            }
-        }
+        let column = Column {
+            central: self.central[j],
+            forward: &self.elimination.forward_factor,
+            backward: &self.elimination.backward_factor,
+        };
+        column.add(j, delta, window, 0, &mut self.c);
+        let (first, last) = (j.saturating_sub(window), (j + window).min(n - 1));
         self.c[first..=last].iter().all(|c| c.is_finite())
     }
 
@@ -115,43 +100,18 @@ impl SplineFunction {
     /// [`set_y_within`](SplineFunction::set_y_within) truncates it, to `out[k − first]` for
     /// every such k in `first .. first + out.len()`; the spline is not changed. With `out`
     /// holding c over that range and δ = (new y_j) − y_j, `out` ends with what `set_y_within`
-    /// would leave there, bit for bit (the same recurrence, the same operations in the same
-    /// order), so that a caller can judge a move before making it. Out-of-range j adds
-    /// nothing. O(window).
+    /// would leave there, bit for bit (both run the same generator), so that a caller can judge a
+    /// move before making it. Out-of-range j adds nothing. O(window).
     pub fn add_column_to(&self, j: usize, delta: f64, window: usize, first: usize, out: &mut [f64]) {
-        let n = self.x.len();
-        if j >= n {
+        if j >= self.x.len() {
             return;
         }
-        let window = window.max(1);
-        let end = first + out.len();
-        let mut put = |k: usize, value: f64| {
-            if (first..end).contains(&k) {
-                out[k - first] += value;
-            }
+        let column = Column {
+            central: self.central[j],
+            forward: &self.elimination.forward_factor,
+            backward: &self.elimination.backward_factor,
         };
-        let [previous, centre, next] = self.central[j];
-        put(j, delta * centre);
-        let low = j.saturating_sub(window).max(first);
-        if j > low {
-            let a = &self.elimination.forward_factor;
-            let mut value = delta * previous;
-            put(j - 1, value);
-            for i in (low..j - 1).rev() {
-                value *= -a[i];
-                put(i, value);
-            }
-        }
-        let high = (j + window).min(n - 1).min(end.saturating_sub(1));
-        if j < high {
-            let a = &self.elimination.backward_factor;
-            let mut value = delta * next;
-            put(j + 1, value);
-            for (k, factor) in a.iter().enumerate().take(high + 1).skip(j + 2) {
-                value *= -factor;
-                put(k, value);
-            }
-        }
+        column.add(j, delta, window.max(1), first, out);
     }
 
     /// [`set_y_within`](SplineFunction::set_y_within) that saves every value it overwrites, so
@@ -381,6 +341,52 @@ impl SplineFunction {
             y.copy_from_slice(&change.old_y);
             for (c, d) in c.iter_mut().zip(&change.dc) {
                 *c -= d;
+            }
+        }
+    }
+}
+
+/// What generates the sensitivity column c̃^j of one j: its three central entries and the
+/// elimination factors of the recurrences Eq. 16–17.
+struct Column<'a> {
+    central: [f64; 3],
+    forward: &'a [f64],
+    backward: &'a [f64],
+}
+
+impl Column<'_> {
+    /// `out[k − first] += δ · c̃_k^j` for the k within `window` (≥ 1) of j that lie in
+    /// `first .. first + out.len()` (and in the n points the factors cover); the entries
+    /// outside are generated (the recurrence runs through them) but not written. The one
+    /// generator of both [`SplineFunction::add_column_within`] and
+    /// [`SplineFunction::add_column_to`], so that a move judged before it is made is the move
+    /// made, bit for bit. O(window).
+    fn add(&self, j: usize, delta: f64, window: usize, first: usize, out: &mut [f64]) {
+        let n = self.forward.len();
+        let end = first + out.len();
+        let mut put = |k: usize, value: f64| {
+            if (first..end).contains(&k) {
+                out[k - first] += value;
+            }
+        };
+        let [previous, centre, next] = self.central;
+        put(j, delta * centre);
+        let low = j.saturating_sub(window).max(first);
+        if j > low {
+            let mut value = delta * previous;
+            put(j - 1, value);
+            for i in (low..j - 1).rev() {
+                value *= -self.forward[i];
+                put(i, value);
+            }
+        }
+        let high = (j + window).min(n - 1).min(end.saturating_sub(1));
+        if j < high {
+            let mut value = delta * next;
+            put(j + 1, value);
+            for (k, factor) in self.backward.iter().enumerate().take(high + 1).skip(j + 2) {
+                value *= -factor;
+                put(k, value);
             }
         }
     }
