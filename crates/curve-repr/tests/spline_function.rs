@@ -604,6 +604,23 @@ fn a_move_judged_before_it_is_made_matches_the_windowed_update() {
     }
 }
 
+/// Sets dc[0] and dc[1] (the entries at `first`, `first + 1`) so that the change of c `dc`
+/// meets both moment conditions of `local_y_change` (weights about x_first), the others kept.
+fn balance_moments(spline: &SplineFunction, first: usize, dc: &mut [f64]) {
+    let origin = spline.x()[first];
+    let (mut s1, mut s2) = (0.0, 0.0);
+    for (k, d) in dc.iter().enumerate().skip(2) {
+        let (w1, w2) = spline.moment_weights(first + k, origin);
+        s1 += w1 * d;
+        s2 += w2 * d;
+    }
+    let (a1, a2) = spline.moment_weights(first, origin);
+    let (b1, b2) = spline.moment_weights(first + 1, origin);
+    let det = a1 * b2 - b1 * a2;
+    dc[0] = (-s1 * b2 + b1 * s2) / det;
+    dc[1] = (-a1 * s2 + a2 * s1) / det;
+}
+
 /// `local_y_change`: a δc that meets the two moment conditions is made by a y move on the same
 /// points, checked by rebuilding the spline from y + δy (the defining condition: c changes by
 /// δc there and nowhere else), for every end condition; a δc that violates them is refused.
@@ -625,18 +642,7 @@ fn a_local_change_of_c_comes_from_a_local_y_move() {
             let mut dc: Vec<f64> = (0..len)
                 .map(|k| ((k * 7 + first) % 5) as f64 * 0.1 - 0.2)
                 .collect();
-            let origin = x[first];
-            let (mut s1, mut s2) = (0.0, 0.0);
-            for (k, d) in dc.iter().enumerate().skip(2) {
-                let (w1, w2) = spline.moment_weights(first + k, origin);
-                s1 += w1 * d;
-                s2 += w2 * d;
-            }
-            let (a1, a2) = spline.moment_weights(first, origin);
-            let (b1, b2) = spline.moment_weights(first + 1, origin);
-            let det = a1 * b2 - b1 * a2;
-            dc[0] = (-s1 * b2 + b1 * s2) / det;
-            dc[1] = (-a1 * s2 + a2 * s1) / det;
+            balance_moments(&spline, first, &mut dc);
             let dy = spline.local_y_change(first, &dc).unwrap();
             assert_eq!(dy.len(), len);
             let mut moved = y.clone();
@@ -684,19 +690,8 @@ fn a_local_change_of_c_is_applied_and_undone() {
     let y: Vec<f64> = x.iter().map(|t| (0.9 * t).cos()).collect();
     let mut spline = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap();
     let (first, len) = (6usize, 6usize);
-    let origin = x[first];
     let mut dc = vec![0.0, 0.0, 0.3, -0.1, 0.2, 0.05];
-    let (mut s1, mut s2) = (0.0, 0.0);
-    for (k, d) in dc.iter().enumerate().skip(2) {
-        let (w1, w2) = spline.moment_weights(first + k, origin);
-        s1 += w1 * d;
-        s2 += w2 * d;
-    }
-    let (a1, a2) = spline.moment_weights(first, origin);
-    let (b1, b2) = spline.moment_weights(first + 1, origin);
-    let det = a1 * b2 - b1 * a2;
-    dc[0] = (-s1 * b2 + b1 * s2) / det;
-    dc[1] = (-a1 * s2 + a2 * s1) / det;
+    balance_moments(&spline, first, &mut dc);
     let c0 = spline.c().to_vec();
     let change = spline.change_c_locally(first, &dc).unwrap();
     assert_eq!(change.first(), first);
