@@ -5,6 +5,11 @@
 //! sequence) are dropped first, then the sign changes #{k : w_k w_{k+1} < 0} are counted along
 //! the remaining values w. So `a, 0, −a` is one change, round-off (a natural spline's end
 //! curvature) makes none, and a value driven exactly to zero hides none.
+//!
+//! "w_k w_{k+1} < 0" is read as the mathematics means it, opposite signs
+//! ([`opposite_signs`]), not as a floating-point product: the product of two values below
+//! ~1e-162 in magnitude underflows to 0 and would hide the change (a curve measured in
+//! units of 1e150 has c values of 1e-150).
 
 use curve_repr::Vec3;
 
@@ -29,6 +34,29 @@ fn kept(values: &[f64]) -> impl Iterator<Item = (usize, f64)> + '_ {
         .filter(move |(_, v)| v.is_finite() && v.abs() > threshold)
 }
 
+/// Whether a and b are non-zero with opposite signs: a·b < 0 in exact arithmetic, without
+/// the product (which underflows for tiny values and overflows for huge ones). NaN has no
+/// sign here. O(1).
+///
+/// ```
+/// use fairness::sign::opposite_signs;
+/// assert!(opposite_signs(1e-200, -1e-200)); // 1e-200 · (−1e-200) underflows to −0
+/// assert!(!opposite_signs(0.0, -1.0));
+/// assert!(!opposite_signs(2.0, 3.0));
+/// ```
+#[inline]
+pub fn opposite_signs(a: f64, b: f64) -> bool {
+    // Non-short-circuit operators: branch-free, as noisy signs defeat the branch predictor.
+    ((a < 0.0) & (b > 0.0)) | ((a > 0.0) & (b < 0.0))
+}
+
+/// Whether a and b are non-zero with the same sign: a·b > 0 in exact arithmetic (see
+/// [`opposite_signs`]). O(1).
+#[inline]
+pub fn same_signs(a: f64, b: f64) -> bool {
+    ((a > 0.0) & (b > 0.0)) | ((a < 0.0) & (b < 0.0))
+}
+
 /// The number of sign changes of `values` after the drop rule. O(n).
 ///
 /// ```
@@ -48,7 +76,7 @@ pub fn sign_change_positions(values: &[f64]) -> Vec<(usize, usize)> {
     let mut previous: Option<(usize, f64)> = None;
     for (index, value) in kept(values) {
         if let Some((previous_index, previous_value)) = previous {
-            if previous_value * value < 0.0 {
+            if opposite_signs(previous_value, value) {
                 changes.push((previous_index, index));
             }
         }
@@ -63,24 +91,37 @@ pub fn sign_change_positions(values: &[f64]) -> Vec<(usize, usize)> {
 /// This is the `inflections` count of the 3D data set of `parametric_metrics.json` (the report
 /// of the `fair` command leaves 3D inflections null). O(n).
 pub fn binormal_flips(binormals: &[Vec3]) -> usize {
-    let norms: Vec<f64> = binormals.iter().map(|b| b.norm()).collect();
-    let max = norms
+    // Each b as (|b|, b / |b|), scaled by its largest component first so that neither the
+    // norm nor the dot product of tiny (or huge) binormals under- or overflows.
+    let unit = |b: &Vec3| -> Option<(f64, Vec3)> {
+        let scale = b.amax();
+        if !(scale.is_finite() && scale > 0.0) {
+            return None;
+        }
+        let scaled = b / scale;
+        let norm = scaled.norm();
+        Some((scale * norm, scaled / norm))
+    };
+    let units: Vec<Option<(f64, Vec3)>> = binormals.iter().map(unit).collect();
+    let max = units
         .iter()
+        .flatten()
+        .map(|(norm, _)| *norm)
         .filter(|v| v.is_finite())
-        .fold(0.0_f64, |m, v| m.max(*v));
+        .fold(0.0_f64, f64::max);
     let threshold = DROP_RELATIVE * max;
     let mut count = 0;
-    let mut previous: Option<&Vec3> = None;
-    for (b, norm) in binormals.iter().zip(&norms) {
-        if !(norm.is_finite() && *norm > threshold) {
+    let mut previous: Option<Vec3> = None;
+    for (norm, direction) in units.into_iter().flatten() {
+        if !(norm.is_finite() && norm > threshold) {
             continue;
         }
         if let Some(p) = previous {
-            if p.dot(b) < 0.0 {
+            if p.dot(&direction) < 0.0 {
                 count += 1;
             }
         }
-        previous = Some(b);
+        previous = Some(direction);
     }
     count
 }
@@ -132,6 +173,27 @@ mod tests {
         let tiny = Vec3::new(0.0, 0.0, -1e-14);
         assert_eq!(binormal_flips(&[up, tilted, tiny, down, down, up]), 2);
         assert_eq!(binormal_flips(&[Vec3::zeros(); 3]), 0);
+    }
+
+    #[test]
+    fn counts_do_not_depend_on_the_scale() {
+        // The products (and dot products) of these values under- or overflow; the signs do not.
+        let pattern = [1.0, -2.0, 0.5, 3.0, -1.0, 0.0, -4.0, 2.0];
+        let up = Vec3::new(0.0, 0.2, 1.0);
+        let vectors = [up, up, -up, Vec3::new(1.0, 0.0, 0.1), -up, up];
+        let expected = (sign_changes(&pattern), binormal_flips(&vectors));
+        assert_eq!(expected, (4, 4));
+        for scale in [1e-300, 1e-170, 1e-150, 1e150, 1e170, 1e300] {
+            let values: Vec<f64> = pattern.iter().map(|v| v * scale).collect();
+            let scaled: Vec<Vec3> = vectors.iter().map(|v| v * scale).collect();
+            assert_eq!(
+                (sign_changes(&values), binormal_flips(&scaled)),
+                expected,
+                "scale {scale}"
+            );
+        }
+        assert!(opposite_signs(1e-200, -1e-200) && same_signs(-1e-200, -1e-300));
+        assert!(!opposite_signs(f64::NAN, 1.0) && !same_signs(f64::NAN, 1.0));
     }
 
     proptest! {

@@ -47,6 +47,7 @@
 use curve_repr::SplineFunction;
 #[cfg(doc)]
 use fairness::sign::sign_changes;
+use fairness::sign::{opposite_signs, same_signs};
 use fairness::xc::e_sensitivity;
 
 use super::{CountGuard, TwoPhaseSettings};
@@ -157,7 +158,7 @@ fn detect_by(n: usize, i: usize, zero: f64, e: &impl Fn(usize) -> f64) -> Option
     if n < 4 || i < 1 || i + 2 > n - 1 {
         return None;
     }
-    if e_at(i) * e_at(i + 1) < 0.0 && detect_specific(n, i + 1, zero, e).is_none() {
+    if opposite_signs(e_at(i), e_at(i + 1)) && detect_specific(n, i + 1, zero, e).is_none() {
         return Some(Case {
             kind: CaseKind::Small,
             first: i,
@@ -199,8 +200,8 @@ fn detect_specific(n: usize, i: usize, zero: f64, e_raw: &impl Fn(usize) -> f64)
         }
     };
     let ii = i as isize;
-    let opp = |a: Option<f64>, b: Option<f64>| matches!((a, b), (Some(a), Some(b)) if a * b < 0.0);
-    let same = |a: Option<f64>, b: Option<f64>| matches!((a, b), (Some(a), Some(b)) if a * b > 0.0);
+    let opp = |a: Option<f64>, b: Option<f64>| matches!((a, b), (Some(a), Some(b)) if opposite_signs(a, b));
+    let same = |a: Option<f64>, b: Option<f64>| matches!((a, b), (Some(a), Some(b)) if same_signs(a, b));
     let ei = e(ii);
     let two = |kind| Case {
         kind,
@@ -439,8 +440,9 @@ fn changes(values: impl Iterator<Item = f64> + Clone) -> usize {
     for v in values.clone() {
         let a = v.abs();
         largest = largest.max(a);
-        // Branch-free: noisy signs defeat the branch predictor. An exact zero has no sign.
-        count += usize::from(previous * v < 0.0);
+        // Branch-free: noisy signs defeat the branch predictor. An exact zero has no sign; by
+        // sign, not by product (which underflows for tiny values).
+        count += usize::from(opposite_signs(previous, v));
         smallest = smallest.min(if v != 0.0 { a } else { f64::INFINITY });
         previous = if v != 0.0 { v } else { previous };
     }
@@ -451,7 +453,7 @@ fn changes(values: impl Iterator<Item = f64> + Clone) -> usize {
     let mut previous = 0.0f64;
     let mut count = 0;
     for v in values.filter(|v| v.abs() > level) {
-        if previous * v < 0.0 {
+        if opposite_signs(previous, v) {
             count += 1;
         }
         previous = v;
@@ -743,6 +745,17 @@ mod tests {
         ];
         for v in cases {
             assert_eq!(changes(v.iter().copied()), sign_changes(v), "{v:?}");
+            // Scaled far down or up, where products of neighbours under- or overflow, the
+            // counts are the same.
+            for scale in [1e-300, 1e-170, 1e170, 1e300] {
+                let scaled: Vec<f64> = v.iter().map(|x| x * scale).collect();
+                assert_eq!(
+                    changes(scaled.iter().copied()),
+                    sign_changes(v),
+                    "{v:?} × {scale}"
+                );
+                assert_eq!(sign_changes(&scaled), sign_changes(v), "{v:?} × {scale}");
+            }
         }
     }
 }
