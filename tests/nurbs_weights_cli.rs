@@ -120,3 +120,59 @@ fn repeated_point_exits_2_naming_the_file() {
     assert_eq!(status.status.code(), Some(2), "{stderr}");
     assert!(stderr.contains("repeated.csv"), "{stderr}");
 }
+
+/// Inputs on which the weight search once failed: a straight line (its E2 is rounding noise,
+/// which the adaptive quadrature could not refine to a relative tolerance) and a waterline with
+/// long straight runs (Nelder–Mead drifted along directions that leave Ek nearly unchanged to
+/// weight ratios where E2 could not be integrated). Both must end with a result whose
+/// energies are all finite and whose weights stay within the law's bound.
+#[test]
+fn straight_runs_end_with_finite_energies() {
+    let dir = out_dir();
+    let line = dir.join("line.csv");
+    let rows: String = (0..7).map(|k| format!("{k},{k}\n")).collect();
+    std::fs::write(&line, format!("x,y\n{rows}")).unwrap();
+    let waterline = data("hull_gunnerus/waterlines/wl_08.csv");
+    for (input, criterion) in [
+        (line.to_str().unwrap(), "e2"),
+        (line.to_str().unwrap(), "ek"),
+        (waterline.as_str(), "ek"),
+    ] {
+        let report = dir.join("straight.json");
+        let out = Command::new(env!("CARGO_BIN_EXE_fair"))
+            .args(["curve", input, "--method", "nurbs-weights", "--quiet"])
+            .args(["--set", &format!("criterion={criterion}")])
+            .arg("-o")
+            .arg(dir.join("straight.csv"))
+            .arg("--report")
+            .arg(&report)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{input} {criterion}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let report: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+        for side in ["before", "after"] {
+            let energies = report[side]["energies"].as_object().unwrap();
+            assert_eq!(energies.len(), 5, "{input} {side}");
+            for (name, value) in energies {
+                let v = value.as_f64().unwrap_or(f64::NAN);
+                assert!(
+                    v.is_finite() && v >= 0.0,
+                    "{input} {criterion} {side} {name} = {value}"
+                );
+            }
+        }
+        let bound = optim::weight_law::MAX_LOG_WEIGHT.exp();
+        for w in report["curve"]["weights"].as_array().unwrap() {
+            let w = w.as_f64().unwrap();
+            assert!(
+                w >= 1.0 / bound * (1.0 - 1e-12) && w <= bound * (1.0 + 1e-12),
+                "{input}: weight {w}"
+            );
+        }
+    }
+}

@@ -14,9 +14,9 @@
 //! positive **by construction**: its parameters live on a logarithmic scale and pass through
 //! [`positive_weight`], `x ↦ exp(clamp(x, −MAX_LOG_WEIGHT, MAX_LOG_WEIGHT))`. The exponential
 //! makes every real parameter admissible and treats a weight's doubling and halving alike; the
-//! clamp ([`MAX_LOG_WEIGHT`] = 20, weights within [2.1e−9, 4.9e8]) keeps huge or very negative
-//! parameters from overflowing to ∞ or underflowing to 0. Beyond the clamp the law is flat, so
-//! the criterion is flat too and the simplex retreats.
+//! clamp ([`MAX_LOG_WEIGHT`] = 7, weights within [9.1e−4, 1097]) keeps huge or very negative
+//! parameters from making the rational curve numerically singular. Beyond the clamp the law is
+//! flat, so the criterion is flat too and the simplex retreats.
 //!
 //! # Scale
 //!
@@ -72,7 +72,7 @@ use crate::error::{Error, Result};
 ///
 /// Far from f64's range (so no weight overflows, underflows or makes a rational evaluation
 /// lose all precision), far beyond any weight ratio a fair curve needs.
-pub const MAX_LOG_WEIGHT: f64 = 20.0;
+pub const MAX_LOG_WEIGHT: f64 = 7.0;
 
 /// `exp(clamp(log_weight, −MAX_LOG_WEIGHT, MAX_LOG_WEIGHT))`: a positive, finite weight for
 /// every finite input. NaN maps to NaN, so check parameters first ([`check_parameters`]).
