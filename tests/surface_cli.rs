@@ -199,6 +199,26 @@ fn constraints_hold() {
         }
     }
     assert!(distance(&run.output[27], &input[27]) > 0.5);
+    // `--clamp-ends g0` keeps the boundary (9 × 8 grid: rows i = 0, 8, columns j = 0, 7),
+    // which the automatic algorithm fairs otherwise.
+    let (free, _, _) = fair_surface("unclamped", &["--method", "zhang-cheng"]);
+    let on_boundary = |k: usize| matches!((k / 8, k % 8), (0 | 8, _) | (_, 0 | 7));
+    let boundary_moved = |run: &Run| {
+        run.output
+            .iter()
+            .zip(&input)
+            .enumerate()
+            .filter(|(k, (a, b))| on_boundary(*k) && distance(a, b) > 0.0)
+            .count()
+    };
+    assert!(boundary_moved(&free) > 0, "the test needs a boundary that moves");
+    let (clamped, _, _) = fair_surface("clamped", &["--method", "zhang-cheng", "--clamp-ends", "g0"]);
+    assert_eq!(boundary_moved(&clamped), 0);
+    assert!(clamped
+        .output
+        .iter()
+        .zip(&input)
+        .any(|(a, b)| distance(a, b) > 0.0));
 }
 
 #[test]
@@ -232,6 +252,11 @@ fn bad_options_exit_2_with_one_line() {
             "--set",
             "energy-tolerance=-1",
         ],
+        // No surface method holds tangents or curvatures across the boundary.
+        vec!["surface", input, "--clamp-ends", "g1"],
+        vec!["surface", input, "--method", "kjellander", "--clamp-ends", "g2"],
+        // With g0 the boundary is fixed: a bad point on it is a contradiction.
+        vec!["surface", input, "--clamp-ends", "g0", "--points", "3"],
     ] {
         let result = fair(&args);
         assert_eq!(result.status.code(), Some(2), "{args:?}");

@@ -2,7 +2,7 @@
 //!
 //! Same order of checks as `fair curve`; `--kind` does not apply to surfaces and is ignored.
 
-use crate::args::FairArgs;
+use crate::args::{ClampEnds, FairArgs};
 use crate::commands::{measure, say, write_results};
 use crate::config::ConfigFile;
 use crate::constraints::Constraints;
@@ -91,11 +91,16 @@ pub struct FairedSurface {
 /// The method, its parameters and the constraints a command line and its config file give for
 /// a grid of `count` points. A config may set the method's parameters and `[constraints]`;
 /// pipelines of `[[stage]]`s are for curves and are refused.
+///
+/// `--clamp-ends g0` keeps the grid's boundary (its "end points": the first and last row and
+/// column join the fixed points); `g1` and `g2` are refused, as no surface method here can
+/// hold the cross-boundary tangents or curvatures.
 fn plan(
     args: &FairArgs,
     file: Option<&ConfigFile>,
-    count: usize,
+    grid: &Grid,
 ) -> Result<(&'static MethodInfo, Parameters, Constraints)> {
+    let count = grid.points.len();
     let method = registry::find(
         args.method.as_deref().unwrap_or(DEFAULT_METHOD),
         MethodKind::Surface,
@@ -113,14 +118,48 @@ fn plan(
         None => (Vec::new(), Default::default()),
     };
     let parameters = Parameters::from_values(method, values, &args.settings)?;
-    let constraints = Constraints::from_args_and_config(args, &config_constraints, count)?;
+    let mut constraints = Constraints::from_args_and_config(args, &config_constraints, count)?;
+    match constraints.clamp_ends {
+        None => {}
+        Some(ClampEnds::G0) => {
+            let (rows, columns) = (grid.rows, grid.columns);
+            let on_boundary = |k: usize| {
+                let (i, j) = (k / columns.max(1), k % columns.max(1));
+                i == 0 || j == 0 || i + 1 == rows || j + 1 == columns
+            };
+            if let Some(k) = constraints.bad_points.iter().find(|&&k| on_boundary(k)) {
+                return Err(Error::Argument {
+                    option: "--points",
+                    message: format!(
+                        "point {k} (i = {}, j = {}) is on the boundary, which --clamp-ends g0 keeps",
+                        k / columns.max(1),
+                        k % columns.max(1)
+                    ),
+                });
+            }
+            constraints.fixed.extend((0..count).filter(|&k| on_boundary(k)));
+            constraints.fixed.sort_unstable();
+            constraints.fixed.dedup();
+        }
+        Some(clamp @ (ClampEnds::G1 | ClampEnds::G2)) => {
+            let name = if clamp == ClampEnds::G1 { "g1" } else { "g2" };
+            return Err(Error::Argument {
+                option: "--clamp-ends",
+                message: format!(
+                    "{}: the surface methods keep at most the boundary points (g0); they cannot hold \
+                     tangents or curvatures across it",
+                    name
+                ),
+            });
+        }
+    }
     Ok((method, parameters, constraints))
 }
 
 /// Checks and fairs one surface input: everything `fair surface` does but writing.
 pub fn process(input: &SurfaceInput, args: &FairArgs, file: Option<&ConfigFile>) -> Result<FairedSurface> {
     require_grid(input)?;
-    let (method, parameters, constraints) = plan(args, file, input.grid.points.len())?;
+    let (method, parameters, constraints) = plan(args, file, &input.grid)?;
     let job = SurfaceJob {
         input,
         method,
@@ -185,7 +224,7 @@ pub fn run(args: &FairArgs) -> Result<()> {
     let input = input::read_surface(&args.input)?;
     if args.print_config {
         require_grid(&input)?;
-        let (method, parameters, constraints) = plan(args, file.as_ref(), input.grid.points.len())?;
+        let (method, parameters, constraints) = plan(args, file.as_ref(), &input.grid)?;
         let text = crate::config::render(&constraints, &[(method, parameters.given_values())]);
         say(false, false, text.trim_end());
         return Ok(());
