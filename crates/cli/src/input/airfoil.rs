@@ -20,7 +20,24 @@ pub(super) fn parse(source: &Source) -> Result<CurveInput> {
     let name = loop {
         match lines.next() {
             Some((_, "")) => continue,
-            Some((_, l)) => break l.to_string(),
+            Some((line, l)) => {
+                // A first line of two numbers is a coordinate pair, not a name: taking it as the
+                // name would drop a point without a word.
+                let fields: Vec<&str> = l.split_whitespace().collect();
+                if let [x, y] = fields.as_slice() {
+                    if number(x).is_ok() && number(y).is_ok() {
+                        return Err(Error::Parse {
+                            path: path.into(),
+                            line,
+                            message: format!(
+                                "`{l}` is a coordinate pair, but an airfoil .dat file starts with a \
+                                 name line (add one, or give the points as CSV `x,y`)"
+                            ),
+                        });
+                    }
+                }
+                break l.to_string();
+            }
             None => {
                 return Err(Error::Empty {
                     path: path.into(),

@@ -603,6 +603,10 @@ mod tests {
         assert!(e.to_string().starts_with("a.dat:3: "), "{e}");
         let e = parse("a.dat", "NACA\n").unwrap_err();
         assert!(matches!(e, Error::Empty { .. }), "{e}");
+        // No name line: the first pair is a point, not a name to drop.
+        let e = parse("a.dat", "\n1.0 0.0\n0.5 0.06\n0.0 0.0\n0.5 -0.05\n1.0 0.001\n").unwrap_err();
+        assert!(e.to_string().starts_with("a.dat:2: "), "{e}");
+        assert!(e.to_string().contains("name line"), "{e}");
     }
 
     #[test]
