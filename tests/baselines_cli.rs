@@ -270,3 +270,66 @@ fn end_clamps_the_methods_cannot_honour_exit_2_and_those_they_can_are_kept() {
         assert!(k != first && k != last, "end knot {k} faired under g2");
     }
 }
+
+/// A closed polygon given with its first point repeated at the end stays closed: the
+/// smoothing spline (not periodic) would move the two copies apart, so it keeps both.
+#[test]
+fn smoothing_spline_keeps_a_repeated_end_point_closed() {
+    let path = out_dir().join("closed-input.csv");
+    let mut rows: Vec<String> = (0..24)
+        .map(|k| {
+            let t = k as f64 * std::f64::consts::TAU / 24.0;
+            let wobble = if k % 3 == 1 { 0.03 } else { 0.0 };
+            format!("{},{}", (1.0 + wobble) * t.cos(), (1.0 + wobble) * t.sin())
+        })
+        .collect();
+    rows.push(rows[0].clone());
+    std::fs::write(&path, format!("x,y\n{}\n", rows.join("\n"))).unwrap();
+    let (out, faired, _) = fair(
+        &path,
+        "smoothing-spline",
+        &["--kind", "parametric", "--set", "p=0.5"],
+        "closed",
+    );
+    assert_ok(&out);
+    let original = read_rows(&path);
+    assert_eq!(faired[0], original[0]);
+    assert_eq!(faired[24], original[24]);
+    assert!(
+        faired.iter().zip(&original).any(|(a, b)| a != b),
+        "nothing was smoothed"
+    );
+}
+
+/// `--points` names bad points for the interactive methods; the others refuse it rather than
+/// ignore it, and nurbs-weights refuses the end clamps its weights cannot hold.
+#[test]
+fn options_a_method_cannot_use_exit_2() {
+    let input = airfoil();
+    for (method, args, named) in [
+        ("two-phase", vec!["--points", "3"], "--points"),
+        ("smoothing-spline", vec!["--points", "3"], "--points"),
+        ("sapidis-farin", vec!["--points", "3"], "--points"),
+        ("nurbs-weights", vec!["--points", "3"], "--points"),
+        ("nurbs-weights", vec!["--clamp-ends", "g1"], "--clamp-ends"),
+        ("nurbs-weights", vec!["--clamp-ends", "g2"], "--clamp-ends"),
+        // Parameters of the arbitrary-curve pipeline are checked on function input too.
+        ("two-phase", vec!["--set", "segment-passes=abc"], "segment-passes"),
+        ("two-phase", vec!["--set", "turning-limit=-5"], "degrees"),
+    ] {
+        let (out, _, _) = fair(&input, method, &args, "refused");
+        assert_eq!(out.status.code(), Some(2), "{method} {args:?}");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
+        assert!(stderr.contains(named), "{method} {args:?}: {stderr}");
+    }
+    // What the method can keep it keeps: g0 (the points never move).
+    let (out, rows, _) = fair(
+        &input,
+        "nurbs-weights",
+        &["--clamp-ends", "g0", "--set", "max-iterations=20"],
+        "g0",
+    );
+    assert_ok(&out);
+    assert_eq!(rows, read_rows(&input));
+}

@@ -173,6 +173,26 @@ impl Plan {
         })
     }
 
+    /// The methods that take bad points (`--points`): the interactive strain-energy family.
+    pub const BAD_POINT_METHODS: [&'static str; 3] = ["strain-energy", "kjellander", "poliakoff"];
+
+    /// Refuses `--points` when no stage takes bad points (the other methods find the unfair
+    /// points themselves, or change weights), instead of ignoring it. O(stages).
+    pub fn check_bad_points(&self, constraints: &Constraints) -> Result<()> {
+        let takes = |name: &str| Self::BAD_POINT_METHODS.contains(&name);
+        if constraints.bad_points.is_empty() || self.stages.iter().any(|(m, _)| takes(m.name)) {
+            return Ok(());
+        }
+        Err(Error::Argument {
+            option: "--points",
+            message: format!(
+                "`{}` takes no bad points (it finds what to change itself); the methods that do: {}",
+                self.name(),
+                Self::BAD_POINT_METHODS.join(", ")
+            ),
+        })
+    }
+
     /// The report's `method`: the method, or the stages' names joined by `+`.
     pub fn name(&self) -> String {
         let names: Vec<&str> = self.stages.iter().map(|(m, _)| m.name).collect();
@@ -190,6 +210,7 @@ pub fn process(input: &CurveInput, args: &FairArgs, file: Option<&ConfigFile>) -
     let kind = kind::resolve(args.kind, input)?;
     let plan = Plan::new(args, file, kind)?;
     let constraints = Constraints::from_args_and_config(args, &plan.config_constraints, input.len())?;
+    plan.check_bad_points(&constraints)?;
     let outcome = stages::run(input, kind, &plan, &constraints)?;
     if kind == CurveKind::Function {
         check_still_a_function(&outcome.points, &plan)?;
@@ -276,6 +297,7 @@ pub fn run(args: &FairArgs) -> Result<()> {
         let kind = kind::resolve(args.kind, &input)?;
         let plan = Plan::new(args, file.as_ref(), kind)?;
         let constraints = Constraints::from_args_and_config(args, &plan.config_constraints, input.len())?;
+        plan.check_bad_points(&constraints)?;
         let stages: Vec<_> = plan.stages.iter().map(|(m, p)| (*m, p.given_values())).collect();
         say(false, false, config::render(&constraints, &stages).trim_end());
         return Ok(());

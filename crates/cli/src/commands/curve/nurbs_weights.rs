@@ -15,6 +15,7 @@ use optim::{
 };
 
 use super::{CurveJob, CurveOutcome};
+use crate::args::ClampEnds;
 use crate::commands::measure::{in_file, POINTS};
 use crate::error::{Error, Result};
 use crate::input::Points;
@@ -25,8 +26,23 @@ const CRITERIA: [&str; 5] = ["e1", "e2", "e3", "ek", "ek-prime"];
 
 /// Runs the weight fairing on `job`'s points. Errors of the interpolation or the search exit
 /// with status 2 and name the input file.
+///
+/// Constraints: no point moves, so `--fixed`, `--tolerance` and `--clamp-ends g0` hold by
+/// construction; `g1` and `g2` are refused (the weights change the end tangent directions and
+/// curvatures of the interpolant, which this method does not hold). `--points` is refused by
+/// [`Plan::check_bad_points`](super::Plan::check_bad_points).
 pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
     let parameters = job.parameters;
+    if let Some(clamp @ (ClampEnds::G1 | ClampEnds::G2)) = job.constraints.clamp_ends {
+        return Err(Error::Argument {
+            option: "--clamp-ends",
+            message: format!(
+                "{}: nurbs-weights keeps the points (g0) but its weights turn the end tangents and \
+                 change the end curvatures; it cannot hold them",
+                if clamp == ClampEnds::G1 { "g1" } else { "g2" }
+            ),
+        });
+    }
     let criterion: CriterionName =
         parameters
             .choice("criterion", &CRITERIA, "ek")?

@@ -9,7 +9,10 @@
 //! extras say which p was used (`p`) and how it was chosen (`rule`: given, gcv or trace).
 //!
 //! A function y(x) is smoothed as y over x (x kept); a parametric curve coordinate by
-//! coordinate over its chord-length parameters.
+//! coordinate over its chord-length parameters. A closed polygon given with its first point
+//! repeated at the end (a Selig airfoil with a sharp trailing edge, say) keeps both ends where
+//! they are, so that it stays closed: the fit is not periodic, and would otherwise move the
+//! two copies of that point apart.
 
 use std::collections::BTreeMap;
 
@@ -61,6 +64,12 @@ fn fit<const D: usize>(
     domain: CurveDomain,
     constraints: fairing::Constraints,
 ) -> fairing::Result<(Vec<Vector<D>>, Described)> {
+    let closed = points.len() > 2 && points.first() == points.last();
+    let constraints = if closed {
+        constraints.with_fixed([0, points.len() - 1])
+    } else {
+        constraints
+    };
     let mut strategy = SmoothingSplineFairing::<D>::new(settings, domain);
     let result = run(&mut strategy, points.to_vec(), constraints, 1)?;
     let Some(spline) = strategy.fit() else {

@@ -76,6 +76,31 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
     if let Some(distance) = job.constraints.tolerance {
         constraints = constraints.with_tolerance(distance);
     }
+    // The arbitrary-curve settings are read (and checked) whatever the input's kind, so that a
+    // bad value is refused even where it would not be used.
+    let limit_degrees = p.number("turning-limit", 180.0)?;
+    if !(limit_degrees > 0.0 && limit_degrees <= 180.0) {
+        return Err(Error::Parameter {
+            origin: p
+                .get("turning-limit")
+                .map_or("--set".into(), |g| g.origin.clone()),
+            message: format!("`turning-limit` = `{limit_degrees}` must lie in (0, 180] degrees"),
+        });
+    }
+    let partition = PartitionSettings::default()
+        .with_limit(limit_degrees * PI / 180.0)
+        .with_overlap(p.count("overlap", 5)?);
+    partition.validate().map_err(|e| Error::Parameter {
+        origin: "--set".into(),
+        message: e.to_string(),
+    })?;
+    let passes = p.count("segment-passes", 3)?;
+    if passes == 0 {
+        return Err(Error::Parameter {
+            origin: "--set".into(),
+            message: "`segment-passes` must be at least 1".into(),
+        });
+    }
     let Points::Planar(points) = &job.input.points else {
         return Err(Error::Invalid {
             path: job.input.source.clone(),
@@ -95,32 +120,15 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
                 .with_max_iterations(settings.max_passes.max(1))
                 .run(points.clone())
         }
-        CurveKind::Parametric => {
-            let limit_degrees = p.number("turning-limit", 180.0)?;
-            let partition = PartitionSettings::default()
-                .with_limit(limit_degrees * PI / 180.0)
-                .with_overlap(p.count("overlap", 5)?);
-            partition.validate().map_err(|e| Error::Parameter {
-                origin: "--set".into(),
-                message: e.to_string(),
-            })?;
-            let passes = p.count("segment-passes", 3)?;
-            if passes == 0 {
-                return Err(Error::Parameter {
-                    origin: "--set".into(),
-                    message: "`segment-passes` must be at least 1".into(),
-                });
-            }
-            Pipeline::new(
-                SegmentedFairing::new(TwoPhase::new(settings.clone()))
-                    .with_partition(partition)
-                    .with_passes(passes),
-            )
-            .with_closed(closed)
-            .with_constraints(constraints)
-            .with_max_iterations(passes)
-            .run(points.clone())
-        }
+        CurveKind::Parametric => Pipeline::new(
+            SegmentedFairing::new(TwoPhase::new(settings.clone()))
+                .with_partition(partition)
+                .with_passes(passes),
+        )
+        .with_closed(closed)
+        .with_constraints(constraints)
+        .with_max_iterations(passes)
+        .run(points.clone()),
     };
     let result = result.map_err(|e| in_file(from_fairing(e), &job.input.source))?;
     Ok(describe(result, job.kind, closed))
