@@ -3,6 +3,8 @@
 //! Numbers are written in Rust's shortest round-trip form, so reading the output back gives
 //! the same `f64`s. Nothing NaN or infinite is ever written: [`Error::NonFiniteOutput`] instead.
 
+use curve_repr::number::Compact;
+
 use crate::error::{Error, Result};
 use crate::input::{io_reason, CurveInput, Delimiter, Grid, InputFormat, Labels, Points, SurfaceInput};
 use std::io::Write;
@@ -117,15 +119,23 @@ pub fn format_surface(input: &SurfaceInput, grid: &Grid) -> Result<String> {
         let (fi, fj) = (i as i64 + input.offset.0, j as i64 + input.offset.1);
         text.push_str(&format!(
             "{fi}{separator}{fj}{separator}{}{separator}{}{separator}{}\n",
-            p.x, p.y, p.z
+            number(p.x),
+            number(p.y),
+            number(p.z)
         ));
     }
     Ok(text)
 }
 
+/// A coordinate as text: the shortest digits that read back as the same f64, scientific
+/// outside 1e-5 ≤ |v| < 1e16 ([`Compact`]): `1e-200`, not 200 digits of zeros. O(1).
+pub fn number(v: f64) -> String {
+    Compact(v).to_string()
+}
+
 fn push_rows<'a>(text: &mut String, rows: impl Iterator<Item = &'a [f64]>, delimiter: Delimiter) {
     for row in rows {
-        let fields: Vec<String> = row.iter().map(|v| v.to_string()).collect();
+        let fields: Vec<String> = row.iter().map(|&v| number(v)).collect();
         text.push_str(&fields.join(delimiter.as_str()));
         text.push('\n');
     }
@@ -154,7 +164,7 @@ fn push_labelled_rows(
                 if labels.positions.contains(&column) {
                     words.next().cloned().unwrap_or_default()
                 } else {
-                    values.next().map(f64::to_string).unwrap_or_default()
+                    values.next().map(|&v| number(v)).unwrap_or_default()
                 }
             })
             .collect();

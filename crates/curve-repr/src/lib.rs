@@ -23,6 +23,7 @@ pub mod bspline;
 pub mod curve;
 pub mod error;
 pub mod hermite;
+pub mod number;
 pub mod nurbs_curve;
 pub mod nurbs_surface;
 pub mod parametrization;

@@ -1,5 +1,7 @@
 //! The crate's one error type.
 
+use curve_repr::number::Compact;
+
 /// Everything that can go wrong while measuring fairness.
 ///
 /// Indices count from 0, the first data point (or knot). Errors of the representation being
@@ -39,7 +41,7 @@ pub enum Error {
         index: usize,
     },
     /// A computed quantity is NaN or infinite (e.g. curvature where the tangent vanishes).
-    #[error("{what} is not finite at parameter {parameter}")]
+    #[error("{what} is not finite at parameter {}", Compact(*parameter))]
     NonFinite {
         /// The quantity.
         what: &'static str,
@@ -48,8 +50,10 @@ pub enum Error {
     },
     /// Adaptive quadrature stopped before reaching its tolerance.
     #[error(
-        "quadrature of {what} did not converge: estimate {estimate}, error {error_estimate} \
-         above tolerance {tolerance} ({reason})"
+        "quadrature of {what} did not converge: estimate {}, error {} above tolerance {} ({reason})",
+        Compact(*estimate),
+        Compact(*error_estimate),
+        Compact(*tolerance)
     )]
     NoConvergence {
         /// The integral.
