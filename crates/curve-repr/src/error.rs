@@ -1,5 +1,7 @@
 //! The crate's one error type.
 
+use crate::number::Compact;
+
 /// Everything that can go wrong while building or evaluating a representation.
 ///
 /// Indices count from 0, the first data point (or control point, or knot).
@@ -17,7 +19,11 @@ pub enum Error {
         got: usize,
     },
     /// A sequence that must increase strictly does not (x of a spline function, parameters, knots).
-    #[error("{what} must increase strictly: value {value} at index {index} follows {previous}")]
+    #[error(
+        "{what} must increase strictly: value {} at index {index} follows {}",
+        Compact(*value),
+        Compact(*previous)
+    )]
     NotIncreasing {
         /// Which sequence.
         what: &'static str,
@@ -31,6 +37,22 @@ pub enum Error {
     /// Two consecutive data points coincide, so a chord-length parameter step would be zero.
     #[error("points {index} and {} coincide", index + 1)]
     RepeatedPoint {
+        /// Index of the first of the two points.
+        index: usize,
+    },
+    /// A closed curve given with its first point repeated at the end: the closing segment
+    /// P_{n−1} → P_0 would have zero length.
+    #[error(
+        "the last point (index {last}) repeats the first; a closed curve closes by itself, drop the repeat"
+    )]
+    ClosingRepeat {
+        /// Index of the last point.
+        last: usize,
+    },
+    /// A distance between consecutive points that double precision cannot hold (the
+    /// coordinates are too large: their difference overflows).
+    #[error("the distance from point {index} to point {} overflows; rescale the coordinates", index + 1)]
+    DistanceOverflow {
         /// Index of the first of the two points.
         index: usize,
     },
@@ -67,7 +89,7 @@ pub enum Error {
         reason: &'static str,
     },
     /// A weight of a rational curve or surface is not strictly positive.
-    #[error("weight {index} is {value}, weights must be positive")]
+    #[error("weight {index} is {}, weights must be positive", Compact(*value))]
     BadWeight {
         /// Its index.
         index: usize,
@@ -109,7 +131,7 @@ pub enum Error {
         got: usize,
     },
     /// A scalar argument outside its allowed range (a radius, an angle sweep, a knot to insert).
-    #[error("{what} is {value}: {reason}")]
+    #[error("{what} is {}: {reason}", Compact(*value))]
     OutOfRange {
         /// Which argument.
         what: &'static str,

@@ -25,12 +25,15 @@ impl Parametrization {
     fn step<const D: usize>(self, a: &Vector<D>, b: &Vector<D>) -> f64 {
         match self {
             Parametrization::Uniform => 1.0,
-            Parametrization::ChordLength => (b - a).norm(),
-            Parametrization::Centripetal => (b - a).norm().sqrt(),
+            Parametrization::ChordLength => distance(a, b),
+            Parametrization::Centripetal => distance(a, b).sqrt(),
         }
     }
 
     /// Parameters t_0 = 0, …, t_{n−1} of an open curve through `points`. O(n).
+    ///
+    /// Chord lengths are computed without under- or overflow of the squares ([`distance`]),
+    /// so points 1e-300 apart get steps of 1e-300, not 0.
     ///
     /// Fails on non-finite coordinates and, for chord-length and centripetal parameters, on
     /// two consecutive points that coincide (a zero step); uniform parameters reject them too,
@@ -46,8 +49,12 @@ impl Parametrization {
             if w[0] == w[1] {
                 return Err(Error::RepeatedPoint { index: i });
             }
+            let step = self.step(&w[0], &w[1]);
+            if !step.is_finite() {
+                return Err(Error::DistanceOverflow { index: i });
+            }
             let last = t[i];
-            t.push(last + self.step(&w[0], &w[1]));
+            t.push(last + step);
         }
         Ok(t)
     }
@@ -58,11 +65,17 @@ impl Parametrization {
         let mut t = self.parameters(points)?;
         if let (Some(first), Some(last)) = (points.first(), points.last()) {
             if first == last {
-                return Err(Error::RepeatedPoint {
+                return Err(Error::ClosingRepeat {
+                    last: points.len() - 1,
+                });
+            }
+            let step = self.step(last, first);
+            if !step.is_finite() {
+                return Err(Error::DistanceOverflow {
                     index: points.len() - 1,
                 });
             }
-            let end = t[t.len() - 1] + self.step(last, first);
+            let end = t[t.len() - 1] + step;
             t.push(end);
         }
         Ok(t)
@@ -83,6 +96,18 @@ impl Parametrization {
     }
 }
 
+/// |b − a| without under- or overflow of the squares: the difference is scaled by its largest
+/// component first (nalgebra's `norm` squares it directly, so a difference of 1e-170 came out
+/// 0). O(D).
+pub fn distance<const D: usize>(a: &Vector<D>, b: &Vector<D>) -> f64 {
+    let d = b - a;
+    let scale = d.amax();
+    if scale == 0.0 || !scale.is_finite() {
+        return scale;
+    }
+    scale * (d / scale).norm()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -100,6 +125,40 @@ mod tests {
         assert!((n[1] - 5.0 / 6.0).abs() < 1e-15);
         let closed = Parametrization::ChordLength.closed_parameters(&p).unwrap();
         assert!((closed[3] - (6.0 + 34f64.sqrt())).abs() < 1e-12);
+    }
+
+    #[test]
+    fn extreme_scales_keep_their_steps_or_say_why_not() {
+        // Squares of 1e-300 underflow; the scaled distance does not.
+        let tiny = [
+            Vec2::new(0.0, 0.0),
+            Vec2::new(3e-300, 4e-300),
+            Vec2::new(6e-300, 8e-300),
+        ];
+        let t = Parametrization::ChordLength.parameters(&tiny).unwrap();
+        assert!(
+            (t[1] / 5e-300 - 1.0).abs() < 1e-15 && (t[2] / 1e-299 - 1.0).abs() < 1e-15,
+            "{t:?}"
+        );
+        assert!((distance(&Vec2::new(0.0, 0.0), &Vec2::new(3e200, 4e200)) / 5e200 - 1.0).abs() < 1e-15);
+        // A difference past f64::MAX cannot be held: said so, not "coincide".
+        let huge = [Vec2::new(0.0, -1e308), Vec2::new(0.0, 1e308)];
+        assert_eq!(
+            Parametrization::ChordLength.parameters(&huge),
+            Err(Error::DistanceOverflow { index: 0 })
+        );
+        // A closed curve with its first point repeated at the end names the last point.
+        let closed = [
+            Vec2::new(0.0, 0.0),
+            Vec2::new(1.0, 0.0),
+            Vec2::new(0.0, 1.0),
+            Vec2::new(0.0, 0.0),
+        ];
+        let e = Parametrization::ChordLength
+            .closed_parameters(&closed)
+            .unwrap_err();
+        assert_eq!(e, Error::ClosingRepeat { last: 3 });
+        assert!(e.to_string().contains("index 3") && e.to_string().contains("repeats the first"));
     }
 
     #[test]

@@ -418,7 +418,7 @@ mod tests {
         let settings = HermiteSettings::default().with_ends(HermiteEnds::Closed);
         assert!(matches!(
             HermiteSpline::new(&loop_points, &settings),
-            Err(Error::RepeatedPoint { .. })
+            Err(Error::ClosingRepeat { last: 3 })
         ));
         // Huge coordinates overflow the chord lengths: an error, not a NaN curve.
         let huge = [

@@ -233,7 +233,13 @@ pub fn partition(points: &[Vec2], closed: bool, settings: &PartitionSettings) ->
     for j in 0..edges {
         let e = walk.edge(j);
         if e.x == 0.0 && e.y == 0.0 {
-            return Err(curve_repr::Error::RepeatedPoint { index: walk.index(j) }.into());
+            let index = walk.index(j);
+            return Err(if index + 1 == n {
+                curve_repr::Error::ClosingRepeat { last: index }
+            } else {
+                curve_repr::Error::RepeatedPoint { index }
+            }
+            .into());
         }
         match previous {
             None => walk.phi0 = e.y.atan2(e.x),

@@ -133,9 +133,12 @@ pub fn chords<const D: usize>(points: &[Vector<D>]) -> Result<Vec<f64>> {
         .windows(2)
         .enumerate()
         .map(|(index, w)| {
-            let c = (w[1] - w[0]).norm();
+            // Scaled, so that chords of 1e-300 do not underflow to 0 (or 1e200 overflow).
+            let c = curve_repr::parametrization::distance(&w[0], &w[1]);
             if c > 0.0 && c.is_finite() {
                 Ok(c)
+            } else if c > 0.0 {
+                Err(curve_repr::Error::DistanceOverflow { index }.into())
             } else {
                 Err(curve_repr::Error::RepeatedPoint { index }.into())
             }

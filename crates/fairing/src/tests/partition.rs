@@ -290,7 +290,7 @@ fn bad_partition_input_is_an_error() {
     closed.push(closed[0]);
     assert!(matches!(
         partition(&closed, true, &PartitionSettings::default()),
-        Err(Error::Repr(curve_repr::Error::RepeatedPoint { .. }))
+        Err(Error::Repr(curve_repr::Error::ClosingRepeat { last: 12 }))
     ));
 }
 
