@@ -139,6 +139,10 @@ fn ranges_tangents_and_errors() {
         &run(&["--set", "tangent-directions=50:1,0,0"]).0,
         &["tangent-directions", "past"],
     );
+    assert_bad(
+        &run(&["--set", "tangent-directions=5:1,0,0;5:0,1,0"]).0,
+        &["tangent-directions", "twice"],
+    );
     assert_bad(&run(&["--set", "range=-1"]).0, &["range"]);
     assert_bad(&run(&["--set", "update=newton"]).0, &["update"]);
     assert_bad(&run(&["--points", "3"]).0, &["--points"]);

@@ -199,3 +199,26 @@ fn help_version_and_methods_succeed() {
         assert!(methods.contains(name), "{name} missing from\n{methods}");
     }
 }
+
+/// An output path that cannot be written is found before anything is written: a bad
+/// `--report` leaves no fresh `-o` file behind its exit status 2.
+#[test]
+fn unwritable_targets_are_found_before_writing() {
+    let rows: String = (0..8).map(|k| format!("{k},{}\n", (k * k) % 5)).collect();
+    let input = temp_file("c.csv", &format!("x,y\n{rows}"));
+    let dir = input.parent().unwrap();
+    let out = dir.join("out.csv");
+    let missing = dir.join("no-such-dir").join("r.json");
+    let result = fair(&[
+        "curve",
+        input.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--report",
+        missing.to_str().unwrap(),
+    ]);
+    assert_bad_input(&result, &["r.json", "no directory"]);
+    assert!(!out.exists(), "the output was written before the report failed");
+    let result = fair(&["curve", input.to_str().unwrap(), "-o", dir.to_str().unwrap()]);
+    assert_bad_input(&result, &["directory"]);
+}

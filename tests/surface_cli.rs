@@ -257,6 +257,9 @@ fn bad_options_exit_2_with_one_line() {
         vec!["surface", input, "--method", "kjellander", "--clamp-ends", "g2"],
         // With g0 the boundary is fixed: a bad point on it is a contradiction.
         vec!["surface", input, "--clamp-ends", "g0", "--points", "3"],
+        // --kind is for curves.
+        vec!["surface", input, "--kind", "function"],
+        vec!["inspect", input, "--kind", "parametric"],
     ] {
         let result = fair(&args);
         assert_eq!(result.status.code(), Some(2), "{args:?}");

@@ -107,8 +107,9 @@ pub struct FairArgs {
     pub print_config: bool,
     /// Read INPUT as a batch: a JSON-lines stream (one `{"points": ...}` object per line; `-`
     /// for standard input). A directory, or a file ending in `.jsonl`/`.ndjson`, is a batch
-    /// without this flag. One report line per curve; -o, --report and --plot name
-    /// directories (or, for -o with JSON lines, a JSON-lines file).
+    /// without this flag. One report line per curve, to standard output or to the file
+    /// --report names; -o names a directory for a directory batch (a JSON-lines file for a
+    /// stream), --plot a directory.
     #[arg(long)]
     pub batch: bool,
 }

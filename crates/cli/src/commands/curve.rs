@@ -205,7 +205,14 @@ impl Plan {
 /// Order of checks: the number of points, `--kind`, the method(s) and parameters, the
 /// constraints; then the stages; then the measures, the report and the output text (so that
 /// nothing is written for a run that fails).
+///
+/// Every error about the points names the input file (not "the points").
 pub fn process(input: &CurveInput, args: &FairArgs, file: Option<&ConfigFile>) -> Result<Faired> {
+    process_points(input, args, file).map_err(|e| measure::in_file(e, &input.source))
+}
+
+/// [`process`], errors about the points not yet named after the file.
+fn process_points(input: &CurveInput, args: &FairArgs, file: Option<&ConfigFile>) -> Result<Faired> {
     input.require_at_least(MIN_CURVE_POINTS, "a curve")?;
     let kind = kind::resolve(args.kind, input)?;
     let plan = Plan::new(args, file, kind)?;

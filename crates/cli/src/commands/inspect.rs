@@ -59,6 +59,15 @@ pub fn run(args: &InspectArgs) -> Result<()> {
 /// finite). The work of `fair inspect` and `fair demo`.
 pub fn inspect(source: &Source, kind_arg: KindArg, surface: bool, plot: Option<&Path>) -> Result<Report> {
     let report = if surface || looks_like_surface(source) {
+        if kind_arg != KindArg::Auto {
+            return Err(crate::error::Error::Argument {
+                option: "--kind",
+                message: format!(
+                    "{}: the input is a surface grid; --kind is for curves",
+                    source.name
+                ),
+            });
+        }
         let input = input::grid::parse(source)?;
         surface::require_grid(&input)?;
         let measured = measure::surface(&input.grid).map_err(|e| measure::in_file(e, &input.source))?;

@@ -12,7 +12,7 @@ pub mod methods;
 pub mod surface;
 
 use crate::args::{Cli, Command};
-use crate::error::Result;
+use crate::error::{Error, Result};
 
 /// Runs the parsed command.
 pub fn dispatch(cli: Cli) -> Result<()> {
@@ -43,6 +43,30 @@ pub(crate) fn say(quiet: bool, points_on_stdout: bool, text: &str) {
 /// Writes what `-o`, `--report` and `--plot` ask for: the faired points (or grid) as text,
 /// the report and the picture. The report text is made (and checked finite) before anything
 /// is written, so a failing report leaves no half-written outputs.
+/// Whether `path` (not `-`) can be a file: not a directory, in a directory that exists.
+/// The write itself can still fail (permissions, a full disk) and says so then. O(1).
+fn check_writable(path: &str) -> Result<()> {
+    if path == "-" {
+        return Ok(());
+    }
+    let target = std::path::Path::new(path);
+    let problem = if target.is_dir() {
+        Some("it is a directory".to_string())
+    } else {
+        match target.parent().filter(|p| !p.as_os_str().is_empty()) {
+            Some(dir) if !dir.is_dir() => Some(format!("no directory {}", dir.display())),
+            _ => None,
+        }
+    };
+    match problem {
+        Some(reason) => Err(Error::Write {
+            path: path.into(),
+            reason,
+        }),
+        None => Ok(()),
+    }
+}
+
 pub(crate) fn write_results(
     args: &crate::args::FairArgs,
     report: &crate::report::Report,
@@ -50,6 +74,16 @@ pub(crate) fn write_results(
     figure: impl FnOnce() -> crate::svg::Figure,
 ) -> Result<()> {
     let report_text = report.to_json()?;
+    // Every target checked before the first is written, so that a bad --report or --plot path
+    // does not leave a fresh output file behind an exit status of 2.
+    let targets = [
+        args.output.clone(),
+        args.report.as_ref().map(|p| p.display().to_string()),
+        args.plot.as_ref().map(|p| p.display().to_string()),
+    ];
+    for path in targets.iter().flatten() {
+        check_writable(path)?;
+    }
     if let Some(out) = &args.output {
         crate::output::write_text(out, points_text)?;
     }

@@ -1,6 +1,7 @@
 //! `fair surface`: read a grid `i,j,x,y,z`, fair it, write the grid, the report and the plot.
 //!
-//! Same order of checks as `fair curve`; `--kind` does not apply to surfaces and is ignored.
+//! Same order of checks as `fair curve`; `--kind` does not apply to surfaces and is refused
+//! unless left at `auto`.
 
 use crate::args::{ClampEnds, FairArgs};
 use crate::commands::{measure, say, write_results};
@@ -157,7 +158,14 @@ fn plan(
 }
 
 /// Checks and fairs one surface input: everything `fair surface` does but writing.
+///
+/// Every error about the points names the input file (not "the points").
 pub fn process(input: &SurfaceInput, args: &FairArgs, file: Option<&ConfigFile>) -> Result<FairedSurface> {
+    process_grid(input, args, file).map_err(|e| measure::in_file(e, &input.source))
+}
+
+/// [`process`], errors about the points not yet named after the file.
+fn process_grid(input: &SurfaceInput, args: &FairArgs, file: Option<&ConfigFile>) -> Result<FairedSurface> {
     require_grid(input)?;
     let (method, parameters, constraints) = plan(args, file, &input.grid)?;
     let job = SurfaceJob {
@@ -218,6 +226,12 @@ pub fn run(args: &FairArgs) -> Result<()> {
         return Err(Error::Argument {
             option: "INPUT",
             message: "batches (a directory, --batch) are for `fair curve`; give one grid file".into(),
+        });
+    }
+    if args.kind != crate::args::KindArg::Auto {
+        return Err(Error::Argument {
+            option: "--kind",
+            message: "applies to curves only; a surface grid has no kind to choose".into(),
         });
     }
     let file = args.config.as_deref().map(ConfigFile::read).transpose()?;

@@ -149,6 +149,9 @@ fn parse_directions(
         if !values.iter().all(|v| v.is_finite()) || values.iter().all(|v| *v == 0.0) {
             return Err(format!("the direction at point {index} is zero or not finite"));
         }
+        if out.iter().any(|(k, _)| *k == index) {
+            return Err(format!("point {index} is given a direction twice"));
+        }
         out.push((index, values));
     }
     Ok(out)
