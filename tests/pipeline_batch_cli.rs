@@ -135,6 +135,8 @@ fn print_config_of_a_plain_command_line() {
         "nurbs-weights",
         "--set",
         "criterion=e3",
+        "--set",
+        "max-iterations=20",
         "--clamp-ends",
         "g0",
         "--print-config",
@@ -146,6 +148,20 @@ fn print_config_of_a_plain_command_line() {
     let stage = &table["stage"].as_array().unwrap()[0];
     assert_eq!(stage["method"].as_str(), Some("nurbs-weights"));
     assert_eq!(stage["criterion"].as_str(), Some("e3"));
+    // A value the method refuses is refused here too, not printed as a good config.
+    for setting in ["p=7", "rule=newton"] {
+        let out = fair(&[
+            "curve",
+            &input,
+            "--method",
+            "smoothing-spline",
+            "--set",
+            setting,
+            "--print-config",
+        ]);
+        assert_eq!(out.status.code(), Some(2), "{setting}");
+        assert!(out.stdout.is_empty(), "{setting}");
+    }
 }
 
 #[test]

@@ -102,7 +102,8 @@ pub struct FairArgs {
     #[arg(long, short = 'q')]
     pub quiet: bool,
     /// Print the config file (TOML) that this command line implies, every parameter with its
-    /// value, and stop without fairing.
+    /// value, and write nothing else. The input is faired first (its result discarded), so that
+    /// a value the method refuses (out of range, say) exits 2 here too.
     #[arg(long)]
     pub print_config: bool,
     /// Read INPUT as a batch: a JSON-lines stream (one `{"points": ...}` object per line; `-`

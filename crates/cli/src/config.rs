@@ -24,7 +24,8 @@
 //! ```
 //!
 //! `fair curve INPUT ... --print-config` prints the config a command line implies, in this
-//! form, with every parameter of every stage (defaults filled in).
+//! form, with every parameter of every stage (defaults filled in), once a run of it (whose
+//! result is discarded) has shown that the methods accept every value.
 
 use crate::args::ClampEnds;
 use crate::error::{Error, Result};

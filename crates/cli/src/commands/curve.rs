@@ -305,6 +305,9 @@ pub fn run(args: &FairArgs) -> Result<()> {
         let plan = Plan::new(args, file.as_ref(), kind)?;
         let constraints = Constraints::from_args_and_config(args, &plan.config_constraints, input.len())?;
         plan.check_bad_points(&constraints)?;
+        // The methods check their values when they run: run it, so that a config that would
+        // fail is not printed as if it were good.
+        process(&input, args, file.as_ref())?;
         let stages: Vec<_> = plan.stages.iter().map(|(m, p)| (*m, p.given_values())).collect();
         say(false, false, config::render(&constraints, &stages).trim_end());
         return Ok(());

@@ -239,6 +239,8 @@ pub fn run(args: &FairArgs) -> Result<()> {
     if args.print_config {
         require_grid(&input)?;
         let (method, parameters, constraints) = plan(args, file.as_ref(), &input.grid)?;
+        // The methods check their values when they run (see `fair curve --print-config`).
+        process(&input, args, file.as_ref())?;
         let text = crate::config::render(&constraints, &[(method, parameters.given_values())]);
         say(false, false, text.trim_end());
         return Ok(());
