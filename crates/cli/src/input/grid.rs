@@ -83,7 +83,11 @@ pub fn parse(source: &Source) -> Result<SurfaceInput> {
             return Err(Error::Parse {
                 path: path.into(),
                 line: row.line,
-                message: format!("indices i={i}, j={j} must be integers"),
+                message: format!(
+                    "indices i={}, j={} must be integers below 1e9 in magnitude",
+                    curve_repr::number::Compact(i),
+                    curve_repr::number::Compact(j)
+                ),
             });
         };
         cells.push((row.line, i, j, Vec3::new(x, y, z)));
