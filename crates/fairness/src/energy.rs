@@ -53,9 +53,9 @@ impl PieceQuadrature {
 
 /// The integral's own round-off, relative to its natural scale, below which an adaptive
 /// energy is not refined: the absolute tolerance is raised to `ROUND_OFF_FLOOR` · S, S the
-/// scale of [`energy_scale`]. The integrand of a vanishing energy (E2 of a straight line,
-/// Ek of a circle's Ek′) is rounding noise of ~10–100 ε² · S (ε = 2.2e-16; measured 6e-31 · S on
-/// a straight 7-point line), which no bisection reduces. Any energy above 1e-10 · S is still
+/// scale of [`energy_scale`]. The integrand of a vanishing energy (E2 and Ek of a straight
+/// line, Ek′ of a circle) is rounding noise of ~10–100 ε² · S (ε = 2.2e-16; measured 6e-31 · S
+/// on a straight 7-point line), which no bisection reduces. Any energy above 1e-10 · S is still
 /// integrated to the relative tolerance (1e-10 by default).
 pub const ROUND_OFF_FLOOR: f64 = 1e-20;
 
