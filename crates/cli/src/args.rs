@@ -58,6 +58,17 @@ pub enum ClampEnds {
     G2,
 }
 
+impl ClampEnds {
+    /// The name `--clamp-ends` and config files take: `g0`, `g1` or `g2`.
+    pub fn name(self) -> &'static str {
+        match self {
+            ClampEnds::G0 => "g0",
+            ClampEnds::G1 => "g1",
+            ClampEnds::G2 => "g2",
+        }
+    }
+}
+
 /// Options of `fair curve` and `fair surface`.
 #[derive(Debug, Clone, Args)]
 pub struct FairArgs {

@@ -378,12 +378,7 @@ pub fn render(
         lines.push(format!("tolerance = {}", toml_number(d)));
     }
     if let Some(c) = constraints.clamp_ends {
-        let name = match c {
-            ClampEnds::G0 => "g0",
-            ClampEnds::G1 => "g1",
-            ClampEnds::G2 => "g2",
-        };
-        lines.push(format!("clamp-ends = \"{name}\""));
+        lines.push(format!("clamp-ends = \"{}\"", c.name()));
     }
     if !lines.is_empty() {
         text.push_str("[constraints]\n");

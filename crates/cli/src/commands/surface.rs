@@ -143,13 +143,12 @@ fn plan(
             constraints.fixed.dedup();
         }
         Some(clamp @ (ClampEnds::G1 | ClampEnds::G2)) => {
-            let name = if clamp == ClampEnds::G1 { "g1" } else { "g2" };
             return Err(Error::Argument {
                 option: "--clamp-ends",
                 message: format!(
                     "{}: the surface methods keep at most the boundary points (g0); they cannot hold \
                      tangents or curvatures across it",
-                    name
+                    clamp.name()
                 ),
             });
         }

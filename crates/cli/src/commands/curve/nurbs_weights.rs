@@ -39,7 +39,7 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
             message: format!(
                 "{}: nurbs-weights keeps the points (g0) but its weights turn the end tangents and \
                  change the end curvatures; it cannot hold them",
-                if clamp == ClampEnds::G1 { "g1" } else { "g2" }
+                clamp.name()
             ),
         });
     }
