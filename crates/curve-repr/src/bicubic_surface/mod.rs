@@ -12,7 +12,7 @@
 //! 4. the patch on [u_i, u_{i+1}] × [v_j, v_{j+1}] is the bicubic Hermite patch of its four
 //!    corners' P, M^u, M^v and T (the tensor product of Eq. 1's Hermite basis).
 //!
-//! What this guarantees (each is tested in `tests/bicubic_surface.rs`): writing A_u for the
+//! What this guarantees (each is tested in `tests/representations/bicubic_surface.rs`): writing A_u for the
 //! linear map from values at u_0..u_m to natural-spline tangents, M^u = A_u P, M^v = P A_vᵀ and
 //! T = A_u P A_vᵀ, which is also A_v applied along v to M^u: the twists are the same whichever
 //! direction step 3 takes. The surface is therefore the tensor-product natural bicubic spline

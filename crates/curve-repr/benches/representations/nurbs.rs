@@ -2,7 +2,7 @@
 //! and re-solving for new weights with the stored factors (the inner step of the weight
 //! optimisation of Nowacki et al.).
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use criterion::{criterion_group, BenchmarkId, Criterion};
 use curve_repr::{Interpolation, InterpolationSettings, Parametrization, Vec2};
 use std::hint::black_box;
 
@@ -55,4 +55,3 @@ fn interpolation(c: &mut Criterion) {
 }
 
 criterion_group!(benches, interpolation);
-criterion_main!(benches);

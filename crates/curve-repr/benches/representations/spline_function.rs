@@ -6,7 +6,7 @@
 
 use std::hint::black_box;
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
 use curve_repr::{EndCondition, SplineFunction};
 
 /// Under `cargo test` (no `--bench` flag) only the smallest size runs: the bench code is
@@ -67,4 +67,3 @@ fn update(c: &mut Criterion) {
 }
 
 criterion_group!(benches, build, update);
-criterion_main!(benches);

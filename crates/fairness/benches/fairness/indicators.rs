@@ -3,7 +3,7 @@
 //! The curve is a C2 piecewise cubic graph (t, y(t)) on uniform breaks 0, 1, …, n with O(1)
 //! piece lookup, so the timings show the indicators' own cost.
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion as Bench, Throughput};
+use criterion::{criterion_group, BenchmarkId, Criterion as Bench, Throughput};
 use curve_repr::{Curve, Side, Vec2};
 use fairness::curvature::curvature_at_breaks;
 use fairness::jumps::{curvature_slope_jumps, curvature_vibrations, third_derivative_jumps};
@@ -127,4 +127,3 @@ fn summaries(c: &mut Bench) {
 }
 
 criterion_group!(benches, indicators, summaries);
-criterion_main!(benches);

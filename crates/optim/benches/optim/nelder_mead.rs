@@ -1,6 +1,6 @@
 //! Nelder–Mead on the Rosenbrock function in 4 and 20 dimensions.
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use criterion::{criterion_group, BenchmarkId, Criterion};
 use optim::{minimize, NelderMeadSettings};
 use std::hint::black_box;
 
@@ -47,4 +47,3 @@ fn bench(c: &mut Criterion) {
 }
 
 criterion_group!(benches, bench);
-criterion_main!(benches);

@@ -5,7 +5,7 @@
 //! - `strain_energy_full_run/n`: a whole automatic run (init + steps until the energy
 //!   tolerance stops it) through the [`Pipeline`], the "10^5 points under 2 s".
 
-use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion};
+use criterion::{criterion_group, BatchSize, BenchmarkId, Criterion};
 use curve_repr::Vec2;
 use fairing::strategies::{StrainEnergy, StrainEnergySettings};
 use fairing::{Constraints, FairingState, FairingStrategy, Pipeline};
@@ -92,4 +92,3 @@ fn full_run(c: &mut Criterion) {
 }
 
 criterion_group!(benches, steps, full_run);
-criterion_main!(benches);

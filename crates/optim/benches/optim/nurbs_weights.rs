@@ -3,7 +3,7 @@
 
 use std::hint::black_box;
 
-use criterion::{criterion_group, criterion_main, Criterion as Bench};
+use criterion::{criterion_group, Criterion as Bench};
 use curve_repr::{Interpolation, InterpolationSettings, Parametrization, Vec2};
 use fairness::Criterion;
 use optim::{CriterionName, CubicBernstein, NurbsWeightFairing};
@@ -51,4 +51,3 @@ fn nurbs_weights(c: &mut Bench) {
 }
 
 criterion_group!(benches, nurbs_weights);
-criterion_main!(benches);

@@ -1,6 +1,6 @@
 //! Building a bicubic spline surface (Zhang–Cheng §4) and rebuilding it after one point moves.
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use criterion::{criterion_group, BenchmarkId, Criterion};
 use curve_repr::{BicubicSplineSurface, Vec3};
 use std::hint::black_box;
 
@@ -59,4 +59,3 @@ fn move_one_point(c: &mut Criterion) {
 }
 
 criterion_group!(benches, build, move_one_point);
-criterion_main!(benches);

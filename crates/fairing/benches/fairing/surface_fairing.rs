@@ -2,7 +2,7 @@
 //! spheres, every interior point each step, energy tolerance 1e-6), and of smaller nets to
 //! show the growth. Target: the 200 × 200 run under 5 s in release.
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use criterion::{criterion_group, BenchmarkId, Criterion};
 use curve_repr::Vec3;
 use fairing::strategies::{SurfaceFairing, SurfaceFairingSettings};
 
@@ -48,4 +48,3 @@ fn bench(c: &mut Criterion) {
 }
 
 criterion_group!(benches, bench);
-criterion_main!(benches);

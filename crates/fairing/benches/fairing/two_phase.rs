@@ -9,9 +9,7 @@
 //! - `two_phase_one_full_pass`: one coarse and one fine pass on the raw noisy data (the
 //!   busiest pass), n = 10^3 … 10^6.
 
-use criterion::{
-    criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion, SamplingMode, Throughput,
-};
+use criterion::{criterion_group, BatchSize, BenchmarkId, Criterion, SamplingMode, Throughput};
 use curve_repr::{EndCondition, SplineFunction};
 use fairing::two_phase::{fair_function, full_pass, TwoPhaseSettings};
 use rand::SeedableRng;
@@ -78,4 +76,3 @@ fn bench(c: &mut Criterion) {
 }
 
 criterion_group!(benches, bench);
-criterion_main!(benches);

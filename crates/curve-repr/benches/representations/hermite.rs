@@ -1,7 +1,7 @@
 //! Build and one-point move of a planar chord-length natural Hermite spline at n = 10³..10⁶.
 //! Building should cost the same per point at every n; a move should not grow with n.
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
 use curve_repr::{HermiteSpline, Interpolant, Vec2};
 use std::hint::black_box;
 
@@ -60,4 +60,3 @@ fn hermite(c: &mut Criterion) {
 }
 
 criterion_group!(benches, hermite);
-criterion_main!(benches);

@@ -2,7 +2,7 @@
 //! Given p (one banded solve), the trace rule (one solve), GCV (about 100 banded solves and
 //! banded inverses) on a noisy function y(x), and a 3D parametric curve at the trace rule.
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
 use curve_repr::Vec3;
 use fairing::strategies::{fit_parametric, SmoothingRule, SmoothingSettings, SmoothingSpline};
 
@@ -62,4 +62,3 @@ fn bench(c: &mut Criterion) {
 }
 
 criterion_group!(benches, bench);
-criterion_main!(benches);

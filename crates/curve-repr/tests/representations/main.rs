@@ -1,0 +1,6 @@
+//! The crate's integration tests, one binary (it links once): one module per subject.
+
+mod bicubic_surface;
+mod hermite;
+mod nurbs;
+mod spline_function;

@@ -1,0 +1,3 @@
+//! The crate's integration tests, one binary (it links once): one module per subject.
+
+mod nurbs_circle;

@@ -1,0 +1,4 @@
+//! The crate's integration tests, one binary (it links once): one module per subject.
+
+mod nurbs_weights;
+mod user_extensions;
