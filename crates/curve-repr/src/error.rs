@@ -149,6 +149,21 @@ pub enum Error {
         /// Index of the first of the two lines.
         index: usize,
     },
+    /// A surface declared closed in a direction whose last grid line does not repeat its
+    /// first (the layout of a closed net keeps the repeat, as the teapot body's column 12).
+    #[error(
+        "the grid is declared closed in {direction} but its last {direction}-line does not repeat the first: \
+         at node {index} along it they are {} apart",
+        Compact(*distance)
+    )]
+    OpenSeam {
+        /// `"u"` (line i = m against i = 0) or `"v"` (line j = n against j = 0).
+        direction: &'static str,
+        /// The node along the line (j for u, i for v) where they differ most.
+        index: usize,
+        /// Their distance there.
+        distance: f64,
+    },
 }
 
 /// The crate's result type.

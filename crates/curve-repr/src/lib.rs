@@ -32,7 +32,7 @@ pub mod surface;
 pub mod tridiagonal;
 pub mod vector;
 
-pub use bicubic_surface::{BicubicSplineSurface, BicubicSurfaceSettings, NodeJump};
+pub use bicubic_surface::{BicubicSplineSurface, BicubicSurfaceSettings, GridTopology, NodeJump, Poles};
 pub use bspline::KnotVector;
 pub use curve::{Curve, Interpolant, Side};
 pub use error::{Error, Result};

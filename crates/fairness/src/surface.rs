@@ -12,6 +12,12 @@
 //! The [`Surface`] trait does not expose knots, so every function and type here takes the
 //! knot vectors u_0 < … < u_m and v_0 < … < v_n (the data parameters of an interpolating
 //! surface).
+//!
+//! **Seams.** A surface closed in v (its knot line v = v_n is the knot line v = v_0 again, as
+//! the teapot body's column 12 is its column 0) has no boundary there: its seam nodes are
+//! interior nodes like any other, and [`surface_jumps_closed`] measures z across the seam,
+//! S_vvv(u_i, v_0+) − S_vvv(u_i, v_n−), from the surface alone (independently of how the
+//! surface was built). Likewise in u.
 
 use curve_repr::{Side, Surface, Vec3};
 
@@ -69,19 +75,55 @@ pub fn surface_jumps<S: Surface + ?Sized>(
     u_knots: &[f64],
     v_knots: &[f64],
 ) -> Result<Vec<Vec<f64>>> {
+    surface_jumps_closed(surface, u_knots, v_knots, (false, false))
+}
+
+/// z_ij of Zhang–Cheng Eq. (26) at every interior knot of a surface closed in u and/or v
+/// (`closed` = (u, v)): along a closed direction the nodes are k = 0 … N − 1 (node 0 is the
+/// seam, node N its repeat, not listed again) and the jump at the seam is taken between the
+/// first interval's start and the last interval's end; along an open one k = 1 … N − 1. So
+/// `result[a][b]` is z at (i, j) = (a + 1, b + 1) for an open surface and (a, b) along a
+/// closed direction. Needs four knots along a closed direction. O(m n).
+pub fn surface_jumps_closed<S: Surface + ?Sized>(
+    surface: &S,
+    u_knots: &[f64],
+    v_knots: &[f64],
+    closed: (bool, bool),
+) -> Result<Vec<Vec<f64>>> {
     check_knots("u knots", u_knots)?;
     check_knots("v knots", v_knots)?;
-    let inner = |k: &[f64]| k[1..k.len() - 1].to_vec();
-    let (us, vs) = (inner(u_knots), inner(v_knots));
+    for (what, knots, is_closed) in [("u knots", u_knots, closed.0), ("v knots", v_knots, closed.1)] {
+        if is_closed && knots.len() < 4 {
+            return Err(Error::TooFewPoints {
+                what,
+                needed: 4,
+                got: knots.len(),
+            });
+        }
+    }
+    // (parameter for the left limit, parameter for the right limit) at each node.
+    let nodes = |k: &[f64], is_closed: bool| -> Vec<(f64, f64)> {
+        let last = k.len() - 1;
+        if is_closed {
+            std::iter::once((k[last], k[0]))
+                .chain(k[1..last].iter().map(|&t| (t, t)))
+                .collect()
+        } else {
+            k[1..last].iter().map(|&t| (t, t)).collect()
+        }
+    };
+    let (us, vs) = (nodes(u_knots, closed.0), nodes(v_knots, closed.1));
     us.iter()
-        .map(|&u| {
+        .map(|&(u_left, u_right)| {
             vs.iter()
-                .map(|&v| {
+                .map(|&(v_left, v_right)| {
                     let what = "third partial derivative";
-                    let uuu_right = partial(surface, what, u, v, 3, 0, Side::Right, Side::Right)?;
-                    let uuu_left = partial(surface, what, u, v, 3, 0, Side::Left, Side::Right)?;
-                    let vvv_right = partial(surface, what, u, v, 0, 3, Side::Right, Side::Right)?;
-                    let vvv_left = partial(surface, what, u, v, 0, 3, Side::Right, Side::Left)?;
+                    // The u-jump runs along the u-line v = v_j: any of the node's two v
+                    // parameters names it (they are the same line when closed).
+                    let uuu_right = partial(surface, what, u_right, v_right, 3, 0, Side::Right, Side::Right)?;
+                    let uuu_left = partial(surface, what, u_left, v_right, 3, 0, Side::Left, Side::Right)?;
+                    let vvv_right = partial(surface, what, u_right, v_right, 0, 3, Side::Right, Side::Right)?;
+                    let vvv_left = partial(surface, what, u_right, v_left, 0, 3, Side::Right, Side::Left)?;
                     Ok((uuu_right - uuu_left).norm() + (vvv_right - vvv_left).norm())
                 })
                 .collect::<Result<Vec<f64>>>()
@@ -186,6 +228,9 @@ pub struct KnotGrid {
     /// Gauss–Legendre points per direction and knot interval (default 4: exact for bicubic
     /// polynomial patches).
     pub points: usize,
+    /// Whether the surface is closed in (u, v): [`SurfaceJump`] then measures z across the
+    /// seam too ([`surface_jumps_closed`]). Default open.
+    pub closed: (bool, bool),
 }
 
 impl KnotGrid {
@@ -195,7 +240,14 @@ impl KnotGrid {
             u_knots,
             v_knots,
             points: 4,
+            closed: (false, false),
         }
+    }
+
+    /// Sets which directions are closed (u, v).
+    pub fn with_closed(mut self, closed_u: bool, closed_v: bool) -> Self {
+        self.closed = (closed_u, closed_v);
+        self
     }
 
     /// Sets the Gauss–Legendre points per direction and knot interval.
@@ -205,8 +257,8 @@ impl KnotGrid {
     }
 }
 
-/// [`LocalIndicator`] of [`surface_jumps`], flattened row by row (i = 1 … m − 1 outer,
-/// j = 1 … n − 1 inner).
+/// [`LocalIndicator`] of [`surface_jumps_closed`] (of [`surface_jumps`] for an open grid),
+/// flattened row by row (i outer, j inner).
 #[derive(Clone, Debug, PartialEq)]
 pub struct SurfaceJump(pub KnotGrid);
 
@@ -215,10 +267,12 @@ impl<S: Surface + ?Sized> LocalIndicator<S> for SurfaceJump {
         "surface-jump"
     }
     fn values(&self, surface: &S) -> Result<Vec<f64>> {
-        Ok(surface_jumps(surface, &self.0.u_knots, &self.0.v_knots)?
-            .into_iter()
-            .flatten()
-            .collect())
+        Ok(
+            surface_jumps_closed(surface, &self.0.u_knots, &self.0.v_knots, self.0.closed)?
+                .into_iter()
+                .flatten()
+                .collect(),
+        )
     }
 }
 
@@ -339,6 +393,47 @@ mod tests {
         let four = thin_plate_energy(&s, &u, &v, &GaussLegendre::new(4).unwrap()).unwrap();
         let many = thin_plate_energy(&s, &u, &v, &GaussLegendre::new(64).unwrap()).unwrap();
         assert!((four - many).abs() < 1e-12 * many);
+    }
+
+    /// A noisy tube closed in v: z across the seam, from one-sided partials of the surface,
+    /// equals the bicubic surface's own O(1) jump formula at every node, the seam's included,
+    /// and the open measure leaves the seam column out.
+    #[test]
+    fn jumps_across_a_seam_match_the_periodic_surface() {
+        use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings};
+        let (rows, columns) = (6, 10);
+        let grid: Vec<Vec<Vec3>> = (0..rows)
+            .map(|i| {
+                (0..columns)
+                    .map(|j| {
+                        let k = j % (columns - 1);
+                        let angle = std::f64::consts::TAU * k as f64 / (columns - 1) as f64;
+                        let r = 1.0 + 0.05 * ((3 * i + 7 * k) as f64).sin();
+                        Vec3::new(r * angle.cos(), r * angle.sin(), 0.4 * i as f64)
+                    })
+                    .collect()
+            })
+            .collect();
+        let settings = BicubicSurfaceSettings::default().with_closed_v(true);
+        let s = BicubicSplineSurface::with_settings(&grid, &settings).unwrap();
+        let z = surface_jumps_closed(&s, s.u_knots(), s.v_knots(), (false, true)).unwrap();
+        assert_eq!((z.len(), z[0].len()), (rows - 2, columns - 1));
+        for (a, row) in z.iter().enumerate() {
+            for (b, &value) in row.iter().enumerate() {
+                let own = s.z(a + 1, b).unwrap();
+                assert!(
+                    (value - own).abs() < 1e-9 * (1.0 + own),
+                    "({a}, {b}): {value} vs {own}"
+                );
+            }
+        }
+        assert!(z.iter().all(|row| row[0] > 1e-3), "the seam has jumps of its own");
+        let open = surface_jumps(&s, s.u_knots(), s.v_knots()).unwrap();
+        assert_eq!(open[0].len(), columns - 2);
+        let indicator =
+            SurfaceJump(KnotGrid::new(s.u_knots().to_vec(), s.v_knots().to_vec()).with_closed(false, true));
+        let (measured, own) = (indicator.max_value(&s).unwrap(), s.max_z());
+        assert!((measured - own).abs() < 1e-9 * own, "{measured} vs {own}");
     }
 
     #[test]

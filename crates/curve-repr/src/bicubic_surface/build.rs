@@ -5,7 +5,7 @@ use super::natural::NaturalSplineSystem;
 use super::BicubicSplineSurface;
 use crate::{Error, Parametrization, Result, Vec3};
 
-/// How a [`BicubicSplineSurface`] is built: its knots.
+/// How a [`BicubicSplineSurface`] is built: its knots, and which directions close up.
 ///
 /// By default the knots are chord-length *averaged*, the definition the `fair` report uses
 /// (DESIGN.md, "surface kind"): u_0 = 0 and u_{i+1} − u_i = (1/(n+1)) Σ_j |P_{i+1,j} − P_{i,j}|,
@@ -14,11 +14,20 @@ use crate::{Error, Parametrization, Result, Vec3};
 /// another step rule (uniform steps of 1 give Kjellander's surfaces), averaged the same way;
 /// [`with_u_knots`](Self::with_u_knots) and [`with_v_knots`](Self::with_v_knots) give the
 /// knots outright.
+///
+/// By default both directions are open (natural splines along every grid line, the report's
+/// surface). [`with_closed_u`](Self::with_closed_u) / [`with_closed_v`](Self::with_closed_v)
+/// make a direction periodic: the grid's last line along it repeats its first (the layout
+/// keeps the repeat; see [`GridTopology`](super::GridTopology)), every line across the seam is
+/// a periodic cubic spline, and the averages above run over the distinct lines only (the
+/// repeat is not counted twice).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct BicubicSurfaceSettings {
     parametrization: Parametrization,
     u_knots: Option<Vec<f64>>,
     v_knots: Option<Vec<f64>>,
+    closed_u: bool,
+    closed_v: bool,
 }
 
 impl BicubicSurfaceSettings {
@@ -40,6 +49,24 @@ impl BicubicSurfaceSettings {
         self
     }
 
+    /// Periodic along u: row i = m repeats row i = 0 (default false).
+    pub fn with_closed_u(mut self, closed: bool) -> Self {
+        self.closed_u = closed;
+        self
+    }
+
+    /// Periodic along v: column j = n repeats column j = 0 (default false).
+    pub fn with_closed_v(mut self, closed: bool) -> Self {
+        self.closed_v = closed;
+        self
+    }
+
+    /// Both closures from a detected or given [`GridTopology`](super::GridTopology).
+    pub fn with_topology(self, topology: &super::GridTopology) -> Self {
+        self.with_closed_u(topology.closed_u)
+            .with_closed_v(topology.closed_v)
+    }
+
     /// The step rule of averaged knots.
     pub fn parametrization(&self) -> Parametrization {
         self.parametrization
@@ -53,6 +80,53 @@ impl BicubicSurfaceSettings {
     /// The given v knots, if any.
     pub fn v_knots(&self) -> Option<&[f64]> {
         self.v_knots.as_deref()
+    }
+
+    /// The knots (u_0..u_m, v_0..v_n) these settings give the flat grid
+    /// `points[i·v_count + j]`: the given ones, or averaged as described above (a closed
+    /// direction's repeated line left out of the means). The knots of
+    /// [`BicubicSplineSurface::from_flat`] on the same grid, without building it. Fails as that
+    /// does on bad knots or repeated grid lines. O(m·n).
+    pub fn knots(&self, points: &[Vec3], u_count: usize, v_count: usize) -> Result<(Vec<f64>, Vec<f64>)> {
+        if points.len() != u_count * v_count || u_count < 2 || v_count < 2 {
+            return Err(Error::LengthMismatch {
+                what: "grid points",
+                expected: u_count.max(2) * v_count.max(2),
+                got: points.len(),
+            });
+        }
+        let closed = (self.closed_u, self.closed_v);
+        let u_knots = match self.u_knots() {
+            Some(knots) => checked_knots("u knots", knots, u_count)?,
+            None => averaged_knots(
+                points,
+                (u_count, v_count),
+                closed,
+                self.parametrization,
+                Direction::U,
+            )?,
+        };
+        let v_knots = match self.v_knots() {
+            Some(knots) => checked_knots("v knots", knots, v_count)?,
+            None => averaged_knots(
+                points,
+                (u_count, v_count),
+                closed,
+                self.parametrization,
+                Direction::V,
+            )?,
+        };
+        Ok((u_knots, v_knots))
+    }
+
+    /// Whether the surface is periodic along u.
+    pub fn closed_u(&self) -> bool {
+        self.closed_u
+    }
+
+    /// Whether the surface is periodic along v.
+    pub fn closed_v(&self) -> bool {
+        self.closed_v
     }
 }
 
@@ -71,7 +145,11 @@ impl BicubicSplineSurface {
     /// vector whose length differs from the first one's), [`Error::NonFinite`] (a coordinate,
     /// reported with the flat index i·(n+1) + j, or a knot), [`Error::LengthMismatch`] and
     /// [`Error::NotIncreasing`] for given knots, and [`Error::RepeatedGridLine`] when two
-    /// consecutive grid lines coincide on average (a zero averaged step).
+    /// consecutive grid lines coincide on average (a zero averaged step). A closed direction
+    /// needs at least four lines along it (three distinct and the repeat, else
+    /// [`Error::TooFewPoints`]) and its last line within 1e-9 of the bounding-box diagonal of
+    /// its first ([`Error::OpenSeam`] otherwise); the repeat is then set to the first line
+    /// exactly.
     pub fn with_settings(grid: &[Vec<Vec3>], settings: &BicubicSurfaceSettings) -> Result<Self> {
         let u_count = grid.len();
         if u_count < 2 {
@@ -135,28 +213,11 @@ impl BicubicSplineSurface {
             },
             other => other,
         })?;
-        let u_knots = match settings.u_knots() {
-            Some(knots) => checked_knots("u knots", knots, u_count)?,
-            None => averaged_knots(
-                &points,
-                u_count,
-                v_count,
-                settings.parametrization(),
-                Direction::U,
-            )?,
-        };
-        let v_knots = match settings.v_knots() {
-            Some(knots) => checked_knots("v knots", knots, v_count)?,
-            None => averaged_knots(
-                &points,
-                u_count,
-                v_count,
-                settings.parametrization(),
-                Direction::V,
-            )?,
-        };
-        let u_system = NaturalSplineSystem::new(&u_knots)?;
-        let v_system = NaturalSplineSystem::new(&v_knots)?;
+        let mut points = points;
+        close_seams(&mut points, u_count, v_count, settings)?;
+        let (u_knots, v_knots) = settings.knots(&points, u_count, v_count)?;
+        let u_system = NaturalSplineSystem::with_periodic(&u_knots, settings.closed_u())?;
+        let v_system = NaturalSplineSystem::with_periodic(&v_knots, settings.closed_v())?;
         let mut surface = Self {
             u_count,
             v_count,
@@ -240,10 +301,75 @@ pub(super) fn check_finite_result(what: &'static str, values: &[Vec3]) -> Result
     }
 }
 
+/// Checks that every closed direction's last line repeats its first (within 1e-9 of the
+/// bounding-box diagonal) and makes the repeat exact. O(m·n).
+fn close_seams(
+    points: &mut [Vec3],
+    u_count: usize,
+    v_count: usize,
+    settings: &BicubicSurfaceSettings,
+) -> Result<()> {
+    let tolerance = 1e-9 * super::topology::diagonal(points);
+    for (closed, direction, count) in [
+        (settings.closed_u(), Direction::U, u_count),
+        (settings.closed_v(), Direction::V, v_count),
+    ] {
+        if !closed {
+            continue;
+        }
+        let name = direction.name();
+        if count < 4 {
+            return Err(Error::TooFewPoints {
+                what: if direction == Direction::U {
+                    "a surface closed in u (grid lines along u: three distinct and the repeat)"
+                } else {
+                    "a surface closed in v (grid lines along v: three distinct and the repeat)"
+                },
+                needed: 4,
+                got: count,
+            });
+        }
+        let pairs: Vec<(usize, usize)> = match direction {
+            Direction::U => (0..v_count).map(|j| (j, (u_count - 1) * v_count + j)).collect(),
+            Direction::V => (0..u_count)
+                .map(|i| (i * v_count, i * v_count + v_count - 1))
+                .collect(),
+        };
+        let (worst, distance) = pairs
+            .iter()
+            .enumerate()
+            .map(|(index, &(first, last))| (index, (points[first] - points[last]).norm()))
+            .fold(
+                (0, 0.0),
+                |best, candidate| if candidate.1 > best.1 { candidate } else { best },
+            );
+        if distance > tolerance {
+            return Err(Error::OpenSeam {
+                direction: name,
+                index: worst,
+                distance,
+            });
+        }
+        for (first, last) in pairs {
+            points[last] = points[first];
+        }
+    }
+    Ok(())
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Direction {
     U,
     V,
+}
+
+impl Direction {
+    fn name(self) -> &'static str {
+        match self {
+            Direction::U => "u",
+            Direction::V => "v",
+        }
+    }
 }
 
 /// Given knots: one per grid line, finite, strictly increasing.
@@ -276,18 +402,20 @@ fn check_increasing(what: &'static str, knots: &[f64]) -> Result<()> {
 }
 
 /// Averaged knots: t_0 = 0, t_{k+1} − t_k = the mean over the lines of the other direction of
-/// the step between grid lines k and k + 1 (DESIGN.md "surface kind"). O(m·n).
+/// the step between grid lines k and k + 1 (DESIGN.md "surface kind"); when the other
+/// direction is closed its repeated line is left out of the mean. O(m·n).
 fn averaged_knots(
     points: &[Vec3],
-    u_count: usize,
-    v_count: usize,
+    (u_count, v_count): (usize, usize),
+    (closed_u, closed_v): (bool, bool),
     parametrization: Parametrization,
     direction: Direction,
 ) -> Result<Vec<f64>> {
-    let (count, across, what, name) = match direction {
-        Direction::U => (u_count, v_count, "u knot", "u"),
-        Direction::V => (v_count, u_count, "v knot", "v"),
+    let (count, across, what) = match direction {
+        Direction::U => (u_count, v_count - usize::from(closed_v), "u knot"),
+        Direction::V => (v_count, u_count - usize::from(closed_u), "v knot"),
     };
+    let name = direction.name();
     let at = |k: usize, l: usize| match direction {
         Direction::U => points[k * v_count + l],
         Direction::V => points[l * v_count + k],

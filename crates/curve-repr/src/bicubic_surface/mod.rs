@@ -24,12 +24,23 @@
 //! knots, in particular every bilinear one a + b u + c v + d u v; it keeps every planar grid in
 //! its plane. It does not reproduce a quadric (a natural spline has zero second derivative at
 //! its ends).
+//!
+//! **Closed nets** ([`BicubicSurfaceSettings::with_closed_v`], [`GridTopology`]): along a
+//! closed direction every grid line is the *periodic* cubic spline through its points (the
+//! last repeating the first), so the surface is C2 across the seam as across any interior
+//! knot line, the seam's nodes are interior nodes with a z_ij like any other, and the repeated
+//! line is stored (the layout of the input) but counted once by [`max_z`](Self::max_z),
+//! [`third_derivative_jumps`](Self::third_derivative_jumps) and
+//! [`network_strain_energy`](Self::network_strain_energy). Everything above holds with
+//! "natural" read as "periodic" in that direction.
 
 mod build;
 mod natural;
+mod topology;
 mod update;
 
 pub use build::BicubicSurfaceSettings;
+pub use topology::{GridTopology, Poles, COINCIDENCE};
 
 use natural::{segment_second_derivatives, segment_third_derivative, NaturalSplineSystem};
 
@@ -65,9 +76,9 @@ pub struct BicubicSplineSurface {
 /// papers/README.md).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NodeJump {
-    /// Index along u, 1 ≤ i ≤ m − 1.
+    /// Index along u: 1 ≤ i ≤ m − 1, or 0 ≤ i ≤ m − 1 when the surface is closed in u.
     pub i: usize,
-    /// Index along v, 1 ≤ j ≤ n − 1.
+    /// Index along v: 1 ≤ j ≤ n − 1, or 0 ≤ j ≤ n − 1 when the surface is closed in v.
     pub j: usize,
     /// ∂³S/∂u³(u_i+, v_j) − ∂³S/∂u³(u_i−, v_j).
     pub u: Vec3,
@@ -91,6 +102,49 @@ impl BicubicSplineSurface {
     /// (m + 1, n + 1): the number of grid lines along u and along v.
     pub fn shape(&self) -> (usize, usize) {
         (self.u_count, self.v_count)
+    }
+
+    /// Whether the surface is periodic along u (row m repeats row 0).
+    pub fn closed_u(&self) -> bool {
+        self.u_system.is_periodic()
+    }
+
+    /// Whether the surface is periodic along v (column n repeats column 0).
+    pub fn closed_v(&self) -> bool {
+        self.v_system.is_periodic()
+    }
+
+    /// The interior node that (i, j) names, or `None` if it is not interior: along an open
+    /// direction 1 ≤ i ≤ m − 1; along a closed one every index, the repeated line m (or n)
+    /// naming line 0.
+    pub fn interior_node(&self, i: usize, j: usize) -> Option<(usize, usize)> {
+        let along = |k: usize, count: usize, closed: bool| {
+            if closed {
+                (k < count).then_some(if k + 1 == count { 0 } else { k })
+            } else {
+                (k >= 1 && k + 1 < count).then_some(k)
+            }
+        };
+        Some((
+            along(i, self.u_count, self.closed_u())?,
+            along(j, self.v_count, self.closed_v())?,
+        ))
+    }
+
+    /// The interior nodes, each once (a closed direction's repeated line left out), i-major.
+    pub fn interior_nodes(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
+        let range = |count: usize, closed: bool| {
+            if closed {
+                0..count - 1
+            } else {
+                1..count.saturating_sub(1).max(1)
+            }
+        };
+        let (us, vs) = (
+            range(self.u_count, self.closed_u()),
+            range(self.v_count, self.closed_v()),
+        );
+        us.flat_map(move |i| vs.clone().map(move |j| (i, j)))
     }
 
     /// The knots u_0 < … < u_m.
@@ -148,21 +202,24 @@ impl BicubicSplineSurface {
         self.index(i, j).map(|k| self.twists[k])
     }
 
-    /// The third-derivative jumps at the interior node (u_i, v_j), or `None` unless
-    /// 1 ≤ i ≤ m − 1 and 1 ≤ j ≤ n − 1. O(1): along v = v_j the surface is the Hermite spline
+    /// The third-derivative jumps at the interior node (u_i, v_j), or `None` unless it is
+    /// interior (see [`interior_node`](Self::interior_node); across a seam the jump is between
+    /// the last segment and the first). O(1): along v = v_j the surface is the Hermite spline
     /// of row j, whose third derivative on a segment is (12(P_k − P_{k+1})/h + 6(M_k + M_{k+1}))/h².
     pub fn third_derivative_jump(&self, i: usize, j: usize) -> Option<NodeJump> {
-        if i == 0 || j == 0 || i + 1 >= self.u_count || j + 1 >= self.v_count {
-            return None;
-        }
+        let (i, j) = self.interior_node(i, j)?;
         let hu = self.u_system.steps();
         let hv = self.v_system.steps();
         let p = |a: usize, b: usize| self.points[a * self.v_count + b];
         let mu = |a: usize, b: usize| self.u_tangents[a * self.v_count + b];
         let mv = |a: usize, b: usize| self.v_tangents[a * self.v_count + b];
-        let u_before = segment_third_derivative(p(i - 1, j), mu(i - 1, j), mu(i, j), p(i, j), hu[i - 1]);
+        // The segment before node 0 of a closed direction is the last one, ending on the
+        // stored repeat of line 0.
+        let iu = if i == 0 { self.u_count - 2 } else { i - 1 };
+        let jv = if j == 0 { self.v_count - 2 } else { j - 1 };
+        let u_before = segment_third_derivative(p(iu, j), mu(iu, j), mu(iu + 1, j), p(iu + 1, j), hu[iu]);
         let u_after = segment_third_derivative(p(i, j), mu(i, j), mu(i + 1, j), p(i + 1, j), hu[i]);
-        let v_before = segment_third_derivative(p(i, j - 1), mv(i, j - 1), mv(i, j), p(i, j), hv[j - 1]);
+        let v_before = segment_third_derivative(p(i, jv), mv(i, jv), mv(i, jv + 1), p(i, jv + 1), hv[jv]);
         let v_after = segment_third_derivative(p(i, j), mv(i, j), mv(i, j + 1), p(i, j + 1), hv[j]);
         Some(NodeJump {
             i,
@@ -173,24 +230,22 @@ impl BicubicSplineSurface {
     }
 
     /// The surface indicator z_ij of Zhang–Cheng Eq. 26 (corrected, papers/README.md) at an
-    /// interior node, or `None` elsewhere. O(1).
+    /// interior node (a seam's included), or `None` elsewhere. O(1).
     pub fn z(&self, i: usize, j: usize) -> Option<f64> {
         self.third_derivative_jump(i, j).map(|jump| jump.z())
     }
 
-    /// The jumps at every interior node, i-major (i = 1..m−1, then j = 1..n−1). O(m·n).
+    /// The jumps at every interior node, each once, i-major. O(m·n).
     pub fn third_derivative_jumps(&self) -> Vec<NodeJump> {
-        (1..self.u_count.saturating_sub(1))
-            .flat_map(|i| (1..self.v_count.saturating_sub(1)).map(move |j| (i, j)))
+        self.interior_nodes()
             .filter_map(|(i, j)| self.third_derivative_jump(i, j))
             .collect()
     }
 
     /// max z_ij over the interior nodes (0 when there are none): the report's `max_z`. O(m·n).
     pub fn max_z(&self) -> f64 {
-        self.third_derivative_jumps()
-            .iter()
-            .map(NodeJump::z)
+        self.interior_nodes()
+            .filter_map(|(i, j)| self.z(i, j))
             .fold(0.0, f64::max)
     }
 
@@ -200,16 +255,21 @@ impl BicubicSplineSurface {
     ///
     /// Each network curve is a natural cubic spline whose second derivative is linear on each
     /// segment, so a segment of length h with end second derivatives a, b adds
-    /// h(|a|² + a·b + |b|²)/3 exactly. O(m·n).
+    /// h(|a|² + a·b + |b|²)/3 exactly. The repeated line of a closed direction is not a second
+    /// network curve and is left out. O(m·n).
     pub fn network_strain_energy(&self) -> f64 {
         let segment = |p0: Vec3, m0: Vec3, m1: Vec3, p1: Vec3, h: f64| {
             let (a, b) = segment_second_derivatives(p0, m0, m1, p1, h);
             h * (a.norm_squared() + a.dot(&b) + b.norm_squared()) / 3.0
         };
         let vc = self.v_count;
+        let (u_lines, v_lines) = (
+            self.u_count - usize::from(self.closed_u()),
+            vc - usize::from(self.closed_v()),
+        );
         let mut energy = 0.0;
         for (i, &h) in self.u_system.steps().iter().enumerate() {
-            for j in 0..vc {
+            for j in 0..v_lines {
                 let (k0, k1) = (i * vc + j, (i + 1) * vc + j);
                 energy += segment(
                     self.points[k0],
@@ -220,7 +280,7 @@ impl BicubicSplineSurface {
                 );
             }
         }
-        for i in 0..self.u_count {
+        for i in 0..u_lines {
             for (j, &h) in self.v_system.steps().iter().enumerate() {
                 let (k0, k1) = (i * vc + j, i * vc + j + 1);
                 energy += segment(

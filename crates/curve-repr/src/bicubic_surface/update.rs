@@ -61,6 +61,8 @@ impl BicubicSplineSurface {
         if moves.is_empty() {
             return Ok(());
         }
+        let moves = self.with_seam_copies(moves);
+        let moves = &moves[..];
         let vc = self.v_count;
         let mut previous = Vec::with_capacity(moves.len());
         for &((i, j), position) in moves {
@@ -77,6 +79,32 @@ impl BicubicSplineSurface {
                 Err(error)
             }
         }
+    }
+
+    /// The moves with every seam node's stored repeat added (after it, so that a node moved
+    /// twice still takes its last position, repeat included).
+    fn with_seam_copies(&self, moves: &[((usize, usize), Vec3)]) -> Vec<((usize, usize), Vec3)> {
+        let (closed_u, closed_v) = (self.closed_u(), self.closed_v());
+        if !closed_u && !closed_v {
+            return moves.to_vec();
+        }
+        let (last_i, last_j) = (self.u_count - 1, self.v_count - 1);
+        let copies = |k: usize, last: usize, closed: bool| -> Vec<usize> {
+            if closed && (k == 0 || k == last) {
+                vec![0, last]
+            } else {
+                vec![k]
+            }
+        };
+        let mut all = Vec::with_capacity(moves.len());
+        for &((i, j), position) in moves {
+            for a in copies(i, last_i, closed_u) {
+                for b in copies(j, last_j, closed_v) {
+                    all.push(((a, b), position));
+                }
+            }
+        }
+        all
     }
 
     /// Recomputes the tangents of the moved lines and the twists from `self.points` (already

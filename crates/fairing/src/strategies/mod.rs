@@ -22,5 +22,6 @@ pub use smoothing_spline::{
 };
 pub use strain_energy::{Mode, Replacement, StrainEnergy, StrainEnergySettings};
 pub use surface::{
-    Objective, SurfaceFairing, SurfaceFairingResult, SurfaceFairingSettings, SurfaceMode, SurfaceStep,
+    Closure, Objective, Refusal, Region, SurfaceFairing, SurfaceFairingResult, SurfaceFairingSettings,
+    SurfaceMode, SurfaceStep,
 };

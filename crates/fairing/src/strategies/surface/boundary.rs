@@ -7,11 +7,19 @@ use super::NodeMove;
 use crate::strategies::{StrainEnergy, StrainEnergySettings};
 use crate::{Constraints, Pipeline, Result};
 
-/// The nodes (i, j) of the four boundary curves of an (m+1) × (n+1) grid, each in order:
-/// u-lines j = 0 and j = n (i = 0..m), then v-lines i = 0 and i = m (j = 0..n).
-pub fn boundary_curves(u_count: usize, v_count: usize) -> Vec<Vec<(usize, usize)>> {
+/// The nodes (i, j) of the boundary curves of an (m+1) × (n+1) grid, each in order: u-lines
+/// j = 0 and j = n (i = 0..m) when the grid is open in v, then v-lines i = 0 and i = m
+/// (j = 0..n) when it is open in u. A boundary curve that runs along a closed direction is a
+/// closed curve, which the curve method does not fair: it is left out, and so is a seam (a
+/// closed direction has no boundary there).
+pub fn boundary_curves(u_count: usize, v_count: usize, closed: (bool, bool)) -> Vec<Vec<(usize, usize)>> {
     let along_u = |j: usize| (0..u_count).map(|i| (i, j)).collect::<Vec<_>>();
     let along_v = |i: usize| (0..v_count).map(|j| (i, j)).collect::<Vec<_>>();
+    if closed.0 || closed.1 {
+        // Closed in u: the boundary lines j = 0, n run along u and are closed curves, the
+        // rows i = 0, m are the seam; likewise in v.
+        return Vec::new();
+    }
     vec![along_u(0), along_u(v_count - 1), along_v(0), along_v(u_count - 1)]
 }
 
@@ -25,13 +33,14 @@ pub fn fair_boundary(
     points: &mut [Vec3],
     u_count: usize,
     v_count: usize,
+    closed: (bool, bool),
     tolerance: f64,
     max_distance: Option<f64>,
     is_fixed: impl Fn(usize, usize) -> bool,
 ) -> Result<(Vec<NodeMove>, usize)> {
     let mut moves = Vec::new();
     let mut steps = 0;
-    for curve in boundary_curves(u_count, v_count) {
+    for curve in boundary_curves(u_count, v_count, closed) {
         let line: Vec<Vec3> = curve.iter().map(|&(i, j)| points[i * v_count + j]).collect();
         // A boundary collapsed to a point in places (a pole, as the teapot's bottom row) has
         // no chord-length curve through it: it is left as it is.

@@ -27,49 +27,57 @@
 //! For one point this is P̄ = P − (J^u + J^v)/(K_u[i,i] + K_v[j,j]), the exact minimiser of
 //! the whole network energy over P_ij (whose Hessian is that scalar times the identity).
 //!
-//! Both are O(1) per group after the network is built.
+//! Both are O(1) per group after the network is built. Along a closed direction the
+//! neighbours and knot steps wrap round the seam (node 0's previous node is node N − 1, over
+//! the closing step), so a seam node is replaced like any other.
 
 use curve_repr::Vec3;
 
-use super::network::Network;
+use super::network::{Network, Stiffness};
 
 /// A group of bad points: one point, an adjacent pair, or a 2×2 block, as (i, j) nodes.
 pub type Group = Vec<(usize, usize)>;
 
 /// Whether every node of `group` is interior and the group is one, two or four nodes.
 pub fn is_valid_group(network: &Network, group: &[(usize, usize)]) -> bool {
-    let (u_count, v_count) = network.shape();
-    !group.is_empty()
-        && group.len() <= 4
-        && group
-            .iter()
-            .all(|&(i, j)| i >= 1 && j >= 1 && i + 1 < u_count && j + 1 < v_count)
+    !group.is_empty() && group.len() <= 4 && group.iter().all(|&(i, j)| network.is_interior(i, j))
 }
 
-fn reciprocal_steps(knots: &[f64], k: usize) -> (f64, f64) {
-    (1.0 / (knots[k] - knots[k - 1]), 1.0 / (knots[k + 1] - knots[k]))
+/// (1/h before node k, 1/h after it) along a line, the steps wrapping round a closed line.
+fn reciprocal_steps(stiffness: &Stiffness, k: usize) -> (f64, f64) {
+    let before = stiffness.previous(k).map_or(f64::INFINITY, |p| stiffness.step(p));
+    (1.0 / before, 1.0 / stiffness.step(k))
+}
+
+/// The neighbours of node k along a line: (previous, next), wrapping round a closed line.
+fn neighbours(stiffness: &Stiffness, k: usize) -> (usize, usize) {
+    (stiffness.previous(k).unwrap_or(k), stiffness.next(k).unwrap_or(k))
 }
 
 /// α_ij of Eq. 20.
 pub fn alpha(network: &Network, i: usize, j: usize) -> Vec3 {
-    let (a, b) = reciprocal_steps(network.u_knots(), i);
-    network.u_tangent(i - 1, j) * (a * a)
+    let s = network.u_stiffness();
+    let (a, b) = reciprocal_steps(s, i);
+    let (before, after) = neighbours(s, i);
+    network.u_tangent(before, j) * (a * a)
         - network.u_tangent(i, j) * (b * b - a * a)
-        - network.u_tangent(i + 1, j) * (b * b)
+        - network.u_tangent(after, j) * (b * b)
 }
 
 /// β_ij of Eq. 20 (M^v throughout, papers/README.md).
 pub fn beta(network: &Network, i: usize, j: usize) -> Vec3 {
-    let (a, b) = reciprocal_steps(network.v_knots(), j);
-    network.v_tangent(i, j - 1) * (a * a)
+    let s = network.v_stiffness();
+    let (a, b) = reciprocal_steps(s, j);
+    let (before, after) = neighbours(s, j);
+    network.v_tangent(i, before) * (a * a)
         - network.v_tangent(i, j) * (b * b - a * a)
-        - network.v_tangent(i, j + 1) * (b * b)
+        - network.v_tangent(i, after) * (b * b)
 }
 
 /// τ_ij of Eq. 20.
 pub fn tau(network: &Network, i: usize, j: usize) -> f64 {
-    let (a, b) = reciprocal_steps(network.u_knots(), i);
-    let (c, d) = reciprocal_steps(network.v_knots(), j);
+    let (a, b) = reciprocal_steps(network.u_stiffness(), i);
+    let (c, d) = reciprocal_steps(network.v_stiffness(), j);
     2.0 * (a.powi(3) + b.powi(3) + c.powi(3) + d.powi(3))
 }
 
@@ -86,13 +94,15 @@ pub fn fixed_tangent_targets(network: &Network, group: &[(usize, usize)]) -> Opt
     for (a, &(i, j)) in group.iter().enumerate() {
         matrix[a][a] = tau(network, i, j);
         rhs[a] = alpha(network, i, j) + beta(network, i, j);
-        let (u_before, u_after) = reciprocal_steps(network.u_knots(), i);
-        let (v_before, v_after) = reciprocal_steps(network.v_knots(), j);
+        let (u_before, u_after) = reciprocal_steps(network.u_stiffness(), i);
+        let (v_before, v_after) = reciprocal_steps(network.v_stiffness(), j);
+        let (ui, uo) = neighbours(network.u_stiffness(), i);
+        let (vi, vo) = neighbours(network.v_stiffness(), j);
         let neighbours = [
-            ((i - 1, j), u_before),
-            ((i + 1, j), u_after),
-            ((i, j - 1), v_before),
-            ((i, j + 1), v_after),
+            ((ui, j), u_before),
+            ((uo, j), u_after),
+            ((i, vi), v_before),
+            ((i, vo), v_after),
         ];
         for (node, reciprocal) in neighbours {
             let weight = 2.0 * reciprocal.powi(3);
@@ -134,6 +144,17 @@ pub fn limit_targets(network: &Network, group: &[(usize, usize)]) -> Option<Vec<
             .map(|(&(i, j), d)| network.point(i, j) + d)
             .collect(),
     )
+}
+
+/// Eq. 21 for one point, P̄ = P − (J^u + J^v)/(K_u[i,i] + K_v[j,j]): [`limit_targets`] of the
+/// group `[(i, j)]` without its general solve. `None` for a node that is not interior. O(1).
+pub fn limit_target(network: &Network, i: usize, j: usize) -> Option<Vec3> {
+    if !network.is_interior(i, j) {
+        return None;
+    }
+    let stiffness = network.u_stiffness().diagonal[i] + network.v_stiffness().diagonal[j];
+    let target = network.point(i, j) - (network.u_jump(i, j) + network.v_jump(i, j)) / stiffness;
+    (stiffness > 0.0 && target.iter().all(|c| c.is_finite())).then_some(target)
 }
 
 /// Gaussian elimination with partial pivoting on the leading `size` × `size` block, vector

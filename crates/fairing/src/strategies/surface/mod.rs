@@ -3,17 +3,20 @@
 //! method as the baseline preset.
 //!
 //! The surface is the [`BicubicSplineSurface`] through a grid P_ij (i = 0..m along u,
-//! j = 0..n along v); the knots are fixed while fairing. A bad point is moved to the minimiser
-//! of the strain energy of the iso-parametric curves through it (`closed_form`: one point
-//! Eq. 18–20 and its limit Eq. 21, an adjacent pair Eq. 22–23, a 2×2 block Eq. 24–25), or of
-//! the thin-plate energy of the patches around it (`thin_plate`, Eq. 27–29) as an option.
+//! j = 0..n along v). A bad point is moved to the minimiser of the strain energy of the
+//! iso-parametric curves through it (`closed_form`: one point Eq. 18–20 and its limit Eq. 21,
+//! an adjacent pair Eq. 22–23, a 2×2 block Eq. 24–25), or of the thin-plate energy of the
+//! patches around it (`thin_plate`, Eq. 27–29) as an option.
 //!
 //! - **Automatic** (§4.4, algorithm 2): the boundary curves are faired first with the curve
 //!   method (`boundary`); each interior point gets a restraining sphere of radius
-//!   |P̄_ij − P_ij| (P̄ from Eq. 21 on the surface after step 2.1); then every step computes
-//!   z_ij (Eq. 26) at the interior points and fairs them all, from the largest z_ij down, each
-//!   kept in its sphere; the surface is rebuilt (2.5) and the run stops when the network
-//!   strain energy changes by at most `tolerance` × its value in one step (2.6).
+//!   `radius_scale` · |P̄_ij − P_ij| (P̄ from Eq. 21 on the surface after step 2.1); then every
+//!   step fairs every interior point once, the largest z_ij (Eq. 26) first, each kept in its
+//!   sphere; the surface is rebuilt (2.5) and the run stops when the network strain energy
+//!   changes by at most `tolerance` × its value in one step (2.6). The order of work is a
+//!   priority queue on the *current* z_ij (a node's key is refreshed when it comes to the top,
+//!   so a point whose neighbours have already smoothed it waits its turn), not a sort of the
+//!   values at the step's start.
 //! - **Interactive** (§4.4, algorithm 1): the user's bad points are sorted by z_ij and grouped
 //!   as step 1.3 says (the next two adjacent: a pair, Eq. 23; diagonal: the 2×2 block they
 //!   span, Eq. 25; else one point, Eq. 20); one step fairs every group once; stop on the
@@ -22,39 +25,65 @@
 //!   step, the interior point of largest z_ij (or of the user's list), moved to its Eq. 21
 //!   point (the surface form of Kjellander's curve rule, which zeroes the jump), kept in its
 //!   sphere; a point its sphere holds (target outside, point already on the border) is passed
-//!   over for the next worst. The energy tolerance applies to the change over as many steps
-//!   as there are candidate points (a sweep's worth). The paper does not print Kjellander's
-//!   surface formula; with uniform knots on a square grid `K_u[i,i] = K_v[j,j]`, so this point
-//!   is also the mean of the u-curve's and the v-curve's own Kjellander points.
+//!   over for the next worst. The worst point comes off a priority queue whose keys are
+//!   refreshed around every move, so a step costs O(window · log K), not a rescan of the grid.
+//!   The energy tolerance and the judgement below apply to a sweep: as many steps as there are
+//!   candidate points. The paper does not print Kjellander's surface formula; with uniform
+//!   knots on a square grid `K_u[i,i] = K_v[j,j]`, so this point is also the mean of the
+//!   u-curve's and the v-curve's own Kjellander points.
 //!
-//! Within a step, moves go to the iso-parametric spline network (`network::Network`) (the tangents of u-line j
-//! and v-line i of the moved point updated by the natural spline's measured response to a
-//! unit move, in a window of knots: O(1) in the grid size); at the end of the
-//! step the surface is rebuilt through [`BicubicSplineSurface::move_points`] (the rows,
-//! columns and twists the paper says change). The thin-plate option, which reads the twists,
-//! rebuilds the surface after every move. An automatic step costs O(m·n·window).
+//! **Beyond the paper** (each is one setting away from the paper's behaviour):
+//!
+//! - *Closed nets and poles* ([`SurfaceFairingSettings::closed`], [`GridTopology`]): a net
+//!   whose last column repeats its first (or last row its first) is periodic there: the
+//!   network curves across the seam are periodic splines, the seam's nodes are interior nodes
+//!   faired like any other (z_ij measured across the seam), and the seam stays closed exactly
+//!   (the repeat is written from its first line). A boundary line collapsed to one point (a
+//!   pole) is never moved, so it stays one point; the rows next to it are free. Boundary
+//!   curves that are closed curves (the rows of a net closed in v) are not faired by step 2.1.
+//! - *Knots the output will have* (`refresh_knots`): the paper keeps the knots while it fairs,
+//!   but a user measures the result over the knots of the result. After every step (a sweep of
+//!   Kjellander steps) the knots are recomputed from the points and the next step works on
+//!   them, so the run's own measure is the output's.
+//! - *Refusal rules* (`guard`): a step is judged over the knots the output would have if the
+//!   run stopped there. If the largest z_ij (Eq. 26) or the network strain energy (and, with
+//!   the thin-plate objective, the thin-plate energy) is higher than after the last accepted
+//!   step, the step is retried at 1/2, 1/4 and 1/8 of its moves (a shorter step inside the
+//!   same restraining spheres); if every retry is refused too, the run ends at the last
+//!   accepted state and [`SurfaceFairingResult::refusal`] says which rule refused. The
+//!   boundary fairing of step 2.1 is judged the same way (undone if it makes the surface
+//!   worse). Within a step a move that would raise the network energy (possible for a pair or
+//!   block cut by its spheres, or for the iterated and thin-plate replacements) is not made.
+//!
+//! Within a step, moves go to the iso-parametric spline network (`network::Network`): the
+//! tangents of u-line j and v-line i of the moved point updated by the spline's measured
+//! response to a unit move, in a window of knots, and the energy by an exact O(1) formula: a
+//! move costs O(window), a constant. A step adds O(m·n) for the judgement and the knot
+//! refresh (one network rebuild, one pass over z_ij). The thin-plate option reads the twists
+//! and updates the surface after every move (O(m·n) per move).
 
 // The building blocks index the grid directly (their callers validate it first), so they
 // stay inside the crate; `SurfaceFairing` is the checked entry point.
 pub(crate) mod boundary;
 pub(crate) mod closed_form;
 pub(crate) mod network;
+pub mod precision;
+mod queue;
+mod run;
 pub(crate) mod thin_plate;
 
 #[cfg(test)]
 mod tests;
 
 use std::collections::BTreeSet;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
-use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings, NurbsSurface, Parametrization, Vec3};
+use curve_repr::{BicubicSplineSurface, GridTopology, NurbsSurface, Parametrization, Vec3};
 
 use crate::strategies::Replacement;
-use crate::{project_into_ball, Error, Result, TerminationReason};
+use crate::{Error, Result, TerminationReason};
 
 pub use closed_form::Group;
-use closed_form::{fixed_tangent_targets, limit_targets};
-use network::Network;
 
 /// A move of grid node (i, j) to a new position.
 pub type NodeMove = ((usize, usize), Vec3);
@@ -82,6 +111,78 @@ pub enum Objective {
     ThinPlate,
 }
 
+/// Which directions of a net are closed (periodic, the last grid line repeating the first).
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum Closure {
+    /// Closed where the last grid line repeats the first ([`GridTopology::detect`]).
+    #[default]
+    Auto,
+    /// Open in both directions (the paper's surfaces).
+    Open,
+    /// Closed in u (row m repeats row 0).
+    U,
+    /// Closed in v (column n repeats column 0).
+    V,
+    /// Closed in both.
+    Both,
+}
+
+impl Closure {
+    /// The topology of the flat grid under this choice (poles detected on open ends).
+    pub fn topology(self, points: &[Vec3], u_count: usize, v_count: usize) -> GridTopology {
+        let (u, v) = match self {
+            Closure::Auto => return GridTopology::detect(points, u_count, v_count),
+            Closure::Open => (false, false),
+            Closure::U => (true, false),
+            Closure::V => (false, true),
+            Closure::Both => (true, true),
+        };
+        GridTopology::with_closure(points, u_count, v_count, u, v)
+    }
+}
+
+/// The restraining region of a point in the automatic mode (Zhang–Cheng §4.4 step 2.2).
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum Region {
+    /// The paper's sphere: radius |P̄_ij − P_ij|, P̄ from Eq. 21 on the starting surface.
+    Sphere,
+    /// The paper's radius, but never below the median of all of them: a noisy point that
+    /// happens to sit where its neighbours put it is not frozen at its start (the default).
+    #[default]
+    MedianFloor,
+}
+
+/// The rule that refused a step (see the module docs, "refusal rules").
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum Refusal {
+    /// The largest z_ij over the output's knots would rise.
+    MaxZ,
+    /// The network strain energy over the output's knots would rise.
+    Energy,
+    /// The thin-plate energy (the thin-plate objective's own) would rise.
+    ThinPlateEnergy,
+}
+
+impl Refusal {
+    /// `max-z`, `energy` or `thin-plate-energy`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Refusal::MaxZ => "max-z",
+            Refusal::Energy => "energy",
+            Refusal::ThinPlateEnergy => "thin-plate-energy",
+        }
+    }
+}
+
 /// Settings of [`SurfaceFairing`]. Defaults: Zhang–Cheng automatic, limit replacement,
 /// network objective, chord-length knots, boundary faired, tolerance 1e-6, 1000 steps.
 #[derive(Clone, Debug, PartialEq)]
@@ -106,6 +207,18 @@ pub struct SurfaceFairingSettings {
     pub fixed: BTreeSet<(usize, usize)>,
     /// No point moves farther than this from where it started.
     pub max_distance: Option<f64>,
+    /// Closed directions: auto (where the last grid line repeats the first), open, u, v, both.
+    pub closed: Closure,
+    /// Restraining region: sphere (the paper's radius |P̄ − P|) or median-floor (never below the median radius).
+    pub region: Region,
+    /// Scale of the automatic mode's restraining radii (1 = the paper's; inf = no regions).
+    pub radius_scale: f64,
+    /// Cap on the restraining radii, in quantisation steps of digitised data when it has one (0: no cap).
+    pub quantum_scale: f64,
+    /// Refresh the knots from the points after every step (on, default), or keep the first (off, the paper).
+    pub refresh_knots: bool,
+    /// Refuse a step that raises the largest z_ij or the energy (on, default), or take every step (off, the paper).
+    pub guard: bool,
 }
 
 impl Default for SurfaceFairingSettings {
@@ -117,10 +230,16 @@ impl Default for SurfaceFairingSettings {
             parametrization: Parametrization::ChordLength,
             fair_boundary: true,
             one_point_per_step: false,
-            tolerance: 1e-6,
+            tolerance: 1e-3,
             max_steps: 1000,
             fixed: BTreeSet::new(),
             max_distance: None,
+            closed: Closure::Auto,
+            region: Region::MedianFloor,
+            radius_scale: 1.5,
+            quantum_scale: 1.0,
+            refresh_knots: true,
+            guard: true,
         }
     }
 }
@@ -193,14 +312,56 @@ impl SurfaceFairingSettings {
         self.max_distance = Some(distance);
         self
     }
+    /// Sets the closed directions.
+    pub fn with_closed(mut self, closed: Closure) -> Self {
+        self.closed = closed;
+        self
+    }
+    /// Sets the restraining region rule.
+    pub fn with_region(mut self, region: Region) -> Self {
+        self.region = region;
+        self
+    }
+    /// Sets the cap on the restraining radii in quantisation steps (0: none).
+    pub fn with_quantum_scale(mut self, scale: f64) -> Self {
+        self.quantum_scale = scale;
+        self
+    }
+    /// Sets the scale of the restraining radii.
+    pub fn with_radius_scale(mut self, scale: f64) -> Self {
+        self.radius_scale = scale;
+        self
+    }
+    /// Refresh the knots after every step or not (the paper: not).
+    pub fn with_refresh_knots(mut self, refresh: bool) -> Self {
+        self.refresh_knots = refresh;
+        self
+    }
+    /// Refuse steps that make the surface worse or not (the paper: not).
+    pub fn with_guard(mut self, guard: bool) -> Self {
+        self.guard = guard;
+        self
+    }
+    /// The paper's algorithm as printed: knots fixed for the run, no refusal rule, the
+    /// paper's restraining spheres, closed nets treated as open (their seams and poles as
+    /// boundaries). The energy tolerance is kept (the paper gives no value).
+    pub fn as_printed(self) -> Self {
+        self.with_refresh_knots(false)
+            .with_guard(false)
+            .with_region(Region::Sphere)
+            .with_radius_scale(1.0)
+            .with_quantum_scale(0.0)
+            .with_closed(Closure::Open)
+    }
 }
 
-/// One step of a run, for plots and comparisons.
+/// One judged step of a run (a Kjellander sweep), for plots and comparisons.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SurfaceStep {
-    /// Network strain energy after the step (over the run's knots).
+    /// Network strain energy after the step, over the knots the output would have if the run
+    /// stopped there (the run's fixed knots when `refresh_knots` is off).
     pub energy: f64,
-    /// max z_ij after the step.
+    /// max z_ij after the step, over the same knots.
     pub max_z: f64,
     /// Points moved in the step.
     pub moves: usize,
@@ -209,24 +370,44 @@ pub struct SurfaceStep {
 /// What [`SurfaceFairing::run`] returns.
 #[derive(Clone, Debug)]
 pub struct SurfaceFairingResult {
-    /// The faired surface (the run's knots).
+    /// The faired surface, over the knots of its points (the run's fixed knots when
+    /// `refresh_knots` is off), periodic along the closed directions.
     pub surface: BicubicSplineSurface,
     /// The input points, flat (index i·(n+1) + j).
     pub original: Vec<Vec3>,
-    /// Steps made (not counting the boundary curves' steps).
+    /// Steps made (point moves for Kjellander; not counting the boundary curves' steps).
     pub steps: usize,
     /// Steps the boundary curve fairing made (automatic mode).
     pub boundary_steps: usize,
-    /// Network energy and max z_ij before the first step (after the boundary fairing).
+    /// Network energy and max z_ij of the input (over its own knots).
     pub start: SurfaceStep,
-    /// One entry per step.
+    /// One entry per accepted judged step (a sweep of Kjellander steps); the boundary
+    /// fairing, when accepted, is the first entry.
     pub history: Vec<SurfaceStep>,
-    /// The nodes whose final position differs from the input, i-major.
+    /// The nodes whose final position differs from the input, i-major (both copies of a
+    /// seam node).
     pub moved: Vec<(usize, usize)>,
     /// Restraining radii (automatic mode), flat; 0 on the boundary and at fixed nodes.
     pub radii: Option<Vec<f64>>,
-    /// Why the run stopped.
+    /// Why the run stopped (`StrategyDone` also when a refusal ended it, see `refusal`).
     pub termination: TerminationReason,
+    /// The rule that refused the last step tried, when a refusal ended the run.
+    pub refusal: Option<Refusal>,
+    /// Steps (and retries) refused by the rules, and the boundary fairing if it was undone.
+    pub refused_steps: usize,
+    /// Moves not made (nor their half or quarter) because they would have raised the network
+    /// energy or a z_ij above the step's largest.
+    pub refused_moves: usize,
+    /// Interior nodes the max-z rule pinned (kept where they were from then on), i-major,
+    /// both copies of a seam node: the grid lines next to nodes whose z the knot refresh
+    /// raised above the largest (module docs).
+    pub pinned: Vec<(usize, usize)>,
+    /// The closures and poles the run used.
+    pub topology: GridTopology,
+    /// The quantisation step found in the input ([`precision::quantum`]), if any: the
+    /// automatic mode's radii are capped at `quantum_scale` of it, and M_d is best read
+    /// against it.
+    pub quantum: Option<f64>,
     /// Time of the fairing itself.
     pub elapsed: Duration,
 }
@@ -273,15 +454,6 @@ impl SurfaceFairing {
     }
 }
 
-/// State of one run.
-struct Run<'a> {
-    settings: &'a SurfaceFairingSettings,
-    network: Network,
-    surface: BicubicSplineSurface,
-    original: Vec<Vec3>,
-    radii: Option<Vec<f64>>,
-}
-
 impl SurfaceFairing {
     /// A run with these settings.
     pub fn new(settings: SurfaceFairingSettings) -> Self {
@@ -302,11 +474,13 @@ impl SurfaceFairing {
         }
     }
 
-    /// Fairs the grid `grid[i][j]` = P_ij (at least 3 × 3). O(steps · m·n·window).
+    /// Fairs the grid `grid[i][j]` = P_ij (at least 3 × 3). O(steps · m·n) plus O(window)
+    /// per point move (module docs).
     ///
-    /// Errors: a grid the surface cannot be built through; a bad setting
-    /// ([`Error::BadParameter`]); a fixed node outside the grid or a bad point that is not an
-    /// interior node ([`Error::BadConstraint`]).
+    /// Errors: a grid the surface cannot be built through (a closed direction whose last
+    /// line does not repeat its first); a bad setting ([`Error::BadParameter`]); a fixed node
+    /// outside the grid or a bad point that is not an interior node
+    /// ([`Error::BadConstraint`]).
     pub fn run(&self, grid: &[Vec<Vec3>]) -> Result<SurfaceFairingResult> {
         let settings = &self.settings;
         if settings.tolerance.is_nan() || settings.tolerance < 0.0 {
@@ -333,294 +507,25 @@ impl SurfaceFairing {
                     "the thin-plate objective (Eq. 27-29) has no limit form; use the iterated replacement",
             });
         }
-        let start_time = Instant::now();
-        let surface = BicubicSplineSurface::with_settings(
-            grid,
-            &BicubicSurfaceSettings::default().with_parametrization(settings.parametrization),
-        )?;
-        let (u_count, v_count) = surface.shape();
-        if u_count < 3 || v_count < 3 {
+        let start_time = std::time::Instant::now();
+        if settings.quantum_scale.is_nan()
+            || settings.quantum_scale < 0.0
+            || settings.quantum_scale.is_infinite()
+        {
             return Err(Error::BadParameter {
-                name: "grid",
-                value: format!("{u_count} × {v_count}"),
-                reason: "surface fairing needs at least 3 × 3 points (an interior point)",
+                name: "quantum-scale",
+                value: settings.quantum_scale.to_string(),
+                reason: "must be a finite non-negative number (0: no cap)",
             });
         }
-        if let Some(&(i, j)) = settings
-            .fixed
-            .iter()
-            .find(|&&(i, j)| i >= u_count || j >= v_count)
-        {
-            return Err(Error::BadConstraint {
-                reason: format!("fixed node ({i}, {j}) is outside the {u_count} × {v_count} grid"),
+        if settings.radius_scale.is_nan() || settings.radius_scale < 0.0 {
+            return Err(Error::BadParameter {
+                name: "radius-scale",
+                value: settings.radius_scale.to_string(),
+                reason: "must be a non-negative number (inf: no restraining regions)",
             });
         }
-        if let SurfaceMode::Interactive(list) = &settings.mode {
-            if let Some(&(i, j)) = list
-                .iter()
-                .find(|&&(i, j)| i == 0 || j == 0 || i + 1 >= u_count || j + 1 >= v_count)
-            {
-                return Err(Error::BadConstraint {
-                    reason: format!(
-                        "bad point ({i}, {j}) is not an interior node of the {u_count} × {v_count} grid"
-                    ),
-                });
-            }
-        }
-        let original = surface.points().to_vec();
-        let mut points = original.clone();
-        let mut surface = surface;
-        let mut boundary_steps = 0;
-        if settings.mode == SurfaceMode::Automatic && settings.fair_boundary {
-            let (moves, steps) = boundary::fair_boundary(
-                &mut points,
-                u_count,
-                v_count,
-                settings.tolerance,
-                settings.max_distance,
-                |i, j| settings.fixed.contains(&(i, j)),
-            )?;
-            boundary_steps = steps;
-            surface.move_points(&moves)?;
-        }
-        let network = Network::new(&points, surface.u_knots(), surface.v_knots())?;
-        let mut run = Run {
-            settings,
-            network,
-            surface,
-            original,
-            radii: None,
-        };
-        if settings.mode == SurfaceMode::Automatic {
-            run.radii = Some(run.restraining_radii()?);
-        }
-        let start = run.record(0);
-        let mut history = Vec::new();
-        let mut termination = TerminationReason::MaxIterations;
-        while history.len() < settings.max_steps {
-            let before = run.network.energy();
-            let (moves, counts) = run.step()?;
-            if !moves.is_empty() && settings.objective != Objective::ThinPlate {
-                run.surface.move_points(&moves)?;
-            }
-            run.network.resum_energy();
-            history.push(run.record(moves.len()));
-            let after = run.network.energy();
-            if moves.is_empty() {
-                termination = TerminationReason::StrategyDone;
-                break;
-            }
-            // One point per step (Kjellander): the tolerance applies to the change over as
-            // many steps as there are candidate points (a sweep's worth), else one small
-            // point would stop the run.
-            let (reference, enough) = if settings.one_point_per_step {
-                let span = run.candidate_count().max(1);
-                let k = history.len();
-                let reference = if k > span {
-                    history[k - 1 - span].energy
-                } else {
-                    start.energy
-                };
-                (reference, k >= span)
-            } else {
-                (before, true)
-            };
-            if counts && enough && (reference - after).abs() <= settings.tolerance * reference.abs() {
-                termination = TerminationReason::Converged;
-                break;
-            }
-        }
-        let final_points = run.surface.points();
-        let moved = (0..u_count)
-            .flat_map(|i| (0..v_count).map(move |j| (i, j)))
-            .filter(|&(i, j)| final_points[i * v_count + j] != run.original[i * v_count + j])
-            .collect();
-        Ok(SurfaceFairingResult {
-            steps: history.len(),
-            boundary_steps,
-            start,
-            history,
-            moved,
-            radii: run.radii,
-            termination,
-            elapsed: start_time.elapsed(),
-            original: run.original,
-            surface: run.surface,
-        })
-    }
-}
-
-impl Run<'_> {
-    fn record(&self, moves: usize) -> SurfaceStep {
-        SurfaceStep {
-            energy: self.network.energy(),
-            max_z: self.surface.max_z(),
-            moves,
-        }
-    }
-
-    fn shape(&self) -> (usize, usize) {
-        self.network.shape()
-    }
-
-    fn is_movable(&self, i: usize, j: usize) -> bool {
-        let (u_count, v_count) = self.shape();
-        i >= 1 && j >= 1 && i + 1 < u_count && j + 1 < v_count && !self.settings.fixed.contains(&(i, j))
-    }
-
-    /// How many points a step chooses from: the movable interior points (automatic) or the
-    /// movable named points (interactive).
-    fn candidate_count(&self) -> usize {
-        let (u_count, v_count) = self.shape();
-        match &self.settings.mode {
-            SurfaceMode::Automatic => (1..u_count - 1)
-                .flat_map(|i| (1..v_count - 1).map(move |j| (i, j)))
-                .filter(|&(i, j)| self.is_movable(i, j))
-                .count(),
-            SurfaceMode::Interactive(list) => {
-                let mut list: Vec<(usize, usize)> = list
-                    .iter()
-                    .copied()
-                    .filter(|&(i, j)| self.is_movable(i, j))
-                    .collect();
-                list.sort_unstable();
-                list.dedup();
-                list.len()
-            }
-        }
-    }
-
-    /// Step 2.2: |P̄_ij − P_ij| with P̄ from Eq. 21, on the surface after step 2.1.
-    fn restraining_radii(&self) -> Result<Vec<f64>> {
-        let (u_count, v_count) = self.shape();
-        let mut radii = vec![0.0; u_count * v_count];
-        for i in 1..u_count - 1 {
-            for j in 1..v_count - 1 {
-                if self.is_movable(i, j) {
-                    let target = limit_targets(&self.network, &[(i, j)]).ok_or_else(|| singular("Eq. 21"))?;
-                    radii[i * v_count + j] = (target[0] - self.network.point(i, j)).norm();
-                }
-            }
-        }
-        Ok(radii)
-    }
-
-    /// The targets of a group under the settings.
-    fn targets(&mut self, group: &[(usize, usize)]) -> Result<Vec<Vec3>> {
-        let found = match (self.settings.objective, self.settings.replacement) {
-            (Objective::Network, Replacement::Limit) => limit_targets(&self.network, group),
-            (Objective::Network, Replacement::Iterated) => fixed_tangent_targets(&self.network, group),
-            (Objective::ThinPlate, _) => thin_plate::thin_plate_targets(&self.surface, group)?,
-        };
-        found.ok_or_else(|| singular("group system"))
-    }
-
-    /// Moves a group towards its targets, each point kept in its restraining sphere
-    /// (automatic mode) and in the distance limit; fixed nodes are never in a group. Returns
-    /// the moves made and whether a region cut any of them short. A group move that would
-    /// raise the network energy (possible only when a region cuts a pair or block) is undone.
-    fn move_group(&mut self, group: &[(usize, usize)]) -> Result<(Vec<NodeMove>, bool)> {
-        let targets = self.targets(group)?;
-        let v_count = self.shape().1;
-        let mut moves = Vec::new();
-        let mut limited = false;
-        let mut undo = Vec::new();
-        for (&(i, j), &target) in group.iter().zip(&targets) {
-            let k = i * v_count + j;
-            let origin = self.original[k];
-            let mut to = target;
-            if let Some(radii) = &self.radii {
-                to = project_into_ball(&origin, radii[k], &to);
-            }
-            if let Some(d) = self.settings.max_distance {
-                to = project_into_ball(&origin, d, &to);
-            }
-            limited |= to != target;
-            let current = self.network.point(i, j);
-            if to != current {
-                moves.push(((i, j), to));
-                undo.push(((i, j), current));
-            }
-        }
-        if moves.is_empty() {
-            return Ok((moves, limited));
-        }
-        let before = self.network.energy();
-        self.network.move_points(&moves)?;
-        if group.len() > 1
-            && self.settings.objective == Objective::Network
-            && self.network.energy() > before * (1.0 + 4.0 * f64::EPSILON)
-        {
-            self.network.move_points(&undo)?;
-            return Ok((Vec::new(), true));
-        }
-        if self.settings.objective == Objective::ThinPlate {
-            self.surface.move_points(&moves)?;
-        }
-        Ok((moves, limited))
-    }
-
-    /// One step; returns the moves (last position of each node) and whether the step counts
-    /// for the tolerance test.
-    fn step(&mut self) -> Result<(Vec<NodeMove>, bool)> {
-        let (u_count, v_count) = self.shape();
-        let candidates: Vec<(usize, usize)> = match &self.settings.mode {
-            SurfaceMode::Automatic => (1..u_count - 1)
-                .flat_map(|i| (1..v_count - 1).map(move |j| (i, j)))
-                .filter(|&(i, j)| self.is_movable(i, j))
-                .collect(),
-            SurfaceMode::Interactive(list) => {
-                let mut list: Vec<(usize, usize)> = list
-                    .iter()
-                    .copied()
-                    .filter(|&(i, j)| self.is_movable(i, j))
-                    .collect();
-                list.sort_unstable();
-                list.dedup();
-                list
-            }
-        };
-        // Steps 1.2 / 2.3: sort by z_ij, largest first (ties by index, for reproducibility).
-        let mut order: Vec<((usize, usize), f64)> = candidates
-            .iter()
-            .map(|&(i, j)| ((i, j), self.network.z(i, j)))
-            .collect();
-        order.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
-        let mut all_moves = Vec::new();
-        if self.settings.one_point_per_step {
-            // Kjellander: the worst point that can still move (one its sphere holds at the
-            // border, with its target outside, is passed over in this step).
-            for &(node, _) in &order {
-                let (moves, _) = self.move_group(&[node])?;
-                if !moves.is_empty() {
-                    return Ok((moves, true));
-                }
-            }
-            return Ok((all_moves, false));
-        }
-        let groups: Vec<Group> = match self.settings.mode {
-            SurfaceMode::Automatic => order.iter().map(|&(node, _)| vec![node]).collect(),
-            SurfaceMode::Interactive(_) => group_bad_points(&order.iter().map(|o| o.0).collect::<Vec<_>>()),
-        };
-        for mut group in groups {
-            group.retain(|&(i, j)| self.is_movable(i, j));
-            if group.is_empty() {
-                continue;
-            }
-            let (moves, _) = self.move_group(&group)?;
-            all_moves.extend(moves);
-        }
-        // Keep each node's last position only.
-        let mut seen = vec![false; u_count * v_count];
-        let mut last: Vec<NodeMove> = Vec::with_capacity(all_moves.len());
-        for (node, p) in all_moves.into_iter().rev() {
-            let slot = &mut seen[node.0 * v_count + node.1];
-            if !*slot {
-                *slot = true;
-                last.push((node, p));
-            }
-        }
-        Ok((last, true))
+        run::run(settings, grid, start_time)
     }
 }
 

@@ -1,128 +1,239 @@
 //! The network of iso-parametric curves of a bicubic spline surface (Zhang–Cheng §4): the
-//! natural cubic spline of every u-line j (P_{0,j}..P_{m,j} over u_0..u_m) and of every v-line i
-//! (P_{i,0}..P_{i,n} over v_0..v_n), with their tangents M^u, M^v, third-derivative jumps and
-//! strain energies kept up to date by local updates.
+//! cubic spline of every u-line j (P_{0,j}..P_{m,j} over u_0..u_m) and of every v-line i
+//! (P_{i,0}..P_{i,n} over v_0..v_n), natural at open ends and periodic along a closed
+//! direction, with their tangents M^u, M^v, third-derivative jumps and strain energy kept up
+//! to date by local updates.
 //!
 //! These curves are exactly the knot lines of [`BicubicSplineSurface`](curve_repr::BicubicSplineSurface)
-//! (its module docs: every u-line S(·, v_j) is the natural spline through row j), so z_ij
-//! (Eq. 26), the objectives of Eq. 18, 22, 24 and the network strain energy are read here
-//! without the twists, which only the thin-plate variant needs.
+//! (its module docs: every u-line S(·, v_j) is the spline through row j), so z_ij (Eq. 26),
+//! the objectives of Eq. 18, 22, 24 and the network strain energy are read here without the
+//! twists, which only the thin-plate variant needs.
+//!
+//! **Distinct nodes.** A closed direction's repeated grid line is not stored: the network has
+//! N distinct nodes along it, indices taken mod N (node N − 1's next node is node 0, over the
+//! closing knot step). The caller maps the grid's layout to these nodes and back.
 //!
 //! Every u-line has the same knots, so the same linear map A_u takes its points to its
-//! tangents (M^u_{·,j} = A_u P_{·,j}, Eq. 2 with free ends). Moving P_ij by δ therefore adds
-//! δ·(A_u e_i)_k to M^u_{k,j}: the response A_u e_i is measured once per i (a unit move on a
-//! zero [`HermiteSpline`] over the knots, which re-solves only the window whose change exceeds
-//! 1e-17 relative, see curve-repr's `hermite::update`) and a move is then two short vector
-//! updates, plus the segment energies in the response's window. A move costs O(window), a
-//! constant (~30 knots per side for uniform knots, at most ~57).
+//! tangents (M^u_{·,j} = A_u P_{·,j}, Eq. 2). Moving P_ij by δ therefore adds δ·(A_u e_i)_k to
+//! M^u_{k,j}: the response A_u e_i is measured once per i (a unit move on a zero
+//! [`HermiteSpline`] over the knots, which re-solves only the window whose change exceeds
+//! 1e-17 relative, see curve-repr's `hermite::update`) and a move is two short vector updates.
+//!
+//! The jumps J^u, J^v are linear in the points too, so they are kept the same way (the
+//! response ∂J_k/∂P_i = K_{k,i}, one column of the stiffness, measured with the tangents'),
+//! z_ij = |J^u_ij| + |J^v_ij| is read in O(1), and a move can be checked against a cap on
+//! every z it changes ([`Network::exceeds`]) at little more than the move's own cost: each
+//! node carries an upper bound of its z that a move raises by |K_{k,i}|·|δ| (no square root),
+//! and only a node whose bound passes the cap has its z computed.
+//!
+//! **Energy.** With the knots fixed the strain energy of one line is E = Σ_k P_k · J_k, J the
+//! third-derivative jumps (∫|C''|² integrated by parts twice: C'' vanishes at natural ends and
+//! the boundary terms cancel round a closed line), and J = K P with K symmetric, so
+//! E(P + δ e_i) = E + 2 J_i·δ + K_ii |δ|². A move of P_ij therefore changes the network energy
+//! by 2(J^u_ij + J^v_ij)·δ + (K_u[i,i] + K_v[j,j]) |δ|², computed in O(1) from the jumps before
+//! the move. A move costs O(window), a constant (~30 knots per side for uniform knots, at most
+//! ~57); [`Network::recompute_energy`] sums the segments exactly in O(m·n).
 
-use curve_repr::{HermiteSettings, HermiteSpline, Interpolant, Vec3, Vector};
+use curve_repr::{HermiteEnds, HermiteSettings, HermiteSpline, Interpolant, Vec3, Vector};
 
 use super::super::strain_energy::hermite_energy;
 use crate::{Error, Result};
-
-/// The response of one knot vector's natural splines to unit point moves, and the stiffness
-/// J = K P read from it.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Stiffness {
-    /// K_{i,i}, per knot (0 at the two ends, where there is no jump).
-    pub diagonal: Vec<f64>,
-    /// K_{i,i+1} = K_{i+1,i} (K is symmetric), per knot.
-    pub upper: Vec<f64>,
-    /// For each knot i: the first index lo and the values ∂M_k/∂P_i for k = lo, lo + 1, …
-    /// (zero outside).
-    response: Vec<(usize, Vec<f64>)>,
-    /// The knot steps h_k = t_{k+1} − t_k.
-    steps: Vec<f64>,
-}
 
 /// C''' on a Hermite segment: (6(M_0 + M_1) − 12(P_1 − P_0)/h)/h².
 fn third(p0: Vec3, p1: Vec3, m0: Vec3, m1: Vec3, h: f64) -> Vec3 {
     ((m0 + m1) * 6.0 - (p1 - p0) * (12.0 / h)) / (h * h)
 }
 
+/// The response of one knot vector's splines (natural, or periodic when closed) to unit point
+/// moves, and the stiffness J = K P read from it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Stiffness {
+    /// Distinct nodes N.
+    count: usize,
+    /// Whether the line is closed (indices mod N).
+    closed: bool,
+    /// K_{k,k}, per node (0 at the two ends of an open line, where there is no jump).
+    pub diagonal: Vec<f64>,
+    /// K_{k,next(k)} = K_{next(k),k} (K is symmetric), per node; 0 where there is no next
+    /// node or either node is an open end.
+    pub side: Vec<f64>,
+    /// For each node k: the first index lo and the values ∂M_l/∂P_k for l = lo, lo + 1, …
+    /// (mod N when closed; zero outside).
+    response: Vec<(usize, Vec<f64>)>,
+    /// For each node k: the first index lo and the values ∂J_l/∂P_k = K_{l,k} (0 at open
+    /// ends), as `response`.
+    jump_response: Vec<(usize, Vec<f64>)>,
+    /// The knot steps h_k from node k to node next(k) (N − 1 open, N closed).
+    steps: Vec<f64>,
+}
+
 impl Stiffness {
-    /// Measures the responses by moving one point at a time of the zero scalar natural
-    /// spline over `knots` to 1 (the tangents are linear in the points, so the response is
-    /// exact up to rounding), and K_{i,i}, K_{i,i+1} from the jumps next to it.
-    /// O(len · window).
-    pub fn new(knots: &[f64]) -> Result<Self> {
-        let len = knots.len();
-        let settings = HermiteSettings::<1>::new().with_parameters(knots.to_vec());
-        let mut line = HermiteSpline::new(&vec![Vector::<1>::zeros(); len], &settings)?;
+    /// Measures the responses by moving one point at a time of the zero scalar spline over
+    /// `knots` to 1 (the tangents are linear in the points, so the response is exact up to
+    /// rounding), and K from the jumps next to it. `knots` has one entry per node, plus the
+    /// closing one when `closed`. O(N · window).
+    pub fn new(knots: &[f64], closed: bool) -> Result<Self> {
+        let count = knots.len() - usize::from(closed);
+        let mut settings = HermiteSettings::<1>::new().with_parameters(knots.to_vec());
+        if closed {
+            settings = settings.with_ends(HermiteEnds::Closed);
+        }
+        let mut line = HermiteSpline::new(&vec![Vector::<1>::zeros(); count], &settings)?;
         let steps: Vec<f64> = knots.windows(2).map(|w| w[1] - w[0]).collect();
-        let mut diagonal = vec![0.0; len];
-        let mut upper = vec![0.0; len];
-        let mut response = Vec::with_capacity(len);
-        for i in 0..len {
+        let mut stiffness = Self {
+            count,
+            closed,
+            diagonal: vec![0.0; count],
+            side: vec![0.0; count],
+            response: Vec::with_capacity(count),
+            jump_response: Vec::with_capacity(count),
+            steps,
+        };
+        for i in 0..count {
             line.move_points(&[(i, Vector::<1>::new(1.0))])?;
             let tangents: Vec<f64> = line.tangents().iter().map(|t| t[0]).collect();
-            let lo = tangents.iter().position(|&t| t != 0.0).unwrap_or(i);
-            let hi = tangents.iter().rposition(|&t| t != 0.0).unwrap_or(i);
-            response.push((lo, tangents[lo..=hi.max(lo)].to_vec()));
-            let point = |k: usize| Vec3::new(if k == i { 1.0 } else { 0.0 }, 0.0, 0.0);
-            let tangent = |k: usize| Vec3::new(tangents[k], 0.0, 0.0);
-            let jump = |k: usize| {
-                third(point(k), point(k + 1), tangent(k), tangent(k + 1), steps[k])
-                    - third(point(k - 1), point(k), tangent(k - 1), tangent(k), steps[k - 1])
+            stiffness.response.push(window(&tangents, i, closed));
+            let point = |k: usize| if k == i { 1.0 } else { 0.0 };
+            let jump = |k: usize| -> f64 {
+                let after = stiffness.next(k).map_or(0.0, |n| {
+                    third1(point(k), point(n), tangents[k], tangents[n], stiffness.steps[k])
+                });
+                let before = stiffness.previous(k).map_or(0.0, |p| {
+                    third1(point(p), point(k), tangents[p], tangents[k], stiffness.steps[p])
+                });
+                after - before
             };
-            if i >= 1 && i + 1 < len {
-                diagonal[i] = jump(i)[0];
+            let jumps: Vec<f64> = (0..count)
+                .map(|k| if stiffness.is_interior(k) { jump(k) } else { 0.0 })
+                .collect();
+            let jump_window = window(&jumps, i, closed);
+            let diagonal = stiffness.is_interior(i).then(|| jump(i));
+            // K_{p,i} = ∂J_p/∂P_i, p the previous node.
+            let side = stiffness
+                .previous(i)
+                .filter(|&p| stiffness.is_interior(p) && stiffness.is_interior(i))
+                .map(|p| (p, jump(p)));
+            stiffness.jump_response.push(jump_window);
+            if let Some(value) = diagonal {
+                stiffness.diagonal[i] = value;
             }
-            if i >= 2 {
-                // K_{i−1,i} = ∂J_{i−1}/∂P_i.
-                upper[i - 1] = jump(i - 1)[0];
+            if let Some((p, value)) = side {
+                stiffness.side[p] = value;
             }
             line.move_points(&[(i, Vector::<1>::zeros())])?;
         }
-        Ok(Self {
-            diagonal,
-            upper,
-            response,
-            steps,
-        })
+        Ok(stiffness)
     }
 
-    /// K_{a,b} for |a − b| ≤ 1, else 0 (the far entries are not needed: the groups of
+    /// The next node along the line (wrapping when closed).
+    pub fn next(&self, k: usize) -> Option<usize> {
+        if k + 1 < self.count {
+            Some(k + 1)
+        } else {
+            self.closed.then_some(0)
+        }
+    }
+
+    /// The previous node along the line (wrapping when closed).
+    pub fn previous(&self, k: usize) -> Option<usize> {
+        if k > 0 {
+            Some(k - 1)
+        } else {
+            self.closed.then(|| self.count - 1)
+        }
+    }
+
+    /// Whether node k has a jump (every node of a closed line; not an open line's ends).
+    pub fn is_interior(&self, k: usize) -> bool {
+        self.closed || (k >= 1 && k + 1 < self.count)
+    }
+
+    /// The knot step from node k to node next(k).
+    pub fn step(&self, k: usize) -> f64 {
+        self.steps[k]
+    }
+
+    /// K_{a,b} for a = b or neighbours, else 0 (the far entries are not needed: the groups of
     /// Eq. 23 and 25 are adjacent).
     pub fn entry(&self, a: usize, b: usize) -> f64 {
-        match a.abs_diff(b) {
-            0 => self.diagonal.get(a).copied().unwrap_or(0.0),
-            1 => self.upper.get(a.min(b)).copied().unwrap_or(0.0),
-            _ => 0.0,
+        if a == b {
+            self.diagonal.get(a).copied().unwrap_or(0.0)
+        } else if self.next(a) == Some(b) {
+            self.side.get(a).copied().unwrap_or(0.0)
+        } else if self.next(b) == Some(a) {
+            self.side.get(b).copied().unwrap_or(0.0)
+        } else {
+            0.0
         }
     }
 }
 
-/// The iso-parametric spline network of a grid (see the module docs).
+/// Scalar C''' on a Hermite segment.
+fn third1(p0: f64, p1: f64, m0: f64, m1: f64, h: f64) -> f64 {
+    (6.0 * (m0 + m1) - 12.0 * (p1 - p0) / h) / (h * h)
+}
+
+/// Responses are kept where they exceed this fraction of their largest entry: the neglected
+/// far tail (it decays by ~0.27 per knot) changes a tangent or a jump by less than 1e-13 of
+/// the move's own effect, and the network is rebuilt exactly at every step.
+pub const RESPONSE_TRIM: f64 = 1e-13;
+
+/// The significant part of a response around node i: `(lo, values)` with values for lo,
+/// lo + 1, … (mod N when closed), from the first to the last entry above [`RESPONSE_TRIM`]
+/// of the largest.
+fn window(values: &[f64], i: usize, closed: bool) -> (usize, Vec<f64>) {
+    let count = values.len();
+    let largest = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let significant = |v: &f64| v.abs() > RESPONSE_TRIM * largest;
+    if !closed {
+        let lo = values.iter().position(significant).unwrap_or(i);
+        let hi = values.iter().rposition(significant).unwrap_or(i);
+        return (lo, values[lo..=hi.max(lo)].to_vec());
+    }
+    // Offsets −⌊(N−1)/2⌋ … ⌊N/2⌋ round i name every node once.
+    let back = (count - 1) / 2;
+    let ring: Vec<f64> = (0..count)
+        .map(|d| values[(i + count - back + d) % count])
+        .collect();
+    let first = ring.iter().position(significant).unwrap_or(back);
+    let last = ring.iter().rposition(significant).unwrap_or(back).max(first);
+    ((i + count - back + first) % count, ring[first..=last].to_vec())
+}
+
+/// The iso-parametric spline network of a grid of distinct nodes (see the module docs).
 #[derive(Clone, Debug)]
 pub struct Network {
-    /// m + 1.
+    /// Distinct nodes along u.
     u_count: usize,
-    /// n + 1.
+    /// Distinct nodes along v.
     v_count: usize,
-    u_knots: Vec<f64>,
-    v_knots: Vec<f64>,
-    /// P_ij at i·(n+1) + j.
+    /// P_ij at i·v_count + j.
     points: Vec<Vec3>,
-    /// M^u_ij at i·(n+1) + j.
+    /// M^u_ij at i·v_count + j.
     u_tangents: Vec<Vec3>,
-    /// M^v_ij at i·(n+1) + j.
+    /// M^v_ij at i·v_count + j.
     v_tangents: Vec<Vec3>,
-    /// Energy of u-line segment (i, j) (from u_i to u_{i+1}) at i·(n+1) + j.
-    u_segment_energy: Vec<f64>,
-    /// Energy of v-line segment (i, j) (from v_j to v_{j+1}) at i·(n+1) + j.
-    v_segment_energy: Vec<f64>,
+    /// J^u_ij (0 where the node is an open end along u).
+    u_jumps: Vec<Vec3>,
+    /// J^v_ij (0 where the node is an open end along v).
+    v_jumps: Vec<Vec3>,
+    /// An upper bound of z_ij at every node (exact after a rebuild, raised by moves).
+    z_bounds: Vec<f64>,
+    /// Whether moves update the tangents (only Eq. 20 and the energy sum read them; the
+    /// jumps, z and the energy change do not).
+    track_tangents: bool,
     energy: f64,
     u_stiffness: Stiffness,
     v_stiffness: Stiffness,
 }
 
 impl Network {
-    /// The network of the flat grid `points[i·v_count + j]` = P_ij over the given knots
-    /// (one per grid line). O(m·n + (m + n) · window).
-    pub fn new(points: &[Vec3], u_knots: &[f64], v_knots: &[f64]) -> Result<Self> {
-        let (u_count, v_count) = (u_knots.len(), v_knots.len());
+    /// The network of the flat grid of distinct nodes `points[i·v_count + j]` = P_ij over the
+    /// given knots: one per node along an open direction, one per node and the closing one
+    /// along a closed direction (`closed` = (u, v)). O(m·n + (m + n) · window).
+    pub fn new(points: &[Vec3], u_knots: &[f64], v_knots: &[f64], closed: (bool, bool)) -> Result<Self> {
+        let u_count = u_knots.len() - usize::from(closed.0);
+        let v_count = v_knots.len() - usize::from(closed.1);
         if points.len() != u_count * v_count {
             return Err(curve_repr::Error::LengthMismatch {
                 what: "grid points",
@@ -131,127 +242,210 @@ impl Network {
             }
             .into());
         }
-        let u_settings = HermiteSettings::<3>::new().with_parameters(u_knots.to_vec());
-        let v_settings = HermiteSettings::<3>::new().with_parameters(v_knots.to_vec());
+        let settings = |knots: &[f64], closed: bool| {
+            let s = HermiteSettings::<3>::new().with_parameters(knots.to_vec());
+            if closed {
+                s.with_ends(HermiteEnds::Closed)
+            } else {
+                s
+            }
+        };
+        let (u_settings, v_settings) = (settings(u_knots, closed.0), settings(v_knots, closed.1));
         let mut u_tangents = vec![Vec3::zeros(); points.len()];
         for j in 0..v_count {
             let line: Vec<Vec3> = points.iter().skip(j).step_by(v_count).copied().collect();
             let spline = HermiteSpline::new(&line, &u_settings)?;
-            for (i, t) in spline.tangents().iter().enumerate() {
+            for (i, t) in spline.tangents().iter().take(u_count).enumerate() {
                 u_tangents[i * v_count + j] = *t;
             }
         }
         let mut v_tangents = Vec::with_capacity(points.len());
         for line in points.chunks(v_count) {
-            v_tangents.extend_from_slice(HermiteSpline::new(line, &v_settings)?.tangents());
+            v_tangents.extend_from_slice(&HermiteSpline::new(line, &v_settings)?.tangents()[..v_count]);
         }
         let mut network = Self {
             u_count,
             v_count,
-            u_knots: u_knots.to_vec(),
-            v_knots: v_knots.to_vec(),
             points: points.to_vec(),
             u_tangents,
             v_tangents,
-            u_segment_energy: vec![0.0; points.len()],
-            v_segment_energy: vec![0.0; points.len()],
+            u_jumps: Vec::new(),
+            v_jumps: Vec::new(),
+            z_bounds: Vec::new(),
+            track_tangents: true,
             energy: 0.0,
-            u_stiffness: Stiffness::new(u_knots)?,
-            v_stiffness: Stiffness::new(v_knots)?,
+            u_stiffness: Stiffness::new(u_knots, closed.0)?,
+            v_stiffness: Stiffness::new(v_knots, closed.1)?,
         };
-        for i in 0..u_count {
-            for j in 0..v_count {
-                if i + 1 < u_count {
-                    network.u_segment_energy[i * v_count + j] = network.u_segment(i, j);
-                }
-                if j + 1 < v_count {
-                    network.v_segment_energy[i * v_count + j] = network.v_segment(i, j);
-                }
-            }
-        }
-        network.resum_energy();
+        network.recompute_energy();
+        network.recompute_jumps();
         Ok(network)
     }
 
-    fn u_segment(&self, i: usize, j: usize) -> f64 {
-        let (a, b) = (i * self.v_count + j, (i + 1) * self.v_count + j);
-        hermite_energy(
-            self.points[a],
-            self.points[b],
-            self.u_tangents[a],
-            self.u_tangents[b],
-            self.u_stiffness.steps[i],
-        )
+    /// The jumps and the z bounds from the tangents. O(m·n).
+    fn recompute_jumps(&mut self) {
+        let total = self.u_count * self.v_count;
+        let (mut u_jumps, mut v_jumps) = (vec![Vec3::zeros(); total], vec![Vec3::zeros(); total]);
+        for i in 0..self.u_count {
+            for j in 0..self.v_count {
+                let k = self.index(i, j);
+                if self.u_stiffness.is_interior(i) {
+                    u_jumps[k] = self.u_jump_from_tangents(i, j);
+                }
+                if self.v_stiffness.is_interior(j) {
+                    v_jumps[k] = self.v_jump_from_tangents(i, j);
+                }
+            }
+        }
+        self.z_bounds = u_jumps
+            .iter()
+            .zip(&v_jumps)
+            .map(|(a, b)| a.norm() + b.norm())
+            .collect();
+        self.u_jumps = u_jumps;
+        self.v_jumps = v_jumps;
     }
 
-    fn v_segment(&self, i: usize, j: usize) -> f64 {
-        let (a, b) = (i * self.v_count + j, i * self.v_count + j + 1);
-        hermite_energy(
-            self.points[a],
-            self.points[b],
-            self.v_tangents[a],
-            self.v_tangents[b],
-            self.v_stiffness.steps[j],
-        )
+    /// The network energy as the sum of every segment's ∫|C''|² (drops the rounding that the
+    /// O(1) updates gather). O(m·n).
+    pub fn recompute_energy(&mut self) {
+        let mut energy = 0.0;
+        for j in 0..self.v_count {
+            for i in 0..self.u_count {
+                if let Some(n) = self.u_stiffness.next(i) {
+                    let (a, b) = (self.index(i, j), self.index(n, j));
+                    energy += hermite_energy(
+                        self.points[a],
+                        self.points[b],
+                        self.u_tangents[a],
+                        self.u_tangents[b],
+                        self.u_stiffness.step(i),
+                    );
+                }
+            }
+        }
+        for i in 0..self.u_count {
+            for j in 0..self.v_count {
+                if let Some(n) = self.v_stiffness.next(j) {
+                    let (a, b) = (self.index(i, j), self.index(i, n));
+                    energy += hermite_energy(
+                        self.points[a],
+                        self.points[b],
+                        self.v_tangents[a],
+                        self.v_tangents[b],
+                        self.v_stiffness.step(j),
+                    );
+                }
+            }
+        }
+        self.energy = energy;
     }
 
-    /// (m + 1, n + 1).
-    pub fn shape(&self) -> (usize, usize) {
-        (self.u_count, self.v_count)
+    fn index(&self, i: usize, j: usize) -> usize {
+        i * self.v_count + j
     }
 
-    /// The knots u_0..u_m.
-    pub fn u_knots(&self) -> &[f64] {
-        &self.u_knots
+    /// Whether node (i, j) has a z_ij (interior along both directions, a seam counting as
+    /// interior).
+    pub fn is_interior(&self, i: usize, j: usize) -> bool {
+        i < self.u_count
+            && j < self.v_count
+            && self.u_stiffness.is_interior(i)
+            && self.v_stiffness.is_interior(j)
     }
 
-    /// The knots v_0..v_n.
-    pub fn v_knots(&self) -> &[f64] {
-        &self.v_knots
+    /// All points, flat (distinct nodes).
+    pub fn points(&self) -> &[Vec3] {
+        &self.points
     }
 
     /// P_ij (callers keep i, j inside the grid).
     pub fn point(&self, i: usize, j: usize) -> Vec3 {
-        self.points[i * self.v_count + j]
+        self.points[self.index(i, j)]
     }
 
     /// M^u_ij = ∂S/∂u(u_i, v_j).
     pub fn u_tangent(&self, i: usize, j: usize) -> Vec3 {
-        self.u_tangents[i * self.v_count + j]
+        self.u_tangents[self.index(i, j)]
     }
 
     /// M^v_ij = ∂S/∂v(u_i, v_j).
     pub fn v_tangent(&self, i: usize, j: usize) -> Vec3 {
-        self.v_tangents[i * self.v_count + j]
+        self.v_tangents[self.index(i, j)]
     }
 
-    /// ∂³S/∂u³(u_i+, v_j) − ∂³S/∂u³(u_i−, v_j) at an interior node.
+    /// ∂³S/∂u³(u_i+, v_j) − ∂³S/∂u³(u_i−, v_j) from the tangents, at a node interior along u.
+    fn u_jump_from_tangents(&self, i: usize, j: usize) -> Vec3 {
+        let s = &self.u_stiffness;
+        let (p, m) = (|k: usize| self.point(k, j), |k: usize| self.u_tangent(k, j));
+        let after = s
+            .next(i)
+            .map_or(Vec3::zeros(), |n| third(p(i), p(n), m(i), m(n), s.step(i)));
+        let before = s
+            .previous(i)
+            .map_or(Vec3::zeros(), |b| third(p(b), p(i), m(b), m(i), s.step(b)));
+        after - before
+    }
+
+    /// ∂³S/∂v³(u_i, v_j+) − ∂³S/∂v³(u_i, v_j−) from the tangents, at a node interior along v.
+    fn v_jump_from_tangents(&self, i: usize, j: usize) -> Vec3 {
+        let s = &self.v_stiffness;
+        let (p, m) = (|k: usize| self.point(i, k), |k: usize| self.v_tangent(i, k));
+        let after = s
+            .next(j)
+            .map_or(Vec3::zeros(), |n| third(p(j), p(n), m(j), m(n), s.step(j)));
+        let before = s
+            .previous(j)
+            .map_or(Vec3::zeros(), |b| third(p(b), p(j), m(b), m(j), s.step(b)));
+        after - before
+    }
+
+    /// ∂³S/∂u³(u_i+, v_j) − ∂³S/∂u³(u_i−, v_j) (0 at an open end along u). O(1).
     pub fn u_jump(&self, i: usize, j: usize) -> Vec3 {
-        let (p, m, h) = (
-            |k: usize| self.point(k, j),
-            |k: usize| self.u_tangent(k, j),
-            &self.u_stiffness.steps,
-        );
-        third(p(i), p(i + 1), m(i), m(i + 1), h[i]) - third(p(i - 1), p(i), m(i - 1), m(i), h[i - 1])
+        self.u_jumps[self.index(i, j)]
     }
 
-    /// ∂³S/∂v³(u_i, v_j+) − ∂³S/∂v³(u_i, v_j−) at an interior node.
+    /// ∂³S/∂v³(u_i, v_j+) − ∂³S/∂v³(u_i, v_j−) (0 at an open end along v). O(1).
     pub fn v_jump(&self, i: usize, j: usize) -> Vec3 {
-        let (p, m, h) = (
-            |k: usize| self.point(i, k),
-            |k: usize| self.v_tangent(i, k),
-            &self.v_stiffness.steps,
-        );
-        third(p(j), p(j + 1), m(j), m(j + 1), h[j]) - third(p(j - 1), p(j), m(j - 1), m(j), h[j - 1])
+        self.v_jumps[self.index(i, j)]
+    }
+
+    /// Stops (or resumes, after a rebuild) keeping the tangents up to date during moves: a
+    /// network used with the limit replacement (Eq. 21) reads only jumps, and skipping the
+    /// tangents halves a move's cost. [`u_tangent`](Self::u_tangent) and
+    /// [`v_tangent`](Self::v_tangent) are stale after moves made without them.
+    pub fn without_tangents(mut self) -> Self {
+        self.track_tangents = false;
+        self
+    }
+
+    /// (J^u, J^v) at every node, flat (i-major).
+    pub fn u_jumps_and_v_jumps(&self) -> impl Iterator<Item = (Vec3, Vec3)> + '_ {
+        self.u_jumps.iter().copied().zip(self.v_jumps.iter().copied())
     }
 
     /// z_ij = |u jump| + |v jump| (Eq. 26, corrected in papers/README.md), interior nodes.
+    /// O(1).
     pub fn z(&self, i: usize, j: usize) -> f64 {
-        self.u_jump(i, j).norm() + self.v_jump(i, j).norm()
+        let k = self.index(i, j);
+        self.u_jumps[k].norm() + self.v_jumps[k].norm()
     }
 
-    /// The network strain energy Σ_j ∫|S_uu(u, v_j)|² du + Σ_i ∫|S_vv(u_i, v)|² dv, kept up to
-    /// date by [`move_points`](Self::move_points).
+    /// max z_ij over the interior nodes (0 when there are none). O(m·n).
+    pub fn max_z(&self) -> f64 {
+        let mut max = 0.0f64;
+        for i in 0..self.u_count {
+            for j in 0..self.v_count {
+                if self.is_interior(i, j) {
+                    max = max.max(self.z(i, j));
+                }
+            }
+        }
+        max
+    }
+
+    /// The network strain energy Σ_j ∫|S_uu(u, v_j)|² du + Σ_i ∫|S_vv(u_i, v)|² dv over the
+    /// distinct lines, kept up to date by [`move_points`](Self::move_points).
     pub fn energy(&self) -> f64 {
         self.energy
     }
@@ -266,77 +460,113 @@ impl Network {
         &self.v_stiffness
     }
 
-    /// Moves points `((i, j), position)` one after another, updating the tangents of u-line j
-    /// and v-line i by the measured responses and the energy from the segments in their
-    /// windows. O(moves · window). Fails with [`Error::NonFiniteMove`] (flat index) on a
-    /// position or an energy that is not finite, leaving that move undone, or
-    /// [`Error::BadConstraint`] on a node outside the grid.
+    /// Moves points `((i, j), position)` one after another, updating the tangents and jumps
+    /// of u-line j and v-line i by the measured responses and the energy by the O(1) formula
+    /// of the module docs. O(moves · window). Fails with [`Error::NonFiniteMove`] (flat index)
+    /// on a position or an energy that is not finite, leaving that move undone, or
+    /// [`Error::BadConstraint`] on a node outside the grid or not interior (the energy formula
+    /// holds at interior nodes; boundary nodes move through a rebuilt network).
     pub fn move_points(&mut self, moves: &[((usize, usize), Vec3)]) -> Result<()> {
         for &((i, j), position) in moves {
-            if i >= self.u_count || j >= self.v_count {
-                return Err(Error::BadConstraint {
-                    reason: format!(
-                        "node ({i}, {j}) is outside the {} × {} grid",
-                        self.u_count, self.v_count
-                    ),
-                });
-            }
-            let index = i * self.v_count + j;
-            if position.iter().any(|c| !c.is_finite()) {
-                return Err(Error::NonFiniteMove { index });
-            }
-            let old = self.points[index];
-            let energy = self.energy;
-            self.shift(i, j, position - old);
-            if !self.energy.is_finite() {
-                self.shift(i, j, old - position);
-                self.points[index] = old;
-                self.energy = energy;
-                self.resum_energy();
-                return Err(Error::NonFiniteMove { index });
-            }
+            self.move_one(i, j, position)?;
         }
         Ok(())
     }
 
-    /// Adds `delta` to P_ij and its responses to the tangents; refreshes the energies.
-    fn shift(&mut self, i: usize, j: usize, delta: Vec3) {
+    /// Whether a node on u-line j or v-line i of (i, j), within the jump responses of a move
+    /// of P_ij, has z above `cap` (its bound checked first; its z computed, and its bound
+    /// tightened, only when the bound passes the cap). O(window).
+    pub fn exceeds(&mut self, i: usize, j: usize, cap: f64) -> bool {
         let vc = self.v_count;
-        self.points[i * vc + j] += delta;
-        let (u_lo, u_values) = &self.u_stiffness.response[i];
-        for (offset, &r) in u_values.iter().enumerate() {
-            self.u_tangents[(u_lo + offset) * vc + j] += delta * r;
-        }
-        let (v_lo, v_values) = &self.v_stiffness.response[j];
-        for (offset, &r) in v_values.iter().enumerate() {
-            self.v_tangents[i * vc + v_lo + offset] += delta * r;
-        }
-        // Segments touching a changed tangent or the moved point.
-        let (u_lo, u_hi) = (
-            (*u_lo).min(i).saturating_sub(1),
-            (u_lo + u_values.len()).max(i + 1).min(self.u_count - 1),
+        let check = |network: &mut Self, k: usize| -> bool {
+            if network.z_bounds[k] <= cap {
+                return false;
+            }
+            let z = network.u_jumps[k].norm() + network.v_jumps[k].norm();
+            network.z_bounds[k] = z;
+            z > cap
+        };
+        let (u_lo, u_len) = (
+            self.u_stiffness.jump_response[i].0,
+            self.u_stiffness.jump_response[i].1.len(),
         );
-        for k in u_lo..u_hi {
-            let e = self.u_segment(k, j);
-            let slot = &mut self.u_segment_energy[k * vc + j];
-            self.energy += e - *slot;
-            *slot = e;
+        for offset in 0..u_len {
+            let l = (u_lo + offset) % self.u_count;
+            if check(self, l * vc + j) {
+                return true;
+            }
         }
-        let (v_lo, v_hi) = (
-            (*v_lo).min(j).saturating_sub(1),
-            (v_lo + v_values.len()).max(j + 1).min(self.v_count - 1),
+        let (v_lo, v_len) = (
+            self.v_stiffness.jump_response[j].0,
+            self.v_stiffness.jump_response[j].1.len(),
         );
-        for k in v_lo..v_hi {
-            let e = self.v_segment(i, k);
-            let slot = &mut self.v_segment_energy[i * vc + k];
-            self.energy += e - *slot;
-            *slot = e;
+        for offset in 0..v_len {
+            let l = (v_lo + offset) % self.v_count;
+            if check(self, i * vc + l) {
+                return true;
+            }
         }
+        false
     }
 
-    /// Recomputes the energy as the sum of the stored segment energies (drops the rounding
-    /// that the local updates gather). O(m·n).
-    pub fn resum_energy(&mut self) {
-        self.energy = self.u_segment_energy.iter().chain(&self.v_segment_energy).sum();
+    fn move_one(&mut self, i: usize, j: usize, position: Vec3) -> Result<()> {
+        if !self.is_interior(i, j) {
+            return Err(Error::BadConstraint {
+                reason: format!(
+                    "node ({i}, {j}) is not an interior node of the {} × {} network",
+                    self.u_count, self.v_count
+                ),
+            });
+        }
+        let index = self.index(i, j);
+        if position.iter().any(|c| !c.is_finite()) {
+            return Err(Error::NonFiniteMove { index });
+        }
+        let delta = position - self.points[index];
+        let change = self.energy_change(i, j, delta);
+        if !(self.energy + change).is_finite() {
+            return Err(Error::NonFiniteMove { index });
+        }
+        self.shift(i, j, delta);
+        self.energy += change;
+        Ok(())
+    }
+
+    /// The exact change of the network energy if P_ij moves by `delta` (module docs). O(1).
+    pub fn energy_change(&self, i: usize, j: usize, delta: Vec3) -> f64 {
+        let gradient = self.u_jump(i, j) + self.v_jump(i, j);
+        let curvature = self.u_stiffness.diagonal[i] + self.v_stiffness.diagonal[j];
+        2.0 * gradient.dot(&delta) + curvature * delta.norm_squared()
+    }
+
+    /// Adds `delta` to P_ij and its responses to the tangents, the jumps and the z bounds.
+    fn shift(&mut self, i: usize, j: usize, delta: Vec3) {
+        let vc = self.v_count;
+        let size = delta.norm();
+        self.points[i * vc + j] += delta;
+        if self.track_tangents {
+            let (u_lo, u_values) = &self.u_stiffness.response[i];
+            for (offset, &r) in u_values.iter().enumerate() {
+                let k = (u_lo + offset) % self.u_count;
+                self.u_tangents[k * vc + j] += delta * r;
+            }
+            let (v_lo, v_values) = &self.v_stiffness.response[j];
+            for (offset, &r) in v_values.iter().enumerate() {
+                let k = (v_lo + offset) % self.v_count;
+                self.v_tangents[i * vc + k] += delta * r;
+            }
+        }
+        let (u_lo, u_values) = &self.u_stiffness.jump_response[i];
+        for (offset, &r) in u_values.iter().enumerate() {
+            let k = ((u_lo + offset) % self.u_count) * vc + j;
+            self.u_jumps[k] += delta * r;
+            self.z_bounds[k] += r.abs() * size;
+        }
+        let (v_lo, v_values) = &self.v_stiffness.jump_response[j];
+        for (offset, &r) in v_values.iter().enumerate() {
+            let k = i * vc + (v_lo + offset) % self.v_count;
+            self.v_jumps[k] += delta * r;
+            self.z_bounds[k] += r.abs() * size;
+        }
     }
 }

@@ -44,9 +44,30 @@ pub fn value_basis(far: bool, s: f64) -> [f64; 3] {
     }
 }
 
-/// The thin-plate minimiser (Eq. 27 / 28 / 29) for a group of interior nodes of `surface`:
-/// `Ok(None)` for an empty or oversized group, a node outside the interior, or a singular
-/// system; errors only on a surface that cannot be evaluated.
+/// The grid positions of node (i, j): itself, and its stored repeats across the seams of a
+/// closed surface.
+fn copies(surface: &BicubicSplineSurface, i: usize, j: usize) -> Vec<(usize, usize)> {
+    let (u_count, v_count) = surface.shape();
+    let along = |k: usize, count: usize, closed: bool| {
+        if closed && k == 0 {
+            vec![0, count - 1]
+        } else {
+            vec![k]
+        }
+    };
+    let mut all = Vec::new();
+    for a in along(i, u_count, surface.closed_u()) {
+        for b in along(j, v_count, surface.closed_v()) {
+            all.push((a, b));
+        }
+    }
+    all
+}
+
+/// The thin-plate minimiser (Eq. 27 / 28 / 29) for a group of interior nodes of `surface`
+/// (a closed direction's seam nodes named by index 0; their patches on both sides of the seam
+/// are summed): `Ok(None)` for an empty or oversized group, a node outside the interior, or a
+/// singular system; errors only on a surface that cannot be evaluated.
 pub fn thin_plate_targets(
     surface: &BicubicSplineSurface,
     group: &[(usize, usize)],
@@ -56,13 +77,24 @@ pub fn thin_plate_targets(
         || group.len() > 4
         || group
             .iter()
-            .any(|&(i, j)| i == 0 || j == 0 || i + 1 >= u_count || j + 1 >= v_count)
+            .any(|&(i, j)| surface.interior_node(i, j) != Some((i, j)))
     {
         return Ok(None);
     }
-    let mut patches: Vec<(usize, usize)> = group
+    let group_copies: Vec<Vec<(usize, usize)>> = group.iter().map(|&(i, j)| copies(surface, i, j)).collect();
+    let mut patches: Vec<(usize, usize)> = group_copies
         .iter()
-        .flat_map(|&(i, j)| [(i - 1, j - 1), (i - 1, j), (i, j - 1), (i, j)])
+        .flatten()
+        .flat_map(|&(i, j)| {
+            [
+                (i as isize - 1, j as isize - 1),
+                (i as isize - 1, j as isize),
+                (i as isize, j as isize - 1),
+                (i as isize, j as isize),
+            ]
+        })
+        .filter(|&(l, k)| l >= 0 && k >= 0 && (l as usize) + 1 < u_count && (k as usize) + 1 < v_count)
+        .map(|(l, k)| (l as usize, k as usize))
         .collect();
     patches.sort_unstable();
     patches.dedup();
@@ -71,11 +103,12 @@ pub fn thin_plate_targets(
     let mut gradient = [Vec3::zeros(); 4];
     for (l, k) in patches {
         let (hu, hv) = (uk[l + 1] - uk[l], vk[k + 1] - vk[k]);
-        let corners: Vec<(usize, bool, bool)> = group
+        let corners: Vec<(usize, bool, bool)> = group_copies
             .iter()
             .enumerate()
-            .filter(|(_, &(i, j))| (i == l || i == l + 1) && (j == k || j == k + 1))
-            .map(|(a, &(i, j))| (a, i == l + 1, j == k + 1))
+            .flat_map(|(a, copies)| copies.iter().map(move |&node| (a, node)))
+            .filter(|&(_, (i, j))| (i == l || i == l + 1) && (j == k || j == k + 1))
+            .map(|(a, (i, j))| (a, i == l + 1, j == k + 1))
             .collect();
         for &(s, ws) in &GAUSS {
             for &(t, wt) in &GAUSS {
