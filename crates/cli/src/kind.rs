@@ -3,26 +3,9 @@
 use crate::args::KindArg;
 use crate::error::Result;
 use crate::input::{CurveInput, Points};
-use crate::report::ReportKind;
 
-/// The kind of a curve as the indicators and strategies see it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum CurveKind {
-    /// A function y(x), x strictly increasing.
-    Function,
-    /// A parametric curve in 2D or 3D.
-    Parametric,
-}
-
-impl CurveKind {
-    /// The report's `kind`.
-    pub fn report_kind(self) -> ReportKind {
-        match self {
-            CurveKind::Function => ReportKind::Function,
-            CurveKind::Parametric => ReportKind::Parametric,
-        }
-    }
-}
+/// The kind of a curve as the indicators and strategies see it (the catalogue's).
+pub use fairing::catalog::CurveKind;
 
 /// The first index `i` with x_{i+1} ≤ x_i of planar points, or `None` when x increases
 /// strictly (also `None` for spatial points' absence of an answer: see [`detect`]).

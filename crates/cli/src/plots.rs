@@ -2,10 +2,10 @@
 //! a surface grid with its z_ij map. Built from plain data so the numerical crates supply
 //! what they have and the rest is left out.
 
-use crate::highlight::{HighlightSettings, LightSetup};
 use crate::input::{Grid, Points};
 use crate::svg::{Bars, Color, ColorMap, Comb, Figure, Line, Markers, Panel};
 use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings};
+use fairness::highlight::{HighlightSettings, LightSetup};
 
 /// A curvature comb in the plane: points, unit normals and signed curvatures.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -198,7 +198,7 @@ pub struct SurfacePlot {
     pub z: Option<Vec<Vec<f64>>>,
     /// z_ij of the input grid, when a faired grid's z is in `z`.
     pub z_before: Option<Vec<Vec<f64>>>,
-    /// Draw highlight lines ([`crate::highlight`]) of the input's and the faired grid's
+    /// Draw highlight lines ([`fairness::highlight`]) of the input's and the faired grid's
     /// bicubic spline surfaces, under one light set up on the input.
     pub highlights: bool,
 }

@@ -1,5 +1,6 @@
-//! The JSON report of `fair curve`, `fair surface` and `fair inspect` (DESIGN.md, "The `fair`
-//! command": the field names here are the contract).
+//! The JSON report of `fair curve`, `fair surface` and `fair inspect` (`docs/CONTRACT.md`:
+//! the field names here are the contract). `before`/`after` carry `criteria`: every criterion
+//! of the catalogue that applies to the curve, by name (the `energies` object stays).
 //!
 //! Counts that do not apply (inflections of a 3D curve, vibrations of a surface) are `null`,
 //! never omitted. `fair inspect` writes the same shape with `after` equal to `before`,
@@ -33,6 +34,15 @@ impl ReportKind {
     }
 }
 
+impl From<fairing::catalog::CurveKind> for ReportKind {
+    fn from(kind: fairing::catalog::CurveKind) -> Self {
+        match kind {
+            fairing::catalog::CurveKind::Function => ReportKind::Function,
+            fairing::catalog::CurveKind::Parametric => ReportKind::Parametric,
+        }
+    }
+}
+
 /// The energies of a curve as represented (E1–E3 over its own parameter; Ek, Ek' over arc
 /// length): the fairness crate's block, serialised as the report's `energies`.
 pub use fairness::Energies;
@@ -50,6 +60,10 @@ pub struct Measures {
     pub max_z: f64,
     /// The energies of the curve; `null` for surfaces.
     pub energies: Option<Energies>,
+    /// Every registered criterion that applies to the curve (the measured spline, or the
+    /// method's own representation when it has one), by name.
+    #[serde(default)]
+    pub criteria: BTreeMap<String, f64>,
 }
 
 /// The whole report.
@@ -140,6 +154,15 @@ impl Report {
                     .map(|(n, _)| format!("{side}.energies.{n}"));
             }
         }
+        for (side, measures) in [("before", &self.before), ("after", &self.after)] {
+            if bad.is_none() {
+                bad = measures
+                    .criteria
+                    .iter()
+                    .find(|(_, v)| !v.is_finite())
+                    .map(|(name, _)| format!("{side}.criteria.{name}"));
+            }
+        }
         match bad {
             Some(what) => Err(Error::NonFiniteOutput {
                 what: format!("report {what}"),
@@ -200,6 +223,7 @@ mod tests {
             e_s: 1.5e9,
             max_z: 0.8,
             energies: Some(Energies::default()),
+            criteria: [("ek".to_string(), 0.5)].into_iter().collect(),
         };
         let curve = NurbsRecord {
             degree: 3,
@@ -252,13 +276,21 @@ mod tests {
         ];
         top.sort();
         assert_eq!(keys(&value), top);
-        let mut measures = vec!["inflections", "vibrations", "e_s", "max_z", "energies"];
+        let mut measures = vec![
+            "inflections",
+            "vibrations",
+            "e_s",
+            "max_z",
+            "energies",
+            "criteria",
+        ];
         measures.sort();
         assert_eq!(keys(&value["before"]), measures);
         assert_eq!(keys(&value["after"]), measures);
         let mut energies = vec!["e1", "e2", "e3", "ek", "ek_prime"];
         energies.sort();
         assert_eq!(keys(&value["before"]["energies"]), energies);
+        assert_eq!(value["before"]["criteria"]["ek"], 0.5);
         let mut curve = vec!["type", "degree", "knots", "control_points", "weights", "params"];
         curve.sort();
         assert_eq!(keys(&value["curve"]), curve);

@@ -11,6 +11,7 @@
 //! its angular bisector, fair it as a function y(x), transform back and blend the overlaps
 //! ([`SegmentedFairing`]).
 
+pub mod catalog;
 pub mod constraints;
 pub mod error;
 pub mod observer;
@@ -23,11 +24,11 @@ pub mod trace;
 pub mod two_phase;
 
 pub use constraints::{project_into_ball, Constraints, EndClamp};
-pub use error::{Error, Result};
+pub use error::{Error, Refusal, Result};
 pub use observer::Observer;
 pub use partition::{partition, PartitionSettings, Segment, SegmentFairer, SegmentedFairing};
 pub use pipeline::{FairingResult, Pipeline, StageReport, TerminationReason};
-pub use state::{FairingState, Move};
+pub use state::{strategy_error, FairingState, Move};
 pub use strategy::{reject_derivative_clamps, FairingStrategy, StepOutcome};
 pub use trace::{StepRecord, Trace};
 

@@ -6,6 +6,8 @@
 
 use std::path::Path;
 
+use fairing::catalog::Catalog;
+
 use crate::args::{InspectArgs, KindArg};
 use crate::commands::{curve::MIN_CURVE_POINTS, measure, say, surface};
 use crate::error::Result;
@@ -39,9 +41,9 @@ fn format_measures(report: &Report) -> String {
 }
 
 /// Runs `fair inspect`.
-pub fn run(args: &InspectArgs) -> Result<()> {
+pub fn run(catalog: &Catalog, args: &InspectArgs) -> Result<()> {
     let source = Source::read(&args.input)?;
-    let report = inspect(&source, args.kind, args.surface, args.plot.as_deref())?;
+    let report = inspect(catalog, &source, args.kind, args.surface, args.plot.as_deref())?;
     let text = report.to_json()?;
     if let Some(path) = &args.report {
         crate::output::write_text(&path.display().to_string(), &text)?;
@@ -57,7 +59,13 @@ pub fn run(args: &InspectArgs) -> Result<()> {
 /// Measures `source` (a surface when `surface` is set or it has five columns, else a curve
 /// of kind `kind`), draws the plot to `plot` if given, and returns the report (checked
 /// finite). The work of `fair inspect` and `fair demo`.
-pub fn inspect(source: &Source, kind_arg: KindArg, surface: bool, plot: Option<&Path>) -> Result<Report> {
+pub fn inspect(
+    catalog: &Catalog,
+    source: &Source,
+    kind_arg: KindArg,
+    surface: bool,
+    plot: Option<&Path>,
+) -> Result<Report> {
     let report = if surface || looks_like_surface(source) {
         if kind_arg != KindArg::Auto {
             return Err(crate::error::Error::Argument {
@@ -106,7 +114,13 @@ pub fn inspect(source: &Source, kind_arg: KindArg, surface: bool, plot: Option<&
             };
             plot.figure().write(path)?;
         }
-        Report::inspection(kind.report_kind(), input.len(), measured.measures, measured.curve)
+        let mut measures = measured.measures;
+        let mut failed = std::collections::BTreeMap::new();
+        let curve =
+            fairing::catalog::measured_curve(kind, &crate::commands::curve::to_catalog(&input.points))
+                .map_err(|e| crate::error::Error::from_fairing(e, &input.source))?;
+        measures.criteria = crate::commands::curve::criteria(catalog, &curve, &mut failed);
+        Report::inspection(ReportKind::from(kind), input.len(), measures, measured.curve)
     };
     report.check_finite()?;
     Ok(report)

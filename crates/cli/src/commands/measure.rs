@@ -110,6 +110,7 @@ fn measures(summary: &FairnessSummary, with_energies: bool) -> Measures {
             ek: e.ek,
             ek_prime: e.ek_prime,
         }),
+        criteria: Default::default(),
     }
 }
 

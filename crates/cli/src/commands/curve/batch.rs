@@ -16,10 +16,11 @@
 //! The command exits 0 when every curve succeeded, else with [`Error::Batch`] (2 when every
 //! failure was bad input, 1 otherwise) after writing everything.
 
+use fairing::catalog::{Catalog, ConfigFile};
+
 use super::{process, Faired};
 use crate::args::FairArgs;
 use crate::commands::say;
-use crate::config::ConfigFile;
 use crate::error::{Error, Result};
 use crate::input::{self, CurveInput, Source};
 use crate::progress;
@@ -170,7 +171,7 @@ fn relocate(error: Error, stream: &str, line: usize) -> Error {
 }
 
 /// Runs a batch.
-pub fn run(args: &FairArgs, file: Option<&ConfigFile>) -> Result<()> {
+pub fn run(catalog: &Catalog, args: &FairArgs, file: Option<&ConfigFile>) -> Result<()> {
     if args.print_config {
         return Err(Error::Argument {
             option: "--print-config",
@@ -210,7 +211,7 @@ pub fn run(args: &FairArgs, file: Option<&ConfigFile>) -> Result<()> {
             // A report with a non-finite number is that curve's failure, never a `null` line.
             let result = item
                 .read()
-                .and_then(|input| process(&input, args, file))
+                .and_then(|input| process(catalog, &input, args, file))
                 .and_then(|faired| faired.report.check_finite().map(|()| faired));
             bar.inc(1);
             result
