@@ -1,4 +1,4 @@
-//! The command line of `fair` (DESIGN.md, "The `fair` command"), as clap derive types.
+//! The command line of `fair` (`docs/CONTRACT.md`), as clap derive types.
 //!
 //! Values that need more than clap's own parsing (`--set NAME=VALUE`, index lists `2,5,7`,
 //! a positive tolerance) have value parsers here whose messages say what was expected.
@@ -75,14 +75,15 @@ pub struct FairArgs {
     /// Input file, or - for standard input.
     #[arg(value_name = "INPUT")]
     pub input: String,
-    /// Fairing method (`fair methods` lists them); default two-phase for functions,
+    /// Fairing method (`fair methods` lists the catalogue's); default two-phase for functions,
     /// strain-energy for parametric curves, zhang-cheng for surfaces.
     #[arg(long, short = 'm', value_name = "M")]
     pub method: Option<String>,
     /// How to read the points (curves only).
     #[arg(long, value_enum, default_value_t = KindArg::Auto)]
     pub kind: KindArg,
-    /// A TOML file of method parameters (the names `--set` takes).
+    /// A TOML or JSON config: method parameters (the names `--set` takes), [constraints] and
+    /// [[stage]] pipelines.
     #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
     /// Set one method parameter, e.g. --set p=0.999 (repeatable; overrides --config).

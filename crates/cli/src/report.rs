@@ -47,7 +47,7 @@ impl From<fairing::catalog::CurveKind> for ReportKind {
 /// length): the fairness crate's block, serialised as the report's `energies`.
 pub use fairness::Energies;
 
-/// The fairness measures of a curve or surface (see DESIGN.md for each definition).
+/// The fairness measures of a curve or surface (see `docs/CONTRACT.md` for each definition).
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct Measures {
     /// Sign changes of curvature; `null` for 3D curves and surfaces.
@@ -183,7 +183,7 @@ impl Report {
     }
 }
 
-/// The `curve` field for a NURBS curve (DESIGN.md): degree, knots, control points, weights and
+/// The `curve` field for a NURBS curve (`docs/CONTRACT.md`): degree, knots, control points, weights and
 /// the data points' parameters.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct NurbsRecord {

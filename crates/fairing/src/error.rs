@@ -151,6 +151,8 @@ pub enum Refusal {
     Fixed,
     /// A tolerance band (`--tolerance`).
     Tolerance,
+    /// Restraining radii (a program's [`Constraints::with_restraining_radii`](crate::Constraints::with_restraining_radii)).
+    Radii,
     /// A kind of curve (function or parametric, `--kind`).
     Kind,
     /// A dimension of the points (planar or spatial).

@@ -2,6 +2,8 @@
 
 mod batten;
 mod catalog;
+mod composition;
+mod contract;
 mod strain_energy;
 mod two_phase;
 mod two_phase_curves;

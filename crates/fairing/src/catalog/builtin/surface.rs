@@ -27,14 +27,21 @@ impl SurfaceMethod for SurfaceFairingMethod {
     }
 
     /// `g1`/`g2` are refused (no surface method here holds cross-boundary tangents or
-    /// curvatures); with `g0` a bad point on the boundary is refused; bad points must be
-    /// grid nodes.
+    /// curvatures); with `g0` a bad point on the boundary is refused; given restraining radii
+    /// are refused (the method derives its own spheres; the tolerance band bounds every move).
     fn check(&self, _: &SurfaceFairingSettings, job: &SurfaceJob) -> Result<()> {
         let refuse = |what, reason: String| Error::Refused {
             method: job.method.to_owned(),
             what,
             reason,
         };
+        if job.constraints.restraining_radii().is_some() {
+            return Err(refuse(
+                Refusal::Radii,
+                "keeps points in its own restraining spheres (Zhang–Cheng §4.4); it takes no given radii                  (use the tolerance band)"
+                    .into(),
+            ));
+        }
         let clamp = job.constraints.end_clamp();
         if matches!(clamp, EndClamp::G1 | EndClamp::G2) {
             return Err(refuse(
