@@ -203,12 +203,13 @@ impl Error {
             F::Parameter { origin, message } | F::Config { origin, message } => {
                 Error::Parameter { origin, message }
             }
-            F::Refused { what, .. } if matches!(what, Refusal::Dimension | Refusal::Closed) => {
-                Error::NotApplicable {
-                    path: file.to_string(),
-                    message: error.to_string(),
-                }
-            }
+            F::Refused {
+                what: Refusal::Dimension | Refusal::Closed,
+                ..
+            } => Error::NotApplicable {
+                path: file.to_string(),
+                message: error.to_string(),
+            },
             F::Refused { what, .. } => {
                 let option = match what {
                     Refusal::EndClamp => "--clamp-ends",

@@ -275,7 +275,7 @@ impl Constraints {
             offset2 += (current[k] - original[k]).powi(2);
         }
         let slice = radius * radius - offset2;
-        if !(slice >= 0.0) || (current - original).norm() > radius {
+        if slice.is_nan() || slice < 0.0 || (current - original).norm() > radius {
             return Ok(project_into_ball(original, radius, proposed));
         }
         let mut candidate = project_into_ball(&center, slice.sqrt(), proposed);

@@ -75,8 +75,9 @@ impl Plan {
     }
 
     /// The TOML config that reproduces the plan: its constraints and its stages with every
-    /// parameter (given values, else the defaults) and its meaning as a comment. What
-    /// `--print-config` prints; reading it back gives the same plan.
+    /// parameter (given values, else the defaults) and its meaning as a comment; for a
+    /// surface, the one method's table. What `--print-config` prints; reading it back gives
+    /// the same plan.
     pub fn render(&self, catalog: &Catalog, constraints: &PlanConstraints) -> String {
         let mut text = String::new();
         let list = |v: &[usize]| {
@@ -109,7 +110,15 @@ impl Plan {
             if !text.is_empty() {
                 text.push('\n');
             }
-            text.push_str(&format!("[[stage]]\nmethod = \"{}\"\n", stage.method));
+            match self.kind {
+                // A pipeline of stages (curves), each naming its method.
+                MethodKind::Curve => text.push_str(&format!("[[stage]]\nmethod = \"{}\"\n", stage.method)),
+                // A surface config sets one method's parameters, in a table named after it
+                // (the method itself is chosen by `--method`).
+                MethodKind::Surface => {
+                    text.push_str(&format!("# run with --method {0}\n[{0}]\n", stage.method))
+                }
+            }
             let Ok(entry) = catalog.method(self.kind, &stage.method) else {
                 continue;
             };

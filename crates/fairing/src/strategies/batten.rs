@@ -214,7 +214,7 @@ pub mod tangent_directions {
 impl BattenSettings {
     /// Checks the ranges: `range` ≥ 0 (or `inf`).
     pub fn validate(&self) -> Result<()> {
-        if !(self.range >= 0.0) {
+        if self.range.is_nan() || self.range < 0.0 {
             return Err(crate::Error::BadParameter {
                 name: "range",
                 value: self.range.to_string(),

@@ -131,14 +131,14 @@ impl StrainEnergySettings {
 
     /// Checks the ranges: tolerance and radius scale not negative (and not NaN).
     pub fn validate(&self) -> Result<()> {
-        if !(self.tolerance >= 0.0) {
+        if self.tolerance.is_nan() || self.tolerance < 0.0 {
             return Err(Error::BadParameter {
                 name: "energy-tolerance",
                 value: self.tolerance.to_string(),
                 reason: "must be a number ≥ 0",
             });
         }
-        if !(self.radius_scale >= 0.0) {
+        if self.radius_scale.is_nan() || self.radius_scale < 0.0 {
             return Err(Error::BadParameter {
                 name: "radius-scale",
                 value: self.radius_scale.to_string(),
