@@ -317,7 +317,7 @@ pub fn builtin_indicators() -> Vec<IndicatorEntry> {
     ]
 }
 
-/// The spline the report measures (DESIGN.md's definitions): for a function the spline
+/// The spline the report measures (`docs/CONTRACT.md`'s definitions): for a function the spline
 /// function y(x) with parabolic runout ends, for a parametric curve the natural cubic spline
 /// with chord-length parameters. O(n).
 pub fn measured_curve(kind: CurveKind, points: &CurvePoints) -> Result<AnyCurve> {

@@ -166,7 +166,7 @@ impl std::fmt::Debug for AnyCurve {
 }
 
 /// The curves a method's result is represented by, when that is not the spline the report
-/// measures (the curve through the points of DESIGN.md's definitions): e.g. nurbs-weights
+/// measures (the curve through the points of `docs/CONTRACT.md`'s definitions): e.g. nurbs-weights
 /// keeps the points and changes the weights of its NURBS. The report's energies and criteria
 /// are then evaluated on these.
 #[derive(Debug)]

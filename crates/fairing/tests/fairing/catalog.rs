@@ -434,3 +434,35 @@ fn strategies_that_choose_where_to_act_take_an_indicator() {
         );
     }
 }
+
+#[test]
+fn a_surface_plan_prints_as_its_method_table_and_reads_back() {
+    let catalog = Catalog::builtin();
+    let plan = catalog
+        .plan(
+            MethodKind::Surface,
+            Some("kjellander"),
+            "zhang-cheng",
+            None,
+            &sets(&[("max-steps", "50"), ("boundary", "on")]),
+        )
+        .unwrap();
+    let text = plan.render(&catalog, &PlanConstraints::default());
+    assert!(
+        text.contains("[kjellander]") && !text.contains("[[stage]]"),
+        "{text}"
+    );
+    let file = ConfigFile::parse("s.toml", &text).unwrap();
+    let again = catalog
+        .plan(
+            MethodKind::Surface,
+            Some("kjellander"),
+            "zhang-cheng",
+            Some(&file),
+            &ParameterMap::new(),
+        )
+        .unwrap();
+    assert_eq!(again.stages[0].settings, plan.stages[0].settings);
+    assert_eq!(again.stages[0].settings["max-steps"], 50);
+    assert_eq!(again.stages[0].settings["boundary"], true);
+}

@@ -8,7 +8,7 @@
 //!
 //! Curves are faired in parallel on all cores (rayon), each exactly as `fair curve` would fair
 //! it alone. The report is one JSON line per curve, in input order: the report of
-//! DESIGN.md with a `source` field added, or `{"source": ..., "error": ..., "exit_status": 2}`
+//! `docs/CONTRACT.md` with a `source` field added, or `{"source": ..., "error": ..., "exit_status": 2}`
 //! for a curve that failed; the others go on. The lines go to standard output, or to
 //! `--report FILE`. `-o` names a directory for a directory batch (each faired file under its
 //! own name) and a JSON-lines file for a stream (one line per input line, `{"error": ...}`
