@@ -2,6 +2,7 @@
 
 mod baselines_cli;
 mod basics;
+mod columns_cli;
 mod batten_cli;
 mod formats_cli;
 mod inspect;

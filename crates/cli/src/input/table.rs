@@ -27,7 +27,7 @@ impl Delimiter {
         }
     }
 
-    fn split(self, line: &str) -> Vec<&str> {
+    pub(crate) fn split(self, line: &str) -> Vec<&str> {
         match self {
             Delimiter::Comma => line.split(',').map(str::trim).collect(),
             Delimiter::Whitespace => line.split_whitespace().collect(),
