@@ -56,8 +56,12 @@ fn header_order_and_label_columns_round_trip_untouched() {
     let layouts: [(&str, fn(usize, [f64; 2]) -> String); 5] = [
         ("y,x", |_, p| format!("{},{}", p[1], p[0])),
         ("x,y,w", |i, p| format!("{},{},{}", p[0], p[1], 10 + i)),
-        ("source,y,weight,x", |i, p| format!("scan-{i},{},{}.50,{}", p[1], i, p[0])),
-        ("\"x\",\"y\",\"note\"", |i, p| format!("{},{},row {i}", p[0], p[1])),
+        ("source,y,weight,x", |i, p| {
+            format!("scan-{i},{},{}.50,{}", p[1], i, p[0])
+        }),
+        ("\"x\",\"y\",\"note\"", |i, p| {
+            format!("{},{},row {i}", p[0], p[1])
+        }),
         ("Y,X", |_, p| format!("{},{}", p[1], p[0])),
     ];
     for (index, (header, row)) in layouts.iter().enumerate() {
@@ -85,7 +89,11 @@ fn header_order_and_label_columns_round_trip_untouched() {
         assert_eq!(r["kind"], "function", "{header}");
         assert_eq!(r["n"], 12);
         // Nothing moved, the spline's data points are the file's (x, y).
-        assert_eq!(r["curve"]["points"][3][0].as_f64().unwrap(), points[3][0], "{header}");
+        assert_eq!(
+            r["curve"]["points"][3][0].as_f64().unwrap(),
+            points[3][0],
+            "{header}"
+        );
     }
 }
 
@@ -151,7 +159,11 @@ fn columns_choose_the_coordinates_and_write_back_in_place() {
     // Unknown names and a JSON input are refused, naming the option.
     let run = fair(&["inspect", input.to_str().unwrap(), "--columns", "z,w"]);
     assert_eq!(run.status.code(), Some(2));
-    assert!(stderr(&run).contains("--columns") && stderr(&run).contains("`w`"), "{}", stderr(&run));
+    assert!(
+        stderr(&run).contains("--columns") && stderr(&run).contains("`w`"),
+        "{}",
+        stderr(&run)
+    );
     let json = dir.join("c.json");
     std::fs::write(&json, "{\"points\": [[0, 1], [1, 2], [2, 2.5]]}").unwrap();
     let run = fair(&["inspect", json.to_str().unwrap(), "--columns", "y,x"]);
@@ -162,11 +174,18 @@ fn columns_choose_the_coordinates_and_write_back_in_place() {
 fn a_headerless_file_is_read_by_position_and_says_so() {
     let dir = temp_dir("headerless");
     let input = dir.join("plain.csv");
-    let text: String = function_points(8).iter().map(|p| format!("{},{}\n", p[0], p[1])).collect();
+    let text: String = function_points(8)
+        .iter()
+        .map(|p| format!("{},{}\n", p[0], p[1]))
+        .collect();
     std::fs::write(&input, &text).unwrap();
     let run = fair(&["inspect", input.to_str().unwrap()]);
     ok(&run);
-    assert!(stderr(&run).contains("no header; columns read by position as x,y"), "{}", stderr(&run));
+    assert!(
+        stderr(&run).contains("no header; columns read by position as x,y"),
+        "{}",
+        stderr(&run)
+    );
     let run = fair(&["inspect", input.to_str().unwrap(), "-q"]);
     ok(&run);
     assert!(stderr(&run).is_empty(), "{}", stderr(&run));
@@ -174,7 +193,11 @@ fn a_headerless_file_is_read_by_position_and_says_so() {
     std::fs::write(&input, "1,2,3,4\n2,3,4,5\n3,4,5,6\n").unwrap();
     let run = fair(&["inspect", input.to_str().unwrap()]);
     assert_eq!(run.status.code(), Some(2));
-    assert!(stderr(&run).contains("plain.csv:1: 4 columns without a header"), "{}", stderr(&run));
+    assert!(
+        stderr(&run).contains("plain.csv:1: 4 columns without a header"),
+        "{}",
+        stderr(&run)
+    );
 }
 
 #[test]
@@ -188,7 +211,19 @@ fn the_output_format_follows_the_extension() {
     std::fs::write(&input, &text).unwrap();
     let run_to = |name: &str| {
         let output = dir.join(name);
-        let run = fair(&[&["curve", input.to_str().unwrap(), "-o", output.to_str().unwrap(), "-q"][..], &KEEP].concat());
+        let run = fair(
+            &[
+                &[
+                    "curve",
+                    input.to_str().unwrap(),
+                    "-o",
+                    output.to_str().unwrap(),
+                    "-q",
+                ][..],
+                &KEEP,
+            ]
+            .concat(),
+        );
         (run, output)
     };
     let (run, json) = run_to("out.json");
@@ -224,7 +259,11 @@ fn a_folder_batch_takes_curve_files_and_lists_the_rest() {
     std::fs::write(dir.join("PROVENANCE.md"), "# where the data came from\n").unwrap();
     let run = fair(&[&["curve", dir.to_str().unwrap()][..], &KEEP].concat());
     ok(&run);
-    assert!(stderr(&run).contains("skipped 1 file") && stderr(&run).contains("PROVENANCE.md"), "{}", stderr(&run));
+    assert!(
+        stderr(&run).contains("skipped 1 file") && stderr(&run).contains("PROVENANCE.md"),
+        "{}",
+        stderr(&run)
+    );
     let lines: Vec<&str> = std::str::from_utf8(&run.stdout).unwrap().lines().collect();
     assert_eq!(lines.len(), 1);
 }
@@ -284,7 +323,13 @@ fn a_noisy_hundred_thousand_point_segment_fairs_with_every_function_method() {
                         &[
                             &["curve", input.to_str().unwrap(), "--kind", "function"][..],
                             method,
-                            &["-o", output.to_str().unwrap(), "--report", report_path.to_str().unwrap(), "-q"],
+                            &[
+                                "-o",
+                                output.to_str().unwrap(),
+                                "--report",
+                                report_path.to_str().unwrap(),
+                                "-q",
+                            ],
                         ]
                         .concat(),
                     );
@@ -302,7 +347,10 @@ fn a_noisy_hundred_thousand_point_segment_fairs_with_every_function_method() {
             let energies = &r[side]["energies"];
             for name in ["e1", "e2", "e3", "ek", "ek_prime"] {
                 let value = energies[name].as_f64().unwrap_or(f64::NAN);
-                assert!(value.is_finite() && value >= 0.0, "{method} {side} {name}: {energies}");
+                assert!(
+                    value.is_finite() && value >= 0.0,
+                    "{method} {side} {name}: {energies}"
+                );
             }
             let accuracy = &r[side]["energy_accuracy"];
             if accuracy.is_null() {
@@ -312,7 +360,10 @@ fn a_noisy_hundred_thousand_point_segment_fairs_with_every_function_method() {
             }
             for name in ["e1", "e2", "e3", "ek", "ek_prime"] {
                 let error = accuracy["errors"][name].as_f64().unwrap();
-                assert!(error.is_finite() && error >= 0.0, "{method} {side} {name}: {accuracy}");
+                assert!(
+                    error.is_finite() && error >= 0.0,
+                    "{method} {side} {name}: {accuracy}"
+                );
                 assert!(accuracy["within_tolerance"][name].is_boolean());
             }
             assert!(accuracy["exact"]["e2"].as_bool().unwrap());

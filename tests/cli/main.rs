@@ -2,8 +2,8 @@
 
 mod baselines_cli;
 mod basics;
-mod columns_cli;
 mod batten_cli;
+mod columns_cli;
 mod formats_cli;
 mod inspect;
 mod nurbs_weights_cli;

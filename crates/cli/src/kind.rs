@@ -65,7 +65,11 @@ fn check_spacing(input: &CurveInput) -> Result<()> {
     let (Some(i), Points::Planar(p)) = (first_too_close(&input.points), &input.points) else {
         return Ok(());
     };
-    let line = |k: usize| input.line_of(k).map_or(format!("point {k}"), |l| format!("line {l}"));
+    let line = |k: usize| {
+        input
+            .line_of(k)
+            .map_or(format!("point {k}"), |l| format!("line {l}"))
+    };
     Err(input.point_error(
         i + 1,
         format!(
@@ -150,8 +154,14 @@ mod tests {
         for kind in [KindArg::Auto, KindArg::Function] {
             let e = resolve(kind, &input(text)).unwrap_err();
             let line = e.one_line();
-            assert!(line.starts_with("k.csv:4: x = 1.000000000000001 is only"), "{line}");
-            assert!(line.contains("line 3") && line.contains("--kind parametric"), "{line}");
+            assert!(
+                line.starts_with("k.csv:4: x = 1.000000000000001 is only"),
+                "{line}"
+            );
+            assert!(
+                line.contains("line 3") && line.contains("--kind parametric"),
+                "{line}"
+            );
             assert_eq!(e.exit_code(), 2);
         }
         assert_eq!(

@@ -129,7 +129,11 @@ fn usage(e: clap::Error) -> ExitCode {
 fn usage_line(rendered: &str) -> String {
     let mut lines = rendered.lines().map(str::trim).skip_while(|l| l.is_empty());
     let first = lines.next().unwrap_or("invalid arguments");
-    let mut message = first.strip_prefix("error:").map(str::trim).unwrap_or(first).to_string();
+    let mut message = first
+        .strip_prefix("error:")
+        .map(str::trim)
+        .unwrap_or(first)
+        .to_string();
     if message.ends_with(':') {
         let rest: Vec<&str> = lines
             .take_while(|l| !l.is_empty() && !l.starts_with("Usage:"))

@@ -140,7 +140,12 @@ fn push_rows<'a>(text: &mut String, rows: impl Iterator<Item = &'a [f64]>, delim
 
 /// Rows with every coordinate back in its own column and the label columns' text in place,
 /// in the file's column order.
-fn push_layout_rows(text: &mut String, rows: &[Vec<f64>], layout: &Layout, delimiter: Delimiter) -> Result<()> {
+fn push_layout_rows(
+    text: &mut String,
+    rows: &[Vec<f64>],
+    layout: &Layout,
+    delimiter: Delimiter,
+) -> Result<()> {
     let has_labels = !layout.labels.is_empty();
     if has_labels && layout.labels.len() != rows.len() {
         return Err(Error::Internal {
@@ -267,13 +272,24 @@ pub fn format_curve_as(input: &CurveInput, points: &Points, format: OutputFormat
                     let names: Vec<String> = header
                         .as_deref()
                         .map(|h| {
-                            let delimiter = if h.contains(',') { Delimiter::Comma } else { Delimiter::Whitespace };
-                            delimiter.split(h).iter().map(|f| f.trim_matches('"').to_string()).collect()
+                            let delimiter = if h.contains(',') {
+                                Delimiter::Comma
+                            } else {
+                                Delimiter::Whitespace
+                            };
+                            delimiter
+                                .split(h)
+                                .iter()
+                                .map(|f| f.trim_matches('"').to_string())
+                                .collect()
                         })
                         .unwrap_or_default();
                     let mut labels = serde_json::Map::new();
                     for (k, column) in layout.label_columns().into_iter().enumerate() {
-                        let name = names.get(column).cloned().unwrap_or_else(|| format!("column {}", column + 1));
+                        let name = names
+                            .get(column)
+                            .cloned()
+                            .unwrap_or_else(|| format!("column {}", column + 1));
                         let values: Vec<&str> = layout.labels.iter().map(|row| row[k].as_str()).collect();
                         labels.insert(name, serde_json::json!(values));
                     }

@@ -152,16 +152,13 @@ impl Report {
                     ("ek", e.ek),
                     ("ek_prime", e.ek_prime),
                 ];
-                bad = named
-                    .iter()
-                    .find(|(_, v)| !v.is_finite())
-                    .map(|(n, _)| {
-                        if side.contains('.') {
-                            format!("{side}.errors.{n}")
-                        } else {
-                            format!("{side}.energies.{n}")
-                        }
-                    });
+                bad = named.iter().find(|(_, v)| !v.is_finite()).map(|(n, _)| {
+                    if side.contains('.') {
+                        format!("{side}.errors.{n}")
+                    } else {
+                        format!("{side}.energies.{n}")
+                    }
+                });
             }
         }
         match bad {

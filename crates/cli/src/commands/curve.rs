@@ -266,7 +266,11 @@ fn process_points(input: &CurveInput, args: &FairArgs, file: Option<&ConfigFile>
         curvature_before: before.curvature,
         curvature_after: after.curvature,
         axes: Some(crate::plots::axis_names(&input.coordinate_names())),
-        projections: crate::plots::other_projections(&input.coordinate_names(), &input.points, Some(&outcome.points)),
+        projections: crate::plots::other_projections(
+            &input.coordinate_names(),
+            &input.points,
+            Some(&outcome.points),
+        ),
     };
     Ok(Faired {
         report,

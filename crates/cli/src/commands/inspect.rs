@@ -10,9 +10,9 @@ use crate::args::{InspectArgs, KindArg};
 use crate::commands::{curve::MIN_CURVE_POINTS, measure, say, surface};
 use crate::error::Result;
 use crate::input::{self, ReadOptions, Source};
-use crate::progress;
 use crate::kind::{self, CurveKind};
 use crate::plots::{planar_view, CurvePlot, SurfacePlot};
+use crate::progress;
 use crate::report::{Report, ReportKind};
 
 /// Whether a source is a surface grid: five comma-separated columns on its first row.
@@ -86,7 +86,10 @@ pub fn inspect_with(
         if options.columns.is_some() {
             return Err(crate::error::Error::Argument {
                 option: "--columns",
-                message: format!("{}: the input is a surface grid i,j,x,y,z; --columns is for curves", source.name),
+                message: format!(
+                    "{}: the input is a surface grid i,j,x,y,z; --columns is for curves",
+                    source.name
+                ),
             });
         }
         if kind_arg != KindArg::Auto {
@@ -127,8 +130,10 @@ pub fn inspect_with(
         input.require_at_least(MIN_CURVE_POINTS, "a curve")?;
         let kind = kind::resolve(kind_arg, &input)?;
         let measured = {
-            let _activity =
-                progress::Activity::start(&format!("measuring {} ({} points)", source.name, input.len()), quiet);
+            let _activity = progress::Activity::start(
+                &format!("measuring {} ({} points)", source.name, input.len()),
+                quiet,
+            );
             measure::curve(kind, &input.points).map_err(|e| measure::in_file(e, &input.source))?
         };
         if let Some(path) = plot {

@@ -38,7 +38,9 @@ pub struct Layout {
 impl Layout {
     /// The file columns (from 0) that are labels, in file order.
     pub fn label_columns(&self) -> Vec<usize> {
-        (0..self.columns).filter(|c| !self.coordinates.contains(c)).collect()
+        (0..self.columns)
+            .filter(|c| !self.coordinates.contains(c))
+            .collect()
     }
 }
 
@@ -169,7 +171,10 @@ pub fn check_columns(columns: &[String]) -> Result<()> {
                 message: format!("`{}` has an empty name", columns.join(",")),
             });
         }
-        if columns[..i].iter().any(|n| n.trim().eq_ignore_ascii_case(name.trim())) {
+        if columns[..i]
+            .iter()
+            .any(|n| n.trim().eq_ignore_ascii_case(name.trim()))
+        {
             return Err(Error::Argument {
                 option: "--columns",
                 message: format!("`{name}` appears twice in `{}`", columns.join(",")),

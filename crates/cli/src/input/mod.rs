@@ -389,7 +389,11 @@ pub fn parse_curve_with(source: &Source, options: &ReadOptions) -> Result<CurveI
             message: format!(
                 "{}: only CSV and whitespace tables have named columns; this is {}",
                 source.name,
-                if matches!(sniffed, Sniffed::Json) { "JSON" } else { "an airfoil .dat" }
+                if matches!(sniffed, Sniffed::Json) {
+                    "JSON"
+                } else {
+                    "an airfoil .dat"
+                }
             ),
         });
     }
@@ -425,7 +429,12 @@ mod tests {
             InputFormat::Csv {
                 header: Some("x,y".into()),
                 delimiter: Delimiter::Comma,
-                labels: None
+                layout: Layout {
+                    columns: 2,
+                    coordinates: vec![0, 1],
+                    names: vec!["x".to_string(), "y".to_string()],
+                    labels: Vec::new(),
+                }
             }
         );
         assert_eq!(c.lines, vec![2, 3, 4]);
@@ -443,7 +452,12 @@ mod tests {
             InputFormat::Csv {
                 header: None,
                 delimiter: Delimiter::Comma,
-                labels: None
+                layout: Layout {
+                    columns: 3,
+                    coordinates: vec![0, 1, 2],
+                    names: vec!["x".to_string(), "y".to_string(), "z".to_string()],
+                    labels: Vec::new(),
+                }
             }
         );
         assert_eq!(c.lines, vec![1, 4]);
@@ -476,6 +490,72 @@ mod tests {
         );
     }
 
+    /// Columns by name in any order; every other column a label, numeric or not, written
+    /// back as read; `--columns` picks the coordinates and the abscissa.
+    #[test]
+    fn columns_are_taken_by_name() {
+        let c = parse("s.csv", "y,x,w\n5,0,1\n6,1,2\n7,3,3\n").unwrap();
+        assert_eq!(
+            c.points,
+            Points::Planar(vec![Vec2::new(0., 5.), Vec2::new(1., 6.), Vec2::new(3., 7.)])
+        );
+        assert_eq!(c.coordinate_names(), ["x", "y"]);
+        assert!(c.notes.is_empty());
+        let moved = Points::Planar(vec![Vec2::new(0., 5.5), Vec2::new(1., 6.), Vec2::new(3., 7.)]);
+        assert_eq!(
+            crate::output::format_curve(&c, &moved).unwrap(),
+            "y,x,w\n5.5,0,1\n6,1,2\n7,3,3\n"
+        );
+        let options = ReadOptions::with_columns(Some(vec!["z".into(), "Y".into()]));
+        let c = parse_curve_with(
+            &Source::from_text("h.csv", "x,y,z\n9,1,0\n9,2,1\n9,3,2\n"),
+            &options,
+        )
+        .unwrap();
+        assert_eq!(
+            c.points,
+            Points::Planar(vec![Vec2::new(0., 1.), Vec2::new(1., 2.), Vec2::new(2., 3.)])
+        );
+        assert_eq!(c.coordinate_names(), ["z", "y"]);
+        let moved = Points::Planar(vec![Vec2::new(0., 1.), Vec2::new(1., 2.25), Vec2::new(2., 3.)]);
+        assert_eq!(
+            crate::output::format_curve(&c, &moved).unwrap(),
+            "x,y,z\n9,1,0\n9,2.25,1\n9,3,2\n"
+        );
+        // Headerless: by position, with a note; --columns by the same letters.
+        let c = parse_curve_with(&Source::from_text("p.csv", "0,1,2\n1,2,3\n"), &options).unwrap();
+        assert_eq!(
+            c.points,
+            Points::Planar(vec![Vec2::new(2., 1.), Vec2::new(3., 2.)])
+        );
+        assert_eq!(c.notes.len(), 1);
+        assert!(c.notes[0].contains("no header"), "{:?}", c.notes);
+        for (text, columns, needle) in [
+            ("a,b\n1,2\n", None, "no `x` column"),
+            (
+                "x,y\n1,2\n",
+                Some(vec!["x".to_string(), "q".to_string()]),
+                "no column `q`",
+            ),
+            ("x,y\n1,2\n", Some(vec!["x".to_string()]), "give 2"),
+            (
+                "x,y\n1,2\n",
+                Some(vec!["x".to_string(), "X".to_string()]),
+                "twice",
+            ),
+            ("x,X,y\n1,2,3\n", None, "twice"),
+        ] {
+            let e = parse_curve_with(
+                &Source::from_text("e.csv", text),
+                &ReadOptions::with_columns(columns),
+            )
+            .unwrap_err();
+            assert!(e.to_string().contains(needle), "{e}");
+        }
+        let e = parse_curve_with(&Source::from_text("j.json", "[[0, 1], [1, 2]]"), &options).unwrap_err();
+        assert!(e.to_string().contains("--columns"), "{e}");
+    }
+
     #[test]
     fn whitespace_columns() {
         let c = parse("a.txt", "0 1\n1\t2\n").unwrap();
@@ -485,7 +565,12 @@ mod tests {
             InputFormat::Csv {
                 header: None,
                 delimiter: Delimiter::Whitespace,
-                labels: None
+                layout: Layout {
+                    columns: 2,
+                    coordinates: vec![0, 1],
+                    names: vec!["x".to_string(), "y".to_string()],
+                    labels: Vec::new(),
+                }
             }
         );
     }
@@ -536,7 +621,10 @@ mod tests {
     #[test]
     fn wrong_column_count() {
         let e = parse("w.csv", "1\n2\n").unwrap_err();
-        assert!(e.to_string().starts_with("w.csv:1: 1 columns"), "{e}");
+        assert!(
+            e.to_string().starts_with("w.csv:1: 1 columns without a header"),
+            "{e}"
+        );
         let e = parse("g.csv", "i,j,x,y,z\n0,0,1,2,3\n").unwrap_err();
         assert!(e.to_string().contains("fair surface"), "{e}");
     }
