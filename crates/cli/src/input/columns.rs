@@ -216,6 +216,14 @@ pub fn parse(source: &Source, options: &ReadOptions) -> Result<CurveInput> {
     let (header, coordinates, names) = if has_header {
         lines_iter.next();
         let names: Vec<&str> = first_fields.iter().map(|f| unquote(f)).collect();
+        let named = |wanted: &str| names.iter().any(|n| n.eq_ignore_ascii_case(wanted));
+        if chosen.is_none() && ["i", "j", "x", "y", "z"].iter().all(|n| named(n)) {
+            return Err(Error::Parse {
+                path: source.name.clone(),
+                line: first_line,
+                message: "an i,j,x,y,z grid is a surface: use `fair surface` (or name the curve's columns with --columns)".into(),
+            });
+        }
         let coordinates = coordinates_from_header(source, first_line, first_text, &names, chosen)?;
         let chosen_names = coordinates.iter().map(|&c| names[c].to_string()).collect();
         (Some(first_text.to_string()), coordinates, chosen_names)
