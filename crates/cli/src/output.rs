@@ -198,6 +198,12 @@ impl OutputFormat {
         if path == "-" {
             return Ok(OutputFormat::SameAsInput);
         }
+        if std::path::Path::new(path).is_dir() {
+            return Err(Error::Write {
+                path: path.into(),
+                reason: "it is a directory".into(),
+            });
+        }
         let extension = std::path::Path::new(path)
             .extension()
             .and_then(|e| e.to_str())
