@@ -53,7 +53,8 @@ fn header_order_and_label_columns_round_trip_untouched() {
     let points = function_points(12);
     // (header, row) for each layout: y before x; a numeric label; a text label in front; a
     // quoted header; upper-case names.
-    let layouts: [(&str, fn(usize, [f64; 2]) -> String); 5] = [
+    type Row = fn(usize, [f64; 2]) -> String;
+    let layouts: [(&str, Row); 5] = [
         ("y,x", |_, p| format!("{},{}", p[1], p[0])),
         ("x,y,w", |i, p| format!("{},{},{}", p[0], p[1], 10 + i)),
         ("source,y,weight,x", |i, p| {
@@ -279,7 +280,7 @@ fn usage_mistakes_are_named() {
 }
 
 /// The file: a noisy function segment of 10⁵ points (x steps of ~1.3e-4, y = sin(x/2)
-/// + noise 0.01), on which every method exited 2 after minutes of quadrature. Every method
+/// plus noise of 0.01), on which every method exited 2 after minutes of quadrature. Every method
 /// with a function form now fairs it and reports finite energies with their accuracy.
 #[test]
 fn a_noisy_hundred_thousand_point_segment_fairs_with_every_function_method() {

@@ -232,13 +232,16 @@ impl OutputFormat {
 /// points (and the label columns as `labels`), a Selig file named after the input. A 3D curve
 /// cannot be an airfoil `.dat`. O(n).
 pub fn format_curve_as(input: &CurveInput, points: &Points, format: OutputFormat) -> Result<String> {
-    let same = match (format, &input.format) {
-        (OutputFormat::SameAsInput, _) => true,
-        (OutputFormat::Csv, InputFormat::Csv { .. }) => true,
-        (OutputFormat::Json, InputFormat::Json { .. }) => true,
-        (OutputFormat::Dat, InputFormat::Selig { .. } | InputFormat::Lednicer { .. }) => true,
-        _ => false,
-    };
+    let same = matches!(
+        (format, &input.format),
+        (OutputFormat::SameAsInput, _)
+            | (OutputFormat::Csv, InputFormat::Csv { .. })
+            | (OutputFormat::Json, InputFormat::Json { .. })
+            | (
+                OutputFormat::Dat,
+                InputFormat::Selig { .. } | InputFormat::Lednicer { .. }
+            )
+    );
     if same {
         return format_curve(input, points);
     }

@@ -150,7 +150,7 @@ impl<const D: usize> PieceJets<D> for CubicPieces<D> {
 /// C′(u) = a + bu + cu²/2 with (a, b, c) = `start`. O(1) per piece (≤ 2 · 27 points).
 fn speed_dip_splits<const D: usize>(start: [Vector<D>; 3], length: f64, mut push: impl FnMut(f64)) {
     let [a, b, c] = start;
-    if !(length > 0.0) {
+    if length.is_nan() || length <= 0.0 {
         return;
     }
     // p(u) = C′·C″ = a·b + (a·c + |b|²) u + 3/2 (b·c) u² + 1/2 |c|² u³.
@@ -208,11 +208,11 @@ fn speed_dip_splits<const D: usize>(start: [Vector<D>; 3], length: f64, mut push
         let bend = b + c * centre;
         let q = speed.norm_squared();
         let curvature_of_q = 2.0 * (bend.norm_squared() + speed.dot(&c));
-        if !(curvature_of_q > 0.0) {
+        if curvature_of_q.is_nan() || curvature_of_q <= 0.0 {
             continue;
         }
         let width = (2.0 * q / curvature_of_q).sqrt().max(1e-12 * length);
-        if !(width < length / 8.0) {
+        if width.is_nan() || width >= length / 8.0 {
             continue;
         }
         let mut scales: Vec<f64> = Vec::new();
