@@ -82,6 +82,11 @@ pub struct FairArgs {
     /// How to read the points (curves only).
     #[arg(long, value_enum, default_value_t = KindArg::Auto)]
     pub kind: KindArg,
+    /// The coordinate columns of a CSV curve by header name, abscissa first, e.g. z,y to fair
+    /// a hull section as y(z) (written back in place; other columns are carried through).
+    /// Default: the columns named x, y and z.
+    #[arg(long, value_name = "NAMES", value_delimiter = ',')]
+    pub columns: Option<Vec<String>>,
     /// A TOML or JSON config: method parameters (the names `--set` takes), [constraints] and
     /// [[stage]] pipelines.
     #[arg(long, value_name = "FILE")]
@@ -96,7 +101,7 @@ pub struct FairArgs {
     #[arg(long, value_name = "LIST", value_parser = parse_index_list)]
     pub points: Option<IndexList>,
     /// No point moves farther than D.
-    #[arg(long, value_name = "D", value_parser = parse_tolerance)]
+    #[arg(long, value_name = "D", value_parser = parse_tolerance, allow_negative_numbers = true)]
     pub tolerance: Option<f64>,
     /// Keep the end points (g0), also the end tangents (g1), also the end curvatures (g2).
     #[arg(long, value_enum, value_name = "G")]
@@ -127,6 +132,13 @@ pub struct FairArgs {
     pub batch: bool,
 }
 
+impl FairArgs {
+    /// How to read the input: `--columns`.
+    pub fn read_options(&self) -> crate::input::ReadOptions {
+        crate::input::ReadOptions::with_columns(self.columns.clone())
+    }
+}
+
 /// Options of `fair inspect`.
 #[derive(Debug, Clone, Args)]
 pub struct InspectArgs {
@@ -136,6 +148,9 @@ pub struct InspectArgs {
     /// How to read the points.
     #[arg(long, value_enum, default_value_t = KindArg::Auto)]
     pub kind: KindArg,
+    /// The coordinate columns of a CSV curve by header name, abscissa first, e.g. z,y.
+    #[arg(long, value_name = "NAMES", value_delimiter = ',')]
+    pub columns: Option<Vec<String>>,
     /// Read INPUT as a surface grid i,j,x,y,z (also chosen when the CSV header is i,j,x,y,z).
     #[arg(long)]
     pub surface: bool,
@@ -148,6 +163,13 @@ pub struct InspectArgs {
     /// Print nothing on success.
     #[arg(long, short = 'q')]
     pub quiet: bool,
+}
+
+impl InspectArgs {
+    /// How to read the input: `--columns`.
+    pub fn read_options(&self) -> crate::input::ReadOptions {
+        crate::input::ReadOptions::with_columns(self.columns.clone())
+    }
 }
 
 /// Options of `fair demo`.

@@ -148,15 +148,26 @@ fn usage(e: clap::Error) -> ExitCode {
     }
 }
 
-/// clap's first message line without its `error: ` prefix, plus where to look for help.
+/// clap's message without its `error: ` prefix on one line, plus where to look for help. A
+/// message that ends in `:` continues on the next lines (the arguments not provided): they
+/// are joined, so that the line names what is missing.
 fn usage_line(rendered: &str) -> String {
-    let first = rendered
-        .lines()
+    let mut lines = rendered.lines().map(str::trim).skip_while(|l| l.is_empty());
+    let first = lines.next().unwrap_or("invalid arguments");
+    let mut message = first
+        .strip_prefix("error:")
         .map(str::trim)
-        .find(|l| !l.is_empty())
-        .unwrap_or("invalid arguments");
-    let first = first.strip_prefix("error:").map(str::trim).unwrap_or(first);
-    format!("{first} (see `fair --help`)")
+        .unwrap_or(first)
+        .to_string();
+    if message.ends_with(':') {
+        let rest: Vec<&str> = lines
+            .take_while(|l| !l.is_empty() && !l.starts_with("Usage:"))
+            .collect();
+        if !rest.is_empty() {
+            message = format!("{} {}", message, rest.join(", "));
+        }
+    }
+    format!("{message} (see `fair --help`)")
 }
 
 #[cfg(test)]
@@ -169,5 +180,21 @@ mod tests {
         let line = usage_line(&e.render().to_string());
         assert!(!line.contains('\n'));
         assert!(line.starts_with("unrecognized subcommand 'frobnicate'"), "{line}");
+    }
+
+    #[test]
+    fn a_missing_argument_is_named() {
+        let e = args::Cli::try_parse_from(["fair", "curve"]).unwrap_err();
+        let line = usage_line(&e.render().to_string());
+        assert!(!line.contains('\n'));
+        assert!(line.contains("<INPUT>"), "{line}");
+    }
+
+    #[test]
+    fn a_negative_tolerance_is_a_clear_message() {
+        let e = args::Cli::try_parse_from(["fair", "curve", "a.csv", "--tolerance", "-1"]).unwrap_err();
+        let line = usage_line(&e.render().to_string());
+        assert!(line.contains("greater than 0"), "{line}");
+        assert!(!line.contains("unexpected argument"), "{line}");
     }
 }

@@ -47,6 +47,11 @@ impl From<fairing::catalog::CurveKind> for ReportKind {
 /// length): the fairness crate's block, serialised as the report's `energies`.
 pub use fairness::Energies;
 
+/// How accurately each energy is known (the fairness crate's block, serialised as the
+/// report's `energy_accuracy`): the relative tolerance asked, each energy's error estimate,
+/// whether it met the tolerance, and whether it was integrated exactly.
+pub use fairness::EnergyAccuracy;
+
 /// The fairness measures of a curve or surface (see `docs/CONTRACT.md` for each definition).
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct Measures {
@@ -58,12 +63,19 @@ pub struct Measures {
     pub e_s: f64,
     /// Largest third-derivative jump (curves) or largest z_ij (surfaces, Eq. 26).
     pub max_z: f64,
-    /// The energies of the curve; `null` for surfaces.
+    /// The energies of the curve; `null` for surfaces (and for a curve whose integrands are
+    /// not finite somewhere, e.g. at a vanishing tangent).
     pub energies: Option<Energies>,
     /// Every registered criterion that applies to the curve (the measured spline, or the
     /// method's own representation when it has one), by name.
     #[serde(default)]
     pub criteria: BTreeMap<String, f64>,
+    /// The accuracy of `energies` (an addition to DESIGN.md's fields): E1–E3 are exact up to
+    /// round-off, Ek and Ek′ adaptive to a relative tolerance; an energy whose tolerance could
+    /// not be met within the linear budget is its best estimate, with its error here. `null`
+    /// where `energies` is, and for energies taken from the method's own representation.
+    #[serde(default)]
+    pub energy_accuracy: Option<EnergyAccuracy>,
 }
 
 /// The whole report.
@@ -134,7 +146,13 @@ impl Report {
             ("after.e_s", self.after.e_s),
             ("after.max_z", self.after.max_z),
         ];
-        let energies = [("before", &self.before.energies), ("after", &self.after.energies)];
+        let errors = |m: &Measures| m.energy_accuracy.map(|a| a.errors);
+        let energies = [
+            ("before", &self.before.energies),
+            ("after", &self.after.energies),
+            ("before.energy_accuracy", &errors(&self.before)),
+            ("after.energy_accuracy", &errors(&self.after)),
+        ];
         let mut bad: Option<String> = fields
             .iter()
             .find(|(_, v)| !v.is_finite())
@@ -148,10 +166,13 @@ impl Report {
                     ("ek", e.ek),
                     ("ek_prime", e.ek_prime),
                 ];
-                bad = named
-                    .iter()
-                    .find(|(_, v)| !v.is_finite())
-                    .map(|(n, _)| format!("{side}.energies.{n}"));
+                bad = named.iter().find(|(_, v)| !v.is_finite()).map(|(n, _)| {
+                    if side.contains('.') {
+                        format!("{side}.errors.{n}")
+                    } else {
+                        format!("{side}.energies.{n}")
+                    }
+                });
             }
         }
         for (side, measures) in [("before", &self.before), ("after", &self.after)] {
@@ -224,6 +245,7 @@ mod tests {
             max_z: 0.8,
             energies: Some(Energies::default()),
             criteria: [("ek".to_string(), 0.5)].into_iter().collect(),
+            energy_accuracy: Some(EnergyAccuracy::default()),
         };
         let curve = NurbsRecord {
             degree: 3,
@@ -283,6 +305,7 @@ mod tests {
             "max_z",
             "energies",
             "criteria",
+            "energy_accuracy",
         ];
         measures.sort();
         assert_eq!(keys(&value["before"]), measures);

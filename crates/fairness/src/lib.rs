@@ -43,10 +43,12 @@ mod test_curves;
 
 pub use curvature::CurvatureForm;
 pub use displacement::Displacement;
-pub use energy::{Ek, EkPrime, Energies, PieceQuadrature, E1, E2, E3};
+pub use energy::{
+    Ek, EkPrime, Energies, EnergyAccuracy, EnergyFlags, MeasuredEnergies, PieceQuadrature, E1, E2, E3,
+};
 pub use error::{Error, Result};
 pub use indicator::{Criterion, FnCriterion, LocalIndicator};
-pub use quadrature::{Adaptive, GaussLegendre};
+pub use quadrature::{Adaptive, Estimate, GaussLegendre};
 pub use report::FairnessSummary;
 pub use sign::{sign_change_positions, sign_changes};
 pub use xc::XcPolyline;

@@ -178,6 +178,10 @@ fn process_points(
             ) {
                 before.measures.energies = Some(b);
                 after.measures.energies = Some(a);
+                // Integrated by the method's own criteria to their default tolerance (they
+                // fail rather than return an unmet one): no error estimate to report.
+                before.measures.energy_accuracy = None;
+                after.measures.energy_accuracy = None;
             }
         }
         None => {
@@ -210,7 +214,7 @@ fn process_points(
         params: plan.params(catalog),
         extras,
     };
-    let points_text = crate::output::format_curve(input, &faired)?;
+    let points_text = crate::output::format_curve_as(input, &faired, output_format(args)?)?;
     let plot = CurvePlot {
         title: format!("{} — {}", input.source, report.method),
         input: planar_view(&input.points),
@@ -223,12 +227,27 @@ fn process_points(
         function: kind == CurveKind::Function,
         curvature_before: before.curvature,
         curvature_after: after.curvature,
+        axes: Some(crate::plots::axis_names(&input.coordinate_names())),
+        projections: crate::plots::other_projections(
+            &input.coordinate_names(),
+            &input.points,
+            Some(&faired),
+        ),
     };
     Ok(Faired {
         report,
         points_text,
         plot,
     })
+}
+
+/// The format of the faired points: by `-o`'s extension for a single curve (a batch writes
+/// each file in its own format).
+fn output_format(args: &FairArgs) -> Result<crate::output::OutputFormat> {
+    match &args.output {
+        Some(path) if !batch::is_batch(args) => crate::output::OutputFormat::of_path(path),
+        _ => Ok(crate::output::OutputFormat::SameAsInput),
+    }
 }
 
 /// Methods for parametric curves (strain-energy, batten) move x as well as y; on function
@@ -260,7 +279,12 @@ pub fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
     if batch::is_batch(args) {
         return batch::run(catalog, args, file.as_ref());
     }
-    let input = input::read_curve(&args.input)?;
+    output_format(args)?;
+    let input = {
+        let _activity = progress::Activity::start(&format!("reading {}", args.input), args.quiet);
+        input::read_curve_with(&args.input, &args.read_options())?
+    };
+    input.print_notes(args.quiet);
     if args.print_config {
         input.require_at_least(MIN_CURVE_POINTS, "a curve")?;
         let kind = kind::resolve(args.kind, &input)?;
@@ -272,7 +296,10 @@ pub fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
         return Ok(());
     }
     let faired = {
-        let _activity = progress::Activity::start(&format!("fairing {}", input.source), args.quiet);
+        let _activity = progress::Activity::start(
+            &format!("fairing and measuring {} ({} points)", input.source, input.len()),
+            args.quiet,
+        );
         process(catalog, &input, args, file.as_ref())?
     };
     write_results(args, &faired.report, &faired.points_text, || faired.plot.figure())?;

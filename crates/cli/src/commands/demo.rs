@@ -94,6 +94,7 @@ fn run_args(input: String, method: &str, out: &std::path::Path, stem: &str) -> F
         input,
         method: Some(method.to_string()),
         kind: KindArg::Auto,
+        columns: None,
         config: None,
         settings: Vec::new(),
         fixed: None,
