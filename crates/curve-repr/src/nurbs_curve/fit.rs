@@ -330,8 +330,10 @@ impl NurbsCurve<2> {
     }
 }
 
-/// The planar curve (t, f(t)) of a scalar B-spline f, with Greville control abscissae.
-pub(crate) fn graph_of(f: &NurbsCurve<1>) -> Result<NurbsCurve<2>> {
+/// The planar curve (t, f(t)) of a scalar B-spline f: the same knots and ordinates, the
+/// Greville control abscissae, so that x(t) = t. Fails only as [`NurbsCurve::non_rational`]
+/// (never for a valid f). O(n p).
+pub fn graph_of(f: &NurbsCurve<1>) -> Result<NurbsCurve<2>> {
     let p = f.degree();
     let knots = f.knots().to_vec();
     let points = f
