@@ -88,6 +88,11 @@ def main(out):
             "control_points": [list(map(float, q)) for q in c["poles"]],
             "weights": [float(w) for w in (c["weights"] or [1.0] * len(c["poles"]))]}
 
+    # An edge on a part of the 3D curve: STEP writes a TRIMMED_CURVE with parameter trims.
+    g = curve(c3["poles"], c3["knots"], c3["mults"], c3["degree"])
+    trimmed = BRepBuilderAPI_MakeEdge(g, 0.5, 2.5).Edge()
+    record["trimmed"] = {"occ_trimmed": {"basis": "occ_curve3d", "range": [0.5, 2.5]}}
+
     # A bicubic surface, 5 x 4 poles, a rational bump in one weight.
     net = [[(i * 1.5, j * 1.25, 0.3 * math.sin(i + 2 * j)) for j in range(4)] for i in range(5)]
     wts = [[1.0] * 4 for _ in range(5)]
@@ -115,6 +120,12 @@ def main(out):
         Interface_Static.SetCVal_s("write.step.unit", "MM")
         assert step.Transfer(shape, STEPControl_AsIs) == IFSelect_RetDone
         assert step.Write(str(out / f"{name}.step")) == IFSelect_RetDone
+
+    step = STEPControl_Writer()
+    Interface_Static.SetCVal_s("write.step.schema", "AP214IS")
+    Interface_Static.SetCVal_s("write.step.unit", "MM")
+    assert step.Transfer(trimmed, STEPControl_AsIs) == IFSelect_RetDone
+    assert step.Write(str(out / "occ_trimmed.step")) == IFSelect_RetDone
 
     # ezdxf: a rational 3D spline (the arc above, lifted) in an R2000 drawing, in metres.
     doc = ezdxf.new("R2000")

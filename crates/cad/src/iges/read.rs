@@ -58,21 +58,21 @@ fn split(text: &str, delimiter: char, end: char) -> Vec<Parameter> {
 
 /// The Global section's delimiters: parameter 1 and 2, each `1Hc` or defaulted (`,`, `;`).
 fn delimiters(text: &str) -> (char, char) {
-    let mut rest = text.trim_start();
-    let mut take = |default: char, delimiter: char| -> char {
-        if let Some(after) = rest.strip_prefix("1H") {
-            let c = after.chars().next().unwrap_or(default);
-            rest = after.get(c.len_utf8()..).unwrap_or("");
-            rest = rest.trim_start();
-            rest = rest.strip_prefix(delimiter).unwrap_or(rest);
-            c
-        } else {
-            rest = rest.strip_prefix(delimiter).unwrap_or(rest);
-            default
-        }
+    let hollerith = |rest: &str| -> Option<(char, usize)> {
+        let c = rest.strip_prefix("1H")?.chars().next()?;
+        Some((c, 2 + c.len_utf8()))
     };
-    let parameter = take(',', ',');
-    let record = take(';', parameter);
+    let mut rest = text.trim_start();
+    let parameter = match hollerith(rest) {
+        Some((c, length)) => {
+            rest = &rest[length..];
+            c
+        }
+        None => ',',
+    };
+    rest = rest.trim_start();
+    rest = rest.strip_prefix(parameter).unwrap_or(rest).trim_start();
+    let record = hollerith(rest).map_or(';', |(c, _)| c);
     (parameter, record)
 }
 

@@ -309,8 +309,13 @@ impl<const D: usize> CubicPieces<D> {
     /// multiple of (t − b)^{r+1}, whose blossom vanishes when b is among 3 − r arguments; each
     /// difference is the displacement of a control point, so the tolerance is geometric.)
     /// Fails with [`Error::Discontinuous`] when the pieces do not meet, and
-    /// [`Error::IndexOutOfRange`] for a break that is not interior. O(D).
+    /// [`Error::IndexOutOfRange`] for a break that is not interior. O(n) for the size.
     pub fn join_continuity(&self, index: usize, tolerance: f64) -> Result<usize> {
+        self.join_within(index, tolerance * self.size())
+    }
+
+    /// [`join_continuity`](Self::join_continuity) with an absolute tolerance. O(D).
+    fn join_within(&self, index: usize, allowed: f64) -> Result<usize> {
         if index == 0 || index >= self.bezier.len() {
             return Err(Error::IndexOutOfRange {
                 what: "interior break points",
@@ -318,7 +323,6 @@ impl<const D: usize> CubicPieces<D> {
                 len: self.breaks.len(),
             });
         }
-        let allowed = tolerance * self.size();
         join_order(
             &self.bezier[index - 1],
             &self.bezier[index],
@@ -333,7 +337,8 @@ impl<const D: usize> CubicPieces<D> {
     /// is the blossom f(u_{j+1}, u_{j+2}, u_{j+3}) of a piece in its support, the one whose
     /// interval the three knots leave least (de Boor's dual functionals; exact in exact
     /// arithmetic whenever the joins have the continuity their multiplicity promises, which
-    /// [`join_continuity`](Self::join_continuity) checks).
+    /// [`join_continuity`](Self::join_continuity) checks). The scale of the checks is computed
+    /// once, so the whole conversion is O(n).
     ///
     /// The B-spline has n + 3 control points when every join is C2, 2n + 2 with double
     /// knots. Its end control points are b_0 of the first and b_3 of the last piece exactly.
@@ -352,9 +357,10 @@ impl<const D: usize> CubicPieces<D> {
             });
         }
         let n = self.bezier.len();
+        let allowed = tolerance * self.size();
         let continuity = (1..n)
             .map(|i| {
-                let order = self.join_continuity(i, tolerance)?;
+                let order = self.join_within(i, allowed)?;
                 Ok(if rule == JoinRule::Double {
                     order.min(1)
                 } else {
