@@ -17,8 +17,7 @@ use std::path::{Path, PathBuf};
 use cad::{CadCurve, CadSettings, CadSurface, Format, Shape};
 use curve_repr::{
     BicubicSplineSurface, CubicPieces, Curve, EndCondition, HermiteEnds, HermiteSettings, HermiteSpline,
-    Interpolation, InterpolationSettings, NurbsSurface, Parametrization, SplineFunction, Surface, Vec2,
-    Vec3,
+    Interpolation, InterpolationSettings, NurbsSurface, Parametrization, SplineFunction, Surface, Vec2, Vec3,
 };
 use serde_json::{json, Value};
 
@@ -32,7 +31,9 @@ fn shapes() -> Result<Vec<(Shape, CadSettings)>, Failure> {
     let exact = CadSettings::default();
     let mut out = Vec::new();
 
-    let x: Vec<f64> = (0..60).map(|i| -2.0 + i as f64 * 0.17 + 0.03 * (i as f64).sin()).collect();
+    let x: Vec<f64> = (0..60)
+        .map(|i| -2.0 + i as f64 * 0.17 + 0.03 * (i as f64).sin())
+        .collect();
     let y: Vec<f64> = x.iter().map(|&v| wavy(v)).collect();
     let function = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout)?;
     out.push((
@@ -55,7 +56,10 @@ fn shapes() -> Result<Vec<(Shape, CadSettings)>, Failure> {
     let ring: Vec<Vec2> = (0..24)
         .map(|i| {
             let a = i as f64 / 24.0 * std::f64::consts::TAU;
-            Vec2::new(100.0 + 8.0 * a.cos(), -50.0 + 5.0 * a.sin() + 0.3 * (3.0 * a).cos())
+            Vec2::new(
+                100.0 + 8.0 * a.cos(),
+                -50.0 + 5.0 * a.sin() + 0.3 * (3.0 * a).cos(),
+            )
         })
         .collect();
     let closed = HermiteSpline::new(&ring, &HermiteSettings::default().with_ends(HermiteEnds::Closed))?;
@@ -92,7 +96,9 @@ fn shapes() -> Result<Vec<(Shape, CadSettings)>, Failure> {
         .collect();
     let rational = interpolation.solve(&weights)?;
     out.push((
-        Shape::Curve(CadCurve::from_nurbs(&rational, &section, interpolation.params())?.with_name("rational")),
+        Shape::Curve(
+            CadCurve::from_nurbs(&rational, &section, interpolation.params())?.with_name("rational"),
+        ),
         exact.clone(),
     ));
 
@@ -214,7 +220,10 @@ fn record(shape: &Shape, export: &cad::Export, files: Value) -> Value {
             let mut data_params = Vec::new();
             let columns = written.v_parameters.len();
             for (k, _) in written.points.iter().enumerate() {
-                data_params.push(json!([written.u_parameters[k / columns], written.v_parameters[k % columns]]));
+                data_params.push(json!([
+                    written.u_parameters[k / columns],
+                    written.v_parameters[k % columns]
+                ]));
             }
             let rows = written.control_rows();
             let all: Vec<Vec3> = rows.into_iter().flatten().collect();
@@ -231,7 +240,11 @@ fn record(shape: &Shape, export: &cad::Export, files: Value) -> Value {
 }
 
 fn main() -> Result<(), Failure> {
-    let out = PathBuf::from(std::env::args().nth(1).unwrap_or_else(|| "target/cad-check".into()));
+    let out = PathBuf::from(
+        std::env::args()
+            .nth(1)
+            .unwrap_or_else(|| "target/cad-check".into()),
+    );
     std::fs::create_dir_all(&out)?;
     let mut records = Vec::new();
     for (shape, settings) in shapes()? {
@@ -263,7 +276,10 @@ fn main() -> Result<(), Failure> {
 }
 
 fn file_name(path: &Path) -> String {
-    path.file_name().and_then(|n| n.to_str()).unwrap_or("").to_string()
+    path.file_name()
+        .and_then(|n| n.to_str())
+        .unwrap_or("")
+        .to_string()
 }
 
 fn check_round_trip(written: &cad::CadModel, back: &cad::CadModel, path: &Path) -> Result<(), Failure> {

@@ -232,7 +232,12 @@ impl Export {
 /// Fails with [`Error::BadParameter`] on invalid settings or a rebuild asked of a surface,
 /// [`Error::Unsupported`] for a surface in DXF, and as the rebuild fails. O(size of the shape)
 /// without a rebuild.
-pub fn export(shape: &Shape, format: Format, settings: &CadSettings, options: &WriteOptions) -> Result<Export> {
+pub fn export(
+    shape: &Shape,
+    format: Format,
+    settings: &CadSettings,
+    options: &WriteOptions,
+) -> Result<Export> {
     settings.validate()?;
     let (shape, report) = match (shape, settings.rebuild_target()) {
         (Shape::Curve(curve), Some(target)) => {
@@ -257,7 +262,7 @@ pub fn export(shape: &Shape, format: Format, settings: &CadSettings, options: &W
         (None, Some(r)) => r.max_deviation.max(1e-9 * size),
         (None, None) => 1e-9 * size,
     };
-    if !(model.tolerance > 0.0) {
+    if model.tolerance.is_nan() || model.tolerance <= 0.0 {
         model.tolerance = 1e-9;
     }
     let text = write(&model, format, options)?;
@@ -380,7 +385,10 @@ mod tests {
             },
         ];
         for settings in bad {
-            assert!(matches!(settings.validate(), Err(Error::BadParameter { .. })), "{settings:?}");
+            assert!(
+                matches!(settings.validate(), Err(Error::BadParameter { .. })),
+                "{settings:?}"
+            );
         }
         let text = r#"{"units": "m", "control-points": 12, "step-schema": "ap242"}"#;
         let settings: CadSettings = serde_json::from_str(text).unwrap();

@@ -47,7 +47,9 @@ pub mod step;
 pub mod units;
 
 pub use error::{Error, Result};
-pub use export::{export, export_to_path, read, read_path, write, CadSettings, Export, ExportSummary, Format};
+pub use export::{
+    export, export_to_path, read, read_path, write, CadSettings, Export, ExportSummary, Format,
+};
 pub use model::{CadCurve, CadModel, CadSurface, CurveKind, Shape};
 pub use options::{StepSchema, Timestamp, WriteOptions};
 pub use rebuild::{rebuild, CurvatureCounts, RebuildReport, RebuildTarget};

@@ -8,15 +8,24 @@
 //! has z = 0 and remembers that it is planar), as every CAD format stores it.
 
 use curve_repr::{
-    BicubicSplineSurface, CubicPieces, Curve, HermiteSpline, JoinRule, NurbsCurve, NurbsSurface,
-    SplineFunction, Surface, Vec3, Vector,
+    BicubicSplineSurface, CubicPieces, Curve, EndCondition, HermiteSpline, JoinRule, NurbsCurve,
+    NurbsSurface, SplineFunction, Surface, Vec3, Vector,
 };
 
 use crate::{Error, Result, Units};
 
 /// How the faired points were measured, which decides how a rebuild counts curvature.
 #[derive(
-    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    serde::Serialize,
+    serde::Deserialize,
+    schemars::JsonSchema,
 )]
 #[serde(rename_all = "kebab-case")]
 pub enum CurveKind {
@@ -183,7 +192,11 @@ impl CadCurve {
     /// A NURBS curve as it is (e.g. the weight-faired curve of Nowacki et al.), through
     /// `points` at `parameters` (both may be empty). Fails with
     /// [`curve_repr::Error::LengthMismatch`] when they differ in number. O(n).
-    pub fn from_nurbs<const D: usize>(curve: &NurbsCurve<D>, points: &[Vector<D>], parameters: &[f64]) -> Result<Self> {
+    pub fn from_nurbs<const D: usize>(
+        curve: &NurbsCurve<D>,
+        points: &[Vector<D>],
+        parameters: &[f64],
+    ) -> Result<Self> {
         check_dimension::<D>()?;
         if points.len() != parameters.len() {
             return Err(curve_repr::Error::LengthMismatch {
@@ -203,9 +216,28 @@ impl CadCurve {
         })
     }
 
+    /// The spline the `fair` report measures for a function, through (x_i, y_i): the spline
+    /// function with the parabolic-runout end condition ([`from_spline_function`](Self::from_spline_function)).
+    /// For a method whose own representation is that spline (or that has none of its own).
+    pub fn measured_function(x: &[f64], y: &[f64]) -> Result<Self> {
+        Self::from_spline_function(&SplineFunction::new(x, y, EndCondition::ParabolicRunout)?)
+    }
+
+    /// The spline the `fair` report measures for a parametric curve in 2D or 3D: the natural
+    /// cubic spline over chord length ([`from_hermite`](Self::from_hermite)).
+    pub fn measured_parametric<const D: usize>(points: &[Vector<D>]) -> Result<Self> {
+        Self::from_hermite(&HermiteSpline::natural(points)?)
+    }
+
     /// The same curve with a name.
     pub fn with_name(mut self, name: impl Into<String>) -> Self {
         self.name = name.into();
+        self
+    }
+
+    /// The same curve measured as `kind` (a NURBS of a function's points, say).
+    pub fn with_kind(mut self, kind: CurveKind) -> Self {
+        self.kind = kind;
         self
     }
 
@@ -266,6 +298,12 @@ impl CadSurface {
             u_parameters: surface.u_knots().to_vec(),
             v_parameters: surface.v_knots().to_vec(),
         })
+    }
+
+    /// The surface the `fair` report measures for a grid `grid[i][j]`: the bicubic spline
+    /// surface of Zhang–Cheng §4 with chord-length averaged knots ([`from_bicubic`](Self::from_bicubic)).
+    pub fn measured(grid: &[Vec<Vec3>]) -> Result<Self> {
+        Self::from_bicubic(&BicubicSplineSurface::new(grid)?)
     }
 
     /// The same surface with a name.
@@ -352,7 +390,10 @@ impl CadModel {
     /// The largest coordinate magnitude of every control point (IGES Global parameter 20).
     pub fn max_coordinate(&self) -> f64 {
         let curves = self.curves.iter().flat_map(|c| c.curve.control_points().iter());
-        let surfaces = self.surfaces.iter().flat_map(|s| s.control_rows().into_iter().flatten());
+        let surfaces = self
+            .surfaces
+            .iter()
+            .flat_map(|s| s.control_rows().into_iter().flatten());
         curves
             .copied()
             .chain(surfaces)

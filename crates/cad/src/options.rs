@@ -4,7 +4,16 @@
 /// The application protocol named in a STEP file's `FILE_SCHEMA`. The entities written are
 /// the same in both (B-spline curves and surfaces, products, units, uncertainty).
 #[derive(
-    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    serde::Serialize,
+    serde::Deserialize,
+    schemars::JsonSchema,
 )]
 #[serde(rename_all = "kebab-case")]
 pub enum StepSchema {
@@ -111,7 +120,13 @@ impl Default for WriteOptions {
 /// at most `limit` characters: safe inside IGES Hollerith strings, STEP strings and DXF.
 pub(crate) fn ascii(text: &str, limit: usize) -> String {
     text.chars()
-        .map(|c| if (' '..='~').contains(&c) && c != '\'' { c } else { '_' })
+        .map(|c| {
+            if (' '..='~').contains(&c) && c != '\'' {
+                c
+            } else {
+                '_'
+            }
+        })
         .take(limit)
         .collect()
 }

@@ -74,11 +74,11 @@ pub struct RebuildReport {
 fn data(curve: &CadCurve) -> (Vec<Vec3>, Vec<f64>) {
     let (mut points, mut parameters) = curve.sample_points(4);
     let (start, end) = curve.curve.domain();
-    if parameters.first().map_or(true, |&t| t > start) {
+    if parameters.first().is_none_or(|&t| t > start) {
         points.insert(0, curve.curve.point(start));
         parameters.insert(0, start);
     }
-    if parameters.last().map_or(true, |&t| t < end) {
+    if parameters.last().is_none_or(|&t| t < end) {
         points.push(curve.curve.point(end));
         parameters.push(end);
     }
@@ -86,7 +86,12 @@ fn data(curve: &CadCurve) -> (Vec<Vec3>, Vec<f64>) {
 }
 
 /// κ (signed in 2D) or, for a function, y'' = (x'y'' − y'x'')/x'³ at each parameter.
-fn curvature_values(curve: &NurbsCurve<3>, dimension: usize, kind: CurveKind, parameters: &[f64]) -> Result<Vec<f64>> {
+fn curvature_values(
+    curve: &NurbsCurve<3>,
+    dimension: usize,
+    kind: CurveKind,
+    parameters: &[f64],
+) -> Result<Vec<f64>> {
     if kind == CurveKind::Function {
         return parameters
             .iter()

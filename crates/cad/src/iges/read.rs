@@ -32,7 +32,11 @@ fn split(text: &str, delimiter: char, end: char) -> Vec<Parameter> {
         let digits = chars[i..].iter().take_while(|c| c.is_ascii_digit()).count();
         let mut token = String::new();
         if digits > 0 && chars.get(i + digits).is_some_and(|&c| c == 'H' || c == 'h') {
-            let n: usize = chars[i..i + digits].iter().collect::<String>().parse().unwrap_or(0);
+            let n: usize = chars[i..i + digits]
+                .iter()
+                .collect::<String>()
+                .parse()
+                .unwrap_or(0);
             let start = i + digits + 1;
             let stop = (start + n).min(chars.len());
             token = chars[start..stop].iter().collect();
@@ -100,7 +104,11 @@ fn integer(text: &str, what: &str, line: usize) -> Result<i64> {
     }
     match parse_real(text) {
         Some(v) if v.fract() == 0.0 && v.abs() < 1e15 => Ok(v as i64),
-        _ => Err(Error::parse(FORMAT, line, format!("{what}: `{text}` is not an integer"))),
+        _ => Err(Error::parse(
+            FORMAT,
+            line,
+            format!("{what}: `{text}` is not an integer"),
+        )),
     }
 }
 
@@ -199,9 +207,10 @@ impl Reader<'_> {
     }
 
     fn parameters(&self, entry: &Directory) -> Result<Parameters> {
-        let first = entry.parameter_start.checked_sub(1).ok_or_else(|| {
-            Error::parse(FORMAT, entry.line, "the parameter data pointer is 0")
-        })?;
+        let first = entry
+            .parameter_start
+            .checked_sub(1)
+            .ok_or_else(|| Error::parse(FORMAT, entry.line, "the parameter data pointer is 0"))?;
         let lines = self
             .parameters
             .get(first..first + entry.parameter_count.max(1))
@@ -254,7 +263,10 @@ impl Reader<'_> {
                 Error::parse(
                     FORMAT,
                     entry.line,
-                    format!("the transformation matrix pointer {} names no entity 124", entry.transform),
+                    format!(
+                        "the transformation matrix pointer {} names no entity 124",
+                        entry.transform
+                    ),
                 )
             })?;
         let mut p = self.parameters(matrix)?;
@@ -371,17 +383,14 @@ pub fn read(text: &str) -> Result<CadModel> {
         .collect();
     let (delimiter, end) = delimiters(&global);
     let global_values = split(&global, delimiter, end);
-    let global_line = lines
-        .iter()
-        .find(|l| l.section == 'G')
-        .map_or(1, |l| l.number);
+    let global_line = lines.iter().find(|l| l.section == 'G').map_or(1, |l| l.number);
     let text_at = |i: usize| global_values.get(i).cloned().flatten().unwrap_or_default();
     let unit_flag = integer(&text_at(13), "the units flag (Global parameter 14)", global_line)?;
     let units = Units::from_iges(unit_flag, &text_at(14)).unwrap_or_default();
     let tolerance = parse_real(&text_at(18)).unwrap_or(0.0);
 
     let directory_lines: Vec<&Line> = lines.iter().filter(|l| l.section == 'D').collect();
-    if directory_lines.len() % 2 != 0 {
+    if !directory_lines.len().is_multiple_of(2) {
         return Err(Error::parse(
             FORMAT,
             directory_lines.last().map_or(1, |l| l.number),

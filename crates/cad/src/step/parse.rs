@@ -340,11 +340,15 @@ fn data_section(text: &str) -> Option<(usize, usize)> {
 /// The instances of the DATA section by instance number. Fails with [`Error::Parse`] naming
 /// the line on anything that is not Part 21 syntax.
 pub(crate) fn parse(text: &str) -> Result<BTreeMap<usize, Instance>> {
-    if !text.trim_start_matches('\u{feff}').trim_start().starts_with("ISO-10303-21") {
+    if !text
+        .trim_start_matches('\u{feff}')
+        .trim_start()
+        .starts_with("ISO-10303-21")
+    {
         return Err(Error::parse(FORMAT, 1, "a STEP file starts with `ISO-10303-21;`"));
     }
-    let (start, line) = data_section(text)
-        .ok_or_else(|| Error::parse(FORMAT, 1, "the file has no `DATA;` section"))?;
+    let (start, line) =
+        data_section(text).ok_or_else(|| Error::parse(FORMAT, 1, "the file has no `DATA;` section"))?;
     let mut lexer = Lexer {
         bytes: text.as_bytes(),
         at: start,
@@ -359,10 +363,7 @@ pub(crate) fn parse(text: &str) -> Result<BTreeMap<usize, Instance>> {
             None => return Err(lexer.error("the DATA section has no `ENDSEC;`")),
             Some(b'#') => {}
             Some(c) => {
-                return Err(lexer.error(format!(
-                    "expected an instance `#n = …;`, found `{}`",
-                    c as char
-                )));
+                return Err(lexer.error(format!("expected an instance `#n = …;`, found `{}`", c as char)));
             }
         }
         let instance_line = lexer.line;
@@ -394,7 +395,11 @@ pub(crate) fn parse(text: &str) -> Result<BTreeMap<usize, Instance>> {
             )
             .is_some()
         {
-            return Err(Error::parse(FORMAT, instance_line, format!("instance #{id} is defined twice")));
+            return Err(Error::parse(
+                FORMAT,
+                instance_line,
+                format!("instance #{id} is defined twice"),
+            ));
         }
     }
     Ok(instances)
@@ -418,7 +423,12 @@ mod tests {
         assert_eq!(point.line, 6);
         let params = point.part("CARTESIAN_POINT").unwrap();
         assert_eq!(params[0].text(), Some("it's"));
-        let coords: Vec<f64> = params[1].list().unwrap().iter().filter_map(Value::number).collect();
+        let coords: Vec<f64> = params[1]
+            .list()
+            .unwrap()
+            .iter()
+            .filter_map(Value::number)
+            .collect();
         assert_eq!(coords, vec![1.0, -2.5e-3, 3.0]);
         let unit = &instances[&2];
         assert_eq!(unit.parts.len(), 3);

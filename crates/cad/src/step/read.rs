@@ -115,8 +115,8 @@ impl Reader {
             Some(w) => self.numbers(Some(w), "weights", instance, id)?,
             None => vec![1.0; control.len()],
         };
-        let curve = NurbsCurve::new(degree, knots, control, weights)
-            .map_err(|e| self.error(instance, id, e))?;
+        let curve =
+            NurbsCurve::new(degree, knots, control, weights).map_err(|e| self.error(instance, id, e))?;
         let name = name.and_then(Value::text).unwrap_or("").to_string();
         Ok(Some((name, curve)))
     }
@@ -135,9 +135,13 @@ impl Reader {
                 None,
             )
         } else {
-            let b = instance
-                .part("B_SPLINE_SURFACE")
-                .ok_or_else(|| self.error(instance, id, "a complex B-spline surface without B_SPLINE_SURFACE"))?;
+            let b = instance.part("B_SPLINE_SURFACE").ok_or_else(|| {
+                self.error(
+                    instance,
+                    id,
+                    "a complex B-spline surface without B_SPLINE_SURFACE",
+                )
+            })?;
             let k = instance.part("B_SPLINE_SURFACE_WITH_KNOTS").unwrap_or(&[]);
             let name = instance.part("REPRESENTATION_ITEM").and_then(|r| r.first());
             let weights = instance.part("RATIONAL_B_SPLINE_SURFACE").and_then(|r| r.first());
@@ -260,7 +264,7 @@ fn trims(instances: &BTreeMap<usize, Instance>) -> HashMap<usize, (f64, f64)> {
 pub(crate) fn restrict(curve: &NurbsCurve<3>, a: f64, b: f64) -> curve_repr::Result<NurbsCurve<3>> {
     let (start, end) = curve.domain();
     let (a, b) = (a.max(start), b.min(end));
-    if !(a < b) || (a == start && b == end) {
+    if a >= b || a.is_nan() || b.is_nan() || (a == start && b == end) {
         return Ok(curve.clone());
     }
     let p = curve.degree();
@@ -354,7 +358,10 @@ mod tests {
             assert_eq!(part.domain(), (a, b));
             for k in 0..=50 {
                 let t = a + (b - a) * k as f64 / 50.0;
-                assert!((part.point(t) - curve.point(t)).norm() < 1e-13, "[{a}, {b}] at {t}");
+                assert!(
+                    (part.point(t) - curve.point(t)).norm() < 1e-13,
+                    "[{a}, {b}] at {t}"
+                );
             }
         }
         assert_eq!(restrict(&curve, -1.0, 2.0).unwrap(), curve);

@@ -175,7 +175,9 @@ fn surface(data: &mut Data, surface: &CadSurface) -> usize {
 /// The length unit instance (and those it needs).
 fn length_unit(data: &mut Data, units: Units) -> usize {
     match (units.step_prefix(), units.step_conversion_name()) {
-        (Some(prefix), _) => data.add(format!("( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT({prefix},.METRE.) )")),
+        (Some(prefix), _) => data.add(format!(
+            "( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT({prefix},.METRE.) )"
+        )),
         (None, Some(name)) => {
             let millimetre = data.add("( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) )".into());
             let measure = data.add(format!(
@@ -263,7 +265,11 @@ pub fn write(model: &CadModel, options: &WriteOptions) -> Result<String> {
     let placement = data.add(format!(
         "AXIS2_PLACEMENT_3D('',#{origin},#{axis},#{reference_direction})"
     ));
-    let mut items: Vec<String> = model.curves.iter().map(|c| reference(curve(&mut data, c))).collect();
+    let mut items: Vec<String> = model
+        .curves
+        .iter()
+        .map(|c| reference(curve(&mut data, c)))
+        .collect();
     items.extend(model.surfaces.iter().map(|s| reference(surface(&mut data, s))));
     let name = text(product_name);
     if model.surfaces.is_empty() {

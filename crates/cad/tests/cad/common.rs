@@ -12,8 +12,13 @@ pub fn data(path: &str) -> String {
 }
 
 pub fn function(n: usize) -> SplineFunction {
-    let x: Vec<f64> = (0..n).map(|i| -1.5 + i as f64 * 0.13 + 0.02 * (i as f64).cos()).collect();
-    let y: Vec<f64> = x.iter().map(|&v| (0.9 * v).sin() * 2.0 + 0.05 * (7.0 * v).sin()).collect();
+    let x: Vec<f64> = (0..n)
+        .map(|i| -1.5 + i as f64 * 0.13 + 0.02 * (i as f64).cos())
+        .collect();
+    let y: Vec<f64> = x
+        .iter()
+        .map(|&v| (0.9 * v).sin() * 2.0 + 0.05 * (7.0 * v).sin())
+        .collect();
     SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap()
 }
 
@@ -39,15 +44,20 @@ pub fn curves() -> Vec<CadCurve> {
         })
         .collect();
     let section = planar_points(12);
-    let interpolation =
-        Interpolation::with_parametrization(&section, Parametrization::ChordLength, InterpolationSettings::default())
-            .unwrap();
+    let interpolation = Interpolation::with_parametrization(
+        &section,
+        Parametrization::ChordLength,
+        InterpolationSettings::default(),
+    )
+    .unwrap();
     let weights: Vec<f64> = (0..interpolation.control_count())
         .map(|i| 1.0 / 3.0 + (i as f64).sqrt())
         .collect();
     let rational = interpolation.solve(&weights).unwrap();
     vec![
-        CadCurve::from_spline_function(&function(50)).unwrap().with_name("function"),
+        CadCurve::from_spline_function(&function(50))
+            .unwrap()
+            .with_name("function"),
         CadCurve::from_hermite(&HermiteSpline::natural(&planar_points(25)).unwrap())
             .unwrap()
             .with_name("planar"),
@@ -84,7 +94,11 @@ pub fn surfaces() -> Vec<CadSurface> {
         vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
         vec![0.1, 0.1, 0.1, 0.1, 0.7, 0.7, 0.7, 0.7],
         (0..4)
-            .map(|i| (0..4).map(|j| Vec3::new(i as f64, j as f64, ((i * j) as f64).sqrt())).collect())
+            .map(|i| {
+                (0..4)
+                    .map(|j| Vec3::new(i as f64, j as f64, ((i * j) as f64).sqrt()))
+                    .collect()
+            })
             .collect(),
         weights,
     )

@@ -31,7 +31,10 @@ fn broken_iges_names_the_line() {
     short[3] = "126,1";
     assert_eq!(line_of(cad::read(&short.join("\n"), Format::Iges)), 4);
     // A knot that is not a number (the 8th parameter), in the first parameter line.
-    let first_p = lines.iter().position(|l| l.as_bytes().get(72) == Some(&b'P')).unwrap();
+    let first_p = lines
+        .iter()
+        .position(|l| l.as_bytes().get(72) == Some(&b'P'))
+        .unwrap();
     let mut bad = lines.clone();
     let mut tokens: Vec<&str> = lines[first_p][..64].split(',').collect();
     tokens[7] = "x";
@@ -40,26 +43,45 @@ fn broken_iges_names_the_line() {
     assert_eq!(line_of(cad::read(&bad.join("\n"), Format::Iges)), first_p + 1);
     // Parameter data cut short: the entity's first parameter line is named.
     let cut: Vec<&str> = lines.iter().take(first_p + 1).copied().collect();
-    assert!(matches!(cad::read(&cut.join("\n"), Format::Iges), Err(Error::Parse { .. })));
-    assert!(matches!(cad::read("", Format::Iges), Err(Error::Parse { line: 1, .. })));
+    assert!(matches!(
+        cad::read(&cut.join("\n"), Format::Iges),
+        Err(Error::Parse { .. })
+    ));
+    assert!(matches!(
+        cad::read("", Format::Iges),
+        Err(Error::Parse { line: 1, .. })
+    ));
 }
 
 #[test]
 fn broken_step_names_the_line() {
     let text = written(Format::Step);
     let lines: Vec<String> = text.lines().map(str::to_string).collect();
-    let spline = lines.iter().position(|l| l.contains("B_SPLINE_CURVE_WITH_KNOTS")).unwrap();
+    let spline = lines
+        .iter()
+        .position(|l| l.contains("B_SPLINE_CURVE_WITH_KNOTS"))
+        .unwrap();
     // Multiplicities that do not match the knots.
-    let multiplicities = spline + lines[spline..].iter().position(|l| l.trim_start().starts_with("(4,")).unwrap();
+    let multiplicities = spline
+        + lines[spline..]
+            .iter()
+            .position(|l| l.trim_start().starts_with("(4,"))
+            .unwrap();
     let mut bad = lines.clone();
     bad[multiplicities] = bad[multiplicities].replacen("(4,", "(3,", 1);
     assert_eq!(line_of(cad::read(&bad.join("\n"), Format::Step)), spline + 1);
     // A parenthesis missing.
     let mut unclosed = lines.clone();
-    let point = lines.iter().position(|l| l.contains("CARTESIAN_POINT('',(0.")).unwrap();
+    let point = lines
+        .iter()
+        .position(|l| l.contains("CARTESIAN_POINT('',(0."))
+        .unwrap();
     unclosed[point] = unclosed[point].replace("));", ");");
     assert_eq!(line_of(cad::read(&unclosed.join("\n"), Format::Step)), point + 1);
-    assert!(matches!(cad::read("ISO-10303-21;\nHEADER;\nENDSEC;\n", Format::Step), Err(Error::Parse { .. })));
+    assert!(matches!(
+        cad::read("ISO-10303-21;\nHEADER;\nENDSEC;\n", Format::Step),
+        Err(Error::Parse { .. })
+    ));
 }
 
 #[test]
@@ -78,7 +100,12 @@ fn requests_a_format_cannot_carry_are_refused() {
     let surface = CadSurface::from_bicubic(&BicubicSplineSurface::new(&grid(4, 4)).unwrap()).unwrap();
     let shape = Shape::Surface(surface);
     assert!(matches!(
-        cad::export(&shape, Format::Dxf, &CadSettings::default(), &WriteOptions::default()),
+        cad::export(
+            &shape,
+            Format::Dxf,
+            &CadSettings::default(),
+            &WriteOptions::default()
+        ),
         Err(Error::Unsupported(_))
     ));
     let rebuild = CadSettings {

@@ -55,7 +55,13 @@ fn a_c1_chain_keeps_its_double_knots_and_its_points() {
 fn the_header_carries_the_unit_and_a_tolerance_from_the_shape() {
     let spline = HermiteSpline::natural(&planar_points(30)).unwrap();
     let shape = Shape::Curve(CadCurve::from_hermite(&spline).unwrap());
-    let automatic = cad::export(&shape, Format::Iges, &CadSettings::default(), &WriteOptions::default()).unwrap();
+    let automatic = cad::export(
+        &shape,
+        Format::Iges,
+        &CadSettings::default(),
+        &WriteOptions::default(),
+    )
+    .unwrap();
     let scale = automatic.model.size();
     assert_eq!(automatic.model.tolerance, 1e-9 * scale);
     let settings = CadSettings {

@@ -13,7 +13,11 @@ fn fixtures() -> Value {
 }
 
 fn numbers(v: &Value) -> Vec<f64> {
-    v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
 }
 
 fn point(v: &Value) -> Vec3 {
@@ -24,7 +28,12 @@ fn expected_curve(v: &Value) -> NurbsCurve<3> {
     NurbsCurve::new(
         v["degree"].as_u64().unwrap() as usize,
         numbers(&v["knots"]),
-        v["control_points"].as_array().unwrap().iter().map(point).collect(),
+        v["control_points"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(point)
+            .collect(),
         numbers(&v["weights"]),
     )
     .unwrap()
@@ -32,7 +41,11 @@ fn expected_curve(v: &Value) -> NurbsCurve<3> {
 
 fn expected_surface(v: &Value) -> NurbsSurface {
     let grid = |w: &Value| -> Vec<Vec<Vec3>> {
-        w.as_array().unwrap().iter().map(|row| row.as_array().unwrap().iter().map(point).collect()).collect()
+        w.as_array()
+            .unwrap()
+            .iter()
+            .map(|row| row.as_array().unwrap().iter().map(point).collect())
+            .collect()
     };
     NurbsSurface::new(
         v["degree_u"].as_u64().unwrap() as usize,
@@ -60,7 +73,10 @@ fn assert_same_curve(got: &NurbsCurve<3>, expected: &NurbsCurve<3>, relative: f6
         assert!(close(*a, *b, relative), "{what}: weight {a} vs {b}");
     }
     for (a, b) in got.control_points().iter().zip(expected.control_points()) {
-        assert!((a - b).norm() <= relative * b.norm().max(1.0), "{what}: {a:?} vs {b:?}");
+        assert!(
+            (a - b).norm() <= relative * b.norm().max(1.0),
+            "{what}: {a:?} vs {b:?}"
+        );
     }
 }
 
@@ -98,7 +114,10 @@ fn opencascade_faces_read_as_their_surfaces_without_their_boundary_curves() {
         for format in [Format::Iges, Format::Step] {
             let path = data(&format!("reference/cad/{name}.{}", format.extension()));
             let model = cad::read_path(&path, None).unwrap();
-            assert!(model.curves.is_empty(), "{path}: boundary curves are not shapes of their own");
+            assert!(
+                model.curves.is_empty(),
+                "{path}: boundary curves are not shapes of their own"
+            );
             assert_eq!(model.surfaces.len(), 1, "{path}");
             let got = &model.surfaces[0].surface;
             let relative = precision(format);
@@ -107,8 +126,14 @@ fn opencascade_faces_read_as_their_surfaces_without_their_boundary_curves() {
             let (rows, columns) = expected.net_size();
             for i in 0..rows {
                 for j in 0..columns {
-                    let (a, b) = (got.control_point(i, j).unwrap(), expected.control_point(i, j).unwrap());
-                    assert!((a - b).norm() <= relative * b.norm().max(1.0), "{path}: P[{i}][{j}]");
+                    let (a, b) = (
+                        got.control_point(i, j).unwrap(),
+                        expected.control_point(i, j).unwrap(),
+                    );
+                    assert!(
+                        (a - b).norm() <= relative * b.norm().max(1.0),
+                        "{path}: P[{i}][{j}]"
+                    );
                     let (a, b) = (got.weight(i, j).unwrap(), expected.weight(i, j).unwrap());
                     assert!(close(a, b, relative), "{path}: w[{i}][{j}]");
                 }

@@ -75,11 +75,13 @@ fn a_tolerance_rebuild_meets_it_with_the_fewest_control_points_the_search_finds(
         points
             .iter()
             .zip(natural.parameters())
-            .map(|(q, &t)| (Vec2::new(q.x, q.y) - {
-                let p = c.curve.point(t);
-                Vec2::new(p.x, p.y)
+            .map(|(q, &t)| {
+                (Vec2::new(q.x, q.y) - {
+                    let p = c.curve.point(t);
+                    Vec2::new(p.x, p.y)
+                })
+                .norm()
             })
-            .norm())
             .fold(0.0, f64::max)
     };
     assert_eq!(report.max_deviation, deviation(&rebuilt));
@@ -95,7 +97,8 @@ fn a_closed_curve_is_rebuilt_closed() {
             Vec2::new(4.0 * a.cos(), 2.0 * a.sin())
         })
         .collect();
-    let closed = HermiteSpline::new(&ring, &HermiteSettings::default().with_ends(HermiteEnds::Closed)).unwrap();
+    let closed =
+        HermiteSpline::new(&ring, &HermiteSettings::default().with_ends(HermiteEnds::Closed)).unwrap();
     let curve = CadCurve::from_hermite(&closed).unwrap();
     let (rebuilt, report) = rebuild(&curve, RebuildTarget::ControlPoints(24), 3).unwrap();
     let (a, b) = rebuilt.curve.domain();
@@ -124,7 +127,10 @@ fn a_rebuild_that_brings_wiggles_back_is_flagged() {
     assert!(report.wiggles_back);
     let (_, report) = rebuild(&curve, RebuildTarget::ControlPoints(5), 3).unwrap();
     assert_eq!(report.rebuilt.inflections, Some(0));
-    assert!(report.rebuilt.vibrations <= report.faired.vibrations, "{report:?}");
+    assert!(
+        report.rebuilt.vibrations <= report.faired.vibrations,
+        "{report:?}"
+    );
     assert!(!report.wiggles_back);
 }
 
@@ -165,6 +171,9 @@ fn export_rebuilds_when_asked_and_refuses_what_it_cannot() {
     };
     assert!(matches!(
         cad::export(&shape, Format::Step, &too_many, &WriteOptions::default()),
-        Err(Error::BadParameter { name: "control-points", .. })
+        Err(Error::BadParameter {
+            name: "control-points",
+            ..
+        })
     ));
 }

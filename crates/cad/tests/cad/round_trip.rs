@@ -82,7 +82,10 @@ fn a_dense_curve_reads_back_exactly() {
     let spline = HermiteSpline::natural(&planar_points(20_000)).unwrap();
     let curve = CadCurve::from_hermite(&spline).unwrap();
     for format in Format::ALL {
-        assert_round_trip(&model(vec![curve.clone()], vec![], Units::Millimetre, 1e-9), format);
+        assert_round_trip(
+            &model(vec![curve.clone()], vec![], Units::Millimetre, 1e-9),
+            format,
+        );
     }
 }
 
@@ -109,14 +112,17 @@ fn nurbs() -> impl Strategy<Value = NurbsCurve<3>> {
                 1e-6..1e6f64,
             )
         })
-        .prop_filter_map("valid knots", |(degree, mut interior, points, weights, start, length)| {
-            interior.sort_by(f64::total_cmp);
-            let mut knots = vec![start; degree + 1];
-            knots.extend(interior.iter().map(|k| start + k * length));
-            knots.extend(vec![start + length; degree + 1]);
-            let points = points.into_iter().map(|(x, y, z)| Vec3::new(x, y, z)).collect();
-            NurbsCurve::new(degree, knots, points, weights).ok()
-        })
+        .prop_filter_map(
+            "valid knots",
+            |(degree, mut interior, points, weights, start, length)| {
+                interior.sort_by(f64::total_cmp);
+                let mut knots = vec![start; degree + 1];
+                knots.extend(interior.iter().map(|k| start + k * length));
+                knots.extend(vec![start + length; degree + 1]);
+                let points = points.into_iter().map(|(x, y, z)| Vec3::new(x, y, z)).collect();
+                NurbsCurve::new(degree, knots, points, weights).ok()
+            },
+        )
 }
 
 proptest! {

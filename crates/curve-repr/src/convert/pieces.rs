@@ -109,7 +109,7 @@ pub(crate) fn join_order<const D: usize>(
     let [a, b, c] = breaks;
     let gap = |args: [f64; 3]| (blossom(left, a, b, args) - blossom(right, b, c, args)).norm();
     let c0 = gap([b, b, b]);
-    if !(c0 <= allowed) {
+    if c0.is_nan() || c0 > allowed {
         return Err(c0);
     }
     if gap([a, b, b]).max(gap([b, b, c])) > allowed {
@@ -237,14 +237,7 @@ impl<const D: usize> CubicPieces<D> {
     pub fn from_unit_power(breaks: &[f64], segments: &[[Vector<D>; 4]]) -> Result<Self> {
         let bezier = segments
             .iter()
-            .map(|[r0, r1, r2, r3]| {
-                [
-                    *r0,
-                    r0 + r1 / 3.0,
-                    r0 + (r1 * 2.0 + r2) / 3.0,
-                    r0 + r1 + r2 + r3,
-                ]
-            })
+            .map(|[r0, r1, r2, r3]| [*r0, r0 + r1 / 3.0, r0 + (r1 * 2.0 + r2) / 3.0, r0 + r1 + r2 + r3])
             .collect();
         Self::new(breaks.to_vec(), bezier)
     }
@@ -282,7 +275,12 @@ impl<const D: usize> CubicPieces<D> {
     /// The blossom of piece `piece` at three parameters (see the module documentation).
     /// Callers keep `piece < piece_count()`.
     pub fn blossom(&self, piece: usize, args: [f64; 3]) -> Vector<D> {
-        blossom(&self.bezier[piece], self.breaks[piece], self.breaks[piece + 1], args)
+        blossom(
+            &self.bezier[piece],
+            self.breaks[piece],
+            self.breaks[piece + 1],
+            args,
+        )
     }
 
     /// The scale of the continuity checks: the larger of the diagonal of the Bézier points'
@@ -396,7 +394,10 @@ mod tests {
         let (start, end) = (1.0, 3.0);
         let bernstein = |t: f64| {
             let s = (t - start) / (end - start);
-            b[0] * (1.0 - s).powi(3) + b[1] * (3.0 * s * (1.0 - s).powi(2)) + b[2] * (3.0 * s * s * (1.0 - s)) + b[3] * s.powi(3)
+            b[0] * (1.0 - s).powi(3)
+                + b[1] * (3.0 * s * (1.0 - s).powi(2))
+                + b[2] * (3.0 * s * s * (1.0 - s))
+                + b[3] * s.powi(3)
         };
         for t in [0.5, 1.0, 1.7, 3.0, 3.6] {
             assert!((blossom(&b, start, end, [t, t, t]) - bernstein(t)).norm() < 1e-13);

@@ -156,18 +156,14 @@ impl<const D: usize> NormalEquations<D> {
         }
         let mut y = self.rhs;
         for i in 0..size {
-            let mut value = y[i];
-            for k in i.saturating_sub(p)..i {
-                value -= y[k] * at(&lower, i, k);
-            }
-            y[i] = value / lower[i][p];
+            let known =
+                (i.saturating_sub(p)..i).fold(Vector::<D>::zeros(), |sum, k| sum + y[k] * at(&lower, i, k));
+            y[i] = (y[i] - known) / lower[i][p];
         }
         for i in (0..size).rev() {
-            let mut value = y[i];
-            for k in i + 1..(i + p + 1).min(size) {
-                value -= y[k] * at(&lower, k, i);
-            }
-            y[i] = value / lower[i][p];
+            let known = (i + 1..(i + p + 1).min(size))
+                .fold(Vector::<D>::zeros(), |sum, k| sum + y[k] * at(&lower, k, i));
+            y[i] = (y[i] - known) / lower[i][p];
         }
         Ok(y)
     }
@@ -182,7 +178,12 @@ impl<const D: usize> NurbsCurve<D> {
     /// Fails as [`fit_knots`], with [`Error::LengthMismatch`] when the points and parameters
     /// differ in number, [`Error::NonFinite`] on a non-finite point, and [`Error::Singular`]
     /// if the normal equations are not positive definite. O(m p² + n p²).
-    pub fn least_squares(points: &[Vector<D>], params: &[f64], degree: usize, control_count: usize) -> Result<Self> {
+    pub fn least_squares(
+        points: &[Vector<D>],
+        params: &[f64],
+        degree: usize,
+        control_count: usize,
+    ) -> Result<Self> {
         if points.len() != params.len() {
             return Err(Error::LengthMismatch {
                 what: "parameters (one per point)",

@@ -7,8 +7,8 @@ use curve_repr::bspline::{basis_functions, find_span};
 use curve_repr::nurbs_curve::fit::{fit_knots, max_control_count, max_deviation};
 use curve_repr::{
     BicubicSplineSurface, CubicPieces, Curve, EndCondition, Error, HermiteEnds, HermiteSettings,
-    HermiteSpline, Interpolant, JoinRule, NurbsCurve, Parametrization, Side, SplineFunction, Surface,
-    Vec2, Vec3, Vector,
+    HermiteSpline, Interpolant, JoinRule, NurbsCurve, Parametrization, Side, SplineFunction, Surface, Vec2,
+    Vec3, Vector,
 };
 use proptest::prelude::*;
 
@@ -58,7 +58,10 @@ fn assert_same_curve<const D: usize>(
             a[0],
             b[0]
         );
-        assert!((a[1] - b[1]).norm() <= 1e-9 * scale / length, "derivative at t = {t}");
+        assert!(
+            (a[1] - b[1]).norm() <= 1e-9 * scale / length,
+            "derivative at t = {t}"
+        );
     }
 }
 
@@ -337,12 +340,20 @@ fn a_fit_refuses_fewer_than_two_points_per_span() {
     assert!(NurbsCurve::least_squares(&points, &params, 3, 18).is_ok());
     assert!(matches!(
         NurbsCurve::least_squares(&points, &params, 3, 19),
-        Err(Error::TooFewPoints { needed: 32, got: 30, .. })
+        Err(Error::TooFewPoints {
+            needed: 32,
+            got: 30,
+            ..
+        })
     ));
     assert_eq!(max_control_count(3, 3), 4);
     assert!(matches!(
         NurbsCurve::least_squares(&points[..3], &params[..3], 3, 4),
-        Err(Error::TooFewPoints { needed: 4, got: 3, .. })
+        Err(Error::TooFewPoints {
+            needed: 4,
+            got: 3,
+            ..
+        })
     ));
 }
 
@@ -353,8 +364,14 @@ fn eq_9_69_knots_as_printed() {
     let params: Vec<f64> = (0..10).map(|k| k as f64).collect();
     let knots = fit_knots(&params, 2, 6).unwrap();
     assert_eq!(knots.knots(), &[0.0, 0.0, 0.0, 1.5, 4.0, 6.5, 9.0, 9.0, 9.0]);
-    assert!(matches!(fit_knots(&params, 2, 8), Err(Error::TooFewPoints { .. })));
-    assert!(matches!(fit_knots(&params, 2, 2), Err(Error::TooFewPoints { .. })));
+    assert!(matches!(
+        fit_knots(&params, 2, 8),
+        Err(Error::TooFewPoints { .. })
+    ));
+    assert!(matches!(
+        fit_knots(&params, 2, 2),
+        Err(Error::TooFewPoints { .. })
+    ));
     assert!(matches!(fit_knots(&params, 0, 2), Err(Error::BadDegree { .. })));
     assert!(matches!(
         fit_knots(&[0.0, 1.0, 1.0, 2.0], 1, 3),
@@ -396,7 +413,9 @@ fn a_tolerance_fit_meets_its_tolerance_with_few_control_points() {
 
 #[test]
 fn a_graph_fit_stays_a_function_of_x() {
-    let x: Vec<f64> = (0..300).map(|k| k as f64 * 0.1 + (k as f64 * 0.37).sin() * 0.03).collect();
+    let x: Vec<f64> = (0..300)
+        .map(|k| k as f64 * 0.1 + (k as f64 * 0.37).sin() * 0.03)
+        .collect();
     let y: Vec<f64> = x.iter().map(|&v| (0.3 * v).sin() * 5.0).collect();
     let curve = NurbsCurve::least_squares_graph(&x, &y, 3, 15).unwrap();
     for k in 0..=500 {
