@@ -116,12 +116,13 @@ impl Default for WriteOptions {
     }
 }
 
-/// `text` with every character outside printable ASCII, and the quote `'`, replaced by `_`,
-/// at most `limit` characters: safe inside IGES Hollerith strings, STEP strings and DXF.
+/// `text` with every character outside printable ASCII, the quote `'` and the backslash
+/// (STEP's escape) replaced by `_`, at most `limit` characters: safe inside IGES Hollerith
+/// strings, STEP strings and DXF.
 pub(crate) fn ascii(text: &str, limit: usize) -> String {
     text.chars()
         .map(|c| {
-            if (' '..='~').contains(&c) && c != '\'' {
+            if (' '..='~').contains(&c) && c != '\'' && c != '\\' {
                 c
             } else {
                 '_'
@@ -151,6 +152,7 @@ mod tests {
     #[test]
     fn names_are_made_ascii() {
         assert_eq!(ascii("wl 03 – it's", 40), "wl 03 _ it_s");
+        assert_eq!(ascii("a\\b", 40), "a_b");
         assert_eq!(ascii("abcdef", 3), "abc");
     }
 }

@@ -223,10 +223,25 @@ fn deviation(kind: CurveKind, candidate: &NurbsCurve<3>, points: &[Vec3], parame
 /// With [`RebuildTarget::Tolerance`], when no fit with at most
 /// [`max_control_count`] control points meets the tolerance, the exact curve is returned
 /// (`exact_fallback`). Fails with [`Error::BadParameter`] for a control-point count the data
-/// cannot carry (fewer than degree + 1, or more than two points per knot span allow), and
-/// as the fit and the curvature measures fail. O(m p²) per fit, O(log m) fits for a tolerance.
+/// cannot carry (fewer than degree + 1, or more than two points per knot span allow),
+/// [`Error::Unsupported`] for a function whose parameters are not its abscissae (as
+/// [`CadCurve::from_spline_function`] makes them), and as the fit and the curvature measures
+/// fail. O(m p²) per fit, O(log m) fits for a tolerance.
 pub fn rebuild(curve: &CadCurve, target: RebuildTarget, degree: usize) -> Result<(CadCurve, RebuildReport)> {
     let (points, parameters) = data(curve);
+    if curve.kind == CurveKind::Function {
+        let scale = crate::model::size(&points).max(f64::MIN_POSITIVE);
+        if let Some(k) = points
+            .iter()
+            .zip(&parameters)
+            .position(|(p, &t)| (p.x - t).abs() > 1e-12 * scale)
+        {
+            return Err(Error::Unsupported(format!(
+                "a function is rebuilt over its abscissae, but point {k} has x = {} at parameter {}",
+                points[k].x, parameters[k]
+            )));
+        }
+    }
     let most = max_control_count(points.len(), degree);
     if let RebuildTarget::ControlPoints(n) = target {
         if n < degree + 1 || n > most {

@@ -2,6 +2,7 @@
 
 use cad::{CadSettings, CadSurface, Error, Format, Shape, WriteOptions};
 use curve_repr::BicubicSplineSurface;
+use proptest::prelude::*;
 
 use crate::common::{curves, grid};
 
@@ -124,4 +125,28 @@ fn requests_a_format_cannot_carry_are_refused() {
         cad::read_path("points.csv", None),
         Err(Error::UnknownFormat(_))
     ));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(96))]
+
+    /// A file cut short or with bytes changed reads as a model or as an error, never a panic.
+    #[test]
+    fn damaged_files_never_panic(
+        format in prop::sample::select(Format::ALL.to_vec()),
+        cut in 0.0..1.0f64,
+        edits in prop::collection::vec((0.0..1.0f64, prop::sample::select(b",;()#.'0-9Ee \nHPD".to_vec())), 0..6),
+    ) {
+        let text = written(format);
+        let mut bytes = text.into_bytes();
+        bytes.truncate((bytes.len() as f64 * (0.5 + cut / 2.0)) as usize);
+        for (at, byte) in edits {
+            let len = bytes.len();
+            if len > 0 {
+                bytes[((len as f64 * at) as usize).min(len - 1)] = byte;
+            }
+        }
+        let damaged = String::from_utf8_lossy(&bytes);
+        let _ = cad::read(&damaged, format);
+    }
 }
