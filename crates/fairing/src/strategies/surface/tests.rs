@@ -1,6 +1,6 @@
 //! Each closed form against its defining condition; the runs against their promises.
 
-use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings, Side, Surface, Vec3};
+use curve_repr::{BicubicSplineSurface, Side, Surface, Vec3};
 use fairness::surface::thin_plate_cell;
 use fairness::GaussLegendre;
 
