@@ -6,6 +6,7 @@
 //! - [`smoothing_spline`]: the smoothing-spline baseline (the papers' MST), csaps convention.
 //! - [`sapidis_farin`]: Sapidis–Farin knot removal and reinsertion on the cubic B-spline.
 //! - [`surface`]: Zhang–Cheng bicubic surface fairing (Kjellander's surface method as preset).
+//! - [`surface_smoothing`]: the surface baseline, a tensor-product cubic smoothing spline (csaps's `NdGridCubicSmoothingSpline`, periodic across seams).
 //!
 //! Han's two-phase method lives in [`crate::two_phase`].
 
@@ -14,6 +15,7 @@ pub mod sapidis_farin;
 pub mod smoothing_spline;
 pub mod strain_energy;
 pub mod surface;
+pub mod surface_smoothing;
 
 pub use batten::{Batten, BattenSettings, PositionUpdate, Tangents};
 pub use sapidis_farin::{KnotStep, SapidisFarin, SapidisFarinSettings, SapidisFarinStop};
@@ -24,4 +26,7 @@ pub use strain_energy::{Mode, Replacement, StrainEnergy, StrainEnergySettings};
 pub use surface::{
     Closure, Objective, Refusal, Region, SurfaceFairing, SurfaceFairingResult, SurfaceFairingSettings,
     SurfaceMode, SurfaceStep,
+};
+pub use surface_smoothing::{
+    smooth_grid, SurfaceSmoothing, SurfaceSmoothingResult, SurfaceSmoothingSettings,
 };

@@ -5,6 +5,7 @@ mod catalog;
 mod composition;
 mod contract;
 mod strain_energy;
+mod surface;
 mod two_phase;
 mod two_phase_curves;
 mod two_phase_fine;

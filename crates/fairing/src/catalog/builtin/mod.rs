@@ -13,6 +13,7 @@ mod sapidis_farin;
 mod smoothing_spline;
 mod strain_energy;
 mod surface;
+mod surface_smoothing;
 mod two_phase;
 
 pub use batten::BattenMethod;
@@ -21,6 +22,7 @@ pub use sapidis_farin::SapidisFarinMethod;
 pub use smoothing_spline::SmoothingSplineMethod;
 pub use strain_energy::StrainEnergyMethod;
 pub use surface::SurfaceFairingMethod;
+pub use surface_smoothing::SurfaceSmoothingMethod;
 pub use two_phase::{TwoPhaseCurveSettings, TwoPhaseMethod};
 
 use curve_repr::{HermiteSpline, Vector};
@@ -135,6 +137,15 @@ pub fn register(catalog: &mut Catalog) {
             "max-steps": 100_000,
         }),
         &["one-point-per-step"],
+    );
+    catalog.register_surface(
+        MethodInfo::new(
+            "smoothing-spline",
+            "tensor-product cubic smoothing spline per coordinate over the grid's parameters \
+             (periodic across seams), a baseline; --set displacement=S_d matches a fairing's S_d",
+        )
+        .with_paper("baseline: csaps's NdGridCubicSmoothingSpline"),
+        SurfaceSmoothingMethod,
     );
 }
 

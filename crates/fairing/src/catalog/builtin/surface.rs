@@ -86,21 +86,15 @@ impl SurfaceMethod for SurfaceFairingMethod {
         }
         let result = SurfaceFairing::new(settings.clone()).run(&grid.to_rows())?;
         let surface = &result.surface;
-        let points: Vec<[f64; 3]> = surface.points().iter().map(|p| [p.x, p.y, p.z]).collect();
-        let parametrization = match settings.parametrization {
-            curve_repr::Parametrization::Uniform => "uniform-averaged",
-            _ => "chord-length-averaged",
-        };
-        let record = serde_json::json!({
-            "type": "bicubic",
-            "parametrization": parametrization,
-            "rows": grid.rows,
-            "columns": grid.columns,
-            "u_knots": surface.u_knots(),
-            "v_knots": surface.v_knots(),
-            "points": points,
-        });
+        let record = bicubic_record(surface, settings.parametrization, &result.topology);
         let mut extras = std::collections::BTreeMap::new();
+        extras.insert(
+            "refusal".into(),
+            serde_json::json!(result.refusal.map(|r| r.name())),
+        );
+        extras.insert("refused_steps".into(), serde_json::json!(result.refused_steps));
+        extras.insert("refused_moves".into(), serde_json::json!(result.refused_moves));
+        extras.insert("quantum".into(), serde_json::json!(result.quantum));
         extras.insert("boundary_steps".into(), serde_json::json!(result.boundary_steps));
         let mode = if matches!(settings.mode, SurfaceMode::Automatic) {
             "automatic"
@@ -134,4 +128,37 @@ impl SurfaceMethod for SurfaceFairingMethod {
             extras,
         })
     }
+}
+
+/// The report's `surface` record of a bicubic spline surface: its knots, points, and the
+/// closures and poles it was built with.
+pub(crate) fn bicubic_record(
+    surface: &curve_repr::BicubicSplineSurface,
+    parametrization: curve_repr::Parametrization,
+    topology: &curve_repr::GridTopology,
+) -> serde_json::Value {
+    let points: Vec<[f64; 3]> = surface.points().iter().map(|p| [p.x, p.y, p.z]).collect();
+    let parametrization = match parametrization {
+        curve_repr::Parametrization::Uniform => "uniform-averaged",
+        _ => "chord-length-averaged",
+    };
+    let (rows, columns) = surface.shape();
+    let poles = topology.poles;
+    serde_json::json!({
+        "type": "bicubic",
+        "parametrization": parametrization,
+        "rows": rows,
+        "columns": columns,
+        "closed_u": topology.closed_u,
+        "closed_v": topology.closed_v,
+        "poles": {
+            "u_start": poles.u_start,
+            "u_end": poles.u_end,
+            "v_start": poles.v_start,
+            "v_end": poles.v_end,
+        },
+        "u_knots": surface.u_knots(),
+        "v_knots": surface.v_knots(),
+        "points": points,
+    })
 }

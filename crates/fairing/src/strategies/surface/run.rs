@@ -217,11 +217,13 @@ pub(super) fn run(
             for &(i, j) in list {
                 match input.interior_node(i, j) {
                     Some(node) => nodes.push(node),
-                    None => return Err(Error::BadConstraint {
-                        reason: format!(
+                    None => {
+                        return Err(Error::BadConstraint {
+                            reason: format!(
                             "bad point ({i}, {j}) is not an interior node of the {u_count} × {v_count} grid"
                         ),
-                    }),
+                        })
+                    }
                 }
             }
             SurfaceMode::Interactive(nodes)
@@ -916,4 +918,48 @@ fn jump_parts(network: &Network) -> Vec<(f64, f64)> {
         .u_jumps_and_v_jumps()
         .map(|(u, v)| (u.norm(), v.norm()))
         .collect()
+}
+
+#[cfg(test)]
+mod rules {
+    use super::*;
+
+    fn measure(max_z: f64, energy: f64, thin_plate: Option<f64>) -> Measure {
+        Measure {
+            max_z,
+            energy,
+            thin_plate,
+        }
+    }
+
+    #[test]
+    fn each_rule_refuses_its_own_rise_and_nothing_else() {
+        let before = measure(2.0, 5.0, Some(7.0));
+        assert_eq!(measure(2.0, 5.0, Some(7.0)).worse_than(&before), None);
+        assert_eq!(measure(1.0, 4.0, Some(6.0)).worse_than(&before), None);
+        // Within the slack of a knot refresh: not a rise.
+        assert_eq!(
+            measure(2.0 * (1.0 + 1e-13), 5.0, Some(7.0)).worse_than(&before),
+            None
+        );
+        assert_eq!(
+            measure(2.1, 4.0, Some(6.0)).worse_than(&before),
+            Some(Refusal::MaxZ)
+        );
+        assert_eq!(
+            measure(1.0, 5.1, Some(6.0)).worse_than(&before),
+            Some(Refusal::Energy)
+        );
+        assert_eq!(
+            measure(1.0, 4.0, Some(7.1)).worse_than(&before),
+            Some(Refusal::ThinPlateEnergy)
+        );
+        // The network objective has no thin-plate energy to judge.
+        assert_eq!(measure(1.0, 4.0, None).worse_than(&measure(2.0, 5.0, None)), None);
+        // Max z is judged first.
+        assert_eq!(
+            measure(2.1, 5.1, Some(7.1)).worse_than(&before),
+            Some(Refusal::MaxZ)
+        );
+    }
 }
