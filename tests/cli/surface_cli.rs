@@ -268,3 +268,49 @@ fn bad_options_exit_2_with_one_line() {
         assert!(!stderr.contains("panicked"));
     }
 }
+
+#[test]
+fn the_smoothing_baseline_matches_a_displacement_and_is_listed() {
+    let (run, input, _) = fair_surface(
+        "smoothing-spline",
+        &["--method", "smoothing-spline", "--set", "displacement=3.5"],
+    );
+    let r = &run.report;
+    assert_eq!(r["method"], "smoothing-spline");
+    assert_eq!(r["termination"], "strategy-done");
+    let s_d: f64 = run.output.iter().zip(&input).map(|(a, b)| distance(a, b)).sum();
+    assert!((s_d - 3.5).abs() < 1e-6 * 3.5, "S_d {s_d}");
+    assert!((r["s_d"].as_f64().unwrap() - s_d).abs() < 1e-9 * s_d);
+    assert!(r["after"]["max_z"].as_f64().unwrap() < r["before"]["max_z"].as_f64().unwrap());
+    let p_u = r["p_u"].as_f64().unwrap();
+    assert!(p_u > 0.0 && p_u < 1.0);
+    // p and displacement together are refused: exit 2, one line naming the parameter.
+    let dir = out_dir("smoothing-spline-bad");
+    let grid = write_grid(&dir);
+    let bad = fair(&[
+        "surface",
+        grid.to_str().unwrap(),
+        "--method",
+        "smoothing-spline",
+        "--set",
+        "p=0.5",
+        "--set",
+        "displacement=1",
+        "-o",
+        dir.join("out.csv").to_str().unwrap(),
+    ]);
+    assert_eq!(bad.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&bad.stderr);
+    assert!(stderr.contains("displacement"), "{stderr}");
+    // `fair methods` lists it among the surface methods with its parameters.
+    let listed = fair(&["methods"]);
+    let text = String::from_utf8_lossy(&listed.stdout);
+    for word in [
+        "smoothing-spline",
+        "displacement",
+        "radius-scale",
+        "refresh-knots",
+    ] {
+        assert!(text.contains(word), "`fair methods` lacks {word}");
+    }
+}

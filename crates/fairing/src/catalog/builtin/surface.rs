@@ -95,6 +95,7 @@ impl SurfaceMethod for SurfaceFairingMethod {
         extras.insert("refused_steps".into(), serde_json::json!(result.refused_steps));
         extras.insert("refused_moves".into(), serde_json::json!(result.refused_moves));
         extras.insert("quantum".into(), serde_json::json!(result.quantum));
+        extras.insert("steps_tried".into(), serde_json::json!(result.steps));
         extras.insert("boundary_steps".into(), serde_json::json!(result.boundary_steps));
         let mode = if matches!(settings.mode, SurfaceMode::Automatic) {
             "automatic"
@@ -120,7 +121,13 @@ impl SurfaceMethod for SurfaceFairingMethod {
                 columns: grid.columns,
                 points: surface.points().to_vec(),
             },
-            iterations: result.steps,
+            // Kjellander: point moves; otherwise the accepted steps, one per entry of
+            // `energy_per_step` (the boundary fairing, when kept, is the first).
+            iterations: if settings.one_point_per_step {
+                result.steps
+            } else {
+                result.history.len()
+            },
             moved: result.moved.iter().map(|&(i, j)| i * columns + j).collect(),
             elapsed_ms: result.elapsed.as_secs_f64() * 1e3,
             termination: result.termination.name().to_owned(),

@@ -13,10 +13,12 @@
 //!   `radius_scale` · |P̄_ij − P_ij| (P̄ from Eq. 21 on the surface after step 2.1); then every
 //!   step fairs every interior point once, the largest z_ij (Eq. 26) first, each kept in its
 //!   sphere; the surface is rebuilt (2.5) and the run stops when the network strain energy
-//!   changes by at most `tolerance` × its value in one step (2.6). The order of work is a
-//!   priority queue on the *current* z_ij (a node's key is refreshed when it comes to the top,
-//!   so a point whose neighbours have already smoothed it waits its turn), not a sort of the
-//!   values at the step's start.
+//!   changes by at most `tolerance` × its value in one step (2.6). The order of work is
+//!   the paper's: z_ij at the step's start, sorted once per step (O(m·n log(m·n)), the same
+//!   order as the step's own O(m·n) moves). A priority queue on the *current* z_ij (keys
+//!   refreshed as neighbours move) was measured and converged more slowly: every point is
+//!   moved once per step anyway. Kjellander, which moves one point per step, takes its
+//!   worst point off such a queue.
 //! - **Interactive** (§4.4, algorithm 1): the user's bad points are sorted by z_ij and grouped
 //!   as step 1.3 says (the next two adjacent: a pair, Eq. 23; diagonal: the 2×2 block they
 //!   span, Eq. 25; else one point, Eq. 20); one step fairs every group once; stop on the
