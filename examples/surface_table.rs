@@ -76,11 +76,11 @@ fn twisted() -> (Net, Net) {
         })
         .collect();
     let mut noisy = clean.clone();
-    for i in 1..25 {
-        for j in 1..8 {
-            let angle = std::f64::consts::FRAC_PI_2 * i as f64 / 25.0;
-            let normal = Vec3::new(0.0, -angle.sin(), angle.cos());
-            noisy[i][j] += normal * (0.03 * noise(i, j, 1));
+    for (i, row) in noisy.iter_mut().enumerate().take(25).skip(1) {
+        let angle = std::f64::consts::FRAC_PI_2 * i as f64 / 25.0;
+        let normal = Vec3::new(0.0, -angle.sin(), angle.cos());
+        for (j, point) in row.iter_mut().enumerate().take(8).skip(1) {
+            *point += normal * (0.03 * noise(i, j, 1));
         }
     }
     (clean, noisy)

@@ -59,14 +59,14 @@ fn noisy_tube() -> Net {
     for (i, row) in net.iter_mut().enumerate() {
         let x = i as f64 * 0.25;
         let radius = 1.0 + 0.2 * (0.5 * x).cos();
-        for j in 0..columns - 1 {
+        for (j, point) in row.iter_mut().enumerate().take(columns - 1) {
             let a = std::f64::consts::TAU * j as f64 / (columns - 1) as f64;
             let r = if i == 0 || i == rows - 1 {
                 radius
             } else {
                 radius + 0.01 * noise(i, j, 3)
             };
-            row[j] = Vec3::new(x, r * a.cos(), r * a.sin());
+            *point = Vec3::new(x, r * a.cos(), r * a.sin());
         }
         row[columns - 1] = row[0];
     }
@@ -79,14 +79,14 @@ fn noisy_bowl() -> Net {
     let mut net = vec![vec![Vec3::zeros(); columns]; rows];
     for (i, row) in net.iter_mut().enumerate() {
         let radius = i as f64 / (rows - 1) as f64;
-        for j in 0..columns - 1 {
+        for (j, point) in row.iter_mut().enumerate().take(columns - 1) {
             let a = std::f64::consts::TAU * j as f64 / (columns - 1) as f64;
             let bump = if i == 0 || i == rows - 1 {
                 0.0
             } else {
                 0.01 * noise(i, j, 5)
             };
-            row[j] = Vec3::new(radius * a.cos(), radius * a.sin(), radius * radius + bump);
+            *point = Vec3::new(radius * a.cos(), radius * a.sin(), radius * radius + bump);
         }
         row[columns - 1] = row[0];
     }
@@ -163,8 +163,8 @@ fn a_pole_stays_one_point_and_the_seam_closed_with_every_surface_method() {
         let run = entry.fair_surface(&settings, &job).unwrap();
         let after = &run.grid.points;
         assert!(!run.moved.is_empty(), "{name}: nothing moved");
-        for j in 0..columns {
-            assert_eq!(after[j], grid.points[j], "{name}: pole node (0, {j}) moved");
+        for (j, (a, b)) in after.iter().zip(&grid.points).enumerate().take(columns) {
+            assert_eq!(a, b, "{name}: pole node (0, {j}) moved");
         }
         for i in 0..rows {
             assert_eq!(

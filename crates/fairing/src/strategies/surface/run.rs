@@ -899,10 +899,10 @@ impl Run<'_> {
             }
         }
         let mut new = false;
-        for i in 0..nu {
-            for j in 0..nv {
+        for (i, &row) in rows.iter().enumerate().take(nu) {
+            for (j, &column) in columns.iter().enumerate().take(nv) {
                 let k = self.layout.index(i, j);
-                if (rows[i] || columns[j]) && !self.pinned[k] && !self.fixed[k] && network.is_interior(i, j) {
+                if (row || column) && !self.pinned[k] && !self.fixed[k] && network.is_interior(i, j) {
                     self.pinned[k] = true;
                     new = true;
                 }
