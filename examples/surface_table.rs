@@ -251,6 +251,10 @@ fn fair_all(name: &str, net: &Net, clean: Option<&Net>) -> Result<(), Box<dyn Er
             "zhang-cheng, open",
             SurfaceFairingSettings::zhang_cheng().with_closed(Closure::Open),
         ),
+        (
+            "zhang-cheng, energy-tolerance 1e-6",
+            SurfaceFairingSettings::zhang_cheng().with_tolerance(1e-6),
+        ),
     ];
     let mut zhang_cheng_s_d = None;
     for (label, settings) in methods {

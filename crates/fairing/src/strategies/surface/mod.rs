@@ -190,7 +190,9 @@ impl Refusal {
 
 /// Settings of [`SurfaceFairing`]: the parameters of the catalogue's `zhang-cheng` (and,
 /// with other defaults, `kjellander`). Defaults: Zhang–Cheng automatic, limit replacement,
-/// network objective, chord-length knots, boundary faired, tolerance 1e-6, 1000 steps.
+/// network objective, chord-length knots, boundary faired, energy tolerance 1e-3, 1000 steps,
+/// closures detected, restraining radii 1.5 × the paper's with the median as a floor and
+/// capped at one quantisation step of digitised data, knots refreshed, steps judged.
 ///
 /// `mode`, `fixed` and `max_distance` come from the command's `--points`, `--fixed` and
 /// `--tolerance` and are not parameters of the catalogue (skipped by serde).
