@@ -9,7 +9,8 @@
 //!   built with it;
 //! - [`registry`] lists the methods and their parameters, [`parameters`] reads `--set` and
 //!   `--config`, [`config`] reads config files (parameters, constraints, pipelines of stages), [`constraints`] checks `--fixed`/`--points`/`--tolerance`/`--clamp-ends`,
-//!   [`kind`] resolves `--kind`.
+//!   [`kind`] resolves `--kind`;
+//! - [`serve`] is `fair serve`, the local web page and its JSON API over the same code.
 //!
 //! The numerical crates plug in at three seams: [`commands::measure`] (indicators),
 //! [`commands::curve::fair`] and [`commands::surface::fair`] (strategies).
@@ -32,6 +33,7 @@ pub mod plots;
 pub mod progress;
 pub mod registry;
 pub mod report;
+pub mod serve;
 pub mod svg;
 
 pub use error::{Error, Result};
@@ -109,7 +111,7 @@ fn usage(e: clap::Error) -> ExitCode {
         ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand | ErrorKind::MissingSubcommand => {
             let _ = writeln!(
                 std::io::stderr(),
-                "fair: a subcommand is required: curve, surface, inspect, methods or demo (see `fair --help`)"
+                "fair: a subcommand is required: curve, surface, inspect, methods, demo or serve (see `fair --help`)"
             );
             ExitCode::from(2)
         }

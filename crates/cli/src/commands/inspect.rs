@@ -15,7 +15,7 @@ use crate::plots::{planar_view, CurvePlot, SurfacePlot};
 use crate::report::{Report, ReportKind};
 
 /// Whether a source is a surface grid: five comma-separated columns on its first row.
-fn looks_like_surface(source: &Source) -> bool {
+pub fn looks_like_surface(source: &Source) -> bool {
     let first = source
         .text
         .lines()

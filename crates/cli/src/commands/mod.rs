@@ -22,6 +22,7 @@ pub fn dispatch(cli: Cli) -> Result<()> {
         Command::Inspect(args) => inspect::run(&args),
         Command::Methods => methods::run(),
         Command::Demo(args) => demo::run(&args),
+        Command::Serve(args) => crate::serve::run(&args),
     }
 }
 
