@@ -451,6 +451,7 @@
     const size = clear(svg);
     const entry = current();
     if (!entry) return;
+    $("comb-controls").hidden = entry.type === "surface";
     if (entry.type === "surface") return renderSurfaceMain(svg, size, entry);
     const d = entry.drawing;
     const b = bounds([d.samples, d.view, entry.before && entry.before.samples]);
@@ -525,7 +526,7 @@
       view = h.points;
       lines = h.lines;
       $("main-caption").textContent = `${entry.name} — highlight lines, ${entry.rows} × ${entry.columns} grid`;
-      $("comb-legend").textContent = "grid";
+      $("comb-legend").textContent = "grid lines";
     } else {
       view = d.view;
       lines = [];
@@ -565,7 +566,7 @@
     const H = size.height - m.t - m.b;
     el("line", { class: "axis", x1: m.l, y1: m.t + H, x2: size.width - m.r, y2: m.t + H }, svg);
     el("line", { class: "axis", x1: m.l, y1: m.t, x2: m.l, y2: m.t + H }, svg);
-    const label = el("text", { class: "tick", x: m.l + 4, y: m.t + 8 }, svg);
+    const label = el("text", { class: "tick", x: size.width - m.r, y: m.t + 8, "text-anchor": "end" }, svg);
     label.textContent = `max ${formatNumber(top)}`;
     const group = el("g", { id: "bars" }, svg);
     z.forEach((v, i) => {
@@ -598,8 +599,13 @@
     const entry = current();
     if (!entry) return;
     if (entry.type === "surface") {
-      $("curvature-caption").textContent = entry.before ? "z_ij before this step (same colour scale)" : "z_ij";
-      if (entry.before) renderZMap(svg, size, entry, entry.before, "z-map-before");
+      if (entry.before) {
+        $("curvature-caption").textContent = "z_ij before this step (same colour scale)";
+        renderZMap(svg, size, entry, entry.before, "z-map-before");
+      } else {
+        $("curvature-caption").textContent = "the grid seen from above (x, y)";
+        renderTopView(svg, size, entry);
+      }
       return;
     }
     const c = entry.drawing.curvature;
@@ -620,6 +626,19 @@
     ylabel.textContent = `${c.y_label}: ${formatNumber(b[2])} … ${formatNumber(b[3])}`;
     const xlabel = el("text", { class: "tick", x: size.width - 4, y: size.height - 4, "text-anchor": "end" }, svg);
     xlabel.textContent = c.x_label;
+  }
+
+  function renderTopView(svg, size, entry) {
+    const view = entry.drawing.view;
+    const map = fit(bounds([view]), size, true, null, 16);
+    let grid = "";
+    for (let i = 0; i < entry.rows; i++) grid += path(view.slice(i * entry.columns, (i + 1) * entry.columns), map);
+    for (let j = 0; j < entry.columns; j++) {
+      const column = [];
+      for (let i = 0; i < entry.rows; i++) column.push(view[i * entry.columns + j]);
+      grid += path(column, map);
+    }
+    el("path", { class: "curve now", d: grid }, svg);
   }
 
   function colour(t) {
