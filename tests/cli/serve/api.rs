@@ -603,3 +603,63 @@ fn fifty_concurrent_requests_are_answered_as_sequential_ones() {
         assert!(s == c, "request {k} answered differently when concurrent");
     }
 }
+
+#[test]
+fn a_missing_file_or_a_busy_port_exits_2_with_one_line() {
+    let run = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_fair"))
+            .arg("serve")
+            .args(args)
+            .output()
+            .expect("run fair serve")
+    };
+    let missing = run(&["--port", "0", "no/such/file.csv"]);
+    assert_eq!(missing.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&missing.stderr);
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.starts_with("fair: no/such/file.csv: cannot read"),
+        "{stderr}"
+    );
+    let taken = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let port = taken.local_addr().unwrap().port().to_string();
+    let busy = run(&["--port", &port]);
+    assert_eq!(busy.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&busy.stderr);
+    assert!(
+        stderr.starts_with(&format!("fair: --port: cannot listen on 127.0.0.1:{port}")),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn points_keep_their_bits_through_the_api() {
+    // Doubles with 17 significant digits, as faired points have: a best-effort JSON float
+    // parser changes about one in thirteen of these by an ULP.
+    let server = Served::start(&[]);
+    let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let points: Vec<[f64; 2]> = (0..300).map(|i| [i as f64 + next(), 10.0 * next()]).collect();
+    let expected: Vec<Vec<u64>> = points
+        .iter()
+        .map(|p| p.iter().map(|c| c.to_bits()).collect())
+        .collect();
+    let body = json!({ "points": points, "kind": "parametric" }).to_string();
+    let inspected = post(&server.address, "/api/inspect", &body);
+    assert_eq!(inspected.status, 200);
+    assert_eq!(bits(&inspected.json()["points"]), expected);
+    // A fairing that moves one point gives every other point back unchanged.
+    let body = json!({ "points": points, "kind": "parametric", "method": "strain-energy", "constraints": { "points": [150] } })
+        .to_string();
+    let faired = post(&server.address, "/api/curve", &body).json();
+    assert_eq!(faired["report"]["moved"], json!([150]));
+    let back = bits(&faired["points"]);
+    for (i, (b, e)) in back.iter().zip(&expected).enumerate() {
+        assert!(i == 150 || b == e, "point {i} changed");
+    }
+}

@@ -211,6 +211,7 @@ fn the_page_fairs_a_clicked_point_and_undoes_it() {
                 "args": [
                     "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
                     "--disable-background-networking", "--disable-component-update", "--disable-sync",
+                    "--disable-dev-shm-usage",
                     "--window-size=1400,900", format!("--user-data-dir={}", profile.display()),
                 ],
             },
