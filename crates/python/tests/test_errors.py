@@ -113,7 +113,7 @@ def test_options_the_method_cannot_use():
 
 
 def test_bad_config():
-    with pytest.raises(ValueError, match="config"):
+    with pytest.raises(ValueError, match="unknown curve method `wobble`"):
         fair.pipeline("[[stage]]\nmethod = 'wobble'\n").curve(GOOD)
     with pytest.raises(ValueError, match=r"config:2"):
         fair.pipeline("[constraints]\nfixed = [0,\n")
