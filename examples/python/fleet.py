@@ -193,7 +193,7 @@ def make_fleet(count: int, folder: str, points: int = 200, seed: int = 7) -> lis
         with open(path, "w") as out:
             out.write("x,y\n")
             for x, y in xy:
-                out.write(f"{x!r},{y!r}\n")
+                out.write(f"{float(x)!r},{float(y)!r}\n")
         paths.append(path)
     return paths
 

@@ -83,9 +83,10 @@ fn float_array(value: &Bound<'_, PyAny>, what: &str) -> PyResult<(Vec<f64>, Vec<
     };
     let array = array.cast::<PyArrayDyn<f64>>()?.readonly();
     let shape = array.shape().to_vec();
+    // `as_slice` also accepts Fortran order, whose memory order is not the row order.
     let values = match array.as_slice() {
-        Ok(slice) => slice.to_vec(),
-        Err(_) => array.as_array().iter().copied().collect(),
+        Ok(slice) if array.is_c_contiguous() => slice.to_vec(),
+        _ => array.as_array().iter().copied().collect(),
     };
     Ok((values, shape))
 }

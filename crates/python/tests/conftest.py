@@ -83,6 +83,11 @@ def same_bits(a: np.ndarray, b: np.ndarray) -> bool:
     return a.shape == b.shape and np.array_equal(a.view(np.uint64), b.view(np.uint64))
 
 
-def without_timing(report: dict) -> dict:
-    """The report less what measures time (`elapsed_ms`), the one field two runs differ in."""
-    return {k: v for k, v in report.items() if k != "elapsed_ms"}
+def without_timing(value):
+    """The report less what measures time (`elapsed_ms`, at the top and in each pipeline
+    stage), the one field two runs differ in."""
+    if isinstance(value, dict):
+        return {k: without_timing(v) for k, v in value.items() if k != "elapsed_ms"}
+    if isinstance(value, list):
+        return [without_timing(v) for v in value]
+    return value

@@ -77,7 +77,7 @@ CASES = [
     # (method, file, params, keyword arguments)
     ("smoothing-spline", CONTOUR, {"p": 0.9999}, {"fixed": [0, 17]}),
     ("smoothing-spline", FUNCTION, {"p": "auto", "rule": "trace"}, {"tolerance": 0.001}),
-    ("strain-energy", CONTOUR, {"energy-tolerance": 1e-8, "pairs": True}, {"clamp_ends": "g0"}),
+    ("strain-energy", CONTOUR, {"energy-tolerance": 1e-8, "pairs": "on"}, {"clamp_ends": "g0"}),
     ("strain-energy", CONTOUR, {}, {"points_to_fix": [5, 9]}),
     ("kjellander", WATERLINE, {"max-iterations": 50}, {"tolerance": 0.01, "kind": "parametric"}),
     ("nurbs-weights", FUNCTION, {"criterion": "ek"}, {}),
@@ -115,7 +115,7 @@ def test_closed_loop_is_given_with_its_first_point_repeated(fair_bin, tmp_path):
     t = np.linspace(0.0, 2.0 * np.pi, 24, endpoint=False)
     loop = np.column_stack([np.cos(t), 0.6 * np.sin(t) + 0.01 * np.cos(7 * t)])
     repeated = tmp_path / "loop.csv"
-    repeated.write_text("x,y\n" + "".join(f"{x!r},{y!r}\n" for x, y in np.vstack([loop, loop[:1]])))
+    repeated.write_text("x,y\n" + "".join(f"{float(x)!r},{float(y)!r}\n" for x, y in np.vstack([loop, loop[:1]])))
     points, report = command_curve(fair_bin, tmp_path, repeated, "--method", "strain-energy")
     result = fair.curve(loop, method="strain-energy", closed=True)
     assert same_bits(result.points, points[:-1])
