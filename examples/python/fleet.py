@@ -149,20 +149,26 @@ def report_lines(results: Iterable[dict[str, Any]]) -> list[str]:
 @contextlib.contextmanager
 def connect(workers: int = 2, scheduler: str | None = None):
     """A distributed Client, closed on exit: to `scheduler` if given, else to a new
-    LocalCluster of `workers` single-threaded processes (closed too). This module is shipped
-    to the workers by value, so they need only `fair` installed."""
-    import cloudpickle
+    LocalCluster of `workers` single-threaded processes (closed too).
+
+    Run as a script, this module's functions travel to the workers by value; imported (as
+    the tests do), the module file is uploaded to them. Either way the workers need only
+    `fair` (and numpy) installed.
+    """
     from dask.distributed import Client, LocalCluster
 
-    if __name__ != "__main__":
-        cloudpickle.register_pickle_by_value(sys.modules[__name__])
+    def ready(client):
+        if __name__ != "__main__":
+            client.upload_file(__file__)
+        return client
+
     if scheduler:
         with Client(scheduler) as client:
-            yield client
+            yield ready(client)
         return
     with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                       dashboard_address=None) as cluster, Client(cluster) as client:
-        yield client
+        yield ready(client)
 
 
 # --- a test fleet ---------------------------------------------------------------------------
