@@ -486,11 +486,13 @@ fn inspect(py: Python<'_>, points: &Bound<'_, PyAny>, kind: Option<String>) -> P
             let coordinates = Coordinates { dimension: 3, values };
             without_gil(py, || backend::inspect_surface(&coordinates, m, n))?
         }
-        _ => return Err(PyValueError::new_err(format!(
+        _ => {
+            return Err(PyValueError::new_err(format!(
             "{}: a curve is an (n, 2) or (n, 3) array and a surface grid an (m, n, 3) array, got shape {}",
             backend::POINTS,
             shape_text(&shape)
-        ))),
+        )))
+        }
     };
     Ok(to_python(py, &report)?.unbind())
 }
