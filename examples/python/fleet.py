@@ -240,7 +240,7 @@ def main(argv: list[str] | None = None) -> int:
     failed = sum("error" in r for r in results)
     where = args.scheduler or f"LocalCluster, {args.workers} workers"
     print(f"{len(results)} curves ({failed} failed) in {seconds:.2f} s on {where}: "
-          f"{len(results) / seconds:.1f} curves/s", file=sys.stderr)
+          f"{len(results) / seconds:.3g} curves/s", file=sys.stderr)
     if failed:
         return max(r.get("exit_status", 0) for r in results if "error" in r)
     return 0
