@@ -328,7 +328,7 @@ fn inspect_surface_reports_null_counts() {
 fn inspect_repeated_points_exit_2_naming_the_file() {
     let dir = temp_dir("repeated");
     let input = dir.join("repeated.csv");
-    std::fs::write(&input, "0,0\n1,1\n1,1\n0,2\n").unwrap();
+    std::fs::write(&input, "x,y\n0,0\n1,1\n1,1\n0,2\n").unwrap();
     let output = fair(&["inspect", input.to_str().unwrap(), "--kind", "parametric"]);
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert_eq!(output.status.code(), Some(2), "{stderr}");

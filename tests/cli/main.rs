@@ -8,6 +8,7 @@ mod formats_cli;
 mod inspect;
 mod nurbs_weights_cli;
 mod pipeline_batch_cli;
+mod serve;
 mod strain_energy_cli;
 mod surface_cli;
 mod two_phase_cli;

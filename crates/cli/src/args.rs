@@ -33,6 +33,8 @@ pub enum Command {
     Methods,
     /// Run every method on the embedded data sets.
     Demo(DemoArgs),
+    /// Fair interactively in the browser: a local web page over a JSON API.
+    Serve(crate::serve::ServeArgs),
 }
 
 /// How to read a curve's points.

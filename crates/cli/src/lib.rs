@@ -21,7 +21,11 @@
 //! - [`report`] is the JSON report; [`svg`] a small plotting toolkit and [`plots`] the pictures
 //!   built with it;
 //! - [`constraints`] checks `--fixed`/`--points`/`--tolerance`/`--clamp-ends`, [`kind`]
-//!   resolves `--kind`.
+//!   resolves `--kind`;
+//! - [`serve`] is `fair serve`, the local web page and its JSON API over the same code.
+//!
+//! The numerical crates plug in through the catalogue ([`fairing::catalog`]): the command
+//! never names a method.
 //!
 //! Exit status: 0 on success, 2 on bad input or arguments, 1 on internal failure; every
 //! error is one line on standard error, `fair: <file>:<line>: <what is wrong>`. No input
@@ -37,6 +41,7 @@ pub mod output;
 pub mod plots;
 pub mod progress;
 pub mod report;
+pub mod serve;
 pub mod svg;
 
 pub use error::{Error, Result};
@@ -134,7 +139,7 @@ fn usage(e: clap::Error) -> ExitCode {
         ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand | ErrorKind::MissingSubcommand => {
             let _ = writeln!(
                 std::io::stderr(),
-                "fair: a subcommand is required: curve, surface, inspect, methods or demo (see `fair --help`)"
+                "fair: a subcommand is required: curve, surface, inspect, methods, demo or serve (see `fair --help`)"
             );
             ExitCode::from(2)
         }

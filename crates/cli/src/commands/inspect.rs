@@ -18,7 +18,7 @@ use crate::progress;
 use crate::report::{Report, ReportKind};
 
 /// Whether a source is a surface grid: five comma-separated columns on its first row.
-fn looks_like_surface(source: &Source) -> bool {
+pub fn looks_like_surface(source: &Source) -> bool {
     let first = source
         .text
         .lines()
@@ -170,13 +170,23 @@ pub fn inspect_with(
             plot.figure().write(path)?;
         }
         let mut measures = measured.measures;
-        let mut failed = std::collections::BTreeMap::new();
-        let curve =
-            fairing::catalog::measured_curve(kind, &crate::commands::curve::to_catalog(&input.points))
-                .map_err(|e| crate::error::Error::from_fairing(e, &input.source))?;
-        measures.criteria = crate::commands::curve::criteria(catalog, &curve, &mut failed);
+        measures.criteria = curve_criteria(catalog, kind, &input)?;
         Report::inspection(ReportKind::from(kind), input.len(), measures, measured.curve)
     };
     report.check_finite()?;
     Ok(report)
+}
+
+/// Every registered criterion that applies, on the spline `fair inspect` measures for `input`
+/// read as `kind` (the report's `criteria`; a criterion that fails is left out). O(n) per
+/// criterion.
+pub fn curve_criteria(
+    catalog: &Catalog,
+    kind: CurveKind,
+    input: &crate::input::CurveInput,
+) -> Result<std::collections::BTreeMap<String, f64>> {
+    let mut failed = std::collections::BTreeMap::new();
+    let curve = fairing::catalog::measured_curve(kind, &crate::commands::curve::to_catalog(&input.points))
+        .map_err(|e| crate::error::Error::from_fairing(e, &input.source))?;
+    Ok(crate::commands::curve::criteria(catalog, &curve, &mut failed))
 }

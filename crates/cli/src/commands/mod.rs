@@ -24,6 +24,7 @@ pub fn dispatch(catalog: &Catalog, cli: Cli) -> Result<()> {
         Command::Inspect(args) => inspect::run(catalog, &args),
         Command::Methods => methods::run(catalog),
         Command::Demo(args) => demo::run(catalog, &args),
+        Command::Serve(args) => crate::serve::run(catalog, &args),
     }
 }
 

@@ -1,0 +1,591 @@
+//! The routes of `fair serve`: the page, and the JSON API under it.
+//!
+//! | route | body | answer |
+//! |---|---|---|
+//! | `GET /` (`/app.js`, `/style.css`) | | the page |
+//! | `GET /api/methods` | | `{"methods": [{name, kind, paper, summary, takes_points, planar_only, schema}], "defaults"}` |
+//! | `GET /api/datasets` | | `{"datasets": [{name, about, origin}]}` |
+//! | `GET /api/datasets/{name}` | | a [loaded](#loaded) data set, plus `about` |
+//! | `POST /api/inspect` | `{"text", "name"?, "kind"?, "surface"?}` (a file's content) or `{"points", "kind"?}` or `{"rows", "columns", "points"}` | [loaded](#loaded) |
+//! | `POST /api/curve` | `{"points", "kind"?, "method"?, "params"?, "constraints"?, "name"?}` | `{"points", "report", "drawing": {"before", "after"}}` |
+//! | `POST /api/surface` | `{"rows", "columns", "points", "method"?, "params"?, "constraints"?, "name"?}` | `{"rows", "columns", "points", "report", "drawing": {"before", "after"}}` |
+//!
+//! <a id="loaded"></a>A loaded curve or surface is `{"name", "type": "curve" | "surface",
+//! "points", ("rows", "columns" for a surface), "report", "drawing"}`, the report being
+//! `fair inspect`'s. `constraints` is `{"fixed", "points", "tolerance", "clamp-ends"}`, the
+//! names of a config file's `[constraints]`; `params` maps parameter names to values (`fair
+//! methods` lists them). Point indices count from 0; a grid's row by row (k = i · columns + j).
+//! The `drawing`s are described in [`super::drawing`].
+//!
+//! Every failure is `{"error": "one line"}` with a 4xx status for what the request got wrong
+//! (400 bad input, 404 unknown route or data set, 405 wrong method, 413 too large, 415 not
+//! JSON) and 5xx for the server's own failures.
+
+use std::collections::BTreeMap;
+
+use serde::Deserialize;
+use serde_json::{json, Value};
+
+use super::datasets::{Datasets, Refusal};
+use super::drawing;
+use super::engine::{self, Job, JobConstraints};
+use super::http::{Request, Response};
+use super::page;
+use crate::args::{ClampEnds, KindArg};
+use crate::commands::inspect::looks_like_surface;
+use crate::error::Error;
+use crate::input::{self, Grid, Points, Source};
+use curve_repr::Vec3;
+
+/// What every request may use: the methods, the data sets and the body limit.
+#[derive(Debug, Clone)]
+pub struct Context {
+    /// The methods, criteria and indicators (the command's own catalogue).
+    pub catalog: fairing::catalog::Catalog,
+    /// The data sets offered.
+    pub datasets: Datasets,
+    /// The largest body (and data file) in bytes.
+    pub max_upload: usize,
+}
+
+impl Default for Context {
+    /// The built-in catalogue, no data sets, no body limit.
+    fn default() -> Self {
+        Context {
+            catalog: fairing::catalog::Catalog::builtin(),
+            datasets: Datasets::default(),
+            max_upload: 0,
+        }
+    }
+}
+
+/// Answers one request. Never panics on any input (the server catches a panic anyway).
+pub fn handle(request: &Request, context: &Context) -> Response {
+    let path = request.path.as_str();
+    let get = |answer: fn(&Context) -> Response| match request.method.as_str() {
+        "GET" | "HEAD" => answer(context),
+        _ => not_allowed("GET"),
+    };
+    match path {
+        "/" | "/index.html" => get(|_| page::index()),
+        "/app.js" => get(|_| page::script()),
+        "/style.css" => get(|_| page::style()),
+        "/api/methods" => get(|context| Response::json(200, &engine::methods(&context.catalog))),
+        "/api/datasets" => get(datasets),
+        "/api/inspect" | "/api/curve" | "/api/surface" => {
+            if request.method != "POST" {
+                return not_allowed("POST");
+            }
+            if let Some(refusal) = not_json(request) {
+                return refusal;
+            }
+            let result = match path {
+                "/api/inspect" => inspect(&context.catalog, &request.body),
+                "/api/curve" => fair_curve(&context.catalog, &request.body),
+                _ => fair_surface(&context.catalog, &request.body),
+            };
+            result.unwrap_or_else(|refusal| refusal)
+        }
+        _ => match path.strip_prefix("/api/datasets/") {
+            Some(name) => match request.method.as_str() {
+                "GET" | "HEAD" => dataset(name, context),
+                _ => not_allowed("GET"),
+            },
+            None => Response::error(404, format!("no route {path} (the API is under /api/)")),
+        },
+    }
+}
+
+fn not_allowed(allowed: &'static str) -> Response {
+    Response::error(405, format!("method not allowed here; use {allowed}")).with_header("Allow", allowed)
+}
+
+/// A POST body must be declared JSON: a page elsewhere cannot send that without the browser
+/// asking this server first (which it does not answer), so it cannot make it work for it.
+fn not_json(request: &Request) -> Option<Response> {
+    let declared = request
+        .content_type
+        .as_deref()
+        .and_then(|t| t.split(';').next())
+        .map(|t| t.trim().eq_ignore_ascii_case("application/json"))
+        .unwrap_or(false);
+    (!declared).then(|| {
+        Response::error(
+            415,
+            "the body must be JSON sent with Content-Type: application/json",
+        )
+    })
+}
+
+type Answer = std::result::Result<Response, Response>;
+
+/// The status for a command error: 400 for what the user can fix, 501 for a method not wired
+/// yet, 500 for internal failures.
+fn status_of(error: &Error) -> u16 {
+    match error {
+        Error::NotAvailable { .. } => 501,
+        e if e.exit_code() == 2 => 400,
+        _ => 500,
+    }
+}
+
+/// The command's option names, as the request's fields.
+fn request_field(option: &str) -> &str {
+    match option {
+        "--fixed" => "constraints.fixed",
+        "--points" => "constraints.points",
+        "--tolerance" => "constraints.tolerance",
+        "--clamp-ends" => "constraints.clamp-ends",
+        "--kind" => "kind",
+        "--method" => "method",
+        "--set" => "params",
+        other => other,
+    }
+}
+
+/// A command error as a response, its option names changed to the request's field names.
+fn failure(error: Error) -> Response {
+    let status = status_of(&error);
+    let message = match &error {
+        Error::Argument { option, message } => format!("{}: {message}", request_field(option)),
+        Error::Parameter { origin, message } => format!("{}: {message}", request_field(origin)),
+        other => other.one_line(),
+    };
+    Response::error(status, message.replace('\n', "; "))
+}
+
+fn parse_body<'a, T: Deserialize<'a>>(body: &'a [u8]) -> std::result::Result<T, Response> {
+    serde_json::from_slice(body).map_err(|e| {
+        let hint = if e.is_syntax() {
+            " (JSON has no NaN or Infinity: every number must be finite)"
+        } else {
+            ""
+        };
+        Response::error(400, format!("request body: {e}{hint}"))
+    })
+}
+
+/// `constraints` of a request (the names of a config file's `[constraints]`).
+#[derive(Debug, Default, Deserialize)]
+#[serde(default, deny_unknown_fields, rename_all = "kebab-case")]
+struct ConstraintsBody {
+    fixed: Vec<usize>,
+    points: Vec<usize>,
+    tolerance: Option<f64>,
+    #[serde(alias = "clamp_ends")]
+    clamp_ends: Option<String>,
+}
+
+impl ConstraintsBody {
+    fn into_job(self) -> std::result::Result<JobConstraints, Response> {
+        let clamp_ends = match self.clamp_ends.as_deref() {
+            None | Some("none") => None,
+            Some("g0") => Some(ClampEnds::G0),
+            Some("g1") => Some(ClampEnds::G1),
+            Some("g2") => Some(ClampEnds::G2),
+            Some(other) => {
+                return Err(Response::error(
+                    400,
+                    format!("constraints.clamp-ends: `{other}` is not one of g0, g1, g2"),
+                ))
+            }
+        };
+        Ok(JobConstraints {
+            fixed: self.fixed,
+            points: self.points,
+            tolerance: self.tolerance,
+            clamp_ends,
+        })
+    }
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CurveBody {
+    points: Vec<Vec<f64>>,
+    #[serde(default)]
+    kind: Option<String>,
+    #[serde(default)]
+    method: Option<String>,
+    #[serde(default)]
+    params: BTreeMap<String, Value>,
+    #[serde(default)]
+    constraints: ConstraintsBody,
+    #[serde(default)]
+    name: Option<String>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SurfaceBody {
+    rows: usize,
+    columns: usize,
+    points: Vec<Vec<f64>>,
+    #[serde(default)]
+    method: Option<String>,
+    #[serde(default)]
+    params: BTreeMap<String, Value>,
+    #[serde(default)]
+    constraints: ConstraintsBody,
+    #[serde(default)]
+    name: Option<String>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct InspectBody {
+    #[serde(default)]
+    text: Option<String>,
+    #[serde(default)]
+    name: Option<String>,
+    #[serde(default)]
+    kind: Option<String>,
+    #[serde(default)]
+    surface: bool,
+    #[serde(default)]
+    points: Option<Vec<Vec<f64>>>,
+    #[serde(default)]
+    rows: Option<usize>,
+    #[serde(default)]
+    columns: Option<usize>,
+}
+
+fn kind_of(kind: Option<&str>) -> std::result::Result<KindArg, Response> {
+    match kind {
+        None | Some("auto") => Ok(KindArg::Auto),
+        Some("function") => Ok(KindArg::Function),
+        Some("parametric") => Ok(KindArg::Parametric),
+        Some(other) => Err(Response::error(
+            400,
+            format!("kind: `{other}` is not one of function, parametric, auto"),
+        )),
+    }
+}
+
+/// The first non-finite coordinate, as a 400.
+fn check_finite(rows: &[Vec<f64>]) -> std::result::Result<(), Response> {
+    match rows.iter().position(|r| !r.iter().all(|c| c.is_finite())) {
+        Some(i) => Err(Response::error(400, format!("points: point {i} is not finite"))),
+        None => Ok(()),
+    }
+}
+
+fn curve_points(rows: &[Vec<f64>]) -> std::result::Result<Points, Response> {
+    check_finite(rows)?;
+    let dimension = rows.first().map_or(2, Vec::len);
+    if dimension != 2 && dimension != 3 {
+        return Err(Response::error(
+            400,
+            format!("points: point 0 has {dimension} coordinates; a curve's have 2 (x, y) or 3 (x, y, z)"),
+        ));
+    }
+    Points::from_rows(dimension, rows).ok_or_else(|| {
+        let i = rows.iter().position(|r| r.len() != dimension).unwrap_or(0);
+        Response::error(
+            400,
+            format!(
+                "points: point {i} has {} coordinates, point 0 has {dimension}",
+                rows.get(i).map_or(0, Vec::len)
+            ),
+        )
+    })
+}
+
+fn grid_points(rows: usize, columns: usize, points: &[Vec<f64>]) -> std::result::Result<Grid, Response> {
+    check_finite(points)?;
+    if rows.checked_mul(columns) != Some(points.len()) {
+        return Err(Response::error(
+            400,
+            format!(
+                "points: {} points, but rows × columns = {rows} × {columns}",
+                points.len()
+            ),
+        ));
+    }
+    let points = points
+        .iter()
+        .enumerate()
+        .map(|(k, p)| match p.as_slice() {
+            [x, y, z] => Ok(Vec3::new(*x, *y, *z)),
+            _ => Err(Response::error(
+                400,
+                format!(
+                    "points: point {k} has {} coordinates; a grid's have 3 (x, y, z)",
+                    p.len()
+                ),
+            )),
+        })
+        .collect::<std::result::Result<Vec<_>, _>>()?;
+    Ok(Grid {
+        rows,
+        columns,
+        points,
+    })
+}
+
+fn datasets(context: &Context) -> Response {
+    let list: Vec<Value> = context
+        .datasets
+        .list()
+        .iter()
+        .map(|d| json!({ "name": d.name, "about": d.about, "origin": d.origin_name() }))
+        .collect();
+    Response::json(200, &json!({ "datasets": list }))
+}
+
+/// Percent-decodes a path segment; `None` for a broken escape or bytes that are not UTF-8.
+pub fn percent_decode(text: &str) -> Option<String> {
+    let bytes = text.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i] == b'%' {
+            let hex = std::str::from_utf8(bytes.get(i + 1..i + 3)?).ok()?;
+            out.push(u8::from_str_radix(hex, 16).ok()?);
+            i += 3;
+        } else {
+            out.push(bytes[i]);
+            i += 1;
+        }
+    }
+    String::from_utf8(out).ok()
+}
+
+fn dataset(encoded: &str, context: &Context) -> Response {
+    let Some(name) = percent_decode(encoded) else {
+        return Response::error(
+            400,
+            format!("data set name `{encoded}` is not valid percent-encoded UTF-8"),
+        );
+    };
+    let (entry, source) = match context.datasets.read(&name, context.max_upload) {
+        Ok(found) => found,
+        Err(Refusal::Outside(name)) => {
+            return Response::error(
+                400,
+                format!("`{name}` is outside the data folders; GET /api/datasets lists what can be read"),
+            )
+        }
+        Err(Refusal::Unknown(name)) => {
+            return Response::error(
+                404,
+                format!("no data set `{name}` (GET /api/datasets lists them)"),
+            )
+        }
+        Err(Refusal::TooLarge(message)) => return Response::error(413, message),
+        Err(Refusal::Unreadable(error)) => return failure(error),
+    };
+    match load_text(&context.catalog, &source, KindArg::Auto, false) {
+        Ok(mut value) => {
+            value["about"] = json!(entry.about);
+            Response::json(200, &value)
+        }
+        Err(refusal) => refusal,
+    }
+}
+
+/// A file's text measured as `fair inspect` reads it: a surface when `surface` is set or the
+/// first row has five columns, else a curve.
+fn load_text(
+    catalog: &fairing::catalog::Catalog,
+    source: &Source,
+    kind: KindArg,
+    surface: bool,
+) -> std::result::Result<Value, Response> {
+    if surface || looks_like_surface(source) {
+        if kind != KindArg::Auto {
+            return Err(Response::error(
+                400,
+                "kind: the input is a surface grid; kind is for curves",
+            ));
+        }
+        let grid = input::grid::parse(source).map_err(failure)?;
+        load_surface(&grid.source.clone(), grid)
+    } else {
+        let curve = input::parse_curve(source).map_err(failure)?;
+        load_curve(catalog, &curve, kind)
+    }
+}
+
+fn load_curve(
+    catalog: &fairing::catalog::Catalog,
+    curve: &input::CurveInput,
+    kind: KindArg,
+) -> std::result::Result<Value, Response> {
+    let (kind, report, measured) = engine::inspect_curve(catalog, curve, kind).map_err(failure)?;
+    Ok(json!({
+        "name": curve.source,
+        "type": "curve",
+        "points": curve.points.rows(),
+        "report": report,
+        "drawing": drawing::curve(&curve.points, kind, &measured),
+    }))
+}
+
+fn load_surface(name: &str, input: input::SurfaceInput) -> std::result::Result<Value, Response> {
+    let (report, measured) = engine::inspect_surface(&input).map_err(failure)?;
+    let grid = &input.grid;
+    let light = drawing::light_for(grid);
+    let points: Vec<[f64; 3]> = grid.points.iter().map(|p| [p.x, p.y, p.z]).collect();
+    Ok(json!({
+        "name": name,
+        "type": "surface",
+        "rows": grid.rows,
+        "columns": grid.columns,
+        "points": points,
+        "report": report,
+        "drawing": drawing::surface(grid, &measured, light.as_ref()),
+    }))
+}
+
+fn inspect(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
+    let body: InspectBody = parse_body(body)?;
+    let kind = kind_of(body.kind.as_deref())?;
+    let name = body.name.unwrap_or_else(|| "upload".into());
+    let value = match (body.text, body.points, body.rows, body.columns) {
+        (Some(text), None, None, None) => load_text(catalog, &Source::from_text(&name, &text), kind, body.surface)?,
+        (None, Some(points), None, None) if !body.surface => {
+            let curve = engine::curve_input(&name, curve_points(&points)?);
+            load_curve(catalog, &curve, kind)?
+        }
+        (None, Some(points), Some(rows), Some(columns)) => {
+            if kind != KindArg::Auto {
+                return Err(Response::error(400, "kind: the input is a surface grid; kind is for curves"));
+            }
+            let grid = grid_points(rows, columns, &points)?;
+            load_surface(&name, engine::surface_input(&name, grid))?
+        }
+        _ => {
+            return Err(Response::error(
+                400,
+                "request body: give `text` (a file's content), or `points` (a curve), or `rows`, `columns` and `points` (a surface)",
+            ))
+        }
+    };
+    Ok(Response::json(200, &value))
+}
+
+fn fair_curve(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
+    let body: CurveBody = parse_body(body)?;
+    let kind = kind_of(body.kind.as_deref())?;
+    let name = body.name.unwrap_or_else(|| "points".into());
+    let input = engine::curve_input(&name, curve_points(&body.points)?);
+    let job = Job {
+        method: body.method,
+        params: body.params,
+        constraints: body.constraints.into_job()?,
+    };
+    let result = engine::fair_curve(catalog, &input, kind, &job).map_err(failure)?;
+    let before = drawing::measure_curve(&input.points, result.kind)
+        .map_err(|e| failure(crate::commands::measure::in_file(e, &name)))?;
+    let after = drawing::measure_curve(&result.points, result.kind)
+        .map_err(|e| failure(crate::commands::measure::in_file(e, &name)))?;
+    Ok(Response::json(
+        200,
+        &json!({
+            "points": result.points.rows(),
+            "report": result.report,
+            "drawing": { "before": before, "after": after },
+        }),
+    ))
+}
+
+fn fair_surface(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
+    let body: SurfaceBody = parse_body(body)?;
+    let name = body.name.unwrap_or_else(|| "points".into());
+    let grid = grid_points(body.rows, body.columns, &body.points)?;
+    let input = engine::surface_input(&name, grid);
+    let job = Job {
+        method: body.method,
+        params: body.params,
+        constraints: body.constraints.into_job()?,
+    };
+    let result = engine::fair_surface(catalog, &input, &job).map_err(failure)?;
+    let light = drawing::light_for(&input.grid);
+    let in_file = |e| failure(crate::commands::measure::in_file(e, &name));
+    let before = drawing::measure_surface(&input.grid, light.as_ref()).map_err(in_file)?;
+    let after = drawing::measure_surface(&result.grid, light.as_ref()).map_err(in_file)?;
+    let points: Vec<[f64; 3]> = result.grid.points.iter().map(|p| [p.x, p.y, p.z]).collect();
+    Ok(Response::json(
+        200,
+        &json!({
+            "rows": result.grid.rows,
+            "columns": result.grid.columns,
+            "points": points,
+            "report": result.report,
+            "drawing": { "before": before, "after": after },
+        }),
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn post(path: &str, body: &str) -> Response {
+        let request = Request {
+            method: "POST".into(),
+            path: path.into(),
+            content_type: Some("application/json".into()),
+            body: body.as_bytes().to_vec(),
+        };
+        handle(&request, &Context::default())
+    }
+
+    fn message(response: &Response) -> String {
+        let value: Value = serde_json::from_slice(&response.body).unwrap();
+        value["error"].as_str().unwrap().to_string()
+    }
+
+    #[test]
+    fn percent_decoding() {
+        assert_eq!(percent_decode("a%20b%2Fc").as_deref(), Some("a b/c"));
+        assert_eq!(percent_decode("%2e%2e/x").as_deref(), Some("../x"));
+        assert_eq!(percent_decode("%zz"), None);
+        assert_eq!(percent_decode("%2"), None);
+        assert_eq!(percent_decode("%ff"), None);
+    }
+
+    #[test]
+    fn request_errors_name_the_request_fields() {
+        let points = "[[0,0],[1,1],[2,0],[3,1],[4,0]]";
+        let r = post(
+            "/api/curve",
+            &format!(r#"{{"points": {points}, "constraints": {{"fixed": [9]}}}}"#),
+        );
+        assert_eq!(r.status, 400);
+        assert!(
+            message(&r).starts_with("constraints.fixed: index 9 is past the last point"),
+            "{}",
+            message(&r)
+        );
+        let r = post(
+            "/api/curve",
+            &format!(r#"{{"points": {points}, "method": "zz"}}"#),
+        );
+        assert_eq!(r.status, 400);
+        assert!(
+            message(&r).contains("unknown curve method `zz`"),
+            "{}",
+            message(&r)
+        );
+        let r = post(
+            "/api/curve",
+            &format!(r#"{{"points": {points}, "params": {{"zz": 1}}}}"#),
+        );
+        assert!(
+            message(&r).starts_with("params: `zz` is not a parameter of `two-phase`"),
+            "{}",
+            message(&r)
+        );
+        let r = post("/api/curve", r#"{"points": [[0, NaN]]}"#);
+        assert_eq!(r.status, 400);
+        assert!(message(&r).contains("NaN"), "{}", message(&r));
+        let r = post(
+            "/api/surface",
+            r#"{"rows": 2, "columns": 2, "points": [[0,0,0]]}"#,
+        );
+        assert_eq!(r.status, 400);
+        assert!(message(&r).contains("rows × columns"), "{}", message(&r));
+    }
+}

@@ -1,0 +1,496 @@
+//! A small synchronous HTTP/1.1 server: `httparse` reads the request head, the rest is here.
+//!
+//! One request per connection (`Connection: close`), which is all a local page needs and keeps
+//! every limit simple:
+//! - the head is read up to [`Settings::max_head`] bytes (431 past it), the body up to
+//!   [`Settings::max_body`] (413 past it, decided from `Content-Length` before a byte of the
+//!   body is read); a body must come with `Content-Length` (411 otherwise: no chunked uploads);
+//! - reads and writes time out ([`Settings::timeout`]), so a stalled client holds a worker for
+//!   that long at most;
+//! - a fixed pool of [`Settings::workers`] threads handles connections; the accepting thread
+//!   waits when all are busy and [`Settings::queue`] connections wait, so a burst costs no
+//!   more threads or memory than that;
+//! - a panic while handling a request is caught and answered with 500: the server lives on.
+//!
+//! Why not `tiny_http` (the usual light choice): its 0.12 release drains an unread body into
+//! one buffer the size of the declared `Content-Length`, so a single request declaring 10^17
+//! bytes aborts the whole process ("memory allocation failed"); checked against 0.12.0.
+//!
+//! Requests whose `Host` is not a loopback name are refused (403) while the server listens on a
+//! loopback address: a web page elsewhere cannot reach it through DNS rebinding.
+
+use std::io::{self, BufRead, BufReader, Read, Write};
+use std::net::{IpAddr, Ipv4Addr, SocketAddr, TcpListener, TcpStream};
+use std::sync::mpsc::{sync_channel, Receiver};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use super::api::{self, Context};
+
+/// How the server listens and what it accepts.
+#[derive(Debug, Clone)]
+pub struct Settings {
+    /// The address to listen on (default 127.0.0.1).
+    pub bind: IpAddr,
+    /// The port (0: any free port).
+    pub port: u16,
+    /// The largest request body in bytes.
+    pub max_body: usize,
+    /// The largest request head (request line and headers) in bytes. Default 64 KiB.
+    pub max_head: usize,
+    /// Read and write timeout of a connection. Default 30 s.
+    pub timeout: Duration,
+    /// Worker threads. Default 8 (fairing is CPU-bound; more would only share the cores).
+    pub workers: usize,
+    /// Accepted connections that may wait for a worker. Default 256.
+    pub queue: usize,
+    /// Print one line per request on standard error.
+    pub log: bool,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            bind: IpAddr::V4(Ipv4Addr::LOCALHOST),
+            port: super::DEFAULT_PORT,
+            max_body: super::DEFAULT_MAX_UPLOAD,
+            max_head: 64 << 10,
+            timeout: Duration::from_secs(30),
+            workers: 8,
+            queue: 256,
+            log: false,
+        }
+    }
+}
+
+/// A request as the routes see it: method, path (without the query) and body.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Request {
+    /// `GET`, `POST`, ...
+    pub method: String,
+    /// The path as sent, percent-encoded, without `?query`.
+    pub path: String,
+    /// The `Content-Type` header, if any.
+    pub content_type: Option<String>,
+    /// The body.
+    pub body: Vec<u8>,
+}
+
+/// An answer: status, content type and body (plus headers for the page).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Response {
+    /// The HTTP status.
+    pub status: u16,
+    /// The `Content-Type`.
+    pub content_type: &'static str,
+    /// Further headers.
+    pub headers: Vec<(&'static str, String)>,
+    /// The body.
+    pub body: Vec<u8>,
+}
+
+impl Response {
+    /// A JSON answer.
+    pub fn json(status: u16, value: &serde_json::Value) -> Response {
+        Response {
+            status,
+            content_type: "application/json",
+            headers: Vec::new(),
+            body: value.to_string().into_bytes(),
+        }
+    }
+
+    /// A JSON error answer `{"error": message}`.
+    pub fn error(status: u16, message: impl Into<String>) -> Response {
+        Response::json(status, &serde_json::json!({ "error": message.into() }))
+    }
+
+    /// Adds a header.
+    pub fn with_header(mut self, name: &'static str, value: impl Into<String>) -> Response {
+        self.headers.push((name, value.into()));
+        self
+    }
+}
+
+/// The reason phrase of the statuses the server sends.
+fn reason(status: u16) -> &'static str {
+    match status {
+        200 => "OK",
+        400 => "Bad Request",
+        403 => "Forbidden",
+        404 => "Not Found",
+        405 => "Method Not Allowed",
+        408 => "Request Timeout",
+        411 => "Length Required",
+        413 => "Content Too Large",
+        415 => "Unsupported Media Type",
+        417 => "Expectation Failed",
+        422 => "Unprocessable Content",
+        431 => "Request Header Fields Too Large",
+        500 => "Internal Server Error",
+        501 => "Not Implemented",
+        505 => "HTTP Version Not Supported",
+        _ => "Status",
+    }
+}
+
+/// A listening server; [`Server::run`] serves until the process ends.
+#[derive(Debug)]
+pub struct Server {
+    listener: TcpListener,
+    context: Arc<Context>,
+    settings: Settings,
+}
+
+impl Server {
+    /// Binds to the settings' address and port.
+    pub fn bind(settings: &Settings, context: Context) -> io::Result<Server> {
+        let listener = TcpListener::bind(SocketAddr::new(settings.bind, settings.port))?;
+        Ok(Server {
+            listener,
+            context: Arc::new(context),
+            settings: settings.clone(),
+        })
+    }
+
+    /// The address bound (with the port chosen when 0 was asked for).
+    pub fn local_addr(&self) -> SocketAddr {
+        self.listener
+            .local_addr()
+            .unwrap_or_else(|_| SocketAddr::new(self.settings.bind, self.settings.port))
+    }
+
+    /// Accepts connections and hands them to the workers; returns only if accepting fails
+    /// for good.
+    pub fn run(self) {
+        let (sender, receiver) = sync_channel::<TcpStream>(self.settings.queue);
+        let receiver = Arc::new(Mutex::new(receiver));
+        let local = self.local_addr();
+        for _ in 0..self.settings.workers.max(1) {
+            let receiver = Arc::clone(&receiver);
+            let context = Arc::clone(&self.context);
+            let settings = self.settings.clone();
+            std::thread::spawn(move || worker(&receiver, &context, &settings, local));
+        }
+        for stream in self.listener.incoming() {
+            // A failed accept (a client gone before it was accepted, too many open files) is
+            // that client's loss; the server goes on.
+            let Ok(stream) = stream else { continue };
+            if sender.send(stream).is_err() {
+                return;
+            }
+        }
+    }
+}
+
+fn worker(receiver: &Mutex<Receiver<TcpStream>>, context: &Context, settings: &Settings, local: SocketAddr) {
+    loop {
+        let next = match receiver.lock() {
+            Ok(guard) => guard.recv(),
+            Err(poisoned) => poisoned.into_inner().recv(),
+        };
+        let Ok(stream) = next else { return };
+        serve_connection(stream, context, settings, local);
+    }
+}
+
+/// What reading a request gave: a request, or the answer to send instead.
+enum Incoming {
+    Request(Request, Option<String>),
+    Refused(Response),
+    Gone,
+}
+
+/// Reads one request, answers it, closes the connection. Never panics past this point: a
+/// panic in the routes becomes a 500.
+fn serve_connection(stream: TcpStream, context: &Context, settings: &Settings, local: SocketAddr) {
+    let started = Instant::now();
+    let _ = stream.set_read_timeout(Some(settings.timeout));
+    let _ = stream.set_write_timeout(Some(settings.timeout));
+    let _ = stream.set_nodelay(true);
+    let Ok(write_half) = stream.try_clone() else {
+        return;
+    };
+    let mut reader = BufReader::new(stream);
+    let (line, head_only, response) = match read_request(&mut reader, settings, &write_half) {
+        Incoming::Gone => return,
+        Incoming::Refused(response) => ("-".to_string(), false, response),
+        Incoming::Request(request, host) => {
+            let line = format!("{} {}", request.method, request.path);
+            let head_only = request.method == "HEAD";
+            let response = match host_problem(host.as_deref(), local) {
+                Some(problem) => Response::error(403, problem),
+                None => answer(request, context),
+            };
+            (line, head_only, response)
+        }
+    };
+    let refused_early = response.status == 413 || response.status == 431 || response.status == 411;
+    let mut writer = write_half;
+    let _ = write_response(&mut writer, &response, head_only);
+    if refused_early {
+        // The client may still be sending a body we will not read: close our side, then
+        // read (and drop) what arrives for a moment, so that the kernel does not reset the
+        // connection before the client has read the answer.
+        let _ = writer.shutdown(std::net::Shutdown::Write);
+        linger(&mut reader);
+    }
+    if settings.log {
+        let _ = writeln!(
+            io::stderr(),
+            "fair serve: {line} → {} ({:.1} ms)",
+            response.status,
+            started.elapsed().as_secs_f64() * 1e3
+        );
+    }
+}
+
+/// Reads and drops input for at most 2 s or 64 MiB, whichever comes first.
+fn linger(reader: &mut BufReader<TcpStream>) {
+    let deadline = Instant::now() + Duration::from_secs(2);
+    let _ = reader
+        .get_ref()
+        .set_read_timeout(Some(Duration::from_millis(200)));
+    let mut buffer = [0u8; 16 << 10];
+    let mut total = 0usize;
+    while Instant::now() < deadline && total < 64 << 20 {
+        match reader.read(&mut buffer) {
+            Ok(0) => return,
+            Ok(n) => total += n,
+            Err(e) if e.kind() == io::ErrorKind::Interrupted => {}
+            Err(e) if matches!(e.kind(), io::ErrorKind::WouldBlock | io::ErrorKind::TimedOut) => {}
+            Err(_) => return,
+        }
+    }
+}
+
+/// The routes, with a panic turned into a 500.
+fn answer(request: Request, context: &Context) -> Response {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| api::handle(&request, context))).unwrap_or_else(
+        |payload| {
+            let message = payload
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown failure".into());
+            Response::error(500, format!("internal error: {message}"))
+        },
+    )
+}
+
+/// Why a `Host` is refused on a loopback server, if it is: anything but `localhost`, a
+/// loopback address or the bound address, with or without the port.
+fn host_problem(host: Option<&str>, local: SocketAddr) -> Option<String> {
+    if !local.ip().is_loopback() {
+        return None;
+    }
+    let Some(host) = host else {
+        return Some("a request needs a Host header".into());
+    };
+    // Strip the port: `[::1]:8765`, `127.0.0.1:8765`, `localhost`.
+    let name = if let Some(rest) = host.strip_prefix('[') {
+        rest.split(']').next().unwrap_or("")
+    } else {
+        host.rsplit_once(':').map_or(host, |(name, _)| name)
+    };
+    let loopback =
+        name.eq_ignore_ascii_case("localhost") || name.parse::<IpAddr>().is_ok_and(|ip| ip.is_loopback());
+    (!loopback).then(|| {
+        format!("Host `{host}` refused: this server answers requests to localhost only (start it with --bind to serve others)")
+    })
+}
+
+fn read_request(reader: &mut BufReader<TcpStream>, settings: &Settings, writer: &TcpStream) -> Incoming {
+    // The head: read until the blank line, within max_head.
+    let mut head = Vec::with_capacity(1024);
+    loop {
+        let available = match reader.fill_buf() {
+            Ok(bytes) => bytes,
+            Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
+            Err(e) if matches!(e.kind(), io::ErrorKind::WouldBlock | io::ErrorKind::TimedOut) => {
+                return if head.is_empty() {
+                    Incoming::Gone
+                } else {
+                    Incoming::Refused(Response::error(408, "the request head did not arrive in time"))
+                };
+            }
+            Err(_) => return Incoming::Gone,
+        };
+        if available.is_empty() {
+            return Incoming::Gone;
+        }
+        // Take bytes up to and including the end of the head, if it is in this chunk.
+        let before = head.len();
+        head.extend_from_slice(available);
+        let end = find_head_end(&head, before.saturating_sub(3));
+        let used = match end {
+            Some(end) => end - before,
+            None => available.len(),
+        };
+        reader.consume(used);
+        if let Some(end) = end {
+            head.truncate(end);
+            break;
+        }
+        if head.len() > settings.max_head {
+            return Incoming::Refused(Response::error(
+                431,
+                format!("the request head is over {} bytes", settings.max_head),
+            ));
+        }
+    }
+    if head.len() > settings.max_head {
+        return Incoming::Refused(Response::error(
+            431,
+            format!("the request head is over {} bytes", settings.max_head),
+        ));
+    }
+    let mut headers = [httparse::EMPTY_HEADER; 64];
+    let mut parsed = httparse::Request::new(&mut headers);
+    match parsed.parse(&head) {
+        Ok(httparse::Status::Complete(_)) => {}
+        Ok(httparse::Status::Partial) => {
+            return Incoming::Refused(Response::error(400, "incomplete request head"));
+        }
+        Err(httparse::Error::TooManyHeaders) => {
+            return Incoming::Refused(Response::error(431, "more than 64 request headers"));
+        }
+        Err(e) => return Incoming::Refused(Response::error(400, format!("malformed request: {e}"))),
+    }
+    let (Some(method), Some(target)) = (parsed.method, parsed.path) else {
+        return Incoming::Refused(Response::error(400, "malformed request line"));
+    };
+    let header = |name: &str| {
+        parsed
+            .headers
+            .iter()
+            .find(|h| h.name.eq_ignore_ascii_case(name))
+            .map(|h| String::from_utf8_lossy(h.value).trim().to_string())
+    };
+    if header("transfer-encoding").is_some() {
+        return Incoming::Refused(Response::error(
+            411,
+            "chunked request bodies are not accepted; send the body with Content-Length",
+        ));
+    }
+    let length = match header("content-length") {
+        None => 0,
+        Some(text) => match text.parse::<u64>() {
+            Ok(n) => n,
+            Err(_) => {
+                return Incoming::Refused(Response::error(
+                    400,
+                    format!("Content-Length `{text}` is not a number"),
+                ))
+            }
+        },
+    };
+    if length > settings.max_body as u64 {
+        return Incoming::Refused(Response::error(
+            413,
+            format!(
+                "the request body has {length} bytes, more than the limit of {} (fair serve --max-upload)",
+                settings.max_body
+            ),
+        ));
+    }
+    match header("expect") {
+        None => {}
+        Some(value) if value.eq_ignore_ascii_case("100-continue") => {
+            let mut writer = writer;
+            let _ = writer.write_all(b"HTTP/1.1 100 Continue\r\n\r\n");
+        }
+        Some(value) => {
+            return Incoming::Refused(Response::error(417, format!("Expect `{value}` is not supported")));
+        }
+    }
+    let length = length as usize;
+    let mut body = Vec::with_capacity(length);
+    match reader.take(length as u64).read_to_end(&mut body) {
+        Ok(n) if n == length => {}
+        Ok(_) => return Incoming::Gone,
+        Err(e) if matches!(e.kind(), io::ErrorKind::WouldBlock | io::ErrorKind::TimedOut) => {
+            return Incoming::Refused(Response::error(408, "the request body did not arrive in time"));
+        }
+        Err(_) => return Incoming::Gone,
+    }
+    let path = target.split(['?', '#']).next().unwrap_or("").to_string();
+    let request = Request {
+        method: method.to_string(),
+        path,
+        content_type: header("content-type"),
+        body,
+    };
+    Incoming::Request(request, header("host"))
+}
+
+/// The index just past `\r\n\r\n` in `bytes`, searching from `from`.
+fn find_head_end(bytes: &[u8], from: usize) -> Option<usize> {
+    bytes
+        .get(from..)?
+        .windows(4)
+        .position(|w| w == b"\r\n\r\n")
+        .map(|p| from + p + 4)
+}
+
+fn write_response(writer: &mut TcpStream, response: &Response, head_only: bool) -> io::Result<()> {
+    let mut text = format!(
+        "HTTP/1.1 {} {}\r\nContent-Type: {}\r\nContent-Length: {}\r\nConnection: close\r\n\
+         Cache-Control: no-store\r\nX-Content-Type-Options: nosniff\r\nReferrer-Policy: no-referrer\r\n",
+        response.status,
+        reason(response.status),
+        response.content_type,
+        response.body.len()
+    );
+    for (name, value) in &response.headers {
+        text.push_str(&format!("{name}: {value}\r\n"));
+    }
+    text.push_str("\r\n");
+    let mut bytes = text.into_bytes();
+    if !head_only {
+        bytes.extend_from_slice(&response.body);
+    }
+    writer.write_all(&bytes)?;
+    writer.flush()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn local() -> SocketAddr {
+        "127.0.0.1:8765".parse().unwrap()
+    }
+
+    #[test]
+    fn hosts_on_loopback() {
+        for ok in [
+            "127.0.0.1:8765",
+            "localhost:1",
+            "localhost",
+            "[::1]:8765",
+            "127.0.0.2",
+            "LOCALHOST:9",
+        ] {
+            assert_eq!(host_problem(Some(ok), local()), None, "{ok}");
+        }
+        for bad in [
+            "evil.example:8765",
+            "192.168.1.4:8765",
+            "[2001:db8::1]:80",
+            "localhost.evil.example",
+        ] {
+            assert!(host_problem(Some(bad), local()).is_some(), "{bad}");
+        }
+        assert!(host_problem(None, local()).is_some());
+        let open: SocketAddr = "0.0.0.0:8765".parse().unwrap();
+        assert_eq!(host_problem(Some("anything"), open), None);
+    }
+
+    #[test]
+    fn head_end() {
+        assert_eq!(find_head_end(b"GET / HTTP/1.1\r\n\r\nbody", 0), Some(18));
+        assert_eq!(find_head_end(b"GET / HTTP/1.1\r\n", 0), None);
+        assert_eq!(find_head_end(b"ab", 5), None);
+    }
+}

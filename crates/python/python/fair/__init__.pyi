@@ -1,0 +1,134 @@
+"""Typed interface of the `fair` package (the native module `fair._native`)."""
+
+import os
+from typing import Any, Literal, Mapping, Sequence, TypedDict, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+ArrayLike = npt.ArrayLike
+Kind = Literal["auto", "function", "parametric"]
+Clamp = Literal["g0", "g1", "g2"]
+ParamValue = Union[bool, int, float, str]
+GridIndex = Union[int, tuple[int, int]]
+
+class Parameter(TypedDict):
+    name: str
+    default: str
+    meaning: str
+
+class Method(TypedDict):
+    name: str
+    kind: Literal["curve", "surface"]
+    paper: str
+    summary: str
+    parameters: list[Parameter]
+
+class FairedCurve:
+    """A faired curve: `.points` and `.report`."""
+
+    @property
+    def points(self) -> npt.NDArray[np.float64]:
+        """The faired points, an (n, d) float64 array, same count and order as given."""
+    @property
+    def report(self) -> dict[str, Any]:
+        """The report: exactly the fields of `fair curve --report` (method, kind, n,
+        iterations, before, after, s_d, m_d, moved, elapsed_ms, curve, params, and the
+        method's extras such as termination)."""
+
+class FairedSurface:
+    """A faired surface: `.grid` and `.report`."""
+
+    @property
+    def grid(self) -> npt.NDArray[np.float64]:
+        """The faired grid, an (m, n, 3) float64 array."""
+    @property
+    def report(self) -> dict[str, Any]:
+        """The report: exactly the fields of `fair surface --report`."""
+
+class Pipeline:
+    """A config as `fair curve --config` takes it; build with `fair.pipeline(config)`."""
+
+    def curve(
+        self,
+        points: ArrayLike,
+        kind: Kind | None = None,
+        fixed: Sequence[int] | None = None,
+        points_to_fix: Sequence[int] | None = None,
+        tolerance: float | None = None,
+        clamp_ends: Clamp | None = None,
+        closed: bool = False,
+    ) -> FairedCurve:
+        """Fair a curve with this config (arguments win over its `[constraints]`)."""
+    def __call__(
+        self,
+        points: ArrayLike,
+        kind: Kind | None = None,
+        fixed: Sequence[int] | None = None,
+        points_to_fix: Sequence[int] | None = None,
+        tolerance: float | None = None,
+        clamp_ends: Clamp | None = None,
+        closed: bool = False,
+    ) -> FairedCurve:
+        """Same as `.curve(...)`."""
+    def surface(
+        self,
+        grid: ArrayLike,
+        fixed: Sequence[GridIndex] | None = None,
+        points_to_fix: Sequence[GridIndex] | None = None,
+        tolerance: float | None = None,
+        clamp_ends: Clamp | None = None,
+    ) -> FairedSurface:
+        """Fair a surface grid with this config (one method; stages are for curves)."""
+
+def curve(
+    points: ArrayLike,
+    method: str | None = None,
+    kind: Kind | None = None,
+    params: Mapping[str, ParamValue] | None = None,
+    fixed: Sequence[int] | None = None,
+    points_to_fix: Sequence[int] | None = None,
+    tolerance: float | None = None,
+    clamp_ends: Clamp | None = None,
+    closed: bool = False,
+) -> FairedCurve:
+    """Fair a curve, as `fair curve` does.
+
+    points: (n, 2) or (n, 3) array (float64; integer and float32 arrays are converted).
+    method: a curve method of `methods()`; default two-phase for a function y(x),
+        strain-energy for a parametric curve.
+    kind: "function", "parametric" or "auto"/None (function when x increases strictly).
+    params: the method's parameters, {name: value}, as `--set name=value`.
+    fixed: indices of points that must not move (`--fixed`).
+    points_to_fix: the bad points for the interactive methods (`--points`).
+    tolerance: no point moves farther than this (`--tolerance`).
+    clamp_ends: "g0", "g1" or "g2" (`--clamp-ends`).
+    closed: the points are a closed loop (last joins first).
+
+    Raises ValueError for bad input, with the framework's message.
+    """
+
+def surface(
+    grid: ArrayLike,
+    method: str | None = None,
+    params: Mapping[str, ParamValue] | None = None,
+    fixed: Sequence[GridIndex] | None = None,
+    points_to_fix: Sequence[GridIndex] | None = None,
+    tolerance: float | None = None,
+    clamp_ends: Clamp | None = None,
+) -> FairedSurface:
+    """Fair an (m, n, 3) grid, as `fair surface` does; indices k = i * n + j or (i, j)."""
+
+def inspect(points: ArrayLike, kind: Kind | None = None) -> dict[str, Any]:
+    """Measure a curve ((n, 2)/(n, 3)) or a grid ((m, n, 3)), as `fair inspect` does."""
+
+def methods() -> list[Method]:
+    """The catalogue of methods, as `fair methods` lists them."""
+
+def default_methods() -> dict[str, str]:
+    """The default method for "function", "parametric" and "surface" input."""
+
+def pipeline(config: Union[Mapping[str, Any], str, os.PathLike[str]]) -> Pipeline:
+    """A pipeline from a config dict, TOML text, or a path to a .toml/.json file."""

@@ -1,0 +1,671 @@
+//! Python bindings of the fair framework: the module `fair` (its native part, `fair._native`).
+//!
+//! `pip install ./crates/python` builds and installs it (maturin). The functions mirror the
+//! command: [`curve`] is `fair curve`, [`surface`] is `fair surface`, [`inspect`] is
+//! `fair inspect`, [`methods`] is `fair methods` and [`pipeline`] takes the config files
+//! `--config` takes. The results are the command's bit for bit: the same faired points and a
+//! report dict with exactly the fields of its JSON report.
+//!
+//! This file only converts between Python and Rust: argument checking that Python alone can
+//! do (shapes, dtypes, types of the options), NumPy arrays in and out, errors to exceptions,
+//! and the GIL released while the framework runs. Every call into the framework goes through
+//! [`backend`].
+//!
+//! Copies: a C-contiguous float64 array is read in place (one copy into the framework's own
+//! point type, made while the GIL is held so that no other thread can change the array
+//! underneath); results are handed to NumPy without a copy (the array owns the `Vec`).
+
+pub mod backend;
+
+use backend::{Config, Coordinates, Failure, Faired, Options};
+use numpy::ndarray::{Array2, Array3};
+use numpy::{
+    IntoPyArray, PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods,
+};
+use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString};
+
+/// A failure of the framework as a Python exception: `ValueError` for bad input (what the
+/// command exits 2 for), `RuntimeError` for a failure of the framework itself.
+fn to_py_error(failure: Failure) -> PyErr {
+    if failure.bad_input {
+        PyValueError::new_err(failure.message)
+    } else {
+        PyRuntimeError::new_err(failure.message)
+    }
+}
+
+/// Runs `work` with the GIL released; a panic becomes a `RuntimeError` (never a crash).
+fn without_gil<T: Send>(py: Python<'_>, work: impl FnOnce() -> backend::Result<T> + Send) -> PyResult<T> {
+    let outcome = py.detach(|| std::panic::catch_unwind(std::panic::AssertUnwindSafe(work)));
+    match outcome {
+        Ok(result) => result.map_err(to_py_error),
+        Err(payload) => {
+            let message = payload
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown failure".into());
+            Err(PyRuntimeError::new_err(format!("internal error: {message}")))
+        }
+    }
+}
+
+/// An array of float64 values from `value` with its shape, or a `ValueError` naming `what`.
+///
+/// float64 arrays are read in place when C-contiguous; other real dtypes (integers, float32)
+/// are converted by NumPy; anything else (complex, bool, strings, objects, ragged lists) is
+/// refused.
+fn float_array(value: &Bound<'_, PyAny>, what: &str) -> PyResult<(Vec<f64>, Vec<usize>)> {
+    let py = value.py();
+    let numpy = py.import("numpy")?;
+    let array = match value.cast::<PyUntypedArray>() {
+        Ok(array) => array.clone(),
+        Err(_) => numpy
+            .call_method1("asarray", (value,))
+            .map_err(|e| PyValueError::new_err(format!("{what}: not an array of numbers: {e}")))?
+            .cast_into::<PyUntypedArray>()
+            .map_err(|e| PyValueError::new_err(format!("{what}: not an array of numbers: {e}")))?,
+    };
+    let dtype = array.dtype();
+    let array = match dtype.kind() {
+        b'f' if dtype.is_equiv_to(&numpy::dtype::<f64>(py)) => array,
+        b'f' | b'i' | b'u' => array
+            .call_method1("astype", ("float64",))?
+            .cast_into::<PyUntypedArray>()?,
+        _ => {
+            return Err(PyValueError::new_err(format!(
+                "{what}: the dtype must be real numbers (float64, or a float or integer type NumPy converts), not {}",
+                dtype.str()?
+            )))
+        }
+    };
+    let array = array.cast::<PyArrayDyn<f64>>()?.readonly();
+    let shape = array.shape().to_vec();
+    // `as_slice` also accepts Fortran order, whose memory order is not the row order.
+    let values = match array.as_slice() {
+        Ok(slice) if array.is_c_contiguous() => slice.to_vec(),
+        _ => array.as_array().iter().copied().collect(),
+    };
+    Ok((values, shape))
+}
+
+/// Curve points: an `(n, 2)` or `(n, 3)` array.
+fn curve_points(value: &Bound<'_, PyAny>) -> PyResult<Coordinates> {
+    let (values, shape) = float_array(value, backend::POINTS)?;
+    match shape.as_slice() {
+        [_, d @ (2 | 3)] => Ok(Coordinates {
+            dimension: *d,
+            values,
+        }),
+        _ => Err(PyValueError::new_err(format!(
+            "{}: a curve is an (n, 2) or (n, 3) array, got shape {}",
+            backend::POINTS,
+            shape_text(&shape)
+        ))),
+    }
+}
+
+/// A surface grid: an `(m, n, 3)` array; returns the points and (m, n).
+fn grid_points(value: &Bound<'_, PyAny>) -> PyResult<(Coordinates, usize, usize)> {
+    let (values, shape) = float_array(value, backend::GRID)?;
+    match shape.as_slice() {
+        [m, n, 3] => Ok((Coordinates { dimension: 3, values }, *m, *n)),
+        _ => Err(PyValueError::new_err(format!(
+            "{}: a surface grid is an (m, n, 3) array, got shape {}",
+            backend::GRID,
+            shape_text(&shape)
+        ))),
+    }
+}
+
+fn shape_text(shape: &[usize]) -> String {
+    match shape {
+        [one] => format!("({one},)"),
+        _ => format!(
+            "({})",
+            shape.iter().map(usize::to_string).collect::<Vec<_>>().join(", ")
+        ),
+    }
+}
+
+/// `params=`: a dict of parameter names and values (numbers, booleans, strings), as the text
+/// `--set NAME=VALUE` would carry.
+fn params_argument(params: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<(String, String)>> {
+    let Some(params) = params.filter(|p| !p.is_none()) else {
+        return Ok(Vec::new());
+    };
+    let dict = params
+        .cast::<PyDict>()
+        .map_err(|_| PyTypeError::new_err("params: a dict of parameter names and values"))?;
+    let mut out = Vec::with_capacity(dict.len());
+    for (key, value) in dict.iter() {
+        let name: String = key
+            .extract()
+            .map_err(|_| PyTypeError::new_err("params: parameter names are strings"))?;
+        let text = if value.is_instance_of::<PyBool>() {
+            value.extract::<bool>()?.to_string()
+        } else if value.is_instance_of::<PyInt>() {
+            value.str()?.to_string()
+        } else if value.is_instance_of::<PyFloat>() {
+            format!("{:?}", value.extract::<f64>()?)
+        } else if value.is_instance_of::<PyString>() {
+            value.extract::<String>()?
+        } else if let Ok(number) = value.extract::<f64>() {
+            // NumPy scalars and other numbers.
+            format!("{number:?}")
+        } else {
+            return Err(PyValueError::new_err(format!(
+                "params: `{name}` must be a number, a boolean or a string, not {}",
+                value.get_type().name()?
+            )));
+        };
+        out.push((name, text));
+    }
+    Ok(out)
+}
+
+/// `fixed=`/`points_to_fix=`: point indices from 0; for a grid of `columns` columns an index
+/// may also be a pair (i, j).
+fn indices_argument(
+    value: Option<&Bound<'_, PyAny>>,
+    what: &str,
+    columns: Option<usize>,
+) -> PyResult<Option<Vec<usize>>> {
+    let Some(value) = value.filter(|v| !v.is_none()) else {
+        return Ok(None);
+    };
+    let items = value
+        .try_iter()
+        .map_err(|_| PyTypeError::new_err(format!("{what}: a sequence of point indices")))?;
+    let mut out = Vec::new();
+    for item in items {
+        let item = item?;
+        if let Ok(index) = item.extract::<i64>() {
+            out.push(non_negative(index, what)?);
+            continue;
+        }
+        match (columns, item.extract::<(i64, i64)>()) {
+            (Some(columns), Ok((i, j))) => {
+                let (i, j) = (non_negative(i, what)?, non_negative(j, what)?);
+                if j >= columns {
+                    return Err(PyValueError::new_err(format!(
+                        "{what}: column j = {j} of ({i}, {j}) is past the last column ({columns} columns)"
+                    )));
+                }
+                out.push(i * columns + j);
+            }
+            _ => {
+                let expected = if columns.is_some() {
+                    "point indices k = i * columns + j or pairs (i, j)"
+                } else {
+                    "point indices (integers from 0)"
+                };
+                return Err(PyValueError::new_err(format!(
+                    "{what}: {} is not an index; expected {expected}",
+                    item.repr()?
+                )));
+            }
+        }
+    }
+    Ok(Some(out))
+}
+
+fn non_negative(index: i64, what: &str) -> PyResult<usize> {
+    usize::try_from(index).map_err(|_| PyValueError::new_err(format!("{what}: index {index} is negative")))
+}
+
+/// A serde_json value as the Python object `json.loads` would make of its text.
+fn to_python<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound<'py, PyAny>> {
+    use serde_json::Value;
+    Ok(match value {
+        Value::Null => py.None().into_bound(py),
+        Value::Bool(b) => PyBool::new(py, *b).to_owned().into_any(),
+        Value::Number(n) => {
+            if let Some(i) = n.as_i64() {
+                i.into_pyobject(py)?.into_any()
+            } else if let Some(u) = n.as_u64() {
+                u.into_pyobject(py)?.into_any()
+            } else {
+                n.as_f64().unwrap_or(f64::NAN).into_pyobject(py)?.into_any()
+            }
+        }
+        Value::String(s) => PyString::new(py, s).into_any(),
+        Value::Array(items) => {
+            let list = PyList::empty(py);
+            for item in items {
+                list.append(to_python(py, item)?)?;
+            }
+            list.into_any()
+        }
+        Value::Object(map) => {
+            let dict = PyDict::new(py);
+            for (k, v) in map {
+                dict.set_item(k, to_python(py, v)?)?;
+            }
+            dict.into_any()
+        }
+    })
+}
+
+/// A faired curve: `points`, an (n, d) float64 array, and `report`, the command's JSON report
+/// as a dict.
+#[pyclass(frozen, module = "fair", name = "FairedCurve")]
+pub struct FairedCurve {
+    points: Py<PyAny>,
+    report: Py<PyAny>,
+}
+
+#[pymethods]
+impl FairedCurve {
+    /// The faired points, an (n, d) float64 array (same count and order as given).
+    #[getter]
+    fn points(&self, py: Python<'_>) -> Py<PyAny> {
+        self.points.clone_ref(py)
+    }
+
+    /// The report: a dict with exactly the fields of `fair curve --report`.
+    #[getter]
+    fn report(&self, py: Python<'_>) -> Py<PyAny> {
+        self.report.clone_ref(py)
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        let report = self.report.bind(py);
+        Ok(format!(
+            "FairedCurve(method={}, n={}, iterations={}, s_d={}, m_d={})",
+            report.get_item("method")?.repr()?,
+            report.get_item("n")?,
+            report.get_item("iterations")?,
+            report.get_item("s_d")?,
+            report.get_item("m_d")?
+        ))
+    }
+}
+
+/// A faired surface: `grid`, an (m, n, 3) float64 array, and `report`, the command's JSON
+/// report as a dict.
+#[pyclass(frozen, module = "fair", name = "FairedSurface")]
+pub struct FairedSurface {
+    grid: Py<PyAny>,
+    report: Py<PyAny>,
+}
+
+#[pymethods]
+impl FairedSurface {
+    /// The faired grid, an (m, n, 3) float64 array.
+    #[getter]
+    fn grid(&self, py: Python<'_>) -> Py<PyAny> {
+        self.grid.clone_ref(py)
+    }
+
+    /// The report: a dict with exactly the fields of `fair surface --report`.
+    #[getter]
+    fn report(&self, py: Python<'_>) -> Py<PyAny> {
+        self.report.clone_ref(py)
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        let report = self.report.bind(py);
+        Ok(format!(
+            "FairedSurface(method={}, n={}, iterations={}, s_d={}, m_d={})",
+            report.get_item("method")?.repr()?,
+            report.get_item("n")?,
+            report.get_item("iterations")?,
+            report.get_item("s_d")?,
+            report.get_item("m_d")?
+        ))
+    }
+}
+
+fn faired_curve(py: Python<'_>, faired: Faired) -> PyResult<FairedCurve> {
+    let Coordinates { dimension, values } = faired.points;
+    let rows = values.len() / dimension;
+    let array = Array2::from_shape_vec((rows, dimension), values)
+        .map_err(|e| PyRuntimeError::new_err(format!("internal error: {e}")))?
+        .into_pyarray(py);
+    Ok(FairedCurve {
+        points: array.into_any().unbind(),
+        report: to_python(py, &faired.report)?.unbind(),
+    })
+}
+
+fn faired_surface(py: Python<'_>, faired: Faired, rows: usize, columns: usize) -> PyResult<FairedSurface> {
+    let array = Array3::from_shape_vec((rows, columns, 3), faired.points.values)
+        .map_err(|e| PyRuntimeError::new_err(format!("internal error: {e}")))?
+        .into_pyarray(py);
+    Ok(FairedSurface {
+        grid: array.into_any().unbind(),
+        report: to_python(py, &faired.report)?.unbind(),
+    })
+}
+
+/// The options shared by curves and surfaces, checked for their Python types.
+#[allow(clippy::too_many_arguments)]
+fn options(
+    method: Option<String>,
+    kind: Option<String>,
+    params: Option<&Bound<'_, PyAny>>,
+    fixed: Option<&Bound<'_, PyAny>>,
+    points_to_fix: Option<&Bound<'_, PyAny>>,
+    tolerance: Option<f64>,
+    clamp_ends: Option<String>,
+    closed: bool,
+    columns: Option<usize>,
+) -> PyResult<Options> {
+    Ok(Options {
+        method,
+        kind,
+        params: params_argument(params)?,
+        fixed: indices_argument(fixed, "fixed", columns)?,
+        bad_points: indices_argument(points_to_fix, "points_to_fix", columns)?,
+        tolerance,
+        clamp_ends,
+        config: None,
+        closed,
+    })
+}
+
+/// Fair a curve, as `fair curve` does.
+///
+/// points: an (n, 2) or (n, 3) array of float64 (other real dtypes are converted).
+/// method: a curve method of `fair.methods()`; default two-phase for a function y(x),
+///     strain-energy for a parametric curve.
+/// kind: "function", "parametric" or "auto" (None): a function when x increases strictly.
+/// params: the method's parameters, {"name": value} (what `--set name=value` takes).
+/// fixed: indices of points that must not move.
+/// points_to_fix: indices of the bad points, for the interactive methods (`--points`).
+/// tolerance: no point moves farther than this.
+/// clamp_ends: "g0" (end points), "g1" (and tangents), "g2" (and curvatures).
+/// closed: the points are a closed loop (the last joins the first). Methods with a `closed`
+///     parameter (two-phase) get closed=true; the others get the loop as the command takes a
+///     closed curve, its first point repeated at the end (the report, the command's for that
+///     input, counts the repeat in `n`; the returned points do not repeat it).
+///
+/// Returns a FairedCurve with `.points` (n, d) and `.report` (the command's JSON report).
+/// Raises ValueError for bad input (the command's message), RuntimeError if the framework
+/// itself fails. The GIL is released while the curve is faired.
+#[pyfunction]
+#[pyo3(signature = (points, method=None, kind=None, params=None, fixed=None, points_to_fix=None, tolerance=None, clamp_ends=None, closed=false))]
+#[allow(clippy::too_many_arguments)]
+fn curve(
+    py: Python<'_>,
+    points: &Bound<'_, PyAny>,
+    method: Option<String>,
+    kind: Option<String>,
+    params: Option<&Bound<'_, PyAny>>,
+    fixed: Option<&Bound<'_, PyAny>>,
+    points_to_fix: Option<&Bound<'_, PyAny>>,
+    tolerance: Option<f64>,
+    clamp_ends: Option<String>,
+    closed: bool,
+) -> PyResult<FairedCurve> {
+    let coordinates = curve_points(points)?;
+    let options = options(
+        method,
+        kind,
+        params,
+        fixed,
+        points_to_fix,
+        tolerance,
+        clamp_ends,
+        closed,
+        None,
+    )?;
+    let faired = without_gil(py, || backend::fair_curve(&coordinates, &options))?;
+    faired_curve(py, faired)
+}
+
+/// Fair a surface grid, as `fair surface` does.
+///
+/// grid: an (m, n, 3) array of float64, grid[i, j] = P_ij.
+/// method: a surface method of `fair.methods()`; default zhang-cheng.
+/// params: the method's parameters, {"name": value}.
+/// fixed, points_to_fix: grid points, as indices k = i * n + j or pairs (i, j).
+/// tolerance: no point moves farther than this.
+/// clamp_ends: "g0" keeps the grid's boundary (g1 and g2 are refused).
+///
+/// Returns a FairedSurface with `.grid` (m, n, 3) and `.report`.
+#[pyfunction]
+#[pyo3(signature = (grid, method=None, params=None, fixed=None, points_to_fix=None, tolerance=None, clamp_ends=None))]
+#[allow(clippy::too_many_arguments)]
+fn surface(
+    py: Python<'_>,
+    grid: &Bound<'_, PyAny>,
+    method: Option<String>,
+    params: Option<&Bound<'_, PyAny>>,
+    fixed: Option<&Bound<'_, PyAny>>,
+    points_to_fix: Option<&Bound<'_, PyAny>>,
+    tolerance: Option<f64>,
+    clamp_ends: Option<String>,
+) -> PyResult<FairedSurface> {
+    let (coordinates, rows, columns) = grid_points(grid)?;
+    let options = options(
+        method,
+        None,
+        params,
+        fixed,
+        points_to_fix,
+        tolerance,
+        clamp_ends,
+        false,
+        Some(columns),
+    )?;
+    let faired = without_gil(py, || {
+        backend::fair_surface(&coordinates, rows, columns, &options)
+    })?;
+    faired_surface(py, faired, rows, columns)
+}
+
+/// Measure a curve or a surface without changing it, as `fair inspect` does.
+///
+/// points: an (n, 2)/(n, 3) curve, or an (m, n, 3) grid (a surface).
+/// kind: for curves, "function", "parametric" or "auto" (None).
+///
+/// Returns the report dict (method "inspect", `after` equal to `before`, nothing moved).
+#[pyfunction]
+#[pyo3(signature = (points, kind=None))]
+fn inspect(py: Python<'_>, points: &Bound<'_, PyAny>, kind: Option<String>) -> PyResult<Py<PyAny>> {
+    let (values, shape) = float_array(points, backend::POINTS)?;
+    let report = match shape.as_slice() {
+        [_, d @ (2 | 3)] => {
+            let coordinates = Coordinates {
+                dimension: *d,
+                values,
+            };
+            without_gil(py, || backend::inspect_curve(&coordinates, kind.as_deref()))?
+        }
+        [m, n, 3] => {
+            if kind.as_deref().is_some_and(|k| k != "auto") {
+                return Err(PyValueError::new_err(
+                    "kind: the input is a surface grid; kind is for curves",
+                ));
+            }
+            let (m, n) = (*m, *n);
+            let coordinates = Coordinates { dimension: 3, values };
+            without_gil(py, || backend::inspect_surface(&coordinates, m, n))?
+        }
+        _ => {
+            return Err(PyValueError::new_err(format!(
+            "{}: a curve is an (n, 2) or (n, 3) array and a surface grid an (m, n, 3) array, got shape {}",
+            backend::POINTS,
+            shape_text(&shape)
+        )))
+        }
+    };
+    Ok(to_python(py, &report)?.unbind())
+}
+
+/// The catalogue of methods, as `fair methods` lists them: a list of dicts with `name`,
+/// `kind` ("curve" or "surface"), `paper`, `summary` and `parameters` (each a dict with
+/// `name`, `default` as text and `meaning`).
+#[pyfunction]
+fn methods(py: Python<'_>) -> PyResult<Py<PyAny>> {
+    let list = serde_json::Value::Array(backend::methods());
+    Ok(to_python(py, &list)?.unbind())
+}
+
+/// A pipeline from a config, as `fair curve --config FILE` takes it: method parameters (top
+/// level or in a table named after the method), `[constraints]` and `[[stage]]`s.
+///
+/// Build it with `fair.pipeline(config)`; call `.curve(points, ...)` (or the pipeline itself)
+/// and `.surface(grid, ...)`. Arguments given to the call win over the config's
+/// `[constraints]`, as the command line wins over the file.
+#[pyclass(frozen, module = "fair", name = "Pipeline")]
+pub struct Pipeline {
+    config: Config,
+}
+
+#[pymethods]
+impl Pipeline {
+    /// Fair a curve with this config. Same arguments as `fair.curve` but the method and
+    /// parameters, which come from the config.
+    #[pyo3(signature = (points, kind=None, fixed=None, points_to_fix=None, tolerance=None, clamp_ends=None, closed=false))]
+    #[allow(clippy::too_many_arguments)]
+    fn curve(
+        &self,
+        py: Python<'_>,
+        points: &Bound<'_, PyAny>,
+        kind: Option<String>,
+        fixed: Option<&Bound<'_, PyAny>>,
+        points_to_fix: Option<&Bound<'_, PyAny>>,
+        tolerance: Option<f64>,
+        clamp_ends: Option<String>,
+        closed: bool,
+    ) -> PyResult<FairedCurve> {
+        let coordinates = curve_points(points)?;
+        let mut options = options(
+            None,
+            kind,
+            None,
+            fixed,
+            points_to_fix,
+            tolerance,
+            clamp_ends,
+            closed,
+            None,
+        )?;
+        options.config = Some(self.config.clone());
+        let faired = without_gil(py, || backend::fair_curve(&coordinates, &options))?;
+        faired_curve(py, faired)
+    }
+
+    /// Same as `.curve(...)`.
+    #[pyo3(signature = (points, kind=None, fixed=None, points_to_fix=None, tolerance=None, clamp_ends=None, closed=false))]
+    #[allow(clippy::too_many_arguments)]
+    fn __call__(
+        &self,
+        py: Python<'_>,
+        points: &Bound<'_, PyAny>,
+        kind: Option<String>,
+        fixed: Option<&Bound<'_, PyAny>>,
+        points_to_fix: Option<&Bound<'_, PyAny>>,
+        tolerance: Option<f64>,
+        clamp_ends: Option<String>,
+        closed: bool,
+    ) -> PyResult<FairedCurve> {
+        self.curve(
+            py,
+            points,
+            kind,
+            fixed,
+            points_to_fix,
+            tolerance,
+            clamp_ends,
+            closed,
+        )
+    }
+
+    /// Fair a surface grid with this config (one method; `[[stage]]`s are for curves).
+    #[pyo3(signature = (grid, fixed=None, points_to_fix=None, tolerance=None, clamp_ends=None))]
+    fn surface(
+        &self,
+        py: Python<'_>,
+        grid: &Bound<'_, PyAny>,
+        fixed: Option<&Bound<'_, PyAny>>,
+        points_to_fix: Option<&Bound<'_, PyAny>>,
+        tolerance: Option<f64>,
+        clamp_ends: Option<String>,
+    ) -> PyResult<FairedSurface> {
+        let (coordinates, rows, columns) = grid_points(grid)?;
+        let mut options = options(
+            None,
+            None,
+            None,
+            fixed,
+            points_to_fix,
+            tolerance,
+            clamp_ends,
+            false,
+            Some(columns),
+        )?;
+        options.config = Some(self.config.clone());
+        let faired = without_gil(py, || {
+            backend::fair_surface(&coordinates, rows, columns, &options)
+        })?;
+        faired_surface(py, faired, rows, columns)
+    }
+
+    fn __repr__(&self) -> String {
+        format!("Pipeline({:?})", self.config.name())
+    }
+}
+
+/// A pipeline from a config, as `fair curve --config` takes it.
+///
+/// config: a dict (the JSON form of the config), a str of TOML (or JSON) text, or a path
+///     (os.PathLike) to a .toml or .json file.
+///
+/// Returns a Pipeline; `fair.pipeline(c).curve(points)` is `fair curve FILE --config c`.
+#[pyfunction]
+fn pipeline(py: Python<'_>, config: &Bound<'_, PyAny>) -> PyResult<Pipeline> {
+    let os = py.import("os")?;
+    let parsed = if config.is_instance_of::<PyDict>() {
+        let text: String = py
+            .import("json")?
+            .call_method1("dumps", (config,))
+            .map_err(|e| PyValueError::new_err(format!("config: the dict is not JSON: {e}")))?
+            .extract()?;
+        Config::parse("config.json", &text)
+    } else if config.is_instance_of::<PyString>() {
+        Config::parse("config", &config.extract::<String>()?)
+    } else if config.is_instance(&os.getattr("PathLike")?)? {
+        let path: String = os.call_method1("fspath", (config,))?.extract()?;
+        Config::read(&path)
+    } else {
+        return Err(PyTypeError::new_err(
+            "config: a dict, a str of TOML text, or a path to a .toml or .json file",
+        ));
+    };
+    Ok(Pipeline {
+        config: parsed.map_err(to_py_error)?,
+    })
+}
+
+/// The default methods: {"function": ..., "parametric": ..., "surface": ...}.
+#[pyfunction]
+fn default_methods(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    let dict = PyDict::new(py);
+    for (kind, name) in backend::default_methods() {
+        dict.set_item(kind, name)?;
+    }
+    Ok(dict)
+}
+
+/// The native module `fair._native`; `fair` re-exports it.
+#[pymodule]
+#[pyo3(name = "_native")]
+fn fair_python(module: &Bound<'_, PyModule>) -> PyResult<()> {
+    module.add_function(wrap_pyfunction!(curve, module)?)?;
+    module.add_function(wrap_pyfunction!(surface, module)?)?;
+    module.add_function(wrap_pyfunction!(inspect, module)?)?;
+    module.add_function(wrap_pyfunction!(methods, module)?)?;
+    module.add_function(wrap_pyfunction!(pipeline, module)?)?;
+    module.add_function(wrap_pyfunction!(default_methods, module)?)?;
+    module.add_class::<FairedCurve>()?;
+    module.add_class::<FairedSurface>()?;
+    module.add_class::<Pipeline>()?;
+    module.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

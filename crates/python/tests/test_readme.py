@@ -1,0 +1,37 @@
+"""The README's Python example runs (its plot only where matplotlib is installed)."""
+
+from __future__ import annotations
+
+import importlib.util
+import os
+import re
+
+import pytest
+
+from conftest import REPO
+
+
+def python_blocks() -> list[str]:
+    text = (REPO / "README.md").read_text()
+    section = text.split("\n## Python\n", 1)[1].split("\n## ", 1)[0]
+    return re.findall(r"```python\n(.*?)```", section, flags=re.S)
+
+
+def test_readme_example_runs(monkeypatch, capsys):
+    pytest.importorskip("csaps")
+    blocks = python_blocks()
+    assert len(blocks) == 2 and "csaps" in blocks[0] and "matplotlib" in blocks[1]
+    monkeypatch.chdir(REPO)
+    namespace: dict = {}
+    exec(compile(blocks[0], "README.md (Python example)", "exec"), namespace)
+    printed = capsys.readouterr().out
+    assert "two-phase: inflections" in printed and "csaps at the same M_d" in printed
+    if importlib.util.find_spec("matplotlib") is None:
+        return  # the plot is optional
+    monkeypatch.setenv("MPLBACKEND", "Agg")
+    exec(compile(blocks[1], "README.md (plot)", "exec"), namespace)
+    import matplotlib.pyplot as plt
+
+    lines = plt.gca().get_lines()
+    assert [line.get_label() for line in lines] == ["measured", "csaps, same M_d", "fair two-phase"]
+    plt.close("all")

@@ -1,0 +1,126 @@
+//! `fair serve`: the JSON API against the command's own reports ([`api`]), bad requests,
+//! concurrency, and the page in headless Chromium ([`browser`]).
+//!
+//! Each test starts its own `fair serve --port 0` (the port the system gives is read from the
+//! first line the command prints) and stops it when done.
+
+mod api;
+mod browser;
+mod client;
+
+use std::io::BufRead;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+
+/// A running `fair serve`, stopped (by its process id) when dropped.
+pub struct Served {
+    child: Child,
+    /// `127.0.0.1:PORT`.
+    pub address: String,
+}
+
+impl Served {
+    /// Starts `fair serve --port 0 --quiet EXTRA...` and waits for its address.
+    pub fn start(extra: &[&str]) -> Served {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_fair"))
+            .args(["serve", "--port", "0", "--quiet"])
+            .args(extra)
+            .stdin(Stdio::null())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::inherit())
+            .spawn()
+            .expect("start fair serve");
+        let mut line = String::new();
+        std::io::BufReader::new(child.stdout.take().expect("stdout"))
+            .read_line(&mut line)
+            .expect("read the address");
+        let address = line
+            .trim()
+            .strip_prefix("fair serve: http://")
+            .and_then(|rest| rest.strip_suffix('/'))
+            .unwrap_or_else(|| panic!("unexpected first line {line:?}"))
+            .to_string();
+        Served { child, address }
+    }
+
+    /// Whether the server process is still running.
+    pub fn alive(&mut self) -> bool {
+        matches!(self.child.try_wait(), Ok(None))
+    }
+}
+
+impl Drop for Served {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// The repository's root (data files are read from `data/` there).
+pub fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// A fresh directory for a test's files.
+pub fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("fair-serve-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("scratch dir");
+    dir
+}
+
+/// Runs `fair ARGS` and returns the report it wrote with `--report`, checking success.
+pub fn command_report(args: &[&str], report: &Path) -> serde_json::Value {
+    let output = Command::new(env!("CARGO_BIN_EXE_fair"))
+        .args(args)
+        .arg("--report")
+        .arg(report)
+        .output()
+        .expect("run fair");
+    assert!(
+        output.status.success(),
+        "fair {args:?}: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    serde_json::from_str(&std::fs::read_to_string(report).expect("report")).expect("report JSON")
+}
+
+/// The value with every `elapsed_ms` (a time, different on each run) removed.
+pub fn untimed(value: &serde_json::Value) -> serde_json::Value {
+    match value {
+        serde_json::Value::Object(map) => serde_json::Value::Object(
+            map.iter()
+                .filter(|(k, _)| k.as_str() != "elapsed_ms")
+                .map(|(k, v)| (k.clone(), untimed(v)))
+                .collect(),
+        ),
+        serde_json::Value::Array(list) => serde_json::Value::Array(list.iter().map(untimed).collect()),
+        other => other.clone(),
+    }
+}
+
+/// Coordinate rows as exact bit patterns, so that comparisons are bit for bit.
+pub fn bits(rows: &serde_json::Value) -> Vec<Vec<u64>> {
+    rows.as_array()
+        .expect("rows")
+        .iter()
+        .map(|r| {
+            r.as_array()
+                .expect("row")
+                .iter()
+                .map(|c| c.as_f64().expect("number").to_bits())
+                .collect()
+        })
+        .collect()
+}
+
+/// A curve file's points as the command reads them, as exact bit patterns.
+pub fn file_bits(path: &Path) -> Vec<Vec<u64>> {
+    let input = fair::fair_cli::input::read_curve(&path.display().to_string()).expect("read curve");
+    input
+        .points
+        .rows()
+        .iter()
+        .map(|r| r.iter().map(|c| c.to_bits()).collect())
+        .collect()
+}
