@@ -4,18 +4,22 @@
 //!   (Kjellander and Poliakoff as presets).
 //! - [`batten`]: Okada's numerical batten of Ferguson segments.
 //! - [`smoothing_spline`]: the smoothing-spline baseline (the papers' MST), csaps convention.
+//! - [`jump_lsq`]: least squares on the points with a penalty on the roughness of their
+//!   spline's third-derivative jumps, O(n), λ chosen automatically.
 //! - [`sapidis_farin`]: Sapidis–Farin knot removal and reinsertion on the cubic B-spline.
 //! - [`surface`]: Zhang–Cheng bicubic surface fairing (Kjellander's surface method as preset).
 //!
 //! Han's two-phase method lives in [`crate::two_phase`].
 
 pub mod batten;
+pub mod jump_lsq;
 pub mod sapidis_farin;
 pub mod smoothing_spline;
 pub mod strain_energy;
 pub mod surface;
 
 pub use batten::{Batten, BattenSettings, PositionUpdate, Tangents};
+pub use jump_lsq::{JumpLsq, JumpLsqReport, JumpLsqSettings, LambdaRule};
 pub use sapidis_farin::{KnotStep, SapidisFarin, SapidisFarinSettings, SapidisFarinStop};
 pub use smoothing_spline::{
     fit_parametric, CurveDomain, SmoothingRule, SmoothingSettings, SmoothingSpline, SmoothingSplineFairing,

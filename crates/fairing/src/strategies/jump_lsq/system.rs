@@ -1,0 +1,611 @@
+//! The spline space, the forms that act on it, and the linear system of one solve.
+//!
+//! [`Space`]: the interpolating cubic splines on given knots with the representation's end
+//! condition, parametrised freely by n unknowns γ (B-spline coefficients with the two end
+//! conditions substituted, see [`super`]). Every quantity the method needs is a short linear
+//! form in γ ([`Form`]): the value at a knot (3 coefficients), a derivative at an end, the
+//! third-derivative jump at a knot (5), a penalty row Δ^d J (5 + d).
+//!
+//! [`System`]: the normal equations of one problem, the data and penalty Gram matrices A and B
+//! on one envelope, with a Lagrange multiplier per equality constraint interleaved after the
+//! last unknown it touches, so that K(λ) = A + λB stays banded.
+
+use curve_repr::Vector;
+
+use super::basis::{cubic_ders, Knots};
+use super::envelope::{Ldlt, PivotFailure, Profile};
+
+/// The largest number of coefficients of a form (a penalty row of difference order 3 with an
+/// end substitution has 9).
+const MAX_FORM: usize = 12;
+
+/// The end condition of the interpolating spline, which is the representation the method
+/// fairs (and the judge measures).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Ends {
+    /// Parabolic runout (Han et al.'s spline function): s‴ = 0 on the first and last spans.
+    Runout,
+    /// Natural: s″ = 0 at both ends (the parametric kind's spline).
+    Natural,
+    /// Closed curve: a periodic spline.
+    Periodic,
+}
+
+/// A linear form Σ_r c_r γ_{(start + r) mod m} over the unknowns γ (indices wrap only for
+/// closed curves).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Form {
+    start: usize,
+    len: usize,
+    c: [f64; MAX_FORM],
+}
+
+impl Form {
+    /// The form's (index, coefficient) pairs for m unknowns.
+    pub fn entries(&self, m: usize) -> impl Iterator<Item = (usize, f64)> + '_ {
+        self.c[..self.len]
+            .iter()
+            .enumerate()
+            .map(move |(r, &c)| ((self.start + r) % m, c))
+    }
+
+    /// Σ c_r x_{index}: the form applied to `x` (γ values).
+    pub fn apply<const D: usize>(&self, x: &[Vector<D>]) -> Vector<D> {
+        let m = x.len();
+        let mut acc = Vector::<D>::zeros();
+        for (j, c) in self.entries(m) {
+            acc += x[j] * c;
+        }
+        acc
+    }
+}
+
+/// The penalty's shape: Σ_rows (h̄^(a/2) h_med³ Δ^d J)².
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Penalty {
+    /// The difference order d (0 to 3).
+    pub order: usize,
+    /// The spacing exponent a.
+    pub exponent: f64,
+}
+
+/// The interpolating cubic splines on given knots (module docs).
+#[derive(Clone, Debug)]
+pub(crate) struct Space {
+    knots: Knots,
+    ends: Ends,
+    penalty: Penalty,
+    /// Value at knot k: coefficients on β_k, β_{k+1}, β_{k+2}.
+    value: Vec<[f64; 3]>,
+    /// s‴ on span k: coefficients on β_k … β_{k+3}.
+    third: Vec<[f64; 4]>,
+    /// Open curves: β_1 = Σ_{r≠1} start_subst[r] β_r, and β_n = Σ_{r≠2} end_subst[r] β_{n−2+r}.
+    start_subst: [f64; 4],
+    end_subst: [f64; 4],
+    /// Open curves: derivatives of β_0 … β_3 at t_0 and of β_{n−2} … β_{n+1} at t_{n−1}.
+    ders_start: [[f64; 4]; 4],
+    ders_end: [[f64; 4]; 4],
+    /// The median knot spacing.
+    h_median: f64,
+}
+
+/// Why a space could not be built.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum SpaceError {
+    /// Too few points for the end conditions.
+    TooFewPoints { needed: usize },
+    /// An end condition could not be solved for its coefficient (degenerate knots).
+    Degenerate,
+}
+
+fn binomial_signs(order: usize) -> [f64; 4] {
+    match order {
+        0 => [1.0, 0.0, 0.0, 0.0],
+        1 => [-1.0, 1.0, 0.0, 0.0],
+        2 => [1.0, -2.0, 1.0, 0.0],
+        _ => [-1.0, 3.0, -3.0, 1.0],
+    }
+}
+
+impl Space {
+    /// The fewest points an open curve needs (the two end substitutions must not meet).
+    pub const MIN_OPEN: usize = 4;
+    /// The fewest points a closed curve needs.
+    pub const MIN_CLOSED: usize = 4;
+
+    /// Builds the space on `knots` (strictly increasing; closed knots for `Ends::Periodic`).
+    /// O(n).
+    pub fn new(knots: Knots, ends: Ends, penalty: Penalty) -> Result<Self, SpaceError> {
+        let n = knots.len();
+        let closed = ends == Ends::Periodic;
+        let needed = if closed { Self::MIN_CLOSED } else { Self::MIN_OPEN };
+        if n < needed {
+            return Err(SpaceError::TooFewPoints { needed });
+        }
+        let spans = knots.spans();
+        let mut value = Vec::with_capacity(n);
+        let mut third = Vec::with_capacity(spans);
+        let mut ders_end = [[0.0; 4]; 4];
+        let mut ders_start = [[0.0; 4]; 4];
+        for k in 0..spans {
+            let window = knots.window(k);
+            let ders = cubic_ders(&window, window[2]);
+            value.push([ders[0][0], ders[0][1], ders[0][2]]);
+            third.push(ders[3]);
+            if k == 0 {
+                ders_start = ders;
+            }
+            if !closed && k + 1 == spans {
+                ders_end = cubic_ders(&window, window[3]);
+                value.push([ders_end[0][1], ders_end[0][2], ders_end[0][3]]);
+            }
+        }
+        let mut spacing: Vec<f64> = (0..spans).map(|k| knots.spacing(k)).collect();
+        let mid = spacing.len() / 2;
+        let (_, &mut h_median, _) = spacing.select_nth_unstable_by(mid, f64::total_cmp);
+        let (mut start_subst, mut end_subst) = ([0.0; 4], [0.0; 4]);
+        if !closed {
+            let (start_form, end_form) = match ends {
+                Ends::Runout => (third[0], third[spans - 1]),
+                _ => (ders_start[2], ders_end[2]),
+            };
+            let pivot = start_form[1];
+            let last = end_form[2];
+            if !(pivot.is_finite() && pivot != 0.0 && last.is_finite() && last != 0.0) {
+                return Err(SpaceError::Degenerate);
+            }
+            for r in 0..4 {
+                if r != 1 {
+                    start_subst[r] = -start_form[r] / pivot;
+                }
+                if r != 2 {
+                    end_subst[r] = -end_form[r] / last;
+                }
+            }
+        }
+        if !(h_median.is_finite() && h_median > 0.0) {
+            return Err(SpaceError::Degenerate);
+        }
+        Ok(Space {
+            knots,
+            ends,
+            penalty,
+            value,
+            third,
+            start_subst,
+            end_subst,
+            ders_start,
+            ders_end,
+            h_median,
+        })
+    }
+
+    /// The number of points n (= the number of unknowns γ).
+    pub fn len(&self) -> usize {
+        self.knots.len()
+    }
+
+    /// Whether the curve is closed.
+    pub fn is_closed(&self) -> bool {
+        self.ends == Ends::Periodic
+    }
+
+    /// The knots.
+    pub fn knots(&self) -> &Knots {
+        &self.knots
+    }
+
+    /// The β-form `coefficients` starting at β index `start` reduced to a form over γ: for
+    /// open curves β_1 and β_n are replaced by their end conditions and the rest renumbered
+    /// (β_0 → γ_0, β_j → γ_{j−1} for 2 ≤ j ≤ n − 1, β_{n+1} → γ_{n−1}); for closed curves the
+    /// indices are taken modulo n and coefficients on the same unknown added.
+    fn reduce(&self, start: isize, coefficients: &[f64]) -> Form {
+        let n = self.len();
+        let mut form = Form {
+            start: 0,
+            len: 0,
+            c: [0.0; MAX_FORM],
+        };
+        if self.is_closed() {
+            let len = coefficients.len().min(n);
+            form.start = start.rem_euclid(n as isize) as usize;
+            form.len = len;
+            for (r, &c) in coefficients.iter().enumerate() {
+                form.c[r % len] += c;
+            }
+            return form;
+        }
+        // Open: a buffer over β_lo … β_hi.
+        let (mut lo, mut hi) = (start, start + coefficients.len() as isize - 1);
+        let touches_start = lo <= 1 && 1 <= hi;
+        let nb = n as isize;
+        let touches_end = lo <= nb && nb <= hi;
+        if touches_start {
+            lo = lo.min(0);
+            hi = hi.max(3);
+        }
+        if touches_end {
+            lo = lo.min(nb - 2);
+            hi = hi.max(nb + 1);
+        }
+        let mut buffer = [0.0; MAX_FORM + 4];
+        for (r, &c) in coefficients.iter().enumerate() {
+            buffer[(start - lo) as usize + r] += c;
+        }
+        if touches_start {
+            let c1 = std::mem::take(&mut buffer[(1 - lo) as usize]);
+            for (r, s) in self.start_subst.iter().enumerate() {
+                buffer[(r as isize - lo) as usize] += c1 * s;
+            }
+        }
+        if touches_end {
+            let cn = std::mem::take(&mut buffer[(nb - lo) as usize]);
+            for (r, s) in self.end_subst.iter().enumerate() {
+                buffer[(nb - 2 + r as isize - lo) as usize] += cn * s;
+            }
+        }
+        let gamma = |j: isize| -> usize {
+            if j <= 1 {
+                0
+            } else if j <= nb - 1 {
+                (j - 1) as usize
+            } else {
+                n - 1
+            }
+        };
+        form.start = gamma(lo);
+        for j in lo..=hi {
+            if j == 1 || j == nb {
+                continue;
+            }
+            form.c[form.len] = buffer[(j - lo) as usize];
+            form.len += 1;
+        }
+        form
+    }
+
+    /// The value s(t_k) at knot k.
+    pub fn value_form(&self, k: usize) -> Form {
+        self.reduce(k as isize, &self.value[k])
+    }
+
+    /// The derivative of `order` (1 or 2) at the start (`at_end` false) or end of an open
+    /// curve.
+    pub fn end_derivative_form(&self, order: usize, at_end: bool) -> Form {
+        if at_end {
+            self.reduce(self.len() as isize - 2, &self.ders_end[order])
+        } else {
+            self.reduce(0, &self.ders_start[order])
+        }
+    }
+
+    /// The span index of span k wrapped for closed curves (k may be −1 or n).
+    fn third_of(&self, k: isize) -> [f64; 4] {
+        let spans = self.third.len() as isize;
+        self.third[k.rem_euclid(spans) as usize]
+    }
+
+    /// The jump J_i = s‴(t_i+) − s‴(t_i−) at knot i (interior for open curves).
+    pub fn jump_form(&self, i: usize) -> Form {
+        let i = i as isize;
+        let (right, left) = (self.third_of(i), self.third_of(i - 1));
+        let mut c = [0.0; 5];
+        for r in 0..4 {
+            c[r] -= left[r];
+            c[r + 1] += right[r];
+        }
+        self.reduce(i - 1, &c)
+    }
+
+    /// The knots i that carry a jump: 1 … n − 2 open, 0 … n − 1 closed.
+    pub fn jump_knots(&self) -> std::ops::Range<usize> {
+        if self.is_closed() {
+            0..self.len()
+        } else {
+            1..self.len() - 1
+        }
+    }
+
+    /// The number of penalty rows: n − 2 − d open (none if negative), n closed.
+    pub fn penalty_rows(&self) -> usize {
+        if self.is_closed() {
+            self.len()
+        } else {
+            (self.len() - 2).saturating_sub(self.penalty.order)
+        }
+    }
+
+    /// Penalty row `row`: the form Δ^d J over J_a … J_{a+d} (a = row + 1 open, a = row
+    /// closed) and its weight (h̄^a h_med⁶ with h̄ the mean length of the d + 2 spans it
+    /// spans, relative to the median spacing).
+    pub fn penalty_row(&self, row: usize) -> (Form, f64) {
+        let d = self.penalty.order;
+        let a = if self.is_closed() { row as isize } else { row as isize + 1 };
+        let signs = binomial_signs(d);
+        let mut c = [0.0; 9];
+        for (q, &w) in signs.iter().enumerate().take(d + 1) {
+            let right = self.third_of(a + q as isize);
+            let left = self.third_of(a + q as isize - 1);
+            for r in 0..4 {
+                c[q + 1 + r] += w * right[r];
+                c[q + r] -= w * left[r];
+            }
+        }
+        let width = self.knots.knot(a + d as isize + 1) - self.knots.knot(a - 1);
+        let mean = width / ((d + 2) as f64 * self.h_median);
+        let scale = self.h_median.powi(3);
+        let weight = mean.powf(self.penalty.exponent) * scale * scale;
+        (self.reduce(a - 1, &c[..5 + d]), weight)
+    }
+
+    /// Σ_rows weight · |row · γ|²: the penalty of the spline with unknowns `gamma`. O(n).
+    pub fn penalty_of<const D: usize>(&self, gamma: &[Vector<D>]) -> f64 {
+        (0..self.penalty_rows())
+            .map(|r| {
+                let (form, weight) = self.penalty_row(r);
+                weight * form.apply(gamma).norm_squared()
+            })
+            .sum()
+    }
+
+    /// The unknowns of the interpolating spline through `values` (one per knot): the solve
+    /// at λ = 0 without constraints. O(n).
+    pub fn interpolate<const D: usize>(&self, values: &[Vector<D>]) -> Result<Vec<Vector<D>>, PivotFailure> {
+        let weights = vec![1.0; self.len()];
+        let system = System::new(self, values, &weights, &[]);
+        Ok(system.solve(0.0)?.gamma)
+    }
+}
+
+/// An equality constraint: `form` · γ = `target`.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Constraint<const D: usize> {
+    pub form: Form,
+    pub target: Vector<D>,
+}
+
+/// The normal equations of one problem on a [`Space`]: minimise
+/// Σ_k w_k |value_k·γ − y_k|² + λ Σ_rows weight |row·γ|² subject to the constraints.
+#[derive(Clone, Debug)]
+pub(crate) struct System<'s, const D: usize> {
+    space: &'s Space,
+    profile: Profile,
+    var_pos: Vec<usize>,
+    negative: Vec<bool>,
+    a: Vec<f64>,
+    b: Vec<f64>,
+    rhs: Vec<Vector<D>>,
+    data: &'s [Vector<D>],
+    weights: &'s [f64],
+}
+
+/// The solution at one λ.
+#[derive(Clone, Debug)]
+pub(crate) struct Solution<'p, const D: usize> {
+    /// The factorisation of K(λ).
+    pub ldlt: Ldlt<'p>,
+    /// The solution vector in the system's order (unknowns and multipliers).
+    pub x: Vec<Vector<D>>,
+    /// The unknowns γ.
+    pub gamma: Vec<Vector<D>>,
+}
+
+impl<'s, const D: usize> System<'s, D> {
+    /// The position of unknown j in the order before the multipliers are inserted: the
+    /// identity for open curves; for closed curves the folded order 0, n−1, 1, n−2, … that
+    /// keeps cyclic neighbours within a band.
+    fn order_of(closed: bool, m: usize, j: usize) -> usize {
+        if !closed || j < m.div_ceil(2) {
+            if closed {
+                2 * j
+            } else {
+                j
+            }
+        } else {
+            2 * (m - 1 - j) + 1
+        }
+    }
+
+    /// Assembles the system: data `data[k]` with weight `weights[k]` at knot k (0: no data
+    /// row, e.g. a constrained point), the penalty of `space`, and `constraints`. O(n).
+    pub fn new(
+        space: &'s Space,
+        data: &'s [Vector<D>],
+        weights: &'s [f64],
+        constraints: &[Constraint<D>],
+    ) -> Self {
+        let m = space.len();
+        let closed = space.is_closed();
+        let order = |j: usize| Self::order_of(closed, m, j);
+        let mut var_at = vec![0usize; m];
+        for j in 0..m {
+            var_at[order(j)] = j;
+        }
+        // Each multiplier goes right after the last (in order) unknown of its form.
+        let mut anchored: Vec<Vec<usize>> = vec![Vec::new(); m];
+        for (c, constraint) in constraints.iter().enumerate() {
+            let anchor = constraint.form.entries(m).map(|(j, _)| order(j)).max().unwrap_or(0);
+            anchored[anchor].push(c);
+        }
+        let total = m + constraints.len();
+        let mut var_pos = vec![0usize; m];
+        let mut con_pos = vec![0usize; constraints.len()];
+        let mut negative = vec![false; total];
+        let mut p = 0;
+        for (o, &j) in var_at.iter().enumerate() {
+            var_pos[j] = p;
+            p += 1;
+            for &c in &anchored[o] {
+                con_pos[c] = p;
+                negative[p] = true;
+                p += 1;
+            }
+        }
+        let mut first: Vec<usize> = (0..total).collect();
+        let widen = |form: &Form, first: &mut Vec<usize>| {
+            let lowest = form.entries(m).map(|(j, _)| var_pos[j]).min().unwrap_or(0);
+            for (j, _) in form.entries(m) {
+                let q = var_pos[j];
+                first[q] = first[q].min(lowest);
+            }
+        };
+        for k in 0..m {
+            if weights[k] > 0.0 {
+                widen(&space.value_form(k), &mut first);
+            }
+        }
+        for r in 0..space.penalty_rows() {
+            widen(&space.penalty_row(r).0, &mut first);
+        }
+        for (c, constraint) in constraints.iter().enumerate() {
+            let lowest = constraint.form.entries(m).map(|(j, _)| var_pos[j]).min().unwrap_or(0);
+            first[con_pos[c]] = first[con_pos[c]].min(lowest);
+        }
+        let profile = Profile::new(first);
+        let mut a = profile.zeros();
+        let mut b = profile.zeros();
+        let outer = |values: &mut [f64], form: &Form, weight: f64| {
+            for (j, cj) in form.entries(m) {
+                for (l, cl) in form.entries(m) {
+                    let (pj, pl) = (var_pos[j], var_pos[l]);
+                    if pj >= pl {
+                        if let Some(index) = profile.index(pj, pl) {
+                            values[index] += weight * cj * cl;
+                        }
+                    }
+                }
+            }
+        };
+        let mut rhs = vec![Vector::<D>::zeros(); total];
+        for k in 0..m {
+            if weights[k] > 0.0 {
+                let form = space.value_form(k);
+                outer(&mut a, &form, weights[k]);
+                for (j, c) in form.entries(m) {
+                    rhs[var_pos[j]] += data[k] * (weights[k] * c);
+                }
+            }
+        }
+        for r in 0..space.penalty_rows() {
+            let (form, weight) = space.penalty_row(r);
+            outer(&mut b, &form, weight);
+        }
+        for (c, constraint) in constraints.iter().enumerate() {
+            let row = con_pos[c];
+            for (j, coefficient) in constraint.form.entries(m) {
+                if let Some(index) = profile.index(row, var_pos[j]) {
+                    a[index] += coefficient;
+                }
+            }
+            rhs[row] = constraint.target;
+        }
+        System {
+            space,
+            profile,
+            var_pos,
+            negative,
+            a,
+            b,
+            rhs,
+            data,
+            weights,
+        }
+    }
+
+    /// The space.
+    pub fn space(&self) -> &'s Space {
+        self.space
+    }
+
+    /// The number of rows (unknowns and multipliers).
+    pub fn size(&self) -> usize {
+        self.profile.size()
+    }
+
+    /// Entries stored per matrix.
+    pub fn stored(&self) -> usize {
+        self.profile.stored()
+    }
+
+    /// The largest ratio B_jj / A_jj over the unknowns with A_jj > 0: how much a given λ lets
+    /// the penalty outweigh the data locally (the limit of what double precision can
+    /// resolve, see [`super::lambda`]).
+    pub fn stiffness(&self) -> f64 {
+        let mut worst: f64 = 0.0;
+        for &p in &self.var_pos {
+            if let Some(index) = self.profile.index(p, p) {
+                let (a, b) = (self.a[index], self.b[index]);
+                if a > 0.0 {
+                    worst = worst.max(b / a);
+                }
+            }
+        }
+        worst
+    }
+
+    /// Factors K(λ) = A + λB and solves for the unknowns. O(n).
+    pub fn solve(&self, lambda: f64) -> Result<Solution<'_, D>, PivotFailure> {
+        let values: Vec<f64> = self.a.iter().zip(&self.b).map(|(a, b)| a + lambda * b).collect();
+        let ldlt = Ldlt::factor(&self.profile, values, &self.negative)?;
+        let mut x = self.rhs.clone();
+        ldlt.solve_in_place(&mut x);
+        let gamma = self.var_pos.iter().map(|&p| x[p]).collect();
+        Ok(Solution { ldlt, x, gamma })
+    }
+
+    /// The values of the spline at the knots for unknowns `gamma`. O(n).
+    pub fn values(&self, gamma: &[Vector<D>]) -> Vec<Vector<D>> {
+        (0..self.space.len())
+            .map(|k| self.space.value_form(k).apply(gamma))
+            .collect()
+    }
+
+    /// dγ/dλ at a solution: K z = [−Bγ; 0] (the constraints' targets do not depend on λ).
+    /// O(n).
+    pub fn gamma_derivative(&self, solution: &Solution<'_, D>) -> Vec<Vector<D>> {
+        let mut z = vec![Vector::<D>::zeros(); self.size()];
+        self.profile.multiply(&self.b, &solution.x, &mut z);
+        for v in z.iter_mut() {
+            *v = -*v;
+        }
+        solution.ldlt.solve_in_place(&mut z);
+        self.var_pos.iter().map(|&p| z[p]).collect()
+    }
+
+    /// Σ_k w_k |value_k·γ − y_k|²: the weighted residual sum of squares. O(n).
+    pub fn residual(&self, values: &[Vector<D>]) -> f64 {
+        values
+            .iter()
+            .zip(self.data)
+            .zip(self.weights)
+            .map(|((v, y), w)| w * (v - y).norm_squared())
+            .sum()
+    }
+
+    /// The trace of the influence matrix ∂(value_k·γ)/∂y_k summed over the data rows:
+    /// Σ_k w_k value_kᵀ Z value_k with Z the unknowns' block of K(λ)⁻¹, read from the selected
+    /// inverse. O(n).
+    pub fn influence_trace(&self, solution: &Solution<'_, D>) -> f64 {
+        let z = solution.ldlt.selected_inverse();
+        let m = self.space.len();
+        let mut trace = 0.0;
+        for k in 0..m {
+            if self.weights[k] <= 0.0 {
+                continue;
+            }
+            let form = self.space.value_form(k);
+            let mut sum = 0.0;
+            for (j, cj) in form.entries(m) {
+                for (l, cl) in form.entries(m) {
+                    let (pj, pl) = (self.var_pos[j], self.var_pos[l]);
+                    let (hi, lo) = if pj >= pl { (pj, pl) } else { (pl, pj) };
+                    if let Some(index) = self.profile.index(hi, lo) {
+                        sum += cj * cl * z[index];
+                    }
+                }
+            }
+            trace += self.weights[k] * sum;
+        }
+        trace
+    }
+}
