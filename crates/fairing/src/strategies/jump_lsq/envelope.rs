@@ -184,6 +184,12 @@ impl<'p> Ldlt<'p> {
         Ok(Ldlt { profile, values })
     }
 
+    /// Factors given directly: `values` holds L's strict lower part and D on the diagonal,
+    /// on `profile`.
+    pub fn from_factors(profile: &'p Profile, values: Vec<f64>) -> Self {
+        Ldlt { profile, values }
+    }
+
     /// Solves A x = `rhs` in place. O(m·b).
     pub fn solve_in_place<T: Field>(&self, rhs: &mut [T]) {
         let p = self.profile;

@@ -112,6 +112,7 @@ mod basis;
 mod envelope;
 mod lambda;
 mod noise;
+mod qr;
 mod system;
 #[cfg(test)]
 mod tests;

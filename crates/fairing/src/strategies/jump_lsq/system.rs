@@ -14,6 +14,15 @@ use curve_repr::Vector;
 
 use super::basis::{cubic_ders, Knots};
 use super::envelope::{Ldlt, PivotFailure, Profile};
+use super::qr::GivensQr;
+
+/// The largest stiffness λ·max_j(B_jj/A_jj) at which K(λ) is factored directly; beyond it the
+/// solve runs on the stacked least-squares problem by Givens QR ([`super::qr`]). At this
+/// ratio the LDLᵀ still agrees with an orthogonal solve to about 1e-7 (`super::tests`).
+pub(crate) const DIRECT_LIMIT: f64 = 1e9;
+
+/// The weight of a constraint row in the QR path, relative to its unknowns' scale.
+const CONSTRAINT_WEIGHT: f64 = 1e8;
 
 /// The largest number of coefficients of a form (a penalty row of difference order 3 with an
 /// end substitution has 9).
@@ -42,7 +51,7 @@ pub(crate) struct Form {
 
 impl Form {
     /// The form's (index, coefficient) pairs for m unknowns.
-    pub fn entries(&self, m: usize) -> impl Iterator<Item = (usize, f64)> + '_ {
+    pub fn entries(&self, m: usize) -> impl Iterator<Item = (usize, f64)> + Clone + '_ {
         self.c[..self.len]
             .iter()
             .enumerate()
@@ -377,15 +386,26 @@ pub(crate) struct System<'s, const D: usize> {
     rhs: Vec<Vector<D>>,
     data: &'s [Vector<D>],
     weights: &'s [f64],
+    constraints: Vec<Constraint<D>>,
+    stiffness: f64,
+}
+
+/// How the system at one λ was factored.
+#[derive(Clone, Debug)]
+pub(crate) enum Factor<'p, const D: usize> {
+    /// LDLᵀ of the KKT matrix K(λ), and the solution vector in its order (unknowns and
+    /// multipliers).
+    Kkt { ldlt: Ldlt<'p>, x: Vec<Vector<D>> },
+    /// Givens QR of the stacked least-squares problem (unknowns in the order of
+    /// [`System::order_of`]).
+    Qr(GivensQr<D>),
 }
 
 /// The solution at one λ.
 #[derive(Clone, Debug)]
 pub(crate) struct Solution<'p, const D: usize> {
-    /// The factorisation of K(λ).
-    pub ldlt: Ldlt<'p>,
-    /// The solution vector in the system's order (unknowns and multipliers).
-    pub x: Vec<Vector<D>>,
+    /// The factorisation.
+    pub factor: Factor<'p, D>,
     /// The unknowns γ.
     pub gamma: Vec<Vector<D>>,
 }
@@ -499,6 +519,14 @@ impl<'s, const D: usize> System<'s, D> {
             }
             rhs[row] = constraint.target;
         }
+        let mut stiffness: f64 = 0.0;
+        for &p in &var_pos {
+            if let Some(index) = profile.index(p, p) {
+                if a[index] > 0.0 {
+                    stiffness = stiffness.max(b[index] / a[index]);
+                }
+            }
+        }
         System {
             space,
             profile,
@@ -509,6 +537,8 @@ impl<'s, const D: usize> System<'s, D> {
             rhs,
             data,
             weights,
+            constraints: constraints.to_vec(),
+            stiffness,
         }
     }
 
@@ -528,29 +558,88 @@ impl<'s, const D: usize> System<'s, D> {
     }
 
     /// The largest ratio B_jj / A_jj over the unknowns with A_jj > 0: how much a given λ lets
-    /// the penalty outweigh the data locally (the limit of what double precision can
-    /// resolve, see [`super::lambda`]).
+    /// the penalty outweigh the data locally (λ times this is the stiffness that decides the
+    /// solver, [`DIRECT_LIMIT`]).
     pub fn stiffness(&self) -> f64 {
-        let mut worst: f64 = 0.0;
-        for &p in &self.var_pos {
-            if let Some(index) = self.profile.index(p, p) {
-                let (a, b) = (self.a[index], self.b[index]);
-                if a > 0.0 {
-                    worst = worst.max(b / a);
-                }
-            }
-        }
-        worst
+        self.stiffness
     }
 
-    /// Factors K(λ) = A + λB and solves for the unknowns. O(n).
+    /// Solves at λ: LDLᵀ of K(λ) while λ·stiffness ≤ [`DIRECT_LIMIT`], Givens QR of the
+    /// stacked problem beyond. O(n).
     pub fn solve(&self, lambda: f64) -> Result<Solution<'_, D>, PivotFailure> {
-        let values: Vec<f64> = self.a.iter().zip(&self.b).map(|(a, b)| a + lambda * b).collect();
-        let ldlt = Ldlt::factor(&self.profile, values, &self.negative)?;
-        let mut x = self.rhs.clone();
-        ldlt.solve_in_place(&mut x);
-        let gamma = self.var_pos.iter().map(|&p| x[p]).collect();
-        Ok(Solution { ldlt, x, gamma })
+        if lambda * self.stiffness <= DIRECT_LIMIT {
+            let values: Vec<f64> = self.a.iter().zip(&self.b).map(|(a, b)| a + lambda * b).collect();
+            let ldlt = Ldlt::factor(&self.profile, values, &self.negative)?;
+            let mut x = self.rhs.clone();
+            ldlt.solve_in_place(&mut x);
+            let gamma = self.var_pos.iter().map(|&p| x[p]).collect();
+            return Ok(Solution {
+                factor: Factor::Kkt { ldlt, x },
+                gamma,
+            });
+        }
+        let qr = self.qr(lambda);
+        let y = qr.solve()?;
+        let m = self.space.len();
+        let closed = self.space.is_closed();
+        let gamma = (0..m).map(|j| y[Self::order_of(closed, m, j)]).collect();
+        Ok(Solution {
+            factor: Factor::Qr(qr),
+            gamma,
+        })
+    }
+
+    /// The Givens QR of the stacked problem at λ (data rows, penalty rows, constraint rows of
+    /// weight [`CONSTRAINT_WEIGHT`] times √K_jj of their unknowns). O(n·b²).
+    fn qr(&self, lambda: f64) -> GivensQr<D> {
+        let space = self.space;
+        let m = space.len();
+        let closed = space.is_closed();
+        let order = |j: usize| Self::order_of(closed, m, j);
+        let diagonal = |j: usize| -> f64 {
+            self.profile
+                .index(self.var_pos[j], self.var_pos[j])
+                .map_or(0.0, |index| self.a[index] + lambda * self.b[index])
+        };
+        let mut reach: Vec<usize> = (0..m).collect();
+        let mut extend = |form: &Form| {
+            let lead = form.entries(m).map(|(j, _)| order(j)).min().unwrap_or(0);
+            let end = form.entries(m).map(|(j, _)| order(j)).max().unwrap_or(0);
+            reach[lead] = reach[lead].max(end);
+        };
+        for k in 0..m {
+            if self.weights[k] > 0.0 {
+                extend(&space.value_form(k));
+            }
+        }
+        for r in 0..space.penalty_rows() {
+            extend(&space.penalty_row(r).0);
+        }
+        for constraint in &self.constraints {
+            extend(&constraint.form);
+        }
+        let mut qr = GivensQr::new(reach);
+        for k in 0..m {
+            let w = self.weights[k];
+            if w > 0.0 {
+                let form = space.value_form(k);
+                let root = w.sqrt();
+                qr.add_row(form.entries(m).map(|(j, c)| (order(j), c * root)), self.data[k] * root);
+            }
+        }
+        for r in 0..space.penalty_rows() {
+            let (form, weight) = space.penalty_row(r);
+            let root = (lambda * weight).sqrt();
+            qr.add_row(form.entries(m).map(|(j, c)| (order(j), c * root)), Vector::<D>::zeros());
+        }
+        for constraint in &self.constraints {
+            let form = &constraint.form;
+            let scale = form.entries(m).map(|(j, _)| diagonal(j)).fold(0.0, f64::max).sqrt();
+            let norm = form.entries(m).map(|(_, c)| c * c).sum::<f64>().sqrt();
+            let weight = CONSTRAINT_WEIGHT * scale.max(1.0) / norm;
+            qr.add_row(form.entries(m).map(|(j, c)| (order(j), c * weight)), constraint.target * weight);
+        }
+        qr
     }
 
     /// The values of the spline at the knots for unknowns `gamma`. O(n).
@@ -560,16 +649,34 @@ impl<'s, const D: usize> System<'s, D> {
             .collect()
     }
 
-    /// dγ/dλ at a solution: K z = [−Bγ; 0] (the constraints' targets do not depend on λ).
-    /// O(n).
-    pub fn gamma_derivative(&self, solution: &Solution<'_, D>) -> Vec<Vector<D>> {
-        let mut z = vec![Vector::<D>::zeros(); self.size()];
-        self.profile.multiply(&self.b, &solution.x, &mut z);
-        for v in z.iter_mut() {
-            *v = -*v;
+    /// dγ/dλ at a solution: K z = [−Bγ; 0] (the constraints' targets do not depend on λ;
+    /// in the QR path RᵀR z = −Bγ, the constraints held by their weights). O(n).
+    pub fn gamma_derivative(&self, solution: &Solution<'_, D>) -> Result<Vec<Vector<D>>, PivotFailure> {
+        let m = self.space.len();
+        match &solution.factor {
+            Factor::Kkt { ldlt, x } => {
+                let mut z = vec![Vector::<D>::zeros(); self.size()];
+                self.profile.multiply(&self.b, x, &mut z);
+                for v in z.iter_mut() {
+                    *v = -*v;
+                }
+                ldlt.solve_in_place(&mut z);
+                Ok(self.var_pos.iter().map(|&p| z[p]).collect())
+            }
+            Factor::Qr(qr) => {
+                let closed = self.space.is_closed();
+                let mut z = vec![Vector::<D>::zeros(); m];
+                for r in 0..self.space.penalty_rows() {
+                    let (form, weight) = self.space.penalty_row(r);
+                    let v = form.apply(&solution.gamma) * weight;
+                    for (j, c) in form.entries(m) {
+                        z[Self::order_of(closed, m, j)] -= v * c;
+                    }
+                }
+                qr.solve_normal(&mut z)?;
+                Ok((0..m).map(|j| z[Self::order_of(closed, m, j)]).collect())
+            }
         }
-        solution.ldlt.solve_in_place(&mut z);
-        self.var_pos.iter().map(|&p| z[p]).collect()
     }
 
     /// Σ_k w_k |value_k·γ − y_k|²: the weighted residual sum of squares. O(n).
@@ -585,8 +692,18 @@ impl<'s, const D: usize> System<'s, D> {
     /// The trace of the influence matrix ∂(value_k·γ)/∂y_k summed over the data rows:
     /// Σ_k w_k value_kᵀ Z value_k with Z the unknowns' block of K(λ)⁻¹, read from the selected
     /// inverse. O(n).
-    pub fn influence_trace(&self, solution: &Solution<'_, D>) -> f64 {
-        let z = solution.ldlt.selected_inverse();
+    pub fn influence_trace(&self, solution: &Solution<'_, D>) -> Result<f64, PivotFailure> {
+        let closed = self.space.is_closed();
+        let m = self.space.len();
+        let qr_profile;
+        let (z, profile, position): (Vec<f64>, &Profile, Box<dyn Fn(usize) -> usize + '_>) = match &solution.factor {
+            Factor::Kkt { ldlt, .. } => (ldlt.selected_inverse(), &self.profile, Box::new(|j| self.var_pos[j])),
+            Factor::Qr(qr) => {
+                qr_profile = qr.ldlt_profile();
+                let ldlt = qr.ldlt(&qr_profile)?;
+                (ldlt.selected_inverse(), &qr_profile, Box::new(move |j| Self::order_of(closed, m, j)))
+            }
+        };
         let m = self.space.len();
         let mut trace = 0.0;
         for k in 0..m {
@@ -597,15 +714,15 @@ impl<'s, const D: usize> System<'s, D> {
             let mut sum = 0.0;
             for (j, cj) in form.entries(m) {
                 for (l, cl) in form.entries(m) {
-                    let (pj, pl) = (self.var_pos[j], self.var_pos[l]);
+                    let (pj, pl) = (position(j), position(l));
                     let (hi, lo) = if pj >= pl { (pj, pl) } else { (pl, pj) };
-                    if let Some(index) = self.profile.index(hi, lo) {
+                    if let Some(index) = profile.index(hi, lo) {
                         sum += cj * cl * z[index];
                     }
                 }
             }
             trace += self.weights[k] * sum;
         }
-        trace
+        Ok(trace)
     }
 }

@@ -124,9 +124,10 @@ impl Dense {
     }
 }
 
-/// Minimises Σ_free |y − y⁰|² + λ |P y|² subject to C y = d, densely: without constraints
-/// by Householder QR of the stacked problem [I; √λ P] y ≈ [y⁰; 0] (its condition is the
-/// square root of the normal equations'), with constraints by LU of the KKT matrix.
+/// Minimises Σ_free |y − y⁰|² + λ |P y|² subject to C y = d, densely and without squaring
+/// the condition: y = y_p + Z u with C y_p = d and Z an orthonormal basis of C's null space
+/// (from an SVD), then Householder QR of the stacked problem [W^½; √λ P] Z u ≈ [W^½ y⁰; 0] −
+/// [W^½; √λ P] y_p.
 fn dense_solve(
     penalty: &DMatrix<f64>,
     lambda: f64,
@@ -135,46 +136,45 @@ fn dense_solve(
     constraints: &[(DVector<f64>, DVector<f64>)],
 ) -> DMatrix<f64> {
     let n = penalty.ncols();
-    if constraints.is_empty() && free.iter().all(|f| *f) {
-        let rows = penalty.nrows();
-        let mut stacked = DMatrix::zeros(n + rows, n);
-        stacked.view_mut((0, 0), (n, n)).fill_with_identity();
-        stacked.view_mut((n, 0), (rows, n)).copy_from(&(penalty * lambda.sqrt()));
-        let mut rhs = DMatrix::zeros(n + rows, y0.ncols());
-        rhs.view_mut((0, 0), (n, y0.ncols())).copy_from(y0);
-        let qr = stacked.qr();
-        let qtb = qr.q().transpose() * rhs;
-        return qr.r().solve_upper_triangular(&qtb).unwrap();
-    }
-    let c = constraints.len();
-    let mut k = DMatrix::zeros(n + c, n + c);
-    let hessian = penalty.transpose() * penalty * lambda;
-    k.view_mut((0, 0), (n, n)).copy_from(&hessian);
-    for i in 0..n {
-        if free[i] {
-            k[(i, i)] += 1.0;
-        }
-    }
+    let k = constraints.len();
     let columns = y0.ncols();
-    let mut rhs = DMatrix::zeros(n + c, columns);
+    let (particular, null) = if k == 0 {
+        (DMatrix::zeros(n, columns), DMatrix::identity(n, n))
+    } else {
+        let c = DMatrix::from_fn(k, n, |r, i| constraints[r].0[i]);
+        let d = DMatrix::from_fn(k, columns, |r, col| constraints[r].1[col]);
+        let particular = c.transpose() * (&c * c.transpose()).lu().solve(&d).unwrap();
+        let mut square = DMatrix::zeros(n, n);
+        square.view_mut((0, 0), (k, n)).copy_from(&c);
+        let svd = square.svd(false, true);
+        let v_t = svd.v_t.unwrap();
+        let largest = svd.singular_values.max();
+        let basis: Vec<DVector<f64>> = (0..n)
+            .filter(|&r| svd.singular_values[r] < 1e-12 * largest)
+            .map(|r| v_t.row(r).transpose())
+            .collect();
+        assert_eq!(basis.len(), n - k, "independent constraints");
+        (particular, DMatrix::from_columns(&basis))
+    };
+    let rows = penalty.nrows();
+    let mut stacked = DMatrix::zeros(n + rows, n);
     for i in 0..n {
         if free[i] {
-            for col in 0..columns {
-                rhs[(i, col)] = y0[(i, col)];
-            }
+            stacked[(i, i)] = 1.0;
         }
     }
-    for (r, (row, target)) in constraints.iter().enumerate() {
-        for i in 0..n {
-            k[(n + r, i)] = row[i];
-            k[(i, n + r)] = row[i];
-        }
+    stacked.view_mut((n, 0), (rows, n)).copy_from(&(penalty * lambda.sqrt()));
+    let mut rhs = DMatrix::zeros(n + rows, columns);
+    for i in (0..n).filter(|&i| free[i]) {
         for col in 0..columns {
-            rhs[(n + r, col)] = target[col];
+            rhs[(i, col)] = y0[(i, col)];
         }
     }
-    let solution = k.lu().solve(&rhs).unwrap();
-    solution.rows(0, n).into_owned()
+    let rhs = rhs - &stacked * &particular;
+    let qr = (&stacked * &null).qr();
+    let qtb = qr.q().transpose() * rhs;
+    let u = qr.r().solve_upper_triangular(&qtb).unwrap();
+    particular + null * u
 }
 
 fn as_matrix<const D: usize>(points: &[Vector<D>], columns: std::ops::Range<usize>) -> DMatrix<f64> {
@@ -320,6 +320,20 @@ fn constrained_solves_equal_the_dense_kkt_solve() {
     let settings = JumpLsqSettings::default().with_lambda(lambda).with_refits(0);
     let faired = fair(&points, &points, &constraints, CurveDomain::Parametric, false, &settings).unwrap();
     assert_close(&as_matrix(&faired.points, 0..3), &expected, 1e-9, "parametric, fixed + G1");
+    // The same in the QR path (stiffness 1e11, constraints as heavy rows): to the accuracy of
+    // the dense KKT solve at that stiffness.
+    let space = Space::new(
+        Knots::open(Parametrization::ChordLength.parameters(&points).unwrap()),
+        Ends::Natural,
+        penalty_of(&settings),
+    )
+    .unwrap();
+    let weights = vec![1.0; n];
+    let lambda = 1e11 / System::new(&space, &points, &weights, &[]).stiffness();
+    let expected = dense_solve(&penalty, lambda, &free, &y0, &rows);
+    let settings = settings.with_lambda(lambda);
+    let faired = fair(&points, &points, &constraints, CurveDomain::Parametric, false, &settings).unwrap();
+    assert_close(&as_matrix(&faired.points, 0..3), &expected, 1e-6, "parametric, fixed + G1, QR");
 }
 
 #[test]
@@ -369,6 +383,16 @@ fn influence_trace_equals_the_dense_trace() {
     let evaluation = lambda::evaluate(&system, &data, &weights, lambda, true, true).unwrap();
     let ours = evaluation.trace.unwrap();
     assert!((ours - trace).abs() < 1e-10 * trace, "trace {ours} vs dense {trace}");
+    // The QR path's trace (λ at stiffness 1e11, constraints as heavy rows).
+    let heavy = 1e11 / system.stiffness();
+    let mut dense_trace = 0.0;
+    for k in (0..n).filter(|&k| free[k]) {
+        let mut unit = DMatrix::zeros(n, 1);
+        unit[(k, 0)] = 1.0;
+        dense_trace += dense_solve(&penalty, heavy, &free, &unit, &rows)[(k, 0)];
+    }
+    let qr_trace = lambda::evaluate(&system, &data, &weights, heavy, false, true).unwrap().trace.unwrap();
+    assert!((qr_trace - dense_trace).abs() < 1e-6 * dense_trace, "QR trace {qr_trace} vs dense {dense_trace}");
     // The slope dRSS/d ln λ against a central difference.
     let h: f64 = 1e-4;
     let rss = |l: f64| lambda::evaluate(&system, &data, &weights, l, false, false).unwrap().rss;
@@ -421,20 +445,23 @@ fn lambda_zero_returns_the_input_and_lambda_large_leaves_linear_jumps() {
     let weights = vec![1.0; n];
     let system = System::new(&space, &data, &weights, &[]);
     let lambda_max = lambda::STIFFNESS_LIMIT / system.stiffness();
-    let distances: Vec<f64> = [1e-3, 1e-2, 1e-1, 1.0]
+    let distance = |lambda: f64| {
+        let settings = settings.clone().with_lambda(lambda);
+        let faired = fair(&points, &points, &Constraints::default(), CurveDomain::Function, false, &settings).unwrap();
+        (as_matrix(&faired.points, 1..2) - &limit).amax()
+    };
+    // The 1/λ law: each decade of λ divides the distance by 10 (across the change from the
+    // direct solve to the QR one at stiffness 1e9).
+    let distances: Vec<f64> = [1e8, 1e9, 1e10, 1e11, 1e12]
         .iter()
-        .map(|f| {
-            let settings = settings.clone().with_lambda(lambda_max * f);
-            let faired = fair(&points, &points, &Constraints::default(), CurveDomain::Function, false, &settings).unwrap();
-            (as_matrix(&faired.points, 1..2) - &limit).amax()
-        })
+        .map(|s| distance(s / system.stiffness()))
         .collect();
-    // The 1/λ law: each decade of λ divides the distance by 10.
     for w in distances.windows(2) {
         let ratio = w[1] / w[0];
         assert!((0.08..0.125).contains(&ratio), "distances {distances:?}");
     }
-    assert!(distances[3] < 1e-5 * limit.amax(), "distances {distances:?}");
+    let at_max = distance(lambda_max);
+    assert!(at_max < 1e-9 * limit.amax(), "|y(λ_max) − y∞| = {at_max:e}");
 }
 
 #[test]
@@ -526,9 +553,10 @@ fn discrepancy_rule_reaches_its_target_and_gcv_minimises() {
 }
 
 #[test]
-fn the_precision_limit_keeps_the_solve_accurate() {
-    // At λ_max the banded normal equations agree with a QR solve of the stacked
-    // least-squares problem [I; √λ P] y ≈ [y⁰; 0] (whose condition is not squared).
+fn the_solves_stay_accurate_up_to_the_precision_limit() {
+    // At the largest stiffness of the direct LDLᵀ and at λ_max (Givens QR) the solution
+    // agrees with a dense Householder QR of the stacked problem [I; √λ P] y ≈ [y⁰; 0] (whose
+    // condition is not squared).
     for exponent in [0.0, 8.0] {
         let points = wavy(120);
         let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
@@ -539,30 +567,14 @@ fn the_precision_limit_keeps_the_solve_accurate() {
         let data = masked(&points, [false, true]);
         let weights = vec![1.0; points.len()];
         let system = System::new(&space, &data, &weights, &[]);
-        let lambda_max = lambda::STIFFNESS_LIMIT / system.stiffness();
-        let n = points.len();
-        let rows = penalty.nrows();
-        let mut stacked = DMatrix::zeros(n + rows, n);
-        stacked.view_mut((0, 0), (n, n)).fill_with_identity();
-        stacked.view_mut((n, 0), (rows, n)).copy_from(&(&penalty * lambda_max.sqrt()));
-        let mut rhs = DVector::zeros(n + rows);
-        for i in 0..n {
-            rhs[i] = points[i][1];
+        let free = vec![true; points.len()];
+        for stiffness in [system::DIRECT_LIMIT, lambda::STIFFNESS_LIMIT] {
+            let lambda = stiffness / system.stiffness();
+            let reference = dense_solve(&penalty, lambda, &free, &as_matrix(&points, 1..2), &[]);
+            let settings = settings.clone().with_lambda(lambda);
+            let faired = fair(&points, &points, &Constraints::default(), CurveDomain::Function, false, &settings).unwrap();
+            let error = (as_matrix(&faired.points, 1..2) - &reference).amax() / reference.amax();
+            assert!(error < 1e-6, "a = {exponent}, stiffness {stiffness:e}: error {error:e}");
         }
-        let qr = stacked.qr();
-        let qtb = qr.q().transpose() * rhs;
-        let reference = qr.r().solve_upper_triangular(&qtb).unwrap();
-        let faired = fair(
-            &points,
-            &points,
-            &Constraints::default(),
-            CurveDomain::Function,
-            false,
-            &settings.clone().with_lambda(lambda_max),
-        )
-        .unwrap();
-        let ours = DVector::from_fn(n, |i, _| faired.points[i][1]);
-        let error = (&ours - &reference).amax() / reference.amax();
-        assert!(error < 1e-6, "a = {exponent}: λ_max = {lambda_max:e}, error {error:e}");
     }
 }
