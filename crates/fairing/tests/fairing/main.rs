@@ -1,6 +1,7 @@
 //! The crate's integration tests, one binary (it links once): one module per subject.
 
 mod batten;
+mod jump_lsq;
 mod strain_energy;
 mod two_phase;
 mod two_phase_curves;

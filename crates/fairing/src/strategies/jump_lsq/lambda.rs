@@ -62,8 +62,6 @@ pub(crate) struct Evaluation<const D: usize> {
 /// Solves at `lambda`; with `slope`, also dRSS/d ln λ; with `trace`, tr A(λ). O(n).
 pub(crate) fn evaluate<const D: usize>(
     system: &System<'_, D>,
-    data: &[Vector<D>],
-    weights: &[f64],
     lambda: f64,
     slope: bool,
     trace: bool,
@@ -76,10 +74,11 @@ pub(crate) fn evaluate<const D: usize>(
         let dvalues = system.values(&dgamma);
         let d: f64 = values
             .iter()
-            .zip(data)
+            .zip(system.data())
             .zip(&dvalues)
-            .zip(weights)
-            .map(|(((v, y), dv), w)| 2.0 * w * (v - y).dot(dv))
+            .zip(system.counted())
+            .filter(|(_, c)| **c)
+            .map(|(((v, y), dv), _)| 2.0 * (v - y).dot(dv))
             .sum();
         Some(d * lambda)
     } else {
@@ -118,14 +117,12 @@ pub(crate) struct Choice<const D: usize> {
 /// gives λ_max, flagged `limited`.
 pub(crate) fn discrepancy<const D: usize>(
     system: &System<'_, D>,
-    data: &[Vector<D>],
-    weights: &[f64],
     target_rss: f64,
     start: f64,
     lambda_max: f64,
 ) -> Result<Choice<D>, PivotFailure> {
     if !(target_rss > 0.0) || !(lambda_max > LAMBDA_MIN) {
-        let evaluation = evaluate(system, data, weights, 0.0, false, false)?;
+        let evaluation = evaluate(system, 0.0, false, false)?;
         return Ok(Choice {
             evaluation,
             limited: target_rss > 0.0,
@@ -143,7 +140,7 @@ pub(crate) fn discrepancy<const D: usize>(
     let mut best: Option<(f64, Evaluation<D>)> = None;
     let mut evaluations = 0;
     loop {
-        let evaluation = evaluate(system, data, weights, rho.exp(), true, false)?;
+        let evaluation = evaluate(system, rho.exp(), true, false)?;
         evaluations += 1;
         let f = evaluation.rss.ln() - goal;
         let slope = evaluation.rss_slope.unwrap_or(0.0) / evaluation.rss;
@@ -205,12 +202,10 @@ pub(crate) fn discrepancy<const D: usize>(
 /// smoothed coordinates c.
 pub(crate) fn gcv<const D: usize>(
     system: &System<'_, D>,
-    data: &[Vector<D>],
-    weights: &[f64],
     coordinates: usize,
     lambda_max: f64,
 ) -> Result<Choice<D>, PivotFailure> {
-    let free: f64 = weights.iter().filter(|w| **w > 0.0).count() as f64;
+    let free: f64 = system.counted().iter().filter(|c| **c).count() as f64;
     let score = |e: &Evaluation<D>| -> f64 {
         let tr = e.trace.unwrap_or(0.0);
         let denominator = 1.0 - tr / free;
@@ -225,7 +220,7 @@ pub(crate) fn gcv<const D: usize>(
     let mut evaluations = 0;
     let mut best: Option<(f64, f64, Evaluation<D>)> = None;
     let mut consider = |rho: f64, best: &mut Option<(f64, f64, Evaluation<D>)>| -> Result<f64, PivotFailure> {
-        let e = evaluate(system, data, weights, 10f64.powf(rho), false, true)?;
+        let e = evaluate(system, 10f64.powf(rho), false, true)?;
         evaluations += 1;
         let v = score(&e);
         if best.as_ref().is_none_or(|(g, _, _)| v < *g) {

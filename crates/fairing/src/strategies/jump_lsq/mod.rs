@@ -78,8 +78,10 @@
 //! C₁ of full row rank (distinct constraint rows), so LDLᵀ without pivoting exists, with
 //! positive pivots at the unknowns and negative ones at the multipliers; the envelope
 //! (profile) of the interleaved matrix is a band plus a few columns, and the factorisation
-//! fills only inside it ([`envelope`]). A constrained point gets no data row (it is
-//! interpolated).
+//! fills only inside it ([`envelope`]). A constrained point keeps its data row: the
+//! constraint makes that term constant, so the solution does not change, and H stays
+//! positive definite for every λ ≥ 0 (N is square and invertible), λ = 0 included; its
+//! residual is left out of the discrepancy and of GCV.
 //!
 //! The solver is our own envelope LDLᵀ rather than faer's sparse Cholesky or LU: the matrix
 //! is a narrow band known in advance, so no ordering or symbolic analysis is needed, the
@@ -364,8 +366,11 @@ pub struct JumpLsqReport {
     pub solves: usize,
     /// Parametric refits made.
     pub refits: usize,
-    /// Points pinned to the tolerance band or their restraining radius.
+    /// Points pinned to the edge of their tolerance band or restraining radius.
     pub pinned: usize,
+    /// Points whose data weight was raised instead (when pins would contradict the other
+    /// constraints, e.g. an end clamp on a curve with every point pinned).
+    pub reweighted: usize,
     /// Rounds of the tolerance band's active set.
     pub band_rounds: usize,
     /// Points still outside their band after the last round (projected, then off the spline).
@@ -572,28 +577,39 @@ pub fn fair<const D: usize>(
     let penalty = penalty_of(settings);
     let data = masked(points, mask);
     let frozen: Vec<bool> = (0..n).map(|i| !constraints.is_movable(i, n)).collect();
-    // End-clamp targets: derivatives of the spline through the ORIGINAL points.
+    // End clamps beyond G0: derivatives of the spline through the ORIGINAL points. With the
+    // runout ends the first and last spans are parabolas, which position, slope and
+    // curvature at the end determine: G2 there holds points 1 and n − 2 at the original's
+    // values and the end slopes (the same conditions, without a redundant row).
+    let mut held: Vec<(usize, Vector<D>)> = Vec::new();
     let clamp_targets: Vec<(usize, bool, Vector<D>)> = match clamp.order() {
         Some(order) if order >= 1 => {
             let (space, gamma) = interpolant(original, domain, closed, penalty)?;
-            let orders: &[usize] = if order >= 2 && ends == Ends::Runout {
-                &[1, 2]
-            } else {
-                // The natural spline's end curvature is 0 before and after: G2 is G1 there.
-                &[1]
-            };
-            orders
-                .iter()
-                .flat_map(|&o| [false, true].map(|at_end| (o, at_end)))
-                .map(|(o, at_end)| (o, at_end, space.end_derivative_form(o, at_end).apply(&gamma)))
-                .collect()
+            if order >= 2 && ends == Ends::Runout {
+                for i in [1, n - 2] {
+                    if !frozen[i] {
+                        let mut p = original[i];
+                        for (c, keep) in mask.iter().enumerate() {
+                            if !keep {
+                                p[c] = points[i][c];
+                            }
+                        }
+                        held.push((i, p));
+                    }
+                }
+            }
+            // The natural spline's end curvature is 0 before and after: G2 is G1 there.
+            [false, true]
+                .map(|at_end| (1, at_end, space.end_derivative_form(1, at_end).apply(&gamma)))
+                .to_vec()
         }
         _ => Vec::new(),
     };
     let penalty_before = jump_penalty(points, domain, closed, settings)?;
     let sigma_hat = noise::noise(points, mask, closed);
     let coordinates = mask.iter().filter(|m| **m).count();
-    let free = frozen.iter().filter(|f| !**f).count();
+    let exact = |i: usize| frozen[i] || held.iter().any(|(j, _)| *j == i);
+    let free = (0..n).filter(|&i| !exact(i)).count();
     let (rule, target) = match (settings.lambda, settings.target_sd) {
         (Some(_), _) => ("given", None),
         (None, Some(t)) => ("target-sd", Some(t)),
@@ -620,6 +636,7 @@ pub fn fair<const D: usize>(
         solves: 0,
         refits: rounds - 1,
         pinned: 0,
+        reweighted: 0,
         band_rounds: 0,
         clipped: 0,
         penalty_before,
@@ -635,19 +652,28 @@ pub fn fair<const D: usize>(
             base.push(Constraint {
                 form: space.value_form(i),
                 target: data[i],
+                point: Some(i),
+            });
+        }
+        for (i, p) in &held {
+            base.push(Constraint {
+                form: space.value_form(*i),
+                target: masked(std::slice::from_ref(p), mask)[0],
+                point: Some(*i),
             });
         }
         for &(order, at_end, target) in &clamp_targets {
             base.push(Constraint {
                 form: space.end_derivative_form(order, at_end),
                 target,
+                point: None,
             });
         }
-        let mut weights: Vec<f64> = frozen.iter().map(|f| if *f { 0.0 } else { 1.0 }).collect();
+        let mut weights: Vec<f64> = vec![1.0; n];
         let system = System::new(&space, &data, &weights, &base);
         let lambda_max = lambda::STIFFNESS_LIMIT / system.stiffness().max(f64::MIN_POSITIVE);
         let choice: Choice<D> = if space.penalty_rows() == 0 {
-            let evaluation = lambda::evaluate(&system, &data, &weights, 0.0, false, false).map_err(pivot_error)?;
+            let evaluation = lambda::evaluate(&system, 0.0, false, false).map_err(pivot_error)?;
             Choice {
                 evaluation,
                 limited: false,
@@ -655,7 +681,7 @@ pub fn fair<const D: usize>(
                 evaluations: 1,
             }
         } else if let Some(l) = settings.lambda {
-            let evaluation = lambda::evaluate(&system, &data, &weights, l, false, false).map_err(pivot_error)?;
+            let evaluation = lambda::evaluate(&system, l, false, false).map_err(pivot_error)?;
             Choice {
                 evaluation,
                 limited: false,
@@ -665,16 +691,21 @@ pub fn fair<const D: usize>(
         } else if let Some(t) = target {
             lambda::discrepancy(
                 &system,
-                &data,
-                &weights,
                 free as f64 * t * t,
                 lambda_previous,
                 lambda_max,
             )
             .map_err(pivot_error)?
         } else {
-            lambda::gcv(&system, &data, &weights, coordinates, lambda_max).map_err(pivot_error)?
+            lambda::gcv(&system, coordinates, lambda_max).map_err(pivot_error)?
         };
+        if !system.holds(&choice.evaluation.gamma, &base) {
+            return Err(crate::state::strategy_error(
+                NAME,
+                "the constraints contradict each other (fixed points, end clamps and the \
+                 spline's end conditions cannot all hold)",
+            ));
+        }
         report.solves += choice.evaluations;
         report.lambda = choice.evaluation.lambda;
         report.lambda_limited = choice.limited;
@@ -683,49 +714,81 @@ pub fn fair<const D: usize>(
         let mut evaluation: Evaluation<D> = choice.evaluation;
         drop(system);
         // The tolerance band and radii, in the last round: pin every point that left its ball
-        // to the ball's surface, re-solve at the same λ, until none is outside.
-        let mut pins: Vec<(usize, Vector<D>)> = Vec::new();
+        // to the ball's surface and re-solve at the same λ, until none is outside. Pins can
+        // contradict the other constraints (an end slope on a curve whose every point is
+        // pinned); then the pins are dropped and the data weights of the points that left
+        // their balls are raised instead, by 2·(distance/allowed)² per round, which always
+        // converges (at infinite weight a point stays at its input, inside its ball).
+        let mut pins: Vec<(usize, Vector<D>)> = held.clone();
         if round + 1 == rounds {
+            let mut reweighting = false;
+            let mut raised = vec![false; n];
             loop {
                 let candidate = assemble(points, &evaluation.values, &frozen, &pins, mask);
-                let mut added = false;
+                let mut violators = Vec::new();
                 for i in 0..n {
-                    if frozen[i] || pins.iter().any(|(j, _)| *j == i) {
+                    if exact(i) || pins.iter().any(|(j, _)| *j == i) {
                         continue;
                     }
                     let allowed = constraints.allowed_distance(i);
-                    if (candidate[i] - original[i]).norm() > allowed {
-                        pins.push((i, pin(&candidate[i], &original[i], allowed, mask)));
-                        added = true;
+                    let distance = (candidate[i] - original[i]).norm();
+                    if distance > allowed {
+                        violators.push((i, distance, allowed, pin(&candidate[i], &original[i], allowed, mask)));
                     }
                 }
-                if !added || report.band_rounds >= MAX_BAND_ROUNDS {
+                if violators.is_empty() || report.band_rounds >= MAX_BAND_ROUNDS {
                     break;
                 }
                 report.band_rounds += 1;
-                let mut with_pins = base.clone();
-                for (i, target) in &pins {
-                    weights[*i] = 0.0;
-                    with_pins.push(Constraint {
-                        form: space.value_form(*i),
-                        target: masked(std::slice::from_ref(target), mask)[0],
-                    });
+                if !reweighting {
+                    pins.extend(violators.iter().map(|v| (v.0, v.3)));
+                    let mut with_pins = base.clone();
+                    for (i, target) in pins.iter().skip(held.len()) {
+                        with_pins.push(Constraint {
+                            form: space.value_form(*i),
+                            target: masked(std::slice::from_ref(target), mask)[0],
+                            point: Some(*i),
+                        });
+                    }
+                    let system = System::new(&space, &data, &weights, &with_pins);
+                    report.solves += 1;
+                    match lambda::evaluate(&system, evaluation.lambda, false, false) {
+                        Ok(e) if system.holds(&e.gamma, &with_pins) => {
+                            evaluation = e;
+                            continue;
+                        }
+                        _ => {
+                            // Contradictory pins: reweight every point pinned so far instead.
+                            reweighting = true;
+                            for (i, _) in pins.drain(held.len()..) {
+                                weights[i] *= 2.0;
+                                raised[i] = true;
+                            }
+                        }
+                    }
+                } else {
+                    for &(i, distance, allowed, _) in &violators {
+                        // allowed > 0: a point with nothing allowed is frozen, never a violator.
+                        weights[i] *= 2.0 * (distance / allowed).powi(2);
+                        raised[i] = true;
+                    }
                 }
-                let system = System::new(&space, &data, &weights, &with_pins);
-                evaluation = lambda::evaluate(&system, &data, &weights, evaluation.lambda, false, false)
+                let system = System::new(&space, &data, &weights, &base);
+                evaluation = lambda::evaluate(&system, evaluation.lambda, false, false)
                     .map_err(pivot_error)?;
                 report.solves += 1;
             }
+            report.reweighted = raised.iter().filter(|r| **r).count();
         }
-        report.pinned = pins.len();
+        report.pinned = pins.len() - held.len();
         current = assemble(points, &evaluation.values, &frozen, &pins, mask);
     }
     let moved: f64 = current
         .iter()
         .zip(points)
-        .zip(&frozen)
-        .filter(|(_, f)| !**f)
-        .map(|((a, b), _)| (a - b).norm_squared())
+        .enumerate()
+        .filter(|(i, _)| !exact(*i))
+        .map(|(_, (a, b))| (a - b).norm_squared())
         .sum();
     report.rms_displacement = if free > 0 { (moved / free as f64).sqrt() } else { 0.0 };
     report.clipped = (0..n)

@@ -371,10 +371,18 @@ impl Space {
 pub(crate) struct Constraint<const D: usize> {
     pub form: Form,
     pub target: Vector<D>,
+    /// The point whose value it fixes, for a value constraint: that point's data row then
+    /// counts in neither the residual nor the influence trace.
+    pub point: Option<usize>,
 }
 
 /// The normal equations of one problem on a [`Space`]: minimise
 /// Σ_k w_k |value_k·γ − y_k|² + λ Σ_rows weight |row·γ|² subject to the constraints.
+///
+/// Every point keeps its data row (w_k > 0), constrained or not: a value constraint makes
+/// that row's term constant, so the solution is the same, and H = NᵀWN + λB stays positive
+/// definite for every λ ≥ 0 (N is square and invertible), which is what the LDLᵀ without
+/// pivoting of the KKT matrix needs.
 #[derive(Clone, Debug)]
 pub(crate) struct System<'s, const D: usize> {
     space: &'s Space,
@@ -386,6 +394,7 @@ pub(crate) struct System<'s, const D: usize> {
     rhs: Vec<Vector<D>>,
     data: &'s [Vector<D>],
     weights: &'s [f64],
+    counted: Vec<bool>,
     constraints: Vec<Constraint<D>>,
     stiffness: f64,
 }
@@ -426,8 +435,8 @@ impl<'s, const D: usize> System<'s, D> {
         }
     }
 
-    /// Assembles the system: data `data[k]` with weight `weights[k]` at knot k (0: no data
-    /// row, e.g. a constrained point), the penalty of `space`, and `constraints`. O(n).
+    /// Assembles the system: data `data[k]` with weight `weights[k]` > 0 at knot k, the
+    /// penalty of `space`, and `constraints`. O(n).
     pub fn new(
         space: &'s Space,
         data: &'s [Vector<D>],
@@ -527,6 +536,12 @@ impl<'s, const D: usize> System<'s, D> {
                 }
             }
         }
+        let mut counted = vec![true; m];
+        for c in constraints {
+            if let Some(k) = c.point {
+                counted[k] = false;
+            }
+        }
         System {
             space,
             profile,
@@ -537,6 +552,7 @@ impl<'s, const D: usize> System<'s, D> {
             rhs,
             data,
             weights,
+            counted,
             constraints: constraints.to_vec(),
             stiffness,
         }
@@ -565,18 +581,22 @@ impl<'s, const D: usize> System<'s, D> {
     }
 
     /// Solves at λ: LDLᵀ of K(λ) while λ·stiffness ≤ [`DIRECT_LIMIT`], Givens QR of the
-    /// stacked problem beyond. O(n).
+    /// stacked problem beyond — and also when the LDLᵀ meets a dependent set of constraints
+    /// (e.g. every point fixed and an end slope: consistent, but one row too many), which the
+    /// weighted rows of the QR solve as a least-squares problem ([`holds`](Self::holds) then
+    /// tells a consistent set from a contradictory one). O(n).
     pub fn solve(&self, lambda: f64) -> Result<Solution<'_, D>, PivotFailure> {
         if lambda * self.stiffness <= DIRECT_LIMIT {
             let values: Vec<f64> = self.a.iter().zip(&self.b).map(|(a, b)| a + lambda * b).collect();
-            let ldlt = Ldlt::factor(&self.profile, values, &self.negative)?;
-            let mut x = self.rhs.clone();
-            ldlt.solve_in_place(&mut x);
-            let gamma = self.var_pos.iter().map(|&p| x[p]).collect();
-            return Ok(Solution {
-                factor: Factor::Kkt { ldlt, x },
-                gamma,
-            });
+            if let Ok(ldlt) = Ldlt::factor(&self.profile, values, &self.negative) {
+                let mut x = self.rhs.clone();
+                ldlt.solve_in_place(&mut x);
+                let gamma = self.var_pos.iter().map(|&p| x[p]).collect();
+                return Ok(Solution {
+                    factor: Factor::Kkt { ldlt, x },
+                    gamma,
+                });
+            }
         }
         let qr = self.qr(lambda);
         let y = qr.solve()?;
@@ -642,6 +662,22 @@ impl<'s, const D: usize> System<'s, D> {
         qr
     }
 
+    /// Whether `gamma` satisfies `constraints` to 1e-9 of the data's scale (a solve of
+    /// contradictory constraints leaves them unmet in the QR path, whose constraint rows are
+    /// weighted). O(constraints).
+    pub fn holds(&self, gamma: &[Vector<D>], constraints: &[Constraint<D>]) -> bool {
+        let scale = self
+            .data
+            .iter()
+            .chain(constraints.iter().map(|c| &c.target))
+            .map(|v| v.amax())
+            .fold(0.0, f64::max)
+            .max(f64::MIN_POSITIVE);
+        constraints
+            .iter()
+            .all(|c| (c.form.apply(gamma) - c.target).amax() <= 1e-9 * scale)
+    }
+
     /// The values of the spline at the knots for unknowns `gamma`. O(n).
     pub fn values(&self, gamma: &[Vector<D>]) -> Vec<Vector<D>> {
         (0..self.space.len())
@@ -679,19 +715,31 @@ impl<'s, const D: usize> System<'s, D> {
         }
     }
 
-    /// Σ_k w_k |value_k·γ − y_k|²: the weighted residual sum of squares. O(n).
+    /// The points whose data count (no value constraint on them).
+    pub fn counted(&self) -> &[bool] {
+        &self.counted
+    }
+
+    /// The data.
+    pub fn data(&self) -> &[Vector<D>] {
+        self.data
+    }
+
+    /// Σ_k |value_k·γ − y_k|² over the counted points: the residual sum of squares. O(n).
     pub fn residual(&self, values: &[Vector<D>]) -> f64 {
         values
             .iter()
             .zip(self.data)
-            .zip(self.weights)
-            .map(|((v, y), w)| w * (v - y).norm_squared())
+            .zip(&self.counted)
+            .filter(|(_, c)| **c)
+            .map(|((v, y), _)| (v - y).norm_squared())
             .sum()
     }
 
-    /// The trace of the influence matrix ∂(value_k·γ)/∂y_k summed over the data rows:
+    /// The trace of the influence matrix ∂(value_k·γ)/∂y_k summed over the counted points:
     /// Σ_k w_k value_kᵀ Z value_k with Z the unknowns' block of K(λ)⁻¹, read from the selected
-    /// inverse. O(n).
+    /// inverse. (A value-constrained point would add 0: Z annihilates the constraints' rows.)
+    /// O(n).
     pub fn influence_trace(&self, solution: &Solution<'_, D>) -> Result<f64, PivotFailure> {
         let closed = self.space.is_closed();
         let m = self.space.len();
@@ -707,7 +755,7 @@ impl<'s, const D: usize> System<'s, D> {
         let m = self.space.len();
         let mut trace = 0.0;
         for k in 0..m {
-            if self.weights[k] <= 0.0 {
+            if self.weights[k] <= 0.0 || !self.counted[k] {
                 continue;
             }
             let form = self.space.value_form(k);
