@@ -87,7 +87,8 @@ impl<const D: usize> GivensQr<D> {
                 return;
             }
             let a = row[0];
-            let h = a.hypot(b);
+            // The entries are far from over- and underflow (weights below 1e20).
+            let h = (a * a + b * b).sqrt();
             let (cos, sin) = (a / h, b / h);
             for (x, y) in row.iter_mut().zip(&mut self.buffer[k - lead..=reach - lead]) {
                 let (u, v) = (*x, *y);

@@ -224,10 +224,17 @@ impl Space {
             }
             return form;
         }
-        // Open: a buffer over β_lo … β_hi.
+        // Open, away from the ends: β_j is γ_{j−1}.
         let (mut lo, mut hi) = (start, start + coefficients.len() as isize - 1);
-        let touches_start = lo <= 1 && 1 <= hi;
         let nb = n as isize;
+        if lo > 1 && hi < nb {
+            form.start = (lo - 1) as usize;
+            form.len = coefficients.len();
+            form.c[..coefficients.len()].copy_from_slice(coefficients);
+            return form;
+        }
+        // Near an end: a buffer over β_lo … β_hi.
+        let touches_start = lo <= 1 && 1 <= hi;
         let touches_end = lo <= nb && nb <= hi;
         if touches_start {
             lo = lo.min(0);
@@ -343,7 +350,13 @@ impl Space {
         let width = self.knots.knot(a + d as isize + 1) - self.knots.knot(a - 1);
         let mean = width / ((d + 2) as f64 * self.h_median);
         let scale = self.h_median.powi(3);
-        let weight = mean.powf(self.penalty.exponent) * scale * scale;
+        let exponent = self.penalty.exponent;
+        let power = if exponent.fract() == 0.0 && exponent.abs() <= 64.0 {
+            mean.powi(exponent as i32)
+        } else {
+            mean.powf(exponent)
+        };
+        let weight = power * scale * scale;
         (self.reduce(a - 1, &c[..5 + d]), weight)
     }
 
@@ -621,43 +634,68 @@ impl<'s, const D: usize> System<'s, D> {
                 .index(self.var_pos[j], self.var_pos[j])
                 .map_or(0.0, |index| self.a[index] + lambda * self.b[index])
         };
+        // Rows in the order of their leading column, so that each is deposited in R after at
+        // most the band's width of rotations (data rows first would fill R and leave every
+        // later row to be rotated down to the last column: O(n²)).
+        #[derive(Clone, Copy)]
+        enum Row {
+            Data(usize),
+            Penalty(usize),
+            Constraint(usize),
+        }
+        // Each row as its leading column (high 32 bits) and a tag (kind in bits 30–31, index
+        // below): 8 bytes a row, for up to 2^30 points.
+        const PENALTY: u64 = 1 << 30;
+        const CONSTRAINT: u64 = 2 << 30;
         let mut reach: Vec<usize> = (0..m).collect();
-        let mut extend = |form: &Form| {
+        let mut rows: Vec<u64> = Vec::with_capacity(2 * m + self.constraints.len());
+        let mut add = |form: &Form, tag: u64| {
             let lead = form.entries(m).map(|(j, _)| order(j)).min().unwrap_or(0);
             let end = form.entries(m).map(|(j, _)| order(j)).max().unwrap_or(0);
             reach[lead] = reach[lead].max(end);
+            rows.push(((lead as u64) << 32) | tag);
         };
         for k in 0..m {
             if self.weights[k] > 0.0 {
-                extend(&space.value_form(k));
+                add(&space.value_form(k), k as u64);
             }
         }
         for r in 0..space.penalty_rows() {
-            extend(&space.penalty_row(r).0);
+            add(&space.penalty_row(r).0, PENALTY | r as u64);
         }
-        for constraint in &self.constraints {
-            extend(&constraint.form);
+        for (c, constraint) in self.constraints.iter().enumerate() {
+            add(&constraint.form, CONSTRAINT | c as u64);
         }
+        rows.sort_unstable();
         let mut qr = GivensQr::new(reach);
-        for k in 0..m {
-            let w = self.weights[k];
-            if w > 0.0 {
-                let form = space.value_form(k);
-                let root = w.sqrt();
-                qr.add_row(form.entries(m).map(|(j, c)| (order(j), c * root)), self.data[k] * root);
+        for packed in rows {
+            let tag = packed & 0xFFFF_FFFF;
+            let index = (tag & 0x3FFF_FFFF) as usize;
+            let row = match tag >> 30 {
+                0 => Row::Data(index),
+                1 => Row::Penalty(index),
+                _ => Row::Constraint(index),
+            };
+            match row {
+                Row::Data(k) => {
+                    let form = space.value_form(k);
+                    let root = self.weights[k].sqrt();
+                    qr.add_row(form.entries(m).map(|(j, c)| (order(j), c * root)), self.data[k] * root);
+                }
+                Row::Penalty(r) => {
+                    let (form, weight) = space.penalty_row(r);
+                    let root = (lambda * weight).sqrt();
+                    qr.add_row(form.entries(m).map(|(j, c)| (order(j), c * root)), Vector::<D>::zeros());
+                }
+                Row::Constraint(c) => {
+                    let constraint = &self.constraints[c];
+                    let form = &constraint.form;
+                    let scale = form.entries(m).map(|(j, _)| diagonal(j)).fold(0.0, f64::max).sqrt();
+                    let norm = form.entries(m).map(|(_, c)| c * c).sum::<f64>().sqrt();
+                    let weight = CONSTRAINT_WEIGHT * scale.max(1.0) / norm;
+                    qr.add_row(form.entries(m).map(|(j, c)| (order(j), c * weight)), constraint.target * weight);
+                }
             }
-        }
-        for r in 0..space.penalty_rows() {
-            let (form, weight) = space.penalty_row(r);
-            let root = (lambda * weight).sqrt();
-            qr.add_row(form.entries(m).map(|(j, c)| (order(j), c * root)), Vector::<D>::zeros());
-        }
-        for constraint in &self.constraints {
-            let form = &constraint.form;
-            let scale = form.entries(m).map(|(j, _)| diagonal(j)).fold(0.0, f64::max).sqrt();
-            let norm = form.entries(m).map(|(_, c)| c * c).sum::<f64>().sqrt();
-            let weight = CONSTRAINT_WEIGHT * scale.max(1.0) / norm;
-            qr.add_row(form.entries(m).map(|(j, c)| (order(j), c * weight)), constraint.target * weight);
         }
         qr
     }
