@@ -44,26 +44,43 @@
 //! initial curve, or when no knot is a candidate. Cost per step: O(n) (the knot operations
 //! copy the control points), the jumps are updated only at the five knots U_{r−2} … U_{r+2}.
 
-use curve_repr::{Interpolation, InterpolationSettings, NurbsCurve, Parametrization, Side, Vector};
+use curve_repr::{Curve, Interpolation, InterpolationSettings, NurbsCurve, Parametrization, Side, Vector};
 use fairness::curvature::{curvature_slope_at, CurvatureForm};
 
 use super::CurveDomain;
+use crate::catalog::SharedIndicator;
 use crate::state::strategy_error;
 use crate::{Constraints, EndClamp, Error, FairingState, FairingStrategy, Result, StepOutcome};
+use fairness::LocalIndicator;
 
 /// The strategy's name, as `fair methods` lists it.
 pub const NAME: &str = "sapidis-farin";
 
-/// Settings of [`SapidisFarin`]. Default: tolerance 1e-3 (relative), max iterations 1000.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// Settings of [`SapidisFarin`]: the parameters of the catalogue's `sapidis-farin`.
+/// Default: tolerance 1e-3 (relative), max iterations 1000.
+///
+/// `domain` follows the kind of curve (`--kind`) and is not a parameter of the catalogue.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[serde(default, deny_unknown_fields, rename_all = "kebab-case")]
 pub struct SapidisFarinSettings {
-    /// Stop when the largest curvature-slope jump is at most this fraction of the initial
-    /// largest jump (a relative tolerance, since the jump's unit is 1/length²).
+    /// Stop when the largest curvature-slope jump is this fraction of the initial one.
+    ///
+    /// A relative tolerance, since the jump's unit is 1/length².
     pub tolerance: f64,
-    /// Steps at most (the strategy reports done after that many).
+    /// Knots faired (removed and reinserted) at most.
+    ///
+    /// The strategy reports done after that many steps.
     pub max_iterations: usize,
     /// A function y(x) (parameters from x, x kept) or a parametric curve (chord length).
+    #[serde(skip)]
     pub domain: CurveDomain,
+    /// Where to act: the registered indicator whose largest value picks the next knot.
+    ///
+    /// Default `curvature-slope-jump`, the paper's |dκ/ds(u+) − dκ/ds(u−)|, updated at five
+    /// knots per step. Another name is resolved by the catalogue and handed to
+    /// [`SapidisFarin::with_indicator`]; its values (one per break of the B-spline) are
+    /// recomputed over the whole curve after every step.
+    pub indicator: String,
 }
 
 impl Default for SapidisFarinSettings {
@@ -72,11 +89,27 @@ impl Default for SapidisFarinSettings {
             tolerance: 1e-3,
             max_iterations: 1000,
             domain: CurveDomain::Parametric,
+            indicator: Self::PAPER_INDICATOR.to_owned(),
         }
     }
 }
 
 impl SapidisFarinSettings {
+    /// The paper's indicator, the curvature-slope jump, by its catalogue name.
+    pub const PAPER_INDICATOR: &'static str = "curvature-slope-jump";
+
+    /// Checks the ranges: the tolerance finite and ≥ 0.
+    pub fn validate(&self) -> Result<()> {
+        if !(self.tolerance >= 0.0 && self.tolerance.is_finite()) {
+            return Err(Error::BadParameter {
+                name: "tolerance",
+                value: self.tolerance.to_string(),
+                reason: "must be a finite number ≥ 0",
+            });
+        }
+        Ok(())
+    }
+
     /// Sets the relative tolerance.
     pub fn with_tolerance(mut self, tolerance: f64) -> Self {
         self.tolerance = tolerance;
@@ -134,6 +167,7 @@ pub struct SapidisFarin<const D: usize> {
     initial_max: f64,
     history: Vec<KnotStep>,
     stop: Option<SapidisFarinStop>,
+    indicator: Option<SharedIndicator<D>>,
 }
 
 impl<const D: usize> SapidisFarin<D>
@@ -150,7 +184,58 @@ where
             initial_max: 0.0,
             history: Vec::new(),
             stop: None,
+            indicator: None,
         }
+    }
+
+    /// Chooses the knot by `indicator` instead of the paper's curvature-slope jump: its
+    /// values, one per break (distinct knot) of the B-spline, are recomputed over the whole
+    /// curve after every step (O(n) evaluations), and the simple interior knot of the largest
+    /// value is faired next. The step itself (removal and reinsertion) is unchanged.
+    pub fn with_indicator(mut self, indicator: SharedIndicator<D>) -> Self {
+        self.indicator = Some(indicator);
+        self
+    }
+
+    /// The indicator's value at every knot index r of `curve` (0 where it is not a simple
+    /// interior knot): the paper's jump, or the given indicator's value at that break.
+    fn knot_values(&self, curve: &NurbsCurve<D>) -> Result<Vec<f64>> {
+        let knots = curve.knots();
+        let mut values = vec![0.0; knots.len()];
+        match &self.indicator {
+            None => {
+                for r in Self::interior(curve) {
+                    values[r] = Self::jump_at(curve, knots[r])?;
+                }
+            }
+            Some(indicator) => {
+                let breaks = curve.breaks();
+                let at_breaks = indicator.values(curve as &dyn Curve<D>)?;
+                if at_breaks.len() != breaks.len() {
+                    return Err(strategy_error(
+                        NAME,
+                        format!(
+                            "indicator `{}` gave {} values for {} breaks",
+                            indicator.name(),
+                            at_breaks.len(),
+                            breaks.len()
+                        ),
+                    ));
+                }
+                for r in Self::interior(curve) {
+                    let b = breaks.partition_point(|&t| t < knots[r]);
+                    let value = at_breaks.get(b).copied().unwrap_or(0.0);
+                    if !value.is_finite() {
+                        return Err(strategy_error(
+                            NAME,
+                            format!("indicator `{}` is {value} at knot {}", indicator.name(), knots[r]),
+                        ));
+                    }
+                    values[r] = value.abs();
+                }
+            }
+        }
+        Ok(values)
     }
 
     /// The current B-spline (after `init`).
@@ -281,14 +366,7 @@ where
                 constraint: "a closed curve (the B-spline is open and clamped)".into(),
             });
         }
-        let tolerance = self.settings.tolerance;
-        if !(tolerance >= 0.0 && tolerance.is_finite()) {
-            return Err(Error::BadParameter {
-                name: "tolerance",
-                value: tolerance.to_string(),
-                reason: "must be a finite non-negative number",
-            });
-        }
+        self.settings.validate()?;
         let interpolation = match self.settings.domain {
             CurveDomain::Parametric => Interpolation::with_parametrization(
                 state.points(),
@@ -308,10 +386,7 @@ where
         };
         let curve = interpolation.nubs()?;
         self.params = interpolation.params().to_vec();
-        self.jumps = vec![0.0; curve.knots().len()];
-        for r in Self::interior(&curve) {
-            self.jumps[r] = Self::jump_at(&curve, curve.knots()[r])?;
-        }
+        self.jumps = self.knot_values(&curve)?;
         self.initial_max = self.max_jump();
         self.curve = Some(curve);
         self.history.clear();
@@ -345,10 +420,14 @@ where
             };
             let jump_before = self.jumps[r];
             let knots = faired.knots().to_vec();
-            let interior = Self::interior(&faired);
-            for (k, &u) in knots.iter().enumerate().take(r + 3).skip(r - 2) {
-                if interior.binary_search(&k).is_ok() {
-                    self.jumps[k] = Self::jump_at(&faired, u)?;
+            if self.indicator.is_some() {
+                self.jumps = self.knot_values(&faired)?;
+            } else {
+                let interior = Self::interior(&faired);
+                for (k, &u) in knots.iter().enumerate().take(r + 3).skip(r - 2) {
+                    if interior.binary_search(&k).is_ok() {
+                        self.jumps[k] = Self::jump_at(&faired, u)?;
+                    }
                 }
             }
             for (i, to) in moves {

@@ -3,7 +3,7 @@
 //! end tangents and curvatures checked on independent splines), composition with other
 //! stages, closed curves, refusals.
 
-use curve_repr::{Curve, EndCondition, HermiteEnds, HermiteSettings, HermiteSpline, Side, SplineFunction, Vec2, Vec3, Vector};
+use curve_repr::{Curve, EndCondition, HermiteEnds, HermiteSettings, HermiteSpline, Side, SplineFunction, Vec2, Vec3};
 use fairing::strategies::jump_lsq::{fair, jump_penalty, jumps, JumpLsq, JumpLsqSettings, LambdaRule};
 use fairing::strategies::{CurveDomain, StrainEnergy, StrainEnergySettings};
 use fairing::{Constraints, EndClamp, Error, Pipeline};
@@ -302,3 +302,4 @@ fn noise_free_points_barely_move_and_noisy_ones_move_by_the_target() {
     assert!((r.rms_displacement / target - 1.0).abs() < 1e-3, "{r:?}");
     assert!((target - JumpLsqSettings::default().noise_factor * r.sigma_hat).abs() < 1e-12);
 }
+

@@ -56,6 +56,7 @@ impl Profile {
     }
 
     /// The first stored column of row i.
+    #[cfg(test)]
     pub fn first(&self, i: usize) -> usize {
         self.first[i]
     }

@@ -152,70 +152,6 @@ impl LambdaRule {
     }
 }
 
-/// Serde and schema for "a number or `auto`" (`None`). The catalogue (being written in
-/// parallel) has the same module; this one goes when it lands.
-mod auto_number {
-    use std::borrow::Cow;
-
-    use schemars::{json_schema, JsonSchema, Schema, SchemaGenerator};
-    use serde::de::{self, Deserializer, Visitor};
-    use serde::Serializer;
-
-    /// The schema of "a number or `auto`".
-    pub struct AutoNumber;
-
-    impl JsonSchema for AutoNumber {
-        fn schema_name() -> Cow<'static, str> {
-            "AutoNumber".into()
-        }
-        fn inline_schema() -> bool {
-            true
-        }
-        fn json_schema(_: &mut SchemaGenerator) -> Schema {
-            json_schema!({ "anyOf": [ { "type": "string", "enum": ["auto"] }, { "type": "number" } ] })
-        }
-    }
-
-    struct NumberOrAuto;
-
-    impl Visitor<'_> for NumberOrAuto {
-        type Value = Option<f64>;
-        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-            write!(f, "a number or `auto`")
-        }
-        fn visit_f64<E: de::Error>(self, v: f64) -> Result<Self::Value, E> {
-            Ok(Some(v))
-        }
-        fn visit_i64<E: de::Error>(self, v: i64) -> Result<Self::Value, E> {
-            Ok(Some(v as f64))
-        }
-        fn visit_u64<E: de::Error>(self, v: u64) -> Result<Self::Value, E> {
-            Ok(Some(v as f64))
-        }
-        fn visit_str<E: de::Error>(self, v: &str) -> Result<Self::Value, E> {
-            let word = v.trim();
-            if word.eq_ignore_ascii_case("auto") {
-                return Ok(None);
-            }
-            match word.parse::<f64>() {
-                Ok(x) if x.is_finite() => Ok(Some(x)),
-                _ => Err(E::custom(format!("`{v}` is not a number or `auto`"))),
-            }
-        }
-    }
-
-    pub fn serialize<S: Serializer>(value: &Option<f64>, serializer: S) -> Result<S::Ok, S::Error> {
-        match value {
-            Some(v) => serializer.serialize_f64(*v),
-            None => serializer.serialize_str("auto"),
-        }
-    }
-
-    pub fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<Option<f64>, D::Error> {
-        deserializer.deserialize_any(NumberOrAuto)
-    }
-}
-
 /// Settings of `jump-lsq` (module docs). The defaults are those the issue asks for and the
 /// measurements in the README's table confirmed.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
@@ -224,14 +160,14 @@ pub struct JumpLsqSettings {
     /// Penalty weight λ: `auto` (chosen by the rule) or a number ≥ 0 (dimensionless).
     ///
     /// 0 returns the input; large values leave jumps that vary linearly along the knots.
-    #[serde(with = "auto_number")]
-    #[schemars(with = "auto_number::AutoNumber")]
+    #[serde(with = "crate::catalog::value::auto")]
+    #[schemars(with = "crate::catalog::value::AutoNumber")]
     pub lambda: Option<f64>,
     /// RMS displacement to aim at: `auto` (noise-factor × σ̂) or a length ≥ 0.
     ///
     /// Given, it overrides the rule (the discrepancy principle with this target).
-    #[serde(with = "auto_number")]
-    #[schemars(with = "auto_number::AutoNumber")]
+    #[serde(with = "crate::catalog::value::auto")]
+    #[schemars(with = "crate::catalog::value::AutoNumber")]
     pub target_sd: Option<f64>,
     /// How λ is chosen when not given: discrepancy (RMS displacement = noise-factor × σ̂) or gcv.
     pub rule: LambdaRule,
@@ -645,30 +581,34 @@ pub fn fair<const D: usize>(
     let mut last_knots = Vec::new();
     for round in 0..rounds {
         let knots = knots_of(&current, domain, closed)?;
-        let space = Space::new(knots, ends, penalty).map_err(|e| space_error(e, n, closed))?;
+        let mut space = Space::new(knots, ends, penalty).map_err(|e| space_error(e, n, closed))?;
         last_knots = space.knots().values().to_vec();
-        let mut base: Vec<Constraint<D>> = Vec::new();
-        for (i, _) in frozen.iter().enumerate().filter(|(_, f)| **f) {
-            base.push(Constraint {
-                form: space.value_form(i),
-                target: data[i],
-                point: Some(i),
-            });
-        }
-        for (i, p) in &held {
-            base.push(Constraint {
-                form: space.value_form(*i),
-                target: masked(std::slice::from_ref(p), mask)[0],
-                point: Some(*i),
-            });
-        }
-        for &(order, at_end, target) in &clamp_targets {
-            base.push(Constraint {
-                form: space.end_derivative_form(order, at_end),
-                target,
-                point: None,
-            });
-        }
+        let base_of = |space: &Space| {
+            let mut base: Vec<Constraint<D>> = Vec::new();
+            for (i, _) in frozen.iter().enumerate().filter(|(_, f)| **f) {
+                base.push(Constraint {
+                    form: space.value_form(i),
+                    target: data[i],
+                    point: Some(i),
+                });
+            }
+            for (i, p) in &held {
+                base.push(Constraint {
+                    form: space.value_form(*i),
+                    target: masked(std::slice::from_ref(p), mask)[0],
+                    point: Some(*i),
+                });
+            }
+            for &(order, at_end, target) in &clamp_targets {
+                base.push(Constraint {
+                    form: space.end_derivative_form(order, at_end),
+                    target,
+                    point: None,
+                });
+            }
+            base
+        };
+        let mut base = base_of(&space);
         let mut weights: Vec<f64> = vec![1.0; n];
         let system = System::new(&space, &data, &weights, &base);
         let lambda_max = lambda::STIFFNESS_LIMIT / system.stiffness().max(f64::MIN_POSITIVE);
@@ -760,6 +700,16 @@ pub fn fair<const D: usize>(
                         _ => {
                             // Contradictory pins: reweight every point pinned so far instead.
                             reweighting = true;
+                            // The end clamps' targets are derivatives on the knots of the
+                            // original points; on a refit's knots they contradict even the
+                            // original points, which infinite weights tend to. Reweight on
+                            // the original's knots, where that limit satisfies them.
+                            if round > 0 && !clamp_targets.is_empty() {
+                                let knots = knots_of(original, domain, closed)?;
+                                space = Space::new(knots, ends, penalty).map_err(|e| space_error(e, n, closed))?;
+                                last_knots = space.knots().values().to_vec();
+                                base = base_of(&space);
+                            }
                             for (i, _) in pins.drain(held.len()..) {
                                 weights[i] *= 2.0;
                                 raised[i] = true;

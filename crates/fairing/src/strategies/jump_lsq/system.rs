@@ -571,19 +571,9 @@ impl<'s, const D: usize> System<'s, D> {
         }
     }
 
-    /// The space.
-    pub fn space(&self) -> &'s Space {
-        self.space
-    }
-
     /// The number of rows (unknowns and multipliers).
     pub fn size(&self) -> usize {
         self.profile.size()
-    }
-
-    /// Entries stored per matrix.
-    pub fn stored(&self) -> usize {
-        self.profile.stored()
     }
 
     /// The largest ratio B_jj / A_jj over the unknowns with A_jj > 0: how much a given λ lets
