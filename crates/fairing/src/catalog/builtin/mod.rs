@@ -8,6 +8,7 @@
 //! `check`, what its report holds by its `run`.
 
 mod batten;
+mod jump_lsq;
 mod nurbs_weights;
 mod sapidis_farin;
 mod smoothing_spline;
@@ -16,6 +17,7 @@ mod surface;
 mod two_phase;
 
 pub use batten::BattenMethod;
+pub use jump_lsq::JumpLsqMethod;
 pub use nurbs_weights::NurbsWeightMethod;
 pub use sapidis_farin::SapidisFarinMethod;
 pub use smoothing_spline::SmoothingSplineMethod;
@@ -101,6 +103,15 @@ pub fn register(catalog: &mut Catalog) {
         )
         .with_paper("baseline: smoothing spline (the papers' MST)"),
         SmoothingSplineMethod,
+    );
+    catalog.register_curve(
+        MethodInfo::new(
+            "jump-lsq",
+            "least squares on the points with a penalty on their spline's third-derivative jump \
+             differences, O(n), the weight chosen from the data's own noise",
+        )
+        .with_paper("Zhang & Cheng Eq. 17 / Han et al.'s e_i as a global objective (issue 17)"),
+        JumpLsqMethod,
     );
     catalog.register_curve(
         MethodInfo::new(
