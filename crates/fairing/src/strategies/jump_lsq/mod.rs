@@ -12,9 +12,10 @@
 //!
 //! where J_i = s‴(t_i+) − s‴(t_i−) is the jump of the third derivative of the interpolating
 //! cubic spline s through P at knot i (Zhang–Cheng Eq. 17's z_i as a signed vector, and
-//! 6 e_i in Han et al.'s notation), Δ^d the d-th difference along the knots (default d = 2),
-//! h̄_r the mean length of the d + 2 spans that row r's jumps separate, relative to the
-//! median spacing h_med, and a the spacing exponent (default 8). The factor h_med³ gives J the
+//! 6 e_i in Han et al.'s notation), Δ^d the d-th difference along the knots (default d = 1;
+//! the issue proposed 2, which measured worse, see the settings), h̄_r the mean length of
+//! the d + 2 spans that row r's jumps separate, relative to the median spacing h_med, and a
+//! the spacing exponent (default 8). The factor h_med³ gives J the
 //! units of the points, so λ is dimensionless and scale-free: multiplying all coordinates
 //! (and knots) by a constant leaves the best λ unchanged.
 //!
@@ -172,10 +173,17 @@ pub struct JumpLsqSettings {
     /// How λ is chosen when not given: discrepancy (RMS displacement = noise-factor × σ̂) or gcv.
     pub rule: LambdaRule,
     /// Discrepancy rule: the target RMS displacement in units of the noise estimate σ̂.
+    ///
+    /// Default 1 (Morozov's principle). The issue's dense prototype used 1.5; measured with
+    /// the judge (README), 1.5 met the goal on as many curves but moved every curve farther
+    /// from its clean twin than the noisy input was.
     pub noise_factor: f64,
     /// Spacing exponent a: the weight of a row is h̄^a, h̄ its mean spacing over the median.
     pub exponent: f64,
     /// Difference order d of the jumps penalised (0 to 3).
+    ///
+    /// Default 1 (jumps that vary alike are fair). The issue proposed 2; measured with the
+    /// judge at noise-factor 1 (README), d = 1 met the goal on 5 of 6 test curves, d = 2 on 4.
     pub difference_order: usize,
     /// Parametric kind: re-solves on the chord-length knots of the previous result.
     pub refits: usize,
@@ -189,9 +197,9 @@ impl Default for JumpLsqSettings {
             lambda: None,
             target_sd: None,
             rule: LambdaRule::Discrepancy,
-            noise_factor: 1.5,
+            noise_factor: 1.0,
             exponent: 8.0,
-            difference_order: 2,
+            difference_order: 1,
             refits: 3,
             closed: false,
         }
@@ -732,6 +740,17 @@ pub fn fair<const D: usize>(
         }
         report.pinned = pins.len() - held.len();
         current = assemble(points, &evaluation.values, &frozen, &pins, mask);
+    }
+    if report.lambda == 0.0 {
+        // At λ = 0 the minimiser is the interpolant of the data itself: whatever the solve
+        // moved by round-off keeps the input's bits (λ → 0 returns the input exactly).
+        let scale = points.iter().map(|p| p.amax()).fold(f64::MIN_POSITIVE, f64::max);
+        for i in 0..n {
+            let inside = (points[i] - original[i]).norm() <= constraints.allowed_distance(i);
+            if !exact(i) && inside && (current[i] - points[i]).amax() <= 1e-12 * scale {
+                current[i] = points[i];
+            }
+        }
     }
     let moved: f64 = current
         .iter()
