@@ -75,10 +75,22 @@ fn sine(rng: &mut rand::rngs::StdRng) -> Result<TestCurve, Error> {
     let jitter = rand_distr::Uniform::new(-0.3, 0.3)?;
     let noise = Normal::new(0.0, 0.02)?;
     let x: Vec<f64> = (0..n)
-        .map(|i| 2.0 * PI * (i as f64 + if i == 0 || i == n - 1 { 0.0 } else { jitter.sample(rng) }) / (n - 1) as f64)
+        .map(|i| {
+            2.0 * PI
+                * (i as f64
+                    + if i == 0 || i == n - 1 {
+                        0.0
+                    } else {
+                        jitter.sample(rng)
+                    })
+                / (n - 1) as f64
+        })
         .collect();
     let clean: Vec<Vec2> = x.iter().map(|&x| Vec2::new(x, x.sin())).collect();
-    let noisy = clean.iter().map(|p| Vec2::new(p.x, p.y + noise.sample(rng))).collect();
+    let noisy = clean
+        .iter()
+        .map(|p| Vec2::new(p.x, p.y + noise.sample(rng)))
+        .collect();
     Ok(TestCurve {
         name: "sine",
         domain: CurveDomain::Function,
@@ -100,7 +112,11 @@ fn airfoil() -> Result<TestCurve, Error> {
     if noisy.len() != smooth.len() || noisy.iter().zip(&smooth).any(|(a, b)| (a.x - b.x).abs() > 1e-4) {
         return Err("r140 and r140sm upper surfaces are not at the same stations".into());
     }
-    let clean = noisy.iter().zip(&smooth).map(|(a, b)| Vec2::new(a.x, b.y)).collect();
+    let clean = noisy
+        .iter()
+        .zip(&smooth)
+        .map(|(a, b)| Vec2::new(a.x, b.y))
+        .collect();
     Ok(TestCurve {
         name: "airfoil",
         domain: CurveDomain::Function,
@@ -113,7 +129,10 @@ fn airfoil() -> Result<TestCurve, Error> {
 fn airfoil_synthetic(rng: &mut rand::rngs::StdRng) -> Result<TestCurve, Error> {
     let clean = read_csv(&data_dir().join("airfoil_fx63137/fx63137sm_upper.csv"))?;
     let noise = Normal::new(0.0, 0.0003)?;
-    let noisy = clean.iter().map(|p| Vec2::new(p.x, p.y + noise.sample(rng))).collect();
+    let noisy = clean
+        .iter()
+        .map(|p| Vec2::new(p.x, p.y + noise.sample(rng)))
+        .collect();
     Ok(TestCurve {
         name: "airfoil-synthetic",
         domain: CurveDomain::Function,
@@ -129,7 +148,9 @@ fn strophoid() -> Result<TestCurve, Error> {
         Vec2::new(10.0 * (t * t * t - t) / d, 10.0 * (t * t - 1.0) / d)
     };
     let n = 65;
-    let clean: Vec<Vec2> = (0..n).map(|k| f(-2.0 + 4.0 * k as f64 / (n - 1) as f64)).collect();
+    let clean: Vec<Vec2> = (0..n)
+        .map(|k| f(-2.0 + 4.0 * k as f64 / (n - 1) as f64))
+        .collect();
     // Exactly examples/strophoid_fig5.rs's noise.
     let mut rng = rand::rngs::StdRng::seed_from_u64(5);
     let mut interior: Vec<usize> = (1..n - 1).collect();
@@ -288,7 +309,16 @@ fn main() -> Result<(), Error> {
     std::fs::create_dir_all(&out)?;
     println!(
         "{:<18} {:>4} {:>10} {:>10} {:>9} {:>10} {:>11} {:>11} {:>10} {:>10}",
-        "curve", "n", "sigma-hat", "lambda", "rule", "rms-move", "infl b→a", "vib b→a", "rms-clean", "(noisy)"
+        "curve",
+        "n",
+        "sigma-hat",
+        "lambda",
+        "rule",
+        "rms-move",
+        "infl b→a",
+        "vib b→a",
+        "rms-clean",
+        "(noisy)"
     );
     for curve in curves()? {
         let settings = base.clone().with_closed(curve.closed);
@@ -318,7 +348,11 @@ fn main() -> Result<(), Error> {
             format!("{vb}→{va}"),
             rms(&faired.points, &curve.clean),
             rms(&curve.noisy, &curve.clean),
-            if r.lambda_limited { "  (λ at the precision limit)" } else { "" }
+            if r.lambda_limited {
+                "  (λ at the precision limit)"
+            } else {
+                ""
+            }
         );
     }
     println!("files in {}", out.display());

@@ -57,7 +57,9 @@ fn measure(mut f: impl FnMut()) -> (f64, usize) {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
-    let path = args.next().ok_or("usage: jump_lsq_speed FILE.csv [function|parametric]")?;
+    let path = args
+        .next()
+        .ok_or("usage: jump_lsq_speed FILE.csv [function|parametric]")?;
     let domain = match args.next().as_deref() {
         None | Some("function") => CurveDomain::Function,
         Some("parametric") => CurveDomain::Parametric,

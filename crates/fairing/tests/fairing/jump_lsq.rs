@@ -3,7 +3,9 @@
 //! end tangents and curvatures checked on independent splines), composition with other
 //! stages, closed curves, refusals.
 
-use curve_repr::{Curve, EndCondition, HermiteEnds, HermiteSettings, HermiteSpline, Side, SplineFunction, Vec2, Vec3};
+use curve_repr::{
+    Curve, EndCondition, HermiteEnds, HermiteSettings, HermiteSpline, Side, SplineFunction, Vec2, Vec3,
+};
 use fairing::strategies::jump_lsq::{fair, jump_penalty, jumps, JumpLsq, JumpLsqSettings, LambdaRule};
 use fairing::strategies::{CurveDomain, StrainEnergy, StrainEnergySettings};
 use fairing::{Constraints, EndClamp, Error, Pipeline};
@@ -48,7 +50,13 @@ fn clamp_strategy() -> impl Strategy<Value = EndClamp> {
 
 /// Constraints from random draws: each point fixed with probability 1/8, an optional band,
 /// optional radii (some 0, some infinite), an end clamp.
-fn constraints_from(n: usize, fixed: &[bool], band: Option<f64>, radii: Option<Vec<f64>>, clamp: EndClamp) -> Constraints {
+fn constraints_from(
+    n: usize,
+    fixed: &[bool],
+    band: Option<f64>,
+    radii: Option<Vec<f64>>,
+    clamp: EndClamp,
+) -> Constraints {
     let mut c = Constraints::default()
         .with_fixed((0..n).filter(|&i| fixed[i % fixed.len()]))
         .with_end_clamp(clamp);
@@ -75,7 +83,10 @@ fn function_end_derivatives(points: &[Vec2], order: usize) -> [f64; 2] {
     let y: Vec<f64> = points.iter().map(|p| p.y).collect();
     let s = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap();
     let n = x.len();
-    [s.jet_at(x[0], Side::Right)[order], s.jet_at(x[n - 1], Side::Left)[order]]
+    [
+        s.jet_at(x[0], Side::Right)[order],
+        s.jet_at(x[n - 1], Side::Left)[order],
+    ]
 }
 
 fn close(a: f64, b: f64, scale: f64) -> bool {
@@ -167,7 +178,15 @@ fn tolerance_band_is_held_by_pinning_without_clipping() {
     let noise: Vec<f64> = (0..60).map(|i| 0.2 * ((i * 7) as f64).sin()).collect();
     let points = function_points(&spacing, &noise);
     let settings = JumpLsqSettings::default().with_lambda(1e6);
-    let free = fair(&points, &points, &Constraints::default(), CurveDomain::Function, false, &settings).unwrap();
+    let free = fair(
+        &points,
+        &points,
+        &Constraints::default(),
+        CurveDomain::Function,
+        false,
+        &settings,
+    )
+    .unwrap();
     let largest = free
         .points
         .iter()
@@ -176,8 +195,20 @@ fn tolerance_band_is_held_by_pinning_without_clipping() {
         .fold(0.0, f64::max);
     let band = 0.5 * largest;
     let constraints = Constraints::default().with_tolerance(band);
-    let held = fair(&points, &points, &constraints, CurveDomain::Function, false, &settings).unwrap();
-    assert!(held.report.pinned > 0 && held.report.clipped == 0, "{:?}", held.report);
+    let held = fair(
+        &points,
+        &points,
+        &constraints,
+        CurveDomain::Function,
+        false,
+        &settings,
+    )
+    .unwrap();
+    assert!(
+        held.report.pinned > 0 && held.report.clipped == 0,
+        "{:?}",
+        held.report
+    );
     let worst = held
         .points
         .iter()
@@ -186,7 +217,11 @@ fn tolerance_band_is_held_by_pinning_without_clipping() {
         .fold(0.0, f64::max);
     assert!(worst <= band, "{worst} > {band}");
     // Pinned points sit on the band's edge; the others are on the spline of the solve.
-    assert!(held.points.iter().zip(&points).any(|(a, b)| (a - b).norm() == band));
+    assert!(held
+        .points
+        .iter()
+        .zip(&points)
+        .any(|(a, b)| (a - b).norm() == band));
 }
 
 #[test]
@@ -211,7 +246,13 @@ fn composes_in_a_pipeline_and_fairs_closed_curves() {
     assert_eq!(result.stages.len(), 2);
     assert_eq!(result.stages[0].name, "jump-lsq");
     assert!(result.stages[1].iterations > 0);
-    let first_stage_moves = result.trace.steps.iter().filter(|s| s.stage == 0).map(|s| s.moves.len()).sum::<usize>();
+    let first_stage_moves = result
+        .trace
+        .steps
+        .iter()
+        .filter(|s| s.stage == 0)
+        .map(|s| s.moves.len())
+        .sum::<usize>();
     assert_eq!(first_stage_moves, alone.moved.len());
 
     // A closed noisy ellipse: the periodic spline, no end; the jumps at every knot fall.
@@ -222,10 +263,13 @@ fn composes_in_a_pipeline_and_fairs_closed_curves() {
             Vec2::new(2.0 * a.cos() + 0.02 * ((i * 5) as f64).sin(), a.sin())
         })
         .collect();
-    let result = Pipeline::new(JumpLsq::<2>::new(JumpLsqSettings::default(), CurveDomain::Parametric))
-        .with_closed(true)
-        .run(ellipse.clone())
-        .unwrap();
+    let result = Pipeline::new(JumpLsq::<2>::new(
+        JumpLsqSettings::default(),
+        CurveDomain::Parametric,
+    ))
+    .with_closed(true)
+    .run(ellipse.clone())
+    .unwrap();
     let largest = |p: &[Vec2]| {
         jumps(p, CurveDomain::Parametric, true)
             .unwrap()
@@ -233,12 +277,24 @@ fn composes_in_a_pipeline_and_fairs_closed_curves() {
             .map(|j| j.norm())
             .fold(0.0, f64::max)
     };
-    assert_eq!(jumps(&result.points, CurveDomain::Parametric, true).unwrap().len(), n);
+    assert_eq!(
+        jumps(&result.points, CurveDomain::Parametric, true)
+            .unwrap()
+            .len(),
+        n
+    );
     assert!(largest(&result.points) < 0.1 * largest(&ellipse));
-    let closed = HermiteSpline::new(&result.points, &HermiteSettings::new().with_ends(HermiteEnds::Closed)).unwrap();
+    let closed = HermiteSpline::new(
+        &result.points,
+        &HermiteSettings::new().with_ends(HermiteEnds::Closed),
+    )
+    .unwrap();
     let (start, end) = closed.domain();
     for order in 0..3 {
-        let (a, b) = (closed.jet(start, Side::Right)[order], closed.jet(end, Side::Left)[order]);
+        let (a, b) = (
+            closed.jet(start, Side::Right)[order],
+            closed.jet(end, Side::Left)[order],
+        );
         assert!((a - b).norm() < 1e-9 * a.norm().max(1.0));
     }
 }
@@ -253,24 +309,60 @@ fn bad_settings_and_kinds_are_refused() {
         JumpLsqSettings::default().with_exponent(f64::NAN),
         JumpLsqSettings::default().with_target_sd(f64::INFINITY),
     ] {
-        let e = fair(&points, &points, &Constraints::default(), CurveDomain::Function, false, &settings).unwrap_err();
+        let e = fair(
+            &points,
+            &points,
+            &Constraints::default(),
+            CurveDomain::Function,
+            false,
+            &settings,
+        )
+        .unwrap_err();
         assert!(matches!(e, Error::BadParameter { .. }), "{e}");
     }
     let settings = JumpLsqSettings::default();
     // A closed function, a closed curve with clamped ends, x not increasing, too few points.
-    assert!(fair(&points, &points, &Constraints::default(), CurveDomain::Function, true, &settings).is_err());
+    assert!(fair(
+        &points,
+        &points,
+        &Constraints::default(),
+        CurveDomain::Function,
+        true,
+        &settings
+    )
+    .is_err());
     let clamped = Constraints::default().with_end_clamp(EndClamp::G1);
     let closed = JumpLsq::<2>::new(settings.clone().with_closed(true), CurveDomain::Parametric);
-    let e = Pipeline::new(closed).with_constraints(clamped).run(points.clone()).unwrap_err();
+    let e = Pipeline::new(closed)
+        .with_constraints(clamped)
+        .run(points.clone())
+        .unwrap_err();
     assert!(matches!(e, Error::ConstraintUnsupported { .. }), "{e}");
     let mut backwards = points.clone();
     backwards.swap(3, 4);
-    let e = fair(&backwards, &backwards, &Constraints::default(), CurveDomain::Function, false, &settings).unwrap_err();
+    let e = fair(
+        &backwards,
+        &backwards,
+        &Constraints::default(),
+        CurveDomain::Function,
+        false,
+        &settings,
+    )
+    .unwrap_err();
     assert!(e.to_string().contains("increas"), "{e}");
-    let e = fair(&points[..3], &points[..3], &Constraints::default(), CurveDomain::Function, false, &settings).unwrap_err();
+    let e = fair(
+        &points[..3],
+        &points[..3],
+        &Constraints::default(),
+        CurveDomain::Function,
+        false,
+        &settings,
+    )
+    .unwrap_err();
     assert!(e.to_string().contains("points"), "{e}");
     // Settings read from text: `auto` and numbers, unknown names refused.
-    let parsed: JumpLsqSettings = serde_json::from_str(r#"{"lambda": "auto", "target-sd": 0.01, "rule": "gcv"}"#).unwrap();
+    let parsed: JumpLsqSettings =
+        serde_json::from_str(r#"{"lambda": "auto", "target-sd": 0.01, "rule": "gcv"}"#).unwrap();
     assert_eq!(parsed.lambda, None);
     assert_eq!(parsed.target_sd, Some(0.01));
     assert_eq!(parsed.rule, LambdaRule::Gcv);
@@ -283,12 +375,26 @@ fn bad_settings_and_kinds_are_refused() {
 fn noise_free_points_barely_move_and_noisy_ones_move_by_the_target() {
     // A cubic has constant third differences, so σ̂ = 0: the discrepancy rule leaves it as
     // it is.
-    let cubic: Vec<Vec2> = (0..50).map(|i| {
-        let x = i as f64 * 0.1;
-        Vec2::new(x, 0.1 * x * x * x - x)
-    }).collect();
-    let faired = fair(&cubic, &cubic, &Constraints::default(), CurveDomain::Function, false, &JumpLsqSettings::default()).unwrap();
-    assert!(faired.report.sigma_hat < 1e-12 && faired.report.rms_displacement < 1e-12, "{:?}", faired.report);
+    let cubic: Vec<Vec2> = (0..50)
+        .map(|i| {
+            let x = i as f64 * 0.1;
+            Vec2::new(x, 0.1 * x * x * x - x)
+        })
+        .collect();
+    let faired = fair(
+        &cubic,
+        &cubic,
+        &Constraints::default(),
+        CurveDomain::Function,
+        false,
+        &JumpLsqSettings::default(),
+    )
+    .unwrap();
+    assert!(
+        faired.report.sigma_hat < 1e-12 && faired.report.rms_displacement < 1e-12,
+        "{:?}",
+        faired.report
+    );
     // A sine over three periods with noise: the RMS displacement is noise-factor × σ̂.
     let noisy: Vec<Vec2> = (0..300)
         .map(|i| {
@@ -296,10 +402,17 @@ fn noise_free_points_barely_move_and_noisy_ones_move_by_the_target() {
             Vec2::new(x, x.sin() + 0.01 * (((i * 7919) % 101) as f64 / 50.0 - 1.0) * 1.7)
         })
         .collect();
-    let faired = fair(&noisy, &noisy, &Constraints::default(), CurveDomain::Function, false, &JumpLsqSettings::default()).unwrap();
+    let faired = fair(
+        &noisy,
+        &noisy,
+        &Constraints::default(),
+        CurveDomain::Function,
+        false,
+        &JumpLsqSettings::default(),
+    )
+    .unwrap();
     let r = &faired.report;
     let target = r.target_sd.unwrap();
     assert!((r.rms_displacement / target - 1.0).abs() < 1e-3, "{r:?}");
     assert!((target - JumpLsqSettings::default().noise_factor * r.sigma_hat).abs() < 1e-12);
 }
-

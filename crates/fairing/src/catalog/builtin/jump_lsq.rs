@@ -84,7 +84,12 @@ impl CurveMethod for JumpLsqMethod {
 /// what held either copy holds point 0.
 fn without_repeat(constraints: &Constraints, n: usize) -> Constraints {
     let last = n - 1;
-    let mut fixed: Vec<usize> = constraints.fixed().iter().copied().filter(|&i| i < last).collect();
+    let mut fixed: Vec<usize> = constraints
+        .fixed()
+        .iter()
+        .copied()
+        .filter(|&i| i < last)
+        .collect();
     if constraints.fixed().contains(&last) {
         fixed.push(0);
     }
@@ -129,7 +134,11 @@ where
         return Err(crate::strategy_error(job.method, "no solve was made"));
     };
     if repeated {
-        let mut faired: Vec<Vector<D>> = run.points.as_dimension::<D>().map(<[_]>::to_vec).unwrap_or_default();
+        let mut faired: Vec<Vector<D>> = run
+            .points
+            .as_dimension::<D>()
+            .map(<[_]>::to_vec)
+            .unwrap_or_default();
         let first = faired[0];
         faired.push(first);
         if first != points[n - 1] {

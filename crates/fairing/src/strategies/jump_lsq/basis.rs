@@ -52,7 +52,11 @@ pub(crate) fn cubic_ders(w: &[f64; 6], u: f64) -> [[f64; 4]; 4] {
                 d = a[s2][0] * ndu[rk][pk];
             }
             let j1 = if rk >= -1 { 1 } else { (-rk) as usize };
-            let j2 = if r as isize - 1 <= pk as isize { k - 1 } else { P - r };
+            let j2 = if r as isize - 1 <= pk as isize {
+                k - 1
+            } else {
+                P - r
+            };
             for j in j1..=j2 {
                 let column = (rk + j as isize) as usize;
                 a[s2][j] = (a[s1][j] - a[s1][j - 1]) * inverse(ndu[pk + 1][column]);
@@ -167,7 +171,10 @@ mod tests {
                 for order in 0..4 {
                     for r in 0..4 {
                         let (a, b) = (ours[order][r], theirs[order][r]);
-                        assert!((a - b).abs() <= 1e-12 * (1.0 + b.abs()), "span {k} u {u} order {order} r {r}: {a} vs {b}");
+                        assert!(
+                            (a - b).abs() <= 1e-12 * (1.0 + b.abs()),
+                            "span {k} u {u} order {order} r {r}: {a} vs {b}"
+                        );
                     }
                 }
             }
@@ -192,7 +199,10 @@ mod tests {
             for order in 0..3 {
                 for r in 1..4 {
                     let (x, y) = (end[order][r], next[order][r - 1]);
-                    assert!((x - y).abs() < 1e-10 * (1.0 + x.abs()), "span {k} order {order} r {r}: {x} vs {y}");
+                    assert!(
+                        (x - y).abs() < 1e-10 * (1.0 + x.abs()),
+                        "span {k} order {order} r {r}: {x} vs {y}"
+                    );
                 }
                 // The B-spline that starts at the knot has a zero value and derivatives up to
                 // the second there.

@@ -125,7 +125,11 @@ impl<'p> Ldlt<'p> {
     /// Row-oriented (Crout) envelope LDLᵀ: for j from first(i) to i − 1,
     /// v_j = A_ij − Σ_l v_l L_jl (l from max(first(i), first(j)) to j − 1), then
     /// L_ij = v_j / d_j and d_i = A_ii − Σ_j v_j L_ij (v_j = L_ij d_j, the entries of L D).
-    pub fn factor(profile: &'p Profile, mut values: Vec<f64>, negative: &[bool]) -> Result<Self, PivotFailure> {
+    pub fn factor(
+        profile: &'p Profile,
+        mut values: Vec<f64>,
+        negative: &[bool],
+    ) -> Result<Self, PivotFailure> {
         let m = profile.size();
         for i in 0..m {
             let fi = profile.first[i];
@@ -173,10 +177,8 @@ impl<'p> Ldlt<'p> {
                 d -= *v * l;
                 *v = l;
             }
-            let ok = d.is_finite()
-                && d != 0.0
-                && (d < 0.0) == is_negative
-                && d.abs() > PIVOT_TOLERANCE * scale;
+            let ok =
+                d.is_finite() && d != 0.0 && (d < 0.0) == is_negative && d.abs() > PIVOT_TOLERANCE * scale;
             if !ok {
                 return Err(PivotFailure { row: i, pivot: d });
             }
@@ -205,8 +207,8 @@ impl<'p> Ldlt<'p> {
             }
             rhs[i] = acc;
         }
-        for i in 0..m {
-            rhs[i] = rhs[i] * (1.0 / self.values[p.start[i + 1] - 1]);
+        for (i, value) in rhs.iter_mut().enumerate().take(m) {
+            *value = *value * (1.0 / self.values[p.start[i + 1] - 1]);
         }
         // Lᵀ x = z, column by column from the last row up.
         for i in (0..m).rev() {
@@ -293,7 +295,11 @@ mod tests {
 
     /// A symmetric matrix on a random-looking envelope: positive definite with `multipliers`
     /// zero-diagonal rows interleaved (a KKT matrix), or plain positive definite.
-    fn example(m: usize, reach: usize, constraints: &[usize]) -> (Profile, Vec<f64>, Vec<bool>, DMatrix<f64>) {
+    fn example(
+        m: usize,
+        reach: usize,
+        constraints: &[usize],
+    ) -> (Profile, Vec<f64>, Vec<bool>, DMatrix<f64>) {
         example_with(m, reach, constraints, 0.1)
     }
 

@@ -121,7 +121,10 @@ pub(crate) fn discrepancy<const D: usize>(
     start: f64,
     lambda_max: f64,
 ) -> Result<Choice<D>, PivotFailure> {
-    if !(target_rss > 0.0) || !(lambda_max > LAMBDA_MIN) {
+    // NaN-aware: a NaN target or limit takes this branch too.
+    if target_rss.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater)
+        || lambda_max.partial_cmp(&LAMBDA_MIN) != Some(std::cmp::Ordering::Greater)
+    {
         let evaluation = evaluate(system, 0.0, false, false)?;
         return Ok(Choice {
             evaluation,
@@ -156,7 +159,10 @@ pub(crate) fn discrepancy<const D: usize>(
         if f < 0.0 {
             if at_max {
                 // Even λ_max moves the points less than the target.
-                let evaluation = best.map(|(_, e)| e).ok_or(PivotFailure { row: 0, pivot: f64::NAN })?;
+                let evaluation = best.map(|(_, e)| e).ok_or(PivotFailure {
+                    row: 0,
+                    pivot: f64::NAN,
+                })?;
                 return Ok(Choice {
                     evaluation,
                     limited: true,
@@ -189,7 +195,10 @@ pub(crate) fn discrepancy<const D: usize>(
             newton.max(rho_min)
         };
     }
-    let evaluation = best.map(|(_, e)| e).ok_or(PivotFailure { row: 0, pivot: f64::NAN })?;
+    let evaluation = best.map(|(_, e)| e).ok_or(PivotFailure {
+        row: 0,
+        pivot: f64::NAN,
+    })?;
     Ok(Choice {
         evaluation,
         limited: false,
@@ -219,15 +228,16 @@ pub(crate) fn gcv<const D: usize>(
     const STEP: f64 = 0.5;
     let mut evaluations = 0;
     let mut best: Option<(f64, f64, Evaluation<D>)> = None;
-    let mut consider = |rho: f64, best: &mut Option<(f64, f64, Evaluation<D>)>| -> Result<f64, PivotFailure> {
-        let e = evaluate(system, 10f64.powf(rho), false, true)?;
-        evaluations += 1;
-        let v = score(&e);
-        if best.as_ref().is_none_or(|(g, _, _)| v < *g) {
-            *best = Some((v, rho, e));
-        }
-        Ok(v)
-    };
+    let mut consider =
+        |rho: f64, best: &mut Option<(f64, f64, Evaluation<D>)>| -> Result<f64, PivotFailure> {
+            let e = evaluate(system, 10f64.powf(rho), false, true)?;
+            evaluations += 1;
+            let v = score(&e);
+            if best.as_ref().is_none_or(|(g, _, _)| v < *g) {
+                *best = Some((v, rho, e));
+            }
+            Ok(v)
+        };
     let mut rho = bottom;
     while rho <= top + 1e-9 {
         consider(rho.min(top), &mut best)?;
@@ -255,7 +265,10 @@ pub(crate) fn gcv<const D: usize>(
             fd = consider(d, &mut best)?;
         }
     }
-    let (value, rho, evaluation) = best.ok_or(PivotFailure { row: 0, pivot: f64::NAN })?;
+    let (value, rho, evaluation) = best.ok_or(PivotFailure {
+        row: 0,
+        pivot: f64::NAN,
+    })?;
     Ok(Choice {
         limited: rho >= top - 0.01,
         evaluation,

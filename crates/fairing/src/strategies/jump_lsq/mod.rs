@@ -124,7 +124,9 @@ use curve_repr::{Parametrization, Vector};
 use serde::{Deserialize, Serialize};
 
 use crate::strategies::smoothing_spline::CurveDomain;
-use crate::{project_into_ball, Constraints, EndClamp, Error, FairingState, FairingStrategy, Result, StepOutcome};
+use crate::{
+    project_into_ball, Constraints, EndClamp, Error, FairingState, FairingStrategy, Result, StepOutcome,
+};
 use basis::Knots;
 use lambda::{Choice, Evaluation};
 use system::{Constraint, Ends, Penalty, Space, SpaceError, System};
@@ -221,7 +223,11 @@ impl JumpLsqSettings {
             }
         }
         if !(self.noise_factor.is_finite() && self.noise_factor > 0.0) {
-            return bad("noise-factor", self.noise_factor.to_string(), "a finite number > 0");
+            return bad(
+                "noise-factor",
+                self.noise_factor.to_string(),
+                "a finite number > 0",
+            );
         }
         if !(self.exponent.is_finite() && (0.0..=16.0).contains(&self.exponent)) {
             return bad("exponent", self.exponent.to_string(), "a number in [0, 16]");
@@ -403,7 +409,9 @@ fn knots_of<const D: usize>(points: &[Vector<D>], domain: CurveDomain, closed: b
         }
         CurveDomain::Parametric => {
             if closed {
-                Ok(Knots::closed(Parametrization::ChordLength.closed_parameters(points)?))
+                Ok(Knots::closed(
+                    Parametrization::ChordLength.closed_parameters(points)?,
+                ))
             } else {
                 Ok(Knots::open(Parametrization::ChordLength.parameters(points)?))
             }
@@ -432,9 +440,24 @@ fn penalty_of(settings: &JumpLsqSettings) -> Penalty {
 /// knots (module docs: runout spline over x for a function, natural or periodic spline over
 /// chord lengths otherwise), at the interior knots (all knots when closed). For a function
 /// only the coordinates after x are meaningful (x's are 0). O(n).
-pub fn jumps<const D: usize>(points: &[Vector<D>], domain: CurveDomain, closed: bool) -> Result<Vec<Vector<D>>> {
-    let (space, gamma) = interpolant(points, domain, closed, Penalty { order: 0, exponent: 0.0 })?;
-    Ok(space.jump_knots().map(|i| space.jump_form(i).apply(&gamma)).collect())
+pub fn jumps<const D: usize>(
+    points: &[Vector<D>],
+    domain: CurveDomain,
+    closed: bool,
+) -> Result<Vec<Vector<D>>> {
+    let (space, gamma) = interpolant(
+        points,
+        domain,
+        closed,
+        Penalty {
+            order: 0,
+            exponent: 0.0,
+        },
+    )?;
+    Ok(space
+        .jump_knots()
+        .map(|i| space.jump_form(i).apply(&gamma))
+        .collect())
 }
 
 /// The penalty Σ_r (h̄_r^(a/2) h_med³ (Δ^d J)_r)² of the spline through `points` on their own
@@ -637,13 +660,8 @@ pub fn fair<const D: usize>(
                 evaluations: 1,
             }
         } else if let Some(t) = target {
-            lambda::discrepancy(
-                &system,
-                free as f64 * t * t,
-                lambda_previous,
-                lambda_max,
-            )
-            .map_err(pivot_error)?
+            lambda::discrepancy(&system, free as f64 * t * t, lambda_previous, lambda_max)
+                .map_err(pivot_error)?
         } else {
             lambda::gcv(&system, coordinates, lambda_max).map_err(pivot_error)?
         };
@@ -681,7 +699,12 @@ pub fn fair<const D: usize>(
                     let allowed = constraints.allowed_distance(i);
                     let distance = (candidate[i] - original[i]).norm();
                     if distance > allowed {
-                        violators.push((i, distance, allowed, pin(&candidate[i], &original[i], allowed, mask)));
+                        violators.push((
+                            i,
+                            distance,
+                            allowed,
+                            pin(&candidate[i], &original[i], allowed, mask),
+                        ));
                     }
                 }
                 if violators.is_empty() || report.band_rounds >= MAX_BAND_ROUNDS {
@@ -714,7 +737,8 @@ pub fn fair<const D: usize>(
                             // the original's knots, where that limit satisfies them.
                             if round > 0 && !clamp_targets.is_empty() {
                                 let knots = knots_of(original, domain, closed)?;
-                                space = Space::new(knots, ends, penalty).map_err(|e| space_error(e, n, closed))?;
+                                space = Space::new(knots, ends, penalty)
+                                    .map_err(|e| space_error(e, n, closed))?;
                                 last_knots = space.knots().values().to_vec();
                                 base = base_of(&space);
                             }
@@ -732,8 +756,8 @@ pub fn fair<const D: usize>(
                     }
                 }
                 let system = System::new(&space, &data, &weights, &base);
-                evaluation = lambda::evaluate(&system, evaluation.lambda, false, false)
-                    .map_err(pivot_error)?;
+                evaluation =
+                    lambda::evaluate(&system, evaluation.lambda, false, false).map_err(pivot_error)?;
                 report.solves += 1;
             }
             report.reweighted = raised.iter().filter(|r| **r).count();
@@ -759,7 +783,11 @@ pub fn fair<const D: usize>(
         .filter(|(i, _)| !exact(*i))
         .map(|(_, (a, b))| (a - b).norm_squared())
         .sum();
-    report.rms_displacement = if free > 0 { (moved / free as f64).sqrt() } else { 0.0 };
+    report.rms_displacement = if free > 0 {
+        (moved / free as f64).sqrt()
+    } else {
+        0.0
+    };
     report.clipped = (0..n)
         .filter(|&i| (current[i] - original[i]).norm() > constraints.allowed_distance(i))
         .count();
@@ -801,7 +829,12 @@ fn assemble<const D: usize>(
 /// Where a point that left its ball (radius `allowed` around `original`) is pinned: the
 /// nearest point of the ball to `candidate` among those that keep the unsmoothed coordinates
 /// (x of a function) of `candidate`.
-fn pin<const D: usize>(candidate: &Vector<D>, original: &Vector<D>, allowed: f64, mask: [bool; D]) -> Vector<D> {
+fn pin<const D: usize>(
+    candidate: &Vector<D>,
+    original: &Vector<D>,
+    allowed: f64,
+    mask: [bool; D],
+) -> Vector<D> {
     // The offset in the coordinates that cannot move uses up part of the radius.
     let fixed: f64 = (0..D)
         .filter(|&c| !mask[c])

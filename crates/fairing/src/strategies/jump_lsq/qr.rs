@@ -203,7 +203,11 @@ mod tests {
             );
         }
         for i in 0..m - 4 {
-            rows.push((i..i + 5).map(|j| (j, 1e3 * ((i + 2 * j) as f64).cos())).collect());
+            rows.push(
+                (i..i + 5)
+                    .map(|j| (j, 1e3 * ((i + 2 * j) as f64).cos()))
+                    .collect(),
+            );
         }
         let rhs: Vec<f64> = (0..rows.len()).map(|r| (r as f64 * 0.7).sin()).collect();
         let mut reach = vec![0usize; m];
@@ -228,7 +232,11 @@ mod tests {
         }
         let mut z: Vec<Vector<1>> = (0..m).map(|j| Vector::<1>::new(j as f64 - 3.0)).collect();
         qr.solve_normal(&mut z).unwrap();
-        let expected = normal.clone().lu().solve(&DVector::from_fn(m, |j, _| j as f64 - 3.0)).unwrap();
+        let expected = normal
+            .clone()
+            .lu()
+            .solve(&DVector::from_fn(m, |j, _| j as f64 - 3.0))
+            .unwrap();
         for j in 0..m {
             assert!((z[j][0] - expected[j]).abs() < 1e-9 * expected.amax(), "z_{j}");
         }

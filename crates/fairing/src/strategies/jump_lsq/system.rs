@@ -260,16 +260,14 @@ impl Space {
                 buffer[(nb - 2 + r as isize - lo) as usize] += cn * s;
             }
         }
-        let gamma = |j: isize| -> usize {
-            if j <= 1 {
-                0
-            } else if j <= nb - 1 {
-                (j - 1) as usize
-            } else {
-                n - 1
-            }
+        // β_lo's unknown: γ_0 at or before β_1, γ_{j−1} inside, γ_{n−1} from β_n on.
+        form.start = if lo <= 1 {
+            0
+        } else if lo < nb {
+            (lo - 1) as usize
+        } else {
+            n - 1
         };
-        form.start = gamma(lo);
         for j in lo..=hi {
             if j == 1 || j == nb {
                 continue;
@@ -336,7 +334,11 @@ impl Space {
     /// spans, relative to the median spacing).
     pub fn penalty_row(&self, row: usize) -> (Form, f64) {
         let d = self.penalty.order;
-        let a = if self.is_closed() { row as isize } else { row as isize + 1 };
+        let a = if self.is_closed() {
+            row as isize
+        } else {
+            row as isize + 1
+        };
         let signs = binomial_signs(d);
         let mut c = [0.0; 9];
         for (q, &w) in signs.iter().enumerate().take(d + 1) {
@@ -466,7 +468,12 @@ impl<'s, const D: usize> System<'s, D> {
         // Each multiplier goes right after the last (in order) unknown of its form.
         let mut anchored: Vec<Vec<usize>> = vec![Vec::new(); m];
         for (c, constraint) in constraints.iter().enumerate() {
-            let anchor = constraint.form.entries(m).map(|(j, _)| order(j)).max().unwrap_or(0);
+            let anchor = constraint
+                .form
+                .entries(m)
+                .map(|(j, _)| order(j))
+                .max()
+                .unwrap_or(0);
             anchored[anchor].push(c);
         }
         let total = m + constraints.len();
@@ -491,16 +498,19 @@ impl<'s, const D: usize> System<'s, D> {
                 first[q] = first[q].min(lowest);
             }
         };
-        for k in 0..m {
-            if weights[k] > 0.0 {
-                widen(&space.value_form(k), &mut first);
-            }
+        for (k, _) in weights.iter().enumerate().take(m).filter(|(_, w)| **w > 0.0) {
+            widen(&space.value_form(k), &mut first);
         }
         for r in 0..space.penalty_rows() {
             widen(&space.penalty_row(r).0, &mut first);
         }
         for (c, constraint) in constraints.iter().enumerate() {
-            let lowest = constraint.form.entries(m).map(|(j, _)| var_pos[j]).min().unwrap_or(0);
+            let lowest = constraint
+                .form
+                .entries(m)
+                .map(|(j, _)| var_pos[j])
+                .min()
+                .unwrap_or(0);
             first[con_pos[c]] = first[con_pos[c]].min(lowest);
         }
         let profile = Profile::new(first);
@@ -670,20 +680,33 @@ impl<'s, const D: usize> System<'s, D> {
                 Row::Data(k) => {
                     let form = space.value_form(k);
                     let root = self.weights[k].sqrt();
-                    qr.add_row(form.entries(m).map(|(j, c)| (order(j), c * root)), self.data[k] * root);
+                    qr.add_row(
+                        form.entries(m).map(|(j, c)| (order(j), c * root)),
+                        self.data[k] * root,
+                    );
                 }
                 Row::Penalty(r) => {
                     let (form, weight) = space.penalty_row(r);
                     let root = (lambda * weight).sqrt();
-                    qr.add_row(form.entries(m).map(|(j, c)| (order(j), c * root)), Vector::<D>::zeros());
+                    qr.add_row(
+                        form.entries(m).map(|(j, c)| (order(j), c * root)),
+                        Vector::<D>::zeros(),
+                    );
                 }
                 Row::Constraint(c) => {
                     let constraint = &self.constraints[c];
                     let form = &constraint.form;
-                    let scale = form.entries(m).map(|(j, _)| diagonal(j)).fold(0.0, f64::max).sqrt();
+                    let scale = form
+                        .entries(m)
+                        .map(|(j, _)| diagonal(j))
+                        .fold(0.0, f64::max)
+                        .sqrt();
                     let norm = form.entries(m).map(|(_, c)| c * c).sum::<f64>().sqrt();
                     let weight = CONSTRAINT_WEIGHT * scale.max(1.0) / norm;
-                    qr.add_row(form.entries(m).map(|(j, c)| (order(j), c * weight)), constraint.target * weight);
+                    qr.add_row(
+                        form.entries(m).map(|(j, c)| (order(j), c * weight)),
+                        constraint.target * weight,
+                    );
                 }
             }
         }
@@ -772,12 +795,21 @@ impl<'s, const D: usize> System<'s, D> {
         let closed = self.space.is_closed();
         let m = self.space.len();
         let qr_profile;
-        let (z, profile, position): (Vec<f64>, &Profile, Box<dyn Fn(usize) -> usize + '_>) = match &solution.factor {
-            Factor::Kkt { ldlt, .. } => (ldlt.selected_inverse(), &self.profile, Box::new(|j| self.var_pos[j])),
+        type Position<'a> = Box<dyn Fn(usize) -> usize + 'a>;
+        let (z, profile, position): (Vec<f64>, &Profile, Position<'_>) = match &solution.factor {
+            Factor::Kkt { ldlt, .. } => (
+                ldlt.selected_inverse(),
+                &self.profile,
+                Box::new(|j| self.var_pos[j]),
+            ),
             Factor::Qr(qr) => {
                 qr_profile = qr.ldlt_profile();
                 let ldlt = qr.ldlt(&qr_profile)?;
-                (ldlt.selected_inverse(), &qr_profile, Box::new(move |j| Self::order_of(closed, m, j)))
+                (
+                    ldlt.selected_inverse(),
+                    &qr_profile,
+                    Box::new(move |j| Self::order_of(closed, m, j)),
+                )
             }
         };
         let m = self.space.len();

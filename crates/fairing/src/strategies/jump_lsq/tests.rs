@@ -56,7 +56,9 @@ impl Dense {
         let n = if closed { t.len() - 1 } else { t.len() };
         let splines: Vec<HermiteSpline<1>> = (0..n)
             .map(|k| {
-                let unit: Vec<Vector<1>> = (0..n).map(|i| Vector::<1>::new(f64::from(u8::from(i == k)))).collect();
+                let unit: Vec<Vector<1>> = (0..n)
+                    .map(|i| Vector::<1>::new(f64::from(u8::from(i == k))))
+                    .collect();
                 let settings = HermiteSettings::new().with_parameters(t.clone()).with_ends(ends);
                 HermiteSpline::new(&unit, &settings).unwrap()
             })
@@ -102,11 +104,7 @@ impl Dense {
             let mean = (knot(a + order as isize + 1) - knot(a - 1)) / ((order + 2) as f64 * h_med);
             let weight = (mean.powf(exponent) * h_med.powi(6)).sqrt();
             for (q, s) in signs.iter().enumerate() {
-                let row = if self.closed {
-                    (r + q) % n
-                } else {
-                    r + q
-                };
+                let row = if self.closed { (r + q) % n } else { r + q };
                 for k in 0..n {
                     out[(r, k)] += weight * s * self.jump[(row, k)];
                 }
@@ -163,7 +161,9 @@ fn dense_solve(
             stacked[(i, i)] = 1.0;
         }
     }
-    stacked.view_mut((n, 0), (rows, n)).copy_from(&(penalty * lambda.sqrt()));
+    stacked
+        .view_mut((n, 0), (rows, n))
+        .copy_from(&(penalty * lambda.sqrt()));
     let mut rhs = DMatrix::zeros(n + rows, columns);
     for i in (0..n).filter(|&i| free[i]) {
         for col in 0..columns {
@@ -198,11 +198,20 @@ fn function_kind_equals_the_dense_solve() {
         for exponent in [0.0, 8.0] {
             let penalty = dense.penalty(order, exponent);
             for lambda in [1e-2, 1.0, 100.0] {
-                let settings = JumpLsqSettings::default().with_difference_order(2)
+                let settings = JumpLsqSettings::default()
+                    .with_difference_order(2)
                     .with_lambda(lambda)
                     .with_difference_order(order)
                     .with_exponent(exponent);
-                let faired = fair(&points, &points, &Constraints::default(), CurveDomain::Function, false, &settings).unwrap();
+                let faired = fair(
+                    &points,
+                    &points,
+                    &Constraints::default(),
+                    CurveDomain::Function,
+                    false,
+                    &settings,
+                )
+                .unwrap();
                 let expected = dense_solve(&penalty, lambda, &free, &y0, &[]);
                 assert_close(
                     &as_matrix(&faired.points, 1..2),
@@ -225,10 +234,26 @@ fn parametric_and_closed_kinds_equal_the_dense_solve() {
     let penalty = dense.penalty(2, 8.0);
     let free = vec![true; points.len()];
     for lambda in [1e-3, 0.5, 30.0] {
-        let settings = JumpLsqSettings::default().with_difference_order(2).with_lambda(lambda).with_refits(0);
-        let faired = fair(&points, &points, &Constraints::default(), CurveDomain::Parametric, false, &settings).unwrap();
+        let settings = JumpLsqSettings::default()
+            .with_difference_order(2)
+            .with_lambda(lambda)
+            .with_refits(0);
+        let faired = fair(
+            &points,
+            &points,
+            &Constraints::default(),
+            CurveDomain::Parametric,
+            false,
+            &settings,
+        )
+        .unwrap();
         let expected = dense_solve(&penalty, lambda, &free, &as_matrix(&points, 0..3), &[]);
-        assert_close(&as_matrix(&faired.points, 0..3), &expected, 1e-9, &format!("helix λ {lambda}"));
+        assert_close(
+            &as_matrix(&faired.points, 0..3),
+            &expected,
+            1e-9,
+            &format!("helix λ {lambda}"),
+        );
     }
     let points = ellipse(30);
     let t = Parametrization::ChordLength.closed_parameters(&points).unwrap();
@@ -236,12 +261,21 @@ fn parametric_and_closed_kinds_equal_the_dense_solve() {
     for order in [1, 2, 3] {
         let penalty = dense.penalty(order, 8.0);
         for lambda in [1e-3, 0.5, 30.0] {
-            let settings = JumpLsqSettings::default().with_difference_order(2)
+            let settings = JumpLsqSettings::default()
+                .with_difference_order(2)
                 .with_lambda(lambda)
                 .with_refits(0)
                 .with_difference_order(order)
                 .with_closed(true);
-            let faired = fair(&points, &points, &Constraints::default(), CurveDomain::Parametric, true, &settings).unwrap();
+            let faired = fair(
+                &points,
+                &points,
+                &Constraints::default(),
+                CurveDomain::Parametric,
+                true,
+                &settings,
+            )
+            .unwrap();
             let expected = dense_solve(&penalty, lambda, &free, &as_matrix(&points, 0..2), &[]);
             assert_close(
                 &as_matrix(&faired.points, 0..2),
@@ -284,9 +318,24 @@ fn constrained_solves_equal_the_dense_kkt_solve() {
     let constraints = Constraints::default()
         .with_fixed([7, 8, 19])
         .with_end_clamp(EndClamp::G2);
-    let settings = JumpLsqSettings::default().with_difference_order(2).with_lambda(lambda);
-    let faired = fair(&points, &points, &constraints, CurveDomain::Function, false, &settings).unwrap();
-    assert_close(&as_matrix(&faired.points, 1..2), &expected, 1e-9, "function, fixed + G2");
+    let settings = JumpLsqSettings::default()
+        .with_difference_order(2)
+        .with_lambda(lambda);
+    let faired = fair(
+        &points,
+        &points,
+        &constraints,
+        CurveDomain::Function,
+        false,
+        &settings,
+    )
+    .unwrap();
+    assert_close(
+        &as_matrix(&faired.points, 1..2),
+        &expected,
+        1e-9,
+        "function, fixed + G2",
+    );
     for &i in &fixed {
         assert_eq!(faired.points[i], points[i], "fixed point {i} moved");
     }
@@ -316,10 +365,28 @@ fn constrained_solves_equal_the_dense_kkt_solve() {
     }
     let lambda = 0.7;
     let expected = dense_solve(&penalty, lambda, &free, &y0, &rows);
-    let constraints = Constraints::default().with_fixed([5]).with_end_clamp(EndClamp::G1);
-    let settings = JumpLsqSettings::default().with_difference_order(2).with_lambda(lambda).with_refits(0);
-    let faired = fair(&points, &points, &constraints, CurveDomain::Parametric, false, &settings).unwrap();
-    assert_close(&as_matrix(&faired.points, 0..3), &expected, 1e-9, "parametric, fixed + G1");
+    let constraints = Constraints::default()
+        .with_fixed([5])
+        .with_end_clamp(EndClamp::G1);
+    let settings = JumpLsqSettings::default()
+        .with_difference_order(2)
+        .with_lambda(lambda)
+        .with_refits(0);
+    let faired = fair(
+        &points,
+        &points,
+        &constraints,
+        CurveDomain::Parametric,
+        false,
+        &settings,
+    )
+    .unwrap();
+    assert_close(
+        &as_matrix(&faired.points, 0..3),
+        &expected,
+        1e-9,
+        "parametric, fixed + G1",
+    );
     // The same in the QR path (stiffness 1e11, constraints as heavy rows): to the accuracy of
     // the dense KKT solve at that stiffness.
     let space = Space::new(
@@ -332,8 +399,21 @@ fn constrained_solves_equal_the_dense_kkt_solve() {
     let lambda = 1e11 / System::new(&space, &points, &weights, &[]).stiffness();
     let expected = dense_solve(&penalty, lambda, &free, &y0, &rows);
     let settings = settings.with_lambda(lambda);
-    let faired = fair(&points, &points, &constraints, CurveDomain::Parametric, false, &settings).unwrap();
-    assert_close(&as_matrix(&faired.points, 0..3), &expected, 1e-6, "parametric, fixed + G1, QR");
+    let faired = fair(
+        &points,
+        &points,
+        &constraints,
+        CurveDomain::Parametric,
+        false,
+        &settings,
+    )
+    .unwrap();
+    assert_close(
+        &as_matrix(&faired.points, 0..3),
+        &expected,
+        1e-6,
+        "parametric, fixed + G1, QR",
+    );
 }
 
 #[test]
@@ -383,7 +463,10 @@ fn influence_trace_equals_the_dense_trace() {
     let system = System::new(&space, &data, &weights, &constraints);
     let evaluation = lambda::evaluate(&system, lambda, true, true).unwrap();
     let ours = evaluation.trace.unwrap();
-    assert!((ours - trace).abs() < 1e-10 * trace, "trace {ours} vs dense {trace}");
+    assert!(
+        (ours - trace).abs() < 1e-10 * trace,
+        "trace {ours} vs dense {trace}"
+    );
     // The QR path's trace (λ at stiffness 1e11, constraints as heavy rows).
     let heavy = 1e11 / system.stiffness();
     let mut dense_trace = 0.0;
@@ -392,23 +475,46 @@ fn influence_trace_equals_the_dense_trace() {
         unit[(k, 0)] = 1.0;
         dense_trace += dense_solve(&penalty, heavy, &free, &unit, &rows)[(k, 0)];
     }
-    let qr_trace = lambda::evaluate(&system, heavy, false, true).unwrap().trace.unwrap();
-    assert!((qr_trace - dense_trace).abs() < 1e-6 * dense_trace, "QR trace {qr_trace} vs dense {dense_trace}");
+    let qr_trace = lambda::evaluate(&system, heavy, false, true)
+        .unwrap()
+        .trace
+        .unwrap();
+    assert!(
+        (qr_trace - dense_trace).abs() < 1e-6 * dense_trace,
+        "QR trace {qr_trace} vs dense {dense_trace}"
+    );
     // The slope dRSS/d ln λ against a central difference.
     let h: f64 = 1e-4;
     let rss = |l: f64| lambda::evaluate(&system, l, false, false).unwrap().rss;
     let numeric = (rss(lambda * h.exp()) - rss(lambda * (-h).exp())) / (2.0 * h);
     let slope = evaluation.rss_slope.unwrap();
-    assert!((slope - numeric).abs() < 1e-6 * numeric.abs(), "slope {slope} vs {numeric}");
+    assert!(
+        (slope - numeric).abs() < 1e-6 * numeric.abs(),
+        "slope {slope} vs {numeric}"
+    );
 }
 
 #[test]
 fn lambda_zero_returns_the_input_and_lambda_large_leaves_linear_jumps() {
     let points = wavy(40);
     for domain in [CurveDomain::Function, CurveDomain::Parametric] {
-        let settings = JumpLsqSettings::default().with_difference_order(2).with_lambda(0.0).with_refits(0);
-        let faired = fair(&points, &points, &Constraints::default(), domain, false, &settings).unwrap();
-        assert_eq!(faired.points, points, "{domain:?}: λ = 0 returns the input bit for bit");
+        let settings = JumpLsqSettings::default()
+            .with_difference_order(2)
+            .with_lambda(0.0)
+            .with_refits(0);
+        let faired = fair(
+            &points,
+            &points,
+            &Constraints::default(),
+            domain,
+            false,
+            &settings,
+        )
+        .unwrap();
+        assert_eq!(
+            faired.points, points,
+            "{domain:?}: λ = 0 returns the input bit for bit"
+        );
     }
     // λ → ∞: the solutions approach the least-squares fit y∞ within the null space of the
     // penalty (jumps exactly linear in the knot index), with a distance that falls like 1/λ.
@@ -421,7 +527,9 @@ fn lambda_zero_returns_the_input_and_lambda_large_leaves_linear_jumps() {
     let penalty = dense.penalty(2, 0.0);
     // Padded with zero rows to a square matrix, so that the SVD's V is complete.
     let mut square = DMatrix::zeros(penalty.ncols(), penalty.ncols());
-    square.view_mut((0, 0), (penalty.nrows(), penalty.ncols())).copy_from(&penalty);
+    square
+        .view_mut((0, 0), (penalty.nrows(), penalty.ncols()))
+        .copy_from(&penalty);
     let svd = square.svd(false, true);
     let v_t = svd.v_t.unwrap();
     let largest = svd.singular_values.max();
@@ -431,14 +539,24 @@ fn lambda_zero_returns_the_input_and_lambda_large_leaves_linear_jumps() {
         .filter(|&k| k >= svd.singular_values.len() || svd.singular_values[k] < 1e-9 * largest)
         .map(|k| v_t.row(k).transpose())
         .collect();
-    assert_eq!(null.len(), 4, "the runout spline's linear-jump space has dimension 4");
+    assert_eq!(
+        null.len(),
+        4,
+        "the runout spline's linear-jump space has dimension 4"
+    );
     let basis = DMatrix::from_columns(&null);
     let y0 = as_matrix(&points, 1..2);
     let limit = &basis * (basis.transpose() * &y0);
     let jumps_of = |y: &DMatrix<f64>| &dense.jump * y;
-    let second = |j: &DMatrix<f64>| (0..j.nrows() - 2).map(|r| (j[(r, 0)] - 2.0 * j[(r + 1, 0)] + j[(r + 2, 0)]).abs()).fold(0.0, f64::max);
+    let second = |j: &DMatrix<f64>| {
+        (0..j.nrows() - 2)
+            .map(|r| (j[(r, 0)] - 2.0 * j[(r + 1, 0)] + j[(r + 2, 0)]).abs())
+            .fold(0.0, f64::max)
+    };
     assert!(second(&jumps_of(&limit)) < 1e-9 * second(&jumps_of(&y0)));
-    let settings = JumpLsqSettings::default().with_difference_order(2).with_exponent(0.0);
+    let settings = JumpLsqSettings::default()
+        .with_difference_order(2)
+        .with_exponent(0.0);
     let space = Space::new(Knots::open(x), Ends::Runout, penalty_of(&settings)).unwrap();
     let data = masked(&points, [false, true]);
     let weights = vec![1.0; n];
@@ -446,7 +564,15 @@ fn lambda_zero_returns_the_input_and_lambda_large_leaves_linear_jumps() {
     let lambda_max = lambda::STIFFNESS_LIMIT / system.stiffness();
     let distance = |lambda: f64| {
         let settings = settings.clone().with_lambda(lambda);
-        let faired = fair(&points, &points, &Constraints::default(), CurveDomain::Function, false, &settings).unwrap();
+        let faired = fair(
+            &points,
+            &points,
+            &Constraints::default(),
+            CurveDomain::Function,
+            false,
+            &settings,
+        )
+        .unwrap();
         (as_matrix(&faired.points, 1..2) - &limit).amax()
     };
     // The 1/λ law: each decade of λ divides the distance by 10 (across the change from the
@@ -475,7 +601,9 @@ fn jumps_are_those_of_the_project_splines_on_the_points_own_knots() {
     let points = ellipse(16);
     let ours = jumps(&points, CurveDomain::Parametric, true).unwrap();
     let settings = HermiteSettings::new().with_ends(HermiteEnds::Closed);
-    let theirs = HermiteSpline::new(&points, &settings).unwrap().third_derivative_jumps();
+    let theirs = HermiteSpline::new(&points, &settings)
+        .unwrap()
+        .third_derivative_jumps();
     assert_eq!(ours.len(), theirs.len());
     for (a, b) in ours.iter().zip(&theirs) {
         assert!((a - b).norm() < 1e-9 * b.norm().max(1.0), "{a} vs {b}");
@@ -490,7 +618,12 @@ fn jumps_are_those_of_the_project_splines_on_the_points_own_knots() {
     for (i, j) in ours.iter().enumerate() {
         let k = i + 1;
         let e = (c[k + 1] - c[k]) / (x[k + 1] - x[k]) - (c[k] - c[k - 1]) / (x[k] - x[k - 1]);
-        assert!((j[1] - 6.0 * e).abs() < 1e-9 * (6.0 * e).abs().max(1.0), "J_{k} {} vs 6e {}", j[1], 6.0 * e);
+        assert!(
+            (j[1] - 6.0 * e).abs() < 1e-9 * (6.0 * e).abs().max(1.0),
+            "J_{k} {} vs 6e {}",
+            j[1],
+            6.0 * e
+        );
     }
 }
 
@@ -499,13 +632,29 @@ fn parametric_refits_report_the_penalty_on_the_outputs_own_knots() {
     let points = helix(60);
     let (mut previous_gap, mut previous_own) = (f64::INFINITY, f64::INFINITY);
     for refits in [0, 1, 3] {
-        let settings = JumpLsqSettings::default().with_difference_order(2).with_lambda(5.0).with_refits(refits);
-        let faired = fair(&points, &points, &Constraints::default(), CurveDomain::Parametric, false, &settings).unwrap();
+        let settings = JumpLsqSettings::default()
+            .with_difference_order(2)
+            .with_lambda(5.0)
+            .with_refits(refits);
+        let faired = fair(
+            &points,
+            &points,
+            &Constraints::default(),
+            CurveDomain::Parametric,
+            false,
+            &settings,
+        )
+        .unwrap();
         let own = jump_penalty(&faired.points, CurveDomain::Parametric, false, &settings).unwrap();
         assert_eq!(faired.report.penalty_after, own);
         // On the knots of the last solve the penalty differs from the own-knot one; the gap
         // closes as the refits converge.
-        let space = Space::new(Knots::open(faired.knots.clone()), Ends::Natural, penalty_of(&settings)).unwrap();
+        let space = Space::new(
+            Knots::open(faired.knots.clone()),
+            Ends::Natural,
+            penalty_of(&settings),
+        )
+        .unwrap();
         let gamma = space.interpolate(&faired.points).unwrap();
         let solve = space.penalty_of(&gamma);
         // The knots of the last solve approach the output's own chord lengths, and the
@@ -516,8 +665,14 @@ fn parametric_refits_report_the_penalty_on_the_outputs_own_knots() {
             .zip(&faired.knots)
             .map(|(a, b)| (a - b).abs())
             .fold(0.0, f64::max);
-        assert!(gap < previous_gap, "refits {refits}: knot gap {gap:e} after {previous_gap:e}");
-        assert!(own < previous_own, "refits {refits}: penalty {own:e} after {previous_own:e}");
+        assert!(
+            gap < previous_gap,
+            "refits {refits}: knot gap {gap:e} after {previous_gap:e}"
+        );
+        assert!(
+            own < previous_own,
+            "refits {refits}: penalty {own:e} after {previous_own:e}"
+        );
         assert!(solve < own, "the solve's knots carry the smaller penalty");
         previous_gap = gap;
         previous_own = own;
@@ -529,13 +684,36 @@ fn parametric_refits_report_the_penalty_on_the_outputs_own_knots() {
 fn discrepancy_rule_reaches_its_target_and_gcv_minimises() {
     let points = wavy(200);
     let target = 0.004;
-    let settings = JumpLsqSettings::default().with_difference_order(2).with_target_sd(target);
-    let faired = fair(&points, &points, &Constraints::default(), CurveDomain::Function, false, &settings).unwrap();
+    let settings = JumpLsqSettings::default()
+        .with_difference_order(2)
+        .with_target_sd(target);
+    let faired = fair(
+        &points,
+        &points,
+        &Constraints::default(),
+        CurveDomain::Function,
+        false,
+        &settings,
+    )
+    .unwrap();
     let report = &faired.report;
     assert_eq!(report.rule, "target-sd");
-    assert!((report.rms_displacement / target - 1.0).abs() < 1e-3, "{report:?}");
-    let settings = JumpLsqSettings::default().with_difference_order(2).with_rule(LambdaRule::Gcv);
-    let faired = fair(&points, &points, &Constraints::default(), CurveDomain::Function, false, &settings).unwrap();
+    assert!(
+        (report.rms_displacement / target - 1.0).abs() < 1e-3,
+        "{report:?}"
+    );
+    let settings = JumpLsqSettings::default()
+        .with_difference_order(2)
+        .with_rule(LambdaRule::Gcv);
+    let faired = fair(
+        &points,
+        &points,
+        &Constraints::default(),
+        CurveDomain::Function,
+        false,
+        &settings,
+    )
+    .unwrap();
     let chosen = faired.report.lambda;
     let g = faired.report.gcv.unwrap();
     // GCV at λ·10^±0.3 is not lower than at the chosen λ.
@@ -561,7 +739,9 @@ fn the_solves_stay_accurate_up_to_the_precision_limit() {
         let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
         let dense = Dense::new(x.clone(), HermiteEnds::ParabolicRunout);
         let penalty = dense.penalty(2, exponent);
-        let settings = JumpLsqSettings::default().with_difference_order(2).with_exponent(exponent);
+        let settings = JumpLsqSettings::default()
+            .with_difference_order(2)
+            .with_exponent(exponent);
         let space = Space::new(Knots::open(x), Ends::Runout, penalty_of(&settings)).unwrap();
         let data = masked(&points, [false, true]);
         let weights = vec![1.0; points.len()];
@@ -571,9 +751,20 @@ fn the_solves_stay_accurate_up_to_the_precision_limit() {
             let lambda = stiffness / system.stiffness();
             let reference = dense_solve(&penalty, lambda, &free, &as_matrix(&points, 1..2), &[]);
             let settings = settings.clone().with_lambda(lambda);
-            let faired = fair(&points, &points, &Constraints::default(), CurveDomain::Function, false, &settings).unwrap();
+            let faired = fair(
+                &points,
+                &points,
+                &Constraints::default(),
+                CurveDomain::Function,
+                false,
+                &settings,
+            )
+            .unwrap();
             let error = (as_matrix(&faired.points, 1..2) - &reference).amax() / reference.amax();
-            assert!(error < 1e-6, "a = {exponent}, stiffness {stiffness:e}: error {error:e}");
+            assert!(
+                error < 1e-6,
+                "a = {exponent}, stiffness {stiffness:e}: error {error:e}"
+            );
         }
     }
 }
