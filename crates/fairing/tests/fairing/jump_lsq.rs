@@ -228,7 +228,10 @@ fn tolerance_band_is_held_by_pinning_without_clipping() {
 fn composes_in_a_pipeline_and_fairs_closed_curves() {
     let noise: Vec<f64> = (0..90).map(|i| 0.03 * ((i * 13) as f64).sin()).collect();
     let points = space_points(&noise);
-    let settings = JumpLsqSettings::default();
+    // The proposal (1.5 σ̂, second differences), a heavier smoothing than the defaults.
+    let settings = JumpLsqSettings::default()
+        .with_noise_factor(1.5)
+        .with_difference_order(2);
     let constraints = Constraints::default().with_fixed([0, 29]).with_tolerance(0.2);
     let alone = Pipeline::new(JumpLsq::<3>::new(settings.clone(), CurveDomain::Parametric))
         .with_constraints(constraints.clone())
@@ -263,13 +266,10 @@ fn composes_in_a_pipeline_and_fairs_closed_curves() {
             Vec2::new(2.0 * a.cos() + 0.02 * ((i * 5) as f64).sin(), a.sin())
         })
         .collect();
-    let result = Pipeline::new(JumpLsq::<2>::new(
-        JumpLsqSettings::default(),
-        CurveDomain::Parametric,
-    ))
-    .with_closed(true)
-    .run(ellipse.clone())
-    .unwrap();
+    let result = Pipeline::new(JumpLsq::<2>::new(settings.clone(), CurveDomain::Parametric))
+        .with_closed(true)
+        .run(ellipse.clone())
+        .unwrap();
     let largest = |p: &[Vec2]| {
         jumps(p, CurveDomain::Parametric, true)
             .unwrap()
