@@ -27,11 +27,12 @@ pub mod batch;
 /// The fewest points any curve method works on: curvature-slope jumps e_i need three.
 pub const MIN_CURVE_POINTS: usize = 3;
 
-/// The default method for a kind of curve.
+/// The default method for a kind of curve: `jump-lsq` for both (issue 17: it met the goal
+/// against csaps and OpenCASCADE on 4 of the 5 required test curves, README). The papers'
+/// methods (`two-phase`, `strain-energy`, ...) stay selectable by name.
 pub fn default_method(kind: CurveKind) -> &'static str {
     match kind {
-        CurveKind::Function => "two-phase",
-        CurveKind::Parametric => "strain-energy",
+        CurveKind::Function | CurveKind::Parametric => "jump-lsq",
     }
 }
 

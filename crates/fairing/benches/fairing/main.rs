@@ -1,12 +1,14 @@
 //! The crate's benchmarks, one binary (it links once): one module per subject; filter with
 //! `cargo bench -p <crate> --bench fairing -- <group name>`.
 
+mod jump_lsq;
 mod smoothing_spline;
 mod strain_energy;
 mod surface_fairing;
 mod two_phase;
 
 criterion::criterion_main!(
+    jump_lsq::benches,
     smoothing_spline::benches,
     strain_energy::benches,
     surface_fairing::benches,

@@ -4,6 +4,8 @@
 //!   (Kjellander and Poliakoff as presets).
 //! - [`batten`]: Okada's numerical batten of Ferguson segments.
 //! - [`smoothing_spline`]: the smoothing-spline baseline (the papers' MST), csaps convention.
+//! - [`jump_lsq`]: least squares on the points with a penalty on the roughness of their
+//!   spline's third-derivative jumps, O(n), λ chosen automatically.
 //! - [`sapidis_farin`]: Sapidis–Farin knot removal and reinsertion on the cubic B-spline.
 //! - [`surface`]: Zhang–Cheng bicubic surface fairing (Kjellander's surface method as preset).
 //! - [`surface_smoothing`]: the surface baseline, a tensor-product cubic smoothing spline (csaps's `NdGridCubicSmoothingSpline`, periodic across seams).
@@ -11,6 +13,7 @@
 //! Han's two-phase method lives in [`crate::two_phase`].
 
 pub mod batten;
+pub mod jump_lsq;
 pub mod sapidis_farin;
 pub mod smoothing_spline;
 pub mod strain_energy;
@@ -18,6 +21,7 @@ pub mod surface;
 pub mod surface_smoothing;
 
 pub use batten::{Batten, BattenSettings, PositionUpdate, Tangents};
+pub use jump_lsq::{JumpLsq, JumpLsqReport, JumpLsqSettings, LambdaRule};
 pub use sapidis_farin::{KnotStep, SapidisFarin, SapidisFarinSettings, SapidisFarinStop};
 pub use smoothing_spline::{
     fit_parametric, CurveDomain, SmoothingRule, SmoothingSettings, SmoothingSpline, SmoothingSplineFairing,

@@ -4,6 +4,7 @@ mod batten;
 mod catalog;
 mod composition;
 mod contract;
+mod jump_lsq;
 mod strain_energy;
 mod surface;
 mod two_phase;

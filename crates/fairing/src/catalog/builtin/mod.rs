@@ -8,6 +8,7 @@
 //! `check`, what its report holds by its `run`.
 
 mod batten;
+mod jump_lsq;
 mod nurbs_weights;
 mod sapidis_farin;
 mod smoothing_spline;
@@ -17,6 +18,7 @@ mod surface_smoothing;
 mod two_phase;
 
 pub use batten::BattenMethod;
+pub use jump_lsq::JumpLsqMethod;
 pub use nurbs_weights::NurbsWeightMethod;
 pub use sapidis_farin::SapidisFarinMethod;
 pub use smoothing_spline::SmoothingSplineMethod;
@@ -103,6 +105,15 @@ pub fn register(catalog: &mut Catalog) {
         )
         .with_paper("baseline: smoothing spline (the papers' MST)"),
         SmoothingSplineMethod,
+    );
+    catalog.register_curve(
+        MethodInfo::new(
+            "jump-lsq",
+            "least squares on the points with a penalty on their spline's third-derivative jump \
+             differences, O(n), the weight chosen from the data's own noise",
+        )
+        .with_paper("Zhang & Cheng Eq. 17 / Han et al.'s e_i as a global objective (issue 17)"),
+        JumpLsqMethod,
     );
     catalog.register_curve(
         MethodInfo::new(

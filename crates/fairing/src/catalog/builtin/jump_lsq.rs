@@ -1,0 +1,186 @@
+//! `jump-lsq`: least squares on the points with a penalty on the roughness of their
+//! spline's third-derivative jumps ([`JumpLsq`]), λ chosen automatically. Both kinds, 2D and
+//! 3D, every constraint. A closed curve (`closed = true`, or a parametric polygon given with
+//! its first point repeated at the end) is faired with the periodic spline; the repeated
+//! copy is written back equal to the faired first point, so the polygon stays closed.
+//!
+//! The report's extras: `lambda`, `sigma` (the noise estimate σ̂), `rule` (`discrepancy`,
+//! `gcv`, `target-sd` or `given`), `target_sd`, `rms_displacement`, `lambda_limited`, `gcv`,
+//! `solves`, `refits`, `pinned`, `reweighted`, `band_rounds`, `clipped`, `penalty_before`,
+//! `penalty_after`, `closed`.
+
+use curve_repr::Vector;
+use fairness::curvature::CurvatureForm;
+use serde_json::json;
+
+use super::smoothing_spline::domain;
+use crate::catalog::{run_strategy, CurveJob, CurveKind, CurveMethod, CurvePoints, CurveRun, Settings};
+use crate::strategies::jump_lsq::{JumpLsq, JumpLsqSettings};
+use crate::strategies::CurveDomain;
+use crate::{Constraints, EndClamp, Error, Refusal, Result};
+
+impl Settings for JumpLsqSettings {
+    fn validate(&self) -> Result<()> {
+        JumpLsqSettings::validate(self)
+    }
+}
+
+/// The `jump-lsq` method.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct JumpLsqMethod;
+
+/// Whether the job's points are a closed polygon with its first point repeated at the end.
+fn repeats_first(points: &CurvePoints) -> bool {
+    fn repeated<const D: usize>(p: &[Vector<D>]) -> bool {
+        p.len() > 4 && p.first() == p.last()
+    }
+    match points {
+        CurvePoints::Planar(p) => repeated(p),
+        CurvePoints::Spatial(p) => repeated(p),
+    }
+}
+
+fn is_closed(settings: &JumpLsqSettings, job: &CurveJob) -> bool {
+    settings.closed || (job.kind == CurveKind::Parametric && repeats_first(job.points))
+}
+
+impl CurveMethod for JumpLsqMethod {
+    type Settings = JumpLsqSettings;
+
+    /// A closed curve has no ends to clamp and cannot be a function y(x).
+    fn check(&self, settings: &JumpLsqSettings, job: &CurveJob) -> Result<()> {
+        if !is_closed(settings, job) {
+            return Ok(());
+        }
+        if job.kind == CurveKind::Function {
+            return Err(Error::Refused {
+                method: job.method.to_owned(),
+                what: Refusal::Kind,
+                reason: "fairs a closed curve only as a parametric curve (x of a function increases)".into(),
+            });
+        }
+        if job.constraints.end_clamp() != EndClamp::None {
+            return Err(Error::Refused {
+                method: job.method.to_owned(),
+                what: Refusal::EndClamp,
+                reason: format!(
+                    "fairs a closed curve (periodic spline), which has no ends to clamp ({})",
+                    job.constraints.end_clamp().name()
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    fn run(&self, settings: &JumpLsqSettings, job: &CurveJob) -> Result<CurveRun> {
+        match job.points {
+            CurvePoints::Planar(p) => fit(settings, job, p),
+            CurvePoints::Spatial(p) => fit(settings, job, p),
+        }
+    }
+}
+
+/// The constraints of the first n − 1 points of a polygon whose point n − 1 repeats point 0:
+/// what held either copy holds point 0.
+fn without_repeat(constraints: &Constraints, n: usize) -> Constraints {
+    let last = n - 1;
+    let mut fixed: Vec<usize> = constraints
+        .fixed()
+        .iter()
+        .copied()
+        .filter(|&i| i < last)
+        .collect();
+    if constraints.fixed().contains(&last) {
+        fixed.push(0);
+    }
+    let mut reduced = Constraints::default()
+        .with_fixed(fixed)
+        .with_end_clamp(constraints.end_clamp());
+    if let Some(d) = constraints.tolerance() {
+        reduced = reduced.with_tolerance(d);
+    }
+    if let Some(radii) = constraints.restraining_radii() {
+        let mut r = radii[..last].to_vec();
+        r[0] = r[0].min(radii[last]);
+        reduced = reduced.with_restraining_radii(r);
+    }
+    reduced
+}
+
+fn fit<const D: usize>(settings: &JumpLsqSettings, job: &CurveJob, points: &[Vector<D>]) -> Result<CurveRun>
+where
+    Vector<D>: CurvatureForm,
+{
+    let closed = is_closed(settings, job);
+    let repeated = closed && repeats_first(job.points);
+    let n = points.len();
+    let reduced;
+    let (input, job_used) = if repeated {
+        reduced = without_repeat(job.constraints, n);
+        (
+            &points[..n - 1],
+            CurveJob {
+                constraints: &reduced,
+                ..*job
+            },
+        )
+    } else {
+        (points, *job)
+    };
+    let domain = domain(job.kind);
+    let mut strategy = JumpLsq::<D>::new(settings.clone().with_closed(closed), domain);
+    let mut run = run_strategy(Box::new(&mut strategy), input, &job_used, 1)?;
+    let Some(report) = strategy.report().cloned() else {
+        return Err(crate::strategy_error(job.method, "no solve was made"));
+    };
+    if repeated {
+        let mut faired: Vec<Vector<D>> = run
+            .points
+            .as_dimension::<D>()
+            .map(<[_]>::to_vec)
+            .unwrap_or_default();
+        let first = faired[0];
+        faired.push(first);
+        if first != points[n - 1] {
+            run.moved.push(n - 1);
+        }
+        run.points = CurvePoints::from_vectors(faired).unwrap_or(CurvePoints::Planar(Vec::new()));
+    }
+    run.curve = json!({
+        "type": "interpolating-cubic-spline",
+        "end_condition": if closed {
+            "periodic"
+        } else if domain == CurveDomain::Function {
+            "parabolic-runout"
+        } else {
+            "natural"
+        },
+        "parametrization": match domain {
+            CurveDomain::Function => "x",
+            CurveDomain::Parametric => "chord-length",
+        },
+        "closed": closed,
+    });
+    let extras = [
+        ("lambda", json!(report.lambda)),
+        ("sigma", json!(report.sigma_hat)),
+        ("rule", json!(report.rule)),
+        ("target_sd", json!(report.target_sd)),
+        ("rms_displacement", json!(report.rms_displacement)),
+        ("lambda_limited", json!(report.lambda_limited)),
+        ("gcv", json!(report.gcv)),
+        ("solves", json!(report.solves)),
+        ("refits", json!(report.refits)),
+        ("pinned", json!(report.pinned)),
+        ("reweighted", json!(report.reweighted)),
+        ("band_rounds", json!(report.band_rounds)),
+        ("clipped", json!(report.clipped)),
+        ("penalty_before", json!(report.penalty_before)),
+        ("penalty_after", json!(report.penalty_after)),
+        ("closed", json!(closed)),
+    ];
+    for (name, value) in extras {
+        run.extras.insert(name.into(), value);
+    }
+    Ok(run)
+}

@@ -1,0 +1,278 @@
+//! Choosing λ: the discrepancy principle and generalised cross-validation.
+//!
+//! Both rules evaluate the solution at trial values of λ; each evaluation is one O(n)
+//! factorisation of K(λ) = A + λB and one solve (plus one more solve for the derivative, or
+//! the selected inverse for GCV).
+//!
+//! - **Discrepancy** (Morozov): the λ whose residual sum of squares RSS(λ) equals
+//!   n_f · target² (the RMS displacement of the n_f free points equals the target, by default
+//!   `noise-factor` · σ̂). RSS grows monotonically with λ, so the root is unique; it is found
+//!   by Newton's method on f(ρ) = ln RSS(e^ρ) − ln(n_f target²), with
+//!   dRSS/dλ = 2 Σ_k w_k (y_k(λ) − y⁰_k)·dy_k/dλ and dγ/dλ = −K⁻¹[Bγ; 0] (one more solve with
+//!   the same factor), safeguarded by bisection once the root is bracketed. Typically 4–8
+//!   evaluations from λ = 1.
+//! - **GCV** (Craven & Wahba 1979): minimise V(λ) = (RSS/(n_f·c)) / (1 − tr A(λ)/n_f)² over
+//!   log λ, c the number of smoothed coordinates and tr A(λ) the trace of the influence
+//!   matrix (the same for every coordinate), read in O(n) from the selected inverse of the
+//!   factor ([`super::envelope::Ldlt::selected_inverse`]). A grid of half decades, then a
+//!   golden-section search in the best cell.
+//!
+//! **The precision limit.** The penalty rows Δ^d J of a smooth curve are tiny differences of
+//! large B-spline coefficients (their symbol grows like ω^(8+2d)), so a heavily smoothing λ
+//! makes the problem stiff: where λB outweighs A by a ratio s (the stiffness
+//! λ·max_j B_jj/A_jj, [`System::stiffness`]), the normal equations K(λ) lose about log10(s)
+//! digits in the smoothest components (measured: 5e-7 of the data's size at s = 1e10, 3e-3 at
+//! 1e14). Up to s = [`super::system::DIRECT_LIMIT`] (1e9) K(λ) is factored directly; beyond,
+//! the stacked least-squares problem is solved by Givens QR ([`super::qr`], 1e-11 at s = 1e12,
+//! 1e-7 at 1e18). Both rules search λ ≤ λ_max = [`STIFFNESS_LIMIT`] / max_j(B_jj/A_jj); a
+//! rule that wants more (dense data whose noise needs smoothing over thousands of points)
+//! stops there and says so ([`Choice::limited`]).
+
+use curve_repr::Vector;
+
+use super::envelope::PivotFailure;
+use super::system::System;
+
+/// The largest λ·max_j(B_jj/A_jj) the solve is trusted with (module docs): at this ratio the
+/// banded Givens QR ([`super::qr`]) still agrees with a dense Householder QR of the stacked
+/// least-squares problem to about 1e-7 (tested in `super::tests`).
+pub(crate) const STIFFNESS_LIMIT: f64 = 1e18;
+
+/// The smallest λ the rules try (relative to the dimensionless scale of the penalty, far
+/// below any visible effect).
+const LAMBDA_MIN: f64 = 1e-12;
+
+/// One evaluation of the solution at λ.
+#[derive(Clone, Debug)]
+pub(crate) struct Evaluation<const D: usize> {
+    /// λ.
+    pub lambda: f64,
+    /// The unknowns γ.
+    pub gamma: Vec<Vector<D>>,
+    /// The spline's values at the knots.
+    pub values: Vec<Vector<D>>,
+    /// Σ w_k |y_k − y⁰_k|².
+    pub rss: f64,
+    /// dRSS/d ln λ, when asked for.
+    pub rss_slope: Option<f64>,
+    /// tr A(λ), when asked for.
+    pub trace: Option<f64>,
+}
+
+/// Solves at `lambda`; with `slope`, also dRSS/d ln λ; with `trace`, tr A(λ). O(n).
+pub(crate) fn evaluate<const D: usize>(
+    system: &System<'_, D>,
+    lambda: f64,
+    slope: bool,
+    trace: bool,
+) -> Result<Evaluation<D>, PivotFailure> {
+    let solution = system.solve(lambda)?;
+    let values = system.values(&solution.gamma);
+    let rss = system.residual(&values);
+    let rss_slope = if slope {
+        let dgamma = system.gamma_derivative(&solution)?;
+        let dvalues = system.values(&dgamma);
+        let d: f64 = values
+            .iter()
+            .zip(system.data())
+            .zip(&dvalues)
+            .zip(system.counted())
+            .filter(|(_, c)| **c)
+            .map(|(((v, y), dv), _)| 2.0 * (v - y).dot(dv))
+            .sum();
+        Some(d * lambda)
+    } else {
+        None
+    };
+    let trace = if trace {
+        Some(system.influence_trace(&solution)?)
+    } else {
+        None
+    };
+    Ok(Evaluation {
+        lambda,
+        gamma: solution.gamma,
+        values,
+        rss,
+        rss_slope,
+        trace,
+    })
+}
+
+/// What a rule chose.
+#[derive(Clone, Debug)]
+pub(crate) struct Choice<const D: usize> {
+    /// The evaluation at the chosen λ.
+    pub evaluation: Evaluation<D>,
+    /// λ stopped at the precision limit λ_max before the rule was satisfied.
+    pub limited: bool,
+    /// GCV's value at the chosen λ (GCV rule only).
+    pub gcv: Option<f64>,
+    /// Evaluations made.
+    pub evaluations: usize,
+}
+
+/// The discrepancy rule: the λ ≤ `lambda_max` with RSS(λ) = `target_rss` (module docs),
+/// starting from `start`. A target of 0 gives λ = 0 (the input); a target beyond RSS(λ_max)
+/// gives λ_max, flagged `limited`.
+pub(crate) fn discrepancy<const D: usize>(
+    system: &System<'_, D>,
+    target_rss: f64,
+    start: f64,
+    lambda_max: f64,
+) -> Result<Choice<D>, PivotFailure> {
+    // NaN-aware: a NaN target or limit takes this branch too.
+    if target_rss.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater)
+        || lambda_max.partial_cmp(&LAMBDA_MIN) != Some(std::cmp::Ordering::Greater)
+    {
+        let evaluation = evaluate(system, 0.0, false, false)?;
+        return Ok(Choice {
+            evaluation,
+            limited: target_rss > 0.0,
+            gcv: None,
+            evaluations: 1,
+        });
+    }
+    const TOLERANCE: f64 = 1e-4;
+    const MAX_EVALUATIONS: usize = 80;
+    const LARGEST_STEP: f64 = 12.0;
+    let (rho_min, rho_max) = (LAMBDA_MIN.ln(), lambda_max.ln());
+    let goal = target_rss.ln();
+    let mut rho = start.max(LAMBDA_MIN).min(lambda_max).ln();
+    let (mut lo, mut hi): (Option<f64>, Option<f64>) = (None, None);
+    let mut best: Option<(f64, Evaluation<D>)> = None;
+    let mut evaluations = 0;
+    loop {
+        let evaluation = evaluate(system, rho.exp(), true, false)?;
+        evaluations += 1;
+        let f = evaluation.rss.ln() - goal;
+        let slope = evaluation.rss_slope.unwrap_or(0.0) / evaluation.rss;
+        let closer = best.as_ref().is_none_or(|(g, _)| f.abs() < g.abs());
+        let at_max = rho >= rho_max;
+        let at_min = rho <= rho_min;
+        if closer {
+            best = Some((f, evaluation));
+        }
+        if f.abs() <= TOLERANCE || evaluations >= MAX_EVALUATIONS {
+            break;
+        }
+        if f < 0.0 {
+            if at_max {
+                // Even λ_max moves the points less than the target.
+                let evaluation = best.map(|(_, e)| e).ok_or(PivotFailure {
+                    row: 0,
+                    pivot: f64::NAN,
+                })?;
+                return Ok(Choice {
+                    evaluation,
+                    limited: true,
+                    gcv: None,
+                    evaluations,
+                });
+            }
+            lo = Some(rho);
+        } else {
+            if at_min {
+                break;
+            }
+            hi = Some(rho);
+        }
+        let (left, right) = (lo.unwrap_or(rho_min), hi.unwrap_or(rho_max));
+        let newton = if slope.is_finite() && slope > 0.0 && f.is_finite() {
+            rho - (f / slope).clamp(-LARGEST_STEP, LARGEST_STEP)
+        } else if f < 0.0 {
+            rho + LARGEST_STEP
+        } else {
+            rho - LARGEST_STEP
+        };
+        rho = if newton > left && newton < right {
+            newton
+        } else if lo.is_some() && hi.is_some() {
+            0.5 * (left + right)
+        } else if f < 0.0 {
+            newton.min(rho_max)
+        } else {
+            newton.max(rho_min)
+        };
+    }
+    let evaluation = best.map(|(_, e)| e).ok_or(PivotFailure {
+        row: 0,
+        pivot: f64::NAN,
+    })?;
+    Ok(Choice {
+        evaluation,
+        limited: false,
+        gcv: None,
+        evaluations,
+    })
+}
+
+/// The GCV rule (module docs) over λ ∈ [1e-6, `lambda_max`]; `coordinates` is the number of
+/// smoothed coordinates c.
+pub(crate) fn gcv<const D: usize>(
+    system: &System<'_, D>,
+    coordinates: usize,
+    lambda_max: f64,
+) -> Result<Choice<D>, PivotFailure> {
+    let free: f64 = system.counted().iter().filter(|c| **c).count() as f64;
+    let score = |e: &Evaluation<D>| -> f64 {
+        let tr = e.trace.unwrap_or(0.0);
+        let denominator = 1.0 - tr / free;
+        if denominator <= 0.0 {
+            return f64::INFINITY;
+        }
+        (e.rss / (free * coordinates.max(1) as f64)) / (denominator * denominator)
+    };
+    let top = lambda_max.log10();
+    let bottom = (-6.0f64).min(top - 1.0);
+    const STEP: f64 = 0.5;
+    let mut evaluations = 0;
+    let mut best: Option<(f64, f64, Evaluation<D>)> = None;
+    let mut consider =
+        |rho: f64, best: &mut Option<(f64, f64, Evaluation<D>)>| -> Result<f64, PivotFailure> {
+            let e = evaluate(system, 10f64.powf(rho), false, true)?;
+            evaluations += 1;
+            let v = score(&e);
+            if best.as_ref().is_none_or(|(g, _, _)| v < *g) {
+                *best = Some((v, rho, e));
+            }
+            Ok(v)
+        };
+    let mut rho = bottom;
+    while rho <= top + 1e-9 {
+        consider(rho.min(top), &mut best)?;
+        rho += STEP;
+    }
+    let centre = best.as_ref().map_or(bottom, |b| b.1);
+    let ratio = (5f64.sqrt() - 1.0) / 2.0;
+    let (mut a, mut b) = ((centre - STEP).max(bottom), (centre + STEP).min(top));
+    let mut c = b - ratio * (b - a);
+    let mut d = a + ratio * (b - a);
+    let mut fc = consider(c, &mut best)?;
+    let mut fd = consider(d, &mut best)?;
+    while b - a > 0.01 {
+        if fc < fd {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - ratio * (b - a);
+            fc = consider(c, &mut best)?;
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + ratio * (b - a);
+            fd = consider(d, &mut best)?;
+        }
+    }
+    let (value, rho, evaluation) = best.ok_or(PivotFailure {
+        row: 0,
+        pivot: f64::NAN,
+    })?;
+    Ok(Choice {
+        limited: rho >= top - 0.01,
+        evaluation,
+        gcv: Some(value),
+        evaluations,
+    })
+}

@@ -1,0 +1,931 @@
+//! `jump-lsq`: least squares on the points with a penalty on the roughness of the third-
+//! derivative jumps of their own interpolating spline.
+//!
+//! # The method
+//!
+//! For points P⁰ (function kind: y over fixed x; parametric: every coordinate over knots t),
+//! find P minimising
+//!
+//! ```text
+//! Σ_i |P_i − P⁰_i|²  +  λ · Σ_r ( h̄_r^(a/2) · h_med³ · (Δ^d J)_r )²
+//! ```
+//!
+//! where J_i = s‴(t_i+) − s‴(t_i−) is the jump of the third derivative of the interpolating
+//! cubic spline s through P at knot i (Zhang–Cheng Eq. 17's z_i as a signed vector, and
+//! 6 e_i in Han et al.'s notation), Δ^d the d-th difference along the knots (default d = 1;
+//! the issue proposed 2, which measured worse, see the settings), h̄_r the mean length of
+//! the d + 2 spans that row r's jumps separate, relative to the median spacing h_med, and a
+//! the spacing exponent (default 8). The factor h_med³ gives J the
+//! units of the points, so λ is dimensionless and scale-free: multiplying all coordinates
+//! (and knots) by a constant leaves the best λ unchanged.
+//!
+//! The spline is the representation the fairness measures use: for the function kind the
+//! parabolic-runout spline of Han et al. (s‴ = 0 on the first and last spans), for the
+//! parametric kind the natural spline (s″ = 0 at both ends) over chord-length knots, for a
+//! closed curve the periodic spline over closed chord-length knots.
+//!
+//! # The banded formulation (derivation)
+//!
+//! J depends on every point: s is found from P through the spline's tridiagonal system, so in
+//! the points the penalty is J = G M⁻¹ Q P with M tridiagonal, and the normal equations
+//! (I + λ Qᵀ M⁻ᵀ GᵀΩG M⁻¹ Q) P = P⁰ are dense. Reinsch (1967) keeps such problems banded by
+//! taking the second derivatives (moments) as extra unknowns with the spline equations as
+//! constraints; for his penalty ∫s″² the multipliers can be eliminated because the penalty's
+//! matrix and the constraint's matrix coincide. For the jump penalty they do not, and the
+//! constrained system in (P, moments, multipliers) is indefinite with 3n unknowns.
+//!
+//! Instead we eliminate the other way, to a definite banded system with n unknowns. The
+//! interpolating spline is a bijection between the points and the space S of C² cubic
+//! splines on the knots with the kind's end condition (interpolation is unique), so s itself
+//! can be the unknown, with P_i = s(t_i). The problem becomes penalised least squares over S:
+//!
+//! ```text
+//! minimise Σ_i |s(t_i) − P⁰_i|² + λ Σ_r ω_r |(Δ^d J(s))_r|²,   ω_r = h̄_r^a h_med⁶.
+//! ```
+//!
+//! In a B-spline basis of S, s = Σ_j β_j N_j, every quantity is local: s(t_i) involves three
+//! coefficients, s‴ is constant on a span and combines the four B-splines of that span, so
+//! J_i involves five and (Δ^d J)_r involves 5 + d. With N the collocation matrix
+//! (N_ij = N_j(t_i)) and G the matrix of the rows Δ^d J, the normal equations
+//!
+//! ```text
+//! (Nᵀ W N + λ Gᵀ Ω G) γ = Nᵀ W P⁰,    P = N γ,
+//! ```
+//!
+//! are symmetric positive definite and banded with half-bandwidth 4 + d (W the data weights,
+//! 1 for a free point). The B-spline coefficients are exactly a null-space basis of Reinsch's
+//! spline-equation constraints, which is why the reduced system is both banded and definite.
+//! Each coordinate has the same matrix, so one factorisation serves all of them.
+//!
+//! End conditions. On open knots the clamped basis has n + 2 B-splines β_0 … β_{n+1}; the
+//! two end conditions (runout: s‴ = 0 on the first/last span; natural: s″ = 0 at t_0 and
+//! t_{n−1}) are local linear equations, solved for β_1 and β_n and substituted, leaving n
+//! unknowns γ and the band intact. On closed knots the n periodic B-splines make the matrix
+//! cyclically banded; ordering the unknowns 0, n−1, 1, n−2, … folds it into a band of twice
+//! the width (no fill at the corners).
+//!
+//! Constraints are equality constraints C γ = d on the output's spline: fixed points
+//! (s(t_i) = P_i, bit for bit at the output), G1/G2 end clamps (s′ and s″ at the ends equal to
+//! those of the spline through the ORIGINAL points on its own knots), and the points pinned by
+//! the tolerance band. They enter with Lagrange multipliers, each placed right after the last
+//! unknown it touches:
+//!
+//! ```text
+//! [ H  Cᵀ ] [γ]   [Nᵀ W P⁰]
+//! [ C  0  ] [μ] = [   d   ],   H = Nᵀ W N + λ Gᵀ Ω G.
+//! ```
+//!
+//! Every leading block of this order is [[H₁₁, C₁ᵀ], [C₁, 0]] with H₁₁ positive definite and
+//! C₁ of full row rank (distinct constraint rows), so LDLᵀ without pivoting exists, with
+//! positive pivots at the unknowns and negative ones at the multipliers; the envelope
+//! (profile) of the interleaved matrix is a band plus a few columns, and the factorisation
+//! fills only inside it ([`envelope`]). A constrained point keeps its data row: the
+//! constraint makes that term constant, so the solution does not change, and H stays
+//! positive definite for every λ ≥ 0 (N is square and invertible), λ = 0 included; its
+//! residual is left out of the discrepancy and of GCV.
+//!
+//! The solver is our own envelope LDLᵀ rather than faer's sparse Cholesky or LU: the matrix
+//! is a narrow band known in advance, so no ordering or symbolic analysis is needed, the
+//! inner loops are contiguous dot products (~m·b² flops), the same profile is refactored at
+//! every trial λ, the indefinite KKT form needs no pivoting, and the selected inverse for
+//! GCV's trace (Takahashi's recurrence, which faer does not offer) runs on the same storage.
+//!
+//! # Choosing λ, the noise estimate, the precision limit
+//!
+//! See [`lambda`] and [`noise`]. By default λ is chosen by the discrepancy principle: the RMS
+//! displacement of the free points equals `noise-factor` · σ̂, σ̂ the noise estimated from the
+//! points' third differences. `lambda` or `target-sd` override it; `rule = gcv` chooses by
+//! generalised cross-validation instead.
+//!
+//! # Parametric curves
+//!
+//! With the knots fixed J is linear in P and each solve is one linear system. The chord-length
+//! knots of the result differ from those of the input, so the parametric kind re-solves
+//! `refits` times, each time on the chord-length knots of the previous result (the data term
+//! always measures the distance to the stage's input points). The reported penalty is computed
+//! on the output's own knots ([`jump_penalty`]).
+//!
+//! # Costs
+//!
+//! O(n) time and memory per solve: assembly O(n·(4 + d)²), factorisation O(n·(5 + d)²) (four
+//! times that for closed curves), a discrepancy search 4–8 solves, GCV about 60 solves with
+//! selected inverses; the parametric kind multiplies this by 1 + `refits`.
+
+mod basis;
+mod envelope;
+mod lambda;
+mod noise;
+mod qr;
+mod system;
+#[cfg(test)]
+mod tests;
+
+use curve_repr::{Parametrization, Vector};
+use serde::{Deserialize, Serialize};
+
+use crate::strategies::smoothing_spline::CurveDomain;
+use crate::{
+    project_into_ball, Constraints, EndClamp, Error, FairingState, FairingStrategy, Result, StepOutcome,
+};
+use basis::Knots;
+use lambda::{Choice, Evaluation};
+use system::{Constraint, Ends, Penalty, Space, SpaceError, System};
+
+/// The strategy's name, as `fair methods` lists it.
+pub const NAME: &str = "jump-lsq";
+
+/// How λ is chosen when neither `lambda` nor `target-sd` is given.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum LambdaRule {
+    /// The discrepancy principle: RMS displacement = noise-factor × σ̂.
+    #[default]
+    Discrepancy,
+    /// Generalised cross-validation.
+    Gcv,
+}
+
+impl LambdaRule {
+    /// `discrepancy` or `gcv`.
+    pub fn name(self) -> &'static str {
+        match self {
+            LambdaRule::Discrepancy => "discrepancy",
+            LambdaRule::Gcv => "gcv",
+        }
+    }
+}
+
+/// Settings of `jump-lsq` (module docs). The defaults are those the issue asks for and the
+/// measurements in the README's table confirmed.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(default, deny_unknown_fields, rename_all = "kebab-case")]
+pub struct JumpLsqSettings {
+    /// Penalty weight λ: `auto` (chosen by the rule) or a number ≥ 0 (dimensionless).
+    ///
+    /// 0 returns the input; large values leave jumps that vary linearly along the knots.
+    #[serde(with = "crate::catalog::value::auto")]
+    #[schemars(with = "crate::catalog::value::AutoNumber")]
+    pub lambda: Option<f64>,
+    /// RMS displacement to aim at: `auto` (noise-factor × σ̂) or a length ≥ 0.
+    ///
+    /// Given, it overrides the rule (the discrepancy principle with this target).
+    #[serde(with = "crate::catalog::value::auto")]
+    #[schemars(with = "crate::catalog::value::AutoNumber")]
+    pub target_sd: Option<f64>,
+    /// How λ is chosen when not given: discrepancy (RMS displacement = noise-factor × σ̂) or gcv.
+    pub rule: LambdaRule,
+    /// Discrepancy rule: the target RMS displacement in units of the noise estimate σ̂.
+    ///
+    /// Default 1 (Morozov's principle). The issue's dense prototype used 1.5; measured with
+    /// the judge (README), 1.5 met the goal on as many curves but moved every curve farther
+    /// from its clean twin than the noisy input was.
+    pub noise_factor: f64,
+    /// Spacing exponent a: the weight of a row is h̄^a, h̄ its mean spacing over the median.
+    pub exponent: f64,
+    /// Difference order d of the jumps penalised (0 to 3).
+    ///
+    /// Default 1 (jumps that vary alike are fair). The issue proposed 2; measured with the
+    /// judge at noise-factor 1 (README), d = 1 met the goal on 5 of 6 test curves, d = 2 on 4.
+    pub difference_order: usize,
+    /// Parametric kind: re-solves on the chord-length knots of the previous result.
+    pub refits: usize,
+    /// The points form a closed curve (the last joins the first): a periodic spline.
+    pub closed: bool,
+}
+
+impl Default for JumpLsqSettings {
+    fn default() -> Self {
+        Self {
+            lambda: None,
+            target_sd: None,
+            rule: LambdaRule::Discrepancy,
+            noise_factor: 1.0,
+            exponent: 8.0,
+            difference_order: 1,
+            refits: 3,
+            closed: false,
+        }
+    }
+}
+
+impl JumpLsqSettings {
+    /// Refuses values out of range with [`Error::BadParameter`].
+    pub fn validate(&self) -> Result<()> {
+        let bad = |name, value: String, reason| Err(Error::BadParameter { name, value, reason });
+        if let Some(l) = self.lambda {
+            if !(l.is_finite() && l >= 0.0) {
+                return bad("lambda", l.to_string(), "λ is a finite number ≥ 0 (or auto)");
+            }
+        }
+        if let Some(t) = self.target_sd {
+            if !(t.is_finite() && t >= 0.0) {
+                return bad("target-sd", t.to_string(), "a finite length ≥ 0 (or auto)");
+            }
+        }
+        if !(self.noise_factor.is_finite() && self.noise_factor > 0.0) {
+            return bad(
+                "noise-factor",
+                self.noise_factor.to_string(),
+                "a finite number > 0",
+            );
+        }
+        if !(self.exponent.is_finite() && (0.0..=16.0).contains(&self.exponent)) {
+            return bad("exponent", self.exponent.to_string(), "a number in [0, 16]");
+        }
+        if self.difference_order > 3 {
+            return bad(
+                "difference-order",
+                self.difference_order.to_string(),
+                "0, 1, 2 or 3",
+            );
+        }
+        if self.refits > 100 {
+            return bad("refits", self.refits.to_string(), "at most 100");
+        }
+        Ok(())
+    }
+
+    /// Sets λ.
+    pub fn with_lambda(mut self, lambda: f64) -> Self {
+        self.lambda = Some(lambda);
+        self
+    }
+
+    /// Sets the target RMS displacement.
+    pub fn with_target_sd(mut self, target: f64) -> Self {
+        self.target_sd = Some(target);
+        self
+    }
+
+    /// Sets the rule.
+    pub fn with_rule(mut self, rule: LambdaRule) -> Self {
+        self.rule = rule;
+        self
+    }
+
+    /// Sets the noise factor of the discrepancy rule.
+    pub fn with_noise_factor(mut self, factor: f64) -> Self {
+        self.noise_factor = factor;
+        self
+    }
+
+    /// Sets the spacing exponent a.
+    pub fn with_exponent(mut self, exponent: f64) -> Self {
+        self.exponent = exponent;
+        self
+    }
+
+    /// Sets the difference order d.
+    pub fn with_difference_order(mut self, order: usize) -> Self {
+        self.difference_order = order;
+        self
+    }
+
+    /// Sets the number of parametric refits.
+    pub fn with_refits(mut self, refits: usize) -> Self {
+        self.refits = refits;
+        self
+    }
+
+    /// Marks the curve closed.
+    pub fn with_closed(mut self, closed: bool) -> Self {
+        self.closed = closed;
+        self
+    }
+}
+
+/// What one run chose and measured (the report's extras).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub struct JumpLsqReport {
+    /// The λ used (of the last solve).
+    pub lambda: f64,
+    /// How it was chosen: `given`, `discrepancy`, `target-sd` or `gcv`.
+    pub rule: String,
+    /// The noise estimate σ̂ of the input points.
+    pub sigma_hat: f64,
+    /// The RMS displacement aimed at (discrepancy rules).
+    pub target_sd: Option<f64>,
+    /// The RMS displacement of the free points reached.
+    pub rms_displacement: f64,
+    /// GCV's value at λ (GCV rule).
+    pub gcv: Option<f64>,
+    /// λ stopped at the precision limit before the rule was satisfied.
+    pub lambda_limited: bool,
+    /// Solves made (all trial λ of all rounds).
+    pub solves: usize,
+    /// Parametric refits made.
+    pub refits: usize,
+    /// Points pinned to the edge of their tolerance band or restraining radius.
+    pub pinned: usize,
+    /// Points whose data weight was raised instead (when pins would contradict the other
+    /// constraints, e.g. an end clamp on a curve with every point pinned).
+    pub reweighted: usize,
+    /// Rounds of the tolerance band's active set.
+    pub band_rounds: usize,
+    /// Points still outside their band after the last round (projected, then off the spline).
+    pub clipped: usize,
+    /// The penalty Σ (h̄^(a/2) h_med³ Δ^d J)² of the input, on its own knots.
+    pub penalty_before: f64,
+    /// The same of the output, on its own knots.
+    pub penalty_after: f64,
+}
+
+/// The faired points and the report of one run of [`fair`].
+#[derive(Clone, Debug)]
+pub struct Faired<const D: usize> {
+    /// The faired points (fixed and clamped points bit for bit).
+    pub points: Vec<Vector<D>>,
+    /// What was chosen and measured.
+    pub report: JumpLsqReport,
+    /// The knots of the last solve: the output's spline for the end clamps (the output's own
+    /// chord-length knots differ slightly for the parametric kind).
+    pub knots: Vec<f64>,
+}
+
+/// Rounds of the tolerance band's active set at most.
+const MAX_BAND_ROUNDS: usize = 100;
+
+fn space_error(error: SpaceError, n: usize, closed: bool) -> Error {
+    match error {
+        SpaceError::TooFewPoints { needed } => curve_repr::Error::TooFewPoints {
+            what: if closed {
+                "a closed jump-lsq curve"
+            } else {
+                "a jump-lsq curve"
+            },
+            needed,
+            got: n,
+        }
+        .into(),
+        SpaceError::Degenerate => Error::Strategy {
+            strategy: NAME.into(),
+            reason: "the knots are degenerate (an end condition cannot be solved)".into(),
+        },
+    }
+}
+
+fn pivot_error(failure: envelope::PivotFailure) -> Error {
+    Error::Strategy {
+        strategy: NAME.into(),
+        reason: format!(
+            "the system is singular at row {} (pivot {:e}): constraints that contradict each \
+             other or leave no freedom (e.g. end clamps and fixed points on too few points)",
+            failure.row, failure.pivot
+        ),
+    }
+}
+
+/// The coordinates the kind smooths: all for parametric, all but x (coordinate 0) for a
+/// function.
+fn smoothed<const D: usize>(domain: CurveDomain) -> [bool; D] {
+    std::array::from_fn(|c| domain == CurveDomain::Parametric || c > 0)
+}
+
+fn masked<const D: usize>(points: &[Vector<D>], mask: [bool; D]) -> Vec<Vector<D>> {
+    points
+        .iter()
+        .map(|p| Vector::<D>::from_fn(|c, _| if mask[c] { p[c] } else { 0.0 }))
+        .collect()
+}
+
+/// The knots of `points` for the kind: x (strictly increasing) for a function, chord lengths
+/// otherwise (closed: with the closing chord).
+fn knots_of<const D: usize>(points: &[Vector<D>], domain: CurveDomain, closed: bool) -> Result<Knots> {
+    match domain {
+        CurveDomain::Function => {
+            let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
+            curve_repr::vector::check_finite_values("x", &x)?;
+            if let Some(index) = x.windows(2).position(|w| w[1] - w[0] <= 0.0) {
+                return Err(curve_repr::Error::NotIncreasing {
+                    what: "x of a function",
+                    index: index + 1,
+                    previous: x[index],
+                    value: x[index + 1],
+                }
+                .into());
+            }
+            Ok(Knots::open(x))
+        }
+        CurveDomain::Parametric => {
+            if closed {
+                Ok(Knots::closed(
+                    Parametrization::ChordLength.closed_parameters(points)?,
+                ))
+            } else {
+                Ok(Knots::open(Parametrization::ChordLength.parameters(points)?))
+            }
+        }
+    }
+}
+
+fn ends_of(domain: CurveDomain, closed: bool) -> Ends {
+    if closed {
+        Ends::Periodic
+    } else if domain == CurveDomain::Function {
+        Ends::Runout
+    } else {
+        Ends::Natural
+    }
+}
+
+fn penalty_of(settings: &JumpLsqSettings) -> Penalty {
+    Penalty {
+        order: settings.difference_order,
+        exponent: settings.exponent,
+    }
+}
+
+/// The third-derivative jumps J_i of the interpolating spline through `points` on their own
+/// knots (module docs: runout spline over x for a function, natural or periodic spline over
+/// chord lengths otherwise), at the interior knots (all knots when closed). For a function
+/// only the coordinates after x are meaningful (x's are 0). O(n).
+pub fn jumps<const D: usize>(
+    points: &[Vector<D>],
+    domain: CurveDomain,
+    closed: bool,
+) -> Result<Vec<Vector<D>>> {
+    let (space, gamma) = interpolant(
+        points,
+        domain,
+        closed,
+        Penalty {
+            order: 0,
+            exponent: 0.0,
+        },
+    )?;
+    Ok(space
+        .jump_knots()
+        .map(|i| space.jump_form(i).apply(&gamma))
+        .collect())
+}
+
+/// The penalty Σ_r (h̄_r^(a/2) h_med³ (Δ^d J)_r)² of the spline through `points` on their own
+/// knots, with the exponent a and order d of `settings`. O(n).
+pub fn jump_penalty<const D: usize>(
+    points: &[Vector<D>],
+    domain: CurveDomain,
+    closed: bool,
+    settings: &JumpLsqSettings,
+) -> Result<f64> {
+    let (space, gamma) = interpolant(points, domain, closed, penalty_of(settings))?;
+    Ok(space.penalty_of(&gamma))
+}
+
+fn interpolant<const D: usize>(
+    points: &[Vector<D>],
+    domain: CurveDomain,
+    closed: bool,
+    penalty: Penalty,
+) -> Result<(Space, Vec<Vector<D>>)> {
+    check_kind::<D>(domain, closed)?;
+    let knots = knots_of(points, domain, closed)?;
+    let n = points.len();
+    let space = Space::new(knots, ends_of(domain, closed), penalty).map_err(|e| space_error(e, n, closed))?;
+    let data = masked(points, smoothed(domain));
+    let gamma = space.interpolate(&data).map_err(pivot_error)?;
+    Ok((space, gamma))
+}
+
+fn check_kind<const D: usize>(domain: CurveDomain, closed: bool) -> Result<()> {
+    if domain == CurveDomain::Function && D < 2 {
+        return Err(crate::state::strategy_error(
+            NAME,
+            "a function y(x) needs points with at least 2 coordinates",
+        ));
+    }
+    if domain == CurveDomain::Function && closed {
+        return Err(Error::ConstraintUnsupported {
+            strategy: NAME.into(),
+            constraint: "a closed curve of the function kind (x must increase)".into(),
+        });
+    }
+    Ok(())
+}
+
+/// Fairs `points` (the stage's input) with `settings`, honouring `constraints` against
+/// `original` (the pipeline's input, from which the tolerance band, radii and end clamps are
+/// measured). The library entry point of the method; [`JumpLsq`] is the same as a
+/// [`FairingStrategy`]. O(n) per solve (module docs).
+///
+/// Errors: bad settings, too few points (4), x not increasing (function kind), repeated
+/// consecutive points (parametric kind), a closed function or a closed curve with end clamps,
+/// constraints that leave the system singular.
+pub fn fair<const D: usize>(
+    points: &[Vector<D>],
+    original: &[Vector<D>],
+    constraints: &Constraints,
+    domain: CurveDomain,
+    closed: bool,
+    settings: &JumpLsqSettings,
+) -> Result<Faired<D>> {
+    settings.validate()?;
+    check_kind::<D>(domain, closed)?;
+    let n = points.len();
+    if original.len() != n {
+        return Err(curve_repr::Error::LengthMismatch {
+            what: "original points",
+            expected: n,
+            got: original.len(),
+        }
+        .into());
+    }
+    curve_repr::vector::check_finite(points)?;
+    constraints.validate(n)?;
+    let clamp = constraints.end_clamp();
+    if closed && clamp != EndClamp::None {
+        return Err(Error::ConstraintUnsupported {
+            strategy: NAME.into(),
+            constraint: format!("end clamp {} on a closed curve, which has no ends", clamp.name()),
+        });
+    }
+    let mask = smoothed::<D>(domain);
+    let ends = ends_of(domain, closed);
+    let penalty = penalty_of(settings);
+    let data = masked(points, mask);
+    let frozen: Vec<bool> = (0..n).map(|i| !constraints.is_movable(i, n)).collect();
+    // End clamps beyond G0: derivatives of the spline through the ORIGINAL points. With the
+    // runout ends the first and last spans are parabolas, which position, slope and
+    // curvature at the end determine: G2 there holds points 1 and n − 2 at the original's
+    // values and the end slopes (the same conditions, without a redundant row).
+    let mut held: Vec<(usize, Vector<D>)> = Vec::new();
+    let clamp_targets: Vec<(usize, bool, Vector<D>)> = match clamp.order() {
+        Some(order) if order >= 1 => {
+            let (space, gamma) = interpolant(original, domain, closed, penalty)?;
+            if order >= 2 && ends == Ends::Runout {
+                for i in [1, n - 2] {
+                    if !frozen[i] {
+                        let mut p = original[i];
+                        for (c, keep) in mask.iter().enumerate() {
+                            if !keep {
+                                p[c] = points[i][c];
+                            }
+                        }
+                        held.push((i, p));
+                    }
+                }
+            }
+            // The natural spline's end curvature is 0 before and after: G2 is G1 there.
+            [false, true]
+                .map(|at_end| (1, at_end, space.end_derivative_form(1, at_end).apply(&gamma)))
+                .to_vec()
+        }
+        _ => Vec::new(),
+    };
+    let penalty_before = jump_penalty(points, domain, closed, settings)?;
+    let sigma_hat = noise::noise(points, mask, closed);
+    let coordinates = mask.iter().filter(|m| **m).count();
+    let exact = |i: usize| frozen[i] || held.iter().any(|(j, _)| *j == i);
+    let free = (0..n).filter(|&i| !exact(i)).count();
+    let (rule, target) = match (settings.lambda, settings.target_sd) {
+        (Some(_), _) => ("given", None),
+        (None, Some(t)) => ("target-sd", Some(t)),
+        (None, None) => match settings.rule {
+            LambdaRule::Discrepancy => ("discrepancy", Some(settings.noise_factor * sigma_hat)),
+            LambdaRule::Gcv => ("gcv", None),
+        },
+    };
+    let rounds = if domain == CurveDomain::Parametric {
+        settings.refits + 1
+    } else {
+        1
+    };
+    let mut current: Vec<Vector<D>> = points.to_vec();
+    let mut lambda_previous = 1.0;
+    let mut report = JumpLsqReport {
+        lambda: 0.0,
+        rule: rule.into(),
+        sigma_hat,
+        target_sd: target,
+        rms_displacement: 0.0,
+        gcv: None,
+        lambda_limited: false,
+        solves: 0,
+        refits: rounds - 1,
+        pinned: 0,
+        reweighted: 0,
+        band_rounds: 0,
+        clipped: 0,
+        penalty_before,
+        penalty_after: 0.0,
+    };
+    let mut last_knots = Vec::new();
+    for round in 0..rounds {
+        let knots = knots_of(&current, domain, closed)?;
+        let mut space = Space::new(knots, ends, penalty).map_err(|e| space_error(e, n, closed))?;
+        last_knots = space.knots().values().to_vec();
+        let base_of = |space: &Space| {
+            let mut base: Vec<Constraint<D>> = Vec::new();
+            for (i, _) in frozen.iter().enumerate().filter(|(_, f)| **f) {
+                base.push(Constraint {
+                    form: space.value_form(i),
+                    target: data[i],
+                    point: Some(i),
+                });
+            }
+            for (i, p) in &held {
+                base.push(Constraint {
+                    form: space.value_form(*i),
+                    target: masked(std::slice::from_ref(p), mask)[0],
+                    point: Some(*i),
+                });
+            }
+            for &(order, at_end, target) in &clamp_targets {
+                base.push(Constraint {
+                    form: space.end_derivative_form(order, at_end),
+                    target,
+                    point: None,
+                });
+            }
+            base
+        };
+        let mut base = base_of(&space);
+        let mut weights: Vec<f64> = vec![1.0; n];
+        let system = System::new(&space, &data, &weights, &base);
+        let lambda_max = lambda::STIFFNESS_LIMIT / system.stiffness().max(f64::MIN_POSITIVE);
+        let choice: Choice<D> = if space.penalty_rows() == 0 {
+            let evaluation = lambda::evaluate(&system, 0.0, false, false).map_err(pivot_error)?;
+            Choice {
+                evaluation,
+                limited: false,
+                gcv: None,
+                evaluations: 1,
+            }
+        } else if let Some(l) = settings.lambda {
+            let evaluation = lambda::evaluate(&system, l, false, false).map_err(pivot_error)?;
+            Choice {
+                evaluation,
+                limited: false,
+                gcv: None,
+                evaluations: 1,
+            }
+        } else if let Some(t) = target {
+            lambda::discrepancy(&system, free as f64 * t * t, lambda_previous, lambda_max)
+                .map_err(pivot_error)?
+        } else {
+            lambda::gcv(&system, coordinates, lambda_max).map_err(pivot_error)?
+        };
+        if !system.holds(&choice.evaluation.gamma, &base) {
+            return Err(crate::state::strategy_error(
+                NAME,
+                "the constraints contradict each other (fixed points, end clamps and the \
+                 spline's end conditions cannot all hold)",
+            ));
+        }
+        report.solves += choice.evaluations;
+        report.lambda = choice.evaluation.lambda;
+        report.lambda_limited = choice.limited;
+        report.gcv = choice.gcv;
+        lambda_previous = choice.evaluation.lambda.max(1e-12);
+        let mut evaluation: Evaluation<D> = choice.evaluation;
+        drop(system);
+        // The tolerance band and radii, in the last round: pin every point that left its ball
+        // to the ball's surface and re-solve at the same λ, until none is outside. Pins can
+        // contradict the other constraints (an end slope on a curve whose every point is
+        // pinned); then the pins are dropped and the data weights of the points that left
+        // their balls are raised instead, by 2·(distance/allowed)² per round, which always
+        // converges (at infinite weight a point stays at its input, inside its ball).
+        let mut pins: Vec<(usize, Vector<D>)> = held.clone();
+        if round + 1 == rounds {
+            let mut reweighting = false;
+            let mut raised = vec![false; n];
+            loop {
+                let candidate = assemble(points, &evaluation.values, &frozen, &pins, mask);
+                let mut violators = Vec::new();
+                for i in 0..n {
+                    if exact(i) || pins.iter().any(|(j, _)| *j == i) {
+                        continue;
+                    }
+                    let allowed = constraints.allowed_distance(i);
+                    let distance = (candidate[i] - original[i]).norm();
+                    if distance > allowed {
+                        violators.push((
+                            i,
+                            distance,
+                            allowed,
+                            pin(&candidate[i], &original[i], allowed, mask),
+                        ));
+                    }
+                }
+                if violators.is_empty() || report.band_rounds >= MAX_BAND_ROUNDS {
+                    break;
+                }
+                report.band_rounds += 1;
+                if !reweighting {
+                    pins.extend(violators.iter().map(|v| (v.0, v.3)));
+                    let mut with_pins = base.clone();
+                    for (i, target) in pins.iter().skip(held.len()) {
+                        with_pins.push(Constraint {
+                            form: space.value_form(*i),
+                            target: masked(std::slice::from_ref(target), mask)[0],
+                            point: Some(*i),
+                        });
+                    }
+                    let system = System::new(&space, &data, &weights, &with_pins);
+                    report.solves += 1;
+                    match lambda::evaluate(&system, evaluation.lambda, false, false) {
+                        Ok(e) if system.holds(&e.gamma, &with_pins) => {
+                            evaluation = e;
+                            continue;
+                        }
+                        _ => {
+                            // Contradictory pins: reweight every point pinned so far instead.
+                            reweighting = true;
+                            // The end clamps' targets are derivatives on the knots of the
+                            // original points; on a refit's knots they contradict even the
+                            // original points, which infinite weights tend to. Reweight on
+                            // the original's knots, where that limit satisfies them.
+                            if round > 0 && !clamp_targets.is_empty() {
+                                let knots = knots_of(original, domain, closed)?;
+                                space = Space::new(knots, ends, penalty)
+                                    .map_err(|e| space_error(e, n, closed))?;
+                                last_knots = space.knots().values().to_vec();
+                                base = base_of(&space);
+                            }
+                            for (i, _) in pins.drain(held.len()..) {
+                                weights[i] *= 2.0;
+                                raised[i] = true;
+                            }
+                        }
+                    }
+                } else {
+                    for &(i, distance, allowed, _) in &violators {
+                        // allowed > 0: a point with nothing allowed is frozen, never a violator.
+                        weights[i] *= 2.0 * (distance / allowed).powi(2);
+                        raised[i] = true;
+                    }
+                }
+                let system = System::new(&space, &data, &weights, &base);
+                evaluation =
+                    lambda::evaluate(&system, evaluation.lambda, false, false).map_err(pivot_error)?;
+                report.solves += 1;
+            }
+            report.reweighted = raised.iter().filter(|r| **r).count();
+        }
+        report.pinned = pins.len() - held.len();
+        current = assemble(points, &evaluation.values, &frozen, &pins, mask);
+    }
+    if report.lambda == 0.0 {
+        // At λ = 0 the minimiser is the interpolant of the data itself: whatever the solve
+        // moved by round-off keeps the input's bits (λ → 0 returns the input exactly).
+        let scale = points.iter().map(|p| p.amax()).fold(f64::MIN_POSITIVE, f64::max);
+        for i in 0..n {
+            let inside = (points[i] - original[i]).norm() <= constraints.allowed_distance(i);
+            if !exact(i) && inside && (current[i] - points[i]).amax() <= 1e-12 * scale {
+                current[i] = points[i];
+            }
+        }
+    }
+    let moved: f64 = current
+        .iter()
+        .zip(points)
+        .enumerate()
+        .filter(|(i, _)| !exact(*i))
+        .map(|(_, (a, b))| (a - b).norm_squared())
+        .sum();
+    report.rms_displacement = if free > 0 {
+        (moved / free as f64).sqrt()
+    } else {
+        0.0
+    };
+    report.clipped = (0..n)
+        .filter(|&i| (current[i] - original[i]).norm() > constraints.allowed_distance(i))
+        .count();
+    report.penalty_after = jump_penalty(&current, domain, closed, settings)?;
+    Ok(Faired {
+        points: current,
+        report,
+        knots: last_knots,
+    })
+}
+
+/// The output points: frozen points as given, pinned points at their pins, the others at the
+/// spline's values (x kept for a function).
+fn assemble<const D: usize>(
+    points: &[Vector<D>],
+    values: &[Vector<D>],
+    frozen: &[bool],
+    pins: &[(usize, Vector<D>)],
+    mask: [bool; D],
+) -> Vec<Vector<D>> {
+    let mut out: Vec<Vector<D>> = points
+        .iter()
+        .zip(values)
+        .zip(frozen)
+        .map(|((p, v), f)| {
+            if *f {
+                *p
+            } else {
+                Vector::<D>::from_fn(|c, _| if mask[c] { v[c] } else { p[c] })
+            }
+        })
+        .collect();
+    for (i, target) in pins {
+        out[*i] = *target;
+    }
+    out
+}
+
+/// Where a point that left its ball (radius `allowed` around `original`) is pinned: the
+/// nearest point of the ball to `candidate` among those that keep the unsmoothed coordinates
+/// (x of a function) of `candidate`.
+fn pin<const D: usize>(
+    candidate: &Vector<D>,
+    original: &Vector<D>,
+    allowed: f64,
+    mask: [bool; D],
+) -> Vector<D> {
+    // The offset in the coordinates that cannot move uses up part of the radius.
+    let fixed: f64 = (0..D)
+        .filter(|&c| !mask[c])
+        .map(|c| (candidate[c] - original[c]).powi(2))
+        .sum();
+    let radius = (allowed * allowed - fixed).max(0.0).sqrt();
+    let centre = Vector::<D>::from_fn(|c, _| if mask[c] { original[c] } else { candidate[c] });
+    project_into_ball(&centre, radius, candidate)
+}
+
+/// `jump-lsq` as a [`FairingStrategy`]: one step that moves every free point to the faired
+/// position ([`fair`]), then reports done with the penalty of the output as its criterion.
+///
+/// Constraints: fixed points, clamped ends and points with a zero allowed distance are
+/// interpolated exactly; the tolerance band and restraining radii are held by pinning the
+/// points that leave their ball to its surface and re-solving (an active set that only grows;
+/// any point still outside after 100 rounds is projected by
+/// [`FairingState::move_point`] and counted in the report's `clipped`); G1/G2 end clamps are
+/// equality constraints on the end derivatives of the output's spline (for the parametric
+/// kind on the knots of the last solve, [`Faired::knots`]). Closed curves use the periodic
+/// spline (from the state or `settings.closed`).
+#[derive(Clone, Debug)]
+pub struct JumpLsq<const D: usize> {
+    settings: JumpLsqSettings,
+    domain: CurveDomain,
+    report: Option<JumpLsqReport>,
+}
+
+impl<const D: usize> JumpLsq<D> {
+    /// The strategy with `settings` for curves of kind `domain`.
+    pub fn new(settings: JumpLsqSettings, domain: CurveDomain) -> Self {
+        Self {
+            settings,
+            domain,
+            report: None,
+        }
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &JumpLsqSettings {
+        &self.settings
+    }
+
+    /// What the last step chose and measured.
+    pub fn report(&self) -> Option<&JumpLsqReport> {
+        self.report.as_ref()
+    }
+}
+
+impl<const D: usize> FairingStrategy<D> for JumpLsq<D> {
+    fn name(&self) -> &str {
+        NAME
+    }
+
+    /// Every constraint is honoured, G1 and G2 end clamps included; a closed curve cannot
+    /// take an end clamp.
+    fn supports(&self, constraints: &Constraints) -> Result<()> {
+        if self.settings.closed && constraints.end_clamp() != EndClamp::None {
+            return Err(Error::ConstraintUnsupported {
+                strategy: NAME.into(),
+                constraint: format!(
+                    "end clamp {} on a closed curve, which has no ends",
+                    constraints.end_clamp().name()
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    fn init(&mut self, state: &mut FairingState<D>) -> Result<()> {
+        self.settings.validate()?;
+        check_kind::<D>(self.domain, self.settings.closed || state.is_closed())
+    }
+
+    fn step(&mut self, state: &mut FairingState<D>) -> Result<StepOutcome> {
+        let closed = self.settings.closed || state.is_closed();
+        let faired = fair(
+            state.points(),
+            state.original(),
+            state.constraints(),
+            self.domain,
+            closed,
+            &self.settings,
+        )?;
+        for (i, p) in faired.points.iter().enumerate() {
+            if *p != state.points()[i] {
+                state.move_point(i, *p)?;
+            }
+        }
+        let criterion = faired.report.penalty_after;
+        self.report = Some(faired.report);
+        Ok(StepOutcome::done(Some(criterion)))
+    }
+}

@@ -1,0 +1,836 @@
+//! The spline space, the forms that act on it, and the linear system of one solve.
+//!
+//! [`Space`]: the interpolating cubic splines on given knots with the representation's end
+//! condition, parametrised freely by n unknowns γ (B-spline coefficients with the two end
+//! conditions substituted, see [`super`]). Every quantity the method needs is a short linear
+//! form in γ ([`Form`]): the value at a knot (3 coefficients), a derivative at an end, the
+//! third-derivative jump at a knot (5), a penalty row Δ^d J (5 + d).
+//!
+//! [`System`]: the normal equations of one problem, the data and penalty Gram matrices A and B
+//! on one envelope, with a Lagrange multiplier per equality constraint interleaved after the
+//! last unknown it touches, so that K(λ) = A + λB stays banded.
+
+use curve_repr::Vector;
+
+use super::basis::{cubic_ders, Knots};
+use super::envelope::{Ldlt, PivotFailure, Profile};
+use super::qr::GivensQr;
+
+/// The largest stiffness λ·max_j(B_jj/A_jj) at which K(λ) is factored directly; beyond it the
+/// solve runs on the stacked least-squares problem by Givens QR ([`super::qr`]). At this
+/// ratio the LDLᵀ still agrees with an orthogonal solve to about 1e-7 (`super::tests`).
+pub(crate) const DIRECT_LIMIT: f64 = 1e9;
+
+/// The weight of a constraint row in the QR path, relative to its unknowns' scale.
+const CONSTRAINT_WEIGHT: f64 = 1e8;
+
+/// The largest number of coefficients of a form (a penalty row of difference order 3 with an
+/// end substitution has 9).
+const MAX_FORM: usize = 12;
+
+/// The end condition of the interpolating spline, which is the representation the method
+/// fairs (and the judge measures).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Ends {
+    /// Parabolic runout (Han et al.'s spline function): s‴ = 0 on the first and last spans.
+    Runout,
+    /// Natural: s″ = 0 at both ends (the parametric kind's spline).
+    Natural,
+    /// Closed curve: a periodic spline.
+    Periodic,
+}
+
+/// A linear form Σ_r c_r γ_{(start + r) mod m} over the unknowns γ (indices wrap only for
+/// closed curves).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Form {
+    start: usize,
+    len: usize,
+    c: [f64; MAX_FORM],
+}
+
+impl Form {
+    /// The form's (index, coefficient) pairs for m unknowns.
+    pub fn entries(&self, m: usize) -> impl Iterator<Item = (usize, f64)> + Clone + '_ {
+        self.c[..self.len]
+            .iter()
+            .enumerate()
+            .map(move |(r, &c)| ((self.start + r) % m, c))
+    }
+
+    /// Σ c_r x_{index}: the form applied to `x` (γ values).
+    pub fn apply<const D: usize>(&self, x: &[Vector<D>]) -> Vector<D> {
+        let m = x.len();
+        let mut acc = Vector::<D>::zeros();
+        for (j, c) in self.entries(m) {
+            acc += x[j] * c;
+        }
+        acc
+    }
+}
+
+/// The penalty's shape: Σ_rows (h̄^(a/2) h_med³ Δ^d J)².
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Penalty {
+    /// The difference order d (0 to 3).
+    pub order: usize,
+    /// The spacing exponent a.
+    pub exponent: f64,
+}
+
+/// The interpolating cubic splines on given knots (module docs).
+#[derive(Clone, Debug)]
+pub(crate) struct Space {
+    knots: Knots,
+    ends: Ends,
+    penalty: Penalty,
+    /// Value at knot k: coefficients on β_k, β_{k+1}, β_{k+2}.
+    value: Vec<[f64; 3]>,
+    /// s‴ on span k: coefficients on β_k … β_{k+3}.
+    third: Vec<[f64; 4]>,
+    /// Open curves: β_1 = Σ_{r≠1} start_subst[r] β_r, and β_n = Σ_{r≠2} end_subst[r] β_{n−2+r}.
+    start_subst: [f64; 4],
+    end_subst: [f64; 4],
+    /// Open curves: derivatives of β_0 … β_3 at t_0 and of β_{n−2} … β_{n+1} at t_{n−1}.
+    ders_start: [[f64; 4]; 4],
+    ders_end: [[f64; 4]; 4],
+    /// The median knot spacing.
+    h_median: f64,
+}
+
+/// Why a space could not be built.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum SpaceError {
+    /// Too few points for the end conditions.
+    TooFewPoints { needed: usize },
+    /// An end condition could not be solved for its coefficient (degenerate knots).
+    Degenerate,
+}
+
+fn binomial_signs(order: usize) -> [f64; 4] {
+    match order {
+        0 => [1.0, 0.0, 0.0, 0.0],
+        1 => [-1.0, 1.0, 0.0, 0.0],
+        2 => [1.0, -2.0, 1.0, 0.0],
+        _ => [-1.0, 3.0, -3.0, 1.0],
+    }
+}
+
+impl Space {
+    /// The fewest points an open curve needs (the two end substitutions must not meet).
+    pub const MIN_OPEN: usize = 4;
+    /// The fewest points a closed curve needs.
+    pub const MIN_CLOSED: usize = 4;
+
+    /// Builds the space on `knots` (strictly increasing; closed knots for `Ends::Periodic`).
+    /// O(n).
+    pub fn new(knots: Knots, ends: Ends, penalty: Penalty) -> Result<Self, SpaceError> {
+        let n = knots.len();
+        let closed = ends == Ends::Periodic;
+        let needed = if closed { Self::MIN_CLOSED } else { Self::MIN_OPEN };
+        if n < needed {
+            return Err(SpaceError::TooFewPoints { needed });
+        }
+        let spans = knots.spans();
+        let mut value = Vec::with_capacity(n);
+        let mut third = Vec::with_capacity(spans);
+        let mut ders_end = [[0.0; 4]; 4];
+        let mut ders_start = [[0.0; 4]; 4];
+        for k in 0..spans {
+            let window = knots.window(k);
+            let ders = cubic_ders(&window, window[2]);
+            value.push([ders[0][0], ders[0][1], ders[0][2]]);
+            third.push(ders[3]);
+            if k == 0 {
+                ders_start = ders;
+            }
+            if !closed && k + 1 == spans {
+                ders_end = cubic_ders(&window, window[3]);
+                value.push([ders_end[0][1], ders_end[0][2], ders_end[0][3]]);
+            }
+        }
+        let mut spacing: Vec<f64> = (0..spans).map(|k| knots.spacing(k)).collect();
+        let mid = spacing.len() / 2;
+        let (_, &mut h_median, _) = spacing.select_nth_unstable_by(mid, f64::total_cmp);
+        let (mut start_subst, mut end_subst) = ([0.0; 4], [0.0; 4]);
+        if !closed {
+            let (start_form, end_form) = match ends {
+                Ends::Runout => (third[0], third[spans - 1]),
+                _ => (ders_start[2], ders_end[2]),
+            };
+            let pivot = start_form[1];
+            let last = end_form[2];
+            if !(pivot.is_finite() && pivot != 0.0 && last.is_finite() && last != 0.0) {
+                return Err(SpaceError::Degenerate);
+            }
+            for r in 0..4 {
+                if r != 1 {
+                    start_subst[r] = -start_form[r] / pivot;
+                }
+                if r != 2 {
+                    end_subst[r] = -end_form[r] / last;
+                }
+            }
+        }
+        if !(h_median.is_finite() && h_median > 0.0) {
+            return Err(SpaceError::Degenerate);
+        }
+        Ok(Space {
+            knots,
+            ends,
+            penalty,
+            value,
+            third,
+            start_subst,
+            end_subst,
+            ders_start,
+            ders_end,
+            h_median,
+        })
+    }
+
+    /// The number of points n (= the number of unknowns γ).
+    pub fn len(&self) -> usize {
+        self.knots.len()
+    }
+
+    /// Whether the curve is closed.
+    pub fn is_closed(&self) -> bool {
+        self.ends == Ends::Periodic
+    }
+
+    /// The knots.
+    pub fn knots(&self) -> &Knots {
+        &self.knots
+    }
+
+    /// The β-form `coefficients` starting at β index `start` reduced to a form over γ: for
+    /// open curves β_1 and β_n are replaced by their end conditions and the rest renumbered
+    /// (β_0 → γ_0, β_j → γ_{j−1} for 2 ≤ j ≤ n − 1, β_{n+1} → γ_{n−1}); for closed curves the
+    /// indices are taken modulo n and coefficients on the same unknown added.
+    fn reduce(&self, start: isize, coefficients: &[f64]) -> Form {
+        let n = self.len();
+        let mut form = Form {
+            start: 0,
+            len: 0,
+            c: [0.0; MAX_FORM],
+        };
+        if self.is_closed() {
+            let len = coefficients.len().min(n);
+            form.start = start.rem_euclid(n as isize) as usize;
+            form.len = len;
+            for (r, &c) in coefficients.iter().enumerate() {
+                form.c[r % len] += c;
+            }
+            return form;
+        }
+        // Open, away from the ends: β_j is γ_{j−1}.
+        let (mut lo, mut hi) = (start, start + coefficients.len() as isize - 1);
+        let nb = n as isize;
+        if lo > 1 && hi < nb {
+            form.start = (lo - 1) as usize;
+            form.len = coefficients.len();
+            form.c[..coefficients.len()].copy_from_slice(coefficients);
+            return form;
+        }
+        // Near an end: a buffer over β_lo … β_hi.
+        let touches_start = lo <= 1 && 1 <= hi;
+        let touches_end = lo <= nb && nb <= hi;
+        if touches_start {
+            lo = lo.min(0);
+            hi = hi.max(3);
+        }
+        if touches_end {
+            lo = lo.min(nb - 2);
+            hi = hi.max(nb + 1);
+        }
+        let mut buffer = [0.0; MAX_FORM + 4];
+        for (r, &c) in coefficients.iter().enumerate() {
+            buffer[(start - lo) as usize + r] += c;
+        }
+        if touches_start {
+            let c1 = std::mem::take(&mut buffer[(1 - lo) as usize]);
+            for (r, s) in self.start_subst.iter().enumerate() {
+                buffer[(r as isize - lo) as usize] += c1 * s;
+            }
+        }
+        if touches_end {
+            let cn = std::mem::take(&mut buffer[(nb - lo) as usize]);
+            for (r, s) in self.end_subst.iter().enumerate() {
+                buffer[(nb - 2 + r as isize - lo) as usize] += cn * s;
+            }
+        }
+        // β_lo's unknown: γ_0 at or before β_1, γ_{j−1} inside, γ_{n−1} from β_n on.
+        form.start = if lo <= 1 {
+            0
+        } else if lo < nb {
+            (lo - 1) as usize
+        } else {
+            n - 1
+        };
+        for j in lo..=hi {
+            if j == 1 || j == nb {
+                continue;
+            }
+            form.c[form.len] = buffer[(j - lo) as usize];
+            form.len += 1;
+        }
+        form
+    }
+
+    /// The value s(t_k) at knot k.
+    pub fn value_form(&self, k: usize) -> Form {
+        self.reduce(k as isize, &self.value[k])
+    }
+
+    /// The derivative of `order` (1 or 2) at the start (`at_end` false) or end of an open
+    /// curve.
+    pub fn end_derivative_form(&self, order: usize, at_end: bool) -> Form {
+        if at_end {
+            self.reduce(self.len() as isize - 2, &self.ders_end[order])
+        } else {
+            self.reduce(0, &self.ders_start[order])
+        }
+    }
+
+    /// The span index of span k wrapped for closed curves (k may be −1 or n).
+    fn third_of(&self, k: isize) -> [f64; 4] {
+        let spans = self.third.len() as isize;
+        self.third[k.rem_euclid(spans) as usize]
+    }
+
+    /// The jump J_i = s‴(t_i+) − s‴(t_i−) at knot i (interior for open curves).
+    pub fn jump_form(&self, i: usize) -> Form {
+        let i = i as isize;
+        let (right, left) = (self.third_of(i), self.third_of(i - 1));
+        let mut c = [0.0; 5];
+        for r in 0..4 {
+            c[r] -= left[r];
+            c[r + 1] += right[r];
+        }
+        self.reduce(i - 1, &c)
+    }
+
+    /// The knots i that carry a jump: 1 … n − 2 open, 0 … n − 1 closed.
+    pub fn jump_knots(&self) -> std::ops::Range<usize> {
+        if self.is_closed() {
+            0..self.len()
+        } else {
+            1..self.len() - 1
+        }
+    }
+
+    /// The number of penalty rows: n − 2 − d open (none if negative), n closed.
+    pub fn penalty_rows(&self) -> usize {
+        if self.is_closed() {
+            self.len()
+        } else {
+            (self.len() - 2).saturating_sub(self.penalty.order)
+        }
+    }
+
+    /// Penalty row `row`: the form Δ^d J over J_a … J_{a+d} (a = row + 1 open, a = row
+    /// closed) and its weight (h̄^a h_med⁶ with h̄ the mean length of the d + 2 spans it
+    /// spans, relative to the median spacing).
+    pub fn penalty_row(&self, row: usize) -> (Form, f64) {
+        let d = self.penalty.order;
+        let a = if self.is_closed() {
+            row as isize
+        } else {
+            row as isize + 1
+        };
+        let signs = binomial_signs(d);
+        let mut c = [0.0; 9];
+        for (q, &w) in signs.iter().enumerate().take(d + 1) {
+            let right = self.third_of(a + q as isize);
+            let left = self.third_of(a + q as isize - 1);
+            for r in 0..4 {
+                c[q + 1 + r] += w * right[r];
+                c[q + r] -= w * left[r];
+            }
+        }
+        let width = self.knots.knot(a + d as isize + 1) - self.knots.knot(a - 1);
+        let mean = width / ((d + 2) as f64 * self.h_median);
+        let scale = self.h_median.powi(3);
+        let exponent = self.penalty.exponent;
+        let power = if exponent.fract() == 0.0 && exponent.abs() <= 64.0 {
+            mean.powi(exponent as i32)
+        } else {
+            mean.powf(exponent)
+        };
+        let weight = power * scale * scale;
+        (self.reduce(a - 1, &c[..5 + d]), weight)
+    }
+
+    /// Σ_rows weight · |row · γ|²: the penalty of the spline with unknowns `gamma`. O(n).
+    pub fn penalty_of<const D: usize>(&self, gamma: &[Vector<D>]) -> f64 {
+        (0..self.penalty_rows())
+            .map(|r| {
+                let (form, weight) = self.penalty_row(r);
+                weight * form.apply(gamma).norm_squared()
+            })
+            .sum()
+    }
+
+    /// The unknowns of the interpolating spline through `values` (one per knot): the solve
+    /// at λ = 0 without constraints. O(n).
+    pub fn interpolate<const D: usize>(&self, values: &[Vector<D>]) -> Result<Vec<Vector<D>>, PivotFailure> {
+        let weights = vec![1.0; self.len()];
+        let system = System::new(self, values, &weights, &[]);
+        Ok(system.solve(0.0)?.gamma)
+    }
+}
+
+/// An equality constraint: `form` · γ = `target`.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Constraint<const D: usize> {
+    pub form: Form,
+    pub target: Vector<D>,
+    /// The point whose value it fixes, for a value constraint: that point's data row then
+    /// counts in neither the residual nor the influence trace.
+    pub point: Option<usize>,
+}
+
+/// The normal equations of one problem on a [`Space`]: minimise
+/// Σ_k w_k |value_k·γ − y_k|² + λ Σ_rows weight |row·γ|² subject to the constraints.
+///
+/// Every point keeps its data row (w_k > 0), constrained or not: a value constraint makes
+/// that row's term constant, so the solution is the same, and H = NᵀWN + λB stays positive
+/// definite for every λ ≥ 0 (N is square and invertible), which is what the LDLᵀ without
+/// pivoting of the KKT matrix needs.
+#[derive(Clone, Debug)]
+pub(crate) struct System<'s, const D: usize> {
+    space: &'s Space,
+    profile: Profile,
+    var_pos: Vec<usize>,
+    negative: Vec<bool>,
+    a: Vec<f64>,
+    b: Vec<f64>,
+    rhs: Vec<Vector<D>>,
+    data: &'s [Vector<D>],
+    weights: &'s [f64],
+    counted: Vec<bool>,
+    constraints: Vec<Constraint<D>>,
+    stiffness: f64,
+}
+
+/// How the system at one λ was factored.
+#[derive(Clone, Debug)]
+pub(crate) enum Factor<'p, const D: usize> {
+    /// LDLᵀ of the KKT matrix K(λ), and the solution vector in its order (unknowns and
+    /// multipliers).
+    Kkt { ldlt: Ldlt<'p>, x: Vec<Vector<D>> },
+    /// Givens QR of the stacked least-squares problem (unknowns in the order of
+    /// [`System::order_of`]).
+    Qr(GivensQr<D>),
+}
+
+/// The solution at one λ.
+#[derive(Clone, Debug)]
+pub(crate) struct Solution<'p, const D: usize> {
+    /// The factorisation.
+    pub factor: Factor<'p, D>,
+    /// The unknowns γ.
+    pub gamma: Vec<Vector<D>>,
+}
+
+impl<'s, const D: usize> System<'s, D> {
+    /// The position of unknown j in the order before the multipliers are inserted: the
+    /// identity for open curves; for closed curves the folded order 0, n−1, 1, n−2, … that
+    /// keeps cyclic neighbours within a band.
+    fn order_of(closed: bool, m: usize, j: usize) -> usize {
+        if !closed || j < m.div_ceil(2) {
+            if closed {
+                2 * j
+            } else {
+                j
+            }
+        } else {
+            2 * (m - 1 - j) + 1
+        }
+    }
+
+    /// Assembles the system: data `data[k]` with weight `weights[k]` > 0 at knot k, the
+    /// penalty of `space`, and `constraints`. O(n).
+    pub fn new(
+        space: &'s Space,
+        data: &'s [Vector<D>],
+        weights: &'s [f64],
+        constraints: &[Constraint<D>],
+    ) -> Self {
+        let m = space.len();
+        let closed = space.is_closed();
+        let order = |j: usize| Self::order_of(closed, m, j);
+        let mut var_at = vec![0usize; m];
+        for j in 0..m {
+            var_at[order(j)] = j;
+        }
+        // Each multiplier goes right after the last (in order) unknown of its form.
+        let mut anchored: Vec<Vec<usize>> = vec![Vec::new(); m];
+        for (c, constraint) in constraints.iter().enumerate() {
+            let anchor = constraint
+                .form
+                .entries(m)
+                .map(|(j, _)| order(j))
+                .max()
+                .unwrap_or(0);
+            anchored[anchor].push(c);
+        }
+        let total = m + constraints.len();
+        let mut var_pos = vec![0usize; m];
+        let mut con_pos = vec![0usize; constraints.len()];
+        let mut negative = vec![false; total];
+        let mut p = 0;
+        for (o, &j) in var_at.iter().enumerate() {
+            var_pos[j] = p;
+            p += 1;
+            for &c in &anchored[o] {
+                con_pos[c] = p;
+                negative[p] = true;
+                p += 1;
+            }
+        }
+        let mut first: Vec<usize> = (0..total).collect();
+        let widen = |form: &Form, first: &mut Vec<usize>| {
+            let lowest = form.entries(m).map(|(j, _)| var_pos[j]).min().unwrap_or(0);
+            for (j, _) in form.entries(m) {
+                let q = var_pos[j];
+                first[q] = first[q].min(lowest);
+            }
+        };
+        for (k, _) in weights.iter().enumerate().take(m).filter(|(_, w)| **w > 0.0) {
+            widen(&space.value_form(k), &mut first);
+        }
+        for r in 0..space.penalty_rows() {
+            widen(&space.penalty_row(r).0, &mut first);
+        }
+        for (c, constraint) in constraints.iter().enumerate() {
+            let lowest = constraint
+                .form
+                .entries(m)
+                .map(|(j, _)| var_pos[j])
+                .min()
+                .unwrap_or(0);
+            first[con_pos[c]] = first[con_pos[c]].min(lowest);
+        }
+        let profile = Profile::new(first);
+        let mut a = profile.zeros();
+        let mut b = profile.zeros();
+        let outer = |values: &mut [f64], form: &Form, weight: f64| {
+            for (j, cj) in form.entries(m) {
+                for (l, cl) in form.entries(m) {
+                    let (pj, pl) = (var_pos[j], var_pos[l]);
+                    if pj >= pl {
+                        if let Some(index) = profile.index(pj, pl) {
+                            values[index] += weight * cj * cl;
+                        }
+                    }
+                }
+            }
+        };
+        let mut rhs = vec![Vector::<D>::zeros(); total];
+        for k in 0..m {
+            if weights[k] > 0.0 {
+                let form = space.value_form(k);
+                outer(&mut a, &form, weights[k]);
+                for (j, c) in form.entries(m) {
+                    rhs[var_pos[j]] += data[k] * (weights[k] * c);
+                }
+            }
+        }
+        for r in 0..space.penalty_rows() {
+            let (form, weight) = space.penalty_row(r);
+            outer(&mut b, &form, weight);
+        }
+        for (c, constraint) in constraints.iter().enumerate() {
+            let row = con_pos[c];
+            for (j, coefficient) in constraint.form.entries(m) {
+                if let Some(index) = profile.index(row, var_pos[j]) {
+                    a[index] += coefficient;
+                }
+            }
+            rhs[row] = constraint.target;
+        }
+        let mut stiffness: f64 = 0.0;
+        for &p in &var_pos {
+            if let Some(index) = profile.index(p, p) {
+                if a[index] > 0.0 {
+                    stiffness = stiffness.max(b[index] / a[index]);
+                }
+            }
+        }
+        let mut counted = vec![true; m];
+        for c in constraints {
+            if let Some(k) = c.point {
+                counted[k] = false;
+            }
+        }
+        System {
+            space,
+            profile,
+            var_pos,
+            negative,
+            a,
+            b,
+            rhs,
+            data,
+            weights,
+            counted,
+            constraints: constraints.to_vec(),
+            stiffness,
+        }
+    }
+
+    /// The number of rows (unknowns and multipliers).
+    pub fn size(&self) -> usize {
+        self.profile.size()
+    }
+
+    /// The largest ratio B_jj / A_jj over the unknowns with A_jj > 0: how much a given λ lets
+    /// the penalty outweigh the data locally (λ times this is the stiffness that decides the
+    /// solver, [`DIRECT_LIMIT`]).
+    pub fn stiffness(&self) -> f64 {
+        self.stiffness
+    }
+
+    /// Solves at λ: LDLᵀ of K(λ) while λ·stiffness ≤ [`DIRECT_LIMIT`], Givens QR of the
+    /// stacked problem beyond — and also when the LDLᵀ meets a dependent set of constraints
+    /// (e.g. every point fixed and an end slope: consistent, but one row too many), which the
+    /// weighted rows of the QR solve as a least-squares problem ([`holds`](Self::holds) then
+    /// tells a consistent set from a contradictory one). O(n).
+    pub fn solve(&self, lambda: f64) -> Result<Solution<'_, D>, PivotFailure> {
+        if lambda * self.stiffness <= DIRECT_LIMIT {
+            let values: Vec<f64> = self.a.iter().zip(&self.b).map(|(a, b)| a + lambda * b).collect();
+            if let Ok(ldlt) = Ldlt::factor(&self.profile, values, &self.negative) {
+                let mut x = self.rhs.clone();
+                ldlt.solve_in_place(&mut x);
+                let gamma = self.var_pos.iter().map(|&p| x[p]).collect();
+                return Ok(Solution {
+                    factor: Factor::Kkt { ldlt, x },
+                    gamma,
+                });
+            }
+        }
+        let qr = self.qr(lambda);
+        let y = qr.solve()?;
+        let m = self.space.len();
+        let closed = self.space.is_closed();
+        let gamma = (0..m).map(|j| y[Self::order_of(closed, m, j)]).collect();
+        Ok(Solution {
+            factor: Factor::Qr(qr),
+            gamma,
+        })
+    }
+
+    /// The Givens QR of the stacked problem at λ (data rows, penalty rows, constraint rows of
+    /// weight [`CONSTRAINT_WEIGHT`] times √K_jj of their unknowns). O(n·b²).
+    fn qr(&self, lambda: f64) -> GivensQr<D> {
+        let space = self.space;
+        let m = space.len();
+        let closed = space.is_closed();
+        let order = |j: usize| Self::order_of(closed, m, j);
+        let diagonal = |j: usize| -> f64 {
+            self.profile
+                .index(self.var_pos[j], self.var_pos[j])
+                .map_or(0.0, |index| self.a[index] + lambda * self.b[index])
+        };
+        // Rows in the order of their leading column, so that each is deposited in R after at
+        // most the band's width of rotations (data rows first would fill R and leave every
+        // later row to be rotated down to the last column: O(n²)).
+        #[derive(Clone, Copy)]
+        enum Row {
+            Data(usize),
+            Penalty(usize),
+            Constraint(usize),
+        }
+        // Each row as its leading column (high 32 bits) and a tag (kind in bits 30–31, index
+        // below): 8 bytes a row, for up to 2^30 points.
+        const PENALTY: u64 = 1 << 30;
+        const CONSTRAINT: u64 = 2 << 30;
+        let mut reach: Vec<usize> = (0..m).collect();
+        let mut rows: Vec<u64> = Vec::with_capacity(2 * m + self.constraints.len());
+        let mut add = |form: &Form, tag: u64| {
+            let lead = form.entries(m).map(|(j, _)| order(j)).min().unwrap_or(0);
+            let end = form.entries(m).map(|(j, _)| order(j)).max().unwrap_or(0);
+            reach[lead] = reach[lead].max(end);
+            rows.push(((lead as u64) << 32) | tag);
+        };
+        for k in 0..m {
+            if self.weights[k] > 0.0 {
+                add(&space.value_form(k), k as u64);
+            }
+        }
+        for r in 0..space.penalty_rows() {
+            add(&space.penalty_row(r).0, PENALTY | r as u64);
+        }
+        for (c, constraint) in self.constraints.iter().enumerate() {
+            add(&constraint.form, CONSTRAINT | c as u64);
+        }
+        rows.sort_unstable();
+        let mut qr = GivensQr::new(reach);
+        for packed in rows {
+            let tag = packed & 0xFFFF_FFFF;
+            let index = (tag & 0x3FFF_FFFF) as usize;
+            let row = match tag >> 30 {
+                0 => Row::Data(index),
+                1 => Row::Penalty(index),
+                _ => Row::Constraint(index),
+            };
+            match row {
+                Row::Data(k) => {
+                    let form = space.value_form(k);
+                    let root = self.weights[k].sqrt();
+                    qr.add_row(
+                        form.entries(m).map(|(j, c)| (order(j), c * root)),
+                        self.data[k] * root,
+                    );
+                }
+                Row::Penalty(r) => {
+                    let (form, weight) = space.penalty_row(r);
+                    let root = (lambda * weight).sqrt();
+                    qr.add_row(
+                        form.entries(m).map(|(j, c)| (order(j), c * root)),
+                        Vector::<D>::zeros(),
+                    );
+                }
+                Row::Constraint(c) => {
+                    let constraint = &self.constraints[c];
+                    let form = &constraint.form;
+                    let scale = form
+                        .entries(m)
+                        .map(|(j, _)| diagonal(j))
+                        .fold(0.0, f64::max)
+                        .sqrt();
+                    let norm = form.entries(m).map(|(_, c)| c * c).sum::<f64>().sqrt();
+                    let weight = CONSTRAINT_WEIGHT * scale.max(1.0) / norm;
+                    qr.add_row(
+                        form.entries(m).map(|(j, c)| (order(j), c * weight)),
+                        constraint.target * weight,
+                    );
+                }
+            }
+        }
+        qr
+    }
+
+    /// Whether `gamma` satisfies `constraints` to 1e-9 of the data's scale (a solve of
+    /// contradictory constraints leaves them unmet in the QR path, whose constraint rows are
+    /// weighted). O(constraints).
+    pub fn holds(&self, gamma: &[Vector<D>], constraints: &[Constraint<D>]) -> bool {
+        let scale = self
+            .data
+            .iter()
+            .chain(constraints.iter().map(|c| &c.target))
+            .map(|v| v.amax())
+            .fold(0.0, f64::max)
+            .max(f64::MIN_POSITIVE);
+        constraints
+            .iter()
+            .all(|c| (c.form.apply(gamma) - c.target).amax() <= 1e-9 * scale)
+    }
+
+    /// The values of the spline at the knots for unknowns `gamma`. O(n).
+    pub fn values(&self, gamma: &[Vector<D>]) -> Vec<Vector<D>> {
+        (0..self.space.len())
+            .map(|k| self.space.value_form(k).apply(gamma))
+            .collect()
+    }
+
+    /// dγ/dλ at a solution: K z = [−Bγ; 0] (the constraints' targets do not depend on λ;
+    /// in the QR path RᵀR z = −Bγ, the constraints held by their weights). O(n).
+    pub fn gamma_derivative(&self, solution: &Solution<'_, D>) -> Result<Vec<Vector<D>>, PivotFailure> {
+        let m = self.space.len();
+        match &solution.factor {
+            Factor::Kkt { ldlt, x } => {
+                let mut z = vec![Vector::<D>::zeros(); self.size()];
+                self.profile.multiply(&self.b, x, &mut z);
+                for v in z.iter_mut() {
+                    *v = -*v;
+                }
+                ldlt.solve_in_place(&mut z);
+                Ok(self.var_pos.iter().map(|&p| z[p]).collect())
+            }
+            Factor::Qr(qr) => {
+                let closed = self.space.is_closed();
+                let mut z = vec![Vector::<D>::zeros(); m];
+                for r in 0..self.space.penalty_rows() {
+                    let (form, weight) = self.space.penalty_row(r);
+                    let v = form.apply(&solution.gamma) * weight;
+                    for (j, c) in form.entries(m) {
+                        z[Self::order_of(closed, m, j)] -= v * c;
+                    }
+                }
+                qr.solve_normal(&mut z)?;
+                Ok((0..m).map(|j| z[Self::order_of(closed, m, j)]).collect())
+            }
+        }
+    }
+
+    /// The points whose data count (no value constraint on them).
+    pub fn counted(&self) -> &[bool] {
+        &self.counted
+    }
+
+    /// The data.
+    pub fn data(&self) -> &[Vector<D>] {
+        self.data
+    }
+
+    /// Σ_k |value_k·γ − y_k|² over the counted points: the residual sum of squares. O(n).
+    pub fn residual(&self, values: &[Vector<D>]) -> f64 {
+        values
+            .iter()
+            .zip(self.data)
+            .zip(&self.counted)
+            .filter(|(_, c)| **c)
+            .map(|((v, y), _)| (v - y).norm_squared())
+            .sum()
+    }
+
+    /// The trace of the influence matrix ∂(value_k·γ)/∂y_k summed over the counted points:
+    /// Σ_k w_k value_kᵀ Z value_k with Z the unknowns' block of K(λ)⁻¹, read from the selected
+    /// inverse. (A value-constrained point would add 0: Z annihilates the constraints' rows.)
+    /// O(n).
+    pub fn influence_trace(&self, solution: &Solution<'_, D>) -> Result<f64, PivotFailure> {
+        let closed = self.space.is_closed();
+        let m = self.space.len();
+        let qr_profile;
+        type Position<'a> = Box<dyn Fn(usize) -> usize + 'a>;
+        let (z, profile, position): (Vec<f64>, &Profile, Position<'_>) = match &solution.factor {
+            Factor::Kkt { ldlt, .. } => (
+                ldlt.selected_inverse(),
+                &self.profile,
+                Box::new(|j| self.var_pos[j]),
+            ),
+            Factor::Qr(qr) => {
+                qr_profile = qr.ldlt_profile();
+                let ldlt = qr.ldlt(&qr_profile)?;
+                (
+                    ldlt.selected_inverse(),
+                    &qr_profile,
+                    Box::new(move |j| Self::order_of(closed, m, j)),
+                )
+            }
+        };
+        let m = self.space.len();
+        let mut trace = 0.0;
+        for k in 0..m {
+            if self.weights[k] <= 0.0 || !self.counted[k] {
+                continue;
+            }
+            let form = self.space.value_form(k);
+            let mut sum = 0.0;
+            for (j, cj) in form.entries(m) {
+                for (l, cl) in form.entries(m) {
+                    let (pj, pl) = (position(j), position(l));
+                    let (hi, lo) = if pj >= pl { (pj, pl) } else { (pl, pj) };
+                    if let Some(index) = profile.index(hi, lo) {
+                        sum += cj * cl * z[index];
+                    }
+                }
+            }
+            trace += self.weights[k] * sum;
+        }
+        Ok(trace)
+    }
+}

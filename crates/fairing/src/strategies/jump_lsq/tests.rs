@@ -1,0 +1,770 @@
+//! Tests of jump-lsq against dense solves built from the project's own splines
+//! (`HermiteSpline` with runout, natural or closed ends: an independent representation), and
+//! of its defining conditions.
+
+use curve_repr::{Curve, HermiteEnds, HermiteSettings, HermiteSpline, Parametrization, Side, Vector};
+use nalgebra::{DMatrix, DVector};
+
+use super::*;
+
+/// A curve with uneven spacing and a little noise, in 2D: function-like (x increasing).
+fn wavy(n: usize) -> Vec<Vector<2>> {
+    (0..n)
+        .map(|i| {
+            let s = i as f64 + 0.35 * ((i * 7) as f64).sin();
+            let noise = 0.02 * ((i as f64 * 12.9898).sin() * 43758.5453).fract();
+            Vector::<2>::new(0.1 * s, (0.23 * s).sin() + noise)
+        })
+        .collect()
+}
+
+/// A 3D space curve with noise.
+fn helix(n: usize) -> Vec<Vector<3>> {
+    (0..n)
+        .map(|i| {
+            let t = 0.2 * i as f64 + 0.05 * ((i * 5) as f64).cos();
+            let noise = 0.01 * ((i as f64 * 78.233).sin() * 12345.678).fract();
+            Vector::<3>::new(t.cos() + noise, t.sin() - noise, 0.3 * t)
+        })
+        .collect()
+}
+
+/// A closed noisy ellipse (points distinct, the last joins the first).
+fn ellipse(n: usize) -> Vec<Vector<2>> {
+    (0..n)
+        .map(|i| {
+            let t = std::f64::consts::TAU * (i as f64 + 0.2 * ((i * 3) as f64).sin()) / n as f64;
+            let noise = 0.01 * ((i as f64 * 4.1).sin() * 999.1).fract();
+            Vector::<2>::new(2.0 * t.cos() + noise, t.sin())
+        })
+        .collect()
+}
+
+/// The dense oracle's pieces for one coordinate: knots, the jump matrix J (jumps × n) of the
+/// spline with `ends` (columns: the jumps of the spline through unit data), and the spline
+/// for unit data (for end derivatives).
+struct Dense {
+    t: Vec<f64>,
+    jump: DMatrix<f64>,
+    closed: bool,
+    splines: Vec<HermiteSpline<1>>,
+}
+
+impl Dense {
+    fn new(t: Vec<f64>, ends: HermiteEnds<1>) -> Self {
+        let closed = ends.is_closed();
+        let n = if closed { t.len() - 1 } else { t.len() };
+        let splines: Vec<HermiteSpline<1>> = (0..n)
+            .map(|k| {
+                let unit: Vec<Vector<1>> = (0..n)
+                    .map(|i| Vector::<1>::new(f64::from(u8::from(i == k))))
+                    .collect();
+                let settings = HermiteSettings::new().with_parameters(t.clone()).with_ends(ends);
+                HermiteSpline::new(&unit, &settings).unwrap()
+            })
+            .collect();
+        let rows = splines[0].third_derivative_jumps().len();
+        let jump = DMatrix::from_fn(rows, n, |r, k| splines[k].third_derivative_jumps()[r][0]);
+        Dense {
+            t,
+            jump,
+            closed,
+            splines,
+        }
+    }
+
+    /// The penalty rows Ω^½ Δ^d J (rows × n), weights computed from the knots directly.
+    fn penalty(&self, order: usize, exponent: f64) -> DMatrix<f64> {
+        let n = self.jump.ncols();
+        let spans = if self.closed { n } else { n - 1 };
+        let mut spacing: Vec<f64> = (0..spans).map(|k| self.t[k + 1] - self.t[k]).collect();
+        spacing.sort_by(f64::total_cmp);
+        let h_med = spacing[spans / 2];
+        let period = if self.closed { self.t[n] - self.t[0] } else { 0.0 };
+        let knot = |j: isize| -> f64 {
+            if self.closed {
+                let w = j.div_euclid(n as isize);
+                self.t[j.rem_euclid(n as isize) as usize] + w as f64 * period
+            } else {
+                self.t[j.clamp(0, n as isize - 1) as usize]
+            }
+        };
+        let signs: Vec<f64> = match order {
+            0 => vec![1.0],
+            1 => vec![-1.0, 1.0],
+            2 => vec![1.0, -2.0, 1.0],
+            _ => vec![-1.0, 3.0, -3.0, 1.0],
+        };
+        let jumps = self.jump.nrows();
+        let rows = if self.closed { n } else { jumps - order };
+        let mut out = DMatrix::zeros(rows, n);
+        for r in 0..rows {
+            // Row r combines jumps at knots a … a + d (open: jump row index a − 1).
+            let a = if self.closed { r as isize } else { r as isize + 1 };
+            let mean = (knot(a + order as isize + 1) - knot(a - 1)) / ((order + 2) as f64 * h_med);
+            let weight = (mean.powf(exponent) * h_med.powi(6)).sqrt();
+            for (q, s) in signs.iter().enumerate() {
+                let row = if self.closed { (r + q) % n } else { r + q };
+                for k in 0..n {
+                    out[(r, k)] += weight * s * self.jump[(row, k)];
+                }
+            }
+        }
+        out
+    }
+
+    /// The derivative of `order` at the start or end as a row over the data.
+    fn end_derivative(&self, order: usize, at_end: bool) -> DVector<f64> {
+        let n = self.splines.len();
+        let t = if at_end { self.t[n - 1] } else { self.t[0] };
+        let side = if at_end { Side::Left } else { Side::Right };
+        DVector::from_fn(n, |k, _| self.splines[k].jet(t, side)[order][0])
+    }
+}
+
+/// Minimises Σ_free |y − y⁰|² + λ |P y|² subject to C y = d, densely and without squaring
+/// the condition: y = y_p + Z u with C y_p = d and Z an orthonormal basis of C's null space
+/// (from an SVD), then Householder QR of the stacked problem [W^½; √λ P] Z u ≈ [W^½ y⁰; 0] −
+/// [W^½; √λ P] y_p.
+fn dense_solve(
+    penalty: &DMatrix<f64>,
+    lambda: f64,
+    free: &[bool],
+    y0: &DMatrix<f64>,
+    constraints: &[(DVector<f64>, DVector<f64>)],
+) -> DMatrix<f64> {
+    let n = penalty.ncols();
+    let k = constraints.len();
+    let columns = y0.ncols();
+    let (particular, null) = if k == 0 {
+        (DMatrix::zeros(n, columns), DMatrix::identity(n, n))
+    } else {
+        let c = DMatrix::from_fn(k, n, |r, i| constraints[r].0[i]);
+        let d = DMatrix::from_fn(k, columns, |r, col| constraints[r].1[col]);
+        let particular = c.transpose() * (&c * c.transpose()).lu().solve(&d).unwrap();
+        let mut square = DMatrix::zeros(n, n);
+        square.view_mut((0, 0), (k, n)).copy_from(&c);
+        let svd = square.svd(false, true);
+        let v_t = svd.v_t.unwrap();
+        let largest = svd.singular_values.max();
+        let basis: Vec<DVector<f64>> = (0..n)
+            .filter(|&r| svd.singular_values[r] < 1e-12 * largest)
+            .map(|r| v_t.row(r).transpose())
+            .collect();
+        assert_eq!(basis.len(), n - k, "independent constraints");
+        (particular, DMatrix::from_columns(&basis))
+    };
+    let rows = penalty.nrows();
+    let mut stacked = DMatrix::zeros(n + rows, n);
+    for i in 0..n {
+        if free[i] {
+            stacked[(i, i)] = 1.0;
+        }
+    }
+    stacked
+        .view_mut((n, 0), (rows, n))
+        .copy_from(&(penalty * lambda.sqrt()));
+    let mut rhs = DMatrix::zeros(n + rows, columns);
+    for i in (0..n).filter(|&i| free[i]) {
+        for col in 0..columns {
+            rhs[(i, col)] = y0[(i, col)];
+        }
+    }
+    let rhs = rhs - &stacked * &particular;
+    let qr = (&stacked * &null).qr();
+    let qtb = qr.q().transpose() * rhs;
+    let u = qr.r().solve_upper_triangular(&qtb).unwrap();
+    particular + null * u
+}
+
+fn as_matrix<const D: usize>(points: &[Vector<D>], columns: std::ops::Range<usize>) -> DMatrix<f64> {
+    DMatrix::from_fn(points.len(), columns.len(), |i, c| points[i][columns.start + c])
+}
+
+fn assert_close(ours: &DMatrix<f64>, dense: &DMatrix<f64>, tolerance: f64, what: &str) {
+    let scale = dense.amax().max(1e-300);
+    let error = (ours - dense).amax() / scale;
+    assert!(error <= tolerance, "{what}: relative difference {error:e}");
+}
+
+#[test]
+fn function_kind_equals_the_dense_solve() {
+    let points = wavy(40);
+    let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
+    let dense = Dense::new(x, HermiteEnds::ParabolicRunout);
+    let free = vec![true; points.len()];
+    let y0 = as_matrix(&points, 1..2);
+    for order in 0..=3 {
+        for exponent in [0.0, 8.0] {
+            let penalty = dense.penalty(order, exponent);
+            for lambda in [1e-2, 1.0, 100.0] {
+                let settings = JumpLsqSettings::default()
+                    .with_difference_order(2)
+                    .with_lambda(lambda)
+                    .with_difference_order(order)
+                    .with_exponent(exponent);
+                let faired = fair(
+                    &points,
+                    &points,
+                    &Constraints::default(),
+                    CurveDomain::Function,
+                    false,
+                    &settings,
+                )
+                .unwrap();
+                let expected = dense_solve(&penalty, lambda, &free, &y0, &[]);
+                assert_close(
+                    &as_matrix(&faired.points, 1..2),
+                    &expected,
+                    1e-9,
+                    &format!("d {order} a {exponent} λ {lambda}"),
+                );
+                // x never changes, bit for bit.
+                assert!(faired.points.iter().zip(&points).all(|(p, q)| p[0] == q[0]));
+            }
+        }
+    }
+}
+
+#[test]
+fn parametric_and_closed_kinds_equal_the_dense_solve() {
+    let points = helix(36);
+    let t = Parametrization::ChordLength.parameters(&points).unwrap();
+    let dense = Dense::new(t, HermiteEnds::Natural);
+    let penalty = dense.penalty(2, 8.0);
+    let free = vec![true; points.len()];
+    for lambda in [1e-3, 0.5, 30.0] {
+        let settings = JumpLsqSettings::default()
+            .with_difference_order(2)
+            .with_lambda(lambda)
+            .with_refits(0);
+        let faired = fair(
+            &points,
+            &points,
+            &Constraints::default(),
+            CurveDomain::Parametric,
+            false,
+            &settings,
+        )
+        .unwrap();
+        let expected = dense_solve(&penalty, lambda, &free, &as_matrix(&points, 0..3), &[]);
+        assert_close(
+            &as_matrix(&faired.points, 0..3),
+            &expected,
+            1e-9,
+            &format!("helix λ {lambda}"),
+        );
+    }
+    let points = ellipse(30);
+    let t = Parametrization::ChordLength.closed_parameters(&points).unwrap();
+    let dense = Dense::new(t, HermiteEnds::Closed);
+    for order in [1, 2, 3] {
+        let penalty = dense.penalty(order, 8.0);
+        for lambda in [1e-3, 0.5, 30.0] {
+            let settings = JumpLsqSettings::default()
+                .with_difference_order(2)
+                .with_lambda(lambda)
+                .with_refits(0)
+                .with_difference_order(order)
+                .with_closed(true);
+            let faired = fair(
+                &points,
+                &points,
+                &Constraints::default(),
+                CurveDomain::Parametric,
+                true,
+                &settings,
+            )
+            .unwrap();
+            let expected = dense_solve(&penalty, lambda, &free, &as_matrix(&points, 0..2), &[]);
+            assert_close(
+                &as_matrix(&faired.points, 0..2),
+                &expected,
+                1e-9,
+                &format!("ellipse d {order} λ {lambda}"),
+            );
+        }
+    }
+}
+
+#[test]
+fn constrained_solves_equal_the_dense_kkt_solve() {
+    // Function kind: fixed points, G2 clamp (end points, slopes and second derivatives).
+    let points = wavy(30);
+    let n = points.len();
+    let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
+    let dense = Dense::new(x, HermiteEnds::ParabolicRunout);
+    let penalty = dense.penalty(2, 8.0);
+    let y0 = as_matrix(&points, 1..2);
+    let fixed = [0usize, 7, 8, 19, n - 1];
+    let free: Vec<bool> = (0..n).map(|i| !fixed.contains(&i)).collect();
+    let mut rows: Vec<(DVector<f64>, DVector<f64>)> = fixed
+        .iter()
+        .map(|&i| {
+            let mut e = DVector::zeros(n);
+            e[i] = 1.0;
+            (e, DVector::from_element(1, y0[(i, 0)]))
+        })
+        .collect();
+    for order in [1, 2] {
+        for at_end in [false, true] {
+            let row = dense.end_derivative(order, at_end);
+            let target = DVector::from_element(1, row.dot(&y0.column(0)));
+            rows.push((row, target));
+        }
+    }
+    let lambda = 3.0;
+    let expected = dense_solve(&penalty, lambda, &free, &y0, &rows);
+    let constraints = Constraints::default()
+        .with_fixed([7, 8, 19])
+        .with_end_clamp(EndClamp::G2);
+    let settings = JumpLsqSettings::default()
+        .with_difference_order(2)
+        .with_lambda(lambda);
+    let faired = fair(
+        &points,
+        &points,
+        &constraints,
+        CurveDomain::Function,
+        false,
+        &settings,
+    )
+    .unwrap();
+    assert_close(
+        &as_matrix(&faired.points, 1..2),
+        &expected,
+        1e-9,
+        "function, fixed + G2",
+    );
+    for &i in &fixed {
+        assert_eq!(faired.points[i], points[i], "fixed point {i} moved");
+    }
+
+    // Parametric kind (3D): fixed points and a G1 clamp; refits 0 so that the knots are the
+    // input's chord lengths.
+    let points = helix(28);
+    let n = points.len();
+    let t = Parametrization::ChordLength.parameters(&points).unwrap();
+    let dense = Dense::new(t, HermiteEnds::Natural);
+    let penalty = dense.penalty(2, 8.0);
+    let y0 = as_matrix(&points, 0..3);
+    let fixed = [0usize, 5, n - 1];
+    let free: Vec<bool> = (0..n).map(|i| !fixed.contains(&i)).collect();
+    let mut rows: Vec<(DVector<f64>, DVector<f64>)> = fixed
+        .iter()
+        .map(|&i| {
+            let mut e = DVector::zeros(n);
+            e[i] = 1.0;
+            (e, y0.row(i).transpose())
+        })
+        .collect();
+    for at_end in [false, true] {
+        let row = dense.end_derivative(1, at_end);
+        let target = (row.transpose() * &y0).transpose();
+        rows.push((row, target));
+    }
+    let lambda = 0.7;
+    let expected = dense_solve(&penalty, lambda, &free, &y0, &rows);
+    let constraints = Constraints::default()
+        .with_fixed([5])
+        .with_end_clamp(EndClamp::G1);
+    let settings = JumpLsqSettings::default()
+        .with_difference_order(2)
+        .with_lambda(lambda)
+        .with_refits(0);
+    let faired = fair(
+        &points,
+        &points,
+        &constraints,
+        CurveDomain::Parametric,
+        false,
+        &settings,
+    )
+    .unwrap();
+    assert_close(
+        &as_matrix(&faired.points, 0..3),
+        &expected,
+        1e-9,
+        "parametric, fixed + G1",
+    );
+    // The same in the QR path (stiffness 1e11, constraints as heavy rows): to the accuracy of
+    // the dense KKT solve at that stiffness.
+    let space = Space::new(
+        Knots::open(Parametrization::ChordLength.parameters(&points).unwrap()),
+        Ends::Natural,
+        penalty_of(&settings),
+    )
+    .unwrap();
+    let weights = vec![1.0; n];
+    let lambda = 1e11 / System::new(&space, &points, &weights, &[]).stiffness();
+    let expected = dense_solve(&penalty, lambda, &free, &y0, &rows);
+    let settings = settings.with_lambda(lambda);
+    let faired = fair(
+        &points,
+        &points,
+        &constraints,
+        CurveDomain::Parametric,
+        false,
+        &settings,
+    )
+    .unwrap();
+    assert_close(
+        &as_matrix(&faired.points, 0..3),
+        &expected,
+        1e-6,
+        "parametric, fixed + G1, QR",
+    );
+}
+
+#[test]
+fn influence_trace_equals_the_dense_trace() {
+    let points = wavy(25);
+    let n = points.len();
+    let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
+    let dense = Dense::new(x.clone(), HermiteEnds::ParabolicRunout);
+    let penalty = dense.penalty(2, 8.0);
+    let fixed = [4usize, 12];
+    let free: Vec<bool> = (0..n).map(|i| !fixed.contains(&i)).collect();
+    let lambda = 2.0;
+    // Dense influence: column k of ∂y/∂y⁰ from unit data at the free points.
+    let mut trace = 0.0;
+    let rows: Vec<(DVector<f64>, DVector<f64>)> = fixed
+        .iter()
+        .map(|&i| {
+            let mut e = DVector::zeros(n);
+            e[i] = 1.0;
+            (e, DVector::zeros(1))
+        })
+        .collect();
+    for k in (0..n).filter(|&k| free[k]) {
+        let mut unit = DMatrix::zeros(n, 1);
+        unit[(k, 0)] = 1.0;
+        trace += dense_solve(&penalty, lambda, &free, &unit, &rows)[(k, 0)];
+    }
+    let space = Space::new(
+        Knots::open(x),
+        Ends::Runout,
+        Penalty {
+            order: 2,
+            exponent: 8.0,
+        },
+    )
+    .unwrap();
+    let data = masked(&points, [false, true]);
+    let weights = vec![1.0; n];
+    let constraints: Vec<Constraint<2>> = fixed
+        .iter()
+        .map(|&i| Constraint {
+            form: space.value_form(i),
+            target: data[i],
+            point: Some(i),
+        })
+        .collect();
+    let system = System::new(&space, &data, &weights, &constraints);
+    let evaluation = lambda::evaluate(&system, lambda, true, true).unwrap();
+    let ours = evaluation.trace.unwrap();
+    assert!(
+        (ours - trace).abs() < 1e-10 * trace,
+        "trace {ours} vs dense {trace}"
+    );
+    // The QR path's trace (λ at stiffness 1e11, constraints as heavy rows).
+    let heavy = 1e11 / system.stiffness();
+    let mut dense_trace = 0.0;
+    for k in (0..n).filter(|&k| free[k]) {
+        let mut unit = DMatrix::zeros(n, 1);
+        unit[(k, 0)] = 1.0;
+        dense_trace += dense_solve(&penalty, heavy, &free, &unit, &rows)[(k, 0)];
+    }
+    let qr_trace = lambda::evaluate(&system, heavy, false, true)
+        .unwrap()
+        .trace
+        .unwrap();
+    assert!(
+        (qr_trace - dense_trace).abs() < 1e-6 * dense_trace,
+        "QR trace {qr_trace} vs dense {dense_trace}"
+    );
+    // The slope dRSS/d ln λ against a central difference.
+    let h: f64 = 1e-4;
+    let rss = |l: f64| lambda::evaluate(&system, l, false, false).unwrap().rss;
+    let numeric = (rss(lambda * h.exp()) - rss(lambda * (-h).exp())) / (2.0 * h);
+    let slope = evaluation.rss_slope.unwrap();
+    assert!(
+        (slope - numeric).abs() < 1e-6 * numeric.abs(),
+        "slope {slope} vs {numeric}"
+    );
+}
+
+#[test]
+fn lambda_zero_returns_the_input_and_lambda_large_leaves_linear_jumps() {
+    let points = wavy(40);
+    for domain in [CurveDomain::Function, CurveDomain::Parametric] {
+        let settings = JumpLsqSettings::default()
+            .with_difference_order(2)
+            .with_lambda(0.0)
+            .with_refits(0);
+        let faired = fair(
+            &points,
+            &points,
+            &Constraints::default(),
+            domain,
+            false,
+            &settings,
+        )
+        .unwrap();
+        assert_eq!(
+            faired.points, points,
+            "{domain:?}: λ = 0 returns the input bit for bit"
+        );
+    }
+    // λ → ∞: the solutions approach the least-squares fit y∞ within the null space of the
+    // penalty (jumps exactly linear in the knot index), with a distance that falls like 1/λ.
+    // On few points, so that the precision limit on λ lies far beyond 1/σ_min² of the
+    // penalty's smallest non-zero singular value σ_min (on many points the smoothest modes
+    // stay undamped at λ_max; see `lambda`).
+    let points = wavy(12);
+    let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
+    let dense = Dense::new(x.clone(), HermiteEnds::ParabolicRunout);
+    let penalty = dense.penalty(2, 0.0);
+    // Padded with zero rows to a square matrix, so that the SVD's V is complete.
+    let mut square = DMatrix::zeros(penalty.ncols(), penalty.ncols());
+    square
+        .view_mut((0, 0), (penalty.nrows(), penalty.ncols()))
+        .copy_from(&penalty);
+    let svd = square.svd(false, true);
+    let v_t = svd.v_t.unwrap();
+    let largest = svd.singular_values.max();
+    let n = points.len();
+    // Right singular vectors of the (numerically) zero singular values span the null space.
+    let null: Vec<DVector<f64>> = (0..n)
+        .filter(|&k| k >= svd.singular_values.len() || svd.singular_values[k] < 1e-9 * largest)
+        .map(|k| v_t.row(k).transpose())
+        .collect();
+    assert_eq!(
+        null.len(),
+        4,
+        "the runout spline's linear-jump space has dimension 4"
+    );
+    let basis = DMatrix::from_columns(&null);
+    let y0 = as_matrix(&points, 1..2);
+    let limit = &basis * (basis.transpose() * &y0);
+    let jumps_of = |y: &DMatrix<f64>| &dense.jump * y;
+    let second = |j: &DMatrix<f64>| {
+        (0..j.nrows() - 2)
+            .map(|r| (j[(r, 0)] - 2.0 * j[(r + 1, 0)] + j[(r + 2, 0)]).abs())
+            .fold(0.0, f64::max)
+    };
+    assert!(second(&jumps_of(&limit)) < 1e-9 * second(&jumps_of(&y0)));
+    let settings = JumpLsqSettings::default()
+        .with_difference_order(2)
+        .with_exponent(0.0);
+    let space = Space::new(Knots::open(x), Ends::Runout, penalty_of(&settings)).unwrap();
+    let data = masked(&points, [false, true]);
+    let weights = vec![1.0; n];
+    let system = System::new(&space, &data, &weights, &[]);
+    let lambda_max = lambda::STIFFNESS_LIMIT / system.stiffness();
+    let distance = |lambda: f64| {
+        let settings = settings.clone().with_lambda(lambda);
+        let faired = fair(
+            &points,
+            &points,
+            &Constraints::default(),
+            CurveDomain::Function,
+            false,
+            &settings,
+        )
+        .unwrap();
+        (as_matrix(&faired.points, 1..2) - &limit).amax()
+    };
+    // The 1/λ law: each decade of λ divides the distance by 10 (across the change from the
+    // direct solve to the QR one at stiffness 1e9).
+    let distances: Vec<f64> = [1e8, 1e9, 1e10, 1e11, 1e12]
+        .iter()
+        .map(|s| distance(s / system.stiffness()))
+        .collect();
+    for w in distances.windows(2) {
+        let ratio = w[1] / w[0];
+        assert!((0.08..0.125).contains(&ratio), "distances {distances:?}");
+    }
+    let at_max = distance(lambda_max);
+    assert!(at_max < 1e-9 * limit.amax(), "|y(λ_max) − y∞| = {at_max:e}");
+}
+
+#[test]
+fn jumps_are_those_of_the_project_splines_on_the_points_own_knots() {
+    let points = helix(20);
+    let ours = jumps(&points, CurveDomain::Parametric, false).unwrap();
+    let theirs = HermiteSpline::natural(&points).unwrap().third_derivative_jumps();
+    assert_eq!(ours.len(), theirs.len());
+    for (a, b) in ours.iter().zip(&theirs) {
+        assert!((a - b).norm() < 1e-9 * b.norm().max(1.0), "{a} vs {b}");
+    }
+    let points = ellipse(16);
+    let ours = jumps(&points, CurveDomain::Parametric, true).unwrap();
+    let settings = HermiteSettings::new().with_ends(HermiteEnds::Closed);
+    let theirs = HermiteSpline::new(&points, &settings)
+        .unwrap()
+        .third_derivative_jumps();
+    assert_eq!(ours.len(), theirs.len());
+    for (a, b) in ours.iter().zip(&theirs) {
+        assert!((a - b).norm() < 1e-9 * b.norm().max(1.0), "{a} vs {b}");
+    }
+    // The function kind: 6 e_i of Han et al. from the parabolic-runout spline function.
+    let points = wavy(18);
+    let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
+    let y: Vec<f64> = points.iter().map(|p| p[1]).collect();
+    let spline = curve_repr::SplineFunction::new(&x, &y, curve_repr::EndCondition::ParabolicRunout).unwrap();
+    let c = spline.c();
+    let ours = jumps(&points, CurveDomain::Function, false).unwrap();
+    for (i, j) in ours.iter().enumerate() {
+        let k = i + 1;
+        let e = (c[k + 1] - c[k]) / (x[k + 1] - x[k]) - (c[k] - c[k - 1]) / (x[k] - x[k - 1]);
+        assert!(
+            (j[1] - 6.0 * e).abs() < 1e-9 * (6.0 * e).abs().max(1.0),
+            "J_{k} {} vs 6e {}",
+            j[1],
+            6.0 * e
+        );
+    }
+}
+
+#[test]
+fn parametric_refits_report_the_penalty_on_the_outputs_own_knots() {
+    let points = helix(60);
+    let (mut previous_gap, mut previous_own) = (f64::INFINITY, f64::INFINITY);
+    for refits in [0, 1, 3] {
+        let settings = JumpLsqSettings::default()
+            .with_difference_order(2)
+            .with_lambda(5.0)
+            .with_refits(refits);
+        let faired = fair(
+            &points,
+            &points,
+            &Constraints::default(),
+            CurveDomain::Parametric,
+            false,
+            &settings,
+        )
+        .unwrap();
+        let own = jump_penalty(&faired.points, CurveDomain::Parametric, false, &settings).unwrap();
+        assert_eq!(faired.report.penalty_after, own);
+        // On the knots of the last solve the penalty differs from the own-knot one; the gap
+        // closes as the refits converge.
+        let space = Space::new(
+            Knots::open(faired.knots.clone()),
+            Ends::Natural,
+            penalty_of(&settings),
+        )
+        .unwrap();
+        let gamma = space.interpolate(&faired.points).unwrap();
+        let solve = space.penalty_of(&gamma);
+        // The knots of the last solve approach the output's own chord lengths, and the
+        // penalty on the output's own knots falls with them.
+        let own_knots = Parametrization::ChordLength.parameters(&faired.points).unwrap();
+        let gap = own_knots
+            .iter()
+            .zip(&faired.knots)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(
+            gap < previous_gap,
+            "refits {refits}: knot gap {gap:e} after {previous_gap:e}"
+        );
+        assert!(
+            own < previous_own,
+            "refits {refits}: penalty {own:e} after {previous_own:e}"
+        );
+        assert!(solve < own, "the solve's knots carry the smaller penalty");
+        previous_gap = gap;
+        previous_own = own;
+        assert!(own < 1e-3 * faired.report.penalty_before);
+    }
+}
+
+#[test]
+fn discrepancy_rule_reaches_its_target_and_gcv_minimises() {
+    let points = wavy(200);
+    let target = 0.004;
+    let settings = JumpLsqSettings::default()
+        .with_difference_order(2)
+        .with_target_sd(target);
+    let faired = fair(
+        &points,
+        &points,
+        &Constraints::default(),
+        CurveDomain::Function,
+        false,
+        &settings,
+    )
+    .unwrap();
+    let report = &faired.report;
+    assert_eq!(report.rule, "target-sd");
+    assert!(
+        (report.rms_displacement / target - 1.0).abs() < 1e-3,
+        "{report:?}"
+    );
+    let settings = JumpLsqSettings::default()
+        .with_difference_order(2)
+        .with_rule(LambdaRule::Gcv);
+    let faired = fair(
+        &points,
+        &points,
+        &Constraints::default(),
+        CurveDomain::Function,
+        false,
+        &settings,
+    )
+    .unwrap();
+    let chosen = faired.report.lambda;
+    let g = faired.report.gcv.unwrap();
+    // GCV at λ·10^±0.3 is not lower than at the chosen λ.
+    let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
+    let space = Space::new(Knots::open(x), Ends::Runout, penalty_of(&settings)).unwrap();
+    let data = masked(&points, [false, true]);
+    let weights = vec![1.0; points.len()];
+    let system = System::new(&space, &data, &weights, &[]);
+    for factor in [0.5, 2.0] {
+        let e = lambda::evaluate(&system, chosen * factor, false, true).unwrap();
+        let v = (e.rss / points.len() as f64) / (1.0 - e.trace.unwrap() / points.len() as f64).powi(2);
+        assert!(v >= g * (1.0 - 1e-9), "GCV {v} at {factor}·λ below {g}");
+    }
+}
+
+#[test]
+fn the_solves_stay_accurate_up_to_the_precision_limit() {
+    // At the largest stiffness of the direct LDLᵀ and at λ_max (Givens QR) the solution
+    // agrees with a dense Householder QR of the stacked problem [I; √λ P] y ≈ [y⁰; 0] (whose
+    // condition is not squared).
+    for exponent in [0.0, 8.0] {
+        let points = wavy(120);
+        let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
+        let dense = Dense::new(x.clone(), HermiteEnds::ParabolicRunout);
+        let penalty = dense.penalty(2, exponent);
+        let settings = JumpLsqSettings::default()
+            .with_difference_order(2)
+            .with_exponent(exponent);
+        let space = Space::new(Knots::open(x), Ends::Runout, penalty_of(&settings)).unwrap();
+        let data = masked(&points, [false, true]);
+        let weights = vec![1.0; points.len()];
+        let system = System::new(&space, &data, &weights, &[]);
+        let free = vec![true; points.len()];
+        for stiffness in [system::DIRECT_LIMIT, lambda::STIFFNESS_LIMIT] {
+            let lambda = stiffness / system.stiffness();
+            let reference = dense_solve(&penalty, lambda, &free, &as_matrix(&points, 1..2), &[]);
+            let settings = settings.clone().with_lambda(lambda);
+            let faired = fair(
+                &points,
+                &points,
+                &Constraints::default(),
+                CurveDomain::Function,
+                false,
+                &settings,
+            )
+            .unwrap();
+            let error = (as_matrix(&faired.points, 1..2) - &reference).amax() / reference.amax();
+            assert!(
+                error < 1e-6,
+                "a = {exponent}, stiffness {stiffness:e}: error {error:e}"
+            );
+        }
+    }
+}
