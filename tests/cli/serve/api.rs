@@ -86,7 +86,7 @@ fn methods_are_the_catalogue_with_defaults() {
     let p = &smoothing["schema"]["properties"]["p"];
     assert!(p["description"].as_str().is_some_and(|d| !d.is_empty()), "{p}");
     assert!(!p["default"].is_null(), "{p}");
-    assert_eq!(value["defaults"]["function"], "two-phase");
+    assert_eq!(value["defaults"]["function"], "jump-lsq");
 }
 
 #[test]
@@ -376,7 +376,7 @@ fn bad_requests_are_4xx_with_a_message_and_the_server_lives_on() {
             "/api/curve",
             with(json!({ "params": { "wiggle": 1 } })),
             400,
-            "params: `wiggle` is not a parameter of `two-phase`",
+            "params: `wiggle` is not a parameter of `jump-lsq`",
         ),
         (
             "/api/curve",
