@@ -162,13 +162,18 @@ pub const METHODS: &[MethodInfo] = &[
                 meaning: "stop after a pass lowering inflections + vibrations by less than this fraction (0: never)",
             },
             ParameterInfo {
+                name: "denoise",
+                default: "gcv",
+                meaning: "remove the data's noise first with a smoothing spline (gcv), or not (off, the paper)",
+            },
+            ParameterInfo {
                 name: "segment-passes",
                 default: "3",
                 meaning: "parametric input: partition-fair-blend passes (Han 4.2.4)",
             },
             ParameterInfo {
                 name: "turning-limit",
-                default: "180",
+                default: "120",
                 meaning: "parametric input: largest turning angle of a segment, degrees",
             },
             ParameterInfo {
@@ -285,9 +290,14 @@ pub const METHODS: &[MethodInfo] = &[
         summary: "removes curvature-slope jumps knot by knot, a baseline",
         parameters: &[
             ParameterInfo {
-                name: "tolerance",
+                name: "jump-reduction",
                 default: "1e-3",
                 meaning: "stop when the largest curvature-slope jump is this fraction of the initial one",
+            },
+            ParameterInfo {
+                name: "max-move",
+                default: "data",
+                meaning: "how far a point may move without --tolerance: data (about five noise estimates), off, or a distance",
             },
             ParameterInfo {
                 name: "max-iterations",

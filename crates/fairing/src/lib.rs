@@ -12,6 +12,7 @@
 //! ([`SegmentedFairing`]).
 
 pub mod constraints;
+pub mod displacement;
 pub mod error;
 pub mod observer;
 pub mod partition;

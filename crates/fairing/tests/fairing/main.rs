@@ -1,7 +1,10 @@
 //! The crate's integration tests, one binary (it links once): one module per subject.
 
 mod batten;
+mod displacement;
+mod sapidis_farin_data;
 mod strain_energy;
 mod two_phase;
 mod two_phase_curves;
+mod two_phase_ends;
 mod two_phase_fine;

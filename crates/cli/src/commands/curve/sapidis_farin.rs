@@ -3,15 +3,16 @@
 //! mapped to the faired curve at their parameters; knots whose fairing would move a fixed
 //! point or leave the tolerance band are skipped.
 //!
-//! Parameters (registry): `tolerance` (stop when the largest curvature-slope jump is at most
-//! this fraction of the initial one; default 1e-3) and `max-iterations` (knots faired at most;
-//! default 1000). A function y(x) is faired as the graph of a B-spline parametrised by its
+//! Parameters (registry): `jump-reduction` (stop when the largest curvature-slope jump is at
+//! most this fraction of the initial one; default 1e-3), `max-iterations` (knots faired at
+//! most; default 1000) and `max-move` (data | off | a distance: how far a point may move
+//! without `--tolerance`; default data, the bound the data imply). A function y(x) is faired as the graph of a B-spline parametrised by its
 //! abscissa, x kept; a parametric curve over chord length.
 
 use std::collections::BTreeMap;
 
 use curve_repr::Vector;
-use fairing::strategies::{CurveDomain, SapidisFarin, SapidisFarinSettings, SapidisFarinStop};
+use fairing::strategies::{CurveDomain, MoveBound, MoveRule, SapidisFarin, SapidisFarinSettings, SapidisFarinStop};
 use fairness::curvature::CurvatureForm;
 
 use super::strategy_run::{by_dimension, fairing_constraints, run, Described};
@@ -23,19 +24,37 @@ use crate::kind::CurveKind;
 pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
     let parameters = job.parameters;
     let defaults = SapidisFarinSettings::default();
-    let tolerance = parameters.number("tolerance", defaults.tolerance)?;
-    if tolerance < 0.0 {
+    let origin = |name: &str| {
+        parameters
+            .get(name)
+            .map(|g| g.origin.clone())
+            .unwrap_or_default()
+    };
+    let jump_reduction = parameters.number("jump-reduction", defaults.jump_reduction)?;
+    if jump_reduction < 0.0 {
         return Err(Error::Parameter {
-            origin: parameters
-                .get("tolerance")
-                .map(|g| g.origin.clone())
-                .unwrap_or_default(),
-            message: format!("`tolerance` = {tolerance} must not be negative"),
+            origin: origin("jump-reduction"),
+            message: format!("`jump-reduction` = {jump_reduction} must not be negative"),
         });
     }
+    let max_move = match parameters.get("max-move").map(|g| g.value.as_str()) {
+        None => defaults.max_move,
+        Some("data") => MoveBound::Rule(MoveRule::Data),
+        Some("off") => MoveBound::Rule(MoveRule::Off),
+        Some(text) => match text.parse::<f64>() {
+            Ok(d) if d.is_finite() && d >= 0.0 => MoveBound::Distance(d),
+            _ => {
+                return Err(Error::Parameter {
+                    origin: origin("max-move"),
+                    message: format!("`max-move` = `{text}` is not data, off or a distance ≥ 0"),
+                })
+            }
+        },
+    };
     let max_iterations = parameters.count("max-iterations", defaults.max_iterations)?;
     let settings = SapidisFarinSettings::default()
-        .with_tolerance(tolerance)
+        .with_jump_reduction(jump_reduction)
+        .with_max_move(max_move)
         .with_max_iterations(max_iterations)
         .with_domain(match job.kind {
             CurveKind::Function => CurveDomain::Function,
@@ -79,7 +98,7 @@ where
         object.insert("parametrization".into(), serde_json::json!(parametrization));
     }
     let stop = match strategy.stop() {
-        Some(SapidisFarinStop::Tolerance) => "tolerance",
+        Some(SapidisFarinStop::JumpReduction) => "jump-reduction",
         Some(SapidisFarinStop::MaxIterations) => "max-iterations",
         Some(SapidisFarinStop::NoCandidate) => "no-candidate",
         None => "max-iterations",
@@ -90,7 +109,8 @@ where
         .map(|s| serde_json::json!({"knot": s.knot, "jump_before": s.jump_before, "max_jump_after": s.max_jump_after}))
         .collect();
     let mut extras = BTreeMap::new();
-    extras.insert("tolerance".into(), serde_json::json!(settings.tolerance));
+    extras.insert("jump_reduction".into(), serde_json::json!(settings.jump_reduction));
+    extras.insert("move_bound".into(), serde_json::json!(strategy.move_bound()));
     extras.insert(
         "max_jump_before".into(),
         serde_json::json!(strategy.initial_max_jump()),

@@ -5,8 +5,9 @@
 //! Parameters (registry, defaults = the paper's values or the library's guards):
 //! `coarse-lambda` 0.8, `fine-lambda` 0.75, `alpha-divisor` 5, `max-passes` 50,
 //! `max-move-factor` 0.5, `guard-window` 16, `count-guard` local|pass|off, `pair-min-sine`
-//! 0.05, `max-run` 2 (> 2 turns on the long-run option); parametric only: `segment-passes` 3,
-//! `turning-limit` 180 (degrees), `overlap` 5, `closed` false.
+//! 0.05, `max-run` (> 2 turns on the long-run option), `denoise` gcv|off; parametric only:
+//! `segment-passes`, `turning-limit` (degrees), `overlap`, `closed` false. Defaults are the
+//! library's ([`TwoPhaseSettings::default`], [`PartitionSettings::default`]).
 //!
 //! Constraints: `--fixed` and `--tolerance` are honoured by the library's
 //! [`fairing::Constraints`]; `--clamp-ends g0` keeps the end points (which two-phase never
@@ -18,7 +19,7 @@ use std::collections::BTreeMap;
 use std::f64::consts::PI;
 
 use curve_repr::Vec2;
-use fairing::two_phase::{CountGuard, TwoPhase, TwoPhaseSettings};
+use fairing::two_phase::{CountGuard, Denoise, TwoPhase, TwoPhaseSettings};
 use fairing::{EndClamp, FairingResult, PartitionSettings, Pipeline, SegmentedFairing};
 
 use super::{CurveJob, CurveOutcome};
@@ -53,6 +54,13 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
         stall_passes: p.count("stall-passes", defaults.stall_passes)?,
         min_gain: p.number("min-gain", defaults.min_gain)?,
         detection_floor: defaults.detection_floor,
+        denoise: match p
+            .choice("denoise", &["gcv", "off"], defaults.denoise.name())?
+            .as_str()
+        {
+            "off" => Denoise::Off,
+            _ => Denoise::Gcv,
+        },
     };
     settings.validate().map_err(|e| Error::Parameter {
         origin: "--set".into(),
@@ -78,7 +86,8 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
     }
     // The arbitrary-curve settings are read (and checked) whatever the input's kind, so that a
     // bad value is refused even where it would not be used.
-    let limit_degrees = p.number("turning-limit", 180.0)?;
+    let partition_defaults = PartitionSettings::default();
+    let limit_degrees = p.number("turning-limit", partition_defaults.limit.to_degrees())?;
     if !(limit_degrees > 0.0 && limit_degrees <= 180.0) {
         return Err(Error::Parameter {
             origin: p
@@ -89,12 +98,12 @@ pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
     }
     let partition = PartitionSettings::default()
         .with_limit(limit_degrees * PI / 180.0)
-        .with_overlap(p.count("overlap", 5)?);
+        .with_overlap(p.count("overlap", partition_defaults.overlap)?);
     partition.validate().map_err(|e| Error::Parameter {
         origin: "--set".into(),
         message: e.to_string(),
     })?;
-    let passes = p.count("segment-passes", 3)?;
+    let passes = p.count("segment-passes", SegmentedFairing::<TwoPhase>::DEFAULT_PASSES)?;
     if passes == 0 {
         return Err(Error::Parameter {
             origin: "--set".into(),

@@ -175,7 +175,7 @@ fn closed_curves_and_bad_tolerance_are_rejected() {
         .init(&mut state)
         .is_err());
     let mut state = FairingState::new(noisy_arc(12), Constraints::default(), false).unwrap();
-    let mut strategy = SapidisFarin::<2>::new(SapidisFarinSettings::default().with_tolerance(f64::NAN));
+    let mut strategy = SapidisFarin::<2>::new(SapidisFarinSettings::default().with_jump_reduction(f64::NAN));
     assert!(strategy.init(&mut state).is_err());
 }
 
