@@ -28,7 +28,7 @@ impl FairingStrategy<2> for TowardsMidpoint {
     fn step(&mut self, state: &mut FairingState<2>) -> Result<StepOutcome> {
         let points = state.points().to_vec();
         let spline = HermiteSpline::natural(&points)
-            .map_err(|e| fairing::state::strategy_error(self.name(), e.to_string()))?;
+            .map_err(|e| fairing::strategy_error(self.name(), e.to_string()))?;
         let jumps: Vec<f64> = spline.third_derivative_jumps().iter().map(|j| j.norm()).collect();
         // The movable interior point with the largest jump (jumps[k] is at point k + 1).
         let worst = jumps

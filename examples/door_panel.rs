@@ -23,11 +23,11 @@ use std::error::Error;
 use std::path::{Path, PathBuf};
 
 use curve_repr::{BicubicSplineSurface, NurbsSurface, Vec3};
-use fair_cli::highlight::{HighlightSettings, LightSetup};
 use fair_cli::input::Grid;
 use fair_cli::plots::SurfacePlot;
 use fair_cli::svg::{Color, Figure, Line, Panel};
 use fairing::strategies::{SurfaceFairing, SurfaceFairingResult, SurfaceFairingSettings, SurfaceMode};
+use fairness::highlight::{HighlightSettings, LightSetup};
 
 type Net = Vec<Vec<Vec3>>;
 

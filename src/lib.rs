@@ -2,8 +2,9 @@
 //!
 //! See the README for the architecture: representations ([`curve_repr`]) ← indicators and
 //! criteria ([`fairness`]) ← optimisation adapters ([`optim`]) ← strategies and pipelines
-//! ([`fairing`]) ← the `fair` command ([`fair_cli`]).
+//! ([`fairing`]) ← the `fair` command ([`fair_cli`]); faired shapes into CAD files ([`cad`]).
 
+pub use cad;
 pub use curve_repr;
 pub use fair_cli;
 pub use fairing;

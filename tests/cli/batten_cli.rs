@@ -85,7 +85,8 @@ fn okada_table_1_setting() {
     let (output, rows, report) = run(&["--fixed", "2,5,7"]);
     assert_ok(&output);
     assert_eq!(report["method"], "batten");
-    assert_eq!(report["termination"], "StrategyDone");
+    // Issue 15: termination reasons in one kebab-case spelling for every method.
+    assert_eq!(report["termination"], "strategy-done");
     assert!(report["iterations"].as_u64().unwrap() >= 2);
     for i in [0, 2, 5, 7, 10] {
         assert_eq!(rows[i], OKADA[i].to_vec(), "point {i}");

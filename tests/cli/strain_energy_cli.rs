@@ -261,11 +261,12 @@ fn config_file_parameters() {
         coarse < fine,
         "energy-tolerance from the file not applied: {coarse} vs {fine}"
     );
-    assert_eq!(r.report["termination"], "StrategyDone");
+    // Issue 15: termination reasons in one kebab-case spelling for every method.
+    assert_eq!(r.report["termination"], "strategy-done");
     let limited = run(&rows, &["--method", "strain-energy", "--set", "max-iterations=3"]);
     ok(&limited);
     assert_eq!(limited.report["iterations"], 3);
-    assert_eq!(limited.report["termination"], "MaxIterations");
+    assert_eq!(limited.report["termination"], "max-iterations");
     let iterated = run(
         &rows,
         &[

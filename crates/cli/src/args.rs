@@ -1,4 +1,4 @@
-//! The command line of `fair` (DESIGN.md, "The `fair` command"), as clap derive types.
+//! The command line of `fair` (`docs/CONTRACT.md`), as clap derive types.
 //!
 //! Values that need more than clap's own parsing (`--set NAME=VALUE`, index lists `2,5,7`,
 //! a positive tolerance) have value parsers here whose messages say what was expected.
@@ -75,14 +75,20 @@ pub struct FairArgs {
     /// Input file, or - for standard input.
     #[arg(value_name = "INPUT")]
     pub input: String,
-    /// Fairing method (`fair methods` lists them); default two-phase for functions,
+    /// Fairing method (`fair methods` lists the catalogue's); default two-phase for functions,
     /// strain-energy for parametric curves, zhang-cheng for surfaces.
     #[arg(long, short = 'm', value_name = "M")]
     pub method: Option<String>,
     /// How to read the points (curves only).
     #[arg(long, value_enum, default_value_t = KindArg::Auto)]
     pub kind: KindArg,
-    /// A TOML file of method parameters (the names `--set` takes).
+    /// The coordinate columns of a CSV curve by header name, abscissa first, e.g. z,y to fair
+    /// a hull section as y(z) (written back in place; other columns are carried through).
+    /// Default: the columns named x, y and z.
+    #[arg(long, value_name = "NAMES", value_delimiter = ',')]
+    pub columns: Option<Vec<String>>,
+    /// A TOML or JSON config: method parameters (the names `--set` takes), [constraints] and
+    /// [[stage]] pipelines.
     #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
     /// Set one method parameter, e.g. --set p=0.999 (repeatable; overrides --config).
@@ -95,7 +101,7 @@ pub struct FairArgs {
     #[arg(long, value_name = "LIST", value_parser = parse_index_list)]
     pub points: Option<IndexList>,
     /// No point moves farther than D.
-    #[arg(long, value_name = "D", value_parser = parse_tolerance)]
+    #[arg(long, value_name = "D", value_parser = parse_tolerance, allow_negative_numbers = true)]
     pub tolerance: Option<f64>,
     /// Keep the end points (g0), also the end tangents (g1), also the end curvatures (g2).
     #[arg(long, value_enum, value_name = "G")]
@@ -126,6 +132,13 @@ pub struct FairArgs {
     pub batch: bool,
 }
 
+impl FairArgs {
+    /// How to read the input: `--columns`.
+    pub fn read_options(&self) -> crate::input::ReadOptions {
+        crate::input::ReadOptions::with_columns(self.columns.clone())
+    }
+}
+
 /// Options of `fair inspect`.
 #[derive(Debug, Clone, Args)]
 pub struct InspectArgs {
@@ -135,6 +148,9 @@ pub struct InspectArgs {
     /// How to read the points.
     #[arg(long, value_enum, default_value_t = KindArg::Auto)]
     pub kind: KindArg,
+    /// The coordinate columns of a CSV curve by header name, abscissa first, e.g. z,y.
+    #[arg(long, value_name = "NAMES", value_delimiter = ',')]
+    pub columns: Option<Vec<String>>,
     /// Read INPUT as a surface grid i,j,x,y,z (also chosen when the CSV header is i,j,x,y,z).
     #[arg(long)]
     pub surface: bool,
@@ -147,6 +163,13 @@ pub struct InspectArgs {
     /// Print nothing on success.
     #[arg(long, short = 'q')]
     pub quiet: bool,
+}
+
+impl InspectArgs {
+    /// How to read the input: `--columns`.
+    pub fn read_options(&self) -> crate::input::ReadOptions {
+        crate::input::ReadOptions::with_columns(self.columns.clone())
+    }
 }
 
 /// Options of `fair demo`.

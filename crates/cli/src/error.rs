@@ -61,7 +61,7 @@ pub enum Error {
         /// What needs them (a method, an indicator, "a curve").
         what: String,
     },
-    /// A method name that the registry does not know for this kind of input.
+    /// A method name that the catalogue does not know for this kind of input.
     #[error("unknown {kind} method `{name}` (known: {known}; `fair methods` lists them)")]
     UnknownMethod {
         /// The name given.
@@ -85,6 +85,14 @@ pub enum Error {
         /// The option, e.g. `--fixed`.
         option: &'static str,
         /// What is wrong.
+        message: String,
+    },
+    /// A method that does not apply to this input (a planar-only method on 3D points).
+    #[error("{path}: {message}")]
+    NotApplicable {
+        /// The input file.
+        path: String,
+        /// Why.
         message: String,
     },
     /// A known method (or indicator) whose numerical code is not wired into the command yet.
@@ -152,6 +160,7 @@ impl Error {
             | Error::Parameter { .. }
             | Error::Argument { .. }
             | Error::Representation { .. }
+            | Error::NotApplicable { .. }
             | Error::Write { .. } => 2,
             Error::Batch { status, .. } => *status,
             Error::NotAvailable { .. } | Error::NonFiniteOutput { .. } | Error::Internal { .. } => 1,
@@ -163,6 +172,74 @@ impl Error {
         let text = self.to_string();
         let parts: Vec<&str> = text.lines().map(str::trim).filter(|l| !l.is_empty()).collect();
         parts.join("; ")
+    }
+}
+
+impl Error {
+    /// The library's error as the command's, naming `file` where the points are at fault:
+    /// unknown names and bad values at their origin (`--set`, `file.toml:LINE`); a method's
+    /// refusal as the option it refuses (`--clamp-ends`, `--points`, `--kind`); errors of the
+    /// representations and strategies on the data name the file (exit status 2); a result
+    /// that breaks a constraint is a bug (exit status 1).
+    pub fn from_fairing(error: fairing::Error, file: &str) -> Error {
+        use fairing::{Error as F, Refusal};
+        match error {
+            F::Repr(source)
+            | F::Fairness(fairness::Error::Curve(source))
+            | F::Optim(optim::Error::Curve(source)) => Error::Representation {
+                path: file.to_string(),
+                source,
+            },
+            F::UnknownMethod { name, kind, known } => Error::UnknownMethod { name, kind, known },
+            F::UnknownName {
+                origin,
+                what,
+                name,
+                known,
+            } => Error::Parameter {
+                origin,
+                message: format!("`{name}` is not {what} (known: {known})"),
+            },
+            F::Parameter { origin, message } | F::Config { origin, message } => {
+                Error::Parameter { origin, message }
+            }
+            F::Refused {
+                what: Refusal::Dimension | Refusal::Closed,
+                ..
+            } => Error::NotApplicable {
+                path: file.to_string(),
+                message: error.to_string(),
+            },
+            F::Refused { what, .. } => {
+                let option = match what {
+                    Refusal::EndClamp => "--clamp-ends",
+                    Refusal::BadPoints => "--points",
+                    Refusal::Fixed => "--fixed",
+                    Refusal::Tolerance => "--tolerance",
+                    Refusal::Kind => "--kind",
+                    _ => "--set",
+                };
+                Error::Argument {
+                    option,
+                    message: error.to_string(),
+                }
+            }
+            F::ConstraintUnsupported { .. } => Error::Argument {
+                option: "--clamp-ends",
+                message: error.to_string(),
+            },
+            F::BadParameter { .. } | F::BadValue { .. } | F::BadConstraint { .. } => Error::Parameter {
+                origin: "--set".into(),
+                message: error.to_string(),
+            },
+            F::ConstraintViolated { .. } => Error::Internal {
+                message: error.to_string(),
+            },
+            other => Error::Invalid {
+                path: file.to_string(),
+                message: other.to_string(),
+            },
+        }
     }
 }
 

@@ -1,18 +1,27 @@
 //! The `fair` command: read measured points, fair them, write points, a report and a plot.
 //!
-//! The command surface is DESIGN.md's "The `fair` command" ([`args`]); [`run`] parses it and
-//! dispatches to one handler per subcommand ([`commands`]). Around them:
+//! The command surface is the contract of `docs/CONTRACT.md` ([`args`]); [`main_with`]
+//! parses it and dispatches to one handler per subcommand ([`commands`]) with a
+//! [`Catalog`] of methods: the command is a thin shell over the library's catalogue, which
+//! knows every method, its parameters (`fair methods`, `--set`, config files and pipelines)
+//! and what it refuses. A program with its own methods is a few lines:
+//!
+//! ```no_run
+//! use fairing::catalog::Catalog;
+//! fn main() -> std::process::ExitCode {
+//!     let catalog = Catalog::builtin(); // then catalog.register_curve(...), ...
+//!     fair_cli::main_with(catalog)
+//! }
+//! ```
+//!
+//! Around the handlers:
 //! - [`input`] reads curves (CSV, JSON, Selig/Lednicer `.dat`, `-` for stdin) and surface
 //!   grids (CSV `i,j,x,y,z`), naming file and line on every error; [`output`] writes results
 //!   back in the input's format;
 //! - [`report`] is the JSON report; [`svg`] a small plotting toolkit and [`plots`] the pictures
 //!   built with it;
-//! - [`registry`] lists the methods and their parameters, [`parameters`] reads `--set` and
-//!   `--config`, [`config`] reads config files (parameters, constraints, pipelines of stages), [`constraints`] checks `--fixed`/`--points`/`--tolerance`/`--clamp-ends`,
-//!   [`kind`] resolves `--kind`.
-//!
-//! The numerical crates plug in at three seams: [`commands::measure`] (indicators),
-//! [`commands::curve::fair`] and [`commands::surface::fair`] (strategies).
+//! - [`constraints`] checks `--fixed`/`--points`/`--tolerance`/`--clamp-ends`, [`kind`]
+//!   resolves `--kind`.
 //!
 //! Exit status: 0 on success, 2 on bad input or arguments, 1 on internal failure; every
 //! error is one line on standard error, `fair: <file>:<line>: <what is wrong>`. No input
@@ -20,32 +29,37 @@
 
 pub mod args;
 pub mod commands;
-pub mod config;
 pub mod constraints;
 pub mod error;
-pub mod highlight;
 pub mod input;
 pub mod kind;
 pub mod output;
-pub mod parameters;
 pub mod plots;
 pub mod progress;
-pub mod registry;
 pub mod report;
 pub mod svg;
 
 pub use error::{Error, Result};
 
 use clap::Parser;
+use fairing::catalog::Catalog;
 use std::ffi::OsString;
 use std::io::Write;
 use std::process::ExitCode;
 
-/// Runs the command with the process arguments and returns its exit status.
+/// Runs the command with the built-in methods ([`Catalog::builtin`]) and the process
+/// arguments; see [`main_with`].
+pub fn run() -> ExitCode {
+    main_with(Catalog::builtin())
+}
+
+/// Runs the command with the methods of `catalog` and the process arguments, and returns its
+/// exit status: `fair_cli::main_with(catalog)` is the whole `main` of a binary that adds
+/// methods, criteria or indicators to the built-in ones.
 ///
 /// Installs a quiet panic hook first, so that a panic anywhere below ends as one line on
 /// standard error (`fair: internal error: ...`) and exit status 1, never a backtrace.
-pub fn run() -> ExitCode {
+pub fn main_with(catalog: Catalog) -> ExitCode {
     std::panic::set_hook(Box::new(|info| {
         let message = panic_message(info.payload());
         let place = info
@@ -56,7 +70,7 @@ pub fn run() -> ExitCode {
             *last = Some(format!("{message}{place}"));
         }
     }));
-    run_from(std::env::args_os())
+    run_from_with(&catalog, std::env::args_os())
 }
 
 static LAST_PANIC: std::sync::Mutex<Option<String>> = std::sync::Mutex::new(None);
@@ -71,8 +85,19 @@ fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
     }
 }
 
-/// Runs the command with the given arguments (the first is the program name).
+/// Runs the command with the built-in methods and the given arguments (the first is the
+/// program name).
 pub fn run_from<I, T>(args: I) -> ExitCode
+where
+    I: IntoIterator<Item = T>,
+    T: Into<OsString> + Clone,
+{
+    run_from_with(&Catalog::builtin(), args)
+}
+
+/// Runs the command with the methods of `catalog` and the given arguments (the first is the
+/// program name).
+pub fn run_from_with<I, T>(catalog: &Catalog, args: I) -> ExitCode
 where
     I: IntoIterator<Item = T>,
     T: Into<OsString> + Clone,
@@ -81,7 +106,7 @@ where
         Ok(cli) => cli,
         Err(e) => return usage(e),
     };
-    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| commands::dispatch(cli)))
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| commands::dispatch(catalog, cli)))
         .unwrap_or_else(|payload| {
             let recorded = LAST_PANIC.lock().ok().and_then(|mut last| last.take());
             Err(Error::Internal {
@@ -123,15 +148,26 @@ fn usage(e: clap::Error) -> ExitCode {
     }
 }
 
-/// clap's first message line without its `error: ` prefix, plus where to look for help.
+/// clap's message without its `error: ` prefix on one line, plus where to look for help. A
+/// message that ends in `:` continues on the next lines (the arguments not provided): they
+/// are joined, so that the line names what is missing.
 fn usage_line(rendered: &str) -> String {
-    let first = rendered
-        .lines()
+    let mut lines = rendered.lines().map(str::trim).skip_while(|l| l.is_empty());
+    let first = lines.next().unwrap_or("invalid arguments");
+    let mut message = first
+        .strip_prefix("error:")
         .map(str::trim)
-        .find(|l| !l.is_empty())
-        .unwrap_or("invalid arguments");
-    let first = first.strip_prefix("error:").map(str::trim).unwrap_or(first);
-    format!("{first} (see `fair --help`)")
+        .unwrap_or(first)
+        .to_string();
+    if message.ends_with(':') {
+        let rest: Vec<&str> = lines
+            .take_while(|l| !l.is_empty() && !l.starts_with("Usage:"))
+            .collect();
+        if !rest.is_empty() {
+            message = format!("{} {}", message, rest.join(", "));
+        }
+    }
+    format!("{message} (see `fair --help`)")
 }
 
 #[cfg(test)]
@@ -144,5 +180,21 @@ mod tests {
         let line = usage_line(&e.render().to_string());
         assert!(!line.contains('\n'));
         assert!(line.starts_with("unrecognized subcommand 'frobnicate'"), "{line}");
+    }
+
+    #[test]
+    fn a_missing_argument_is_named() {
+        let e = args::Cli::try_parse_from(["fair", "curve"]).unwrap_err();
+        let line = usage_line(&e.render().to_string());
+        assert!(!line.contains('\n'));
+        assert!(line.contains("<INPUT>"), "{line}");
+    }
+
+    #[test]
+    fn a_negative_tolerance_is_a_clear_message() {
+        let e = args::Cli::try_parse_from(["fair", "curve", "a.csv", "--tolerance", "-1"]).unwrap_err();
+        let line = usage_line(&e.render().to_string());
+        assert!(line.contains("greater than 0"), "{line}");
+        assert!(!line.contains("unexpected argument"), "{line}");
     }
 }

@@ -6,7 +6,7 @@
 use curve_repr::number::Compact;
 
 use crate::error::{Error, Result};
-use crate::input::{io_reason, CurveInput, Delimiter, Grid, InputFormat, Labels, Points, SurfaceInput};
+use crate::input::{io_reason, CurveInput, Delimiter, Grid, InputFormat, Layout, Points, SurfaceInput};
 use std::io::Write;
 
 /// Formats `points` in the format of `input` (header, JSON document, airfoil name).
@@ -34,16 +34,13 @@ pub fn format_curve(input: &CurveInput, points: &Points) -> Result<String> {
         InputFormat::Csv {
             header,
             delimiter,
-            labels,
+            layout,
         } => {
             if let Some(header) = header {
                 text.push_str(header);
                 text.push('\n');
             }
-            match labels {
-                None => push_rows(&mut text, rows.iter().map(Vec::as_slice), *delimiter),
-                Some(labels) => push_labelled_rows(&mut text, &rows, labels, *delimiter)?,
-            }
+            push_layout_rows(&mut text, &rows, layout, *delimiter)?;
         }
         InputFormat::Json { document } => {
             let array = serde_json::to_value(&rows).map_err(|e| Error::Internal {
@@ -141,37 +138,197 @@ fn push_rows<'a>(text: &mut String, rows: impl Iterator<Item = &'a [f64]>, delim
     }
 }
 
-/// Rows with their label columns back in place, in the file's column order.
-fn push_labelled_rows(
+/// Rows with every coordinate back in its own column and the label columns' text in place,
+/// in the file's column order.
+fn push_layout_rows(
     text: &mut String,
     rows: &[Vec<f64>],
-    labels: &Labels,
+    layout: &Layout,
     delimiter: Delimiter,
 ) -> Result<()> {
-    if labels.texts.len() != rows.len() {
+    let has_labels = !layout.labels.is_empty();
+    if has_labels && layout.labels.len() != rows.len() {
         return Err(Error::Internal {
             message: format!(
                 "{} rows for {} labelled input rows",
                 rows.len(),
-                labels.texts.len()
+                layout.labels.len()
             ),
         });
     }
-    for (row, texts) in rows.iter().zip(&labels.texts) {
-        let (mut values, mut words) = (row.iter(), texts.iter());
-        let fields: Vec<String> = (0..labels.columns)
-            .map(|column| {
-                if labels.positions.contains(&column) {
-                    words.next().cloned().unwrap_or_default()
-                } else {
-                    values.next().map(|&v| number(v)).unwrap_or_default()
-                }
-            })
-            .collect();
-        text.push_str(&fields.join(delimiter.as_str()));
+    // Which coordinate (or, for None, the next label) goes in each file column.
+    let slots: Vec<Option<usize>> = (0..layout.columns)
+        .map(|column| layout.coordinates.iter().position(|&c| c == column))
+        .collect();
+    let separator = delimiter.as_str();
+    for (index, row) in rows.iter().enumerate() {
+        let mut words = layout.labels.get(index).into_iter().flatten();
+        for (column, slot) in slots.iter().enumerate() {
+            if column > 0 {
+                text.push_str(separator);
+            }
+            match slot {
+                Some(k) => text.push_str(&row.get(*k).map(|&v| number(v)).unwrap_or_default()),
+                None => text.push_str(words.next().map(String::as_str).unwrap_or_default()),
+            }
+        }
         text.push('\n');
     }
     Ok(())
+}
+
+/// The format `-o` asks for, by its extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OutputFormat {
+    /// The input's own format (`-o -`, standard output).
+    SameAsInput,
+    /// `.csv`: comma-separated, a header naming the columns.
+    Csv,
+    /// `.json`: `{"points": [...]}`.
+    Json,
+    /// `.dat`: a Selig airfoil file (a name line, then `x y` pairs).
+    Dat,
+}
+
+impl OutputFormat {
+    /// The format of `path` by its extension: `.csv`, `.json`, `.dat` (and `.txt`, written as
+    /// a table like `.csv`); `-` keeps the input's. Any other extension, or none, is refused
+    /// naming the ones known, before anything runs. O(1).
+    pub fn of_path(path: &str) -> Result<OutputFormat> {
+        if path == "-" {
+            return Ok(OutputFormat::SameAsInput);
+        }
+        if std::path::Path::new(path).is_dir() {
+            return Err(Error::Write {
+                path: path.into(),
+                reason: "it is a directory".into(),
+            });
+        }
+        let extension = std::path::Path::new(path)
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(|e| e.to_ascii_lowercase());
+        match extension.as_deref() {
+            Some("csv") | Some("txt") => Ok(OutputFormat::Csv),
+            Some("json") => Ok(OutputFormat::Json),
+            Some("dat") => Ok(OutputFormat::Dat),
+            other => Err(Error::Argument {
+                option: "-o",
+                message: format!(
+                    "`{path}`: {}; the points are written as .csv, .json or .dat (chosen by the extension), or to - in the input's format",
+                    match other {
+                        Some(e) => format!("unknown extension `.{e}`"),
+                        None => "no extension".to_string(),
+                    }
+                ),
+            }),
+        }
+    }
+}
+
+/// Formats `points` as `format` asks: in the input's own form when the families agree (its
+/// header and label columns, its JSON document, its airfoil name), else converted — a CSV
+/// with a header of the coordinates' names (label columns kept), a JSON object with the
+/// points (and the label columns as `labels`), a Selig file named after the input. A 3D curve
+/// cannot be an airfoil `.dat`. O(n).
+pub fn format_curve_as(input: &CurveInput, points: &Points, format: OutputFormat) -> Result<String> {
+    let same = matches!(
+        (format, &input.format),
+        (OutputFormat::SameAsInput, _)
+            | (OutputFormat::Csv, InputFormat::Csv { .. })
+            | (OutputFormat::Json, InputFormat::Json { .. })
+            | (
+                OutputFormat::Dat,
+                InputFormat::Selig { .. } | InputFormat::Lednicer { .. }
+            )
+    );
+    if same {
+        return format_curve(input, points);
+    }
+    let stem = std::path::Path::new(&input.source)
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or("curve")
+        .to_string();
+    let converted = match format {
+        OutputFormat::Csv => {
+            let (header, layout) = match &input.format {
+                InputFormat::Csv { header, layout, .. } => (header.clone(), layout.clone()),
+                _ => {
+                    let names = input.coordinate_names();
+                    let layout = Layout {
+                        columns: names.len(),
+                        coordinates: (0..names.len()).collect(),
+                        names: names.clone(),
+                        labels: Vec::new(),
+                    };
+                    (Some(names.join(",")), layout)
+                }
+            };
+            InputFormat::Csv {
+                header,
+                delimiter: Delimiter::Comma,
+                layout,
+            }
+        }
+        OutputFormat::Json => {
+            let mut document = serde_json::Map::new();
+            match &input.format {
+                InputFormat::Selig { name } | InputFormat::Lednicer { name, .. } => {
+                    document.insert("name".into(), serde_json::json!(name));
+                }
+                InputFormat::Csv { header, layout, .. } if !layout.labels.is_empty() => {
+                    let names: Vec<String> = header
+                        .as_deref()
+                        .map(|h| {
+                            let delimiter = if h.contains(',') {
+                                Delimiter::Comma
+                            } else {
+                                Delimiter::Whitespace
+                            };
+                            delimiter
+                                .split(h)
+                                .iter()
+                                .map(|f| f.trim_matches('"').to_string())
+                                .collect()
+                        })
+                        .unwrap_or_default();
+                    let mut labels = serde_json::Map::new();
+                    for (k, column) in layout.label_columns().into_iter().enumerate() {
+                        let name = names
+                            .get(column)
+                            .cloned()
+                            .unwrap_or_else(|| format!("column {}", column + 1));
+                        let values: Vec<&str> = layout.labels.iter().map(|row| row[k].as_str()).collect();
+                        labels.insert(name, serde_json::json!(values));
+                    }
+                    document.insert("labels".into(), serde_json::Value::Object(labels));
+                }
+                _ => {}
+            }
+            InputFormat::Json {
+                document: Some(document),
+            }
+        }
+        OutputFormat::Dat => {
+            if points.dimension() != 2 {
+                return Err(Error::Argument {
+                    option: "-o",
+                    message: format!(
+                        "an airfoil .dat file holds planar x y pairs; {} is a 3D curve (write .csv or .json)",
+                        input.source
+                    ),
+                });
+            }
+            InputFormat::Selig { name: stem }
+        }
+        OutputFormat::SameAsInput => input.format.clone(),
+    };
+    let converted_input = CurveInput {
+        format: converted,
+        ..input.clone()
+    };
+    format_curve(&converted_input, points)
 }
 
 /// Writes text to a file, or to standard output for `-`.

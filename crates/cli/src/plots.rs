@@ -2,10 +2,10 @@
 //! a surface grid with its z_ij map. Built from plain data so the numerical crates supply
 //! what they have and the rest is left out.
 
-use crate::highlight::{HighlightSettings, LightSetup};
 use crate::input::{Grid, Points};
 use crate::svg::{Bars, Color, ColorMap, Comb, Figure, Line, Markers, Panel};
 use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings};
+use fairness::highlight::{HighlightSettings, LightSetup};
 
 /// A curvature comb in the plane: points, unit normals and signed curvatures.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -59,6 +59,58 @@ pub struct CurvePlot {
     pub curvature_before: Option<CurvaturePlot>,
     /// The curvature plot of the result.
     pub curvature_after: Option<CurvaturePlot>,
+    /// The names of the coordinates drawn in the curve panel, horizontal then vertical
+    /// ([`axis_names`]); `None` draws `x`, `y`.
+    pub axes: Option<[String; 2]>,
+    /// The other projections of a 3D curve ([`other_projections`]), one panel each.
+    pub projections: Vec<Projection>,
+}
+
+/// One projection of a 3D curve onto a coordinate plane: the data points before and after,
+/// with the names of the two coordinates drawn.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Projection {
+    /// The horizontal and the vertical coordinate's names.
+    pub axes: [String; 2],
+    /// The data points as read, projected.
+    pub input: Vec<[f64; 2]>,
+    /// The faired points, projected.
+    pub faired: Option<Vec<[f64; 2]>>,
+}
+
+/// The names of the coordinates [`planar_view`] draws, from the input's coordinate names
+/// (abscissa first): the first two of a planar curve, the first and the third of a 3D one.
+pub fn axis_names(names: &[String]) -> [String; 2] {
+    let name = |k: usize, fallback: &str| names.get(k).cloned().unwrap_or_else(|| fallback.to_string());
+    if names.len() == 3 {
+        [name(0, "x"), name(2, "z")]
+    } else {
+        [name(0, "x"), name(1, "y")]
+    }
+}
+
+/// The projections of a 3D curve that [`planar_view`] leaves out — onto the planes of the
+/// first two and of the last two coordinates —, each named by its coordinates; none for a
+/// planar curve. O(n).
+pub fn other_projections(names: &[String], input: &Points, faired: Option<&Points>) -> Vec<Projection> {
+    let (Points::Spatial(before), true) = (input, names.len() == 3) else {
+        return Vec::new();
+    };
+    let after = match faired {
+        Some(Points::Spatial(p)) => Some(p),
+        _ => None,
+    };
+    [(0usize, 1usize), (1, 2)]
+        .into_iter()
+        .map(|(a, b)| {
+            let project = |p: &Vec<curve_repr::Vec3>| p.iter().map(|v| [v[a], v[b]]).collect::<Vec<_>>();
+            Projection {
+                axes: [names[a].clone(), names[b].clone()],
+                input: project(before),
+                faired: after.map(project),
+            }
+        })
+        .collect()
 }
 
 /// The plane a spatial curve is drawn in: (x, y) for planar points, (x, z) for spatial ones
@@ -83,9 +135,18 @@ impl CurvePlot {
 
     /// The figure: the curve panel, then a z_i panel when z values are given.
     pub fn figure(&self) -> Figure {
-        let mut curve = Panel::new("points and curve")
-            .with_x_label("x")
-            .with_y_label("y")
+        let [x_label, y_label] = self
+            .axes
+            .clone()
+            .unwrap_or_else(|| ["x".to_string(), "y".to_string()]);
+        let title = if self.projections.is_empty() {
+            "points and curve".to_string()
+        } else {
+            format!("points and curve, {x_label}–{y_label} projection")
+        };
+        let mut curve = Panel::new(title)
+            .with_x_label(x_label)
+            .with_y_label(y_label)
             .with_equal_aspect(!self.function);
         if let Some(comb) = &self.comb {
             curve.push(
@@ -129,6 +190,39 @@ impl CurvePlot {
             );
         }
         let mut figure = Figure::new().with_title(self.title.clone()).with_panel(curve);
+        for view in &self.projections {
+            let [x_label, y_label] = view.axes.clone();
+            let mut panel = Panel::new(format!("{x_label}–{y_label} projection"))
+                .with_x_label(x_label)
+                .with_y_label(y_label)
+                .with_equal_aspect(true);
+            panel.push(
+                Line::new(view.input.clone())
+                    .with_label("input polygon")
+                    .with_color(Color::palette(0))
+                    .with_width(0.8),
+            );
+            panel.push(
+                Markers::new(view.input.clone())
+                    .with_label("input points")
+                    .with_color(Color::palette(0)),
+            );
+            if let Some(p) = &view.faired {
+                panel.push(
+                    Line::new(p.clone())
+                        .with_label("faired polygon")
+                        .with_color(Color::palette(1))
+                        .with_width(0.8),
+                );
+                panel.push(
+                    Markers::new(p.clone())
+                        .with_label("faired points")
+                        .with_color(Color::palette(1))
+                        .with_hollow(true),
+                );
+            }
+            figure.push(panel);
+        }
         if self.z_before.is_some() || self.z_after.is_some() {
             let mut z = Panel::new("third-derivative jumps z_i")
                 .with_x_label("point index i")
@@ -198,7 +292,7 @@ pub struct SurfacePlot {
     pub z: Option<Vec<Vec<f64>>>,
     /// z_ij of the input grid, when a faired grid's z is in `z`.
     pub z_before: Option<Vec<Vec<f64>>>,
-    /// Draw highlight lines ([`crate::highlight`]) of the input's and the faired grid's
+    /// Draw highlight lines ([`fairness::highlight`]) of the input's and the faired grid's
     /// bicubic spline surfaces, under one light set up on the input.
     pub highlights: bool,
 }

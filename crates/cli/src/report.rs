@@ -1,5 +1,6 @@
-//! The JSON report of `fair curve`, `fair surface` and `fair inspect` (DESIGN.md, "The `fair`
-//! command": the field names here are the contract).
+//! The JSON report of `fair curve`, `fair surface` and `fair inspect` (`docs/CONTRACT.md`:
+//! the field names here are the contract). `before`/`after` carry `criteria`: every criterion
+//! of the catalogue that applies to the curve, by name (the `energies` object stays).
 //!
 //! Counts that do not apply (inflections of a 3D curve, vibrations of a surface) are `null`,
 //! never omitted. `fair inspect` writes the same shape with `after` equal to `before`,
@@ -33,11 +34,25 @@ impl ReportKind {
     }
 }
 
+impl From<fairing::catalog::CurveKind> for ReportKind {
+    fn from(kind: fairing::catalog::CurveKind) -> Self {
+        match kind {
+            fairing::catalog::CurveKind::Function => ReportKind::Function,
+            fairing::catalog::CurveKind::Parametric => ReportKind::Parametric,
+        }
+    }
+}
+
 /// The energies of a curve as represented (E1–E3 over its own parameter; Ek, Ek' over arc
 /// length): the fairness crate's block, serialised as the report's `energies`.
 pub use fairness::Energies;
 
-/// The fairness measures of a curve or surface (see DESIGN.md for each definition).
+/// How accurately each energy is known (the fairness crate's block, serialised as the
+/// report's `energy_accuracy`): the relative tolerance asked, each energy's error estimate,
+/// whether it met the tolerance, and whether it was integrated exactly.
+pub use fairness::EnergyAccuracy;
+
+/// The fairness measures of a curve or surface (see `docs/CONTRACT.md` for each definition).
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct Measures {
     /// Sign changes of curvature; `null` for 3D curves and surfaces.
@@ -48,8 +63,19 @@ pub struct Measures {
     pub e_s: f64,
     /// Largest third-derivative jump (curves) or largest z_ij (surfaces, Eq. 26).
     pub max_z: f64,
-    /// The energies of the curve; `null` for surfaces.
+    /// The energies of the curve; `null` for surfaces (and for a curve whose integrands are
+    /// not finite somewhere, e.g. at a vanishing tangent).
     pub energies: Option<Energies>,
+    /// Every registered criterion that applies to the curve (the measured spline, or the
+    /// method's own representation when it has one), by name.
+    #[serde(default)]
+    pub criteria: BTreeMap<String, f64>,
+    /// The accuracy of `energies` (an addition to DESIGN.md's fields): E1–E3 are exact up to
+    /// round-off, Ek and Ek′ adaptive to a relative tolerance; an energy whose tolerance could
+    /// not be met within the linear budget is its best estimate, with its error here. `null`
+    /// where `energies` is, and for energies taken from the method's own representation.
+    #[serde(default)]
+    pub energy_accuracy: Option<EnergyAccuracy>,
 }
 
 /// The whole report.
@@ -120,7 +146,13 @@ impl Report {
             ("after.e_s", self.after.e_s),
             ("after.max_z", self.after.max_z),
         ];
-        let energies = [("before", &self.before.energies), ("after", &self.after.energies)];
+        let errors = |m: &Measures| m.energy_accuracy.map(|a| a.errors);
+        let energies = [
+            ("before", &self.before.energies),
+            ("after", &self.after.energies),
+            ("before.energy_accuracy", &errors(&self.before)),
+            ("after.energy_accuracy", &errors(&self.after)),
+        ];
         let mut bad: Option<String> = fields
             .iter()
             .find(|(_, v)| !v.is_finite())
@@ -134,10 +166,22 @@ impl Report {
                     ("ek", e.ek),
                     ("ek_prime", e.ek_prime),
                 ];
-                bad = named
+                bad = named.iter().find(|(_, v)| !v.is_finite()).map(|(n, _)| {
+                    if side.contains('.') {
+                        format!("{side}.errors.{n}")
+                    } else {
+                        format!("{side}.energies.{n}")
+                    }
+                });
+            }
+        }
+        for (side, measures) in [("before", &self.before), ("after", &self.after)] {
+            if bad.is_none() {
+                bad = measures
+                    .criteria
                     .iter()
                     .find(|(_, v)| !v.is_finite())
-                    .map(|(n, _)| format!("{side}.energies.{n}"));
+                    .map(|(name, _)| format!("{side}.criteria.{name}"));
             }
         }
         match bad {
@@ -160,7 +204,7 @@ impl Report {
     }
 }
 
-/// The `curve` field for a NURBS curve (DESIGN.md): degree, knots, control points, weights and
+/// The `curve` field for a NURBS curve (`docs/CONTRACT.md`): degree, knots, control points, weights and
 /// the data points' parameters.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct NurbsRecord {
@@ -200,6 +244,8 @@ mod tests {
             e_s: 1.5e9,
             max_z: 0.8,
             energies: Some(Energies::default()),
+            criteria: [("ek".to_string(), 0.5)].into_iter().collect(),
+            energy_accuracy: Some(EnergyAccuracy::default()),
         };
         let curve = NurbsRecord {
             degree: 3,
@@ -252,13 +298,22 @@ mod tests {
         ];
         top.sort();
         assert_eq!(keys(&value), top);
-        let mut measures = vec!["inflections", "vibrations", "e_s", "max_z", "energies"];
+        let mut measures = vec![
+            "inflections",
+            "vibrations",
+            "e_s",
+            "max_z",
+            "energies",
+            "criteria",
+            "energy_accuracy",
+        ];
         measures.sort();
         assert_eq!(keys(&value["before"]), measures);
         assert_eq!(keys(&value["after"]), measures);
         let mut energies = vec!["e1", "e2", "e3", "ek", "ek_prime"];
         energies.sort();
         assert_eq!(keys(&value["before"]["energies"]), energies);
+        assert_eq!(value["before"]["criteria"]["ek"], 0.5);
         let mut curve = vec!["type", "degree", "knots", "control_points", "weights", "params"];
         curve.sort();
         assert_eq!(keys(&value["curve"]), curve);

@@ -140,6 +140,15 @@ pub enum Error {
         /// The allowed range.
         reason: &'static str,
     },
+    /// Two pieces of a piecewise curve do not meet at their common break point (a gap larger
+    /// than the continuity tolerance).
+    #[error("the pieces before and after break point {index} do not meet: gap {}", Compact(*gap))]
+    Discontinuous {
+        /// Index of the break point.
+        index: usize,
+        /// The distance between the end of one piece and the start of the next.
+        gap: f64,
+    },
     /// Two consecutive grid lines of a surface coincide on average, so the averaged
     /// chord-length knot step between them would be zero.
     #[error("grid lines {index} and {} in the {direction} direction coincide", index + 1)]

@@ -20,6 +20,7 @@
 
 pub mod bicubic_surface;
 pub mod bspline;
+pub mod convert;
 pub mod curve;
 pub mod error;
 pub mod hermite;
@@ -34,6 +35,7 @@ pub mod vector;
 
 pub use bicubic_surface::{BicubicSplineSurface, BicubicSurfaceSettings, NodeJump};
 pub use bspline::KnotVector;
+pub use convert::{CubicPieces, JoinRule};
 pub use curve::{Curve, Interpolant, Side};
 pub use error::{Error, Result};
 pub use hermite::{HermiteEnds, HermiteSettings, HermiteSpline};

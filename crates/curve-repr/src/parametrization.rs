@@ -8,7 +8,18 @@ use crate::{Error, Result, Vector};
 /// - `Uniform`: d_i = 1 (Kjellander's parameters);
 /// - `ChordLength`: d_i = |P_{i+1} − P_i| (Poliakoff's, Zhang–Cheng's and the report's);
 /// - `Centripetal`: d_i = |P_{i+1} − P_i|^½ (Lee's, cf. The NURBS Book Eq. 9.6 with e = ½).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    serde::Serialize,
+    serde::Deserialize,
+    schemars::JsonSchema,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum Parametrization {
     /// Equal steps of 1.

@@ -237,6 +237,59 @@ impl Constraints {
         ))
     }
 
+    /// Like [`constrain_move`](Self::constrain_move), but the coordinates in which `proposed`
+    /// equals `current` (bit for bit) are kept: the projection onto the allowed ball moves
+    /// only the coordinates the strategy changed. A function strategy that moves y only
+    /// therefore never changes x, even when an earlier stage moved x so that the point is
+    /// no longer level with its original (the ball's slice at the current x is then a
+    /// smaller ball around the original's y). When the held coordinates equal the
+    /// original's this is the same projection as `constrain_move`. O(D).
+    ///
+    /// If `current` itself lies outside the allowed ball (so that no point with its held
+    /// coordinates is allowed), the full projection of `proposed` is returned.
+    pub fn constrain_move_from<const D: usize>(
+        &self,
+        index: usize,
+        n: usize,
+        original: &Vector<D>,
+        current: &Vector<D>,
+        proposed: &Vector<D>,
+    ) -> Result<Vector<D>> {
+        if proposed.iter().any(|c| !c.is_finite()) {
+            return Err(Error::NonFiniteMove { index });
+        }
+        if !self.is_movable(index, n) {
+            return Ok(*original);
+        }
+        let radius = self.allowed_distance(index);
+        let held: Vec<usize> = (0..D).filter(|&k| proposed[k] == current[k]).collect();
+        if held.is_empty() || held.len() == D || !radius.is_finite() {
+            return Ok(project_into_ball(original, radius, proposed));
+        }
+        // The slice of the ball through the held coordinates: centre = the original with the
+        // held coordinates replaced, radius² = r² − (held offset)².
+        let mut center = *original;
+        let mut offset2 = 0.0;
+        for &k in &held {
+            center[k] = current[k];
+            offset2 += (current[k] - original[k]).powi(2);
+        }
+        let slice = radius * radius - offset2;
+        if slice.is_nan() || slice < 0.0 || (current - original).norm() > radius {
+            return Ok(project_into_ball(original, radius, proposed));
+        }
+        let mut candidate = project_into_ball(&center, slice.sqrt(), proposed);
+        // Round-off: shrink toward the current point (which is allowed) until the full
+        // distance holds as computed.
+        for _ in 0..16 {
+            if (candidate - original).norm() <= radius {
+                return Ok(candidate);
+            }
+            candidate = current + (candidate - current) * (1.0 - 1e-12);
+        }
+        Ok(*current)
+    }
+
     /// Checks that `faired` honours every constraint against `original`, naming the first
     /// violated point. Fixed points and clamped ends must be bit-for-bit equal (`==` on every
     /// coordinate); every point must lie within its allowed distance. The derivative part of

@@ -10,8 +10,13 @@ pub enum Error {
     /// An error of a curve or surface representation (bad input points, a singular system).
     #[error(transparent)]
     Repr(#[from] curve_repr::Error),
-    // Errors of the `fairness` crate go here as `Fairness(#[from] fairness::Error)` once that
-    // crate has its error enum.
+    /// An error of a fairness indicator or criterion (so that a strategy that evaluates one
+    /// can use `?`).
+    #[error(transparent)]
+    Fairness(#[from] fairness::Error),
+    /// An error of the optimisation crate (the NURBS weight search).
+    #[error(transparent)]
+    Optim(#[from] optim::Error),
     /// A strategy cannot honour a constraint it was given. Strategies say so before they run,
     /// never ignore a constraint silently.
     #[error("strategy {strategy} cannot honour the constraint: {constraint}")]
@@ -73,6 +78,89 @@ pub enum Error {
         /// Why.
         reason: String,
     },
+    /// A parameter's value that a method refuses, said where only the parameter's name is
+    /// known (a method's check); the catalogue adds where it was given ([`Error::Parameter`]).
+    #[error("`{name}`: {message}")]
+    BadValue {
+        /// The parameter's name (kebab-case).
+        name: String,
+        /// What is wrong with its value.
+        message: String,
+    },
+    /// A method name the catalogue does not know for this kind of input.
+    #[error("unknown {kind} method `{name}` (known: {known})")]
+    UnknownMethod {
+        /// The name given.
+        name: String,
+        /// `curve` or `surface`.
+        kind: &'static str,
+        /// The known names, comma-separated.
+        known: String,
+    },
+    /// A name (a parameter of a method, a criterion, an indicator) the catalogue does not know.
+    #[error("{origin}: `{name}` is not {what} (known: {known})")]
+    UnknownName {
+        /// Where the name was given: `--set`, `config.toml:3`, `config.toml:9 (stage 2)`.
+        origin: String,
+        /// What kind of name was expected, with its owner: "a parameter of `batten`",
+        /// "a registered criterion".
+        what: String,
+        /// The name given.
+        name: String,
+        /// The known names, comma-separated (or a sentence when there are none).
+        known: String,
+    },
+    /// A parameter value that cannot be read or is out of range, with where it was given.
+    #[error("{origin}: {message}")]
+    Parameter {
+        /// `--set`, `config.toml:3`, ...
+        origin: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// A config file (TOML or JSON) that is malformed, with the file and line.
+    #[error("{origin}: {message}")]
+    Config {
+        /// `config.toml:LINE`, or the file name when the line is unknown.
+        origin: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// A method refuses what it was asked to do (an end clamp it cannot hold, bad points it
+    /// does not take, a kind or dimension of curve it does not fair). Said before it runs.
+    #[error("`{method}` {reason}")]
+    Refused {
+        /// The method's name.
+        method: String,
+        /// What is refused (the command names the option from it).
+        what: Refusal,
+        /// Why, as the rest of the sentence after the method's name.
+        reason: String,
+    },
+}
+
+/// What a method refuses ([`Error::Refused`]); the command names the option from it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Refusal {
+    /// An end clamp (`--clamp-ends`).
+    EndClamp,
+    /// Bad points (`--points`).
+    BadPoints,
+    /// Fixed points (`--fixed`).
+    Fixed,
+    /// A tolerance band (`--tolerance`).
+    Tolerance,
+    /// Restraining radii (a program's [`Constraints::with_restraining_radii`](crate::Constraints::with_restraining_radii)).
+    Radii,
+    /// A kind of curve (function or parametric, `--kind`).
+    Kind,
+    /// A dimension of the points (planar or spatial).
+    Dimension,
+    /// A closed curve.
+    Closed,
+    /// A combination of parameters.
+    Parameters,
 }
 
 /// The crate's result type.

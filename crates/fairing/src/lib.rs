@@ -1,16 +1,21 @@
 //! Fairing strategies, the constraints they honour and the pipeline that runs them.
 //!
-//! The third and fourth axes of the framework (see DESIGN.md): *how the shape is changed*
+//! The third and fourth axes of the framework (see the README): *how the shape is changed*
 //! ([`FairingStrategy`]) and *what must hold* ([`Constraints`]). The pieces are separate as
 //! in argmin: a strategy says how to take one step on a [`FairingState`]; the [`Pipeline`]
 //! owns the loop, termination ([`TerminationReason`]), [`Observer`]s, the [`Trace`] of every
 //! move, timing, composition of stages and the final [`Constraints::check`].
+//!
+//! [`catalog`] names every method, criterion and indicator, reads each method's parameters
+//! from its settings type, parses and runs config pipelines: the one path the `fair`
+//! command, bindings and programs share (a method added there is a method of the command).
 //!
 //! [`mod@partition`] holds the arbitrary-curve machinery of Han et al. §4.2: split a planar
 //! curve into overlapping function segments by turning angle, transform each into the frame of
 //! its angular bisector, fair it as a function y(x), transform back and blend the overlaps
 //! ([`SegmentedFairing`]).
 
+pub mod catalog;
 pub mod constraints;
 pub mod displacement;
 pub mod error;
@@ -24,11 +29,11 @@ pub mod trace;
 pub mod two_phase;
 
 pub use constraints::{project_into_ball, Constraints, EndClamp};
-pub use error::{Error, Result};
+pub use error::{Error, Refusal, Result};
 pub use observer::Observer;
 pub use partition::{partition, PartitionSettings, Segment, SegmentFairer, SegmentedFairing};
 pub use pipeline::{FairingResult, Pipeline, StageReport, TerminationReason};
-pub use state::{FairingState, Move};
+pub use state::{strategy_error, FairingState, Move};
 pub use strategy::{reject_derivative_clamps, FairingStrategy, StepOutcome};
 pub use trace::{StepRecord, Trace};
 

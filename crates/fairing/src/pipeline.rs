@@ -15,7 +15,11 @@ use serde::{Deserialize, Serialize};
 use crate::{Constraints, Error, FairingState, FairingStrategy, Observer, Result, StepRecord, Trace};
 
 /// Why a stage (and, for the last stage, the run) stopped. Not an error.
+///
+/// Serialised (and named by [`name`](Self::name)) in kebab-case, the one spelling every
+/// report uses: `max-iterations`, `converged`, `strategy-done`, `indicator-satisfied`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum TerminationReason {
     /// The stage made its maximum number of steps.
     MaxIterations,
@@ -25,6 +29,24 @@ pub enum TerminationReason {
     StrategyDone,
     /// The user's predicate (e.g. "no inflection left") holds; later stages are skipped.
     IndicatorSatisfied,
+}
+
+impl TerminationReason {
+    /// The kebab-case name reports use (the same as its serialisation).
+    pub fn name(self) -> &'static str {
+        match self {
+            TerminationReason::MaxIterations => "max-iterations",
+            TerminationReason::Converged => "converged",
+            TerminationReason::StrategyDone => "strategy-done",
+            TerminationReason::IndicatorSatisfied => "indicator-satisfied",
+        }
+    }
+}
+
+impl std::fmt::Display for TerminationReason {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
 }
 
 /// How one stage ended.

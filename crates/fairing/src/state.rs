@@ -113,8 +113,9 @@ impl<const D: usize> FairingState<D> {
         self.constraints.is_movable(index, self.points.len())
     }
 
-    /// Moves point `index` towards `proposed`, projected by [`Constraints::constrain_move`],
-    /// and returns where it actually went. A move that changes nothing is not recorded. O(D).
+    /// Moves point `index` towards `proposed`, projected by
+    /// [`Constraints::constrain_move_from`] (the coordinates the proposal does not change are
+    /// kept), and returns where it actually went. A move that changes nothing is not recorded. O(D).
     ///
     /// Errors: an index out of range, a non-finite proposal.
     pub fn move_point(&mut self, index: usize, proposed: Vector<D>) -> Result<Vector<D>> {
@@ -128,7 +129,11 @@ impl<const D: usize> FairingState<D> {
             }
             .into());
         };
-        let to = self.constraints.constrain_move(index, n, original, &proposed)?;
+        // Coordinates the proposal leaves as they are stay as they are (a y-only move of a
+        // function strategy never changes x, whatever an earlier stage did to x).
+        let to = self
+            .constraints
+            .constrain_move_from(index, n, original, &current, &proposed)?;
         if to != current {
             if let Some(slot) = self.points.get_mut(index) {
                 *slot = to;

@@ -76,6 +76,23 @@ impl<const D: usize, S: FairingStrategy<D> + ?Sized> FairingStrategy<D> for Box<
     }
 }
 
+/// A borrowed strategy runs like the strategy itself, so that a caller can read its state
+/// (a fit, a history) after a [`Pipeline`](crate::Pipeline) has run it.
+impl<const D: usize, S: FairingStrategy<D> + ?Sized> FairingStrategy<D> for &mut S {
+    fn name(&self) -> &str {
+        (**self).name()
+    }
+    fn supports(&self, constraints: &Constraints) -> Result<()> {
+        (**self).supports(constraints)
+    }
+    fn init(&mut self, state: &mut FairingState<D>) -> Result<()> {
+        (**self).init(state)
+    }
+    fn step(&mut self, state: &mut FairingState<D>) -> Result<StepOutcome> {
+        (**self).step(state)
+    }
+}
+
 /// The default of [`FairingStrategy::supports`]: G1 and G2 end clamps are rejected with
 /// [`Error::ConstraintUnsupported`], everything else accepted.
 pub fn reject_derivative_clamps(strategy: &str, constraints: &Constraints) -> Result<()> {

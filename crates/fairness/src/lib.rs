@@ -15,6 +15,8 @@
 //!   (Eq. 16, Sapidis–Farin), curvature vibrations (Han's e from (s, κ)).
 //! - [`surface`]: the surface indicator z_ij (Zhang–Cheng Eq. 26), thin-plate and network
 //!   strain energies.
+//! - [`highlight`]: Beier–Chen highlight lines of a surface (the light setup, the highlight
+//!   function, its level lines); drawing them is the caller's.
 //! - [`displacement`]: Han's S_d and M_d.
 //! - [`report`]: the serde blocks of the `fair` command's report.
 //! - [`xc`]: Han's x–c polyline of a spline function (c_i, e_i, inflections, vibrations, Eq. 18).
@@ -26,6 +28,7 @@ pub mod curvature;
 pub mod displacement;
 pub mod energy;
 pub mod error;
+pub mod highlight;
 pub mod indicator;
 pub mod jumps;
 pub mod quadrature;
@@ -40,10 +43,12 @@ mod test_curves;
 
 pub use curvature::CurvatureForm;
 pub use displacement::Displacement;
-pub use energy::{Ek, EkPrime, Energies, PieceQuadrature, E1, E2, E3};
+pub use energy::{
+    Ek, EkPrime, Energies, EnergyAccuracy, EnergyFlags, MeasuredEnergies, PieceQuadrature, E1, E2, E3,
+};
 pub use error::{Error, Result};
 pub use indicator::{Criterion, FnCriterion, LocalIndicator};
-pub use quadrature::{Adaptive, GaussLegendre};
+pub use quadrature::{Adaptive, Estimate, GaussLegendre};
 pub use report::FairnessSummary;
 pub use sign::{sign_change_positions, sign_changes};
 pub use xc::XcPolyline;

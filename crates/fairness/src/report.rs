@@ -8,7 +8,7 @@
 use curve_repr::{Curve, Vector};
 
 use crate::curvature::{curvature_at_breaks, CurvatureForm};
-use crate::energy::Energies;
+use crate::energy::{Energies, EnergyAccuracy};
 use crate::jumps::{curvature_vibrations, third_derivative_jumps};
 use crate::sign::sign_changes;
 use crate::Result;
@@ -24,8 +24,12 @@ pub struct FairnessSummary {
     pub e_s: f64,
     /// The largest third-derivative jump (z_i, or z_ij for surfaces).
     pub max_z: f64,
-    /// The five integral criteria.
+    /// The five integral criteria (best estimates; see `energy_accuracy`).
     pub energies: Energies,
+    /// How accurately each energy is known; `None` where the energies were not measured (a
+    /// surface) or could not be (an integrand that is not finite, as at a vanishing tangent),
+    /// in which case `energies` holds zeros and means nothing.
+    pub energy_accuracy: Option<EnergyAccuracy>,
 }
 
 impl FairnessSummary {
@@ -37,7 +41,8 @@ impl FairnessSummary {
     /// - `vibrations` = sign changes of e_i built from (t_i, κ_i) ([`curvature_vibrations`]);
     /// - `e_s` = E2 = ∫ |C″(t)|² dt; `max_z` = max_i |C‴(t_i+) − C‴(t_i−)| (0 with no
     ///   interior break);
-    /// - `energies` by [`Energies::of`].
+    /// - `energies` by [`Energies::of`] (failing when a tolerance is not met; `fair`'s report
+    ///   measures them with [`Energies::measure_polynomial`] and keeps their accuracy instead).
     ///
     /// O(n).
     pub fn of_parametric_curve<const D: usize, C>(curve: &C) -> Result<Self>
@@ -67,6 +72,7 @@ impl FairnessSummary {
             e_s: energies.e2,
             max_z,
             energies,
+            energy_accuracy: None,
         })
     }
 }

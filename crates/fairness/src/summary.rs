@@ -4,15 +4,53 @@
 //! surface of Zhang–Cheng §4 with chord-length averaged knots).
 //!
 //! Each returns a [`FairnessSummary`]; the `*_of` variants take a representation already
-//! built (the `fair` command draws it too). Every function is O(n) (O(m·n) for surfaces).
+//! built (the `fair` command draws it too). Every function is O(n) time and memory (O(m·n)
+//! for surfaces).
+//!
+//! What each number's accuracy is:
+//! - `inflections`, `vibrations`: exact counts under DESIGN.md's sign rule (integers, from the
+//!   values at the knots; no integration);
+//! - `e_s`: closed form, exact up to round-off; `max_z`: exact differences at the knots;
+//! - `energies`: E1–E3 exactly (Gauss–Legendre rules exact for the cubic pieces, round-off
+//!   only), Ek and Ek′ adaptively to [`ENERGY_TOLERANCE`] relative within a budget linear in
+//!   n; `energy_accuracy` carries each energy's error estimate and whether its tolerance was
+//!   met. A tolerance that cannot be met (a noisy 10⁶-point curve has Ek′ dominated by
+//!   sharp curvature peaks) leaves the estimate and its error in the summary: measuring never
+//!   fails for it. Where an integrand is not finite (a tangent that vanishes at a node) the
+//!   energies are left out (`energy_accuracy` is `None`) and the rest of the summary stands.
 
 use curve_repr::{BicubicSplineSurface, EndCondition, HermiteSpline, SplineFunction, Vec3, Vector};
 
 use crate::curvature::CurvatureForm;
-use crate::energy::Energies;
+use crate::energy::{Energies, EnergyAccuracy, MeasuredEnergies};
+use crate::quadrature::Adaptive;
 use crate::report::FairnessSummary;
 use crate::xc::XcPolyline;
 use crate::{Error, Result};
+
+/// The relative tolerance of the adaptive energies (Ek, Ek′) in the summaries: 10⁻⁸ of each
+/// total, far below any difference a fairing makes and within reach of the linear budget of
+/// [`Adaptive::estimate_pieces`] for smooth and moderately noisy curves alike.
+pub const ENERGY_TOLERANCE: f64 = 1e-8;
+
+/// The quadrature settings of the summaries' adaptive energies: [`Adaptive::default`] with
+/// [`ENERGY_TOLERANCE`].
+pub fn energy_settings() -> Adaptive {
+    Adaptive::default().with_relative_tolerance(ENERGY_TOLERANCE)
+}
+
+/// The energies of a curve of cubic pieces with their accuracy; `None` for the accuracy (and
+/// zeros) where an integrand is not finite, so that the counts still stand. O(n).
+fn cubic_energies<const D: usize, C>(curve: &C) -> (Energies, Option<EnergyAccuracy>)
+where
+    C: curve_repr::Curve<D> + ?Sized,
+    Vector<D>: CurvatureForm,
+{
+    match Energies::measure_polynomial(curve, 3, &energy_settings()) {
+        Ok(MeasuredEnergies { values, accuracy }) => (values, Some(accuracy)),
+        Err(_) => (Energies::default(), None),
+    }
+}
 
 /// The function-kind summary of the spline function `spline` (DESIGN.md builds it with the
 /// parabolic-runout end condition, see [`function`]):
@@ -22,7 +60,7 @@ use crate::{Error, Result};
 /// - `e_s` = ∫ y″(x)² dx, exact ([`SplineFunction::second_derivative_energy`]);
 /// - `max_z` = max_i |y‴(x_i+) − y‴(x_i−)| = 6 max |e_i|;
 /// - `energies` of the graph (x, y(x)) over its parameter x (E1–E3 exact for cubic pieces,
-///   Ek and Ek′ adaptive; a quadrature that does not converge is an [`Error`], never NaN).
+///   Ek and Ek′ adaptive to [`ENERGY_TOLERANCE`]) with their accuracy (see the module doc).
 pub fn function_of(spline: &SplineFunction) -> Result<FairnessSummary> {
     let xc = XcPolyline::of_spline(spline)?;
     let e_s = spline.second_derivative_energy();
@@ -32,13 +70,14 @@ pub fn function_of(spline: &SplineFunction) -> Result<FairnessSummary> {
             parameter: spline.x().first().copied().unwrap_or(0.0),
         });
     }
-    let energies = Energies::of_polynomial(spline, 3)?;
+    let (energies, energy_accuracy) = cubic_energies(spline);
     Ok(FairnessSummary {
         inflections: Some(xc.inflections()),
         vibrations: Some(xc.vibrations()),
         e_s,
         max_z: xc.max_third_derivative_jump(),
         energies,
+        energy_accuracy,
     })
 }
 
@@ -53,14 +92,15 @@ pub fn function(x: &[f64], y: &[f64]) -> Result<FairnessSummary> {
 /// chord-length parameters, see [`parametric`]): κ_i at the knots (signed in 2D, unsigned in
 /// 3D), e from (t, κ), inflections (2D only, else `None`), vibrations, `e_s` = ∫ |C″|² dt
 /// (exact, [`HermiteSpline::strain_energy`]), `max_z` = max_i |C‴(t_i+) − C‴(t_i−)|, and the
-/// energies (E1–E3 exact for cubic pieces, Ek and Ek′ adaptive). Builds on
+/// energies (E1–E3 exact for cubic pieces, Ek and Ek′ adaptive) with their accuracy. Builds on
 /// [`FairnessSummary::of_parametric_curve_with_energies`]. O(n).
 pub fn parametric_of<const D: usize>(spline: &HermiteSpline<D>) -> Result<FairnessSummary>
 where
     Vector<D>: CurvatureForm,
 {
-    let energies = Energies::of_polynomial(spline, 3)?;
+    let (energies, energy_accuracy) = cubic_energies(spline);
     let mut summary = FairnessSummary::of_parametric_curve_with_energies(spline, energies)?;
+    summary.energy_accuracy = energy_accuracy;
     let e_s = spline.strain_energy();
     if e_s.is_finite() {
         summary.e_s = e_s;
@@ -96,6 +136,7 @@ pub fn surface_of(surface: &BicubicSplineSurface) -> Result<FairnessSummary> {
         e_s,
         max_z,
         energies: Energies::default(),
+        energy_accuracy: None,
     })
 }
 

@@ -23,6 +23,6 @@ pub use error::{Error, Result};
 pub use nelder_mead::{
     minimize, InitialSimplex, Minimum, NelderMeadSettings, Objective, Observer, Progress, Termination,
 };
-pub use nurbs_weights::{CriterionName, NurbsWeightFairing, NurbsWeightResult};
+pub use nurbs_weights::{CriterionName, LawName, NurbsWeightFairing, NurbsWeightResult, NurbsWeightSettings};
 pub use problem::{WeightCriterion, WeightProblem, WeightSolution};
 pub use weight_law::{CubicBernstein, LawDescription, PerPoint, WeightLaw};

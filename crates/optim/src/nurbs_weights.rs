@@ -128,6 +128,67 @@ impl FromStr for CriterionName {
     }
 }
 
+/// A weight law by name, for the catalogue (`--set law=...`).
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    PartialEq,
+    Eq,
+    Hash,
+    Default,
+    serde::Serialize,
+    serde::Deserialize,
+    schemars::JsonSchema,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum LawName {
+    /// [`CubicBernstein`](crate::CubicBernstein): the paper's four cubic coefficients.
+    #[default]
+    Bernstein,
+    /// [`PerPoint`](crate::PerPoint): one weight per control point.
+    PerPoint,
+}
+
+/// Settings of Nowacki et al.'s weight fairing as a method of the catalogue
+/// (`nurbs-weights`): which criterion, which weight law, how long to search.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[serde(default, deny_unknown_fields, rename_all = "kebab-case")]
+pub struct NurbsWeightSettings {
+    /// Criterion minimised: a registered criterion (e1, e2, e3, ek, ek-prime, ...).
+    ///
+    /// The name is looked up in the catalogue (`fair methods` lists the criteria); default
+    /// `ek`, as in the paper's Table 1.
+    pub criterion: String,
+    /// Weight law: bernstein (the paper's 4 cubic coefficients) or per-point.
+    pub law: LawName,
+    /// Nelder-Mead iterations at most.
+    pub max_iterations: u64,
+}
+
+impl Default for NurbsWeightSettings {
+    fn default() -> Self {
+        NurbsWeightSettings {
+            criterion: CriterionName::Ek.as_str().to_owned(),
+            law: LawName::Bernstein,
+            max_iterations: 1000,
+        }
+    }
+}
+
+impl NurbsWeightSettings {
+    /// Checks the settings: a criterion is named.
+    pub fn validate(&self) -> Result<()> {
+        if self.criterion.trim().is_empty() {
+            return Err(Error::InvalidSetting {
+                name: "criterion",
+                reason: "names no criterion".into(),
+            });
+        }
+        Ok(())
+    }
+}
+
 /// Nowacki et al.'s weight fairing of the cubic NURBS through a point sequence: a weight law
 /// `L`, a criterion `C` of the re-solved curve, Nelder–Mead settings, the parametrisation
 /// (default chord length) and optional end tangents (derivatives with respect to the

@@ -1,33 +1,28 @@
 //! `fair curve`: read, check, fair, write the points, the report and the plot.
 //!
 //! Order of checks (so that the user's mistakes are reported before anything runs): the
-//! input file, the number of points, `--kind`, `--method`, the parameters, the constraints.
-//! Then [`fair`] (the SEAM to the strategies; [`stages`] chains several), then the outputs.
+//! input file, the number of points, `--kind`, `--method` and the parameters (the
+//! catalogue's [`Catalog::plan`]), the constraints; then the plan runs
+//! ([`Catalog::run_curve_plan`]: one method or a pipeline of stages), then the outputs.
+//! Everything about methods — names, parameters, what each refuses — is the catalogue's.
 //! A directory or a JSON-lines stream is a [`batch`].
+
+use std::collections::BTreeMap;
+
+use fairing::catalog::{
+    AnyCurve, Catalog, ConfigFile, CurvePoints, MethodKind, ParameterMap, Plan, PlanConstraints,
+};
 
 use crate::args::FairArgs;
 use crate::commands::{measure, say, write_results};
-use crate::config::{self, ConfigConstraints, ConfigFile};
-use crate::constraints::Constraints;
 use crate::error::{Error, Result};
 use crate::input::{self, CurveInput, Points};
 use crate::kind::{self, CurveKind};
-use crate::parameters::Parameters;
 use crate::plots::{planar_view, CurvePlot};
 use crate::progress;
-use crate::registry::{self, MethodInfo, MethodKind};
-use crate::report::{Energies, Report};
-use std::collections::BTreeMap;
+use crate::report::{Energies, Report, ReportKind};
 
 pub mod batch;
-mod batten;
-mod nurbs_weights;
-mod sapidis_farin;
-mod smoothing_spline;
-pub mod stages;
-mod strain_energy;
-mod strategy_run;
-mod two_phase;
 
 /// The fewest points any curve method works on: curvature-slope jumps e_i need three.
 pub const MIN_CURVE_POINTS: usize = 3;
@@ -37,59 +32,6 @@ pub fn default_method(kind: CurveKind) -> &'static str {
     match kind {
         CurveKind::Function => "two-phase",
         CurveKind::Parametric => "strain-energy",
-    }
-}
-
-/// Everything a strategy gets.
-#[derive(Debug, Clone)]
-pub struct CurveJob<'a> {
-    /// The points as read.
-    pub input: &'a CurveInput,
-    /// Function or parametric.
-    pub kind: CurveKind,
-    /// The method.
-    pub method: &'static MethodInfo,
-    /// Its parameters as given (defaults are the method's to apply).
-    pub parameters: &'a Parameters,
-    /// Fixed points, bad points, tolerance, ends.
-    pub constraints: &'a Constraints,
-}
-
-/// What a strategy gives back.
-#[derive(Debug, Clone, PartialEq)]
-pub struct CurveOutcome {
-    /// The faired data points: same count and order as the input (unchanged for methods that
-    /// change weights).
-    pub points: Points,
-    /// Iterations run.
-    pub iterations: usize,
-    /// Indices of the points that moved.
-    pub moved: Vec<usize>,
-    /// Time of the fairing itself, in milliseconds.
-    pub elapsed_ms: f64,
-    /// The faired curve for the report's `curve`.
-    pub curve: serde_json::Value,
-    /// Method-specific extras for the report (termination reason, trace, ...).
-    pub extras: BTreeMap<String, serde_json::Value>,
-    /// For methods whose curve is not the spline the measures are defined on (nurbs-weights
-    /// changes weights, not points): the energies of the curve as represented before and
-    /// after, which replace the report's `before.energies` and `after.energies` as DESIGN.md
-    /// asks ("energies over the curve as represented").
-    pub represented_energies: Option<(Energies, Energies)>,
-}
-
-/// SEAM: runs the strategy of `job.method` (crate `fairing`).
-pub fn fair(job: &CurveJob) -> Result<CurveOutcome> {
-    match job.method.name {
-        "nurbs-weights" => nurbs_weights::fair(job),
-        "strain-energy" | "kjellander" | "poliakoff" => strain_energy::fair(job),
-        "batten" => batten::fair(job),
-        "smoothing-spline" => smoothing_spline::fair(job),
-        "sapidis-farin" => sapidis_farin::fair(job),
-        "two-phase" => two_phase::fair(job),
-        _ => Err(Error::NotAvailable {
-            what: format!("method `{}`", job.method.name),
-        }),
     }
 }
 
@@ -103,6 +45,62 @@ pub fn displacement(before: &Points, after: &Points) -> (f64, f64) {
     distances.fold((0.0, 0.0), |(sum, max), d| (sum + d, f64::max(max, d)))
 }
 
+/// The command's points as the catalogue's.
+pub fn to_catalog(points: &Points) -> CurvePoints {
+    match points {
+        Points::Planar(p) => CurvePoints::Planar(p.clone()),
+        Points::Spatial(p) => CurvePoints::Spatial(p.clone()),
+    }
+}
+
+/// The catalogue's points as the command's.
+pub fn from_catalog(points: CurvePoints) -> Points {
+    match points {
+        CurvePoints::Planar(p) => Points::Planar(p),
+        CurvePoints::Spatial(p) => Points::Spatial(p),
+    }
+}
+
+/// The `--set`s of a command line.
+pub fn sets(args: &FairArgs) -> ParameterMap {
+    ParameterMap::from_sets(args.settings.iter().map(|s| (s.name.as_str(), s.value.as_str())))
+}
+
+/// Every criterion of the catalogue that applies to `curve`, by name; a criterion that cannot
+/// be evaluated is left out (its reason goes to `failed`).
+pub fn criteria(
+    catalog: &Catalog,
+    curve: &AnyCurve,
+    failed: &mut BTreeMap<String, String>,
+) -> BTreeMap<String, f64> {
+    let mut out = BTreeMap::new();
+    for (name, value) in catalog.criteria_of(curve) {
+        match value {
+            Ok(v) if v.is_finite() => {
+                out.insert(name, v);
+            }
+            Ok(v) => {
+                failed.insert(name, format!("not finite ({v})"));
+            }
+            Err(e) => {
+                failed.insert(name, e.to_string());
+            }
+        }
+    }
+    out
+}
+
+/// The energies block from criteria values (for a method's own representation).
+fn energies_from(criteria: &BTreeMap<String, f64>) -> Option<Energies> {
+    Some(Energies {
+        e1: *criteria.get("e1")?,
+        e2: *criteria.get("e2")?,
+        e3: *criteria.get("e3")?,
+        ek: *criteria.get("ek")?,
+        ek_prime: *criteria.get("ek-prime")?,
+    })
+}
+
 /// A faired curve, ready to be written: what one input of `fair curve` produces.
 #[derive(Debug, Clone)]
 pub struct Faired {
@@ -114,145 +112,113 @@ pub struct Faired {
     pub plot: CurvePlot,
 }
 
-/// What runs: the stages (one for `--method`, several for a config with `[[stage]]`) and the
-/// config file's constraints.
-#[derive(Debug, Clone)]
-pub struct Plan {
-    /// Each stage's method and parameters, in order.
-    pub stages: Vec<(&'static MethodInfo, Parameters)>,
-    /// The config file's `[constraints]` (the command line wins).
-    pub config_constraints: ConfigConstraints,
-}
-
-impl Plan {
-    /// The plan a command line and its config file imply for a curve of `kind`.
-    pub fn new(args: &FairArgs, file: Option<&ConfigFile>, kind: CurveKind) -> Result<Plan> {
-        let config_constraints = file.map(ConfigFile::constraints).transpose()?.unwrap_or_default();
-        if let Some(stages) = file.map(|f| f.stages(MethodKind::Curve)).transpose()?.flatten() {
-            if args.method.is_some() {
-                return Err(Error::Argument {
-                    option: "--method",
-                    message:
-                        "the config file defines a pipeline of [[stage]]s; give either --method or the stages"
-                            .into(),
-                });
-            }
-            if !args.settings.is_empty() {
-                return Err(Error::Argument {
-                    option: "--set",
-                    message: "the config file defines a pipeline; set parameters in its [[stage]] tables"
-                        .into(),
-                });
-            }
-            let stages = stages
-                .into_iter()
-                .map(|stage| {
-                    Ok((
-                        stage.method,
-                        Parameters::from_values(stage.method, stage.values, &[])?,
-                    ))
-                })
-                .collect::<Result<Vec<_>>>()?;
-            return Ok(Plan {
-                stages,
-                config_constraints,
-            });
-        }
-        let method = registry::find(
-            args.method.as_deref().unwrap_or(default_method(kind)),
+/// The plan and constraints a command line and its config imply for `input` of `kind`.
+pub fn plan(
+    catalog: &Catalog,
+    input: &CurveInput,
+    args: &FairArgs,
+    file: Option<&ConfigFile>,
+    kind: CurveKind,
+) -> Result<(Plan, PlanConstraints)> {
+    let plan = catalog
+        .plan(
             MethodKind::Curve,
-        )?;
-        let values = match file {
-            Some(file) => file.method_values(method.name)?,
-            None => Vec::new(),
-        };
-        let parameters = Parameters::from_values(method, values, &args.settings)?;
-        Ok(Plan {
-            stages: vec![(method, parameters)],
-            config_constraints,
-        })
-    }
-
-    /// The methods that take bad points (`--points`): the interactive strain-energy family.
-    pub const BAD_POINT_METHODS: [&'static str; 3] = ["strain-energy", "kjellander", "poliakoff"];
-
-    /// Refuses `--points` when no stage takes bad points (the other methods find the unfair
-    /// points themselves, or change weights), instead of ignoring it. O(stages).
-    pub fn check_bad_points(&self, constraints: &Constraints) -> Result<()> {
-        let takes = |name: &str| Self::BAD_POINT_METHODS.contains(&name);
-        if constraints.bad_points.is_empty() || self.stages.iter().any(|(m, _)| takes(m.name)) {
-            return Ok(());
-        }
-        Err(Error::Argument {
-            option: "--points",
-            message: format!(
-                "`{}` takes no bad points (it finds what to change itself); the methods that do: {}",
-                self.name(),
-                Self::BAD_POINT_METHODS.join(", ")
-            ),
-        })
-    }
-
-    /// The report's `method`: the method, or the stages' names joined by `+`.
-    pub fn name(&self) -> String {
-        let names: Vec<&str> = self.stages.iter().map(|(m, _)| m.name).collect();
-        names.join("+")
-    }
+            args.method.as_deref(),
+            default_method(kind),
+            file,
+            &sets(args),
+        )
+        .map_err(|e| Error::from_fairing(e, &input.source))?;
+    let constraints = crate::constraints::resolve(args, &plan.constraints, input.len())?;
+    Ok((plan, constraints))
 }
 
 /// Reads, checks and fairs one curve input: everything `fair curve` does but writing.
 ///
-/// Order of checks: the number of points, `--kind`, the method(s) and parameters, the
-/// constraints; then the stages; then the measures, the report and the output text (so that
-/// nothing is written for a run that fails).
-///
 /// Every error about the points names the input file (not "the points").
-pub fn process(input: &CurveInput, args: &FairArgs, file: Option<&ConfigFile>) -> Result<Faired> {
-    process_points(input, args, file).map_err(|e| measure::in_file(e, &input.source))
+pub fn process(
+    catalog: &Catalog,
+    input: &CurveInput,
+    args: &FairArgs,
+    file: Option<&ConfigFile>,
+) -> Result<Faired> {
+    process_points(catalog, input, args, file).map_err(|e| measure::in_file(e, &input.source))
 }
 
 /// [`process`], errors about the points not yet named after the file.
-fn process_points(input: &CurveInput, args: &FairArgs, file: Option<&ConfigFile>) -> Result<Faired> {
+fn process_points(
+    catalog: &Catalog,
+    input: &CurveInput,
+    args: &FairArgs,
+    file: Option<&ConfigFile>,
+) -> Result<Faired> {
     input.require_at_least(MIN_CURVE_POINTS, "a curve")?;
     let kind = kind::resolve(args.kind, input)?;
-    let plan = Plan::new(args, file, kind)?;
-    let constraints = Constraints::from_args_and_config(args, &plan.config_constraints, input.len())?;
-    plan.check_bad_points(&constraints)?;
-    let outcome = stages::run(input, kind, &plan, &constraints)?;
+    let (plan, constraints) = plan(catalog, input, args, file, kind)?;
+    let points = to_catalog(&input.points);
+    let run = catalog
+        .run_curve_plan(&plan, &points, kind, &constraints)
+        .map_err(|e| Error::from_fairing(e, &input.source))?;
+    let faired = from_catalog(run.points);
     if kind == CurveKind::Function {
-        check_still_a_function(&outcome.points, &plan)?;
+        check_still_a_function(&faired, &plan)?;
     }
     let mut before = measure::curve(kind, &input.points)?;
-    let mut after = measure::curve(kind, &outcome.points)?;
-    if let Some((energies_before, energies_after)) = outcome.represented_energies {
-        before.measures.energies = Some(energies_before);
-        after.measures.energies = Some(energies_after);
+    let mut after = measure::curve(kind, &faired)?;
+    // Criteria on the curve as represented: the method's own curves when it has them, else
+    // the spline the report measures.
+    let mut failed = BTreeMap::new();
+    match &run.represented {
+        Some(represented) => {
+            before.measures.criteria = criteria(catalog, &represented.before, &mut failed);
+            after.measures.criteria = criteria(catalog, &represented.after, &mut failed);
+            if let (Some(b), Some(a)) = (
+                energies_from(&before.measures.criteria),
+                energies_from(&after.measures.criteria),
+            ) {
+                before.measures.energies = Some(b);
+                after.measures.energies = Some(a);
+                // Integrated by the method's own criteria to their default tolerance (they
+                // fail rather than return an unmet one): no error estimate to report.
+                before.measures.energy_accuracy = None;
+                after.measures.energy_accuracy = None;
+            }
+        }
+        None => {
+            let measured = |p: &Points| {
+                fairing::catalog::measured_curve(kind, &to_catalog(p))
+                    .map_err(|e| Error::from_fairing(e, &input.source))
+            };
+            before.measures.criteria = criteria(catalog, &measured(&input.points)?, &mut failed);
+            after.measures.criteria = criteria(catalog, &measured(&faired)?, &mut failed);
+        }
     }
-    let (s_d, m_d) = displacement(&input.points, &outcome.points);
-    let params = match plan.stages.as_slice() {
-        [(_, parameters)] => parameters.to_json(),
-        _ => BTreeMap::new(),
-    };
+    let (s_d, m_d) = displacement(&input.points, &faired);
+    let mut extras = run.extras;
+    extras.insert("termination".into(), serde_json::json!(run.termination));
+    if !failed.is_empty() {
+        extras.insert("criteria_failed".into(), serde_json::json!(failed));
+    }
     let report = Report {
         method: plan.name(),
-        kind: kind.report_kind(),
+        kind: ReportKind::from(kind),
         n: input.len(),
-        iterations: outcome.iterations,
+        iterations: run.iterations,
         before: before.measures.clone(),
         after: after.measures.clone(),
         s_d,
         m_d,
-        moved: outcome.moved.clone(),
-        elapsed_ms: outcome.elapsed_ms,
-        curve: outcome.curve.clone(),
-        params,
-        extras: outcome.extras.clone(),
+        moved: run.moved,
+        elapsed_ms: run.elapsed_ms,
+        curve: run.curve,
+        params: plan.params(catalog),
+        extras,
     };
-    let points_text = crate::output::format_curve(input, &outcome.points)?;
+    let points_text = crate::output::format_curve_as(input, &faired, output_format(args)?)?;
     let plot = CurvePlot {
         title: format!("{} — {}", input.source, report.method),
         input: planar_view(&input.points),
-        faired: Some(planar_view(&outcome.points)),
+        faired: Some(planar_view(&faired)),
         input_curve: before.samples,
         faired_curve: after.samples,
         comb: after.comb,
@@ -261,12 +227,27 @@ fn process_points(input: &CurveInput, args: &FairArgs, file: Option<&ConfigFile>
         function: kind == CurveKind::Function,
         curvature_before: before.curvature,
         curvature_after: after.curvature,
+        axes: Some(crate::plots::axis_names(&input.coordinate_names())),
+        projections: crate::plots::other_projections(
+            &input.coordinate_names(),
+            &input.points,
+            Some(&faired),
+        ),
     };
     Ok(Faired {
         report,
         points_text,
         plot,
     })
+}
+
+/// The format of the faired points: by `-o`'s extension for a single curve (a batch writes
+/// each file in its own format).
+fn output_format(args: &FairArgs) -> Result<crate::output::OutputFormat> {
+    match &args.output {
+        Some(path) if !batch::is_batch(args) => crate::output::OutputFormat::of_path(path),
+        _ => Ok(crate::output::OutputFormat::SameAsInput),
+    }
 }
 
 /// Methods for parametric curves (strain-energy, batten) move x as well as y; on function
@@ -293,28 +274,33 @@ fn check_still_a_function(points: &Points, plan: &Plan) -> Result<()> {
 }
 
 /// Runs `fair curve`: one input, or a batch ([`batch`]).
-pub fn run(args: &FairArgs) -> Result<()> {
-    let file = args.config.as_deref().map(ConfigFile::read).transpose()?;
+pub fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
+    let file = read_config(args)?;
     if batch::is_batch(args) {
-        return batch::run(args, file.as_ref());
+        return batch::run(catalog, args, file.as_ref());
     }
-    let input = input::read_curve(&args.input)?;
+    output_format(args)?;
+    let input = {
+        let _activity = progress::Activity::start(&format!("reading {}", args.input), args.quiet);
+        input::read_curve_with(&args.input, &args.read_options())?
+    };
+    input.print_notes(args.quiet);
     if args.print_config {
         input.require_at_least(MIN_CURVE_POINTS, "a curve")?;
         let kind = kind::resolve(args.kind, &input)?;
-        let plan = Plan::new(args, file.as_ref(), kind)?;
-        let constraints = Constraints::from_args_and_config(args, &plan.config_constraints, input.len())?;
-        plan.check_bad_points(&constraints)?;
+        let (plan, constraints) = plan(catalog, &input, args, file.as_ref(), kind)?;
         // The methods check their values when they run: run it, so that a config that would
         // fail is not printed as if it were good.
-        process(&input, args, file.as_ref())?;
-        let stages: Vec<_> = plan.stages.iter().map(|(m, p)| (*m, p.given_values())).collect();
-        say(false, false, config::render(&constraints, &stages).trim_end());
+        process(catalog, &input, args, file.as_ref())?;
+        say(false, false, plan.render(catalog, &constraints).trim_end());
         return Ok(());
     }
     let faired = {
-        let _activity = progress::Activity::start(&format!("fairing {}", input.source), args.quiet);
-        process(&input, args, file.as_ref())?
+        let _activity = progress::Activity::start(
+            &format!("fairing and measuring {} ({} points)", input.source, input.len()),
+            args.quiet,
+        );
+        process(catalog, &input, args, file.as_ref())?
     };
     write_results(args, &faired.report, &faired.points_text, || faired.plot.figure())?;
     let report = &faired.report;
@@ -334,6 +320,15 @@ pub fn run(args: &FairArgs) -> Result<()> {
         ),
     );
     Ok(())
+}
+
+/// Reads `--config` if given (errors name the file and line).
+pub fn read_config(args: &FairArgs) -> Result<Option<ConfigFile>> {
+    args.config
+        .as_deref()
+        .map(ConfigFile::read)
+        .transpose()
+        .map_err(|e| Error::from_fairing(e, "--config"))
 }
 
 #[cfg(test)]

@@ -10,11 +10,12 @@
 //!
 //! Every method runs in its automatic mode with its default parameters (no `--points`).
 
+use fairing::catalog::{Catalog, MethodKind};
+
 use crate::args::{DemoArgs, FairArgs, KindArg};
 use crate::commands::{curve, inspect, surface, write_results};
 use crate::error::{Error, Result};
 use crate::input::Source;
-use crate::registry::{MethodKind, METHODS, PLANAR_ONLY};
 use crate::report::Report;
 
 /// One embedded data set.
@@ -93,6 +94,7 @@ fn run_args(input: String, method: &str, out: &std::path::Path, stem: &str) -> F
         input,
         method: Some(method.to_string()),
         kind: KindArg::Auto,
+        columns: None,
         config: None,
         settings: Vec::new(),
         fixed: None,
@@ -113,17 +115,17 @@ fn count(value: Option<usize>) -> String {
 }
 
 /// Fairs one embedded curve as `fair curve` would and returns its report.
-fn fair_curve(args: &FairArgs) -> Result<Report> {
+fn fair_curve(catalog: &Catalog, args: &FairArgs) -> Result<Report> {
     let input = crate::input::read_curve(&args.input)?;
-    let faired = curve::process(&input, args, None)?;
+    let faired = curve::process(catalog, &input, args, None)?;
     write_results(args, &faired.report, &faired.points_text, || faired.plot.figure())?;
     Ok(faired.report)
 }
 
 /// Fairs one embedded surface as `fair surface` would and returns its report.
-fn fair_surface(args: &FairArgs) -> Result<Report> {
+fn fair_surface(catalog: &Catalog, args: &FairArgs) -> Result<Report> {
     let input = crate::input::read_surface(&args.input)?;
-    let faired = surface::process(&input, args, None)?;
+    let faired = surface::process(catalog, &input, args, None)?;
     write_results(args, &faired.report, &faired.grid_text, || faired.plot.figure())?;
     Ok(faired.report)
 }
@@ -170,7 +172,7 @@ fn row(report: &Report) -> String {
 /// `<name>-inspect.svg`) and a table of the measures in the papers' style; then every method
 /// of the data set's kind. A method that is not available yet is listed as such and is not
 /// a failure; any other error of a run makes the command fail (after every run was tried).
-pub fn run(args: &DemoArgs) -> Result<()> {
+pub fn run(catalog: &Catalog, args: &DemoArgs) -> Result<()> {
     let data_dir = args.out.join("data");
     std::fs::create_dir_all(&data_dir).map_err(|e| Error::Write {
         path: data_dir.display().to_string(),
@@ -192,7 +194,13 @@ pub fn run(args: &DemoArgs) -> Result<()> {
         let source = Source::from_text(&data_path.display().to_string(), dataset.text);
         let stem = args.out.join(format!("{}-inspect", dataset.name));
         let surface = dataset.kind == MethodKind::Surface;
-        let report = inspect::inspect(&source, KindArg::Auto, surface, Some(&stem.with_extension("svg")))?;
+        let report = inspect::inspect(
+            catalog,
+            &source,
+            KindArg::Auto,
+            surface,
+            Some(&stem.with_extension("svg")),
+        )?;
         crate::output::write_text(
             &stem.with_extension("json").display().to_string(),
             &report.to_json()?,
@@ -209,27 +217,27 @@ pub fn run(args: &DemoArgs) -> Result<()> {
             m.max_z
         ));
         let mut not_available = Vec::new();
-        let spatial = dataset.kind == MethodKind::Curve
-            && crate::input::parse_curve(&source).is_ok_and(|c| c.points.dimension() == 3);
-        for method in METHODS.iter().filter(|m| m.kind == dataset.kind) {
-            if spatial && PLANAR_ONLY.contains(&method.name) {
-                lines.push(format!(
-                    "{:20} {:18} does not apply: fairs planar curves only",
-                    dataset.name, method.name
-                ));
-                continue;
-            }
+        for method in catalog.methods(dataset.kind) {
             runs += 1;
-            let stem = format!("{}-{}", dataset.name, method.name);
-            let run_args = run_args(data_path.display().to_string(), method.name, &args.out, &stem);
+            let name = method.name();
+            let stem = format!("{}-{name}", dataset.name);
+            let run_args = run_args(data_path.display().to_string(), name, &args.out, &stem);
             let result = match dataset.kind {
-                MethodKind::Curve => fair_curve(&run_args),
-                MethodKind::Surface => fair_surface(&run_args),
+                MethodKind::Curve => fair_curve(catalog, &run_args),
+                MethodKind::Surface => fair_surface(catalog, &run_args),
             };
             let status = match result {
                 Ok(report) => row(&report),
                 Err(Error::NotAvailable { .. }) => {
-                    not_available.push(method.name);
+                    not_available.push(name.to_owned());
+                    continue;
+                }
+                Err(Error::NotApplicable { message, .. }) => {
+                    runs -= 1;
+                    lines.push(format!(
+                        "{:20} {:18} does not apply: {message}",
+                        dataset.name, name
+                    ));
                     continue;
                 }
                 Err(e) => {
@@ -239,7 +247,7 @@ pub fn run(args: &DemoArgs) -> Result<()> {
                     text
                 }
             };
-            lines.push(format!("{:20} {:18} {status}", dataset.name, method.name));
+            lines.push(format!("{:20} {:18} {status}", dataset.name, name));
         }
         if !not_available.is_empty() {
             unavailable += not_available.len();

@@ -6,12 +6,15 @@
 
 use std::path::Path;
 
+use fairing::catalog::Catalog;
+
 use crate::args::{InspectArgs, KindArg};
 use crate::commands::{curve::MIN_CURVE_POINTS, measure, say, surface};
 use crate::error::Result;
-use crate::input::{self, Source};
+use crate::input::{self, ReadOptions, Source};
 use crate::kind::{self, CurveKind};
 use crate::plots::{planar_view, CurvePlot, SurfacePlot};
+use crate::progress;
 use crate::report::{Report, ReportKind};
 
 /// Whether a source is a surface grid: five comma-separated columns on its first row.
@@ -39,9 +42,20 @@ fn format_measures(report: &Report) -> String {
 }
 
 /// Runs `fair inspect`.
-pub fn run(args: &InspectArgs) -> Result<()> {
-    let source = Source::read(&args.input)?;
-    let report = inspect(&source, args.kind, args.surface, args.plot.as_deref())?;
+pub fn run(catalog: &Catalog, args: &InspectArgs) -> Result<()> {
+    let source = {
+        let _activity = progress::Activity::start(&format!("reading {}", args.input), args.quiet);
+        Source::read(&args.input)?
+    };
+    let report = inspect_with(
+        catalog,
+        &source,
+        args.kind,
+        args.surface,
+        args.plot.as_deref(),
+        &args.read_options(),
+        args.quiet,
+    )?;
     let text = report.to_json()?;
     if let Some(path) = &args.report {
         crate::output::write_text(&path.display().to_string(), &text)?;
@@ -57,8 +71,33 @@ pub fn run(args: &InspectArgs) -> Result<()> {
 /// Measures `source` (a surface when `surface` is set or it has five columns, else a curve
 /// of kind `kind`), draws the plot to `plot` if given, and returns the report (checked
 /// finite). The work of `fair inspect` and `fair demo`.
-pub fn inspect(source: &Source, kind_arg: KindArg, surface: bool, plot: Option<&Path>) -> Result<Report> {
+pub fn inspect(
+    catalog: &Catalog,
+    source: &Source, kind_arg: KindArg, surface: bool, plot: Option<&Path>) -> Result<Report> {
+    inspect_with(catalog, source, kind_arg, surface, plot, &ReadOptions::default(), true)
+}
+
+/// [`inspect`] with `--columns` ([`ReadOptions`]); the reader's notes and a progress spinner
+/// on standard error unless `quiet`.
+pub fn inspect_with(
+    catalog: &Catalog,
+    source: &Source,
+    kind_arg: KindArg,
+    surface: bool,
+    plot: Option<&Path>,
+    options: &ReadOptions,
+    quiet: bool,
+) -> Result<Report> {
     let report = if surface || looks_like_surface(source) {
+        if options.columns.is_some() {
+            return Err(crate::error::Error::Argument {
+                option: "--columns",
+                message: format!(
+                    "{}: the input is a surface grid i,j,x,y,z; --columns is for curves",
+                    source.name
+                ),
+            });
+        }
         if kind_arg != KindArg::Auto {
             return Err(crate::error::Error::Argument {
                 option: "--kind",
@@ -89,10 +128,20 @@ pub fn inspect(source: &Source, kind_arg: KindArg, surface: bool, plot: Option<&
             measured.surface,
         )
     } else {
-        let input = input::parse_curve(source)?;
+        let input = {
+            let _activity = progress::Activity::start(&format!("parsing {}", source.name), quiet);
+            input::parse_curve_with(source, options)?
+        };
+        input.print_notes(quiet);
         input.require_at_least(MIN_CURVE_POINTS, "a curve")?;
         let kind = kind::resolve(kind_arg, &input)?;
-        let measured = measure::curve(kind, &input.points).map_err(|e| measure::in_file(e, &input.source))?;
+        let measured = {
+            let _activity = progress::Activity::start(
+                &format!("measuring {} ({} points)", source.name, input.len()),
+                quiet,
+            );
+            measure::curve(kind, &input.points).map_err(|e| measure::in_file(e, &input.source))?
+        };
         if let Some(path) = plot {
             let plot = CurvePlot {
                 title: format!("{} — inspect", input.source),
@@ -102,11 +151,19 @@ pub fn inspect(source: &Source, kind_arg: KindArg, surface: bool, plot: Option<&
                 z_before: measured.z.clone(),
                 function: kind == CurveKind::Function,
                 curvature_before: measured.curvature.clone(),
+                axes: Some(crate::plots::axis_names(&input.coordinate_names())),
+                projections: crate::plots::other_projections(&input.coordinate_names(), &input.points, None),
                 ..CurvePlot::default()
             };
             plot.figure().write(path)?;
         }
-        Report::inspection(kind.report_kind(), input.len(), measured.measures, measured.curve)
+        let mut measures = measured.measures;
+        let mut failed = std::collections::BTreeMap::new();
+        let curve =
+            fairing::catalog::measured_curve(kind, &crate::commands::curve::to_catalog(&input.points))
+                .map_err(|e| crate::error::Error::from_fairing(e, &input.source))?;
+        measures.criteria = crate::commands::curve::criteria(catalog, &curve, &mut failed);
+        Report::inspection(ReportKind::from(kind), input.len(), measures, measured.curve)
     };
     report.check_finite()?;
     Ok(report)

@@ -22,7 +22,7 @@ use crate::error::{Error, Result};
 use crate::input::{Grid, Points};
 use crate::kind::CurveKind;
 use crate::plots::CombData;
-use crate::report::{Energies, Measures};
+use crate::report::Measures;
 
 /// The path that measurement errors carry until [`in_file`] names the input.
 pub const POINTS: &str = "the points";
@@ -96,20 +96,18 @@ fn from_curve_repr(source: curve_repr::Error) -> Error {
     }
 }
 
+/// The report's measures of a summary: energies (and their accuracy) only where they were
+/// measured (curves whose integrands are finite).
 fn measures(summary: &FairnessSummary, with_energies: bool) -> Measures {
-    let e = summary.energies;
+    let accuracy = summary.energy_accuracy.filter(|_| with_energies);
     Measures {
         inflections: summary.inflections,
         vibrations: summary.vibrations,
         e_s: summary.e_s,
         max_z: summary.max_z,
-        energies: with_energies.then_some(Energies {
-            e1: e.e1,
-            e2: e.e2,
-            e3: e.e3,
-            ek: e.ek,
-            ek_prime: e.ek_prime,
-        }),
+        energies: accuracy.map(|_| summary.energies),
+        energy_accuracy: accuracy,
+        criteria: Default::default(),
     }
 }
 

@@ -1,8 +1,11 @@
-//! `fair methods`: the table of every method and its parameters.
+//! `fair methods`: the table of every method and its parameters, criteria and indicators,
+//! derived from the catalogue (each method's settings type).
+
+use fairing::catalog::Catalog;
 
 use crate::error::Result;
 
-/// Prints [`crate::registry::table`] to standard output.
-pub fn run() -> Result<()> {
-    crate::output::write_text("-", &crate::registry::table())
+/// Prints [`Catalog::table`] to standard output.
+pub fn run(catalog: &Catalog) -> Result<()> {
+    crate::output::write_text("-", &catalog.table())
 }

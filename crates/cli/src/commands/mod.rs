@@ -1,8 +1,8 @@
 //! One handler per subcommand; [`dispatch`] picks it.
 //!
-//! Where the numerical crates plug in: [`measure`] (indicators and criteria: `fair inspect`
-//! and the report's `before`/`after`) and [`curve::fair`] / [`surface::fair`] (strategies).
-//! Until they are wired they return [`Error::NotAvailable`](crate::Error::NotAvailable).
+//! Where the numerical crates plug in: [`measure`] (indicators: `fair inspect` and the
+//! report's `before`/`after`) and the catalogue (methods and criteria), which every handler
+//! is given.
 
 pub mod curve;
 pub mod demo;
@@ -11,17 +11,19 @@ pub mod measure;
 pub mod methods;
 pub mod surface;
 
+use fairing::catalog::Catalog;
+
 use crate::args::{Cli, Command};
 use crate::error::{Error, Result};
 
-/// Runs the parsed command.
-pub fn dispatch(cli: Cli) -> Result<()> {
+/// Runs the parsed command with the methods of `catalog`.
+pub fn dispatch(catalog: &Catalog, cli: Cli) -> Result<()> {
     match cli.command {
-        Command::Curve(args) => curve::run(&args),
-        Command::Surface(args) => surface::run(&args),
-        Command::Inspect(args) => inspect::run(&args),
-        Command::Methods => methods::run(),
-        Command::Demo(args) => demo::run(&args),
+        Command::Curve(args) => curve::run(catalog, &args),
+        Command::Surface(args) => surface::run(catalog, &args),
+        Command::Inspect(args) => inspect::run(catalog, &args),
+        Command::Methods => methods::run(catalog),
+        Command::Demo(args) => demo::run(catalog, &args),
     }
 }
 

@@ -1,68 +1,24 @@
 //! `fair surface`: read a grid `i,j,x,y,z`, fair it, write the grid, the report and the plot.
 //!
 //! Same order of checks as `fair curve`; `--kind` does not apply to surfaces and is refused
-//! unless left at `auto`.
+//! unless left at `auto`. Point indices (`--fixed`, `--points`, the report's `moved`) count
+//! the grid row by row from 0 (k = i · columns + j); `--clamp-ends g0` keeps the grid's
+//! boundary. The method and what it refuses are the catalogue's.
 
-use crate::args::{ClampEnds, FairArgs};
+use fairing::catalog::{Catalog, ConfigFile, MethodKind, Plan, PlanConstraints, SurfaceJob};
+
+use crate::args::FairArgs;
 use crate::commands::{measure, say, write_results};
-use crate::config::ConfigFile;
-use crate::constraints::Constraints;
 use crate::error::{Error, Result};
 use crate::input::{self, Grid, SurfaceInput};
-use crate::parameters::Parameters;
 use crate::plots::SurfacePlot;
-use crate::registry::{self, MethodInfo, MethodKind};
 use crate::report::{Report, ReportKind};
-use std::collections::BTreeMap;
-
-mod zhang_cheng;
 
 /// The default surface method.
 pub const DEFAULT_METHOD: &str = "zhang-cheng";
 
 /// The smallest grid with an interior point (z_ij is defined at interior points).
 pub const MIN_GRID: (usize, usize) = (3, 3);
-
-/// Everything a surface strategy gets. Point indices in the constraints count the grid row by
-/// row from 0 (k = i · columns + j).
-#[derive(Debug, Clone)]
-pub struct SurfaceJob<'a> {
-    /// The grid as read.
-    pub input: &'a SurfaceInput,
-    /// The method.
-    pub method: &'static MethodInfo,
-    /// Its parameters as given.
-    pub parameters: &'a Parameters,
-    /// Fixed points, bad points, tolerance.
-    pub constraints: &'a Constraints,
-}
-
-/// What a surface strategy gives back.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SurfaceOutcome {
-    /// The faired grid, same size.
-    pub grid: Grid,
-    /// Iterations run.
-    pub iterations: usize,
-    /// Indices (row by row) of the grid points that moved.
-    pub moved: Vec<usize>,
-    /// Time of the fairing itself, in milliseconds.
-    pub elapsed_ms: f64,
-    /// The faired surface for the report's `curve`.
-    pub surface: serde_json::Value,
-    /// Method-specific extras for the report.
-    pub extras: BTreeMap<String, serde_json::Value>,
-}
-
-/// SEAM: runs the surface strategy of `job.method` (crate `fairing`).
-pub fn fair(job: &SurfaceJob) -> Result<SurfaceOutcome> {
-    match job.method.name {
-        "zhang-cheng" | "kjellander" => zhang_cheng::fair(job),
-        _ => Err(Error::NotAvailable {
-            what: format!("surface method `{}`", job.method.name),
-        }),
-    }
-}
 
 /// Checks that the grid has an interior point.
 pub fn require_grid(input: &SurfaceInput) -> Result<()> {
@@ -89,125 +45,105 @@ pub struct FairedSurface {
     pub plot: SurfacePlot,
 }
 
-/// The method, its parameters and the constraints a command line and its config file give for
-/// a grid of `count` points. A config may set the method's parameters and `[constraints]`;
-/// pipelines of `[[stage]]`s are for curves and are refused.
-///
-/// `--clamp-ends g0` keeps the grid's boundary (its "end points": the first and last row and
-/// column join the fixed points); `g1` and `g2` are refused, as no surface method here can
-/// hold the cross-boundary tangents or curvatures.
+/// The plan and constraints a command line and its config give for a grid of `count`
+/// points. A config may set the method's parameters and `[constraints]`; pipelines of
+/// `[[stage]]`s are for curves and are refused.
 fn plan(
+    catalog: &Catalog,
+    input: &SurfaceInput,
     args: &FairArgs,
     file: Option<&ConfigFile>,
-    grid: &Grid,
-) -> Result<(&'static MethodInfo, Parameters, Constraints)> {
-    let count = grid.points.len();
-    let method = registry::find(
-        args.method.as_deref().unwrap_or(DEFAULT_METHOD),
-        MethodKind::Surface,
-    )?;
-    let (values, config_constraints) = match file {
-        Some(file) => {
-            if file.table.contains_key(crate::config::STAGE_KEY) {
-                return Err(Error::Parameter {
-                    origin: file.name.clone(),
-                    message: "pipelines of [[stage]]s are for curves; a surface config sets one method's parameters".into(),
-                });
-            }
-            (file.method_values(method.name)?, file.constraints()?)
-        }
-        None => (Vec::new(), Default::default()),
-    };
-    let parameters = Parameters::from_values(method, values, &args.settings)?;
-    let mut constraints = Constraints::from_args_and_config(args, &config_constraints, count)?;
-    match constraints.clamp_ends {
-        None => {}
-        Some(ClampEnds::G0) => {
-            let (rows, columns) = (grid.rows, grid.columns);
-            let on_boundary = |k: usize| {
-                let (i, j) = (k / columns.max(1), k % columns.max(1));
-                i == 0 || j == 0 || i + 1 == rows || j + 1 == columns
-            };
-            if let Some(k) = constraints.bad_points.iter().find(|&&k| on_boundary(k)) {
-                return Err(Error::Argument {
-                    option: "--points",
-                    message: format!(
-                        "point {k} (i = {}, j = {}) is on the boundary, which --clamp-ends g0 keeps",
-                        k / columns.max(1),
-                        k % columns.max(1)
-                    ),
-                });
-            }
-            constraints.fixed.extend((0..count).filter(|&k| on_boundary(k)));
-            constraints.fixed.sort_unstable();
-            constraints.fixed.dedup();
-        }
-        Some(clamp @ (ClampEnds::G1 | ClampEnds::G2)) => {
-            return Err(Error::Argument {
-                option: "--clamp-ends",
-                message: format!(
-                    "{}: the surface methods keep at most the boundary points (g0); they cannot hold \
-                     tangents or curvatures across it",
-                    clamp.name()
-                ),
-            });
-        }
+) -> Result<(Plan, PlanConstraints)> {
+    let plan = catalog
+        .plan(
+            MethodKind::Surface,
+            args.method.as_deref(),
+            DEFAULT_METHOD,
+            file,
+            &super::curve::sets(args),
+        )
+        .map_err(|e| Error::from_fairing(e, &input.source))?;
+    let constraints = crate::constraints::resolve(args, &plan.constraints, input.grid.points.len())?;
+    Ok((plan, constraints))
+}
+
+fn to_catalog(grid: &Grid) -> fairing::catalog::Grid {
+    fairing::catalog::Grid {
+        rows: grid.rows,
+        columns: grid.columns,
+        points: grid.points.clone(),
     }
-    Ok((method, parameters, constraints))
 }
 
 /// Checks and fairs one surface input: everything `fair surface` does but writing.
 ///
 /// Every error about the points names the input file (not "the points").
-pub fn process(input: &SurfaceInput, args: &FairArgs, file: Option<&ConfigFile>) -> Result<FairedSurface> {
-    process_grid(input, args, file).map_err(|e| measure::in_file(e, &input.source))
+pub fn process(
+    catalog: &Catalog,
+    input: &SurfaceInput,
+    args: &FairArgs,
+    file: Option<&ConfigFile>,
+) -> Result<FairedSurface> {
+    process_grid(catalog, input, args, file).map_err(|e| measure::in_file(e, &input.source))
 }
 
 /// [`process`], errors about the points not yet named after the file.
-fn process_grid(input: &SurfaceInput, args: &FairArgs, file: Option<&ConfigFile>) -> Result<FairedSurface> {
+fn process_grid(
+    catalog: &Catalog,
+    input: &SurfaceInput,
+    args: &FairArgs,
+    file: Option<&ConfigFile>,
+) -> Result<FairedSurface> {
     require_grid(input)?;
-    let (method, parameters, constraints) = plan(args, file, &input.grid)?;
+    let (plan, constraints) = plan(catalog, input, args, file)?;
+    let grid = to_catalog(&input.grid);
+    let whole = constraints.constraints(constraints.tolerance);
     let job = SurfaceJob {
-        input,
-        method,
-        parameters: &parameters,
-        constraints: &constraints,
+        method: &plan.name(),
+        grid: &grid,
+        constraints: &whole,
+        bad_points: &constraints.bad_points,
+        catalog,
     };
-    let outcome = fair(&job)?;
-    if (outcome.grid.rows, outcome.grid.columns) != (input.grid.rows, input.grid.columns) {
-        return Err(Error::Internal {
-            message: format!("method `{}` changed the grid size", method.name),
-        });
-    }
+    let run = catalog
+        .run_surface_plan(&plan, &job)
+        .map_err(|e| Error::from_fairing(e, &input.source))?;
+    let faired = Grid {
+        rows: run.grid.rows,
+        columns: run.grid.columns,
+        points: run.grid.points,
+    };
     let before = measure::surface(&input.grid)?;
-    let after = measure::surface(&outcome.grid)?;
+    let after = measure::surface(&faired)?;
     let distances = input
         .grid
         .points
         .iter()
-        .zip(&outcome.grid.points)
+        .zip(&faired.points)
         .map(|(p, q)| (p - q).norm());
     let (s_d, m_d) = distances.fold((0.0, 0.0), |(sum, max), d| (sum + d, f64::max(max, d)));
+    let mut extras = run.extras;
+    extras.insert("termination".into(), serde_json::json!(run.termination));
     let report = Report {
-        method: method.name.into(),
+        method: plan.name(),
         kind: ReportKind::Surface,
         n: input.grid.points.len(),
-        iterations: outcome.iterations,
+        iterations: run.iterations,
         before: before.measures,
         after: after.measures,
         s_d,
         m_d,
-        moved: outcome.moved.clone(),
-        elapsed_ms: outcome.elapsed_ms,
-        curve: outcome.surface.clone(),
-        params: parameters.to_json(),
-        extras: outcome.extras.clone(),
+        moved: run.moved,
+        elapsed_ms: run.elapsed_ms,
+        curve: run.surface,
+        params: plan.params(catalog),
+        extras,
     };
-    let grid_text = crate::output::format_surface(input, &outcome.grid)?;
+    let grid_text = crate::output::format_surface(input, &faired)?;
     let plot = SurfacePlot {
-        title: format!("{} — {}", input.source, method.name),
+        title: format!("{} — {}", input.source, report.method),
         input: Some(input.grid.clone()),
-        faired: Some(outcome.grid.clone()),
+        faired: Some(faired),
         z: after.z,
         z_before: before.z.clone(),
         highlights: true,
@@ -220,7 +156,7 @@ fn process_grid(input: &SurfaceInput, args: &FairArgs, file: Option<&ConfigFile>
 }
 
 /// Runs `fair surface`.
-pub fn run(args: &FairArgs) -> Result<()> {
+pub fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
     if args.batch || std::path::Path::new(&args.input).is_dir() {
         return Err(Error::Argument {
             option: "INPUT",
@@ -233,20 +169,19 @@ pub fn run(args: &FairArgs) -> Result<()> {
             message: "applies to curves only; a surface grid has no kind to choose".into(),
         });
     }
-    let file = args.config.as_deref().map(ConfigFile::read).transpose()?;
+    let file = super::curve::read_config(args)?;
     let input = input::read_surface(&args.input)?;
     if args.print_config {
         require_grid(&input)?;
-        let (method, parameters, constraints) = plan(args, file.as_ref(), &input.grid)?;
+        let (plan, constraints) = plan(catalog, &input, args, file.as_ref())?;
         // The methods check their values when they run (see `fair curve --print-config`).
-        process(&input, args, file.as_ref())?;
-        let text = crate::config::render(&constraints, &[(method, parameters.given_values())]);
-        say(false, false, text.trim_end());
+        process(catalog, &input, args, file.as_ref())?;
+        say(false, false, plan.render(catalog, &constraints).trim_end());
         return Ok(());
     }
     let faired = {
         let _activity = crate::progress::Activity::start(&format!("fairing {}", input.source), args.quiet);
-        process(&input, args, file.as_ref())?
+        process(catalog, &input, args, file.as_ref())?
     };
     write_results(args, &faired.report, &faired.grid_text, || faired.plot.figure())?;
     let report = &faired.report;

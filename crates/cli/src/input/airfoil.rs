@@ -82,6 +82,7 @@ pub(super) fn parse(source: &Source) -> Result<CurveInput> {
         format: InputFormat::Selig { name },
         source: path.into(),
         lines: pairs.iter().map(|(l, _)| *l).collect(),
+        notes: Vec::new(),
     })
 }
 
@@ -127,5 +128,6 @@ fn lednicer(
         },
         source: path.into(),
         lines: ordered.iter().map(|(l, _)| *l).collect(),
+        notes: Vec::new(),
     })
 }

@@ -161,5 +161,6 @@ pub(super) fn parse(source: &Source) -> Result<CurveInput> {
         format: InputFormat::Json { document },
         source: path.into(),
         lines: Vec::new(),
+        notes: Vec::new(),
     })
 }

@@ -16,6 +16,7 @@
 //! in the size of the input and names the file and line of the first error.
 
 mod airfoil;
+pub mod columns;
 pub mod grid;
 mod json;
 mod table;
@@ -23,6 +24,7 @@ mod table;
 use crate::error::{Error, Result};
 use curve_repr::{Vec2, Vec3};
 
+pub use columns::{Layout, ReadOptions};
 pub use grid::{Grid, SurfaceInput};
 pub use table::Delimiter;
 
@@ -107,17 +109,6 @@ impl Points {
     }
 }
 
-/// The label columns of a CSV curve (a header `x,y,z,source` has one), written back unchanged.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Labels {
-    /// Fields per row in the file.
-    pub columns: usize,
-    /// Indices (from 0) of the label columns.
-    pub positions: Vec<usize>,
-    /// Each row's label texts, in column order.
-    pub texts: Vec<Vec<String>>,
-}
-
 /// How a curve file was written, remembered so that the output is written the same way.
 #[derive(Debug, Clone, PartialEq)]
 pub enum InputFormat {
@@ -127,9 +118,8 @@ pub enum InputFormat {
         header: Option<String>,
         /// Comma or whitespace.
         delimiter: Delimiter,
-        /// Text columns carried through (`x,y,z,source`), or `None` when every column is a
-        /// coordinate.
-        labels: Option<Labels>,
+        /// Which columns are the coordinates, and the label columns' text.
+        layout: Layout,
     },
     /// JSON.
     Json {
@@ -178,6 +168,9 @@ pub struct CurveInput {
     pub source: String,
     /// The line of each point, from 1 (empty when the format does not track lines, as JSON).
     pub lines: Vec<usize>,
+    /// What the reader wants the user to know (a file without a header read by position):
+    /// printed on standard error unless `-q`.
+    pub notes: Vec<String>,
 }
 
 impl CurveInput {
@@ -208,6 +201,29 @@ impl CurveInput {
             });
         }
         Ok(())
+    }
+
+    /// The names of the coordinates, abscissa first: the header's names of the columns read
+    /// (`z`, `y` for `--columns z,y`), else `x`, `y`[, `z`].
+    pub fn coordinate_names(&self) -> Vec<String> {
+        match &self.format {
+            InputFormat::Csv { layout, .. } => layout.names.clone(),
+            _ => ["x", "y", "z"][..self.points.dimension()]
+                .iter()
+                .map(|s| s.to_string())
+                .collect(),
+        }
+    }
+
+    /// Prints the reader's [`notes`](Self::notes) on standard error (`fair: note: …`), unless
+    /// `quiet`.
+    pub fn print_notes(&self, quiet: bool) {
+        if quiet {
+            return;
+        }
+        for note in &self.notes {
+            eprintln!("fair: note: {note}");
+        }
     }
 
     /// An error about point `index`, naming its line when known.
@@ -352,48 +368,40 @@ pub fn read_curve(path: &str) -> Result<CurveInput> {
     parse_curve(&Source::read(path)?)
 }
 
-/// Parses a curve from text already read; see [`read_curve`].
-pub fn parse_curve(source: &Source) -> Result<CurveInput> {
-    match sniff(source) {
-        Sniffed::Json => json::parse(source),
-        Sniffed::Airfoil => airfoil::parse(source),
-        Sniffed::Table => parse_curve_table(source),
-    }
+/// [`read_curve`] with `--columns` ([`ReadOptions`]).
+pub fn read_curve_with(path: &str, options: &ReadOptions) -> Result<CurveInput> {
+    parse_curve_with(&Source::read(path)?, options)
 }
 
-fn parse_curve_table(source: &Source) -> Result<CurveInput> {
-    let table = table::Table::parse_labelled(source, &["x", "y", "z"])?;
-    let columns = table.numeric_columns();
-    if columns != 2 && columns != 3 {
-        let hint = if columns == 5 {
-            " (an i,j,x,y,z grid is a surface: use `fair surface`)"
-        } else {
-            ""
-        };
-        return Err(Error::Parse {
-            path: source.name.clone(),
-            line: table.first_line(),
-            message: format!("{columns} columns, expected 2 (x,y) or 3 (x,y,z){hint}"),
+/// Parses a curve from text already read; see [`read_curve`].
+pub fn parse_curve(source: &Source) -> Result<CurveInput> {
+    parse_curve_with(source, &ReadOptions::default())
+}
+
+/// Parses a curve from text already read, with `--columns`: a table's coordinate columns by
+/// name ([`columns`]). `--columns` is refused for JSON and airfoil files, whose coordinates
+/// are not named columns.
+pub fn parse_curve_with(source: &Source, options: &ReadOptions) -> Result<CurveInput> {
+    let sniffed = sniff(source);
+    if options.columns.is_some() && !matches!(sniffed, Sniffed::Table) {
+        return Err(Error::Argument {
+            option: "--columns",
+            message: format!(
+                "{}: only CSV and whitespace tables have named columns; this is {}",
+                source.name,
+                if matches!(sniffed, Sniffed::Json) {
+                    "JSON"
+                } else {
+                    "an airfoil .dat"
+                }
+            ),
         });
     }
-    let values: Vec<Vec<f64>> = table.rows.iter().map(|r| r.values.clone()).collect();
-    let points = Points::from_rows(columns, &values).ok_or_else(|| Error::Internal {
-        message: "table rows of unequal length".into(),
-    })?;
-    Ok(CurveInput {
-        points,
-        format: InputFormat::Csv {
-            labels: (!table.label_columns.is_empty()).then(|| Labels {
-                columns: table.columns,
-                positions: table.label_columns.clone(),
-                texts: table.rows.iter().map(|r| r.labels.clone()).collect(),
-            }),
-            header: table.header.map(|h| h.text),
-            delimiter: table.delimiter,
-        },
-        source: source.name.clone(),
-        lines: table.rows.iter().map(|r| r.line).collect(),
-    })
+    match sniffed {
+        Sniffed::Json => json::parse(source),
+        Sniffed::Airfoil => airfoil::parse(source),
+        Sniffed::Table => columns::parse(source, options),
+    }
 }
 
 /// Reads a surface grid `i,j,x,y,z` from `path` (`-` for standard input).
@@ -421,7 +429,12 @@ mod tests {
             InputFormat::Csv {
                 header: Some("x,y".into()),
                 delimiter: Delimiter::Comma,
-                labels: None
+                layout: Layout {
+                    columns: 2,
+                    coordinates: vec![0, 1],
+                    names: vec!["x".to_string(), "y".to_string()],
+                    labels: Vec::new(),
+                }
             }
         );
         assert_eq!(c.lines, vec![2, 3, 4]);
@@ -439,7 +452,12 @@ mod tests {
             InputFormat::Csv {
                 header: None,
                 delimiter: Delimiter::Comma,
-                labels: None
+                layout: Layout {
+                    columns: 3,
+                    coordinates: vec![0, 1, 2],
+                    names: vec!["x".to_string(), "y".to_string(), "z".to_string()],
+                    labels: Vec::new(),
+                }
             }
         );
         assert_eq!(c.lines, vec![1, 4]);
@@ -472,6 +490,72 @@ mod tests {
         );
     }
 
+    /// Columns by name in any order; every other column a label, numeric or not, written
+    /// back as read; `--columns` picks the coordinates and the abscissa.
+    #[test]
+    fn columns_are_taken_by_name() {
+        let c = parse("s.csv", "y,x,w\n5,0,1\n6,1,2\n7,3,3\n").unwrap();
+        assert_eq!(
+            c.points,
+            Points::Planar(vec![Vec2::new(0., 5.), Vec2::new(1., 6.), Vec2::new(3., 7.)])
+        );
+        assert_eq!(c.coordinate_names(), ["x", "y"]);
+        assert!(c.notes.is_empty());
+        let moved = Points::Planar(vec![Vec2::new(0., 5.5), Vec2::new(1., 6.), Vec2::new(3., 7.)]);
+        assert_eq!(
+            crate::output::format_curve(&c, &moved).unwrap(),
+            "y,x,w\n5.5,0,1\n6,1,2\n7,3,3\n"
+        );
+        let options = ReadOptions::with_columns(Some(vec!["z".into(), "Y".into()]));
+        let c = parse_curve_with(
+            &Source::from_text("h.csv", "x,y,z\n9,1,0\n9,2,1\n9,3,2\n"),
+            &options,
+        )
+        .unwrap();
+        assert_eq!(
+            c.points,
+            Points::Planar(vec![Vec2::new(0., 1.), Vec2::new(1., 2.), Vec2::new(2., 3.)])
+        );
+        assert_eq!(c.coordinate_names(), ["z", "y"]);
+        let moved = Points::Planar(vec![Vec2::new(0., 1.), Vec2::new(1., 2.25), Vec2::new(2., 3.)]);
+        assert_eq!(
+            crate::output::format_curve(&c, &moved).unwrap(),
+            "x,y,z\n9,1,0\n9,2.25,1\n9,3,2\n"
+        );
+        // Headerless: by position, with a note; --columns by the same letters.
+        let c = parse_curve_with(&Source::from_text("p.csv", "0,1,2\n1,2,3\n"), &options).unwrap();
+        assert_eq!(
+            c.points,
+            Points::Planar(vec![Vec2::new(2., 1.), Vec2::new(3., 2.)])
+        );
+        assert_eq!(c.notes.len(), 1);
+        assert!(c.notes[0].contains("no header"), "{:?}", c.notes);
+        for (text, columns, needle) in [
+            ("a,b\n1,2\n", None, "no `x` column"),
+            (
+                "x,y\n1,2\n",
+                Some(vec!["x".to_string(), "q".to_string()]),
+                "no column `q`",
+            ),
+            ("x,y\n1,2\n", Some(vec!["x".to_string()]), "give 2"),
+            (
+                "x,y\n1,2\n",
+                Some(vec!["x".to_string(), "X".to_string()]),
+                "twice",
+            ),
+            ("x,X,y\n1,2,3\n", None, "twice"),
+        ] {
+            let e = parse_curve_with(
+                &Source::from_text("e.csv", text),
+                &ReadOptions::with_columns(columns),
+            )
+            .unwrap_err();
+            assert!(e.to_string().contains(needle), "{e}");
+        }
+        let e = parse_curve_with(&Source::from_text("j.json", "[[0, 1], [1, 2]]"), &options).unwrap_err();
+        assert!(e.to_string().contains("--columns"), "{e}");
+    }
+
     #[test]
     fn whitespace_columns() {
         let c = parse("a.txt", "0 1\n1\t2\n").unwrap();
@@ -481,7 +565,12 @@ mod tests {
             InputFormat::Csv {
                 header: None,
                 delimiter: Delimiter::Whitespace,
-                labels: None
+                layout: Layout {
+                    columns: 2,
+                    coordinates: vec![0, 1],
+                    names: vec!["x".to_string(), "y".to_string()],
+                    labels: Vec::new(),
+                }
             }
         );
     }
@@ -532,7 +621,10 @@ mod tests {
     #[test]
     fn wrong_column_count() {
         let e = parse("w.csv", "1\n2\n").unwrap_err();
-        assert!(e.to_string().starts_with("w.csv:1: 1 columns"), "{e}");
+        assert!(
+            e.to_string().starts_with("w.csv:1: 1 columns without a header"),
+            "{e}"
+        );
         let e = parse("g.csv", "i,j,x,y,z\n0,0,1,2,3\n").unwrap_err();
         assert!(e.to_string().contains("fair surface"), "{e}");
     }

@@ -2,9 +2,8 @@
 //!
 //! Rows are lines; blank lines and lines starting with `#` are skipped; fields are trimmed.
 //! The first row is a header when any of its fields is not a number. Every data field must
-//! be a finite number and every row must have as many fields as the first one — except the
-//! label columns of [`Table::parse_labelled`]: with a header naming the coordinate columns
-//! (`x,y,z,source`), the other columns are text carried through unchanged.
+//! be a finite number and every row must have as many fields as the first one. (Curve tables,
+//! whose label columns are text, have their own reader: [`super::columns`].)
 
 use super::Source;
 use crate::error::{Error, Result};
@@ -27,7 +26,7 @@ impl Delimiter {
         }
     }
 
-    fn split(self, line: &str) -> Vec<&str> {
+    pub(crate) fn split(self, line: &str) -> Vec<&str> {
         match self {
             Delimiter::Comma => line.split(',').map(str::trim).collect(),
             Delimiter::Whitespace => line.split_whitespace().collect(),
@@ -51,10 +50,8 @@ pub struct Header {
 pub struct Row {
     /// The line number, from 1.
     pub line: usize,
-    /// Its values, all finite (the numeric columns, in file order).
+    /// Its values, all finite, in file order.
     pub values: Vec<f64>,
-    /// The text of its label columns, in file order (empty without label columns).
-    pub labels: Vec<String>,
 }
 
 /// A parsed table: an optional header and at least one row of equal length.
@@ -68,23 +65,12 @@ pub struct Table {
     pub columns: usize,
     /// The separator found.
     pub delimiter: Delimiter,
-    /// Indices (from 0) of the label columns, kept as text; empty for an all-numeric table.
-    pub label_columns: Vec<usize>,
 }
 
 impl Table {
     /// Parses a table; fails on the first bad field or row with its line, and with
     /// [`Error::Empty`] when there is no data row.
     pub fn parse(source: &Source) -> Result<Table> {
-        Table::parse_labelled(source, &[])
-    }
-
-    /// Like [`parse`](Self::parse), but when the file has a header and at least two of its
-    /// names are in `numeric` (compared without case, e.g. `["x", "y", "z"]`), only the columns
-    /// so named must be numbers; the others are label columns, kept as text in
-    /// [`Row::labels`]. With no header, fewer than two such names, or another column whose
-    /// first data field is a number (the `i,j` of a grid), every column is numeric.
-    pub fn parse_labelled(source: &Source, numeric: &[&str]) -> Result<Table> {
         let delimiter = if source.text.contains(',') {
             Delimiter::Comma
         } else {
@@ -93,7 +79,6 @@ impl Table {
         let mut header = None;
         let mut rows: Vec<Row> = Vec::new();
         let mut columns = 0;
-        let mut label_columns: Vec<usize> = Vec::new();
         for (index, raw) in source.text.lines().enumerate() {
             let line = index + 1;
             let text = raw.trim().trim_start_matches('\u{feff}');
@@ -104,10 +89,6 @@ impl Table {
             if header.is_none() && rows.is_empty() && !all_numeric(text, delimiter) {
                 columns = fields.len();
                 let names: Vec<String> = fields.iter().map(|f| f.trim_matches('"').to_string()).collect();
-                let is_numeric = |name: &String| numeric.iter().any(|n| n.eq_ignore_ascii_case(name.trim()));
-                if names.iter().filter(|n| is_numeric(n)).count() >= 2 {
-                    label_columns = (0..names.len()).filter(|&c| !is_numeric(&names[c])).collect();
-                }
                 header = Some(Header {
                     line,
                     text: text.to_string(),
@@ -133,21 +114,8 @@ impl Table {
                     ),
                 });
             }
-            if rows.is_empty()
-                && label_columns
-                    .iter()
-                    .any(|&c| fields.get(c).is_some_and(|f| number(f).is_ok()))
-            {
-                // A named extra column holding numbers (the i, j of a grid) is data, not a label.
-                label_columns.clear();
-            }
             let mut values = Vec::with_capacity(columns);
-            let mut labels = Vec::with_capacity(label_columns.len());
             for (column, field) in fields.iter().enumerate() {
-                if label_columns.contains(&column) {
-                    labels.push(field.to_string());
-                    continue;
-                }
                 values.push(number(field).map_err(|problem| Error::Parse {
                     path: source.name.clone(),
                     line,
@@ -158,7 +126,7 @@ impl Table {
                     ),
                 })?);
             }
-            rows.push(Row { line, values, labels });
+            rows.push(Row { line, values });
         }
         if rows.is_empty() {
             let reason = match &header {
@@ -175,13 +143,7 @@ impl Table {
             rows,
             columns,
             delimiter,
-            label_columns,
         })
-    }
-
-    /// The number of numeric columns (all but the label columns).
-    pub fn numeric_columns(&self) -> usize {
-        self.columns - self.label_columns.len()
     }
 
     /// The line of the header, or of the first row.

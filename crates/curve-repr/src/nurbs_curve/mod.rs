@@ -8,9 +8,11 @@
 //! by Eq. 4.8 (A4.2).
 
 mod conic;
+pub mod fit;
 mod interpolate;
 mod knot_ops;
 
+pub use fit::{fit_knots, max_control_count, ToleranceFit};
 pub use interpolate::{Interpolation, InterpolationSettings, NurbsInterpolant};
 
 use serde::ser::SerializeStruct;

@@ -38,12 +38,15 @@
 use curve_repr::{tridiagonal, Vector};
 
 use crate::state::strategy_error;
-use crate::{project_into_ball, FairingState, FairingStrategy, Result, StepOutcome};
+use crate::{project_into_ball, Error, FairingState, FairingStrategy, Result, StepOutcome};
 
 /// How Step 5 applies Eq. (13) to the positions in one iteration. Okada says only that the
 /// positions are adjusted "using the Eq. (13)" and that Eq. (12) and (13) are easy to solve
 /// because their matrices are diagonally dominant.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
+#[serde(rename_all = "kebab-case")]
 pub enum PositionUpdate {
     /// Solve Eq. (13) as a system over every movable point at once (one tridiagonal solve):
     /// each iteration goes to the minimiser of V with the tangents held.
@@ -59,33 +62,177 @@ pub enum PositionUpdate {
     Jacobi,
 }
 
-/// Settings of [`Batten`].
-#[derive(Clone, Debug, PartialEq)]
-pub struct BattenSettings<const D: usize> {
-    /// How Eq. (13) updates the positions in one iteration. Default
-    /// [`PositionUpdate::GaussSeidel`].
+/// Settings of [`Batten`]: the parameters of the catalogue's `batten`.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[serde(default, deny_unknown_fields, rename_all = "kebab-case")]
+pub struct BattenSettings {
+    /// Adjustable range: no point moves farther than this from its data point.
+    ///
+    /// Okada's adjustable ranges, one for every point; `inf` (the default, as in Okada's
+    /// Table 1) leaves the points unrestricted. The strategy keeps every point within it
+    /// (and within the constraints' band and radii, whichever is smaller).
+    #[serde(with = "crate::catalog::value::unbounded")]
+    #[schemars(with = "crate::catalog::value::BoundNumber")]
+    pub range: f64,
+    /// Prescribed tangent directions, INDEX:DX,DY[,DZ] separated by ';'.
+    ///
+    /// Okada Step 1 (4): (point index, direction components). The direction's length is
+    /// ignored; its magnitude is found as in Step 2 (2). Default none. Written as text
+    /// (`5:1,0.4;8:0,1`) or as a list of `[index, [dx, dy]]` pairs in a config file. The
+    /// components are checked against the points' dimension when the strategy starts.
+    #[serde(with = "tangent_directions")]
+    #[schemars(with = "tangent_directions::Schema")]
+    pub tangent_directions: Vec<(usize, Vec<f64>)>,
+    /// Eq. 13 per iteration: gauss-seidel (one sweep), solve (whole system), jacobi.
+    ///
+    /// Default [`PositionUpdate::GaussSeidel`].
+    #[serde(rename = "update")]
     pub position_update: PositionUpdate,
-    /// Prescribed tangent directions (Okada Step 1 (4)): (point index, direction). The
-    /// direction's length is ignored; its magnitude is found as in Step 2 (2). Default none.
-    pub tangent_directions: Vec<(usize, Vector<D>)>,
-    /// Projected Gauss–Seidel sweeps at most when an adjustable range binds. Default 10 000.
+    /// Batten iterations at most (each: Eq. 12 tangents, Eq. 13 positions).
+    ///
+    /// The pipeline's step limit when the catalogue runs the strategy. Default 1000.
+    pub max_iterations: usize,
+    /// update=solve: projected Gauss-Seidel sweeps at most when a range binds.
+    ///
+    /// Default 10 000.
     pub max_sweeps: usize,
 }
 
-impl<const D: usize> Default for BattenSettings<D> {
+impl Default for BattenSettings {
     fn default() -> Self {
         Self {
-            position_update: PositionUpdate::GaussSeidel,
+            range: f64::INFINITY,
             tangent_directions: Vec::new(),
+            position_update: PositionUpdate::GaussSeidel,
+            max_iterations: 1000,
             max_sweeps: 10_000,
         }
     }
 }
 
-impl<const D: usize> BattenSettings<D> {
+/// Serde for the prescribed tangent directions: the text form `INDEX:DX,DY[,DZ];…` or a list
+/// of `[index, [dx, dy(, dz)]]`; a direction that is zero, not finite, of the wrong dimension
+/// or given twice for one point is refused.
+pub mod tangent_directions {
+    use std::borrow::Cow;
+
+    use serde::de::Error as _;
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    /// The JSON Schema of the field: the text form or a list of pairs.
+    pub struct Schema;
+
+    impl schemars::JsonSchema for Schema {
+        fn schema_name() -> Cow<'static, str> {
+            "TangentDirections".into()
+        }
+        fn inline_schema() -> bool {
+            true
+        }
+        fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+            schemars::json_schema!({
+                "anyOf": [
+                    { "type": "string" },
+                    { "type": "array", "items": { "type": "array" } }
+                ]
+            })
+        }
+    }
+
+    /// Writes the text form.
+    pub fn serialize<S: Serializer>(value: &[(usize, Vec<f64>)], serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(&text(value))
+    }
+
+    /// The text form `INDEX:DX,DY[,DZ];…`.
+    pub fn text(value: &[(usize, Vec<f64>)]) -> String {
+        value
+            .iter()
+            .map(|(i, d)| {
+                let d: Vec<String> = d.iter().map(|c| c.to_string()).collect();
+                format!("{i}:{}", d.join(","))
+            })
+            .collect::<Vec<_>>()
+            .join(";")
+    }
+
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum Given {
+        Text(String),
+        List(Vec<(usize, Vec<f64>)>),
+    }
+
+    /// Reads the text form or a list of pairs.
+    pub fn deserialize<'de, De: Deserializer<'de>>(
+        deserializer: De,
+    ) -> Result<Vec<(usize, Vec<f64>)>, De::Error> {
+        let pairs = match Given::deserialize(deserializer)? {
+            Given::List(pairs) => pairs,
+            Given::Text(text) => parse(&text).map_err(De::Error::custom)?,
+        };
+        let mut out: Vec<(usize, Vec<f64>)> = Vec::with_capacity(pairs.len());
+        for (index, values) in pairs {
+            if values.is_empty() || !values.iter().all(|v| v.is_finite()) || values.iter().all(|v| *v == 0.0)
+            {
+                return Err(De::Error::custom(format!(
+                    "the direction at point {index} is zero or not finite"
+                )));
+            }
+            if out.iter().any(|(k, _)| *k == index) {
+                return Err(De::Error::custom(format!(
+                    "point {index} is given a direction twice"
+                )));
+            }
+            out.push((index, values));
+        }
+        Ok(out)
+    }
+
+    /// Parses `INDEX:DX,DY[,DZ];…` (items separated by `;`, blanks ignored).
+    fn parse(text: &str) -> Result<Vec<(usize, Vec<f64>)>, String> {
+        let mut out = Vec::new();
+        for item in text.split(';').map(str::trim).filter(|s| !s.is_empty()) {
+            let (index, direction) = item
+                .split_once(':')
+                .ok_or_else(|| format!("`{item}` is not INDEX:DX,DY[,DZ]"))?;
+            let index: usize = index
+                .trim()
+                .parse()
+                .map_err(|_| format!("`{index}` is not a point index"))?;
+            let values: Vec<f64> = direction
+                .split(',')
+                .map(|v| v.trim().parse::<f64>())
+                .collect::<Result<_, _>>()
+                .map_err(|_| format!("`{direction}` is not a list of numbers"))?;
+            out.push((index, values));
+        }
+        Ok(out)
+    }
+}
+
+impl BattenSettings {
+    /// Checks the ranges: `range` ≥ 0 (or `inf`).
+    pub fn validate(&self) -> Result<()> {
+        if self.range.is_nan() || self.range < 0.0 {
+            return Err(crate::Error::BadParameter {
+                name: "range",
+                value: self.range.to_string(),
+                reason: "must be a number ≥ 0 (or inf)",
+            });
+        }
+        Ok(())
+    }
+
+    /// Sets the adjustable range of every point.
+    pub fn with_range(mut self, range: f64) -> Self {
+        self.range = range;
+        self
+    }
     /// Prescribes the tangent direction at point `index`.
-    pub fn with_tangent_direction(mut self, index: usize, direction: Vector<D>) -> Self {
-        self.tangent_directions.push((index, direction));
+    pub fn with_tangent_direction<const D: usize>(mut self, index: usize, direction: Vector<D>) -> Self {
+        self.tangent_directions
+            .push((index, direction.iter().copied().collect()));
         self
     }
     /// Sets how Eq. (13) updates the positions.
@@ -540,7 +687,9 @@ pub fn curvature_signs<const D: usize>(points: &[Vector<D>], tangents: &Tangents
 /// tangents follow the circle through the (moving) end points.
 #[derive(Clone, Debug)]
 pub struct Batten<const D: usize> {
-    settings: BattenSettings<D>,
+    settings: BattenSettings,
+    /// The prescribed tangent directions as vectors (from the settings, at `init`).
+    directions: Vec<(usize, Vector<D>)>,
     previous: Option<Vec<i8>>,
     iteration: usize,
     tangents: Option<Tangents<D>>,
@@ -548,13 +697,18 @@ pub struct Batten<const D: usize> {
 
 impl<const D: usize> Batten<D> {
     /// A strategy with these settings.
-    pub fn new(settings: BattenSettings<D>) -> Self {
+    pub fn new(settings: BattenSettings) -> Self {
         Self {
             settings,
+            directions: Vec::new(),
             previous: None,
             iteration: 0,
             tangents: None,
         }
+    }
+    /// The prescribed tangent directions as vectors (after `init`).
+    pub fn tangent_directions(&self) -> &[(usize, Vector<D>)] {
+        &self.directions
     }
     /// The tangents of the last iteration (before its position update).
     pub fn tangents(&self) -> Option<&Tangents<D>> {
@@ -575,24 +729,38 @@ impl<const D: usize> FairingStrategy<D> for Batten<D> {
         if state.is_closed() {
             return Err(strategy_error("batten", "closed curves are not supported"));
         }
+        self.settings.validate()?;
         let n = state.len();
+        let mut directions = Vec::with_capacity(self.settings.tangent_directions.len());
         for (i, d) in &self.settings.tangent_directions {
             if *i >= n {
-                return Err(strategy_error(
-                    "batten",
-                    format!("prescribed tangent at point {i} of {n}"),
-                ));
+                return Err(Error::BadValue {
+                    name: "tangent-directions".into(),
+                    message: format!("point {i} is past the last point ({n} points)"),
+                });
             }
+            if d.len() != D {
+                return Err(Error::BadValue {
+                    name: "tangent-directions".into(),
+                    message: format!(
+                        "the direction at point {i} has {} components, the points {D}",
+                        d.len()
+                    ),
+                });
+            }
+            let d = Vector::<D>::from_iterator(d.iter().copied());
             if !(d.norm() > 0.0 && d.iter().all(|v| v.is_finite())) {
                 return Err(strategy_error(
                     "batten",
                     format!("prescribed tangent at point {i} has no direction"),
                 ));
             }
+            directions.push((*i, d));
         }
+        self.directions = directions;
         self.previous = None;
         self.iteration = 0;
-        let tangents = okada_tangents(state.points(), &self.settings.tangent_directions)?;
+        let tangents = okada_tangents(state.points(), &self.directions)?;
         state.criterion = Some(energy(state.points(), &tangents));
         self.tangents = Some(tangents);
         Ok(())
@@ -600,10 +768,14 @@ impl<const D: usize> FairingStrategy<D> for Batten<D> {
 
     fn step(&mut self, state: &mut FairingState<D>) -> Result<StepOutcome> {
         let n = state.len();
-        let tangents = okada_tangents(state.points(), &self.settings.tangent_directions)?;
+        let tangents = okada_tangents(state.points(), &self.directions)?;
         let signs = curvature_signs(state.points(), &tangents);
         let movable: Vec<bool> = (0..n).map(|i| state.is_movable(i)).collect();
-        let allowed: Vec<f64> = (0..n).map(|i| state.constraints().allowed_distance(i)).collect();
+        // Okada's adjustable range and the constraints' balls around the same centre: the
+        // smaller one holds.
+        let allowed: Vec<f64> = (0..n)
+            .map(|i| state.constraints().allowed_distance(i).min(self.settings.range))
+            .collect();
         let target = match self.settings.position_update {
             PositionUpdate::Solve => eq13_positions(
                 state.points(),

@@ -49,12 +49,14 @@
 //! initial curve, or when no knot is a candidate. Cost per step: O(n) (the knot operations
 //! copy the control points), the jumps are updated only at the five knots U_{r−2} … U_{r+2}.
 
-use curve_repr::{Interpolation, InterpolationSettings, NurbsCurve, Parametrization, Side, Vector};
+use curve_repr::{Curve, Interpolation, InterpolationSettings, NurbsCurve, Parametrization, Side, Vector};
 use fairness::curvature::{curvature_slope_at, CurvatureForm};
 
 use super::CurveDomain;
+use crate::catalog::SharedIndicator;
 use crate::state::strategy_error;
 use crate::{Constraints, EndClamp, Error, FairingState, FairingStrategy, Result, StepOutcome};
+use fairness::LocalIndicator;
 
 /// The strategy's name, as `fair methods` lists it.
 pub const NAME: &str = "sapidis-farin";
@@ -100,18 +102,24 @@ impl MoveBound {
     }
 }
 
-/// Settings of [`SapidisFarin`]. Default: jump reduction 1e-3, max iterations 1000, moves
+/// Settings of [`SapidisFarin`]: the parameters of the catalogue's `sapidis-farin`. Default: jump reduction 1e-3, max iterations 1000, moves
 /// bounded by the data ([`MoveRule::Data`]).
-#[derive(Clone, Copy, Debug, PartialEq)]
+///
+/// `domain` follows the kind of curve (`--kind`) and is not a parameter of the catalogue.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[serde(default, deny_unknown_fields, rename_all = "kebab-case")]
 pub struct SapidisFarinSettings {
     /// Stop when the largest curvature-slope jump is this fraction of the initial one.
     ///
     /// A relative stop (the jump's unit is 1/length²), not a distance: the command's
     /// `--tolerance` bounds how far points move. Called `tolerance` before.
     pub jump_reduction: f64,
-    /// Steps at most (the strategy reports done after that many).
+    /// Knots faired (removed and reinserted) at most.
+    ///
+    /// The strategy reports done after that many steps.
     pub max_iterations: usize,
     /// A function y(x) (parameters from x, x kept) or a parametric curve (chord length).
+    #[serde(skip)]
     pub domain: CurveDomain,
     /// How far a data point may move from its input position without the user having asked
     /// (not in the paper): a knot whose step would carry a point farther is not faired, as
@@ -120,6 +128,13 @@ pub struct SapidisFarinSettings {
     /// UA(2)-180 upper surface ran 1000 steps and moved a point by 0.14 chord (y at
     /// x = 0.18 from 0.137 to 0.271, the section's thickness doubled).
     pub max_move: MoveBound,
+    /// Where to act: the registered indicator whose largest value picks the next knot.
+    ///
+    /// Default `curvature-slope-jump`, the paper's |dκ/ds(u+) − dκ/ds(u−)|, updated at five
+    /// knots per step. Another name is resolved by the catalogue and handed to
+    /// [`SapidisFarin::with_indicator`]; its values (one per break of the B-spline) are
+    /// recomputed over the whole curve after every step.
+    pub indicator: String,
 }
 
 impl Default for SapidisFarinSettings {
@@ -129,11 +144,15 @@ impl Default for SapidisFarinSettings {
             max_iterations: 1000,
             domain: CurveDomain::Parametric,
             max_move: MoveBound::default(),
+            indicator: Self::PAPER_INDICATOR.to_owned(),
         }
     }
 }
 
 impl SapidisFarinSettings {
+    /// The paper's indicator, the curvature-slope jump, by its catalogue name.
+    pub const PAPER_INDICATOR: &'static str = "curvature-slope-jump";
+
     /// The paper's settings: no move bound beyond the constraints; the others at their
     /// defaults.
     pub fn paper() -> Self {
@@ -230,6 +249,7 @@ pub struct SapidisFarin<const D: usize> {
     stop: Option<SapidisFarinStop>,
     /// The distance of [`SapidisFarinSettings::max_move`] for the input points.
     move_bound: f64,
+    indicator: Option<SharedIndicator<D>>,
 }
 
 impl<const D: usize> SapidisFarin<D>
@@ -247,7 +267,58 @@ where
             history: Vec::new(),
             stop: None,
             move_bound: f64::INFINITY,
+            indicator: None,
         }
+    }
+
+    /// Chooses the knot by `indicator` instead of the paper's curvature-slope jump: its
+    /// values, one per break (distinct knot) of the B-spline, are recomputed over the whole
+    /// curve after every step (O(n) evaluations), and the simple interior knot of the largest
+    /// value is faired next. The step itself (removal and reinsertion) is unchanged.
+    pub fn with_indicator(mut self, indicator: SharedIndicator<D>) -> Self {
+        self.indicator = Some(indicator);
+        self
+    }
+
+    /// The indicator's value at every knot index r of `curve` (0 where it is not a simple
+    /// interior knot): the paper's jump, or the given indicator's value at that break.
+    fn knot_values(&self, curve: &NurbsCurve<D>) -> Result<Vec<f64>> {
+        let knots = curve.knots();
+        let mut values = vec![0.0; knots.len()];
+        match &self.indicator {
+            None => {
+                for r in Self::interior(curve) {
+                    values[r] = Self::jump_at(curve, knots[r])?;
+                }
+            }
+            Some(indicator) => {
+                let breaks = curve.breaks();
+                let at_breaks = indicator.values(curve as &dyn Curve<D>)?;
+                if at_breaks.len() != breaks.len() {
+                    return Err(strategy_error(
+                        NAME,
+                        format!(
+                            "indicator `{}` gave {} values for {} breaks",
+                            indicator.name(),
+                            at_breaks.len(),
+                            breaks.len()
+                        ),
+                    ));
+                }
+                for r in Self::interior(curve) {
+                    let b = breaks.partition_point(|&t| t < knots[r]);
+                    let value = at_breaks.get(b).copied().unwrap_or(0.0);
+                    if !value.is_finite() {
+                        return Err(strategy_error(
+                            NAME,
+                            format!("indicator `{}` is {value} at knot {}", indicator.name(), knots[r]),
+                        ));
+                    }
+                    values[r] = value.abs();
+                }
+            }
+        }
+        Ok(values)
     }
 
     /// The current B-spline (after `init`).
@@ -405,10 +476,7 @@ where
         };
         let curve = interpolation.nubs()?;
         self.params = interpolation.params().to_vec();
-        self.jumps = vec![0.0; curve.knots().len()];
-        for r in Self::interior(&curve) {
-            self.jumps[r] = Self::jump_at(&curve, curve.knots()[r])?;
-        }
+        self.jumps = self.knot_values(&curve)?;
         self.initial_max = self.max_jump();
         self.curve = Some(curve);
         self.history.clear();
@@ -442,10 +510,14 @@ where
             };
             let jump_before = self.jumps[r];
             let knots = faired.knots().to_vec();
-            let interior = Self::interior(&faired);
-            for (k, &u) in knots.iter().enumerate().take(r + 3).skip(r - 2) {
-                if interior.binary_search(&k).is_ok() {
-                    self.jumps[k] = Self::jump_at(&faired, u)?;
+            if self.indicator.is_some() {
+                self.jumps = self.knot_values(&faired)?;
+            } else {
+                let interior = Self::interior(&faired);
+                for (k, &u) in knots.iter().enumerate().take(r + 3).skip(r - 2) {
+                    if interior.binary_search(&k).is_ok() {
+                        self.jumps[k] = Self::jump_at(&faired, u)?;
+                    }
                 }
             }
             for (i, to) in moves {

@@ -54,7 +54,7 @@ use pentadiagonal::{Band, Ldlt};
 pub const NAME: &str = "smoothing-spline";
 
 /// How the smoothing parameter p was (or is to be) chosen.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum SmoothingRule {
     /// Given by the user.
@@ -79,20 +79,42 @@ impl SmoothingRule {
     }
 }
 
-/// Settings of a smoothing-spline fit. Default: p chosen by GCV, unit weights.
-#[derive(Clone, Debug, Default, PartialEq)]
+/// Settings of a smoothing-spline fit: the parameters of the catalogue's `smoothing-spline`.
+/// Default: p chosen by GCV, unit weights.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(default, deny_unknown_fields, rename_all = "kebab-case")]
 pub struct SmoothingSettings {
-    /// The smoothing parameter, if given.
+    /// Smoothing parameter in [0, 1] (csaps: 0 LSQ line, 1 interpolation) or auto.
+    ///
+    /// `None` (written `auto`) lets `rule` choose it.
+    #[serde(with = "crate::catalog::value::auto")]
+    #[schemars(with = "crate::catalog::value::AutoNumber")]
     pub p: Option<f64>,
-    /// The rule that chooses p when it is not given ([`SmoothingRule::Given`] is treated as
-    /// the default, GCV, when `p` is `None`).
+    /// How auto chooses p: gcv (generalised cross-validation) or trace (csaps's rule).
+    ///
+    /// [`SmoothingRule::Given`] is treated as the default, GCV, when `p` is `None`.
     pub rule: SmoothingRule,
     /// One weight per data point (finite positive, or +∞ for an interpolation constraint);
-    /// `None` for unit weights.
+    /// `None` for unit weights. Not a parameter of the catalogue.
+    #[serde(skip)]
     pub weights: Option<Vec<f64>>,
 }
 
 impl SmoothingSettings {
+    /// Checks the ranges: p in [0, 1] when given.
+    pub fn validate(&self) -> Result<()> {
+        if let Some(p) = self.p {
+            if !(0.0..=1.0).contains(&p) {
+                return Err(Error::BadParameter {
+                    name: "p",
+                    value: p.to_string(),
+                    reason: "must lie in [0, 1] (or be auto)",
+                });
+            }
+        }
+        Ok(())
+    }
+
     /// Sets p (in [0, 1]).
     pub fn with_p(mut self, p: f64) -> Self {
         self.p = Some(p);

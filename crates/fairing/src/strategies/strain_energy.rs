@@ -16,10 +16,12 @@
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
-use curve_repr::{HermiteSettings, HermiteSpline, Interpolant, Parametrization, Vector};
+use curve_repr::{Curve, HermiteSettings, HermiteSpline, Interpolant, Parametrization, Vector};
 
+use crate::catalog::SharedIndicator;
 use crate::state::strategy_error;
 use crate::{project_into_ball, Error, FairingState, FairingStrategy, Result, StepOutcome};
+use fairness::LocalIndicator;
 
 /// Knots on each side of a move within which tangents (and so jumps and segment energies) can
 /// change: the Hermite update window is at most ~57 knots per side for any spacing
@@ -41,7 +43,10 @@ pub enum Mode {
 }
 
 /// Which replacement formula a step applies.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
+#[serde(rename_all = "kebab-case")]
 pub enum Replacement {
     /// The one-step limits: Eq. (11) for one point, Eq. (15) for two.
     #[default]
@@ -50,28 +55,58 @@ pub enum Replacement {
     Iterated,
 }
 
-/// Settings of [`StrainEnergy`].
-#[derive(Clone, Debug, PartialEq)]
+/// Settings of [`StrainEnergy`]: the parameters of the catalogue's `strain-energy`,
+/// `kjellander` and `poliakoff` (the presets pin `parametrization`).
+///
+/// `mode` and `parameters` are not parameters of the catalogue (`--points` chooses the mode;
+/// explicit knots come from a program), so they are skipped by serde.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[serde(default, deny_unknown_fields, rename_all = "kebab-case")]
 pub struct StrainEnergySettings {
     /// How bad points are chosen. Default automatic.
+    #[serde(skip)]
     pub mode: Mode,
-    /// Limit (Eq. 11/15) or one iteration (Eq. 8/13). Default limit.
+    /// limit = Eq. 11/15 in one step; iterated = one application of Eq. 8/13 per step.
+    ///
+    /// Default limit.
     pub replacement: Replacement,
-    /// Whether the automatic mode may replace two adjacent worst points together (beyond
-    /// the paper's automatic algorithm, which moves one). Default false.
+    /// Automatic mode: replace the two worst adjacent points together (Eq. 15).
+    ///
+    /// Beyond the paper's automatic algorithm, which moves one. Default false.
     pub pairs: bool,
-    /// Knot parametrisation, fixed during fairing. Default chord length.
+    /// Fixed knots: chord-length, uniform or centripetal.
+    ///
+    /// Fixed during fairing. Default chord length.
     pub parametrization: Parametrization,
-    /// Stop when |ΔE| ≤ tolerance · E (Zhang–Cheng step 2.5). Default 1e-6.
+    /// Stop when one step changes the strain energy by at most this × E.
+    ///
+    /// |ΔE| ≤ tolerance · E, Zhang–Cheng step 2.5. Default 1e-6.
+    #[serde(rename = "energy-tolerance")]
     pub tolerance: f64,
     /// Explicit knots (one per point), overriding `parametrization`: lets several stages
     /// keep the same knots. Default none.
+    #[serde(skip)]
     pub parameters: Option<Vec<f64>>,
-    /// Scale of the automatic mode's restraining radii: point i stays within
-    /// `radius_scale · |P̄_i − P_i|` of its original position (P̄_i from Eq. 11 on the original
-    /// curve). 1 is Zhang–Cheng §3.3; larger lets points travel farther, `f64::INFINITY`
-    /// removes the regions (then a point with P̄_i = P_i is still frozen). Default 1.
+    /// Automatic mode: restraining radius = this × |Eq. 11 point − P_i| (1 = the paper).
+    ///
+    /// Point i stays within `radius_scale · |P̄_i − P_i|` of its original position (P̄_i from
+    /// Eq. 11 on the original curve). 1 is Zhang–Cheng §3.3; larger lets points travel
+    /// farther, `inf` removes the regions (then a point with P̄_i = P_i is still frozen).
+    /// Default 1.
+    #[serde(with = "crate::catalog::value::unbounded")]
+    #[schemars(with = "crate::catalog::value::BoundNumber")]
     pub radius_scale: f64,
+    /// Replacement steps at most.
+    ///
+    /// The pipeline's step limit when the catalogue runs the strategy. Default 100 000.
+    pub max_iterations: usize,
+    /// Where to act: the registered indicator whose largest value picks the next point.
+    ///
+    /// Default `third-derivative-jump`, the paper's z_i (Eq. 17), kept up to date in
+    /// O(window) per step. Another name is resolved by the catalogue and handed to
+    /// [`StrainEnergy::with_indicator`]; its values are recomputed over the whole curve after
+    /// every step (O(n) per step).
+    pub indicator: String,
 }
 
 impl Default for StrainEnergySettings {
@@ -84,11 +119,35 @@ impl Default for StrainEnergySettings {
             tolerance: 1e-6,
             parameters: None,
             radius_scale: 1.0,
+            max_iterations: 100_000,
+            indicator: Self::PAPER_INDICATOR.to_owned(),
         }
     }
 }
 
 impl StrainEnergySettings {
+    /// The paper's indicator, z_i (Zhang–Cheng Eq. 17), by its catalogue name.
+    pub const PAPER_INDICATOR: &'static str = "third-derivative-jump";
+
+    /// Checks the ranges: tolerance and radius scale not negative (and not NaN).
+    pub fn validate(&self) -> Result<()> {
+        if self.tolerance.is_nan() || self.tolerance < 0.0 {
+            return Err(Error::BadParameter {
+                name: "energy-tolerance",
+                value: self.tolerance.to_string(),
+                reason: "must be a number ≥ 0",
+            });
+        }
+        if self.radius_scale.is_nan() || self.radius_scale < 0.0 {
+            return Err(Error::BadParameter {
+                name: "radius-scale",
+                value: self.radius_scale.to_string(),
+                reason: "must be a number ≥ 0 (or inf)",
+            });
+        }
+        Ok(())
+    }
+
     /// Kjellander's method: uniform parameters, one point at a time (Eq. 8 ≡ Eq. 11 form).
     pub fn kjellander() -> Self {
         Self::default().with_parametrization(Parametrization::Uniform)
@@ -169,6 +228,8 @@ pub struct StrainEnergy<const D: usize> {
     pending: Vec<usize>,
     /// (K_kk, K_{k,k+1}) of the stage's knots (see [`stiffness_band`]).
     stiffness: (Vec<f64>, Vec<f64>),
+    /// An indicator other than the paper's z_i, if one was given.
+    indicator: Option<SharedIndicator<D>>,
 }
 
 impl<const D: usize> StrainEnergy<D> {
@@ -191,7 +252,18 @@ impl<const D: usize> StrainEnergy<D> {
             energy: 0.0,
             pending: Vec::new(),
             stiffness: (Vec::new(), Vec::new()),
+            indicator: None,
         }
+    }
+
+    /// Chooses the bad points by `indicator` instead of the paper's z_i: its values (one per
+    /// break of the spline, i.e. per data point; a list of n − 2 is read as the interior
+    /// points') are recomputed over the whole spline after every step, O(n) per step, and
+    /// the point of the largest value moves next. The replacement itself (Eq. 8–15) and the
+    /// restraining regions are unchanged.
+    pub fn with_indicator(mut self, indicator: SharedIndicator<D>) -> Self {
+        self.indicator = Some(indicator);
+        self
     }
 
     /// The spline through the current points (after [`FairingStrategy::init`]).
@@ -204,7 +276,8 @@ impl<const D: usize> StrainEnergy<D> {
         self.energy
     }
 
-    /// The indicator z_k = |J_k| (Eq. 17) at every point, kept up to date locally.
+    /// The indicator at every point (0 at the ends): z_k = |J_k| (Eq. 17), kept up to date
+    /// locally, or the values of the indicator given by [`with_indicator`](Self::with_indicator).
     pub fn indicator(&self) -> &[f64] {
         &self.z
     }
@@ -228,6 +301,31 @@ impl<const D: usize> StrainEnergy<D> {
         let mut new_z = Vec::new();
         for k in lo.max(1)..=hi.min(n.saturating_sub(2)) {
             new_z.push((k, jump(spline, k).norm()));
+        }
+        if let Some(indicator) = &self.indicator {
+            let values = indicator.values(spline as &dyn Curve<D>)?;
+            let offset = match values.len() {
+                len if len == n => 0,
+                len if len + 2 == n => 1,
+                len => {
+                    return Err(strategy_error(
+                        &self.name,
+                        format!(
+                            "indicator `{}` gave {len} values for {n} points",
+                            indicator.name()
+                        ),
+                    ))
+                }
+            };
+            new_z = (1..n.saturating_sub(1))
+                .map(|k| (k, values[k - offset]))
+                .collect();
+            if let Some((k, v)) = new_z.iter().find(|(_, v)| !v.is_finite()) {
+                return Err(strategy_error(
+                    &self.name,
+                    format!("indicator `{}` is {v} at point {k}", indicator.name()),
+                ));
+            }
         }
         for (s, e) in new_e {
             if let Some(slot) = self.segment_energy.get_mut(s) {
@@ -379,20 +477,7 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
         if state.is_closed() {
             return Err(strategy_error(&self.name, "closed curves are not supported"));
         }
-        if self.settings.tolerance.is_nan() || self.settings.tolerance < 0.0 {
-            return Err(Error::BadParameter {
-                name: "tolerance",
-                value: self.settings.tolerance.to_string(),
-                reason: "must be a non-negative number",
-            });
-        }
-        if self.settings.radius_scale.is_nan() || self.settings.radius_scale < 0.0 {
-            return Err(Error::BadParameter {
-                name: "radius scale",
-                value: self.settings.radius_scale.to_string(),
-                reason: "must be a non-negative number",
-            });
-        }
+        self.settings.validate()?;
         let settings = match &self.settings.parameters {
             Some(t) => HermiteSettings::new().with_parameters(t.clone()),
             None => HermiteSettings::new().with_parametrization(self.settings.parametrization),

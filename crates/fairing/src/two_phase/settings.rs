@@ -10,29 +10,48 @@ use crate::{Error, Result};
 /// literal Cases 2–3), λ = 0.75 and α = 0 first, then α = min(c̃_{i−1}, c̃_{i+1})/5, in Phase 2
 /// ([`phase2`](super::phase2)). Fields marked "not in the paper" are this implementation's
 /// guards and options; their defaults keep the paper's behaviour except where it is ill-posed.
-#[derive(Clone, Debug, PartialEq)]
+///
+/// The parameters of the catalogue's `two-phase` (with the arbitrary-curve options of
+/// [`TwoPhaseCurveSettings`](crate::catalog::builtin::TwoPhaseCurveSettings)); the first line
+/// of each field's doc is what `fair methods` prints.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[serde(default, deny_unknown_fields, rename_all = "kebab-case")]
 pub struct TwoPhaseSettings {
+    /// Fraction of each Phase-1 displacement applied, in (0, 1].
+    ///
     /// Fraction λ of the computed displacement applied in Phase 1 (Han §4.1 Case 1 Step 2).
     pub coarse_lambda: f64,
+    /// Phase 2 Case 1: the neighbours move by -lambda times the centre's move.
+    ///
     /// λ of Phase 2 (Han §4.1 Phase 2 Case 1 Steps 1–2): the neighbours of a small curve
     /// vibration move by γ_{i±1} = −λσ while γ_i = σ (a ratio of the pattern, not a damping:
     /// c̃_i reaches α exactly). 0.75 in the paper.
     pub fine_lambda: f64,
+    /// Alpha rule: alpha = smaller neighbouring c / alpha-divisor.
+    ///
     /// The divisor of Han's α rule, α = min(c̃_{i−1}, c̃_{i+1}) / `alpha_divisor` (5 in the
     /// paper; [`phase2`](super::phase2) says how "min" is read).
     pub alpha_divisor: f64,
+    /// Full passes (coarse then fine) at most, per function segment.
+    ///
     /// Most full passes (one coarse and one fine pass each) a [`TwoPhase`](super::TwoPhase)
     /// stage makes.
     pub max_passes: usize,
+    /// Phase 2 Case 2 solved exactly only if its 2x2 system is this well posed.
+    ///
     /// Not in the paper: Phase 2 Case 2's 2 × 2 system is solved exactly only when the sine of
     /// the angle between its rows is at least this; otherwise the well-posed mean-row rule of
     /// [`phase2`](super::phase2) is used (the printed system is singular for uniform spacing).
     pub pair_min_sine: f64,
+    /// Stop after this many passes that reduce no count (0: never).
+    ///
     /// Not in the paper: a stage also stops after this many consecutive full passes that
     /// reduced neither Infl_num nor Vib_num (0: never; only "no case applies" and
     /// `max_passes` stop it, as in the paper). With λ < 1 the small cases keep shrinking |e|
     /// without changing a count, so on noisy data most late passes are such passes.
     pub stall_passes: usize,
+    /// Stop after a pass lowering inflections + vibrations by less than this fraction (0: never).
+    ///
     /// Not in the paper: a stage also stops after a full pass that lowered Infl_num + Vib_num
     /// by less than this fraction of their value before the pass (0: off, the default). The
     /// paper alternates the phases "iteratively" and names no stop; with λ < 1 cases never run
@@ -42,21 +61,31 @@ pub struct TwoPhaseSettings {
     /// 23302 / 37028 after 48 (a pass that applied nothing); n = 10^6, 239356 / 390392 after
     /// 15 (5.8 s) against 233380 / 369009 after 50 (17.0 s).
     pub min_gain: f64,
+    /// Longest wrong-sign run of c fixed; > 2 turns on the long-run option (dense noisy data).
+    ///
     /// Longest wrong-sign run of c values Phase 2 handles. 2 is the paper (Cases 1–2); larger
     /// values turn on the option beyond the paper for runs of 3 … `max_run` points (and make
     /// the count guards look at inflections only, the coarse pass's through the whole
     /// [`full_pass`](super::full_pass)); 0 and 1 act as 2.
     pub max_run: usize,
+    /// Guard: skip a case moving a point by more than this times the spacing.
+    ///
     /// Guard (not in the paper): a case whose displacement |γ| exceeds `max_move_factor` times
     /// the smaller spacing h next to a moved point is skipped. The paper assumes "minor
     /// offsets" (§3.3); near-singular 2×2 systems otherwise move points by absurd amounts.
     /// The bound is in x units: for data whose y range dwarfs its x spacing, raise it.
     pub max_move_factor: f64,
+    /// Points on each side over which a move's counts are rechecked.
+    ///
     /// Guard (not in the paper): points on each side of a case over which inflections and
     /// vibrations are recounted; a move that would increase either local count is refused.
     pub guard_window: usize,
+    /// Refuse moves (local) or undo passes (pass) that raise a count, or none (off).
+    ///
     /// Which count guards are on (not in the paper). Default [`CountGuard::Local`].
     pub count_guard: CountGuard,
+    /// Read |e| (Phase 1) and |c| (Phase 2) below this fraction of their largest as zero (0: the paper).
+    ///
     /// Not in the paper: within a pass, case detection reads |e_i| ≤ `detection_floor` ·
     /// max|e| (Phase 1) and |c_i| ≤ max(`detection_floor`, 1e-12) · max|c| (Phase 2) as zero:
     /// such a value starts and joins no case. 0 is the paper (Phase 1 reads only exact zeros
@@ -70,6 +99,8 @@ pub struct TwoPhaseSettings {
     /// ~11. The default is 0 (the paper) because every floor tried leaves more inflections
     /// than the paper's rules reach in 50 passes.
     pub detection_floor: f64,
+    /// Remove the data's noise first: gcv (smoothing spline, p by GCV) or off (the paper).
+    ///
     /// Not in the paper: remove the data's noise with a smoothing spline before the phases
     /// ([`Denoise`]; [`denoise`](super::denoise) says why). Applied once per stage (for
     /// arbitrary curves, to each segment in the first pass).
@@ -77,7 +108,8 @@ pub struct TwoPhaseSettings {
 }
 
 /// The guards that keep a coarse pass from increasing Infl_num or Vib_num (not in the paper).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "kebab-case")]
 pub enum CountGuard {
     /// The paper's rule with only the size guard: a pass may increase the counts.
     Off,

@@ -1,6 +1,9 @@
 //! The crate's integration tests, one binary (it links once): one module per subject.
 
 mod batten;
+mod catalog;
+mod composition;
+mod contract;
 mod displacement;
 mod sapidis_farin_data;
 mod strain_energy;

@@ -28,8 +28,9 @@ fn largest_move(points: &[Vec2], settings: SapidisFarinSettings) -> f64 {
     } else {
         CurveDomain::Parametric
     });
+    let steps = settings.max_iterations + 1;
     let result = Pipeline::new(SapidisFarin::<2>::new(settings))
-        .with_max_iterations(settings.max_iterations + 1)
+        .with_max_iterations(steps)
         .run(points.to_vec())
         .unwrap();
     points

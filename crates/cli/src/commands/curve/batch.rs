@@ -1,14 +1,16 @@
 //! `fair curve` over many curves: a directory of curve files, or a JSON-lines stream.
 //!
-//! - INPUT is a directory: every regular file in it whose name does not start with `.` is a
-//!   curve (CSV, JSON, Selig/Lednicer `.dat`), taken in name order.
+//! - INPUT is a directory: every regular file in it with a curve file's extension (`.csv`,
+//!   `.json`, `.dat`, `.txt`; [`CURVE_EXTENSIONS`]) and a name not starting with `.` is a
+//!   curve, taken in name order; the other files (a `PROVENANCE.md`) are skipped and listed in
+//!   a note on standard error (unless `-q`).
 //! - INPUT ends in `.jsonl` or `.ndjson`, or `--batch` is given (`-` reads standard input):
 //!   every non-blank line is one JSON curve, `{"points": [[x, y], ...]}` (other keys kept), and
 //!   errors name the file and that line.
 //!
 //! Curves are faired in parallel on all cores (rayon), each exactly as `fair curve` would fair
 //! it alone. The report is one JSON line per curve, in input order: the report of
-//! DESIGN.md with a `source` field added, or `{"source": ..., "error": ..., "exit_status": 2}`
+//! `docs/CONTRACT.md` with a `source` field added, or `{"source": ..., "error": ..., "exit_status": 2}`
 //! for a curve that failed; the others go on. The lines go to standard output, or to
 //! `--report FILE`. `-o` names a directory for a directory batch (each faired file under its
 //! own name) and a JSON-lines file for a stream (one line per input line, `{"error": ...}`
@@ -16,15 +18,25 @@
 //! The command exits 0 when every curve succeeded, else with [`Error::Batch`] (2 when every
 //! failure was bad input, 1 otherwise) after writing everything.
 
+use fairing::catalog::{Catalog, ConfigFile};
+
 use super::{process, Faired};
 use crate::args::FairArgs;
 use crate::commands::say;
-use crate::config::ConfigFile;
 use crate::error::{Error, Result};
 use crate::input::{self, CurveInput, Source};
 use crate::progress;
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
+
+/// The extensions of the files a directory batch takes (compared without case).
+pub const CURVE_EXTENSIONS: [&str; 4] = ["csv", "json", "dat", "txt"];
+
+fn is_curve_file(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| CURVE_EXTENSIONS.iter().any(|c| c.eq_ignore_ascii_case(e)))
+}
 
 /// Whether `fair curve` should treat its INPUT as a batch.
 pub fn is_batch(args: &FairArgs) -> bool {
@@ -64,10 +76,11 @@ pub enum ItemSource {
 }
 
 impl Item {
-    /// Reads the item's points; errors name the file, or the stream and line.
-    pub fn read(&self) -> Result<CurveInput> {
+    /// Reads the item's points (a file with `options`' `--columns`); errors name the file, or
+    /// the stream and line.
+    pub fn read(&self, options: &input::ReadOptions) -> Result<CurveInput> {
         match &self.source {
-            ItemSource::File(path) => input::read_curve(path),
+            ItemSource::File(path) => input::read_curve_with(path, options),
             ItemSource::Line { stream, number, text } => {
                 input::parse_curve(&Source::from_text(&format!("{stream}.json"), text))
                     .map(|mut curve| {
@@ -88,7 +101,7 @@ pub fn items(args: &FairArgs) -> Result<Vec<Item>> {
             path: args.input.clone(),
             reason: input::io_reason(&e),
         })?;
-        let mut files: Vec<PathBuf> = entries
+        let candidates: Vec<PathBuf> = entries
             .filter_map(|e| e.ok().map(|e| e.path()))
             .filter(|p| p.is_file())
             .filter(|p| {
@@ -97,11 +110,27 @@ pub fn items(args: &FairArgs) -> Result<Vec<Item>> {
                     .is_some_and(|n| !n.starts_with('.'))
             })
             .collect();
+        let (mut files, mut skipped): (Vec<PathBuf>, Vec<PathBuf>) =
+            candidates.into_iter().partition(|p| is_curve_file(p));
         files.sort();
+        skipped.sort();
+        if !skipped.is_empty() && !args.quiet {
+            let names: Vec<String> = skipped.iter().map(|p| p.display().to_string()).collect();
+            eprintln!(
+                "fair: note: skipped {} file{} without a curve extension (.{}): {}",
+                names.len(),
+                if names.len() == 1 { "" } else { "s" },
+                CURVE_EXTENSIONS.join(", ."),
+                names.join(", ")
+            );
+        }
         if files.is_empty() {
             return Err(Error::Empty {
                 path: args.input.clone(),
-                reason: "the directory holds no curve files".into(),
+                reason: format!(
+                    "the directory holds no curve files (.{})",
+                    CURVE_EXTENSIONS.join(", .")
+                ),
             });
         }
         return Ok(files
@@ -170,7 +199,7 @@ fn relocate(error: Error, stream: &str, line: usize) -> Error {
 }
 
 /// Runs a batch.
-pub fn run(args: &FairArgs, file: Option<&ConfigFile>) -> Result<()> {
+pub fn run(catalog: &Catalog, args: &FairArgs, file: Option<&ConfigFile>) -> Result<()> {
     if args.print_config {
         return Err(Error::Argument {
             option: "--print-config",
@@ -209,8 +238,8 @@ pub fn run(args: &FairArgs, file: Option<&ConfigFile>) -> Result<()> {
         .map(|item| {
             // A report with a non-finite number is that curve's failure, never a `null` line.
             let result = item
-                .read()
-                .and_then(|input| process(&input, args, file))
+                .read(&args.read_options())
+                .and_then(|input| process(catalog, &input, args, file))
                 .and_then(|faired| faired.report.check_finite().map(|()| faired));
             bar.inc(1);
             result

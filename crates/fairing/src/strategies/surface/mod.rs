@@ -71,7 +71,10 @@ pub enum SurfaceMode {
 }
 
 /// Which energy a move minimises.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
+#[serde(rename_all = "kebab-case")]
 pub enum Objective {
     /// The strain energy of the iso-parametric network curves through the moved points
     /// (Eq. 18, 22, 24). The paper's choice.
@@ -82,29 +85,39 @@ pub enum Objective {
     ThinPlate,
 }
 
-/// Settings of [`SurfaceFairing`]. Defaults: Zhang–Cheng automatic, limit replacement,
+/// Settings of [`SurfaceFairing`]: the parameters of the catalogue's `zhang-cheng` (and,
+/// with other defaults, `kjellander`). Defaults: Zhang–Cheng automatic, limit replacement,
 /// network objective, chord-length knots, boundary faired, tolerance 1e-6, 1000 steps.
-#[derive(Clone, Debug, PartialEq)]
+///
+/// `mode`, `fixed` and `max_distance` come from the command's `--points`, `--fixed` and
+/// `--tolerance` and are not parameters of the catalogue (skipped by serde).
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[serde(default, deny_unknown_fields, rename_all = "kebab-case")]
 pub struct SurfaceFairingSettings {
     /// Automatic or interactive.
+    #[serde(skip)]
     pub mode: SurfaceMode,
-    /// Limit (Eq. 21 and the pair/block analogues) or one application of Eq. 20/23/25.
+    /// Limit (Eq. 21 and its pair/block analogues, solved once) or iterated (one application of Eq. 20/23/25).
     pub replacement: Replacement,
-    /// Network curves (Eq. 18–25) or thin plate (Eq. 27–29).
+    /// Network (curve strain energy, Eq. 18-25) or thin-plate (Eq. 27-29; needs replacement=iterated).
     pub objective: Objective,
-    /// Knot rule (averaged over the grid lines); fixed while fairing.
+    /// Knots, averaged over the grid lines and fixed while fairing: chord-length or uniform.
     pub parametrization: Parametrization,
-    /// Whether the automatic mode fairs the boundary curves first (step 2.1).
+    /// On: fair the boundary curves first with the curve method (automatic mode, step 2.1); off: keep them.
+    #[serde(rename = "boundary")]
     pub fair_boundary: bool,
     /// Kjellander: one point per step instead of all (automatic) or every group (interactive).
     pub one_point_per_step: bool,
-    /// Stop when the network energy changes by at most `tolerance` × its value in one step.
+    /// Stop when the network strain energy changes by at most this fraction in one step.
+    #[serde(rename = "energy-tolerance")]
     pub tolerance: f64,
     /// Step limit.
     pub max_steps: usize,
     /// Nodes that must not move.
+    #[serde(skip)]
     pub fixed: BTreeSet<(usize, usize)>,
     /// No point moves farther than this from where it started.
+    #[serde(skip)]
     pub max_distance: Option<f64>,
 }
 
@@ -126,6 +139,36 @@ impl Default for SurfaceFairingSettings {
 }
 
 impl SurfaceFairingSettings {
+    /// Checks the ranges: tolerance and distance not negative, the thin-plate objective only
+    /// with the iterated replacement.
+    pub fn validate(&self) -> Result<()> {
+        if self.tolerance.is_nan() || self.tolerance < 0.0 {
+            return Err(Error::BadParameter {
+                name: "energy-tolerance",
+                value: self.tolerance.to_string(),
+                reason: "must be a non-negative number",
+            });
+        }
+        if let Some(d) = self.max_distance {
+            if d.is_nan() || d < 0.0 {
+                return Err(Error::BadParameter {
+                    name: "max_distance",
+                    value: d.to_string(),
+                    reason: "must be a non-negative number",
+                });
+            }
+        }
+        if self.objective == Objective::ThinPlate && self.replacement == Replacement::Limit {
+            return Err(Error::BadParameter {
+                name: "objective",
+                value: "thin-plate".into(),
+                reason:
+                    "the thin-plate objective (Eq. 27-29) has no limit form; use the iterated replacement",
+            });
+        }
+        Ok(())
+    }
+
     /// Zhang–Cheng (the default).
     pub fn zhang_cheng() -> Self {
         Self::default()
@@ -309,30 +352,7 @@ impl SurfaceFairing {
     /// interior node ([`Error::BadConstraint`]).
     pub fn run(&self, grid: &[Vec<Vec3>]) -> Result<SurfaceFairingResult> {
         let settings = &self.settings;
-        if settings.tolerance.is_nan() || settings.tolerance < 0.0 {
-            return Err(Error::BadParameter {
-                name: "tolerance",
-                value: settings.tolerance.to_string(),
-                reason: "must be a non-negative number",
-            });
-        }
-        if let Some(d) = settings.max_distance {
-            if d.is_nan() || d < 0.0 {
-                return Err(Error::BadParameter {
-                    name: "max_distance",
-                    value: d.to_string(),
-                    reason: "must be a non-negative number",
-                });
-            }
-        }
-        if settings.objective == Objective::ThinPlate && settings.replacement == Replacement::Limit {
-            return Err(Error::BadParameter {
-                name: "objective",
-                value: "thin-plate".into(),
-                reason:
-                    "the thin-plate objective (Eq. 27-29) has no limit form; use the iterated replacement",
-            });
-        }
+        settings.validate()?;
         let start_time = Instant::now();
         let surface = BicubicSplineSurface::with_settings(
             grid,

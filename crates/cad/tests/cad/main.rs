@@ -1,0 +1,8 @@
+//! The crate's integration tests, one binary: one module per subject.
+
+mod common;
+mod errors;
+mod exact;
+mod occ_files;
+mod rebuild;
+mod round_trip;

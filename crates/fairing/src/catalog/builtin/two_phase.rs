@@ -1,0 +1,199 @@
+//! `two-phase`: Han et al.'s coarse-to-fine fairing (§4.1) of a function y(x), and for
+//! parametric planar input the arbitrary-curve pipeline of §4.2 around it
+//! ([`SegmentedFairing`]), open or closed.
+
+use std::f64::consts::PI;
+
+use curve_repr::{EndCondition, SplineFunction, Vec2};
+use serde::{Deserialize, Serialize};
+
+use crate::catalog::{CurveJob, CurveKind, CurveMethod, CurvePoints, CurveRun, Settings};
+use crate::two_phase::{TwoPhase, TwoPhaseSettings};
+use crate::{EndClamp, Error, PartitionSettings, Pipeline, Refusal, Result, SegmentedFairing};
+
+/// The parameters of `two-phase`: Han's phases ([`TwoPhaseSettings`]) and the options of the
+/// arbitrary-curve pipeline (§4.2) that parametric input runs through.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(default, rename_all = "kebab-case")]
+pub struct TwoPhaseCurveSettings {
+    /// The two phases' settings (their fields are parameters of the same list).
+    #[serde(flatten)]
+    pub phases: TwoPhaseSettings,
+    /// Parametric input: partition-fair-blend passes (Han 4.2.4).
+    pub segment_passes: usize,
+    /// Parametric input: largest turning angle of a segment, degrees.
+    ///
+    /// In (0, 180]; 180 is Han §4.2.1 ([`PartitionSettings::limit`] in radians).
+    pub turning_limit: f64,
+    /// Parametric input: points shared by adjacent segments.
+    pub overlap: usize,
+    /// Parametric input: true for a closed curve (last point joins the first).
+    pub closed: bool,
+}
+
+impl Default for TwoPhaseCurveSettings {
+    fn default() -> Self {
+        let partition = PartitionSettings::default();
+        TwoPhaseCurveSettings {
+            phases: TwoPhaseSettings::default(),
+            segment_passes: SegmentedFairing::<TwoPhase>::DEFAULT_PASSES,
+            turning_limit: partition.limit.to_degrees(),
+            overlap: partition.overlap,
+            closed: false,
+        }
+    }
+}
+
+impl TwoPhaseCurveSettings {
+    /// The partition settings (limit in radians).
+    pub fn partition(&self) -> PartitionSettings {
+        PartitionSettings::default()
+            .with_limit(self.turning_limit * PI / 180.0)
+            .with_overlap(self.overlap)
+    }
+}
+
+impl Settings for TwoPhaseCurveSettings {
+    fn validate(&self) -> Result<()> {
+        self.phases.validate()?;
+        if !(self.turning_limit > 0.0 && self.turning_limit <= 180.0) {
+            return Err(Error::BadParameter {
+                name: "turning-limit",
+                value: self.turning_limit.to_string(),
+                reason: "must lie in (0, 180] degrees",
+            });
+        }
+        if self.segment_passes == 0 {
+            return Err(Error::BadParameter {
+                name: "segment-passes",
+                value: "0".into(),
+                reason: "must be at least 1",
+            });
+        }
+        self.partition().validate().map_err(|e| match e {
+            Error::BadParameter {
+                name: "limit",
+                value,
+                reason,
+            } => Error::BadParameter {
+                name: "turning-limit",
+                value,
+                reason,
+            },
+            other => other,
+        })
+    }
+}
+
+/// The `two-phase` method.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TwoPhaseMethod;
+
+impl CurveMethod for TwoPhaseMethod {
+    type Settings = TwoPhaseCurveSettings;
+
+    /// Planar points only; `g0` at most (the spline function has the parabolic-runout end
+    /// condition and cannot hold end tangents or curvatures), no clamp on a closed curve;
+    /// `closed` needs parametric input.
+    fn check(&self, settings: &TwoPhaseCurveSettings, job: &CurveJob) -> Result<()> {
+        let refuse = |what, reason: &str| Error::Refused {
+            method: job.method.to_owned(),
+            what,
+            reason: reason.to_owned(),
+        };
+        if job.points.dimension() != 2 {
+            return Err(refuse(
+                Refusal::Dimension,
+                "fairs planar curves (x, y); the input has 3 coordinates",
+            ));
+        }
+        match job.constraints.end_clamp() {
+            EndClamp::G1 | EndClamp::G2 => {
+                return Err(refuse(
+                    Refusal::EndClamp,
+                    "supports only g0: its spline function has the parabolic-runout end condition \
+                     and cannot hold end tangents or curvatures",
+                ))
+            }
+            EndClamp::G0 if settings.closed => {
+                return Err(refuse(
+                    Refusal::EndClamp,
+                    "was given an end clamp, but a closed curve has no ends",
+                ))
+            }
+            _ => {}
+        }
+        if settings.closed && job.kind == CurveKind::Function {
+            return Err(Error::BadValue {
+                name: "closed".into(),
+                message: "`true` needs parametric input (--kind parametric)".into(),
+            });
+        }
+        Ok(())
+    }
+
+    fn run(&self, settings: &TwoPhaseCurveSettings, job: &CurveJob) -> Result<CurveRun> {
+        let Some(points) = job.points.as_dimension::<2>() else {
+            return Err(Error::Refused {
+                method: job.method.to_owned(),
+                what: Refusal::Dimension,
+                reason: "fairs planar curves only".into(),
+            });
+        };
+        let phases = settings.phases.clone();
+        let result = match job.kind {
+            CurveKind::Function => Pipeline::new(TwoPhase::new(phases.clone()))
+                .with_constraints(job.constraints.clone())
+                .with_max_iterations(phases.max_passes.max(1))
+                .with_trace(false)
+                .run(points.to_vec())?,
+            CurveKind::Parametric => Pipeline::new(
+                SegmentedFairing::new(TwoPhase::new(phases))
+                    .with_partition(settings.partition())
+                    .with_passes(settings.segment_passes),
+            )
+            .with_closed(settings.closed)
+            .with_constraints(job.constraints.clone())
+            .with_max_iterations(settings.segment_passes)
+            .with_trace(false)
+            .run(points.to_vec())?,
+        };
+        let stages = serde_json::to_value(&result.stages).unwrap_or_default();
+        let mut run = CurveRun::from_result(result);
+        run.curve = describe(&run.points, job.kind, settings.closed);
+        run.extras.insert("stages".into(), stages);
+        run.extras.insert("closed".into(), settings.closed.into());
+        Ok(run)
+    }
+}
+
+/// The report's `curve`: the spline function with its c_i (function), or the interpolating
+/// cubic through the points (parametric).
+fn describe(points: &CurvePoints, kind: CurveKind, closed: bool) -> serde_json::Value {
+    let points: &[Vec2] = points.as_dimension::<2>().unwrap_or(&[]);
+    match kind {
+        CurveKind::Function => {
+            let x: Vec<f64> = points.iter().map(|p| p.x).collect();
+            let y: Vec<f64> = points.iter().map(|p| p.y).collect();
+            let c = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout)
+                .map(|s| s.c().to_vec())
+                .unwrap_or_default();
+            serde_json::json!({
+                "type": "spline-function",
+                "end_condition": "parabolic-runout",
+                "x": x, "y": y, "c": c,
+                "c_meaning": "y''(x_i)/6 (Han's convention)",
+            })
+        }
+        CurveKind::Parametric => {
+            let rows: Vec<[f64; 2]> = points.iter().map(|p| [p.x, p.y]).collect();
+            serde_json::json!({
+                "type": "interpolating-cubic",
+                "end_condition": "natural",
+                "parametrization": "chord-length",
+                "closed": closed,
+                "points": rows,
+            })
+        }
+    }
+}

@@ -1,0 +1,468 @@
+//! The catalogue: parameter tables derived from the settings types, `--set` text and config
+//! values read through the settings' schema, presets, plans and pipelines, criteria and
+//! indicators by name.
+
+use curve_repr::{Curve, Side, Vec2};
+use fairing::catalog::{
+    Catalog, ConfigFile, CriterionEntry, CurveJob, CurveKind, CurvePoints, MethodKind, ParameterMap,
+    PlanConstraints,
+};
+use fairing::{Constraints, Error};
+use fairness::FnCriterion;
+
+/// The UA(2)-180 upper surface (x increasing), from `data/`.
+pub fn ua2_180_upper() -> Vec<Vec2> {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../data/airfoil_ua2-180/ua2-180_upper.csv"
+    ))
+    .unwrap();
+    text.lines()
+        .skip(1)
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|s| s.trim().parse().unwrap()).collect();
+            Vec2::new(v[0], v[1])
+        })
+        .collect()
+}
+
+fn sets(pairs: &[(&str, &str)]) -> ParameterMap {
+    ParameterMap::from_sets(pairs.iter().copied())
+}
+
+#[test]
+fn the_parameter_table_is_read_from_the_settings() {
+    let catalog = Catalog::builtin();
+    for kind in [MethodKind::Curve, MethodKind::Surface] {
+        for method in catalog.methods(kind) {
+            assert!(!method.parameters().is_empty(), "{}", method.name());
+            for p in method.parameters() {
+                // Kebab-case names, a one-line meaning from the field's doc comment, and the
+                // default as the settings' Default serialises it.
+                assert!(
+                    p.name
+                        .chars()
+                        .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-'),
+                    "{}: {}",
+                    method.name(),
+                    p.name
+                );
+                assert!(
+                    !p.meaning.is_empty() && !p.meaning.contains('\n'),
+                    "{}: {}",
+                    method.name(),
+                    p.name
+                );
+                assert_eq!(
+                    Some(&p.default_value),
+                    method.defaults().get(&p.name),
+                    "{}",
+                    p.name
+                );
+            }
+        }
+    }
+    let two_phase = catalog.method(MethodKind::Curve, "two-phase").unwrap();
+    let defaults = fairing::two_phase::TwoPhaseSettings::default();
+    let max_passes = two_phase.parameter("max-passes").unwrap();
+    assert_eq!(max_passes.default, defaults.max_passes.to_string());
+    assert_eq!(two_phase.parameter("coarse-lambda").unwrap().default, "0.8");
+    assert_eq!(two_phase.parameter("count-guard").unwrap().default, "local");
+    // The arbitrary-curve options are in the same list.
+    for name in ["segment-passes", "turning-limit", "overlap", "closed"] {
+        assert!(two_phase.parameter(name).is_some(), "{name}");
+    }
+    let table = catalog.table();
+    assert!(table.contains("max-passes=50"), "{table}");
+    assert!(table.contains("p=auto"), "{table}");
+    assert!(table.contains("range=inf"), "{table}");
+}
+
+#[test]
+fn set_text_is_read_by_the_parameter_type() {
+    let catalog = Catalog::builtin();
+    let strain = catalog.method(MethodKind::Curve, "strain-energy").unwrap();
+    let settings = strain
+        .settings(&sets(&[
+            ("pairs", "on"),
+            ("max-iterations", "20"),
+            ("radius-scale", "inf"),
+        ]))
+        .unwrap();
+    assert_eq!(settings["pairs"], true);
+    assert_eq!(settings["max-iterations"], 20);
+    assert_eq!(settings["radius-scale"], "inf");
+    let typed: fairing::strategies::StrainEnergySettings = serde_json::from_value(settings).unwrap();
+    assert!(typed.pairs && typed.radius_scale == f64::INFINITY && typed.max_iterations == 20);
+    let smoothing = catalog.method(MethodKind::Curve, "smoothing-spline").unwrap();
+    assert_eq!(smoothing.settings(&sets(&[("p", "auto")])).unwrap()["p"], "auto");
+    assert_eq!(smoothing.settings(&sets(&[("p", "0.5")])).unwrap()["p"], 0.5);
+    let two_phase = catalog.method(MethodKind::Curve, "two-phase").unwrap();
+    assert_eq!(
+        two_phase.settings(&sets(&[("max-passes", "20")])).unwrap()["max-passes"],
+        20
+    );
+    // A value of the wrong type, or out of range, names the parameter and where it was given.
+    let e = two_phase.settings(&sets(&[("max-passes", "2.5")])).unwrap_err();
+    assert!(
+        matches!(&e, Error::Parameter { origin, .. } if origin == "--set"),
+        "{e}"
+    );
+    assert!(e.to_string().contains("max-passes"), "{e}");
+    let e = two_phase.settings(&sets(&[("coarse-lambda", "3")])).unwrap_err();
+    assert!(e.to_string().starts_with("--set: `coarse-lambda` = `3`"), "{e}");
+    let e = smoothing.settings(&sets(&[("rule", "newton")])).unwrap_err();
+    assert!(e.to_string().contains("gcv"), "{e}");
+    // A config value given as a string is read like text; a typed one as it is.
+    let mut given = ParameterMap::new();
+    given.insert_json("pairs", serde_json::json!("off"), "c.toml:2");
+    given.insert_json("energy-tolerance", serde_json::json!(1e-3), "c.toml:3");
+    let settings = strain.settings(&given).unwrap();
+    assert_eq!(settings["pairs"], false);
+    assert_eq!(settings["energy-tolerance"], 1e-3);
+    let mut given = ParameterMap::new();
+    given.insert_json("max-iterations", serde_json::json!(-1), "c.toml:7");
+    let e = strain.settings(&given).unwrap_err();
+    assert!(e.to_string().starts_with("c.toml:7: `max-iterations`"), "{e}");
+}
+
+#[test]
+fn unknown_names_are_refused_with_the_known_ones() {
+    let catalog = Catalog::builtin();
+    let batten = catalog.method(MethodKind::Curve, "batten").unwrap();
+    let e = batten.settings(&sets(&[("zz", "1")])).unwrap_err();
+    let text = e.to_string();
+    assert!(
+        text.starts_with("--set: `zz` is not a parameter of `batten`"),
+        "{text}"
+    );
+    for name in [
+        "range",
+        "tangent-directions",
+        "update",
+        "max-iterations",
+        "max-sweeps",
+    ] {
+        assert!(text.contains(name), "{text}");
+    }
+    let e = catalog.method(MethodKind::Curve, "zhang-cheng").unwrap_err();
+    assert!(matches!(e, Error::UnknownMethod { .. }));
+    assert!(e.to_string().contains("two-phase"), "{e}");
+}
+
+#[test]
+fn presets_are_entries_with_other_defaults() {
+    let catalog = Catalog::builtin();
+    let base = catalog.method(MethodKind::Curve, "strain-energy").unwrap();
+    for (name, parametrization) in [("kjellander", "uniform"), ("poliakoff", "chord-length")] {
+        let preset = catalog.method(MethodKind::Curve, name).unwrap();
+        assert_eq!(preset.defaults()["parametrization"], parametrization);
+        // The pinned parameter is neither listed nor accepted; the others are the base's.
+        assert!(preset.parameter("parametrization").is_none());
+        assert_eq!(preset.parameters().len(), base.parameters().len() - 1);
+        let e = preset
+            .settings(&sets(&[("parametrization", "centripetal")]))
+            .unwrap_err();
+        assert!(e.to_string().contains("not a parameter of `"), "{e}");
+        assert!(preset.settings(&sets(&[("pairs", "on")])).is_ok());
+    }
+    let surface = catalog.method(MethodKind::Surface, "kjellander").unwrap();
+    assert_eq!(surface.defaults()["boundary"], false);
+    assert_eq!(surface.defaults()["max-steps"], 100_000);
+    assert_eq!(surface.defaults()["one-point-per-step"], true);
+    assert!(surface.parameter("one-point-per-step").is_none());
+    // A preset of an unknown base, or with a default that is not a parameter, is refused.
+    let mut catalog = Catalog::builtin();
+    let info = fairing::catalog::MethodInfo::new("x", "x");
+    assert!(catalog
+        .register_preset(
+            MethodKind::Curve,
+            "nope",
+            info.clone(),
+            serde_json::json!({}),
+            &[]
+        )
+        .is_err());
+    assert!(catalog
+        .register_preset(
+            MethodKind::Curve,
+            "batten",
+            info,
+            serde_json::json!({"zz": 1}),
+            &[]
+        )
+        .is_err());
+}
+
+#[test]
+fn a_config_pipeline_is_planned_and_run_by_the_library() {
+    let catalog = Catalog::builtin();
+    let text = "[constraints]\nfixed = [0, 29]\ntolerance = 5e-4\n\n[[stage]]\nmethod = \"smoothing-spline\"\np = 0.9999\n\n[[stage]]\nmethod = \"two-phase\"\nmax-passes = 10\n";
+    let file = ConfigFile::parse("pipe.toml", text).unwrap();
+    let plan = catalog
+        .plan(
+            MethodKind::Curve,
+            None,
+            "two-phase",
+            Some(&file),
+            &ParameterMap::new(),
+        )
+        .unwrap();
+    assert_eq!(plan.name(), "smoothing-spline+two-phase");
+    assert_eq!(plan.stages[1].settings["max-passes"], 10);
+    assert_eq!(plan.constraints.tolerance, Some(5e-4));
+    let points = ua2_180_upper();
+    let constraints = PlanConstraints {
+        fixed: vec![0, 29],
+        bad_points: vec![],
+        tolerance: Some(5e-4),
+        clamp: fairing::EndClamp::None,
+    };
+    for kind in [CurveKind::Function, CurveKind::Parametric] {
+        let input = CurvePoints::Planar(points.clone());
+        let run = catalog.run_curve_plan(&plan, &input, kind, &constraints).unwrap();
+        let faired = run.points.as_dimension::<2>().unwrap();
+        assert_eq!(faired[0], points[0]);
+        assert_eq!(faired[29], points[29]);
+        for (p, q) in points.iter().zip(faired) {
+            assert!((p - q).norm() <= 5e-4, "{kind:?}: {}", (p - q).norm());
+        }
+        let stages = run.extras["stages"].as_array().unwrap();
+        assert_eq!(stages.len(), 2);
+        assert_eq!(stages[0]["method"], "smoothing-spline");
+        assert_eq!(run.termination, stages[1]["termination"].as_str().unwrap());
+    }
+    // The printed config reads back as the same plan.
+    let printed = plan.render(&catalog, &constraints);
+    let again = ConfigFile::parse("printed.toml", &printed).unwrap();
+    let replan = catalog
+        .plan(
+            MethodKind::Curve,
+            None,
+            "two-phase",
+            Some(&again),
+            &ParameterMap::new(),
+        )
+        .unwrap();
+    assert_eq!(replan.stages.len(), 2);
+    for (a, b) in plan.stages.iter().zip(&replan.stages) {
+        assert_eq!(a.settings, b.settings);
+    }
+    // A bad value in a stage names the file, line and stage.
+    let file = ConfigFile::parse(
+        "bad.toml",
+        "[[stage]]\nmethod = \"batten\"\nupdate = \"newton\"\n",
+    )
+    .unwrap();
+    let e = catalog
+        .plan(
+            MethodKind::Curve,
+            None,
+            "two-phase",
+            Some(&file),
+            &ParameterMap::new(),
+        )
+        .unwrap_err();
+    assert!(e.to_string().starts_with("bad.toml:3 (stage 1): `update`"), "{e}");
+    // A pipeline with --method or --set is ambiguous.
+    let file = ConfigFile::parse("p.toml", "[[stage]]\nmethod = \"batten\"\n").unwrap();
+    assert!(catalog
+        .plan(
+            MethodKind::Curve,
+            Some("batten"),
+            "two-phase",
+            Some(&file),
+            &ParameterMap::new()
+        )
+        .is_err());
+}
+
+/// The length of a planar curve (a user's criterion, for the test).
+fn length_criterion() -> CriterionEntry {
+    CriterionEntry::new("chord-sum", "Σ |C(t_{i+1}) − C(t_i)| over 8 samples per piece").planar(
+        FnCriterion::<dyn Curve<2>, _>::new("chord-sum", |c: &(dyn Curve<2> + 'static)| {
+            let breaks = c.breaks();
+            let mut total = 0.0;
+            for w in breaks.windows(2) {
+                for k in 0..8 {
+                    let (a, b) = (
+                        w[0] + (w[1] - w[0]) * k as f64 / 8.0,
+                        w[0] + (w[1] - w[0]) * (k + 1) as f64 / 8.0,
+                    );
+                    total += (c.jet(b, Side::Left)[0] - c.jet(a, Side::Right)[0]).norm();
+                }
+            }
+            Ok(total)
+        }),
+    )
+}
+
+#[test]
+fn criteria_are_registered_selected_and_evaluated_on_the_curve_as_represented() {
+    let mut catalog = Catalog::builtin();
+    catalog.register_criterion(length_criterion());
+    let points = CurvePoints::Planar(ua2_180_upper());
+    let constraints = Constraints::default();
+    let job = CurveJob {
+        method: "nurbs-weights",
+        points: &points,
+        kind: CurveKind::Parametric,
+        constraints: &constraints,
+        bad_points: &[],
+        catalog: &catalog,
+    };
+    let entry = catalog.method(MethodKind::Curve, "nurbs-weights").unwrap();
+    let settings = entry
+        .settings(&sets(&[("criterion", "e2"), ("max-iterations", "60")]))
+        .unwrap();
+    let run = entry.fair_curve(&settings, &job).unwrap();
+    assert!(run.moved.is_empty());
+    let represented = run
+        .represented
+        .as_ref()
+        .expect("nurbs-weights has its own curves");
+    let before = catalog.criteria_of(&represented.before);
+    let after = catalog.criteria_of(&represented.after);
+    let names: Vec<&String> = before.keys().collect();
+    assert_eq!(names, ["chord-sum", "e1", "e2", "e3", "ek", "ek-prime"]);
+    let (b, a) = (*before["e2"].as_ref().unwrap(), *after["e2"].as_ref().unwrap());
+    assert!(a <= b, "{a} > {b}");
+    assert_eq!(run.extras["criterion_after"].as_f64().unwrap(), a);
+    // The user's criterion can be minimised too; an unknown one is refused with the list.
+    let settings = entry
+        .settings(&sets(&[("criterion", "chord-sum"), ("max-iterations", "30")]))
+        .unwrap();
+    let run = entry.fair_curve(&settings, &job).unwrap();
+    assert_eq!(run.extras["criterion"], "chord-sum");
+    let settings = entry.settings(&sets(&[("criterion", "e9")])).unwrap();
+    let e = entry.fair_curve(&settings, &job).unwrap_err();
+    assert!(
+        e.to_string().contains("chord-sum") && e.to_string().contains("e9"),
+        "{e}"
+    );
+    // A planar-only criterion does not apply to a spatial curve, and is not reported for one.
+    let spatial = fairing::catalog::measured_curve(
+        CurveKind::Parametric,
+        &CurvePoints::Spatial(
+            (0..8)
+                .map(|k| curve_repr::Vec3::new(k as f64, (k as f64).sin(), 0.1 * k as f64))
+                .collect(),
+        ),
+    )
+    .unwrap();
+    assert!(!catalog.criteria_of(&spatial).contains_key("chord-sum"));
+}
+
+/// A user's indicator that points at the middle break of any curve.
+struct Middle;
+
+impl fairness::LocalIndicator<dyn Curve<2>> for Middle {
+    fn name(&self) -> &str {
+        "middle"
+    }
+    fn values(&self, curve: &(dyn Curve<2> + 'static)) -> fairness::Result<Vec<f64>> {
+        let n = curve.breaks().len();
+        let mut values = vec![0.0; n];
+        values[n / 2] = 1.0;
+        Ok(values)
+    }
+}
+
+#[test]
+fn strategies_that_choose_where_to_act_take_an_indicator() {
+    let mut catalog = Catalog::builtin();
+    catalog.register_indicator(
+        fairing::catalog::IndicatorEntry::new("middle", "the middle break").planar(Middle),
+    );
+    let points = CurvePoints::Planar(ua2_180_upper());
+    let constraints = Constraints::default();
+    let job = CurveJob {
+        method: "",
+        points: &points,
+        kind: CurveKind::Parametric,
+        constraints: &constraints,
+        bad_points: &[],
+        catalog: &catalog,
+    };
+    // Strain energy: one step moves the point the indicator picks (the paper's z_i picks
+    // another on this airfoil).
+    let entry = catalog.method(MethodKind::Curve, "strain-energy").unwrap();
+    let run = |given: &[(&str, &str)]| {
+        entry
+            .fair_curve(&entry.settings(&sets(given)).unwrap(), &job)
+            .unwrap()
+    };
+    let paper = run(&[("max-iterations", "1")]);
+    let middle = run(&[("max-iterations", "1"), ("indicator", "middle")]);
+    assert_eq!(middle.moved, vec![15]);
+    assert_ne!(paper.moved, vec![15]);
+    // A built-in alternative runs too, and changes the result.
+    let other = run(&[("max-iterations", "5"), ("indicator", "curvature-slope-jump")]);
+    assert!(other.iterations > 0);
+    // Sapidis–Farin: every step fairs the knot the indicator picks; the paper's jump moves on.
+    let entry = catalog.method(MethodKind::Curve, "sapidis-farin").unwrap();
+    let run = |given: &[(&str, &str)]| {
+        entry
+            .fair_curve(&entry.settings(&sets(given)).unwrap(), &job)
+            .unwrap()
+    };
+    let knots = |r: &fairing::catalog::CurveRun| -> Vec<f64> {
+        r.extras["steps"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|s| s["knot"].as_f64().unwrap())
+            .collect()
+    };
+    let paper = knots(&run(&[("max-iterations", "3")]));
+    let middle = knots(&run(&[("max-iterations", "3"), ("indicator", "middle")]));
+    assert_eq!(middle.len(), 3);
+    assert!(middle.iter().all(|k| *k == middle[0]), "{middle:?}");
+    assert!(paper.iter().any(|k| *k != paper[0]), "{paper:?}");
+    let other = run(&[("max-iterations", "3"), ("indicator", "third-derivative-jump")]);
+    assert!(other.iterations > 0);
+    // An unknown indicator is refused with the registered ones.
+    for method in ["strain-energy", "sapidis-farin"] {
+        let entry = catalog.method(MethodKind::Curve, method).unwrap();
+        let e = entry
+            .fair_curve(&entry.settings(&sets(&[("indicator", "nope")])).unwrap(), &job)
+            .unwrap_err();
+        assert!(
+            e.to_string().contains("middle") && e.to_string().contains("nope"),
+            "{method}: {e}"
+        );
+    }
+}
+
+#[test]
+fn a_surface_plan_prints_as_its_method_table_and_reads_back() {
+    let catalog = Catalog::builtin();
+    let plan = catalog
+        .plan(
+            MethodKind::Surface,
+            Some("kjellander"),
+            "zhang-cheng",
+            None,
+            &sets(&[("max-steps", "50"), ("boundary", "on")]),
+        )
+        .unwrap();
+    let text = plan.render(&catalog, &PlanConstraints::default());
+    assert!(
+        text.contains("[kjellander]") && !text.contains("[[stage]]"),
+        "{text}"
+    );
+    let file = ConfigFile::parse("s.toml", &text).unwrap();
+    let again = catalog
+        .plan(
+            MethodKind::Surface,
+            Some("kjellander"),
+            "zhang-cheng",
+            Some(&file),
+            &ParameterMap::new(),
+        )
+        .unwrap();
+    assert_eq!(again.stages[0].settings, plan.stages[0].settings);
+    assert_eq!(again.stages[0].settings["max-steps"], 50);
+    assert_eq!(again.stages[0].settings["boundary"], true);
+}
