@@ -167,12 +167,14 @@ fn a_dent_at_the_curve_end_is_removed() {
 
 #[test]
 fn a_dent_at_a_segment_join_is_removed() {
-    // Where the default partition of the clean arc joins its first two segments.
+    // Where the default partition of the clean arc joins its first two segments: the dent's
+    // three points lie in the overlap, the last of them the first segment's end point.
     let clean = dented_arc(0, 0.0);
     let segments = partition(&clean, false, &PartitionSettings::default()).unwrap();
     assert!(segments.len() >= 2);
     let join = *segments[0].indices.last().unwrap();
-    let points = dented_arc(join - 1, 0.02);
+    assert!(segments[1].indices[0] <= join - 2, "the dent lies in the overlap");
+    let points = dented_arc(join - 2, 0.02);
     assert!(inflections(&points) > 0);
     let paper = faired(&points, TwoPhaseSettings::paper(), PartitionSettings::default());
     assert!(inflections(&paper) > 0, "the paper's rules leave the dent at the join");
@@ -184,3 +186,4 @@ fn a_dent_at_a_segment_join_is_removed() {
     }
     let _ = PI;
 }
+
