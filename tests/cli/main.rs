@@ -6,6 +6,7 @@ mod batten_cli;
 mod columns_cli;
 mod formats_cli;
 mod inspect;
+mod largest_move_cli;
 mod nurbs_weights_cli;
 mod pipeline_batch_cli;
 mod strain_energy_cli;

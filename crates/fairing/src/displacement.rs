@@ -197,3 +197,76 @@ pub fn largest_move<const D: usize>(
         exceeds: distance > bound,
     })
 }
+
+/// The largest move of a fairing against the bound the user did not ask to exceed
+/// ([`unasked_move`]): what a report's `largest_move` says.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UnaskedMove {
+    /// The farthest move and whether it exceeds [`UnaskedMove::bound`].
+    pub largest: LargestMove,
+    /// The bound derived from the data ([`data_bound`]).
+    pub data: DataBound,
+    /// The tolerance band the user gave, if any: moves up to it were asked for.
+    pub tolerance: Option<f64>,
+}
+
+impl UnaskedMove {
+    /// The bound compared with: the larger of the data's bound and the tolerance band.
+    pub fn bound(&self) -> f64 {
+        self.largest.bound
+    }
+
+    /// Whether the bound is the user's tolerance band (`tolerance`) or the data's (`data`).
+    pub fn bound_from(&self) -> &'static str {
+        match self.tolerance {
+            Some(t) if t > self.data.bound => "tolerance",
+            _ => "data",
+        }
+    }
+
+    /// The report's `largest_move` object: `index` (from 0), `distance`, `bound`,
+    /// `bound_from` (`data` or `tolerance`), `noise` (σ estimate), `quantum` (decimal step),
+    /// `exceeds`.
+    pub fn to_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "index": self.largest.index,
+            "distance": self.largest.distance,
+            "bound": self.largest.bound,
+            "bound_from": self.bound_from(),
+            "noise": self.data.noise,
+            "quantum": self.data.quantum,
+            "exceeds": self.largest.exceeds,
+        })
+    }
+}
+
+/// How far a fairing of `original` to `faired` moved its farthest point, compared with the
+/// bound the user did not ask to exceed: the data's own ([`data_bound`]: a noise-sized move,
+/// at least the decimal step), or the tolerance band when the user gave a wider one. A
+/// method that moves a point farther has changed the data by more than its measurement
+/// error without being asked; a report says so. O(n).
+///
+/// Errors: as [`largest_move`]; a NaN tolerance.
+pub fn unasked_move<const D: usize>(
+    original: &[Vector<D>],
+    faired: &[Vector<D>],
+    tolerance: Option<f64>,
+) -> Result<UnaskedMove> {
+    let data = data_bound(original);
+    let bound = match tolerance {
+        Some(t) if t.is_nan() => {
+            return Err(Error::BadParameter {
+                name: "tolerance",
+                value: t.to_string(),
+                reason: "must be a number",
+            })
+        }
+        Some(t) => data.bound.max(t),
+        None => data.bound,
+    };
+    Ok(UnaskedMove {
+        largest: largest_move(original, faired, bound)?,
+        data,
+        tolerance,
+    })
+}
