@@ -243,10 +243,7 @@ fn main() -> Result<(), Error> {
             claims.push(if ours.inflections <= equal.inflections {
                 "no more inflections".to_string()
             } else {
-                format!(
-                    "MORE inflections ({} vs {})",
-                    ours.inflections, equal.inflections
-                )
+                format!("MORE inflections ({} vs {})", ours.inflections, equal.inflections)
             });
             if let (Some(a), Some(b)) = (ours.truth, equal.truth) {
                 claims.push(if a <= b {

@@ -36,7 +36,11 @@ fn fair(method: &str, args: &[&str], tag: &str) -> (Output, serde_json::Value) {
         .args(args)
         .output()
         .unwrap();
-    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
     let report = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
     (output, report)
 }

@@ -85,7 +85,8 @@ fn fresnel(s: f64) -> Vec2 {
 /// upper (`upper`) or lower surface.
 fn naca2412(x: f64, upper: bool) -> Vec2 {
     let (m, p, t) = (0.02, 0.4, 0.12);
-    let yt = 5.0 * t * (0.2969 * x.sqrt() - 0.1260 * x - 0.3516 * x * x + 0.2843 * x.powi(3) - 0.1036 * x.powi(4));
+    let yt =
+        5.0 * t * (0.2969 * x.sqrt() - 0.1260 * x - 0.3516 * x * x + 0.2843 * x.powi(3) - 0.1036 * x.powi(4));
     let (yc, slope) = if x < p {
         (m / (p * p) * (2.0 * p * x - x * x), 2.0 * m / (p * p) * (p - x))
     } else {
@@ -127,7 +128,9 @@ fn synthetic() -> Vec<Synthetic> {
             name: "arc",
             kind: Kind::Open,
             sigma: 0.01,
-            clean: range(100, 0.0, 1.5 * PI).map(|a| Vec2::new(2.0 * a.cos(), 2.0 * a.sin())).collect(),
+            clean: range(100, 0.0, 1.5 * PI)
+                .map(|a| Vec2::new(2.0 * a.cos(), 2.0 * a.sin()))
+                .collect(),
         },
         Synthetic {
             name: "ellipse",
@@ -144,13 +147,19 @@ fn synthetic() -> Vec<Synthetic> {
             name: "sine",
             kind: Kind::Function,
             sigma: 0.01,
-            clean: (0..200).map(|k| 0.1 * k as f64).map(|x| Vec2::new(x, (x / 2.0).sin())).collect(),
+            clean: (0..200)
+                .map(|k| 0.1 * k as f64)
+                .map(|x| Vec2::new(x, (x / 2.0).sin()))
+                .collect(),
         },
         Synthetic {
             name: "sine-dense",
             kind: Kind::Function,
             sigma: 0.01,
-            clean: (0..2000).map(|k| 0.1 * k as f64).map(|x| Vec2::new(x, (x / 2.0).sin())).collect(),
+            clean: (0..2000)
+                .map(|k| 0.1 * k as f64)
+                .map(|x| Vec2::new(x, (x / 2.0).sin()))
+                .collect(),
         },
         Synthetic {
             name: "airfoil",
@@ -177,7 +186,10 @@ const REAL: &[(&str, &str)] = &[
     ("sc20714-upper", "airfoil_sc20714/sc20714_upper.csv"),
     ("naca2412-upper", "airfoil_naca2412/naca2412_upper.csv"),
     ("gunnerus-wl03", "hull_gunnerus/waterlines/wl_03.csv"),
-    ("block-island-wl36", "hull_block_island_boat/waterlines/wl_36in.csv"),
+    (
+        "block-island-wl36",
+        "hull_block_island_boat/waterlines/wl_36in.csv",
+    ),
 ];
 
 fn read(path: &Path) -> Result<Vec<Vec2>, Error> {
@@ -265,7 +277,10 @@ fn main() -> Result<(), Error> {
         for (variant, settings, partition, passes) in &variants {
             let start = std::time::Instant::now();
             let faired = fair(noisy, kind, settings, *partition, *passes)?;
-            println!("{name:28} {variant:8} {:8.1} ms", start.elapsed().as_secs_f64() * 1e3);
+            println!(
+                "{name:28} {variant:8} {:8.1} ms",
+                start.elapsed().as_secs_f64() * 1e3
+            );
             write(&out.join(format!("{name}_{variant}.csv")), &faired)?;
         }
         writeln!(
@@ -289,7 +304,12 @@ fn main() -> Result<(), Error> {
                     _ => p + Vec2::new(normal.sample(&mut rng), normal.sample(&mut rng)),
                 })
                 .collect();
-            run(&format!("{}_s{seed}", case.name), case.kind, &noisy, Some(&case.clean))?;
+            run(
+                &format!("{}_s{seed}", case.name),
+                case.kind,
+                &noisy,
+                Some(&case.clean),
+            )?;
         }
     }
     for (name, file) in REAL {

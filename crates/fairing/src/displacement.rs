@@ -189,7 +189,10 @@ pub fn largest_move<const D: usize>(
         .zip(faired)
         .map(|(a, b)| (b - a).norm())
         .enumerate()
-        .fold((0, f64::NEG_INFINITY), |best, (i, d)| if d > best.1 { (i, d) } else { best });
+        .fold(
+            (0, f64::NEG_INFINITY),
+            |best, (i, d)| if d > best.1 { (i, d) } else { best },
+        );
     Ok(LargestMove {
         index,
         distance,

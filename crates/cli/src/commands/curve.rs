@@ -228,11 +228,7 @@ fn process_points(
         curvature_before: before.curvature,
         curvature_after: after.curvature,
         axes: Some(crate::plots::axis_names(&input.coordinate_names())),
-        projections: crate::plots::other_projections(
-            &input.coordinate_names(),
-            &input.points,
-            Some(&faired),
-        ),
+        projections: crate::plots::other_projections(&input.coordinate_names(), &input.points, Some(&faired)),
     };
     Ok(Faired {
         report,

@@ -73,8 +73,20 @@ pub fn run(catalog: &Catalog, args: &InspectArgs) -> Result<()> {
 /// finite). The work of `fair inspect` and `fair demo`.
 pub fn inspect(
     catalog: &Catalog,
-    source: &Source, kind_arg: KindArg, surface: bool, plot: Option<&Path>) -> Result<Report> {
-    inspect_with(catalog, source, kind_arg, surface, plot, &ReadOptions::default(), true)
+    source: &Source,
+    kind_arg: KindArg,
+    surface: bool,
+    plot: Option<&Path>,
+) -> Result<Report> {
+    inspect_with(
+        catalog,
+        source,
+        kind_arg,
+        surface,
+        plot,
+        &ReadOptions::default(),
+        true,
+    )
 }
 
 /// [`inspect`] with `--columns` ([`ReadOptions`]); the reader's notes and a progress spinner

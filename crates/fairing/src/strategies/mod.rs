@@ -16,7 +16,9 @@ pub mod strain_energy;
 pub mod surface;
 
 pub use batten::{Batten, BattenSettings, PositionUpdate, Tangents};
-pub use sapidis_farin::{KnotStep, MoveBound, MoveRule, SapidisFarin, SapidisFarinSettings, SapidisFarinStop};
+pub use sapidis_farin::{
+    KnotStep, MoveBound, MoveRule, SapidisFarin, SapidisFarinSettings, SapidisFarinStop,
+};
 pub use smoothing_spline::{
     fit_parametric, CurveDomain, SmoothingRule, SmoothingSettings, SmoothingSpline, SmoothingSplineFairing,
 };

@@ -28,7 +28,18 @@ use crate::Result;
 
 /// Whether two-phase fairing first removes the data's noise
 /// ([`TwoPhaseSettings::denoise`](super::TwoPhaseSettings::denoise)).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    serde::Serialize,
+    serde::Deserialize,
+    schemars::JsonSchema,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum Denoise {
     /// The paper: the phases work on the data points as given.
@@ -152,9 +163,20 @@ pub fn denoise_curve(mode: Denoise, points: &[Vec2], closed: bool, limits: &Limi
         let keep = |k: usize| (limits.keep)(order[k]) || (closed && (k == 0 || k == last));
         let allowed = |k: usize| (limits.allowed)(order[k]);
         let t = Parametrization::ChordLength.parameters(&sequence)?;
-        let values = bounded_fit(&t, &sequence, &Limits { keep: &keep, allowed: &allowed })?;
+        let values = bounded_fit(
+            &t,
+            &sequence,
+            &Limits {
+                keep: &keep,
+                allowed: &allowed,
+            },
+        )?;
         let mut out = points.to_vec();
-        for (k, &i) in order.iter().enumerate().take(if closed { last } else { last + 1 }) {
+        for (k, &i) in order
+            .iter()
+            .enumerate()
+            .take(if closed { last } else { last + 1 })
+        {
             out[i] = values[k];
         }
         Ok(out)
@@ -171,9 +193,11 @@ pub fn denoise_curve(mode: Denoise, points: &[Vec2], closed: bool, limits: &Limi
         let (e, f) = (q - p, r - q);
         (e.x * f.y - e.y * f.x).atan2(e.dot(&f)).abs()
     };
-    let (seam, largest) = (0..n)
-        .map(|i| (i, turn(i)))
-        .fold((0, f64::NEG_INFINITY), |best, c| if c.1 > best.1 { c } else { best });
+    let (seam, largest) =
+        (0..n).map(|i| (i, turn(i))).fold(
+            (0, f64::NEG_INFINITY),
+            |best, c| if c.1 > best.1 { c } else { best },
+        );
     let around = |start: usize| -> Vec<usize> { (0..=n).map(|k| (start + k) % n).collect() };
     let first = fit(&around(seam))?;
     if largest >= CORNER_TURN {

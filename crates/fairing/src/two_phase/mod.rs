@@ -18,9 +18,9 @@ pub mod phase1;
 pub mod phase2;
 mod settings;
 
+pub use denoise::{denoise, denoise_curve, Denoise, Limits};
 pub use phase1::{coarse_pass, counts, detect, displacement, e_at, Case, CaseKind, PassReport};
 pub use phase2::{detect_fine, end_y_change, fine_displacement, fine_pass, zero_level};
-pub use denoise::{denoise, denoise_curve, Denoise, Limits};
 pub use settings::{CountGuard, TwoPhaseSettings};
 
 use curve_repr::{EndCondition, SplineFunction, Vec2};

@@ -9,7 +9,11 @@ use fairing::displacement::{data_bound, decimal_quantum, largest_move, noise_est
 use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
 
-fn noisy<const D: usize>(clean: &[curve_repr::Vector<D>], sigma: f64, seed: u64) -> Vec<curve_repr::Vector<D>> {
+fn noisy<const D: usize>(
+    clean: &[curve_repr::Vector<D>],
+    sigma: f64,
+    seed: u64,
+) -> Vec<curve_repr::Vector<D>> {
     let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
     let normal = Normal::new(0.0, sigma).unwrap();
     clean
@@ -71,9 +75,15 @@ fn the_decimal_step_is_read_from_typed_data() {
             .collect()
     };
     for decimals in [0, 2, 4, 6] {
-        assert_eq!(decimal_quantum(&typed(decimals)), 10f64.powi(-decimals), "{decimals}");
+        assert_eq!(
+            decimal_quantum(&typed(decimals)),
+            10f64.powi(-decimals),
+            "{decimals}"
+        );
     }
-    let computed: Vec<Vec2> = (0..40).map(|k| Vec2::new(k as f64 * PI, (k as f64).sqrt())).collect();
+    let computed: Vec<Vec2> = (0..40)
+        .map(|k| Vec2::new(k as f64 * PI, (k as f64).sqrt()))
+        .collect();
     assert_eq!(decimal_quantum(&computed), 0.0);
 }
 
@@ -94,7 +104,11 @@ fn the_data_bound_grows_with_the_count_and_never_falls_below_the_step() {
     let bound = data_bound(&data);
     let factor = NOISE_BOUND_OFFSET + (2.0 * 400f64.ln()).sqrt();
     assert!((bound.bound - factor * bound.noise).abs() <= 1e-15 * bound.bound);
-    assert!(bound.bound > 4.0 * 0.01 && bound.bound < 7.0 * 0.01, "{}", bound.bound);
+    assert!(
+        bound.bound > 4.0 * 0.01 && bound.bound < 7.0 * 0.01,
+        "{}",
+        bound.bound
+    );
 }
 
 #[test]

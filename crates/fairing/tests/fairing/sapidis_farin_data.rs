@@ -43,7 +43,9 @@ fn largest_move(points: &[Vec2], settings: SapidisFarinSettings) -> f64 {
 fn chord(points: &[Vec2]) -> f64 {
     let (lo, hi) = points
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| (lo.min(p.x), hi.max(p.x)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p.x), hi.max(p.x))
+        });
     hi - lo
 }
 
@@ -63,7 +65,11 @@ fn every_airfoil_in_data_keeps_its_shape_by_default() {
         let points = read(&file);
         let m_d = largest_move(&points, SapidisFarinSettings::default());
         let chord = chord(&points);
-        assert!(m_d < 0.01 * chord, "{}: M_d = {m_d}, chord {chord}", file.display());
+        assert!(
+            m_d < 0.01 * chord,
+            "{}: M_d = {m_d}, chord {chord}",
+            file.display()
+        );
     }
 }
 

@@ -57,7 +57,10 @@ fn check_end_run(c: &[f64], first: usize, last: usize) {
     let moves = fine_displacement(&s, case, &settings).unwrap();
     let n = c.len();
     let end = if first == 0 { 0 } else { n - 1 };
-    assert!(moves.iter().all(|&(k, _)| k != end && k != n - 1 - end), "{moves:?}");
+    assert!(
+        moves.iter().all(|&(k, _)| k != end && k != n - 1 - end),
+        "{moves:?}"
+    );
     let mut moved = y.clone();
     for &(k, g) in &moves {
         moved[k] += g;
@@ -80,7 +83,12 @@ fn check_end_run(c: &[f64], first: usize, last: usize) {
     assert!(ratios.iter().all(|r| (r - ratios[0]).abs() < 1e-9), "{ratios:?}");
     assert!(ratios[0] >= 0.2 - 1e-12 && ratios[0] < 1.0, "{}", ratios[0]);
     for k in (0..n).filter(|k| !(first..=last).contains(k) && !flank.contains(k)) {
-        assert!((c1[k] - c0[k]).abs() < 1e-12, "c changed at {k}: {} vs {}", c1[k], c0[k]);
+        assert!(
+            (c1[k] - c0[k]).abs() < 1e-12,
+            "c changed at {k}: {} vs {}",
+            c1[k],
+            c0[k]
+        );
     }
     let count = |y: &[f64]| XcPolyline::of_points(&x, y).unwrap().inflections();
     assert_eq!(count(&moved) + 1, count(&y));
@@ -126,7 +134,10 @@ fn an_end_run_longer_than_its_neighbour_is_no_case() {
 
 /// Inflections of the planar polygon (DESIGN.md's parametric count) and where they are.
 fn inflections(points: &[Vec2]) -> usize {
-    fairness::summary::parametric(points).unwrap().inflections.unwrap()
+    fairness::summary::parametric(points)
+        .unwrap()
+        .inflections
+        .unwrap()
 }
 
 /// A circular arc of radius 3 over 200°, 61 points, with three consecutive points pushed
@@ -136,7 +147,11 @@ fn dented_arc(first: usize, depth: f64) -> Vec<Vec2> {
     (0..61)
         .map(|k| {
             let a = 200f64.to_radians() * k as f64 / 60.0;
-            let r = if (first..first + 3).contains(&k) { 3.0 + depth } else { 3.0 };
+            let r = if (first..first + 3).contains(&k) {
+                3.0 + depth
+            } else {
+                3.0
+            };
             Vec2::new(r * a.cos(), r * a.sin())
         })
         .collect()
@@ -177,7 +192,10 @@ fn a_dent_at_a_segment_join_is_removed() {
     let points = dented_arc(join - 2, 0.02);
     assert!(inflections(&points) > 0);
     let paper = faired(&points, TwoPhaseSettings::paper(), PartitionSettings::default());
-    assert!(inflections(&paper) > 0, "the paper's rules leave the dent at the join");
+    assert!(
+        inflections(&paper) > 0,
+        "the paper's rules leave the dent at the join"
+    );
     let default = faired(&points, TwoPhaseSettings::default(), PartitionSettings::default());
     assert_eq!(inflections(&default), 0);
     // The dent is filled, not moved elsewhere: every point ends near the arc.
@@ -186,4 +204,3 @@ fn a_dent_at_a_segment_join_is_removed() {
     }
     let _ = PI;
 }
-
