@@ -418,10 +418,19 @@ where
         if (start..end).any(|i| !state.is_movable(i)) {
             return Ok(None);
         }
-        let faired = Self::fair_knot(curve, r)?;
+        // The step on a clamped window of the curve first (O(p) knots; the same new control
+        // point and the same points on [u_{r−2}, u_{r+2}]), so that a knot the bounds refuse
+        // costs O(1), not a copy of the whole curve: with a move bound, most of the largest
+        // jumps of noisy data are refused.
+        let local = Self::window(curve, r)?;
+        let (window, r_local) = match &local {
+            Some((window, r_local)) => (window, *r_local),
+            None => (curve, r),
+        };
+        let faired_window = Self::fair_knot(window, r_local)?;
         let mut moves = Vec::with_capacity(end.saturating_sub(start));
         for i in start..end {
-            let mut to = faired.point(self.params[i]);
+            let mut to = faired_window.point(self.params[i]);
             if self.settings.domain == CurveDomain::Function {
                 to[0] = state.points()[i][0];
             }
@@ -431,7 +440,42 @@ where
             }
             moves.push((i, to));
         }
+        let faired = match local {
+            Some(_) => Self::fair_knot(curve, r)?,
+            None => faired_window,
+        };
         Ok(Some((faired, moves)))
+    }
+
+    /// Knots on each side of r that [`SapidisFarin::window`] keeps: enough for the spans
+    /// [u_{r−2}, u_{r+2}) (knots u_{r−2−p} … u_{r+2+p}) and for knot removal at u_r
+    /// (A5.8: knots u_{r−p} … u_{r+p+1}, control points P_{r−p−1} … P_r), with margin.
+    const WINDOW: usize = 12;
+
+    /// The curve cut to the knots u_{r−W} … u_{r+W} (W = [`SapidisFarin::WINDOW`]), clamped
+    /// at both cut ends, with the control points over them, and r's index in it; `None` when
+    /// the cut would reach the curve's own clamped ends (then the curve itself is that small
+    /// near r). Its B-spline basis equals the curve's on every span whose p + 1 knots on each
+    /// side lie inside the cut, [u_{r−2}, u_{r+2}) among them. O(W).
+    fn window(curve: &NurbsCurve<D>, r: usize) -> Result<Option<(NurbsCurve<D>, usize)>> {
+        let knots = curve.knots();
+        let p = curve.degree();
+        let w = Self::WINDOW.max(2 * p + 6);
+        if r < w + p + 1 || r + w + p + 1 >= knots.len() {
+            return Ok(None);
+        }
+        let (a, b) = (r - w, r + w);
+        // Clamped: u_a repeated p + 1 times, u_{a+1} … u_{b−1}, u_b repeated p + 1 times.
+        let mut cut = vec![knots[a]; p + 1];
+        cut.extend_from_slice(&knots[a + 1..b]);
+        cut.extend(std::iter::repeat_n(knots[b], p + 1));
+        // Knot k of the cut (k ≥ p + 1) is knot k + a − p of the curve, and so are the
+        // control points whose supports start there.
+        let offset = a - p;
+        let count = cut.len() - p - 1;
+        let points = curve.control_points()[offset..offset + count].to_vec();
+        let weights = curve.weights()[offset..offset + count].to_vec();
+        Ok(Some((NurbsCurve::new(p, cut, points, weights)?, r - offset)))
     }
 }
 
