@@ -250,6 +250,9 @@ pub struct SapidisFarin<const D: usize> {
     /// The distance of [`SapidisFarinSettings::max_move`] for the input points.
     move_bound: f64,
     indicator: Option<SharedIndicator<D>>,
+    /// Knots (by index) that the constraints or the move bound refused since their
+    /// neighbourhood last changed: not tried again until a step near them.
+    refused: Vec<bool>,
 }
 
 impl<const D: usize> SapidisFarin<D>
@@ -268,6 +271,7 @@ where
             stop: None,
             move_bound: f64::INFINITY,
             indicator: None,
+            refused: Vec::new(),
         }
     }
 
@@ -522,6 +526,7 @@ where
         self.params = interpolation.params().to_vec();
         self.jumps = self.knot_values(&curve)?;
         self.initial_max = self.max_jump();
+        self.refused = vec![false; curve.knots().len()];
         self.curve = Some(curve);
         self.history.clear();
         self.stop = None;
@@ -549,9 +554,22 @@ where
             if self.jumps[r] == 0.0 {
                 break;
             }
+            if self.refused.get(r).copied().unwrap_or(false) {
+                continue;
+            }
             let Some((faired, moves)) = self.try_knot(&curve, r, state, &constraints)? else {
+                // The refusal depends on the curve near r only (and on the data and bounds,
+                // which do not change): it holds until a step near r.
+                if let Some(flag) = self.refused.get_mut(r) {
+                    *flag = true;
+                }
                 continue;
             };
+            // A step at r changes the curve on [u_{r−p−1}, u_{r+p+1}]: the knots whose
+            // windows see that span may be tried again.
+            let reach = 2 * curve.degree() + 4;
+            let (from, to) = (r.saturating_sub(reach), (r + reach + 1).min(self.refused.len()));
+            self.refused[from..to].iter_mut().for_each(|f| *f = false);
             let jump_before = self.jumps[r];
             let knots = faired.knots().to_vec();
             if self.indicator.is_some() {
