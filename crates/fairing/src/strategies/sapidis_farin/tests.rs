@@ -231,7 +231,10 @@ fn the_window_fairs_a_knot_as_the_whole_curve_does() {
         for k in 0..=40 {
             let u = knots[r - 2] + (knots[r + 2] - knots[r - 2]) * k as f64 / 41.0;
             let (a, b) = (whole.point(u), cut.point(u));
-            assert!((a - b).norm() <= 1e-12 * (1.0 + a.norm()), "knot {r}, u = {u}: {a} vs {b}");
+            assert!(
+                (a - b).norm() <= 1e-12 * (1.0 + a.norm()),
+                "knot {r}, u = {u}: {a} vs {b}"
+            );
             // The unfaired window is the curve there too.
             assert!((curve.point(u) - window.point(u)).norm() <= 1e-12 * (1.0 + a.norm()));
         }
