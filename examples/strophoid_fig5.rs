@@ -6,8 +6,10 @@
 //!
 //! Prints the vibration and inflection counts (parametric kind of DESIGN.md: natural
 //! chord-length spline, zeros dropped) and the RMS distance of the data points to the clean
-//! strophoid, before and after, for the paper's turning limit π and for 2π/3 (papers/README.md);
-//! writes before/after SVGs to out/examples/.
+//! strophoid, before and after: with the paper's settings (turning limit π, the paper's
+//! rules: [`TwoPhaseSettings::paper`], [`PartitionSettings::paper`]), the paper's rules with the
+//! 2π/3 limit (papers/README.md), and the defaults (noise pre-pass, long runs, 2π/3); writes
+//! before/after SVGs to out/examples/.
 //!
 //! Run: `cargo run --release --example strophoid_fig5`
 
@@ -15,7 +17,7 @@ use std::f64::consts::PI;
 
 use curve_repr::Vec2;
 use fair_cli::svg::{Color, Figure, Line, Markers, Panel};
-use fairing::two_phase::TwoPhase;
+use fairing::two_phase::{TwoPhase, TwoPhaseSettings};
 use fairing::{PartitionSettings, Pipeline, SegmentedFairing};
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
@@ -136,18 +138,30 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Color::palette(1),
         &dir.join("strophoid_fig5_before.svg"),
     )?;
-    for (name, limit, file) in [
-        ("faired, turning limit π (paper)", PI, "strophoid_fig5_after.svg"),
+    for (name, settings, partition, file) in [
         (
-            "faired, turning limit 2π/3",
-            2.0 * PI / 3.0,
+            "faired, the paper's settings (π)",
+            TwoPhaseSettings::paper(),
+            PartitionSettings::paper(),
+            "strophoid_fig5_after.svg",
+        ),
+        (
+            "the paper's rules, limit 2π/3",
+            TwoPhaseSettings::paper(),
+            PartitionSettings::paper().with_limit(2.0 * PI / 3.0),
             "strophoid_fig5_after_limit_2pi3.svg",
+        ),
+        (
+            "faired, default settings",
+            TwoPhaseSettings::default(),
+            PartitionSettings::default(),
+            "strophoid_fig5_after_default.svg",
         ),
     ] {
         let result = Pipeline::new(
-            SegmentedFairing::new(TwoPhase::default())
-                .with_partition(PartitionSettings::default().with_limit(limit))
-                .with_passes(3),
+            SegmentedFairing::new(TwoPhase::new(settings))
+                .with_partition(partition)
+                .with_passes(SegmentedFairing::<TwoPhase>::DEFAULT_PASSES),
         )
         .run(noisy.clone())?;
         let (v, i) = counts(&result.points)?;

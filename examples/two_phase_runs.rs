@@ -1,14 +1,16 @@
-//! Han's two-phase fairing on a dense noisy function segment: the paper's rules against the
-//! long-run option (wrong-sign runs of more than two points, `max_run`), counted as DESIGN.md
-//! defines, with the RMS distance to the clean curve. y = sin(x/2) + N(0, σ²) at x = 0.1 k,
-//! k < n.
+//! Han's two-phase fairing on a dense noisy function segment: the default settings (the noise
+//! pre-pass, then the phases) against the paper's rules and the long-run option (wrong-sign
+//! runs of more than two points, `max_run`), counted as DESIGN.md defines, with the RMS
+//! distance to the clean curve. y = sin(x/2) + N(0, σ²) at x = 0.1 k, k < n. Each variant runs
+//! as `fair curve` runs it: the [`TwoPhase`] strategy in a [`Pipeline`].
 //!
 //! Run: `cargo run --release --example two_phase_runs [n] [all|paper] [σ]` (defaults n = 100000,
-//! all, σ = 0.01; with `paper`, only the paper's settings with and without `min_gain`: the
-//! timing of one full fairing at large n)
+//! all, σ = 0.01; with `paper`, only the default and the paper's settings with and without
+//! `min_gain`: the timing of one full fairing at large n)
 
-use curve_repr::{EndCondition, SplineFunction};
-use fairing::two_phase::{fair_function, CountGuard, TwoPhaseSettings};
+use curve_repr::Vec2;
+use fairing::two_phase::{CountGuard, TwoPhase, TwoPhaseSettings};
+use fairing::Pipeline;
 use fairness::xc::XcPolyline;
 use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
@@ -44,44 +46,49 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         |y: &[f64]| (y.iter().zip(&clean).map(|(a, b)| (a - b) * (a - b)).sum::<f64>() / n as f64).sqrt();
     println!("n = {n}, noise {sigma}");
     println!(
-        "{:<34} {:>11} {:>11} {:>10} {:>9} {:>7} {:>8}",
+        "{:<38} {:>11} {:>11} {:>10} {:>9} {:>7} {:>8}",
         "", "inflections", "vibrations", "vib@1e-6", "rms", "passes", "time"
     );
     let (ci, cv) = count(&clean)?;
     let cc = coarse_vibrations(&clean)?;
-    println!("{:<34} {ci:>11} {cv:>11} {cc:>10} {:>9.2e}", "clean", 0.0);
+    println!("{:<38} {ci:>11} {cv:>11} {cc:>10} {:>9.2e}", "clean", 0.0);
     let (ni, nv) = count(&y)?;
     let nc = coarse_vibrations(&y)?;
-    println!("{:<34} {ni:>11} {nv:>11} {nc:>10} {:>9.2e}", "noisy", rms(&y));
-    let base = TwoPhaseSettings::default();
+    println!("{:<38} {ni:>11} {nv:>11} {nc:>10} {:>9.2e}", "noisy", rms(&y));
+    let paper = TwoPhaseSettings::paper();
     let variants = [
-        ("paper (max_run 2)", base.clone()),
-        ("paper, min_gain 0.005", base.clone().with_min_gain(0.005)),
-        ("max_run 64", base.clone().with_max_run(64)),
+        ("default (pre-pass, then phases)", TwoPhaseSettings::default()),
+        ("paper (max_run 2)", paper.clone()),
+        ("paper, min_gain 0.005", paper.clone().with_min_gain(0.005)),
+        ("paper + max_run 64", paper.clone().with_max_run(64)),
         (
-            "max_run 64, min_gain 0.005",
-            base.clone().with_max_run(64).with_min_gain(0.005),
+            "paper + max_run 64, min_gain 0.005",
+            paper.clone().with_max_run(64).with_min_gain(0.005),
         ),
         (
-            "max_run 64, max_move_factor 0.2",
-            base.clone().with_max_run(64).with_max_move_factor(0.2),
+            "paper + max_run 64, max_move_factor 0.2",
+            paper.clone().with_max_run(64).with_max_move_factor(0.2),
         ),
         (
-            "max_run 64, guard off",
-            base.clone().with_max_run(64).with_count_guard(CountGuard::Off),
+            "paper + max_run 64, guard off",
+            paper.clone().with_max_run(64).with_count_guard(CountGuard::Off),
         ),
     ];
     let paper_only = std::env::args().nth(2).as_deref() == Some("paper");
-    for (name, settings) in variants.into_iter().take(if paper_only { 2 } else { usize::MAX }) {
-        let mut spline = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout)?;
+    let points: Vec<Vec2> = x.iter().zip(&y).map(|(&x, &y)| Vec2::new(x, y)).collect();
+    for (name, settings) in variants.into_iter().take(if paper_only { 3 } else { usize::MAX }) {
         let start = std::time::Instant::now();
-        let passes = fair_function(&mut spline, &settings, &|_| true)?;
+        let result = Pipeline::new(TwoPhase::new(settings.clone()))
+            .with_max_iterations(settings.max_passes)
+            .run(points.clone())?;
         let seconds = start.elapsed().as_secs_f64();
-        let (i, v) = count(spline.y())?;
-        let vc = coarse_vibrations(spline.y())?;
+        let faired: Vec<f64> = result.points.iter().map(|p| p.y).collect();
+        let (i, v) = count(&faired)?;
+        let vc = coarse_vibrations(&faired)?;
         println!(
-            "{name:<34} {i:>11} {v:>11} {vc:>10} {:>9.2e} {passes:>7} {seconds:>7.2}s",
-            rms(spline.y())
+            "{name:<38} {i:>11} {v:>11} {vc:>10} {:>9.2e} {:>7} {seconds:>7.2}s",
+            rms(&faired),
+            result.iterations
         );
     }
     Ok(())

@@ -195,9 +195,8 @@ fn sapidis_farin_keeps_fixed_points_and_lowers_the_largest_jump() {
     assert_eq!(report["iterations"].as_u64(), Some(faired));
     assert_eq!(report["steps"].as_array().unwrap().len() as u64, faired);
     // Issue 15: one `termination` field for every method (Sapidis–Farin wrote `stop`).
-    assert!(
-        ["tolerance", "max-iterations", "no-candidate"].contains(&report["termination"].as_str().unwrap())
-    );
+    assert!(["jump-reduction", "max-iterations", "no-candidate"]
+        .contains(&report["termination"].as_str().unwrap()));
     assert!(report.get("stop").is_none());
     assert_eq!(report["curve"]["type"], "nurbs");
 }
@@ -207,7 +206,7 @@ fn sapidis_farin_bad_parameter_exits_2() {
     let (out, _, _) = fair(
         &helix("bad"),
         "sapidis-farin",
-        &["--set", "tolerance=-1"],
+        &["--set", "jump-reduction=-1"],
         "sf-bad",
     );
     assert_eq!(out.status.code(), Some(2));

@@ -7,6 +7,7 @@ mod columns_cli;
 mod formats_cli;
 mod inspect;
 mod jump_lsq_cli;
+mod largest_move_cli;
 mod nurbs_weights_cli;
 mod pipeline_batch_cli;
 mod serve;

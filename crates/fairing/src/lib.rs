@@ -17,6 +17,7 @@
 
 pub mod catalog;
 pub mod constraints;
+pub mod displacement;
 pub mod error;
 pub mod observer;
 pub mod partition;

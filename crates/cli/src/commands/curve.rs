@@ -301,6 +301,7 @@ pub fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
     };
     write_results(args, &faired.report, &faired.points_text, || faired.plot.figure())?;
     let report = &faired.report;
+    warn_largest_move(&input.source, report, args.quiet);
     say(
         args.quiet,
         args.output.as_deref() == Some("-"),
@@ -317,6 +318,30 @@ pub fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
         ),
     );
     Ok(())
+}
+
+/// `fair: warning: …` on standard error (unless `quiet`) when the report's `largest_move`
+/// says the method moved a point farther than the bound the user did not ask to exceed
+/// ([`fairing::displacement::unasked_move`]).
+pub(crate) fn warn_largest_move(source: &str, report: &Report, quiet: bool) {
+    let Some(largest) = report.extras.get("largest_move") else {
+        return;
+    };
+    if quiet || largest["exceeds"].as_bool() != Some(true) {
+        return;
+    }
+    let index = largest["index"].as_u64().unwrap_or(0);
+    let from = match largest["bound_from"].as_str() {
+        Some("tolerance") => "the --tolerance given",
+        _ => "the data's noise and decimal step; give --tolerance to bound the moves",
+    };
+    eprintln!(
+        "fair: warning: {source}: {} moved point {} by {:.6e}, farther than {:.6e} ({from})",
+        report.method,
+        index + 1,
+        largest["distance"].as_f64().unwrap_or(f64::NAN),
+        largest["bound"].as_f64().unwrap_or(f64::NAN),
+    );
 }
 
 /// Reads `--config` if given (errors name the file and line).

@@ -21,6 +21,7 @@ use super::config::{toml_text, ConfigConstraints, ConfigFile};
 use super::job::{CurveJob, CurveKind, CurvePoints, CurveRun, Represented, SurfaceJob, SurfaceRun};
 use super::parameters::ParameterMap;
 use super::{Catalog, MethodKind};
+use crate::displacement::unasked_move;
 use crate::{Constraints, EndClamp, Error, Result};
 
 /// One stage of a plan: a method of the catalogue and its complete settings.
@@ -295,7 +296,34 @@ impl Catalog {
     /// Runs `plan` on a curve: each stage on the previous stage's points, the constraints
     /// shared out as the [module docs](self) say. O(sum of the stages' costs) plus O(n) per
     /// stage.
+    ///
+    /// Every run's extras get `largest_move` ([`UnaskedMove::to_json`]): the farthest move
+    /// (index, distance) against the bound the user did not ask to exceed (the data's noise
+    /// and decimal step, or a wider `--tolerance`), and whether it `exceeds` it. O(n).
     pub fn run_curve_plan(
+        &self,
+        plan: &Plan,
+        points: &CurvePoints,
+        kind: CurveKind,
+        constraints: &PlanConstraints,
+    ) -> Result<CurveRun> {
+        let mut run = self.run_curve_stages(plan, points, kind, constraints)?;
+        let unasked = match (points, &run.points) {
+            (CurvePoints::Planar(a), CurvePoints::Planar(b)) => unasked_move(a, b, constraints.tolerance),
+            (CurvePoints::Spatial(a), CurvePoints::Spatial(b)) => unasked_move(a, b, constraints.tolerance),
+            _ => {
+                return Err(Error::Strategy {
+                    strategy: plan.name(),
+                    reason: "returned points of another dimension".into(),
+                })
+            }
+        }?;
+        run.extras.insert("largest_move".into(), unasked.to_json());
+        Ok(run)
+    }
+
+    /// [`Catalog::run_curve_plan`] without the `largest_move` extra.
+    fn run_curve_stages(
         &self,
         plan: &Plan,
         points: &CurvePoints,

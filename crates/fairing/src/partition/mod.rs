@@ -57,13 +57,21 @@ pub struct PartitionSettings {
 impl Default for PartitionSettings {
     fn default() -> Self {
         Self {
-            limit: PI,
+            limit: 2.0 * PI / 3.0,
             overlap: 5,
         }
     }
 }
 
 impl PartitionSettings {
+    /// The paper's partition (Han §4.2.1–4.2.2): turning limit π, overlap 5.
+    pub fn paper() -> Self {
+        Self {
+            limit: PI,
+            overlap: 5,
+        }
+    }
+
     /// Sets the turning-angle limit (radians).
     pub fn with_limit(mut self, limit: f64) -> Self {
         self.limit = limit;

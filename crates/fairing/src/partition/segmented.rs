@@ -23,6 +23,23 @@ pub trait SegmentFairer {
         4
     }
 
+    /// Prepares the whole curve before the first pass (e.g. removes its noise): returns the
+    /// new points, or `None` to leave them. `kept[i]` marks the points that must not move
+    /// (fixed points, clamped ends, and the ends of an open curve, which the segments never
+    /// move either), `allowed[i]` how far point i may move (the tolerance band and radii, +∞
+    /// without them). Called once per run, on the planar points in curve order (`closed`: the
+    /// last joins the first). Default: `None`.
+    fn prepare(
+        &mut self,
+        points: &[Vec2],
+        closed: bool,
+        kept: &[bool],
+        allowed: &[f64],
+    ) -> Result<Option<Vec<Vec2>>> {
+        let _ = (points, closed, kept, allowed);
+        Ok(None)
+    }
+
     /// Fairs `y` over `x`.
     fn fair(&mut self, x: &[f64], y: &mut [f64], fixed: &[bool]) -> Result<()>;
 }
@@ -109,6 +126,29 @@ impl<F: SegmentFairer> FairingStrategy<2> for SegmentedFairing<F> {
     }
 
     fn step(&mut self, state: &mut FairingState<2>) -> Result<StepOutcome> {
+        if self.done == 0 {
+            let n = state.len();
+            let closed = state.is_closed();
+            let kept: Vec<bool> = (0..n)
+                .map(|i| !state.is_movable(i) || (!closed && (i == 0 || i + 1 == n)))
+                .collect();
+            let allowed: Vec<f64> = (0..n).map(|i| state.constraints().allowed_distance(i)).collect();
+            if let Some(prepared) = self.fairer.prepare(state.points(), closed, &kept, &allowed)? {
+                if prepared.len() != n {
+                    return Err(curve_repr::Error::LengthMismatch {
+                        what: "prepared points",
+                        expected: n,
+                        got: prepared.len(),
+                    }
+                    .into());
+                }
+                for (i, p) in prepared.into_iter().enumerate() {
+                    if p != state.points()[i] {
+                        state.move_point(i, p)?;
+                    }
+                }
+            }
+        }
         let points = state.points().to_vec();
         let segments = partition(&points, state.is_closed(), &self.settings)?;
         let mut displacements = Vec::with_capacity(segments.len());

@@ -22,7 +22,9 @@ pub mod surface_smoothing;
 
 pub use batten::{Batten, BattenSettings, PositionUpdate, Tangents};
 pub use jump_lsq::{JumpLsq, JumpLsqReport, JumpLsqSettings, LambdaRule};
-pub use sapidis_farin::{KnotStep, SapidisFarin, SapidisFarinSettings, SapidisFarinStop};
+pub use sapidis_farin::{
+    KnotStep, MoveBound, MoveRule, SapidisFarin, SapidisFarinSettings, SapidisFarinStop,
+};
 pub use smoothing_spline::{
     fit_parametric, CurveDomain, SmoothingRule, SmoothingSettings, SmoothingSpline, SmoothingSplineFairing,
 };

@@ -13,12 +13,14 @@
 //!   [`SegmentedFairing`](crate::SegmentedFairing)`::new(TwoPhase::default())` fairs arbitrary
 //!   open or closed planar curves (Han §4.2).
 
+mod denoise;
 pub mod phase1;
 pub mod phase2;
 mod settings;
 
+pub use denoise::{denoise, denoise_curve, Denoise, Limits};
 pub use phase1::{coarse_pass, counts, detect, displacement, e_at, Case, CaseKind, PassReport};
-pub use phase2::{detect_fine, fine_displacement, fine_pass, zero_level};
+pub use phase2::{detect_fine, end_y_change, fine_displacement, fine_pass, zero_level};
 pub use settings::{CountGuard, TwoPhaseSettings};
 
 use curve_repr::{EndCondition, SplineFunction, Vec2};
@@ -218,6 +220,20 @@ impl FairingStrategy<2> for TwoPhase {
         if state.is_closed() {
             return Err(strategy_error("two-phase", "a function segment cannot be closed"));
         }
+        let (x, y): (Vec<f64>, Vec<f64>) = state.points().iter().map(|p| (p.x, p.y)).unzip();
+        let n = x.len();
+        let keep = |k: usize| k == 0 || k + 1 >= n || !state.is_movable(k);
+        let allowed = |k: usize| state.constraints().allowed_distance(k);
+        let limits = Limits {
+            keep: &keep,
+            allowed: &allowed,
+        };
+        let smooth = denoise(self.settings.denoise, &x, &y, &limits)?;
+        for (k, (&new, &old)) in smooth.iter().zip(&y).enumerate() {
+            if new != old {
+                state.move_point(k, Vec2::new(x[k], new))?;
+            }
+        }
         let spline = spline_of(state.points())?;
         let now = counts(&spline);
         state.criterion = Some(now.0 as f64);
@@ -282,6 +298,27 @@ impl SegmentFairer for TwoPhase {
 
     fn min_points(&self) -> usize {
         5
+    }
+
+    /// The noise pre-pass ([`TwoPhaseSettings::denoise`]) on the whole curve
+    /// ([`denoise_curve`]), the `kept` points interpolated, the `allowed` distances honoured.
+    fn prepare(
+        &mut self,
+        points: &[Vec2],
+        closed: bool,
+        kept: &[bool],
+        allowed: &[f64],
+    ) -> Result<Option<Vec<Vec2>>> {
+        if self.settings.denoise == Denoise::Off {
+            return Ok(None);
+        }
+        let keep = |k: usize| kept.get(k).copied().unwrap_or(true);
+        let allowed = |k: usize| allowed.get(k).copied().unwrap_or(0.0);
+        let limits = Limits {
+            keep: &keep,
+            allowed: &allowed,
+        };
+        denoise_curve(self.settings.denoise, points, closed, &limits).map(Some)
     }
 
     /// Runs [`fair_function`] on the segment; points with `fixed[j]` never move.

@@ -77,6 +77,10 @@ pub enum CaseKind {
     LargeCurveEnd,
     /// Beyond the paper (option): a wrong-sign run of three or more c values.
     WrongSignRun,
+    /// Beyond the paper (option): a wrong-sign run that touches an end of the segment and is
+    /// not the paper's end case (longer than two points, or followed by fewer than two values
+    /// of the other sign).
+    EndRun,
 }
 
 /// A detected case: its kind and the point(s) it targets (`second` is `None` for one point).

@@ -103,7 +103,7 @@
 //! once and continues after a case's run. Guards as in Phase 1 ([`TwoPhaseSettings`]): size of
 //! every move (including the neighbours' −λσ), local and pass count guards.
 
-use curve_repr::SplineFunction;
+use curve_repr::{EndCondition, SplineFunction};
 
 use super::phase1::{guarded_pass, Case, CaseKind, PassReport, Proposal};
 use super::TwoPhaseSettings;
@@ -154,16 +154,37 @@ fn detect_with(spline: &SplineFunction, i: usize, max_run: usize, zero: f64) -> 
         last += 1;
     }
     let len = last - i + 1;
+    // Beyond the paper (long-run option): a wrong-sign run at an end that the paper's end
+    // case does not take, of up to `max_run` points and no longer than the run of the other
+    // sign next to it (of two alternating runs, the shorter is taken for the noise).
+    let end_run = max_run > 2 && len <= max_run && len + 3 <= n;
+    let run_of = |mut k: usize, step: isize| {
+        let mut length = 0;
+        while length < len && sg(k) == -s {
+            length += 1;
+            match k.checked_add_signed(step) {
+                Some(next) if next < n => k = next,
+                _ => break,
+            }
+        }
+        length
+    };
     if i == 0 {
         // Left end: c_0 = c_1 (runout) differ from c_2 and c_3.
-        return (len == 2 && sg(2) == -s && sg(3) == -s).then(|| case(CaseKind::LargeCurveEnd, 1));
+        if len == 2 && sg(2) == -s && sg(3) == -s {
+            return Some(case(CaseKind::LargeCurveEnd, 1));
+        }
+        return (end_run && last + 1 < n && run_of(last + 1, 1) >= len).then(|| case(CaseKind::EndRun, last));
     }
     if sg(i - 1) != -s {
         return None;
     }
     if last + 1 == n {
         // Right end: c_{n−2} = c_{n−1} differ from c_{n−3} and c_{n−4}.
-        return (len == 2 && sg(n - 4) == -s).then(|| case(CaseKind::LargeCurveEnd, last));
+        if len == 2 && sg(n - 4) == -s {
+            return Some(case(CaseKind::LargeCurveEnd, last));
+        }
+        return (end_run && run_of(i - 1, -1) >= len).then(|| case(CaseKind::EndRun, last));
     }
     if sg(last + 1) != -s {
         return None;
@@ -320,6 +341,9 @@ fn fine_with(
     if case.kind == CaseKind::WrongSignRun {
         return absorb(spline, case, settings, zero);
     }
+    if case.kind == CaseKind::EndRun {
+        return absorb_at_end(spline, case, settings, zero);
+    }
     let plan = plan(spline, case, settings.fine_lambda)?;
     let first = solve(spline, &plan, 0.0, settings.pair_min_sine)?;
     // Neighbours after the α = 0 move (Eq. 13); α rule if none changed sign.
@@ -421,6 +445,112 @@ fn absorb(spline: &SplineFunction, case: Case, settings: &TwoPhaseSettings, zero
         moves: (lo..=hi).zip(dy).filter(|&(_, d)| d != 0.0).collect(),
         c_change: Some((lo, dc)),
     })
+}
+
+/// The long-run option's move for a wrong-sign run at an end of the segment
+/// ([`CaseKind::EndRun`]): the run (which holds the end point, whose y never moves) takes the
+/// constant α of the other sign (a fifth of its one neighbour, `alpha_divisor`), and one
+/// flank, the points after it within the next run of that sign, shrinks by 1 − μ so that the
+/// change of c is local ([`end_y_change`]: at an end the slope is free, so one moment
+/// condition remains and one factor meets it). The flank is the shortest that qualifies with
+/// 0 < μ ≤ 1 − 1/`alpha_divisor`, grown one point at a time up to `max_run` points and kept
+/// two points from the other end; `None` if none does. Only for the parabolic runout (whose
+/// end row c_0 = c_1 the move keeps: both are set to α). O(flank²).
+fn absorb_at_end(
+    spline: &SplineFunction,
+    case: Case,
+    settings: &TwoPhaseSettings,
+    zero: f64,
+) -> Option<Proposal> {
+    if spline.end_condition() != EndCondition::ParabolicRunout {
+        return None;
+    }
+    let (x, c) = (spline.x(), spline.c());
+    let n = c.len();
+    let (first, last) = (case.first, case.second?);
+    // Positions count from the end the run touches (mirrored at the right end: the rows of
+    // the three-moment system are symmetric under x → −x).
+    let left = first == 0;
+    if !left && last + 1 != n {
+        return None;
+    }
+    let index = |p: usize| if left { p } else { n - 1 - p };
+    let h = |p: usize| {
+        if left {
+            x[p + 1] - x[p]
+        } else {
+            x[n - 1 - p] - x[n - 2 - p]
+        }
+    };
+    let value = |p: usize| c[index(p)];
+    let run = last - first + 1;
+    let goal = -sign(value(0), zero);
+    if goal == 0 || sign(value(run), zero) != goal || sign(value(0), zero) != -goal {
+        return None;
+    }
+    let alpha = f64::from(goal) * value(run).abs() / settings.alpha_divisor;
+    let limit = 1.0 - 1.0 / settings.alpha_divisor;
+    let cap = settings.max_run.max(2);
+    let mut hi = run - 1;
+    loop {
+        if hi + 1 - run >= cap || hi + 4 > n || sign(value(hi + 1), zero) != goal {
+            return None;
+        }
+        hi += 1;
+        let run_change: Vec<f64> = (0..=hi)
+            .map(|p| if p < run { alpha - value(p) } else { 0.0 })
+            .collect();
+        let flank: Vec<f64> = (0..=hi).map(|p| if p < run { 0.0 } else { value(p) }).collect();
+        let (a, b) = (end_y_change(&h, &run_change), end_y_change(&h, &flank));
+        let (Some(&a), Some(&b)) = (a.last(), b.last()) else {
+            return None;
+        };
+        let mu = a / b;
+        if !(mu.is_finite() && mu > 0.0 && mu <= limit) {
+            continue;
+        }
+        let dc: Vec<f64> = run_change.iter().zip(&flank).map(|(r, f)| r - mu * f).collect();
+        let dy = end_y_change(&h, &dc);
+        return Some(Proposal {
+            moves: (1..=hi)
+                .filter_map(|p| Some((index(p), *dy.get(p)?)))
+                .filter(|&(_, d)| d != 0.0)
+                .collect(),
+            c_change: None,
+        });
+    }
+}
+
+/// The y change at an end of a spline function that changes c by `dc` on the end positions
+/// 0 … len − 1 (`dc.len()` = len; position 0 is the end point, `h(p)` the spacing from
+/// position p to p + 1), keeps δy_0 = 0 and leaves the slope beyond the window unchanged:
+/// δy_0 … δy_len, of which δy_len must vanish for the change to be local.
+///
+/// The rows 1 … len of the three-moment system (Han Eq. 4) change by
+/// r_k = h_{k−1}δc_{k−1} + 2(h_{k−1} + h_k)δc_k + h_k δc_{k+1} = δm_k − δm_{k−1}; at an end
+/// the first slope change δm_0 is free, so it is chosen to make δm_len = δm_0 + Σ r_k = 0,
+/// and δy_{k+1} = δy_k + h_k δm_k. The remaining condition δy_len = 0 is the one moment
+/// condition of an end window (the interior windows of [`SplineFunction::local_y_change`]
+/// have two). O(len).
+pub fn end_y_change(h: &dyn Fn(usize) -> f64, dc: &[f64]) -> Vec<f64> {
+    let len = dc.len();
+    let at = |p: usize| dc.get(p).copied().unwrap_or(0.0);
+    let mut partial = Vec::with_capacity(len);
+    let mut sum = 0.0;
+    for k in 1..=len {
+        sum += h(k - 1) * at(k - 1) + 2.0 * (h(k - 1) + h(k)) * at(k) + h(k) * at(k + 1);
+        partial.push(sum);
+    }
+    let start = -sum;
+    let mut dy = Vec::with_capacity(len + 1);
+    dy.push(0.0);
+    let mut y = 0.0;
+    for k in 0..len {
+        let slope = start + if k == 0 { 0.0 } else { partial[k - 1] };
+        y += h(k) * slope;
+        dy.push(y);
+    }
+    dy
 }
 
 /// The flank factors (μ_L, μ_R) of the long-run absorption (module doc): the change of c that

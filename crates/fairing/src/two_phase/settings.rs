@@ -1,5 +1,6 @@
 //! Settings of Han's two-phase fairing (Han et al. §4.1).
 
+use super::Denoise;
 use crate::{Error, Result};
 
 /// Settings of [`TwoPhase`](super::TwoPhase) and [`coarse_pass`](super::coarse_pass).
@@ -98,6 +99,12 @@ pub struct TwoPhaseSettings {
     /// ~11. The default is 0 (the paper) because every floor tried leaves more inflections
     /// than the paper's rules reach in 50 passes.
     pub detection_floor: f64,
+    /// Remove the data's noise first: gcv (smoothing spline, p by GCV) or off (the paper).
+    ///
+    /// Not in the paper: remove the data's noise with a smoothing spline before the phases
+    /// ([`Denoise`]; [`denoise`](super::denoise) says why). Applied once per stage (for
+    /// arbitrary curves, to each segment in the first pass).
+    pub denoise: Denoise,
 }
 
 /// The guards that keep a coarse pass from increasing Infl_num or Vib_num (not in the paper).
@@ -121,18 +128,30 @@ impl Default for TwoPhaseSettings {
             alpha_divisor: 5.0,
             max_passes: 50,
             pair_min_sine: 0.05,
-            max_run: 2,
+            max_run: 64,
             stall_passes: 0,
             min_gain: 0.0,
             max_move_factor: 0.5,
             guard_window: 16,
             count_guard: CountGuard::Local,
             detection_floor: 0.0,
+            denoise: Denoise::Gcv,
         }
     }
 }
 
 impl TwoPhaseSettings {
+    /// The paper's rules (Han et al. §4.1) with this implementation's guards: no noise
+    /// pre-pass, wrong-sign runs of at most two points, no noise band; the other fields at
+    /// their defaults.
+    pub fn paper() -> Self {
+        TwoPhaseSettings {
+            max_run: 2,
+            denoise: Denoise::Off,
+            ..TwoPhaseSettings::default()
+        }
+    }
+
     /// Sets the Phase-1 λ (must lie in (0, 1]).
     pub fn with_coarse_lambda(mut self, lambda: f64) -> Self {
         self.coarse_lambda = lambda;
@@ -187,6 +206,12 @@ impl TwoPhaseSettings {
     /// Sets the detection floor (in [0, 1); 0: the paper).
     pub fn with_detection_floor(mut self, floor: f64) -> Self {
         self.detection_floor = floor;
+        self
+    }
+
+    /// Sets the noise pre-pass.
+    pub fn with_denoise(mut self, denoise: Denoise) -> Self {
+        self.denoise = denoise;
         self
     }
 

@@ -169,7 +169,7 @@ fn a_pass_on_a_pattern_applies_its_case() {
     for (e, at, kind, _) in patterns() {
         let y = y_with_e(&x, &e);
         let mut spline = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap();
-        let report = coarse_pass(&mut spline, &TwoPhaseSettings::default(), &|_| true).unwrap();
+        let report = coarse_pass(&mut spline, &TwoPhaseSettings::paper(), &|_| true).unwrap();
         assert!(!report.reverted);
         assert!(
             report.cases.iter().any(|c| c.kind == kind && c.first == at),
@@ -197,7 +197,7 @@ proptest! {
         let (x, y) = noisy(n, amplitude, seed);
         let before = XcPolyline::of_points(&x, &y).unwrap();
         let mut spline = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap();
-        let settings = TwoPhaseSettings::default().with_coarse_lambda(lambda);
+        let settings = TwoPhaseSettings::paper().with_coarse_lambda(lambda);
         let fixed = |k: usize| k % 7 != 3;
         let report = coarse_pass(&mut spline, &settings, &fixed).unwrap();
         let after = XcPolyline::of_points(&x, spline.y()).unwrap();
@@ -248,9 +248,9 @@ fn bad_settings_are_rejected() {
     let (x, y) = noisy(20, 0.02, 1);
     let mut spline = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap();
     for s in [
-        TwoPhaseSettings::default().with_coarse_lambda(0.0),
-        TwoPhaseSettings::default().with_coarse_lambda(f64::NAN),
-        TwoPhaseSettings::default().with_max_move_factor(-1.0),
+        TwoPhaseSettings::paper().with_coarse_lambda(0.0),
+        TwoPhaseSettings::paper().with_coarse_lambda(f64::NAN),
+        TwoPhaseSettings::paper().with_max_move_factor(-1.0),
     ] {
         assert!(matches!(
             coarse_pass(&mut spline, &s, &|_| true),
@@ -275,7 +275,7 @@ fn numbers_on_a_noisy_sine() {
         let (x, y) = noisy(n, amplitude, 42);
         let before = XcPolyline::of_points(&x, &y).unwrap();
         let mut spline = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap();
-        let settings = TwoPhaseSettings::default()
+        let settings = TwoPhaseSettings::paper()
             .with_coarse_lambda(lambda)
             .with_count_guard(guard);
         let (mut passes, mut skipped, mut reverted, mut undone) = (0, 0, 0, 0);
@@ -342,7 +342,7 @@ fn move_guard_skips_large_moves() {
     for (e, ..) in patterns() {
         let y = y_with_e(&x, &e);
         let mut spline = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap();
-        let settings = TwoPhaseSettings::default().with_max_move_factor(1e-9);
+        let settings = TwoPhaseSettings::paper().with_max_move_factor(1e-9);
         let report = coarse_pass(&mut spline, &settings, &|_| true).unwrap();
         assert!(report.moves.is_empty());
         assert!(report.skipped > 0);

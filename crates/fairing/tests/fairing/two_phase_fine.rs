@@ -118,7 +118,7 @@ fn alpha_from_fresh(x: &[f64], y: &[f64], moves0: &[(usize, f64)], neighbours: &
 #[test]
 fn each_fine_case_reaches_alpha() {
     let x = knots(12);
-    let settings = TwoPhaseSettings::default();
+    let settings = TwoPhaseSettings::paper();
     for (c, first, kind, second) in patterns() {
         let y = y_with_c(&x, &c);
         let s = spline(&x, &y);
@@ -207,7 +207,7 @@ fn case_two_on_uniform_knots_is_well_posed() {
         (a * e - b * d).abs() < 1e-3 * a.hypot(b) * d.hypot(e),
         "not singular: {a} {b} {d} {e}"
     );
-    let settings = TwoPhaseSettings::default();
+    let settings = TwoPhaseSettings::paper();
     let moves = fine_displacement(&s, case, &settings).unwrap();
     let c1 = fresh_c(&x, &apply(&y, &moves));
     let moves0 = fine_displacement(&s, case, &settings.clone().with_alpha_divisor(f64::INFINITY)).unwrap();
@@ -243,9 +243,9 @@ fn exact_case_two_on_uniform_knots_is_absurd_or_refused() {
     let y = y_with_c(&x, &uniform_pattern());
     let s = spline(&x, &y);
     let case = detect_fine(&s, 5, 2).unwrap();
-    let posed = fine_displacement(&s, case, &TwoPhaseSettings::default()).unwrap();
+    let posed = fine_displacement(&s, case, &TwoPhaseSettings::paper()).unwrap();
     let size = |m: &[(usize, f64)]| m.iter().map(|v| v.1.abs()).fold(0.0, f64::max);
-    match fine_displacement(&s, case, &TwoPhaseSettings::default().with_pair_min_sine(0.0)) {
+    match fine_displacement(&s, case, &TwoPhaseSettings::paper().with_pair_min_sine(0.0)) {
         None => {}
         Some(raw) => assert!(size(&raw) > 100.0 * size(&posed), "{raw:?} vs {posed:?}"),
     }
@@ -275,7 +275,7 @@ proptest! {
         let (x, y) = noisy(n, amplitude, seed);
         let before = XcPolyline::of_points(&x, &y).unwrap();
         let mut s = spline(&x, &y);
-        let settings = TwoPhaseSettings::default().with_max_run(if long { 12 } else { 2 });
+        let settings = TwoPhaseSettings::paper().with_max_run(if long { 12 } else { 2 });
         let movable = |k: usize| k % 7 != 3;
         let (coarse, fine) = full_pass(&mut s, &settings, &movable).unwrap();
         let after = XcPolyline::of_points(&x, s.y()).unwrap();
@@ -297,7 +297,7 @@ fn fine_pass_removes_the_pattern_inflections() {
         let y = y_with_c(&x, &c);
         let mut s = spline(&x, &y);
         let before = XcPolyline::of_points(&x, &y).unwrap().inflections();
-        let report = fine_pass(&mut s, &TwoPhaseSettings::default(), &|_| true).unwrap();
+        let report = fine_pass(&mut s, &TwoPhaseSettings::paper(), &|_| true).unwrap();
         assert!(
             report.cases.iter().any(|c| c.kind == kind),
             "{kind:?}: {report:?}"
@@ -328,9 +328,9 @@ fn long_runs_leave_fewer_inflections() {
         fair_function(&mut s, &settings, &|_| true).unwrap();
         (XcPolyline::of_points(&x, s.y()).unwrap(), rms(s.y()))
     };
-    let (faithful, _) = run(TwoPhaseSettings::default());
-    let (option, _) = run(TwoPhaseSettings::default().with_max_run(64));
-    let (near, near_rms) = run(TwoPhaseSettings::default()
+    let (faithful, _) = run(TwoPhaseSettings::paper());
+    let (option, _) = run(TwoPhaseSettings::paper().with_max_run(64));
+    let (near, near_rms) = run(TwoPhaseSettings::paper()
         .with_max_run(64)
         .with_max_move_factor(0.2));
     println!(
@@ -372,7 +372,7 @@ fn long_runs_leave_fewer_inflections() {
 #[test]
 fn a_long_run_full_pass_that_adds_inflections_is_redone_guarded() {
     let (x, y) = noisy(2000, 0.01, 3);
-    let settings = TwoPhaseSettings::default().with_max_run(64);
+    let settings = TwoPhaseSettings::paper().with_max_run(64);
     let inflections = |y: &[f64]| XcPolyline::of_points(&x, y).unwrap().inflections();
     let mut s = spline(&x, &y);
     let mut redone = 0;
@@ -421,7 +421,7 @@ fn a_long_run_is_absorbed_into_its_flanks() {
             second: Some(15)
         }
     );
-    let settings = TwoPhaseSettings::default().with_max_run(8);
+    let settings = TwoPhaseSettings::paper().with_max_run(8);
     let moves = fine_displacement(&s, case, &settings).unwrap();
     let (lo, hi) = (
         moves.iter().map(|m| m.0).min().unwrap(),
@@ -479,7 +479,7 @@ fn a_long_run_is_absorbed_into_its_flanks() {
 fn stall_stop_matches_its_definition() {
     let (x, y) = noisy(400, 0.01, 21);
     let k = 2;
-    let settings = TwoPhaseSettings::default().with_stall_passes(k);
+    let settings = TwoPhaseSettings::paper().with_stall_passes(k);
     let mut s = spline(&x, &y);
     let passes = fair_function(&mut s, &settings, &|_| true).unwrap();
     assert!(passes < settings.max_passes, "did not stall in {passes} passes");
@@ -516,7 +516,7 @@ fn stall_stop_matches_its_definition() {
 fn min_gain_stop_matches_its_definition() {
     let (x, y) = noisy(600, 0.01, 5);
     let gain = 0.02;
-    let settings = TwoPhaseSettings::default().with_min_gain(gain);
+    let settings = TwoPhaseSettings::paper().with_min_gain(gain);
     let mut s = spline(&x, &y);
     let passes = fair_function(&mut s, &settings, &|_| true).unwrap();
     assert!(
@@ -542,5 +542,5 @@ fn min_gain_stop_matches_its_definition() {
         }
     }
     assert_eq!(replay.y(), s.y());
-    assert!(TwoPhaseSettings::default().with_min_gain(1.0).validate().is_err());
+    assert!(TwoPhaseSettings::paper().with_min_gain(1.0).validate().is_err());
 }

@@ -253,6 +253,7 @@ pub fn run(catalog: &Catalog, args: &FairArgs, file: Option<&ConfigFile>) -> Res
     for (item, result) in items.iter().zip(&results) {
         match result {
             Ok(faired) => {
+                super::warn_largest_move(&item.name, &faired.report, args.quiet);
                 let mut value = serde_json::to_value(&faired.report).map_err(|e| Error::Internal {
                     message: e.to_string(),
                 })?;

@@ -1,7 +1,7 @@
 //! `sapidis-farin`: Sapidis & Farin's knot removal and reinsertion on the cubic interpolating
 //! B-spline ([`SapidisFarin`]). The data points are mapped to the faired curve at their
-//! parameters; knots whose fairing would move a fixed point or leave the tolerance band are
-//! skipped. A function y(x) is faired as the graph of a B-spline parametrised by its
+//! parameters; knots whose fairing would move a fixed point, leave the tolerance band or move
+//! a point beyond `max-move` (by default the bound the data imply) are skipped. A function y(x) is faired as the graph of a B-spline parametrised by its
 //! abscissa, x kept; a parametric curve over chord length.
 
 use curve_repr::Vector;
@@ -76,7 +76,7 @@ where
     }
     run.curve = curve;
     run.termination = match strategy.stop() {
-        Some(SapidisFarinStop::Tolerance) => "tolerance",
+        Some(SapidisFarinStop::JumpReduction) => "jump-reduction",
         Some(SapidisFarinStop::NoCandidate) => "no-candidate",
         Some(SapidisFarinStop::MaxIterations) | None => "max-iterations",
     }
@@ -87,7 +87,10 @@ where
         .map(|s| serde_json::json!({"knot": s.knot, "jump_before": s.jump_before, "max_jump_after": s.max_jump_after}))
         .collect();
     run.iterations = strategy.history().len();
-    run.extras.insert("tolerance".into(), settings.tolerance.into());
+    run.extras
+        .insert("jump_reduction".into(), settings.jump_reduction.into());
+    run.extras
+        .insert("move_bound".into(), serde_json::json!(strategy.move_bound()));
     run.extras
         .insert("max_jump_before".into(), strategy.initial_max_jump().into());
     run.extras

@@ -36,7 +36,7 @@ impl Default for TwoPhaseCurveSettings {
         let partition = PartitionSettings::default();
         TwoPhaseCurveSettings {
             phases: TwoPhaseSettings::default(),
-            segment_passes: 3,
+            segment_passes: SegmentedFairing::<TwoPhase>::DEFAULT_PASSES,
             turning_limit: partition.limit.to_degrees(),
             overlap: partition.overlap,
             closed: false,

@@ -175,7 +175,7 @@ fn closed_curves_and_bad_tolerance_are_rejected() {
         .init(&mut state)
         .is_err());
     let mut state = FairingState::new(noisy_arc(12), Constraints::default(), false).unwrap();
-    let mut strategy = SapidisFarin::<2>::new(SapidisFarinSettings::default().with_tolerance(f64::NAN));
+    let mut strategy = SapidisFarin::<2>::new(SapidisFarinSettings::default().with_jump_reduction(f64::NAN));
     assert!(strategy.init(&mut state).is_err());
 }
 
@@ -210,4 +210,34 @@ fn function_domain_keeps_x_and_a_linear_abscissa() {
     for (i, p) in state.points().iter().enumerate() {
         assert!((curve.point(strategy.params()[i])[1] - p[1]).abs() < 1e-9);
     }
+}
+
+/// The clamped window a knot is first tried on gives the same faired points on
+/// [u_{r−2}, u_{r+2}] as the step on the whole curve, at every knot it exists for.
+#[test]
+fn the_window_fairs_a_knot_as_the_whole_curve_does() {
+    let (strategy, _) = started(noisy_arc(80), Constraints::default());
+    let curve = strategy.curve().unwrap().clone();
+    let knots = curve.knots().to_vec();
+    let mut windows = 0;
+    for r in SapidisFarin::<2>::interior(&curve) {
+        let Some((window, r_local)) = SapidisFarin::<2>::window(&curve, r).unwrap() else {
+            continue;
+        };
+        windows += 1;
+        assert_eq!(window.knots()[r_local], knots[r]);
+        let whole = SapidisFarin::<2>::fair_knot(&curve, r).unwrap();
+        let cut = SapidisFarin::<2>::fair_knot(&window, r_local).unwrap();
+        for k in 0..=40 {
+            let u = knots[r - 2] + (knots[r + 2] - knots[r - 2]) * k as f64 / 41.0;
+            let (a, b) = (whole.point(u), cut.point(u));
+            assert!(
+                (a - b).norm() <= 1e-12 * (1.0 + a.norm()),
+                "knot {r}, u = {u}: {a} vs {b}"
+            );
+            // The unfaired window is the curve there too.
+            assert!((curve.point(u) - window.point(u)).norm() <= 1e-12 * (1.0 + a.norm()));
+        }
+    }
+    assert!(windows > 40, "{windows}");
 }

@@ -1,0 +1,206 @@
+//! The end-of-curve and segment-join cases that left inflections in Han's arbitrary-curve
+//! pipeline, each constructed: a wrong-sign run of c touching a segment's end (longer than
+//! the paper's two-point end case), at the left and the right end; the same run at the ends
+//! of an open curve and at a join between two segments of the partition. The paper's rules
+//! leave each of them; the defaults remove them.
+
+use std::f64::consts::PI;
+
+use curve_repr::{EndCondition, SplineFunction, Vec2};
+use fairing::two_phase::{detect_fine, fine_displacement, Case, CaseKind, TwoPhase, TwoPhaseSettings};
+use fairing::{partition, PartitionSettings, Pipeline, SegmentedFairing};
+use fairness::xc::XcPolyline;
+
+fn uniform(n: usize) -> Vec<f64> {
+    (0..n).map(|k| 0.5 * k as f64).collect()
+}
+
+/// y through `x` whose runout spline has the given c (c_0 = c_1, c_{n−2} = c_{n−1}), from the
+/// three-moment equations (Han Eq. 4) integrated from y_0 = 0, slope 0.3.
+fn y_with_c(x: &[f64], c: &[f64]) -> Vec<f64> {
+    let n = x.len();
+    let h: Vec<f64> = x.windows(2).map(|w| w[1] - w[0]).collect();
+    let mut m = vec![0.3; n - 1];
+    for i in 1..n - 1 {
+        m[i] = m[i - 1] + h[i - 1] * c[i - 1] + 2.0 * (h[i - 1] + h[i]) * c[i] + h[i] * c[i + 1];
+    }
+    let mut y = vec![0.0; n];
+    for i in 0..n - 1 {
+        y[i + 1] = y[i] + h[i] * m[i];
+    }
+    y
+}
+
+fn fresh_c(x: &[f64], y: &[f64]) -> Vec<f64> {
+    XcPolyline::of_points(x, y).unwrap().c
+}
+
+/// The end-run move on a fresh spline: the end point stays, the run takes α = |first flank
+/// value|/5 with the flank's sign, the flank is scaled by one factor in [1/5, 1), c beyond the
+/// flank is unchanged, and the end's sign change is gone.
+fn check_end_run(c: &[f64], first: usize, last: usize) {
+    let x = uniform(c.len());
+    let y = y_with_c(&x, c);
+    let s = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap();
+    // The paper's end case is a run of exactly two followed by two of the other sign: not this.
+    assert_eq!(detect_fine(&s, first, 2), None);
+    let case = detect_fine(&s, first, 8).unwrap();
+    assert_eq!(
+        case,
+        Case {
+            kind: CaseKind::EndRun,
+            first,
+            second: Some(last)
+        }
+    );
+    let settings = TwoPhaseSettings::paper().with_max_run(8);
+    let moves = fine_displacement(&s, case, &settings).unwrap();
+    let n = c.len();
+    let end = if first == 0 { 0 } else { n - 1 };
+    assert!(
+        moves.iter().all(|&(k, _)| k != end && k != n - 1 - end),
+        "{moves:?}"
+    );
+    let mut moved = y.clone();
+    for &(k, g) in &moves {
+        moved[k] += g;
+    }
+    let (c0, c1) = (fresh_c(&x, &y), fresh_c(&x, &moved));
+    let flank_first = if first == 0 { last + 1 } else { first - 1 };
+    let alpha = c0[flank_first].abs() / 5.0 * c0[flank_first].signum();
+    for (k, value) in c1.iter().enumerate().take(last + 1).skip(first) {
+        assert!((value - alpha).abs() < 1e-12, "run at {k}: {value} vs {alpha}");
+    }
+    let touched: Vec<usize> = moves.iter().map(|m| m.0).collect();
+    let (lo, hi) = (*touched.iter().min().unwrap(), *touched.iter().max().unwrap());
+    let flank: Vec<usize> = if first == 0 {
+        (last + 1..=hi).collect()
+    } else {
+        (lo..first).collect()
+    };
+    assert!(!flank.is_empty());
+    let ratios: Vec<f64> = flank.iter().map(|&k| c1[k] / c0[k]).collect();
+    assert!(ratios.iter().all(|r| (r - ratios[0]).abs() < 1e-9), "{ratios:?}");
+    assert!(ratios[0] >= 0.2 - 1e-12 && ratios[0] < 1.0, "{}", ratios[0]);
+    for k in (0..n).filter(|k| !(first..=last).contains(k) && !flank.contains(k)) {
+        assert!(
+            (c1[k] - c0[k]).abs() < 1e-12,
+            "c changed at {k}: {} vs {}",
+            c1[k],
+            c0[k]
+        );
+    }
+    let count = |y: &[f64]| XcPolyline::of_points(&x, y).unwrap().inflections();
+    assert_eq!(count(&moved) + 1, count(&y));
+}
+
+#[test]
+fn a_wrong_sign_run_at_the_left_end_is_absorbed_with_the_end_point_kept() {
+    let mut c = vec![0.01; 30];
+    for v in c.iter_mut().take(4) {
+        *v = -0.003;
+    }
+    c[20] = -0.004;
+    c[21] = -0.004;
+    check_end_run(&c, 0, 3);
+}
+
+#[test]
+fn a_wrong_sign_run_at_the_right_end_is_absorbed_with_the_end_point_kept() {
+    let mut c = vec![-0.02; 26];
+    for v in c.iter_mut().skip(23) {
+        *v = 0.005;
+    }
+    check_end_run(&c, 23, 25);
+}
+
+/// An end run as long as the run after it is not taken for noise (the shorter run is).
+#[test]
+fn an_end_run_longer_than_its_neighbour_is_no_case() {
+    let x = uniform(30);
+    let mut c = vec![0.01; 30];
+    for v in c.iter_mut().take(6) {
+        *v = -0.004;
+    }
+    for v in c.iter_mut().skip(6).take(3) {
+        *v = 0.003;
+    }
+    for v in c.iter_mut().skip(9).take(3) {
+        *v = -0.004;
+    }
+    let s = SplineFunction::new(&x, &y_with_c(&x, &c), EndCondition::ParabolicRunout).unwrap();
+    assert_eq!(detect_fine(&s, 0, 8), None);
+}
+
+/// Inflections of the planar polygon (DESIGN.md's parametric count) and where they are.
+fn inflections(points: &[Vec2]) -> usize {
+    fairness::summary::parametric(points)
+        .unwrap()
+        .inflections
+        .unwrap()
+}
+
+/// A circular arc of radius 3 over 200°, 61 points, with three consecutive points pushed
+/// outwards by `depth` from `first` on: a dent whose curvature has the wrong sign on a run
+/// of three or more points.
+fn dented_arc(first: usize, depth: f64) -> Vec<Vec2> {
+    (0..61)
+        .map(|k| {
+            let a = 200f64.to_radians() * k as f64 / 60.0;
+            let r = if (first..first + 3).contains(&k) {
+                3.0 + depth
+            } else {
+                3.0
+            };
+            Vec2::new(r * a.cos(), r * a.sin())
+        })
+        .collect()
+}
+
+fn faired(points: &[Vec2], settings: TwoPhaseSettings, partition: PartitionSettings) -> Vec<Vec2> {
+    Pipeline::new(
+        SegmentedFairing::new(TwoPhase::new(settings))
+            .with_partition(partition)
+            .with_passes(SegmentedFairing::<TwoPhase>::DEFAULT_PASSES),
+    )
+    .run(points.to_vec())
+    .unwrap()
+    .points
+}
+
+#[test]
+fn a_dent_at_the_curve_end_is_removed() {
+    let points = dented_arc(1, 0.02);
+    assert!(inflections(&points) > 0);
+    let paper = faired(&points, TwoPhaseSettings::paper(), PartitionSettings::paper());
+    assert!(inflections(&paper) > 0, "the paper's rules leave the end dent");
+    let default = faired(&points, TwoPhaseSettings::default(), PartitionSettings::default());
+    assert_eq!(inflections(&default), 0);
+    assert_eq!(default[0], points[0], "the curve's end point never moves");
+    assert_eq!(default[60], points[60]);
+}
+
+#[test]
+fn a_dent_at_a_segment_join_is_removed() {
+    // Where the default partition of the clean arc joins its first two segments: the dent's
+    // three points lie in the overlap, the last of them the first segment's end point.
+    let clean = dented_arc(0, 0.0);
+    let segments = partition(&clean, false, &PartitionSettings::default()).unwrap();
+    assert!(segments.len() >= 2);
+    let join = *segments[0].indices.last().unwrap();
+    assert!(segments[1].indices[0] <= join - 2, "the dent lies in the overlap");
+    let points = dented_arc(join - 2, 0.02);
+    assert!(inflections(&points) > 0);
+    let paper = faired(&points, TwoPhaseSettings::paper(), PartitionSettings::default());
+    assert!(
+        inflections(&paper) > 0,
+        "the paper's rules leave the dent at the join"
+    );
+    let default = faired(&points, TwoPhaseSettings::default(), PartitionSettings::default());
+    assert_eq!(inflections(&default), 0);
+    // The dent is filled, not moved elsewhere: every point ends near the arc.
+    for (k, p) in default.iter().enumerate() {
+        assert!((p.norm() - 3.0).abs() < 0.02, "point {k} at radius {}", p.norm());
+    }
+    let _ = PI;
+}
