@@ -13,12 +13,14 @@
 //!
 //! The crate hides argmin's types and `anyhow` errors behind its own [`Error`].
 
+pub mod dual;
 pub mod error;
 pub mod nelder_mead;
 pub mod nurbs_weights;
 pub mod problem;
 pub mod weight_law;
 
+pub use dual::Dual;
 pub use error::{Error, Result};
 pub use nelder_mead::{
     minimize, InitialSimplex, Minimum, NelderMeadSettings, Objective, Observer, Progress, Termination,
