@@ -15,6 +15,7 @@
 
 pub mod dual;
 pub mod error;
+pub mod gradient;
 pub mod nelder_mead;
 pub mod nurbs_weights;
 pub mod problem;
@@ -22,6 +23,7 @@ pub mod weight_law;
 
 pub use dual::Dual;
 pub use error::{Error, Result};
+pub use gradient::{InterpolantCriterion, SmoothCriterion};
 pub use nelder_mead::{
     minimize, InitialSimplex, Minimum, NelderMeadSettings, Objective, Observer, Progress, Termination,
 };
