@@ -7,6 +7,7 @@ mod columns_cli;
 mod formats_cli;
 mod inspect;
 mod nurbs_weights_cli;
+mod nurbs_weights_solver_cli;
 mod pipeline_batch_cli;
 mod serve;
 mod strain_energy_cli;
