@@ -9,6 +9,7 @@ mod inspect;
 mod jump_lsq_cli;
 mod largest_move_cli;
 mod nurbs_weights_cli;
+mod nurbs_weights_solver_cli;
 mod pipeline_batch_cli;
 mod serve;
 mod strain_energy_cli;

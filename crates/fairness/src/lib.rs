@@ -28,6 +28,7 @@ pub mod curvature;
 pub mod displacement;
 pub mod energy;
 pub mod error;
+pub mod fixed_rule;
 pub mod highlight;
 pub mod indicator;
 pub mod jumps;

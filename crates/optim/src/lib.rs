@@ -13,16 +13,24 @@
 //!
 //! The crate hides argmin's types and `anyhow` errors behind its own [`Error`].
 
+pub mod dual;
 pub mod error;
+pub mod gradient;
+pub mod lbfgs;
 pub mod nelder_mead;
 pub mod nurbs_weights;
 pub mod problem;
 pub mod weight_law;
 
+pub use dual::Dual;
 pub use error::{Error, Result};
+pub use gradient::{InterpolantCriterion, SmoothCriterion};
+pub use lbfgs::{minimize_lbfgs, GradientObjective, LbfgsMinimum, LbfgsSettings};
 pub use nelder_mead::{
     minimize, InitialSimplex, Minimum, NelderMeadSettings, Objective, Observer, Progress, Termination,
 };
-pub use nurbs_weights::{CriterionName, LawName, NurbsWeightFairing, NurbsWeightResult, NurbsWeightSettings};
+pub use nurbs_weights::{
+    CriterionName, LawName, NurbsWeightFairing, NurbsWeightResult, NurbsWeightSettings, SolverName,
+};
 pub use problem::{WeightCriterion, WeightProblem, WeightSolution};
 pub use weight_law::{CubicBernstein, LawDescription, PerPoint, WeightLaw};

@@ -37,9 +37,12 @@ use fairness::curvature::CurvatureForm;
 use fairness::{Criterion, Ek, EkPrime, Energies, E1, E2, E3};
 
 use crate::error::{Error, Result};
+use crate::gradient::{InterpolantCriterion, SmoothCriterion};
+use crate::lbfgs::LbfgsSettings;
 use crate::nelder_mead::{NelderMeadSettings, Termination};
 use crate::problem::WeightProblem;
 use crate::weight_law::{LawDescription, WeightLaw};
+use fairness::fixed_rule::FixedRule;
 
 /// The built-in criteria by name, for a command line (`--set criterion=ek`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -150,6 +153,42 @@ pub enum LawName {
     PerPoint,
 }
 
+/// Which solver searches the weights (`--set solver=...`).
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    PartialEq,
+    Eq,
+    Hash,
+    Default,
+    serde::Serialize,
+    serde::Deserialize,
+    schemars::JsonSchema,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum SolverName {
+    /// nelder-mead for the bernstein law; lbfgs for per-point with criterion ek or e2.
+    #[default]
+    Auto,
+    /// Nelder–Mead on the law's parameters, as in the paper.
+    NelderMead,
+    /// L-BFGS (More–Thuente line search) on the log-weights, following the exact gradient of
+    /// the fixed-rule ek or e2 (`fairness::fixed_rule`, dual numbers).
+    Lbfgs,
+}
+
+impl SolverName {
+    /// The kebab-case name.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            SolverName::Auto => "auto",
+            SolverName::NelderMead => "nelder-mead",
+            SolverName::Lbfgs => "lbfgs",
+        }
+    }
+}
+
 /// Settings of Nowacki et al.'s weight fairing as a method of the catalogue
 /// (`nurbs-weights`): which criterion, which weight law, how long to search.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
@@ -162,8 +201,21 @@ pub struct NurbsWeightSettings {
     pub criterion: String,
     /// Weight law: bernstein (the paper's 4 cubic coefficients) or per-point.
     pub law: LawName,
-    /// Nelder-Mead iterations at most.
+    /// Iterations at most (Nelder-Mead's or L-BFGS's).
     pub max_iterations: u64,
+    /// Solver: auto, nelder-mead or lbfgs (gradient-based; criterion ek or e2 only).
+    ///
+    /// `auto` (the default) is Nelder–Mead for the paper's 4-parameter bernstein law (as in
+    /// the paper) and L-BFGS for the per-point law when the criterion is ek or e2, because it
+    /// ends lower: per-point Ek of the Gunnerus waterline wl_03 (62 weights) 5.546 → 4.910 by
+    /// L-BFGS (converged, 48 iterations, 102 gradients, 18 s on a loaded machine) against
+    /// 4.945 by Nelder–Mead (cut at 1000 iterations, 3.5 s); NACA 2412 upper (18 weights)
+    /// 23.686 → 16.681 (1.3 s) against 16.686 (1.2 s). L-BFGS is slower per iteration (one
+    /// dual evaluation per weight for each gradient). L-BFGS follows the exact
+    /// gradient of the fixed-rule criterion (20-point Gauss–Legendre per knot span) with
+    /// respect to the log-weights, which keeps the weights positive and within the law's
+    /// bounds. The reported criterion is always the catalogue's (adaptive) one.
+    pub solver: SolverName,
 }
 
 impl Default for NurbsWeightSettings {
@@ -172,6 +224,7 @@ impl Default for NurbsWeightSettings {
             criterion: CriterionName::Ek.as_str().to_owned(),
             law: LawName::Bernstein,
             max_iterations: 1000,
+            solver: SolverName::Auto,
         }
     }
 }
@@ -185,7 +238,26 @@ impl NurbsWeightSettings {
                 reason: "names no criterion".into(),
             });
         }
+        if self.solver == SolverName::Lbfgs && SmoothCriterion::from_name(&self.criterion).is_none() {
+            return Err(Error::InvalidSetting {
+                name: "solver",
+                reason: format!(
+                    "lbfgs needs a criterion with a differentiable fixed-rule form (ek or e2), not {:?}",
+                    self.criterion
+                ),
+            });
+        }
         Ok(())
+    }
+
+    /// The solver `auto` stands for with these settings (see [`NurbsWeightSettings::solver`]):
+    /// never `Auto`.
+    pub fn resolved_solver(&self) -> SolverName {
+        match (self.solver, self.law, SmoothCriterion::from_name(&self.criterion)) {
+            (SolverName::Auto, LawName::PerPoint, Some(_)) => SolverName::Lbfgs,
+            (SolverName::Auto, _, _) => SolverName::NelderMead,
+            (chosen, _, _) => chosen,
+        }
     }
 }
 
@@ -197,6 +269,7 @@ pub struct NurbsWeightFairing<'a, L, C, const D: usize> {
     law: L,
     criterion: C,
     nelder_mead: NelderMeadSettings<'a>,
+    lbfgs: Option<(SmoothCriterion, LbfgsSettings)>,
     parametrization: Parametrization,
     end_tangents: Option<(Vector<D>, Vector<D>)>,
 }
@@ -225,12 +298,14 @@ pub struct NurbsWeightResult<const D: usize> {
     pub criterion_before: f64,
     /// The optimised criterion at the optimum (never above `criterion_before`).
     pub criterion_after: f64,
-    /// Nelder–Mead iterations.
+    /// Solver iterations (Nelder–Mead's or L-BFGS's).
     pub iterations: u64,
     /// Why the search stopped.
     pub termination: Termination,
-    /// Criterion evaluations.
+    /// Criterion evaluations (value and gradient requests together for L-BFGS).
     pub evaluations: u64,
+    /// Gradient evaluations (0 for Nelder–Mead), each one dual evaluation per weight.
+    pub gradient_evaluations: u64,
     /// max_k |C(ū_k) − D_k| of the faired curve at the data points.
     pub max_residual: f64,
 }
@@ -247,6 +322,7 @@ where
             law,
             criterion,
             nelder_mead: NelderMeadSettings::default(),
+            lbfgs: None,
             parametrization: Parametrization::ChordLength,
             end_tangents: None,
         }
@@ -255,6 +331,15 @@ where
     /// Sets the Nelder–Mead settings.
     pub fn with_nelder_mead(mut self, settings: NelderMeadSettings<'a>) -> Self {
         self.nelder_mead = settings;
+        self
+    }
+
+    /// Searches by L-BFGS instead of Nelder–Mead, following the exact gradient of `smooth`
+    /// (the fixed-rule form of the criterion, [`InterpolantCriterion`]); the criterion `C`
+    /// still measures the result ([`WeightProblem::solve_lbfgs`]). The law must have a
+    /// derivative ([`WeightLaw::pull_back`]).
+    pub fn with_lbfgs(mut self, smooth: SmoothCriterion, settings: LbfgsSettings) -> Self {
+        self.lbfgs = Some((smooth, settings));
         self
     }
 
@@ -296,7 +381,13 @@ where
             criterion.evaluate(&curve).map_err(Error::objective)
         };
         let problem = WeightProblem::new(&self.law, interpolation.control_count(), objective);
-        let solution = problem.solve(self.nelder_mead)?;
+        let solution = match self.lbfgs {
+            None => problem.solve(self.nelder_mead)?,
+            Some((smooth, settings)) => {
+                let smooth = InterpolantCriterion::new(interp, smooth, FixedRule::default())?;
+                problem.solve_lbfgs(|w: &[f64]| smooth.value_and_gradient(w), settings)?
+            }
+        };
         let nubs = interpolation.nubs()?;
         let curve = interpolation.solve(&solution.weights)?;
         let before = Energies::of(&nubs).map_err(Error::objective)?;
@@ -323,6 +414,7 @@ where
             iterations: solution.iterations,
             termination: solution.termination,
             evaluations: solution.evaluations,
+            gradient_evaluations: solution.gradient_evaluations,
             max_residual,
             curve,
         })

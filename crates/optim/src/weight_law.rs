@@ -80,6 +80,28 @@ pub fn positive_weight(log_weight: f64) -> f64 {
     log_weight.clamp(-MAX_LOG_WEIGHT, MAX_LOG_WEIGHT).exp()
 }
 
+/// d/dx [`positive_weight`](x): the weight inside the clamp, 0 beyond it (the law is flat).
+pub fn positive_weight_derivative(log_weight: f64) -> f64 {
+    if log_weight.abs() < MAX_LOG_WEIGHT {
+        log_weight.exp()
+    } else {
+        0.0
+    }
+}
+
+/// Checks that `weight_gradient` has one entry per control point.
+fn check_gradient(control_points: usize, weight_gradient: &[f64]) -> Result<()> {
+    if weight_gradient.len() == control_points {
+        Ok(())
+    } else {
+        Err(Error::LengthMismatch {
+            what: "weight gradient",
+            expected: control_points,
+            got: weight_gradient.len(),
+        })
+    }
+}
+
 /// Checks that `params` has `expected` entries, all finite.
 pub fn check_parameters(expected: usize, params: &[f64]) -> Result<()> {
     if params.len() != expected {
@@ -134,6 +156,20 @@ pub trait WeightLaw {
     /// optimisation's start.
     fn identity_params(&self, control_points: usize) -> Vec<f64>;
 
+    /// The chain rule through the law: the gradient with respect to the parameters of a
+    /// function of the weights whose gradient with respect to the weights is `weight_gradient`
+    /// (Jᵀ g, J = ∂w/∂params), for gradient-based solvers. `None` when the law has no
+    /// derivative (the default: a user's law works with Nelder–Mead without one).
+    fn pull_back(
+        &self,
+        params: &[f64],
+        control_points: usize,
+        weight_gradient: &[f64],
+    ) -> Option<Result<Vec<f64>>> {
+        let _ = (params, control_points, weight_gradient);
+        None
+    }
+
     /// Name and parameter names together, for a report.
     fn describe(&self, control_points: usize) -> LawDescription {
         LawDescription {
@@ -159,6 +195,14 @@ impl<L: WeightLaw + ?Sized> WeightLaw for &L {
     fn identity_params(&self, control_points: usize) -> Vec<f64> {
         (**self).identity_params(control_points)
     }
+    fn pull_back(
+        &self,
+        params: &[f64],
+        control_points: usize,
+        weight_gradient: &[f64],
+    ) -> Option<Result<Vec<f64>>> {
+        (**self).pull_back(params, control_points, weight_gradient)
+    }
 }
 
 impl<L: WeightLaw + ?Sized> WeightLaw for Box<L> {
@@ -176,6 +220,14 @@ impl<L: WeightLaw + ?Sized> WeightLaw for Box<L> {
     }
     fn identity_params(&self, control_points: usize) -> Vec<f64> {
         (**self).identity_params(control_points)
+    }
+    fn pull_back(
+        &self,
+        params: &[f64],
+        control_points: usize,
+        weight_gradient: &[f64],
+    ) -> Option<Result<Vec<f64>>> {
+        (**self).pull_back(params, control_points, weight_gradient)
     }
 }
 
@@ -236,6 +288,30 @@ impl WeightLaw for CubicBernstein {
     fn identity_params(&self, _control_points: usize) -> Vec<f64> {
         vec![0.0; 4]
     }
+
+    /// ∂w_i/∂κ_j = B_j(s_i) e^{κ_j} inside the clamp, 0 beyond. O(n).
+    fn pull_back(
+        &self,
+        params: &[f64],
+        control_points: usize,
+        weight_gradient: &[f64],
+    ) -> Option<Result<Vec<f64>>> {
+        Some((|| {
+            check_parameters(4, params)?;
+            check_gradient(control_points, weight_gradient)?;
+            let n = control_points.saturating_sub(1).max(1) as f64;
+            let mut out = vec![0.0; 4];
+            for (i, g) in weight_gradient.iter().enumerate() {
+                let s = i as f64 / n;
+                let t = 1.0 - s;
+                let basis = [t * t * t, 3.0 * s * t * t, 3.0 * s * s * t, s * s * s];
+                for j in 0..4 {
+                    out[j] += g * basis[j] * positive_weight_derivative(params[j]);
+                }
+            }
+            Ok(out)
+        })())
+    }
 }
 
 /// One free weight per control point but the first: w_0 = 1, w_i = e^{p_{i−1}} (clamped) for
@@ -277,6 +353,24 @@ impl WeightLaw for PerPoint {
     fn identity_params(&self, control_points: usize) -> Vec<f64> {
         vec![0.0; self.parameter_count(control_points)]
     }
+
+    /// ∂w_i/∂p_{i−1} = e^{p_{i−1}} inside the clamp, 0 beyond; w_0 is fixed. O(n).
+    fn pull_back(
+        &self,
+        params: &[f64],
+        control_points: usize,
+        weight_gradient: &[f64],
+    ) -> Option<Result<Vec<f64>>> {
+        Some((|| {
+            check_parameters(self.parameter_count(control_points), params)?;
+            check_gradient(control_points, weight_gradient)?;
+            Ok(params
+                .iter()
+                .zip(weight_gradient.iter().skip(1))
+                .map(|(p, g)| g * positive_weight_derivative(*p))
+                .collect())
+        })())
+    }
 }
 
 #[cfg(test)]
@@ -295,6 +389,35 @@ mod tests {
 
     fn laws() -> Vec<Box<dyn WeightLaw>> {
         vec![Box::new(CubicBernstein), Box::new(PerPoint)]
+    }
+
+    #[test]
+    fn pull_back_is_the_transposed_jacobian_by_differences() {
+        let n = 9;
+        let g: Vec<f64> = (0..n).map(|i| (i as f64 * 1.3).cos()).collect();
+        let cases: Vec<(Box<dyn WeightLaw>, Vec<f64>)> = vec![
+            (Box::new(CubicBernstein), vec![0.2, -0.4, 0.7, 0.1]),
+            (Box::new(PerPoint), (1..n).map(|i| 0.1 * i as f64 - 0.3).collect()),
+        ];
+        for (law, params) in cases {
+            let pulled = law.pull_back(&params, n, &g).unwrap().unwrap();
+            for (j, value) in pulled.iter().enumerate() {
+                let h = 1e-6;
+                let (mut plus, mut minus) = (params.clone(), params.clone());
+                plus[j] += h;
+                minus[j] -= h;
+                let (wp, wm) = (law.weights(&plus, n).unwrap(), law.weights(&minus, n).unwrap());
+                let fd: f64 = (0..n).map(|i| g[i] * (wp[i] - wm[i]) / (2.0 * h)).sum();
+                assert!((value - fd).abs() < 1e-8, "{} p{j}: {value} vs {fd}", law.name());
+            }
+            assert!(law.pull_back(&params, n, &g[1..]).unwrap().is_err());
+        }
+        // beyond the clamp the law is flat
+        let flat = PerPoint
+            .pull_back(&[8.0, 0.0], 3, &[1.0, 1.0, 1.0])
+            .unwrap()
+            .unwrap();
+        assert_eq!(flat, vec![0.0, 1.0]);
     }
 
     #[test]

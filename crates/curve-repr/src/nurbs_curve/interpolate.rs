@@ -268,9 +268,14 @@ impl<const D: usize> Interpolation<D> {
         self.solve_points(&self.points, weights)
     }
 
-    /// Like [`Interpolation::solve`] for other data points at the same parameters (a fairing
-    /// move). Fails also on a wrong count or non-finite points.
-    pub fn solve_points(&self, points: &[Vector<D>], weights: &[f64]) -> Result<NurbsCurve<D>> {
+    /// The homogeneous control points Q_i = w_i P_i of the interpolant with `weights`
+    /// (The NURBS Book A9.1 on the homogeneous points, see the module docs): the solution of
+    /// the weight-independent collocation system, **linear in the weights**, so that for any
+    /// real vector δ (signs unrestricted, no positivity check) Q(w + εδ) = Q(w) + ε Q(δ).
+    /// That is what differentiating a criterion of the interpolant with respect to the
+    /// weights needs: one O(n p) solve per direction. Fails with [`Error::LengthMismatch`],
+    /// [`Error::NonFinite`] on non-finite weights, [`Error::Singular`] on a non-finite result.
+    pub fn homogeneous_points(&self, weights: &[f64]) -> Result<Vec<Vector<D>>> {
         let n = self.control_count();
         if weights.len() != n {
             return Err(Error::LengthMismatch {
@@ -279,15 +284,21 @@ impl<const D: usize> Interpolation<D> {
                 got: weights.len(),
             });
         }
-        if points.len() != self.points.len() {
-            return Err(Error::LengthMismatch {
-                what: "data points",
-                expected: self.points.len(),
-                got: points.len(),
+        crate::vector::check_finite_values("weight", weights)?;
+        let rhs = self.homogeneous(&self.points, weights)?;
+        let q: Vec<Vector<D>> = (0..n).map(|i| Vector::<D>::from_fn(|c, _| rhs[(i, c)])).collect();
+        if q.iter().any(|p| p.iter().any(|c| !c.is_finite())) {
+            return Err(Error::Singular {
+                what: "solving the NURBS interpolation system",
             });
         }
-        crate::vector::check_finite(points)?;
-        check_weights(weights)?;
+        Ok(q)
+    }
+
+    /// Q = w_i P_i for `points` and `weights` (lengths checked by the callers): assemble the
+    /// right-hand side, solve with the stored factors, refine once. O(n p).
+    fn homogeneous(&self, points: &[Vector<D>], weights: &[f64]) -> Result<faer::Mat<f64>> {
+        let n = self.control_count();
         let weight_at = |row: &Row, values: &[f64]| -> f64 {
             values
                 .iter()
@@ -331,6 +342,30 @@ impl<const D: usize> Interpolation<D> {
         }
         self.lu.solve_in_place(residual.as_mut());
         rhs += &residual;
+        Ok(rhs)
+    }
+
+    /// Like [`Interpolation::solve`] for other data points at the same parameters (a fairing
+    /// move). Fails also on a wrong count or non-finite points.
+    pub fn solve_points(&self, points: &[Vector<D>], weights: &[f64]) -> Result<NurbsCurve<D>> {
+        let n = self.control_count();
+        if weights.len() != n {
+            return Err(Error::LengthMismatch {
+                what: "weights",
+                expected: n,
+                got: weights.len(),
+            });
+        }
+        if points.len() != self.points.len() {
+            return Err(Error::LengthMismatch {
+                what: "data points",
+                expected: self.points.len(),
+                got: points.len(),
+            });
+        }
+        crate::vector::check_finite(points)?;
+        check_weights(weights)?;
+        let rhs = self.homogeneous(points, weights)?;
         let control_points: Vec<Vector<D>> = (0..n)
             .map(|i| Vector::<D>::from_fn(|c, _| rhs[(i, c)] / weights[i]))
             .collect();

@@ -9,15 +9,17 @@
 
 mod conic;
 pub mod fit;
+pub mod generic;
 mod interpolate;
 mod knot_ops;
 
 pub use fit::{fit_knots, max_control_count, ToleranceFit};
+pub use generic::{rational_derivatives, RationalCurve};
 pub use interpolate::{Interpolation, InterpolationSettings, NurbsInterpolant};
 
 use serde::ser::SerializeStruct;
 
-use crate::bspline::{basis_derivatives, KnotVector};
+use crate::bspline::KnotVector;
 use crate::curve::MAX_ORDER;
 use crate::{Curve, Error, Result, Side, Vector};
 
@@ -149,31 +151,30 @@ impl<const D: usize> NurbsCurve<D> {
     /// Homogeneous derivatives A^{(k)} = Σ N^{(k)}_i w_i P_i, w^{(k)} = Σ N^{(k)}_i w_i (A3.2
     /// on the weighted points), then The NURBS Book Eq. 4.8 / A4.2:
     /// C^{(k)} = (A^{(k)} − Σ_{i=1}^{k} C(k,i) w^{(i)} C^{(k−i)}) / w. O(p² + order·p + order²).
+    ///
+    /// This is [`rational_derivatives`] with `T = f64`: the one evaluation code path, shared
+    /// with the generic [`RationalCurve`].
     pub fn derivatives(&self, u: f64, order: usize, side: Side) -> Vec<Vector<D>> {
-        let p = self.degree();
-        let knots = self.knots.knots();
-        let span = self.knots.span(u, side);
-        let basis = basis_derivatives(knots, p, span, u, order);
-        let first = span - p;
-        let mut numerator = vec![Vector::<D>::zeros(); order + 1];
-        let mut denominator = vec![0.0; order + 1];
-        for (k, row) in basis.iter().enumerate() {
-            for (j, &n) in row.iter().enumerate() {
-                if let (Some(q), Some(&w)) = (self.weighted.get(first + j), self.weights.get(first + j)) {
-                    numerator[k] += q * n;
-                    denominator[k] += w * n;
-                }
-            }
+        generic::rational_derivatives::<f64, D>(&self.knots, u, order, side, |i| {
+            Some(((*self.weighted.get(i)?).into(), *self.weights.get(i)?))
+        })
+        .into_iter()
+        .map(Vector::<D>::from)
+        .collect()
+    }
+
+    /// The same curve over the scalar `T` ([`RationalCurve`]): weights and homogeneous
+    /// control points lifted to `T`, e.g. to seed dual numbers. O(n).
+    pub fn to_generic<T: num_traits::Float>(&self) -> RationalCurve<T, D> {
+        RationalCurve {
+            knots: self.knots.clone(),
+            weighted: self
+                .weighted
+                .iter()
+                .map(|q| std::array::from_fn(|c| generic::lift(q[c])))
+                .collect(),
+            weights: self.weights.iter().map(|&w| generic::lift(w)).collect(),
         }
-        let mut out: Vec<Vector<D>> = Vec::with_capacity(order + 1);
-        for k in 0..=order {
-            let mut v = numerator[k];
-            for i in 1..=k {
-                v -= out[k - i] * (binomial(k, i) * denominator[i]);
-            }
-            out.push(v / denominator[0]);
-        }
-        out
     }
 
     /// The point C(u) (from the right at a knot; continuous anyway). O(p²).

@@ -2,6 +2,7 @@
 
 mod bicubic_surface;
 mod convert;
+mod generic;
 mod hermite;
 mod nurbs;
 mod spline_function;

@@ -5,7 +5,7 @@ use curve_repr::{Interpolation, InterpolationSettings, NurbsCurve, Parametrizati
 use fairness::Criterion;
 use optim::{CriterionName, CubicBernstein, NelderMeadSettings, NurbsWeightFairing, PerPoint};
 
-fn read_csv(relative: &str) -> Vec<Vec2> {
+pub(crate) fn read_csv(relative: &str) -> Vec<Vec2> {
     let path = format!("{}/../../data/{relative}", env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
     text.lines()

@@ -8,8 +8,8 @@ use std::time::Instant;
 use curve_repr::{Interpolation, InterpolationSettings, Parametrization, Vector};
 use fairness::curvature::CurvatureForm;
 use optim::{
-    CubicBernstein, LawName, NelderMeadSettings, NurbsWeightFairing, NurbsWeightSettings, PerPoint,
-    Termination,
+    CubicBernstein, LawName, LbfgsSettings, NelderMeadSettings, NurbsWeightFairing, NurbsWeightSettings,
+    PerPoint, SmoothCriterion, SolverName, Termination,
 };
 
 use crate::catalog::{
@@ -107,13 +107,41 @@ where
     })?;
     let start = Instant::now();
     let nelder_mead = NelderMeadSettings::default().with_max_iterations(settings.max_iterations);
+    let solver = settings.resolved_solver();
+    let lbfgs = match solver {
+        SolverName::Lbfgs => Some((
+            SmoothCriterion::from_name(&settings.criterion).ok_or_else(|| Error::BadValue {
+                name: "solver".into(),
+                message: format!(
+                    "lbfgs needs criterion ek or e2 (a differentiable fixed-rule form), not `{}`",
+                    settings.criterion
+                ),
+            })?,
+            LbfgsSettings {
+                max_iterations: settings.max_iterations,
+                ..LbfgsSettings::default()
+            },
+        )),
+        _ => None,
+    };
     let result = match settings.law {
-        LawName::PerPoint => NurbsWeightFairing::new(PerPoint, OnCurve(criterion))
-            .with_nelder_mead(nelder_mead)
-            .run(points)?,
-        LawName::Bernstein => NurbsWeightFairing::new(CubicBernstein, OnCurve(criterion))
-            .with_nelder_mead(nelder_mead)
-            .run(points)?,
+        LawName::PerPoint => {
+            let fairing = NurbsWeightFairing::new(PerPoint, OnCurve(criterion)).with_nelder_mead(nelder_mead);
+            match lbfgs {
+                Some((smooth, lbfgs)) => fairing.with_lbfgs(smooth, lbfgs),
+                None => fairing,
+            }
+            .run(points)?
+        }
+        LawName::Bernstein => {
+            let fairing =
+                NurbsWeightFairing::new(CubicBernstein, OnCurve(criterion)).with_nelder_mead(nelder_mead);
+            match lbfgs {
+                Some((smooth, lbfgs)) => fairing.with_lbfgs(smooth, lbfgs),
+                None => fairing,
+            }
+            .run(points)?
+        }
     };
     let elapsed_ms = start.elapsed().as_secs_f64() * 1e3;
     // The unit-weight curve the search starts from: the interpolating NUBS.
@@ -143,6 +171,11 @@ where
     extras.insert("energies_unit_weights".into(), serde_json::json!(result.before));
     extras.insert("energies_faired".into(), serde_json::json!(result.after));
     extras.insert("evaluations".into(), serde_json::json!(result.evaluations));
+    extras.insert("solver".into(), serde_json::json!(solver.as_str()));
+    extras.insert(
+        "gradient_evaluations".into(),
+        serde_json::json!(result.gradient_evaluations),
+    );
     extras.insert("max_residual".into(), serde_json::json!(result.max_residual));
     let represented = match (AnyCurve::new::<D, _>(unit), AnyCurve::new::<D, _>(result.curve)) {
         (Some(before), Some(after)) => Some(Represented { before, after }),
