@@ -273,13 +273,19 @@ fn usage_mistakes_are_named() {
     assert!(stderr(&run).contains("greater than 0"), "{}", stderr(&run));
 }
 
-/// The issue's file: a noisy function segment of 10⁵ points (x steps of ~1.3e-4, y = sin(x/2)
-/// plus noise of 0.01), on which every method exited 2 after minutes of quadrature. Every method
-/// with a function form now fairs it and reports finite energies with their accuracy.
+/// The issue's file, scaled down: a noisy function segment (x steps of 4π/n on average,
+/// y = sin(x/2) plus Gaussian noise of σ), on which every method exited 2 after minutes of
+/// quadrature. What makes its curvature energies hard is the ratio σ/h of the noise to the
+/// step (|y′| ~ σ/h, speed dips of relative width h/σ in every piece): the issue's 10⁵ points
+/// with σ = 0.01 have σ/h ≈ 80, its 10⁶ points ≈ 800; 2·10⁴ points with σ = 1 have ≈ 1600,
+/// the regime where Ek and Ek′ cannot meet their tolerance within the linear budget (the
+/// failure of the issue). Every method with a function form fairs it and reports finite
+/// energies with their accuracy. (The issue's own sizes run in the `cli` bench,
+/// `cargo bench -p fair-cli --bench cli`, at 10⁴ … 10⁶ points.)
 #[test]
-fn a_noisy_hundred_thousand_point_segment_fairs_with_every_function_method() {
+fn a_noisy_segment_fairs_with_every_function_method_and_reports_its_accuracy() {
     let dir = temp_dir("big");
-    let n = 100_000;
+    let (n, sigma) = (20_000, 1.0);
     let mut state: u64 = 20_261_122;
     let mut uniform = move || {
         state = state
@@ -292,7 +298,7 @@ fn a_noisy_hundred_thousand_point_segment_fairs_with_every_function_method() {
     for _ in 0..n {
         x += (0.5 + uniform()) * 4.0 * std::f64::consts::PI / n as f64;
         let gauss = (-2.0 * uniform().ln()).sqrt() * (2.0 * std::f64::consts::PI * uniform()).cos();
-        text.push_str(&format!("{x:?},{:?}\n", (x / 2.0).sin() + 0.01 * gauss));
+        text.push_str(&format!("{x:?},{:?}\n", (x / 2.0).sin() + sigma * gauss));
     }
     let input = dir.join("big.csv");
     std::fs::write(&input, &text).unwrap();
@@ -355,5 +361,12 @@ fn a_noisy_hundred_thousand_point_segment_fairs_with_every_function_method() {
             }
             assert!(accuracy["exact"]["e2"].as_bool().unwrap());
         }
+        // The input is in the regime of the issue: a curvature energy of the noisy points
+        // misses its tolerance, and is reported as its estimate with its error instead.
+        let missed = &r["before"]["energy_accuracy"]["within_tolerance"];
+        assert!(
+            missed["ek"] == false || missed["ek_prime"] == false,
+            "{method}: {missed}"
+        );
     }
 }

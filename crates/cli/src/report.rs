@@ -67,13 +67,15 @@ pub struct Measures {
     /// not finite somewhere, e.g. at a vanishing tangent).
     pub energies: Option<Energies>,
     /// Every registered criterion that applies to the curve (the measured spline, or the
-    /// method's own representation when it has one), by name.
+    /// method's own representation when it has one), by name. Those that are one of the
+    /// energies (`e1` … `ek-prime`) are the `energies` values, not integrated again.
     #[serde(default)]
     pub criteria: BTreeMap<String, f64>,
     /// The accuracy of `energies` (an addition to DESIGN.md's fields): E1–E3 are exact up to
     /// round-off, Ek and Ek′ adaptive to a relative tolerance; an energy whose tolerance could
     /// not be met within the linear budget is its best estimate, with its error here. `null`
-    /// where `energies` is, and for energies taken from the method's own representation.
+    /// where `energies` is. For a method's own representation (a NURBS) every energy is
+    /// adaptive, to the criteria's own tolerance (1e-10).
     #[serde(default)]
     pub energy_accuracy: Option<EnergyAccuracy>,
 }

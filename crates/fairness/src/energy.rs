@@ -19,10 +19,14 @@
 //! Legendre rule that is exact (|C^(k)|² has degree 2(p − k), so p − k + 1 points). Ek and Ek′
 //! are never polynomial and always adaptive.
 //!
-//! Two ways to ask:
-//! - the functions [`derivative_energy`], [`curvature_energy`], … and the [`Criterion`]s
-//!   return the value only when its tolerance was met, else [`Error::NoConvergence`] (an
-//!   optimiser needs the digits it asked for);
+//! Three ways to ask:
+//! - the functions [`derivative_energy`], [`curvature_energy`], … return the value only when
+//!   its tolerance was met, else [`Error::NoConvergence`] (for a caller that needs the digits
+//!   it asked for);
+//! - the [`Criterion`]s ([`E1`] … [`EkPrime`]) return the best estimate whether or not the
+//!   tolerance was met, and fail only where an integrand is not finite: a criterion is an
+//!   optimiser's objective and a report's number, and a diagnostic never loses a result
+//!   (their `estimate` methods give the value with its error bound);
 //! - [`Energies::measure`] and [`Energies::measure_polynomial`] (the report's path) always
 //!   return the five values with their accuracy ([`EnergyAccuracy`]): an energy whose
 //!   tolerance cannot be met within the linear budget of [`Adaptive::estimate_pieces`] comes
@@ -482,14 +486,27 @@ macro_rules! derivative_criterion {
             pub fn for_polynomial(degree: usize) -> Self {
                 Self::new().with_quadrature(PieceQuadrature::for_polynomial(degree, $order))
             }
+
+            /// The value on `curve` with its accuracy, whether or not the tolerance was met
+            /// ([`derivative_energy_estimate`]). O(pieces).
+            pub fn estimate<C: Curve<D> + ?Sized>(&self, curve: &C) -> Result<Estimate> {
+                derivative_energy_estimate(curve, $order, &self.quadrature)
+            }
+
+            /// Which of the five energies this is.
+            pub fn energy(&self) -> EnergyName {
+                EnergyName::$name
+            }
         }
 
+        /// The best estimate ([`estimate`](Self::estimate)'s value): never fails for an unmet
+        /// tolerance, only on a bad rule or an integrand that is not finite.
         impl<const D: usize, C: Curve<D> + ?Sized> Criterion<C> for $name<D> {
             fn name(&self) -> &str {
                 $label
             }
             fn evaluate(&self, curve: &C) -> Result<f64> {
-                derivative_energy(curve, $order, &self.quadrature)
+                Ok(self.estimate(curve)?.value)
             }
         }
     };
@@ -541,8 +558,24 @@ macro_rules! curvature_criterion {
                 self.quadrature = quadrature;
                 self
             }
+
+            /// The value on `curve` with its accuracy, whether or not the tolerance was met.
+            /// O(pieces).
+            pub fn estimate<C: Curve<D> + ?Sized>(&self, curve: &C) -> Result<Estimate>
+            where
+                Vector<D>: CurvatureForm,
+            {
+                $function(curve, &self.quadrature)
+            }
+
+            /// Which of the five energies this is.
+            pub fn energy(&self) -> EnergyName {
+                EnergyName::$name
+            }
         }
 
+        /// The best estimate ([`estimate`](Self::estimate)'s value): never fails for an unmet
+        /// tolerance, only where the integrand is not finite (a vanishing tangent).
         impl<const D: usize, C: Curve<D> + ?Sized> Criterion<C> for $name<D>
         where
             Vector<D>: CurvatureForm,
@@ -551,7 +584,7 @@ macro_rules! curvature_criterion {
                 $label
             }
             fn evaluate(&self, curve: &C) -> Result<f64> {
-                $function(curve, &self.quadrature)
+                Ok(self.estimate(curve)?.value)
             }
         }
     };
@@ -559,12 +592,51 @@ macro_rules! curvature_criterion {
 
 curvature_criterion!(
     /// Nowacki's curvature criterion Ek = ∫ κ² ds.
-    Ek, curvature_energy, "ek"
+    Ek, curvature_energy_estimate, "ek"
 );
 curvature_criterion!(
     /// Nowacki's change-of-curvature criterion Ek′ = ∫ (dκ/ds)² ds.
-    EkPrime, curvature_slope_energy, "ek-prime"
+    EkPrime, curvature_slope_energy_estimate, "ek-prime"
 );
+
+/// One of the five energies of [`Energies`], by name: what a criterion of this module
+/// measures ([`E1::energy`], …), so that a caller holding the [`Energies`] of a curve can
+/// read a criterion's value instead of integrating again.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum EnergyName {
+    /// E1 = ∫ |C′|² dt.
+    E1,
+    /// E2 = ∫ |C″|² dt.
+    E2,
+    /// E3 = ∫ |C‴|² dt.
+    E3,
+    /// Ek = ∫ κ² ds.
+    Ek,
+    /// Ek′ = ∫ (dκ/ds)² ds.
+    EkPrime,
+}
+
+impl EnergyName {
+    /// The five, in the order of [`Energies`]' fields.
+    pub const ALL: [EnergyName; 5] = [
+        EnergyName::E1,
+        EnergyName::E2,
+        EnergyName::E3,
+        EnergyName::Ek,
+        EnergyName::EkPrime,
+    ];
+
+    /// The criterion's name: `e1`, `e2`, `e3`, `ek`, `ek-prime`.
+    pub fn label(self) -> &'static str {
+        match self {
+            EnergyName::E1 => "e1",
+            EnergyName::E2 => "e2",
+            EnergyName::E3 => "e3",
+            EnergyName::Ek => "ek",
+            EnergyName::EkPrime => "ek-prime",
+        }
+    }
+}
 
 /// The five criteria of one curve, as the report's `energies` block.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -579,6 +651,19 @@ pub struct Energies {
     pub ek: f64,
     /// Ek′ = ∫ (dκ/ds)² ds.
     pub ek_prime: f64,
+}
+
+impl Energies {
+    /// The energy called `name`.
+    pub fn get(&self, name: EnergyName) -> f64 {
+        match name {
+            EnergyName::E1 => self.e1,
+            EnergyName::E2 => self.e2,
+            EnergyName::E3 => self.e3,
+            EnergyName::Ek => self.ek,
+            EnergyName::EkPrime => self.ek_prime,
+        }
+    }
 }
 
 /// One yes/no per energy, named like [`Energies`]' fields.
@@ -1091,16 +1176,33 @@ mod tests {
             EkPrime::new().evaluate(&cusp),
             Err(Error::NonFinite { .. })
         ));
-        // A sharp parabola with no bisection allowed cannot meet 1e-10.
+        // A sharp parabola with no bisection allowed cannot meet 1e-10: the strict function
+        // says so, the criterion (an objective, a report's number) gives its best estimate,
+        // within the error it states of the closed form (see
+        // `parabola_curvature_energy_matches_closed_form`).
         let sharp = Parabola {
             a: 50.0,
             domain: (-1.0, 1.0),
         };
-        let no_bisection = Ek::new().with_quadrature(Adaptive::default().with_max_depth(0));
+        let no_bisection = Adaptive::default().with_max_depth(0);
         assert!(matches!(
-            no_bisection.evaluate(&sharp),
+            curvature_energy(&sharp, &no_bisection),
             Err(Error::NoConvergence { .. })
         ));
+        let criterion = Ek::new().with_quadrature(no_bisection);
+        let estimate = criterion.estimate(&sharp).unwrap();
+        assert!(!estimate.met);
+        assert_eq!(criterion.evaluate(&sharp).unwrap(), estimate.value);
+        let phi = (2.0_f64 * 50.0).atan();
+        let exact = 2.0 * 2.0 * 50.0 * (phi.sin() - phi.sin().powi(3) / 3.0);
+        assert!(
+            (estimate.value - exact).abs() <= estimate.error,
+            "{estimate:?} {exact}"
+        );
+        assert!(
+            (estimate.value - exact).abs() > 1e-10 * exact,
+            "{estimate:?} {exact}"
+        );
         assert!(matches!(
             derivative_energy(&sharp, 4, &PieceQuadrature::default()),
             Err(Error::InvalidSetting { .. })

@@ -45,7 +45,8 @@ mod test_curves;
 pub use curvature::CurvatureForm;
 pub use displacement::Displacement;
 pub use energy::{
-    Ek, EkPrime, Energies, EnergyAccuracy, EnergyFlags, MeasuredEnergies, PieceQuadrature, E1, E2, E3,
+    Ek, EkPrime, Energies, EnergyAccuracy, EnergyFlags, EnergyName, MeasuredEnergies, PieceQuadrature, E1,
+    E2, E3,
 };
 pub use error::{Error, Result};
 pub use indicator::{Criterion, FnCriterion, LocalIndicator};

@@ -382,10 +382,11 @@ impl CompensatedSum {
     }
 }
 
-/// An interval of the adaptive rule with its G7K15 result.
+/// An interval of the adaptive rule with its G7K15 result (40 bytes: at 10⁶ pieces the
+/// intervals that may need refining are the adaptive rule's whole memory).
 #[derive(Clone, Copy, Debug)]
 struct Interval {
-    piece: usize,
+    piece: u32,
     start: f64,
     end: f64,
     value: f64,
@@ -522,6 +523,12 @@ impl Adaptive {
         self.validate()?;
         check_breaks(breaks)?;
         let pieces = breaks.len().saturating_sub(1);
+        if u32::try_from(pieces).is_err() {
+            return Err(Error::InvalidSetting {
+                what: "breaks",
+                reason: "at most 2³² − 1 pieces",
+            });
+        }
         // Pass 1: one G7K15 per piece, or per part of a split piece.
         let mut level: Vec<Interval> = Vec::with_capacity(pieces);
         let (mut value, mut error, mut magnitude, mut length) = (
@@ -563,7 +570,7 @@ impl Adaptive {
                         continue;
                     }
                     level.push(Interval {
-                        piece,
+                        piece: piece as u32,
                         start: left,
                         end: right,
                         value: v,
@@ -627,50 +634,59 @@ impl Adaptive {
             if total_error.total() <= tolerance {
                 return finish(total, total_error, bisections, None);
             }
-            // The intervals to halve this level; when the pool cannot halve them all, the
-            // ones with the largest errors (a linear-time selection).
-            let (mut refine, mut keep): (Vec<Interval>, Vec<Interval>) = (Vec::new(), Vec::new());
-            for interval in level.drain(..) {
+            // The intervals to halve this level, kept in place (those that are done are summed
+            // and dropped); when the pool cannot halve them all, the ones with the largest
+            // errors (a linear-time selection).
+            level.retain(|interval| {
                 let mid = 0.5 * (interval.start + interval.end);
-                if interval.error <= share(&interval, tolerance) {
-                    keep.push(interval);
+                let reason = if interval.error <= share(interval, tolerance) {
+                    None
                 } else if interval.depth >= self.max_depth {
-                    limit = limit.or(Some("maximum depth reached"));
-                    keep.push(interval);
+                    Some("maximum depth reached")
                 } else if mid <= interval.start || mid >= interval.end {
-                    limit = limit.or(Some("interval too small to bisect"));
-                    keep.push(interval);
+                    Some("interval too small to bisect")
                 } else {
-                    refine.push(interval);
-                }
-            }
-            let available = budget - bisections;
-            if refine.len() > available {
-                limit = limit.or(Some("maximum number of subdivisions reached"));
-                if available > 0 {
-                    refine.select_nth_unstable_by(available - 1, |a, b| b.error.total_cmp(&a.error));
-                }
-                keep.extend(refine.drain(available..));
-            }
-            for interval in keep {
+                    return true;
+                };
+                limit = limit.or(reason);
                 done_value.add(interval.value);
                 done_error.add(interval.error);
+                false
+            });
+            let available = budget - bisections;
+            if level.len() > available {
+                limit = limit.or(Some("maximum number of subdivisions reached"));
+                if available > 0 {
+                    level.select_nth_unstable_by(available - 1, |a, b| b.error.total_cmp(&a.error));
+                }
+                for interval in level.drain(available..) {
+                    done_value.add(interval.value);
+                    done_error.add(interval.error);
+                }
             }
-            for interval in refine {
+            // Each interval is replaced by its left half and its right half is appended: the
+            // next level in the same allocation.
+            let halved = level.len();
+            level.reserve(halved);
+            for k in 0..halved {
                 bisections += 1;
+                let interval = level[k];
                 let mid = 0.5 * (interval.start + interval.end);
-                let piece = interval.piece;
-                for (start, end) in [(interval.start, mid), (mid, interval.end)] {
+                let piece = interval.piece as usize;
+                let mut half = |start: f64, end: f64| -> Result<Interval> {
                     let (v, e) = kronrod15(what, &mut |t| f(piece, t), start, end)?;
-                    level.push(Interval {
-                        piece,
+                    Ok(Interval {
+                        piece: interval.piece,
                         start,
                         end,
                         value: v,
                         error: e,
                         depth: interval.depth + 1,
-                    });
-                }
+                    })
+                };
+                level[k] = half(interval.start, mid)?;
+                let right = half(mid, interval.end)?;
+                level.push(right);
             }
         }
         finish(done_value, done_error, bisections, limit)

@@ -34,7 +34,7 @@ use std::str::FromStr;
 
 use curve_repr::{Interpolation, InterpolationSettings, NurbsCurve, Parametrization, Vector};
 use fairness::curvature::CurvatureForm;
-use fairness::{Criterion, Ek, EkPrime, Energies, E1, E2, E3};
+use fairness::{Adaptive, Criterion, Ek, EkPrime, Energies, EnergyAccuracy, E1, E2, E3};
 
 use crate::error::{Error, Result};
 use crate::gradient::{InterpolantCriterion, SmoothCriterion};
@@ -288,10 +288,14 @@ pub struct NurbsWeightResult<const D: usize> {
     pub law: LawDescription,
     /// The normalised parameters of the data points on `curve`.
     pub params: Vec<f64>,
-    /// All five criteria of the NUBS (unit weights).
+    /// All five criteria of the NUBS (unit weights): best estimates, see `before_accuracy`.
     pub before: Energies,
-    /// All five criteria of the faired curve.
+    /// All five criteria of the faired curve: best estimates, see `after_accuracy`.
     pub after: Energies,
+    /// How accurately `before` is known ([`Energies::measure`], default settings).
+    pub before_accuracy: EnergyAccuracy,
+    /// How accurately `after` is known.
+    pub after_accuracy: EnergyAccuracy,
     /// The optimised criterion's name.
     pub criterion: String,
     /// The optimised criterion at unit weights.
@@ -390,8 +394,10 @@ where
         };
         let nubs = interpolation.nubs()?;
         let curve = interpolation.solve(&solution.weights)?;
-        let before = Energies::of(&nubs).map_err(Error::objective)?;
-        let after = Energies::of(&curve).map_err(Error::objective)?;
+        // Diagnostics: best estimates with their accuracy, never a lost result for a
+        // tolerance that a rational curve's integrands cannot meet.
+        let before = Energies::measure(&nubs, &Adaptive::default()).map_err(Error::objective)?;
+        let after = Energies::measure(&curve, &Adaptive::default()).map_err(Error::objective)?;
         let max_residual = interpolation
             .params()
             .iter()
@@ -406,8 +412,10 @@ where
             law_params: solution.params,
             law: solution.law,
             params: interpolation.params().to_vec(),
-            before,
-            after,
+            before: before.values,
+            after: after.values,
+            before_accuracy: before.accuracy,
+            after_accuracy: after.accuracy,
             criterion: self.criterion.name().to_string(),
             criterion_before: solution.before,
             criterion_after: solution.after,

@@ -67,15 +67,24 @@ pub fn sets(args: &FairArgs) -> ParameterMap {
     ParameterMap::from_sets(args.settings.iter().map(|s| (s.name.as_str(), s.value.as_str())))
 }
 
-/// Every criterion of the catalogue that applies to `curve`, by name; a criterion that cannot
-/// be evaluated is left out (its reason goes to `failed`).
-pub fn criteria(
+/// Every criterion of the catalogue that applies to a curve of `dimension` whose energies are
+/// `energies`, by name: the criteria that are energies are read from them (no second
+/// integration), the others evaluated on the curve `curve()` builds, only if one needs it. A
+/// criterion that cannot be evaluated is left out (its reason goes to `failed`); errors name
+/// `source`.
+pub fn criteria<C: std::borrow::Borrow<AnyCurve>>(
     catalog: &Catalog,
-    curve: &AnyCurve,
+    dimension: usize,
+    energies: Option<&Energies>,
+    curve: impl FnOnce() -> fairing::Result<C>,
+    source: &str,
     failed: &mut BTreeMap<String, String>,
-) -> BTreeMap<String, f64> {
+) -> Result<BTreeMap<String, f64>> {
+    let values = catalog
+        .criteria_with(dimension, energies, curve)
+        .map_err(|e| Error::from_fairing(e, source))?;
     let mut out = BTreeMap::new();
-    for (name, value) in catalog.criteria_of(curve) {
+    for (name, value) in values {
         match value {
             Ok(v) if v.is_finite() => {
                 out.insert(name, v);
@@ -88,18 +97,13 @@ pub fn criteria(
             }
         }
     }
-    out
+    Ok(out)
 }
 
-/// The energies block from criteria values (for a method's own representation).
-fn energies_from(criteria: &BTreeMap<String, f64>) -> Option<Energies> {
-    Some(Energies {
-        e1: *criteria.get("e1")?,
-        e2: *criteria.get("e2")?,
-        e3: *criteria.get("e3")?,
-        ek: *criteria.get("ek")?,
-        ek_prime: *criteria.get("ek-prime")?,
-    })
+/// The spline the report measures for `points` read as `kind`, for the criteria that are not
+/// energies.
+fn measured_spline(kind: CurveKind, points: &Points) -> fairing::Result<AnyCurve> {
+    fairing::catalog::measured_curve(kind, &to_catalog(points))
 }
 
 /// A faired curve, ready to be written: what one input of `fair curve` produces.
@@ -167,31 +171,44 @@ fn process_points(
     let mut before = measure::curve(kind, &input.points)?;
     let mut after = measure::curve(kind, &faired)?;
     // Criteria on the curve as represented: the method's own curves when it has them, else
-    // the spline the report measures.
+    // the spline the report measures (whose energies are already in the measures).
     let mut failed = BTreeMap::new();
+    let dimension = input.points.dimension();
     match &run.represented {
         Some(represented) => {
-            before.measures.criteria = criteria(catalog, &represented.before, &mut failed);
-            after.measures.criteria = criteria(catalog, &represented.after, &mut failed);
-            if let (Some(b), Some(a)) = (
-                energies_from(&before.measures.criteria),
-                energies_from(&after.measures.criteria),
-            ) {
-                before.measures.energies = Some(b);
-                after.measures.energies = Some(a);
-                // Integrated by the method's own criteria to their default tolerance (they
-                // fail rather than return an unmet one): no error estimate to report.
-                before.measures.energy_accuracy = None;
-                after.measures.energy_accuracy = None;
+            for (measures, curve) in [
+                (&mut before.measures, &represented.before),
+                (&mut after.measures, &represented.after),
+            ] {
+                // The method's own curve (rational pieces): every energy adaptive, each with
+                // its accuracy; where an integrand is not finite, no energies.
+                let measured = fairing::catalog::measure_energies(curve).ok();
+                measures.energies = measured.map(|m| m.values);
+                measures.energy_accuracy = measured.map(|m| m.accuracy);
+                measures.criteria = criteria(
+                    catalog,
+                    dimension,
+                    measures.energies.as_ref(),
+                    || Ok(curve),
+                    &input.source,
+                    &mut failed,
+                )?;
             }
         }
         None => {
-            let measured = |p: &Points| {
-                fairing::catalog::measured_curve(kind, &to_catalog(p))
-                    .map_err(|e| Error::from_fairing(e, &input.source))
-            };
-            before.measures.criteria = criteria(catalog, &measured(&input.points)?, &mut failed);
-            after.measures.criteria = criteria(catalog, &measured(&faired)?, &mut failed);
+            for (measures, points) in [
+                (&mut before.measures, &input.points),
+                (&mut after.measures, &faired),
+            ] {
+                measures.criteria = criteria(
+                    catalog,
+                    dimension,
+                    measures.energies.as_ref(),
+                    || measured_spline(kind, points),
+                    &input.source,
+                    &mut failed,
+                )?;
+            }
         }
     }
     let (s_d, m_d) = displacement(&input.points, &faired);

@@ -170,7 +170,7 @@ pub fn inspect_with(
             plot.figure().write(path)?;
         }
         let mut measures = measured.measures;
-        measures.criteria = curve_criteria(catalog, kind, &input)?;
+        measures.criteria = curve_criteria(catalog, kind, &input, measures.energies.as_ref())?;
         Report::inspection(ReportKind::from(kind), input.len(), measures, measured.curve)
     };
     report.check_finite()?;
@@ -178,15 +178,22 @@ pub fn inspect_with(
 }
 
 /// Every registered criterion that applies, on the spline `fair inspect` measures for `input`
-/// read as `kind` (the report's `criteria`; a criterion that fails is left out). O(n) per
-/// criterion.
+/// read as `kind`, whose energies are `energies` (the report's `criteria`; those that are
+/// energies are read from `energies`, the spline is built again only for the others; a
+/// criterion that fails is left out). O(n) per criterion that is not an energy.
 pub fn curve_criteria(
     catalog: &Catalog,
     kind: CurveKind,
     input: &crate::input::CurveInput,
+    energies: Option<&fairness::Energies>,
 ) -> Result<std::collections::BTreeMap<String, f64>> {
     let mut failed = std::collections::BTreeMap::new();
-    let curve = fairing::catalog::measured_curve(kind, &crate::commands::curve::to_catalog(&input.points))
-        .map_err(|e| crate::error::Error::from_fairing(e, &input.source))?;
-    Ok(crate::commands::curve::criteria(catalog, &curve, &mut failed))
+    crate::commands::curve::criteria(
+        catalog,
+        input.points.dimension(),
+        energies,
+        || fairing::catalog::measured_curve(kind, &crate::commands::curve::to_catalog(&input.points)),
+        &input.source,
+        &mut failed,
+    )
 }

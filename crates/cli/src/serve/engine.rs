@@ -311,7 +311,8 @@ pub fn inspect_curve(
     let kind = kind::resolve(kind, input)?;
     let measured = measure::curve(kind, &input.points).map_err(|e| measure::in_file(e, &input.source))?;
     let mut measures = measured.measures.clone();
-    measures.criteria = crate::commands::inspect::curve_criteria(catalog, kind, input)?;
+    measures.criteria =
+        crate::commands::inspect::curve_criteria(catalog, kind, input, measures.energies.as_ref())?;
     let report = Report::inspection(
         ReportKind::from(kind),
         input.len(),

@@ -12,7 +12,7 @@ use std::sync::Arc;
 
 use curve_repr::{Curve, EndCondition, HermiteSpline, Side, SplineFunction, Vector};
 use fairness::curvature::{curvature_slope_at, CurvatureForm};
-use fairness::{Criterion, Ek, EkPrime, LocalIndicator, E1, E2, E3};
+use fairness::{Criterion, Ek, EkPrime, Energies, EnergyName, LocalIndicator, MeasuredEnergies, E1, E2, E3};
 
 use super::job::{AnyCurve, CurveKind, CurvePoints};
 use crate::{Error, Result};
@@ -75,6 +75,7 @@ pub struct CriterionEntry {
     summary: String,
     planar: Option<SharedCriterion<2>>,
     spatial: Option<SharedCriterion<3>>,
+    energy: Option<EnergyName>,
 }
 
 impl CriterionEntry {
@@ -86,7 +87,22 @@ impl CriterionEntry {
             summary: summary.into(),
             planar: None,
             spatial: None,
+            energy: None,
         }
+    }
+
+    /// Says that the entry's value is the energy `name` of [`fairness::Energies`], so that a
+    /// report that has measured a curve's energies takes the value from them instead of
+    /// integrating again ([`evaluate_with`](Self::evaluate_with)). The built-in `e1` … `ek-prime`
+    /// say it; an entry registered under their name by a user does not, and is evaluated.
+    pub fn same_as_energy(mut self, name: EnergyName) -> Self {
+        self.energy = Some(name);
+        self
+    }
+
+    /// The energy the entry's value is, if it is one ([`same_as_energy`](Self::same_as_energy)).
+    pub fn energy(&self) -> Option<EnergyName> {
+        self.energy
     }
 
     /// Adds the implementation for planar curves.
@@ -142,6 +158,37 @@ impl CriterionEntry {
                 .spatial
                 .as_ref()
                 .map(|k| Ok(k.evaluate(&**c as &dyn Curve<3>)?)),
+        }
+    }
+}
+
+impl CriterionEntry {
+    /// Whether the value on a curve whose energies are known (`energies_known`) needs the
+    /// curve itself: false only for an entry that is one of the energies.
+    pub fn needs_curve(&self, energies_known: bool) -> bool {
+        !(energies_known && self.energy.is_some())
+    }
+
+    /// The criterion's value on the curve `curve` whose energies are `energies`: read from
+    /// them when the entry is one of the energies ([`same_as_energy`](Self::same_as_energy)),
+    /// else evaluated on `curve` (an error when it is not given). `None` when it does not
+    /// apply to `dimension`. O(1) for an energy, the criterion's own cost otherwise.
+    pub fn evaluate_with(
+        &self,
+        dimension: usize,
+        energies: Option<&Energies>,
+        curve: Option<&AnyCurve>,
+    ) -> Option<Result<f64>> {
+        if !self.applies_to(dimension) {
+            return None;
+        }
+        match (self.energy, energies, curve) {
+            (Some(name), Some(energies), _) => Some(Ok(energies.get(name))),
+            (_, _, Some(curve)) => self.evaluate(curve),
+            (_, _, None) => Some(Err(Error::Strategy {
+                strategy: "measure".into(),
+                reason: format!("criterion `{}` needs the curve, which was not given", self.name),
+            })),
         }
     }
 }
@@ -278,24 +325,30 @@ where
     }
 }
 
-/// The built-in criteria: Nowacki's E1, E2, E3, Ek, Ek′ in both dimensions.
+/// The built-in criteria: Nowacki's E1, E2, E3, Ek, Ek′ in both dimensions, each the same as
+/// its energy of [`fairness::Energies`] (a report reads them from its `energies`).
 pub fn builtin_criteria() -> Vec<CriterionEntry> {
     vec![
         CriterionEntry::new("e1", "∫|C'|² dt over the curve's own parameter (Nowacki et al.)")
             .planar(E1::<2>::new())
-            .spatial(E1::<3>::new()),
+            .spatial(E1::<3>::new())
+            .same_as_energy(EnergyName::E1),
         CriterionEntry::new("e2", "∫|C''|² dt, the strain energy (Nowacki et al.)")
             .planar(E2::<2>::new())
-            .spatial(E2::<3>::new()),
+            .spatial(E2::<3>::new())
+            .same_as_energy(EnergyName::E2),
         CriterionEntry::new("e3", "∫|C'''|² dt (Nowacki et al.)")
             .planar(E3::<2>::new())
-            .spatial(E3::<3>::new()),
+            .spatial(E3::<3>::new())
+            .same_as_energy(EnergyName::E3),
         CriterionEntry::new("ek", "∫κ² ds over arc length (Nowacki et al.)")
             .planar(Ek::<2>::new())
-            .spatial(Ek::<3>::new()),
+            .spatial(Ek::<3>::new())
+            .same_as_energy(EnergyName::Ek),
         CriterionEntry::new("ek-prime", "∫(dκ/ds)² ds over arc length (Nowacki et al.)")
             .planar(EkPrime::<2>::new())
-            .spatial(EkPrime::<3>::new()),
+            .spatial(EkPrime::<3>::new())
+            .same_as_energy(EnergyName::EkPrime),
     ]
 }
 
@@ -356,4 +409,47 @@ pub fn evaluate_all<'a>(
         .into_iter()
         .filter_map(|entry| Some((entry.name.clone(), entry.evaluate(curve)?)))
         .collect()
+}
+
+/// Every criterion of `criteria` that applies to curves of `dimension`, by name, on the curve
+/// whose energies are `energies`: the entries that are energies read from them, the others
+/// evaluated on the curve `curve()` builds, called once and only if one of them needs it.
+/// O(1) per energy. Fails only when the curve is needed and cannot be built.
+pub fn evaluate_all_with<'a, C: std::borrow::Borrow<AnyCurve>>(
+    criteria: impl IntoIterator<Item = &'a CriterionEntry>,
+    dimension: usize,
+    energies: Option<&Energies>,
+    curve: impl FnOnce() -> Result<C>,
+) -> Result<BTreeMap<String, Result<f64>>> {
+    let entries: Vec<&CriterionEntry> = criteria
+        .into_iter()
+        .filter(|entry| entry.applies_to(dimension))
+        .collect();
+    let built = if entries.iter().any(|entry| entry.needs_curve(energies.is_some())) {
+        Some(curve()?)
+    } else {
+        None
+    };
+    Ok(entries
+        .into_iter()
+        .filter_map(|entry| {
+            let value = entry.evaluate_with(dimension, energies, built.as_ref().map(|c| c.borrow()))?;
+            Some((entry.name.clone(), value))
+        })
+        .collect())
+}
+
+/// The five energies of `curve` with their accuracy, every one adaptive with the built-in
+/// criteria's own settings ([`fairness::Adaptive::default`], relative tolerance 1e-10), so
+/// that a report's energies of a method's own representation (a NURBS, whose pieces are not
+/// polynomials) are the values its criteria give — the ones a method optimised. Never fails
+/// for an unmet tolerance, only where an integrand is not finite. O(pieces).
+pub fn measure_energies(curve: &AnyCurve) -> Result<MeasuredEnergies> {
+    let settings = fairness::Adaptive::default();
+    Ok(match curve {
+        AnyCurve::Planar(c) => fairness::Energies::measure::<2, dyn Curve<2> + Send + Sync>(&**c, &settings)?,
+        AnyCurve::Spatial(c) => {
+            fairness::Energies::measure::<3, dyn Curve<3> + Send + Sync>(&**c, &settings)?
+        }
+    })
 }

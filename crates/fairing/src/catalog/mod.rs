@@ -39,8 +39,9 @@ use std::sync::Arc;
 
 pub use config::{ConfigConstraints, ConfigFile, StageConfig, CONSTRAINTS_KEY, STAGE_KEY};
 pub use criteria::{
-    builtin_criteria, builtin_indicators, evaluate_all, measured_curve, CriterionEntry, CurvatureSlopeJump,
-    IndicatorEntry, OnCurve, SharedCriterion, SharedIndicator, ThirdDerivativeJump,
+    builtin_criteria, builtin_indicators, evaluate_all, evaluate_all_with, measure_energies, measured_curve,
+    CriterionEntry, CurvatureSlopeJump, IndicatorEntry, OnCurve, SharedCriterion, SharedIndicator,
+    ThirdDerivativeJump,
 };
 pub use job::{
     AnyCurve, CurveJob, CurveKind, CurvePoints, CurveRun, Grid, Represented, SurfaceJob, SurfaceRun,
@@ -222,6 +223,20 @@ impl Catalog {
     /// could not be evaluated.
     pub fn criteria_of(&self, curve: &AnyCurve) -> BTreeMap<String, Result<f64>> {
         evaluate_all(&self.criteria, curve)
+    }
+
+    /// [`criteria_of`](Self::criteria_of) for a curve of `dimension` whose energies are
+    /// already measured: the criteria that are energies are read from `energies` (no second
+    /// integration), and `curve()` is built only if another criterion needs it. What a report
+    /// does beside its `energies` block. Fails only when the curve is needed and cannot be
+    /// built.
+    pub fn criteria_with<C: std::borrow::Borrow<AnyCurve>>(
+        &self,
+        dimension: usize,
+        energies: Option<&fairness::Energies>,
+        curve: impl FnOnce() -> Result<C>,
+    ) -> Result<BTreeMap<String, Result<f64>>> {
+        evaluate_all_with(&self.criteria, dimension, energies, curve)
     }
 
     /// The table `fair methods` prints: each kind's methods, their parameters indented below

@@ -354,6 +354,68 @@ fn criteria_are_registered_selected_and_evaluated_on_the_curve_as_represented() 
     assert!(!catalog.criteria_of(&spatial).contains_key("chord-sum"));
 }
 
+/// A report that has measured a curve's energies reads the built-in criteria from them (no
+/// second integration: the curve is not even built) and evaluates only the others, on a
+/// curve built once; an entry registered under a built-in's name is the user's and is
+/// evaluated.
+#[test]
+fn criteria_that_are_energies_are_read_from_the_measured_energies() {
+    let mut catalog = Catalog::builtin();
+    let points = CurvePoints::Planar(ua2_180_upper());
+    let measured = || fairing::catalog::measured_curve(CurveKind::Parametric, &points);
+    let energies = fairing::catalog::measure_energies(&measured().unwrap())
+        .unwrap()
+        .values;
+    let not_built = || -> fairing::Result<fairing::catalog::AnyCurve> { panic!("the curve was built") };
+    let read = catalog.criteria_with(2, Some(&energies), not_built).unwrap();
+    let names: Vec<&String> = read.keys().collect();
+    assert_eq!(names, ["e1", "e2", "e3", "ek", "ek-prime"]);
+    for name in fairness::EnergyName::ALL {
+        assert_eq!(
+            *read[name.label()].as_ref().unwrap(),
+            energies.get(name),
+            "{name:?}"
+        );
+    }
+    // Without energies every criterion is evaluated, to the same values within the accuracy
+    // of the adaptive rule (1e-10 relative).
+    let evaluated = catalog.criteria_with(2, None, measured).unwrap();
+    for name in fairness::EnergyName::ALL {
+        let (a, b) = (energies.get(name), *evaluated[name.label()].as_ref().unwrap());
+        assert!((a - b).abs() <= 1e-9 * a.abs(), "{name:?}: {a} {b}");
+    }
+    // A user's criterion, and a user's `e2` (the built-in replaced): both evaluated on the
+    // curve, built once.
+    catalog.register_criterion(length_criterion());
+    catalog.register_criterion(
+        CriterionEntry::new("e2", "twice E2 (a user's)").planar(FnCriterion::<dyn Curve<2>, _>::new(
+            "e2",
+            |c: &(dyn Curve<2> + 'static)| {
+                Ok(2.0 * fairness::Criterion::evaluate(&fairness::E2::<2>::new(), c)?)
+            },
+        )),
+    );
+    let mut builds = 0;
+    let mixed = catalog
+        .criteria_with(2, Some(&energies), || {
+            builds += 1;
+            measured()
+        })
+        .unwrap();
+    assert_eq!(builds, 1);
+    assert!(*mixed["chord-sum"].as_ref().unwrap() > 0.9);
+    let e2 = *mixed["e2"].as_ref().unwrap();
+    assert!(
+        (e2 - 2.0 * energies.e2).abs() <= 1e-9 * e2,
+        "{e2} {}",
+        energies.e2
+    );
+    assert_eq!(*mixed["e1"].as_ref().unwrap(), energies.e1);
+    // Criteria of another dimension are not listed, and need no curve.
+    let spatial = catalog.criteria_with(3, Some(&energies), not_built).unwrap();
+    assert!(!spatial.contains_key("chord-sum") && spatial.contains_key("e1"));
+}
+
 /// A user's indicator that points at the middle break of any curve.
 struct Middle;
 
