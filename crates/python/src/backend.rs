@@ -226,6 +226,7 @@ impl Options {
             quiet: true,
             print_config: false,
             batch: false,
+            cad: Default::default(),
         })
     }
 }

@@ -107,6 +107,7 @@ fn run_args(input: String, method: &str, out: &std::path::Path, stem: &str) -> F
         quiet: true,
         print_config: false,
         batch: false,
+        cad: Default::default(),
     }
 }
 

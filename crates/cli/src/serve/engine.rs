@@ -225,6 +225,7 @@ fn arguments(job: &Job, kind: KindArg) -> Result<FairArgs> {
         quiet: true,
         print_config: false,
         batch: false,
+        cad: Default::default(),
     })
 }
 
