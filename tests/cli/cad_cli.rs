@@ -114,7 +114,12 @@ fn faired_and_file(
     ok(&fair(&points_run));
     let mut cad_run = args;
     cad_run.extend_from_slice(cad_extra);
-    cad_run.extend(["-o", target.to_str().unwrap(), "--report", report.to_str().unwrap()]);
+    cad_run.extend([
+        "-o",
+        target.to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+    ]);
     ok(&fair(&cad_run));
     let points: Vec<Vec3> = rows(&csv).iter().map(|r| lift(r)).collect();
     let model = cad::read_path(&target, None).unwrap();
@@ -128,7 +133,10 @@ fn assert_through(points: &[Vec3], model: &cad::CadModel, what: &str) {
     let curve = &model.curves[0].curve;
     let scale = size(points);
     let worst = points.iter().map(|p| distance(curve, p)).fold(0.0, f64::max);
-    assert!(worst <= 1e-9 * scale, "{what}: a faired point is {worst} from the curve (size {scale})");
+    assert!(
+        worst <= 1e-9 * scale,
+        "{what}: a faired point is {worst} from the curve (size {scale})"
+    );
 }
 
 #[test]
@@ -144,7 +152,10 @@ fn a_function_method_writes_its_spline_function_exactly_in_iges() {
     assert_eq!(cad["faired"]["inflections"], report["after"]["inflections"]);
     assert_eq!(cad["faired"]["vibrations"], report["after"]["vibrations"]);
     assert_eq!(cad["wiggles_back"], false);
-    assert_eq!(cad["control_points"], model.curves[0].curve.control_points().len());
+    assert_eq!(
+        cad["control_points"],
+        model.curves[0].curve.control_points().len()
+    );
 }
 
 #[test]
@@ -152,19 +163,24 @@ fn parametric_methods_write_their_own_curves_in_step() {
     let input = data("airfoil_naca2412/naca2412.csv");
     for (method, representation) in [("strain-energy", "hermite"), ("batten", "ferguson")] {
         let file = format!("{method}.step");
-        let (points, model, report) =
-            faired_and_file(&input, method, &file, &["--kind", "parametric"], &[]);
+        let (points, model, report) = faired_and_file(&input, method, &file, &["--kind", "parametric"], &[]);
         assert_through(&points, &model, method);
         assert_eq!(report["cad"]["representation"], representation, "{method}");
         assert_eq!(report["cad"]["format"], "step");
-        assert!(report["cad"]["max_deviation"].as_f64().unwrap() <= 1e-12, "{method}");
+        assert!(
+            report["cad"]["max_deviation"].as_f64().unwrap() <= 1e-12,
+            "{method}"
+        );
     }
 }
 
 #[test]
 fn smoothing_spline_and_sapidis_farin_write_their_own_curves() {
     let input = data("airfoil_r140/r140_upper.csv");
-    for (method, representation) in [("smoothing-spline", "natural-cubic-spline"), ("sapidis-farin", "nurbs")] {
+    for (method, representation) in [
+        ("smoothing-spline", "natural-cubic-spline"),
+        ("sapidis-farin", "nurbs"),
+    ] {
         let file = format!("{method}.igs");
         let (points, model, report) = faired_and_file(&input, method, &file, &[], &[]);
         assert_through(&points, &model, method);
@@ -197,8 +213,13 @@ fn nurbs_weights_writes_its_rational_curve_in_dxf() {
 #[test]
 fn a_rebuild_has_its_control_points_and_its_stated_deviation() {
     let input = data("airfoil_r140/r140_upper.csv");
-    let (points, model, report) =
-        faired_and_file(&input, "two-phase", "rebuilt.step", &[], &["--control-points", "12"]);
+    let (points, model, report) = faired_and_file(
+        &input,
+        "two-phase",
+        "rebuilt.step",
+        &[],
+        &["--control-points", "12"],
+    );
     let cad = &report["cad"];
     assert_eq!(cad["exact"], false);
     assert_eq!(cad["control_points"], 12);
@@ -214,7 +235,10 @@ fn a_rebuild_has_its_control_points_and_its_stated_deviation() {
         })
         .fold(0.0, f64::max);
     let stated = cad["max_deviation"].as_f64().unwrap();
-    assert!((worst - stated).abs() <= 1e-12 * size(&points), "{worst} vs {stated}");
+    assert!(
+        (worst - stated).abs() <= 1e-12 * size(&points),
+        "{worst} vs {stated}"
+    );
     assert!(cad["written"]["vibrations"].is_u64() && cad["faired"]["vibrations"].is_u64());
     let back = cad["written"]["inflections"].as_u64() > cad["faired"]["inflections"].as_u64()
         || cad["written"]["vibrations"].as_u64() > cad["faired"]["vibrations"].as_u64();
@@ -255,7 +279,8 @@ fn a_surface_is_written_as_its_bicubic_b_spline_surface() {
             "--report",
             report.to_str().unwrap(),
         ]));
-        let report: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(report).unwrap()).unwrap();
+        let report: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(report).unwrap()).unwrap();
         assert_eq!(report["cad"]["representation"], "bicubic", "{file}");
         let model = cad::read_path(&target, None).unwrap();
         assert_eq!(model.surfaces.len(), 1, "{file}");
@@ -274,7 +299,10 @@ fn a_surface_is_written_as_its_bicubic_b_spline_surface() {
         for (i, &ui) in u.iter().enumerate() {
             for (j, &vj) in v.iter().enumerate() {
                 let gap = (surface.eval(ui, vj) - faired[i * 8 + j]).norm();
-                assert!(gap <= 1e-9 * scale, "{file}: P[{i}][{j}] is {gap} off the surface");
+                assert!(
+                    gap <= 1e-9 * scale,
+                    "{file}: P[{i}][{j}] is {gap} off the surface"
+                );
             }
         }
     }
@@ -291,16 +319,47 @@ fn bad_combinations_exit_2_naming_the_option_and_write_nothing() {
     let dxf = dxf.to_str().unwrap();
     let cases: Vec<(Vec<&str>, &str)> = vec![
         (vec!["curve", &input, "--control-points", "8"], "--control-points"),
-        (vec!["curve", &input, "--fit-tolerance", "0.001"], "--fit-tolerance"),
+        (
+            vec!["curve", &input, "--fit-tolerance", "0.001"],
+            "--fit-tolerance",
+        ),
         (vec!["curve", &input, "--cad", "step"], "--cad"),
         (vec!["curve", &input, "--cad", "step", "-o", igs], "--cad"),
         (vec!["curve", &input, "--cad", "nurbs", "-o", igs], "--cad"),
-        (vec!["curve", &input, "-o", igs, "--control-points", "3"], "--control-points"),
-        (vec!["curve", &input, "-o", igs, "--control-points", "8", "--fit-tolerance", "0.1"], "--control-points"),
-        (vec!["curve", &input, "-o", igs, "--control-points", "400"], "--control-points"),
+        (
+            vec!["curve", &input, "-o", igs, "--control-points", "3"],
+            "--control-points",
+        ),
+        (
+            vec![
+                "curve",
+                &input,
+                "-o",
+                igs,
+                "--control-points",
+                "8",
+                "--fit-tolerance",
+                "0.1",
+            ],
+            "--control-points",
+        ),
+        (
+            vec!["curve", &input, "-o", igs, "--control-points", "400"],
+            "--control-points",
+        ),
         (vec!["curve", &input, "-o", igs, "--batch"], "-o"),
         (vec!["surface", panel.to_str().unwrap(), "-o", dxf], "-o"),
-        (vec!["surface", panel.to_str().unwrap(), "-o", igs, "--control-points", "6"], "--control-points"),
+        (
+            vec![
+                "surface",
+                panel.to_str().unwrap(),
+                "-o",
+                igs,
+                "--control-points",
+                "6",
+            ],
+            "--control-points",
+        ),
     ];
     for (args, option) in cases {
         let output = fair(&args);
@@ -308,7 +367,10 @@ fn bad_combinations_exit_2_naming_the_option_and_write_nothing() {
         assert_eq!(output.status.code(), Some(2), "{args:?}: {stderr}");
         assert!(stderr.contains(option), "{args:?}: {stderr}");
         assert_eq!(stderr.trim().lines().count(), 1, "{args:?}: {stderr}");
-        assert!(!Path::new(igs).exists() && !Path::new(dxf).exists(), "{args:?} wrote a file");
+        assert!(
+            !Path::new(igs).exists() && !Path::new(dxf).exists(),
+            "{args:?} wrote a file"
+        );
     }
 }
 

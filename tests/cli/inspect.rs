@@ -366,10 +366,15 @@ fn demo_exits_0_and_writes_plots() {
         ("gunnerus-wl03-strain-energy.dxf", 1, 0),
     ] {
         let model = cad::read_path(dir.join(file), None).unwrap_or_else(|e| panic!("{file}: {e}"));
-        assert_eq!((model.curves.len(), model.surfaces.len()), (curves, surfaces), "{file}");
+        assert_eq!(
+            (model.curves.len(), model.surfaces.len()),
+            (curves, surfaces),
+            "{file}"
+        );
         let stem = file.rsplit_once('.').unwrap().0;
         let report: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(dir.join(format!("{stem}.json"))).unwrap()).unwrap();
+            serde_json::from_str(&std::fs::read_to_string(dir.join(format!("{stem}.json"))).unwrap())
+                .unwrap();
         assert_eq!(report["cad"]["exact"], true, "{file}");
     }
     for entry in svgs {

@@ -13,9 +13,7 @@
 //! written.
 
 use cad::{CadCurve, CadSettings, CadSurface, CurveKind as CadKind, Format, Shape, WriteOptions};
-use curve_repr::{
-    BicubicSplineSurface, BicubicSurfaceSettings, CubicPieces, NurbsCurve, Vec3, Vector,
-};
+use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings, CubicPieces, NurbsCurve, Vec3, Vector};
 use serde_json::{json, Value};
 
 use crate::args::FairArgs;
@@ -79,14 +77,18 @@ pub fn target(args: &FairArgs, surface: bool) -> Result<Option<CadTarget>> {
     let Some(path) = args.output.clone() else {
         return Err(Error::Argument {
             option: "--cad",
-            message: format!("writes the {format} file that -o names (-o - for standard output); no -o given"),
+            message: format!(
+                "writes the {format} file that -o names (-o - for standard output); no -o given"
+            ),
         });
     };
     if let (Some(asked), Some(named)) = (args.cad.cad, Format::from_path(&path)) {
         if asked != named {
             return Err(Error::Argument {
                 option: "--cad",
-                message: format!("`{asked}`, but -o `{path}` is a {named} file by its extension; give one format"),
+                message: format!(
+                    "`{asked}`, but -o `{path}` is a {named} file by its extension; give one format"
+                ),
             });
         }
     }
@@ -115,7 +117,9 @@ pub fn target(args: &FairArgs, surface: bool) -> Result<Option<CadTarget>> {
         fit_tolerance: args.cad.fit_tolerance,
         ..CadSettings::default()
     };
-    settings.validate().map_err(|e| cad_error(e, option, rebuild_option))?;
+    settings
+        .validate()
+        .map_err(|e| cad_error(e, option, rebuild_option))?;
     Ok(Some(CadTarget {
         format,
         path,
@@ -227,7 +231,9 @@ fn method_curve<const D: usize>(record: &Value, points: &[Vector<D>]) -> Option<
             )
             .ok()?;
             let params = f64s(record.get("params")?)?;
-            CadCurve::from_nurbs(&curve, points, &params).ok().map(as_function)
+            CadCurve::from_nurbs(&curve, points, &params)
+                .ok()
+                .map(as_function)
         }
         "hermite" => {
             let knots = f64s(record.get("knots").or_else(|| record.get("params"))?)?;
@@ -243,7 +249,9 @@ fn method_curve<const D: usize>(record: &Value, points: &[Vector<D>]) -> Option<
             let second = vectors::<D>(record.get("second_derivatives")?)?;
             let tangents = natural_tangents(&knots, &values, &second)?;
             let pieces = CubicPieces::from_hermite(&knots, &values, &tangents).ok()?;
-            CadCurve::from_pieces(&pieces, points, &knots).ok().map(as_function)
+            CadCurve::from_pieces(&pieces, points, &knots)
+                .ok()
+                .map(as_function)
         }
         "ferguson" => {
             let segments: Vec<[Vector<D>; 4]> = record
@@ -296,14 +304,19 @@ fn deviation(curve: &CadCurve) -> f64 {
 /// The exact faired curve: the method's own when the record gives one the faired points lie
 /// on, else the measured spline; with the name of what it is.
 pub fn faired_curve(record: &Value, faired: &Points, kind: CurveKind) -> Result<(CadCurve, String)> {
-    fn pick<const D: usize>(record: &Value, points: &[Vector<D>], kind: CurveKind) -> Result<(CadCurve, String)> {
+    fn pick<const D: usize>(
+        record: &Value,
+        points: &[Vector<D>],
+        kind: CurveKind,
+    ) -> Result<(CadCurve, String)> {
         let lifted: Vec<Vec3> = points
             .iter()
             .map(|p| Vec3::from_fn(|i, _| if i < D { p[i] } else { 0.0 }))
             .collect();
         let scale = cad::model::size(&lifted).max(f64::MIN_POSITIVE);
         let own = method_curve(record, points).filter(|c| {
-            c.points.len() == points.len() && deviation(&c.clone().with_kind(CadKind::Parametric)) <= ON_CURVE * scale
+            c.points.len() == points.len()
+                && deviation(&c.clone().with_kind(CadKind::Parametric)) <= ON_CURVE * scale
         });
         let name = record.get("type").and_then(Value::as_str).unwrap_or("");
         match own {
@@ -400,8 +413,13 @@ pub fn export_curve(
     let (curve, representation) = faired_curve(record, faired, kind)?;
     let curve = curve.with_name(name);
     let options = options(&target.path);
-    let export = cad::export(&Shape::Curve(curve.clone()), target.format, &target.settings, &options)
-        .map_err(|e| cad_error(e, "-o", rebuild_option))?;
+    let export = cad::export(
+        &Shape::Curve(curve.clone()),
+        target.format,
+        &target.settings,
+        &options,
+    )
+    .map_err(|e| cad_error(e, "-o", rebuild_option))?;
     let written = export.model.curves.first().ok_or_else(|| Error::Internal {
         message: "CAD export wrote no curve".into(),
     })?;
@@ -415,10 +433,11 @@ pub fn export_curve(
             r.wiggles_back,
         ),
         None => {
-            let c = cad::rebuild::curvature_counts(&curve.curve, curve.dimension, curve.kind, &curve.parameters)
-                .map_err(|e| Error::Internal {
-                    message: format!("CAD export: curvature counts: {e}"),
-                })?;
+            let c =
+                cad::rebuild::curvature_counts(&curve.curve, curve.dimension, curve.kind, &curve.parameters)
+                    .map_err(|e| Error::Internal {
+                        message: format!("CAD export: curvature counts: {e}"),
+                    })?;
             (c, c, deviation(&curve), true, false, false)
         }
     };
@@ -456,16 +475,19 @@ pub fn export_surface(target: &CadTarget, record: &Value, grid: &Grid, name: &st
         .enumerate()
         .flat_map(|(i, &u)| {
             let surface = &surface;
-            surface
-                .v_parameters
-                .iter()
-                .enumerate()
-                .map(move |(j, &v)| (surface.point_at(u, v) - surface.points[i * surface.v_parameters.len() + j]).norm())
+            surface.v_parameters.iter().enumerate().map(move |(j, &v)| {
+                (surface.point_at(u, v) - surface.points[i * surface.v_parameters.len() + j]).norm()
+            })
         })
         .fold(0.0, f64::max);
     let options = options(&target.path);
-    let export = cad::export(&Shape::Surface(surface), target.format, &target.settings, &options)
-        .map_err(|e| cad_error(e, "-o", None))?;
+    let export = cad::export(
+        &Shape::Surface(surface),
+        target.format,
+        &target.settings,
+        &options,
+    )
+    .map_err(|e| cad_error(e, "-o", None))?;
     let summary = export.summary();
     let net = export.model.surfaces.first().map(|s| s.surface.net_size());
     Ok(CadOutput {

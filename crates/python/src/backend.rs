@@ -573,7 +573,8 @@ pub fn export_cad_curve(
     let input = curve_input(points)?;
     input.require_at_least(curve::MIN_CURVE_POINTS, "a curve")?;
     let kind = fair_cli::kind::resolve(kind_argument(kind)?, &input)?;
-    let made = fair_cli::cad_file::export_curve(&target, record, &input.points, kind, &shape_name(&request.path))?;
+    let made =
+        fair_cli::cad_file::export_curve(&target, record, &input.points, kind, &shape_name(&request.path))?;
     fair_cli::output::write_text(&request.path, &made.text)?;
     Ok(made.summary)
 }

@@ -749,7 +749,12 @@ fn cad_download_is_the_command_s_cad_file() {
     unknown["format"] = json!("obj");
     let mut few = body.clone();
     few["control-points"] = json!(3);
-    for (request, field) in [(dxf, "format:"), (rebuilt, "control-points:"), (unknown, "format:"), (few, "control-points:")] {
+    for (request, field) in [
+        (dxf, "format:"),
+        (rebuilt, "control-points:"),
+        (unknown, "format:"),
+        (few, "control-points:"),
+    ] {
         let reply = post(&server.address, "/api/cad", &request.to_string());
         assert_eq!(reply.status, 400, "{field}");
         assert!(reply.error().starts_with(field), "{}", reply.error());

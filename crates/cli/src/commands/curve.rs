@@ -310,8 +310,14 @@ pub fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
     let output_text = match &cad {
         Some(target) => {
             let name = stem(&input.source);
-            let made = crate::cad_file::export_curve(target, &faired.report.curve, &faired.points, faired.kind, &name)
-                .map_err(|e| measure::in_file(e, &input.source))?;
+            let made = crate::cad_file::export_curve(
+                target,
+                &faired.report.curve,
+                &faired.points,
+                faired.kind,
+                &name,
+            )
+            .map_err(|e| measure::in_file(e, &input.source))?;
             faired.report.extras.insert("cad".into(), made.summary);
             made.text
         }

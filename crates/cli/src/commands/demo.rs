@@ -149,7 +149,8 @@ fn fair_curve(catalog: &Catalog, args: &FairArgs, cad: Option<&CadTarget>, name:
     let input = crate::input::read_curve(&args.input)?;
     let mut faired = curve::process(catalog, &input, args, None)?;
     if let Some(target) = cad {
-        let made = crate::cad_file::export_curve(target, &faired.report.curve, &faired.points, faired.kind, name)?;
+        let made =
+            crate::cad_file::export_curve(target, &faired.report.curve, &faired.points, faired.kind, name)?;
         faired.report.extras.insert("cad".into(), made.summary);
         crate::output::write_text(&target.path, &made.text)?;
     }

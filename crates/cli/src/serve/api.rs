@@ -544,7 +544,13 @@ fn yes() -> bool {
 fn file_stem(name: &str) -> String {
     let stem = crate::commands::curve::stem(name);
     stem.chars()
-        .map(|c| if c.is_ascii_alphanumeric() || "._-".contains(c) { c } else { '_' })
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || "._-".contains(c) {
+                c
+            } else {
+                '_'
+            }
+        })
         .collect()
 }
 
@@ -566,10 +572,15 @@ fn cad_file(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
     }
     let cad_body: CadBody = serde_json::from_value(Value::Object(cad_part))
         .map_err(|e| Response::error(400, format!("request body: {e}")))?;
-    let format: cad::Format = cad_body
-        .format
-        .parse()
-        .map_err(|_| Response::error(400, format!("format: `{}` is not a CAD format (iges, step or dxf)", cad_body.format)))?;
+    let format: cad::Format = cad_body.format.parse().map_err(|_| {
+        Response::error(
+            400,
+            format!(
+                "format: `{}` is not a CAD format (iges, step or dxf)",
+                cad_body.format
+            ),
+        )
+    })?;
     let surface = object.contains_key("rows");
     let rest = serde_json::to_vec(&value).unwrap_or_default();
     let mut args = engine::arguments(&Job::default(), KindArg::Auto).map_err(failure)?;
@@ -611,7 +622,12 @@ fn cad_file(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
                 constraints: body.constraints.into_job()?,
             };
             let result = engine::fair_curve(catalog, &input, kind, &job).map_err(failure)?;
-            (result.points, result.report.curve, result.kind, result.report.method)
+            (
+                result.points,
+                result.report.curve,
+                result.kind,
+                result.report.method,
+            )
         } else {
             input
                 .require_at_least(crate::commands::curve::MIN_CURVE_POINTS, "a curve")
