@@ -359,6 +359,24 @@ fn demo_exits_0_and_writes_plots() {
         .filter(|e| e.path().extension().is_some_and(|x| x == "svg"))
         .collect();
     assert!(svgs.len() >= 8, "{} SVGs", svgs.len());
+    // One IGES, one STEP and one DXF beside the SVGs, each read back with its shape.
+    for (file, curves, surfaces) in [
+        ("r140-upper-two-phase.igs", 1, 0),
+        ("teapot-body-zhang-cheng.step", 0, 1),
+        ("gunnerus-wl03-strain-energy.dxf", 1, 0),
+    ] {
+        let model = cad::read_path(dir.join(file), None).unwrap_or_else(|e| panic!("{file}: {e}"));
+        assert_eq!(
+            (model.curves.len(), model.surfaces.len()),
+            (curves, surfaces),
+            "{file}"
+        );
+        let stem = file.rsplit_once('.').unwrap().0;
+        let report: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join(format!("{stem}.json"))).unwrap())
+                .unwrap();
+        assert_eq!(report["cad"]["exact"], true, "{file}");
+    }
     for entry in svgs {
         let text = std::fs::read_to_string(entry.path()).unwrap();
         let document = roxmltree::Document::parse(&text).expect("well-formed SVG");

@@ -3,6 +3,7 @@
 mod baselines_cli;
 mod basics;
 mod batten_cli;
+mod cad_cli;
 mod columns_cli;
 mod formats_cli;
 mod inspect;

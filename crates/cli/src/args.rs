@@ -132,6 +132,35 @@ pub struct FairArgs {
     /// stream), --plot a directory.
     #[arg(long)]
     pub batch: bool,
+    /// The faired result as a CAD file (`--cad`, `--control-points`, `--fit-tolerance`).
+    #[command(flatten)]
+    pub cad: CadArgs,
+}
+
+/// Options that write the faired result as an exact B-spline into a CAD file (IGES, STEP,
+/// DXF). The settings themselves are `fair-cad`'s [`cad::CadSettings`].
+#[derive(Debug, Clone, Default, PartialEq, Args)]
+pub struct CadArgs {
+    /// Write the faired curve or surface as an exact B-spline in this CAD format (iges, step,
+    /// dxf) to the file -o names, instead of the points. Without it, -o's extension chooses
+    /// (.igs/.iges, .step/.stp, .dxf). DXF holds curves only.
+    #[arg(long, value_name = "FORMAT", value_parser = parse_cad_format)]
+    pub cad: Option<cad::Format>,
+    /// Rebuild the CAD curve with N control points: a least-squares fit of the faired points
+    /// (The NURBS Book Eq. 9.63–9.69; end points kept).
+    #[arg(long, value_name = "N")]
+    pub control_points: Option<usize>,
+    /// Rebuild the CAD curve with the fewest control points within D of every faired point
+    /// (|Δy| for a function); the exact curve when no fit with at most half as many control
+    /// points as points does.
+    #[arg(long, value_name = "D", value_parser = parse_tolerance, allow_negative_numbers = true)]
+    pub fit_tolerance: Option<f64>,
+}
+
+/// Parses `--cad`: iges/igs, step/stp or dxf, any case.
+pub fn parse_cad_format(text: &str) -> Result<cad::Format, String> {
+    text.parse::<cad::Format>()
+        .map_err(|_| format!("`{text}` is not a CAD format (iges, step or dxf)"))
 }
 
 impl FairArgs {

@@ -32,6 +32,7 @@
 //! makes the command panic, and a panic in a library would still end as one line and exit 1.
 
 pub mod args;
+pub mod cad_file;
 pub mod commands;
 pub mod constraints;
 pub mod error;

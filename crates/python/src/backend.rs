@@ -100,6 +100,10 @@ fn argument_name(option: &'static str) -> &'static str {
         "--method" => "method",
         "--set" => "params",
         "INPUT" => POINTS,
+        "-o" => "path",
+        "--cad" => "format",
+        "--control-points" => "control_points",
+        "--fit-tolerance" => "fit_tolerance",
         other => other,
     }
 }
@@ -226,6 +230,7 @@ impl Options {
             quiet: true,
             print_config: false,
             batch: false,
+            cad: Default::default(),
         })
     }
 }
@@ -503,4 +508,142 @@ pub fn default_methods() -> BTreeMap<&'static str, &'static str> {
         ),
         ("surface", surface::DEFAULT_METHOD),
     ])
+}
+
+/// What `fair.export_cad` writes: the file, its format (`None`: by the extension) and an
+/// optional rebuild — `fair curve -o PATH [--cad FORMAT] [--control-points N]
+/// [--fit-tolerance D]`.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct CadRequest {
+    /// The file to write.
+    pub path: String,
+    /// `iges`, `step` or `dxf`; `None` for the extension's.
+    pub format: Option<String>,
+    /// `--control-points`.
+    pub control_points: Option<usize>,
+    /// `--fit-tolerance`.
+    pub fit_tolerance: Option<f64>,
+}
+
+impl CadRequest {
+    /// The command's CAD target for these options, checked as the command checks them.
+    fn target(&self, surface: bool) -> Result<fair_cli::cad_file::CadTarget> {
+        let mut args = Options::default().args(POINTS)?;
+        args.output = Some(self.path.clone());
+        args.cad.cad = self
+            .format
+            .as_deref()
+            .map(fair_cli::args::parse_cad_format)
+            .transpose()
+            .map_err(|e| Failure::bad_input(format!("format: {e}")))?;
+        args.cad.control_points = self.control_points;
+        if let Some(d) = self.fit_tolerance {
+            if !(d.is_finite() && d > 0.0) {
+                return Err(Failure::bad_input(format!(
+                    "fit_tolerance: {d} must be a finite number greater than 0"
+                )));
+            }
+        }
+        args.cad.fit_tolerance = self.fit_tolerance;
+        fair_cli::cad_file::target(&args, surface)?.ok_or_else(|| {
+            Failure::bad_input(format!(
+                "path: `{}` names no CAD format by its extension (.igs, .iges, .step, .stp, .dxf); give format=",
+                self.path
+            ))
+        })
+    }
+}
+
+/// The file's stem, as the shape's name inside it.
+fn shape_name(path: &str) -> String {
+    fair_cli::commands::curve::stem(path)
+}
+
+/// Writes a curve as `fair curve -o FILE.igs` does: `record` is the report's `curve` of a
+/// fairing (its method's own curve is written when the points lie on it), or `null` for
+/// points taken as they are (the spline the report measures). Returns the report's `cad`
+/// object. O(n) without a rebuild.
+pub fn export_cad_curve(
+    points: &Coordinates,
+    record: &serde_json::Value,
+    kind: Option<&str>,
+    request: &CadRequest,
+) -> Result<serde_json::Value> {
+    let target = request.target(false)?;
+    let input = curve_input(points)?;
+    input.require_at_least(curve::MIN_CURVE_POINTS, "a curve")?;
+    let kind = fair_cli::kind::resolve(kind_argument(kind)?, &input)?;
+    let made =
+        fair_cli::cad_file::export_curve(&target, record, &input.points, kind, &shape_name(&request.path))?;
+    fair_cli::output::write_text(&request.path, &made.text)?;
+    Ok(made.summary)
+}
+
+/// Writes a `rows × columns` grid as `fair surface -o FILE.step` does (see
+/// [`export_cad_curve`]; IGES or STEP, no rebuild). Returns the report's `cad` object.
+pub fn export_cad_surface(
+    grid: &Coordinates,
+    rows: usize,
+    columns: usize,
+    record: &serde_json::Value,
+    request: &CadRequest,
+) -> Result<serde_json::Value> {
+    let target = request.target(true)?;
+    let input = surface_input(grid, rows, columns)?;
+    surface::require_grid(&input)?;
+    let made = fair_cli::cad_file::export_surface(&target, record, &input.grid, &shape_name(&request.path))?;
+    fair_cli::output::write_text(&request.path, &made.text)?;
+    Ok(made.summary)
+}
+
+/// Reads an IGES, STEP or DXF file (`format`: by the extension when `None`): `{"units",
+/// "tolerance", "curves": [{"name", "degree", "knots", "control_points", "weights"}],
+/// "surfaces": [{"name", "degrees", "u_knots", "v_knots", "control_points" (rows of rows),
+/// "weights"}]}`, every number as read (the writers' round trip is exact).
+pub fn read_cad(path: &str, format: Option<&str>) -> Result<serde_json::Value> {
+    let format = format
+        .map(fair_cli::args::parse_cad_format)
+        .transpose()
+        .map_err(|e| Failure::bad_input(format!("format: {e}")))?;
+    let model = cad::read_path(path, format).map_err(|e| Failure::bad_input(e.to_string()))?;
+    let curves: Vec<serde_json::Value> = model
+        .curves
+        .iter()
+        .map(|c| {
+            let points: Vec<[f64; 3]> = c.curve.control_points().iter().map(|p| [p.x, p.y, p.z]).collect();
+            serde_json::json!({
+                "name": c.name,
+                "degree": c.curve.degree(),
+                "knots": c.curve.knots(),
+                "control_points": points,
+                "weights": c.curve.weights(),
+            })
+        })
+        .collect();
+    let surfaces: Vec<serde_json::Value> = model
+        .surfaces
+        .iter()
+        .map(|s| {
+            let (u, v) = s.surface.knot_vectors();
+            let points: Vec<Vec<[f64; 3]>> = s
+                .control_rows()
+                .iter()
+                .map(|row| row.iter().map(|p| [p.x, p.y, p.z]).collect())
+                .collect();
+            serde_json::json!({
+                "name": s.name,
+                "degrees": [s.surface.degrees().0, s.surface.degrees().1],
+                "u_knots": u.knots(),
+                "v_knots": v.knots(),
+                "control_points": points,
+                "weights": s.weight_rows(),
+            })
+        })
+        .collect();
+    Ok(serde_json::json!({
+        "units": model.units,
+        "tolerance": model.tolerance,
+        "curves": curves,
+        "surfaces": surfaces,
+    }))
 }

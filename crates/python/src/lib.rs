@@ -255,6 +255,9 @@ fn to_python<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound<
 pub struct FairedCurve {
     points: Py<PyAny>,
     report: Py<PyAny>,
+    /// The report's `curve` and `kind`, for `export_cad`.
+    record: serde_json::Value,
+    kind: Option<String>,
 }
 
 #[pymethods]
@@ -290,6 +293,8 @@ impl FairedCurve {
 pub struct FairedSurface {
     grid: Py<PyAny>,
     report: Py<PyAny>,
+    /// The report's `curve` (the bicubic surface), for `export_cad`.
+    record: serde_json::Value,
 }
 
 #[pymethods]
@@ -328,6 +333,8 @@ fn faired_curve(py: Python<'_>, faired: Faired) -> PyResult<FairedCurve> {
     Ok(FairedCurve {
         points: array.into_any().unbind(),
         report: to_python(py, &faired.report)?.unbind(),
+        record: faired.report["curve"].clone(),
+        kind: faired.report["kind"].as_str().map(str::to_owned),
     })
 }
 
@@ -338,6 +345,7 @@ fn faired_surface(py: Python<'_>, faired: Faired, rows: usize, columns: usize) -
     Ok(FairedSurface {
         grid: array.into_any().unbind(),
         report: to_python(py, &faired.report)?.unbind(),
+        record: faired.report["curve"].clone(),
     })
 }
 
@@ -653,6 +661,92 @@ fn default_methods(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     Ok(dict)
 }
 
+/// Write a faired result (or points as they are) as an exact B-spline into a CAD file, as
+/// `fair curve -o FILE.igs` does.
+///
+/// result: a FairedCurve or FairedSurface (its method's own curve or surface is written), or
+///     an (n, 2)/(n, 3) curve or (m, n, 3) grid taken as already faired (written as the
+///     interpolating spline the report measures).
+/// path: the file; its extension (.igs/.iges, .step/.stp, .dxf) chooses the format unless
+///     `format` is given.
+/// format: "iges", "step" or "dxf" (DXF holds curves only).
+/// control_points, fit_tolerance: rebuild a curve with N control points, or with the fewest
+///     within that distance of every faired point (least squares; not for surfaces).
+/// kind: for points, "function", "parametric" or "auto" (None); a result keeps its own.
+///
+/// Returns the report's `cad` dict (format, file, representation, exact, control_points,
+/// max_deviation, the curvature counts of the faired and the written curve, wiggles_back).
+/// Raises ValueError for a bad combination (the command's message, naming the argument).
+#[pyfunction]
+#[pyo3(signature = (result, path, format=None, control_points=None, fit_tolerance=None, kind=None))]
+fn export_cad(
+    py: Python<'_>,
+    result: &Bound<'_, PyAny>,
+    path: std::path::PathBuf,
+    format: Option<String>,
+    control_points: Option<usize>,
+    fit_tolerance: Option<f64>,
+    kind: Option<String>,
+) -> PyResult<Py<PyAny>> {
+    let request = backend::CadRequest {
+        path: path.display().to_string(),
+        format,
+        control_points,
+        fit_tolerance,
+    };
+    let summary = if let Ok(curve) = result.cast::<FairedCurve>() {
+        let curve = curve.get();
+        if kind.is_some() {
+            return Err(PyValueError::new_err(
+                "kind: a faired result keeps the kind it was faired as; give kind= with points only",
+            ));
+        }
+        let coordinates = curve_points(curve.points.bind(py))?;
+        let (record, kind) = (curve.record.clone(), curve.kind.clone());
+        without_gil(py, || {
+            backend::export_cad_curve(&coordinates, &record, kind.as_deref(), &request)
+        })?
+    } else if let Ok(surface) = result.cast::<FairedSurface>() {
+        let surface = surface.get();
+        let (coordinates, rows, columns) = grid_points(surface.grid.bind(py))?;
+        let record = surface.record.clone();
+        without_gil(py, || {
+            backend::export_cad_surface(&coordinates, rows, columns, &record, &request)
+        })?
+    } else {
+        let (_, shape) = float_array(result, backend::POINTS)?;
+        let null = serde_json::Value::Null;
+        if shape.len() == 3 {
+            let (coordinates, rows, columns) = grid_points(result)?;
+            without_gil(py, || {
+                backend::export_cad_surface(&coordinates, rows, columns, &null, &request)
+            })?
+        } else {
+            let coordinates = curve_points(result)?;
+            without_gil(py, || {
+                backend::export_cad_curve(&coordinates, &null, kind.as_deref(), &request)
+            })?
+        }
+    };
+    Ok(to_python(py, &summary)?.unbind())
+}
+
+/// Read an IGES, STEP or DXF file (ours, OpenCASCADE's, ezdxf's).
+///
+/// path: the file; format: "iges", "step" or "dxf" (None: by the extension).
+///
+/// Returns a dict: "units", "tolerance", "curves" (each "name", "degree", "knots",
+/// "control_points" [[x, y, z], …], "weights") and "surfaces" (each "name", "degrees",
+/// "u_knots", "v_knots", "control_points" rows of [x, y, z], "weights" rows), every number
+/// as written (the round trip is exact).
+#[pyfunction]
+#[pyo3(signature = (path, format=None))]
+fn read_cad(py: Python<'_>, path: std::path::PathBuf, format: Option<String>) -> PyResult<Py<PyAny>> {
+    let path = path.display().to_string();
+    let model = without_gil(py, || backend::read_cad(&path, format.as_deref()))?;
+    Ok(to_python(py, &model)?.unbind())
+}
+
 /// The native module `fair._native`; `fair` re-exports it.
 #[pymodule]
 #[pyo3(name = "_native")]
@@ -663,6 +757,8 @@ fn fair_python(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(methods, module)?)?;
     module.add_function(wrap_pyfunction!(pipeline, module)?)?;
     module.add_function(wrap_pyfunction!(default_methods, module)?)?;
+    module.add_function(wrap_pyfunction!(export_cad, module)?)?;
+    module.add_function(wrap_pyfunction!(read_cad, module)?)?;
     module.add_class::<FairedCurve>()?;
     module.add_class::<FairedSurface>()?;
     module.add_class::<Pipeline>()?;

@@ -683,3 +683,80 @@ fn points_keep_their_bits_through_the_api() {
         assert!(i == 150 || b == e, "point {i} changed");
     }
 }
+
+#[test]
+fn cad_download_is_the_command_s_cad_file() {
+    let server = Served::start(&[]);
+    let dir = scratch("cad");
+    let loaded = get(&server.address, "/api/datasets/gunnerus-wl03").json();
+    let body = json!({
+        "name": "wl_03.csv",
+        "points": loaded["points"],
+        "method": "strain-energy",
+        "constraints": { "points": [12] },
+        "format": "iges",
+    });
+    let reply = post(&server.address, "/api/cad", &body.to_string());
+    assert_eq!(reply.status, 200, "{}", String::from_utf8_lossy(&reply.body));
+    assert_eq!(reply.header("Content-Type"), Some("model/iges"));
+    assert_eq!(
+        reply.header("Content-Disposition"),
+        Some("attachment; filename=\"wl_03-strain-energy.igs\"")
+    );
+    let summary: Value = serde_json::from_str(reply.header("X-Fair-Cad").expect("the cad object")).unwrap();
+    assert_eq!(summary["representation"], "hermite");
+    let served = cad::read(&String::from_utf8(reply.body.clone()).unwrap(), cad::Format::Iges).unwrap();
+    // The command's file for the same run holds the same curve, bit for bit.
+    let out = dir.join("wl03.igs");
+    let report = command_report(
+        &[
+            "curve",
+            &file(WL03),
+            "--method",
+            "strain-energy",
+            "--points",
+            "12",
+            "-q",
+            "-o",
+            out.to_str().unwrap(),
+        ],
+        &dir.join("wl03.json"),
+    );
+    let written = cad::read_path(&out, None).unwrap();
+    assert_eq!(served.curves.len(), 1);
+    assert_eq!(served.curves[0].curve, written.curves[0].curve);
+    assert_eq!(summary["control_points"], report["cad"]["control_points"]);
+
+    // Points taken as they are ("fair": false), with a rebuild: the file has its control points.
+    let body = json!({ "points": loaded["points"], "format": "step", "fair": false, "control-points": 10 });
+    let reply = post(&server.address, "/api/cad", &body.to_string());
+    assert_eq!(reply.status, 200, "{}", String::from_utf8_lossy(&reply.body));
+    let model = cad::read(&String::from_utf8(reply.body).unwrap(), cad::Format::Step).unwrap();
+    assert_eq!(model.curves[0].curve.control_points().len(), 10);
+
+    // A surface in STEP; refusals name the request's field.
+    let teapot = get(&server.address, "/api/datasets/teapot-body").json();
+    let surface = json!({ "rows": teapot["rows"], "columns": teapot["columns"], "points": teapot["points"], "format": "step" });
+    let reply = post(&server.address, "/api/cad", &surface.to_string());
+    assert_eq!(reply.status, 200, "{}", String::from_utf8_lossy(&reply.body));
+    let model = cad::read(&String::from_utf8(reply.body).unwrap(), cad::Format::Step).unwrap();
+    assert_eq!(model.surfaces.len(), 1);
+    let mut dxf = surface.clone();
+    dxf["format"] = json!("dxf");
+    let mut rebuilt = surface.clone();
+    rebuilt["control-points"] = json!(6);
+    let mut unknown = body.clone();
+    unknown["format"] = json!("obj");
+    let mut few = body.clone();
+    few["control-points"] = json!(3);
+    for (request, field) in [
+        (dxf, "format:"),
+        (rebuilt, "control-points:"),
+        (unknown, "format:"),
+        (few, "control-points:"),
+    ] {
+        let reply = post(&server.address, "/api/cad", &request.to_string());
+        assert_eq!(reply.status, 400, "{field}");
+        assert!(reply.error().starts_with(field), "{}", reply.error());
+    }
+}

@@ -170,6 +170,7 @@
         drawing: value.drawing.after,
         before: value.drawing.before,
         beforePoints: entry.points,
+        request: body,
       });
     });
   }
@@ -237,6 +238,45 @@
       text = header + "\n" + entry.points.map((p) => p.map(String).join(",")).join("\n") + "\n";
     }
     download(`${stem(entry)}-${state.index}.csv`, text, "text/csv");
+  }
+
+  // The CAD file of the current result: the request of the step that made it, sent again to
+  // /api/cad (the server keeps no state), so that the file holds that method's own curve; a
+  // loaded document is written as it is ("fair": false).
+  async function downloadCad() {
+    const entry = current();
+    if (!entry) return;
+    const format = $("cad-format").value;
+    await busy(`writing ${format.toUpperCase()}`, async () => {
+      let body;
+      if (entry.request) {
+        body = Object.assign({}, entry.request, { format });
+      } else {
+        body = { name: entry.name, points: entry.points, format, fair: false };
+        if (entry.type === "surface") {
+          body.rows = entry.rows;
+          body.columns = entry.columns;
+        } else {
+          body.kind = $("kind").value;
+        }
+      }
+      const response = await fetch("/api/cad", {
+        method: "POST",
+        headers: { "Content-Type": "application/json" },
+        body: JSON.stringify(body),
+      });
+      if (!response.ok) {
+        let message = `/api/cad: status ${response.status}`;
+        try {
+          const value = await response.json();
+          if (value && value.error) message = value.error;
+        } catch (e) { /* not JSON: keep the status */ }
+        throw new Error(message);
+      }
+      const blob = await response.blob();
+      const match = /filename="([^"]+)"/.exec(response.headers.get("Content-Disposition") || "");
+      download(match ? match[1] : `${stem(entry)}-${state.index}.${format}`, blob, blob.type);
+    });
   }
 
   function downloadReport() {
@@ -740,6 +780,7 @@
     $("redo").disabled = state.busy || state.index >= state.history.length - 1;
     $("download-points").disabled = !entry;
     $("download-report").disabled = !entry;
+    $("download-cad").disabled = !entry || state.busy;
     $("fair-selected").disabled = state.busy || !entry || !state.bad.length;
     $("run-method").disabled = state.busy || !entry || !selectedMethod();
     document.body.dataset.history = String(state.history.length);
@@ -817,6 +858,7 @@
     $("redo").addEventListener("click", () => go(state.index + 1));
     $("download-points").addEventListener("click", downloadPoints);
     $("download-report").addEventListener("click", downloadReport);
+    $("download-cad").addEventListener("click", downloadCad);
     $("fair-selected").addEventListener("click", fairSelected);
     $("run-method").addEventListener("click", runMethod);
     $("method").addEventListener("change", () => { fillParams(); updateButtons(); });

@@ -115,6 +115,10 @@ pub struct Faired {
     pub points_text: String,
     /// The before/after picture.
     pub plot: CurvePlot,
+    /// The faired points.
+    pub points: Points,
+    /// How they were measured.
+    pub kind: CurveKind,
 }
 
 /// The plan and constraints a command line and its config imply for `input` of `kind`.
@@ -252,6 +256,8 @@ fn process_points(
         report,
         points_text,
         plot,
+        points: faired,
+        kind,
     })
 }
 
@@ -259,7 +265,9 @@ fn process_points(
 /// each file in its own format).
 fn output_format(args: &FairArgs) -> Result<crate::output::OutputFormat> {
     match &args.output {
-        Some(path) if !batch::is_batch(args) => crate::output::OutputFormat::of_path(path),
+        Some(path) if !batch::is_batch(args) && crate::cad_file::format_of(args).is_none() => {
+            crate::output::OutputFormat::of_path(path)
+        }
         _ => Ok(crate::output::OutputFormat::SameAsInput),
     }
 }
@@ -290,6 +298,7 @@ fn check_still_a_function(points: &Points, plan: &Plan) -> Result<()> {
 /// Runs `fair curve`: one input, or a batch ([`batch`]).
 pub fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
     let file = read_config(args)?;
+    let cad = crate::cad_file::target(args, false)?;
     if batch::is_batch(args) {
         return batch::run(catalog, args, file.as_ref());
     }
@@ -309,14 +318,30 @@ pub fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
         say(false, false, plan.render(catalog, &constraints).trim_end());
         return Ok(());
     }
-    let faired = {
+    let mut faired = {
         let _activity = progress::Activity::start(
             &format!("fairing and measuring {} ({} points)", input.source, input.len()),
             args.quiet,
         );
         process(catalog, &input, args, file.as_ref())?
     };
-    write_results(args, &faired.report, &faired.points_text, || faired.plot.figure())?;
+    let output_text = match &cad {
+        Some(target) => {
+            let name = stem(&input.source);
+            let made = crate::cad_file::export_curve(
+                target,
+                &faired.report.curve,
+                &faired.points,
+                faired.kind,
+                &name,
+            )
+            .map_err(|e| measure::in_file(e, &input.source))?;
+            faired.report.extras.insert("cad".into(), made.summary);
+            made.text
+        }
+        None => std::mem::take(&mut faired.points_text),
+    };
+    write_results(args, &faired.report, &output_text, || faired.plot.figure())?;
     let report = &faired.report;
     warn_largest_move(&input.source, report, args.quiet);
     say(
@@ -359,6 +384,14 @@ pub(crate) fn warn_largest_move(source: &str, report: &Report, quiet: bool) {
         largest["distance"].as_f64().unwrap_or(f64::NAN),
         largest["bound"].as_f64().unwrap_or(f64::NAN),
     );
+}
+
+/// A name for the shape in a CAD file: the input file's stem (`curve` for standard input).
+pub fn stem(source: &str) -> String {
+    match std::path::Path::new(source).file_stem().and_then(|s| s.to_str()) {
+        Some(s) if source != "-" && !s.is_empty() => s.to_string(),
+        _ => "curve".to_string(),
+    }
 }
 
 /// Reads `--config` if given (errors name the file and line).

@@ -9,10 +9,14 @@
 //! first other error, after every run was attempted.
 //!
 //! Every method runs in its automatic mode with its default parameters (no `--points`).
+//!
+//! Three runs also write their faired result as a CAD file ([`CAD_FILES`]: one IGES, one
+//! STEP, one DXF), through the same code as `fair curve -o FILE.igs`, beside the SVGs.
 
 use fairing::catalog::{Catalog, MethodKind};
 
 use crate::args::{DemoArgs, FairArgs, KindArg};
+use crate::cad_file::CadTarget;
 use crate::commands::{curve, inspect, surface, write_results};
 use crate::error::{Error, Result};
 use crate::input::Source;
@@ -107,6 +111,7 @@ fn run_args(input: String, method: &str, out: &std::path::Path, stem: &str) -> F
         quiet: true,
         print_config: false,
         batch: false,
+        cad: Default::default(),
     }
 }
 
@@ -114,18 +119,55 @@ fn count(value: Option<usize>) -> String {
     value.map_or("-".to_string(), |v| v.to_string())
 }
 
-/// Fairs one embedded curve as `fair curve` would and returns its report.
-fn fair_curve(catalog: &Catalog, args: &FairArgs) -> Result<Report> {
+/// The runs whose faired result the demo also writes as a CAD file `<data set>-<method>.<ext>`:
+/// a hand-digitised airfoil faired by two-phase (IGES), the teapot body by Zhang–Cheng
+/// (STEP, a bicubic B-spline surface) and a ship's waterline by strain-energy (DXF).
+pub const CAD_FILES: [(&str, &str, cad::Format); 3] = [
+    ("r140-upper", "two-phase", cad::Format::Iges),
+    ("teapot-body", "zhang-cheng", cad::Format::Step),
+    ("gunnerus-wl03", "strain-energy", cad::Format::Dxf),
+];
+
+/// The CAD file a demo run writes, if any: `<stem>.<ext>` beside its SVG.
+fn cad_target(dataset: &str, method: &str, out: &std::path::Path, stem: &str) -> Option<CadTarget> {
+    CAD_FILES
+        .iter()
+        .find(|(d, m, _)| *d == dataset && *m == method)
+        .map(|&(_, _, format)| CadTarget {
+            format,
+            path: out
+                .join(format!("{stem}.{}", format.extension()))
+                .display()
+                .to_string(),
+            settings: cad::CadSettings::default(),
+        })
+}
+
+/// Fairs one embedded curve as `fair curve` would (and writes its CAD file when `cad` says)
+/// and returns its report.
+fn fair_curve(catalog: &Catalog, args: &FairArgs, cad: Option<&CadTarget>, name: &str) -> Result<Report> {
     let input = crate::input::read_curve(&args.input)?;
-    let faired = curve::process(catalog, &input, args, None)?;
+    let mut faired = curve::process(catalog, &input, args, None)?;
+    if let Some(target) = cad {
+        let made =
+            crate::cad_file::export_curve(target, &faired.report.curve, &faired.points, faired.kind, name)?;
+        faired.report.extras.insert("cad".into(), made.summary);
+        crate::output::write_text(&target.path, &made.text)?;
+    }
     write_results(args, &faired.report, &faired.points_text, || faired.plot.figure())?;
     Ok(faired.report)
 }
 
-/// Fairs one embedded surface as `fair surface` would and returns its report.
-fn fair_surface(catalog: &Catalog, args: &FairArgs) -> Result<Report> {
+/// Fairs one embedded surface as `fair surface` would (and writes its CAD file when `cad`
+/// says) and returns its report.
+fn fair_surface(catalog: &Catalog, args: &FairArgs, cad: Option<&CadTarget>, name: &str) -> Result<Report> {
     let input = crate::input::read_surface(&args.input)?;
-    let faired = surface::process(catalog, &input, args, None)?;
+    let mut faired = surface::process(catalog, &input, args, None)?;
+    if let Some(target) = cad {
+        let made = crate::cad_file::export_surface(target, &faired.report.curve, &faired.grid, name)?;
+        faired.report.extras.insert("cad".into(), made.summary);
+        crate::output::write_text(&target.path, &made.text)?;
+    }
     write_results(args, &faired.report, &faired.grid_text, || faired.plot.figure())?;
     Ok(faired.report)
 }
@@ -222,9 +264,10 @@ pub fn run(catalog: &Catalog, args: &DemoArgs) -> Result<()> {
             let name = method.name();
             let stem = format!("{}-{name}", dataset.name);
             let run_args = run_args(data_path.display().to_string(), name, &args.out, &stem);
+            let cad = cad_target(dataset.name, name, &args.out, &stem);
             let result = match dataset.kind {
-                MethodKind::Curve => fair_curve(catalog, &run_args),
-                MethodKind::Surface => fair_surface(catalog, &run_args),
+                MethodKind::Curve => fair_curve(catalog, &run_args, cad.as_ref(), dataset.name),
+                MethodKind::Surface => fair_surface(catalog, &run_args, cad.as_ref(), dataset.name),
             };
             let status = match result {
                 Ok(report) => row(&report),
@@ -278,6 +321,20 @@ pub fn run(catalog: &Catalog, args: &DemoArgs) -> Result<()> {
 mod tests {
     use super::*;
     use crate::input;
+
+    #[test]
+    fn every_cad_file_names_a_data_set_and_a_method_of_its_kind() {
+        let catalog = Catalog::builtin();
+        let formats: std::collections::HashSet<_> = CAD_FILES.iter().map(|c| c.2).collect();
+        assert_eq!(formats.len(), 3, "one file per format");
+        for (dataset, method, _) in CAD_FILES {
+            let d = DATASETS.iter().find(|d| d.name == dataset).expect(dataset);
+            assert!(
+                catalog.methods(d.kind).any(|m| m.name() == method),
+                "{dataset}: {method}"
+            );
+        }
+    }
 
     #[test]
     fn embedded_data_parses() {

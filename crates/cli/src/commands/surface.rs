@@ -43,6 +43,8 @@ pub struct FairedSurface {
     pub grid_text: String,
     /// The before/after picture (grid, highlight lines, z_ij maps).
     pub plot: SurfacePlot,
+    /// The faired grid.
+    pub grid: Grid,
 }
 
 /// The plan and constraints a command line and its config give for a grid of `count`
@@ -143,7 +145,7 @@ fn process_grid(
     let plot = SurfacePlot {
         title: format!("{} — {}", input.source, report.method),
         input: Some(input.grid.clone()),
-        faired: Some(faired),
+        faired: Some(faired.clone()),
         z: after.z,
         z_before: before.z.clone(),
         highlights: true,
@@ -152,6 +154,7 @@ fn process_grid(
         report,
         grid_text,
         plot,
+        grid: faired,
     })
 }
 
@@ -170,6 +173,7 @@ pub fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
         });
     }
     let file = super::curve::read_config(args)?;
+    let cad = crate::cad_file::target(args, true)?;
     let input = input::read_surface(&args.input)?;
     if args.print_config {
         require_grid(&input)?;
@@ -179,11 +183,21 @@ pub fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
         say(false, false, plan.render(catalog, &constraints).trim_end());
         return Ok(());
     }
-    let faired = {
+    let mut faired = {
         let _activity = crate::progress::Activity::start(&format!("fairing {}", input.source), args.quiet);
         process(catalog, &input, args, file.as_ref())?
     };
-    write_results(args, &faired.report, &faired.grid_text, || faired.plot.figure())?;
+    let output_text = match &cad {
+        Some(target) => {
+            let name = super::curve::stem(&input.source);
+            let made = crate::cad_file::export_surface(target, &faired.report.curve, &faired.grid, &name)
+                .map_err(|e| measure::in_file(e, &input.source))?;
+            faired.report.extras.insert("cad".into(), made.summary);
+            made.text
+        }
+        None => std::mem::take(&mut faired.grid_text),
+    };
+    write_results(args, &faired.report, &output_text, || faired.plot.figure())?;
     let report = &faired.report;
     say(
         args.quiet,

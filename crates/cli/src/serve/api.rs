@@ -9,6 +9,7 @@
 //! | `POST /api/inspect` | `{"text", "name"?, "kind"?, "surface"?}` (a file's content) or `{"points", "kind"?}` or `{"rows", "columns", "points"}` | [loaded](#loaded) |
 //! | `POST /api/curve` | `{"points", "kind"?, "method"?, "params"?, "constraints"?, "name"?}` | `{"points", "report", "drawing": {"before", "after"}}` |
 //! | `POST /api/surface` | `{"rows", "columns", "points", "method"?, "params"?, "constraints"?, "name"?}` | `{"rows", "columns", "points", "report", "drawing": {"before", "after"}}` |
+//! | `POST /api/cad` | the body of `/api/curve` or `/api/surface`, plus `"format": "iges" \| "step" \| "dxf"`, `"control-points"?`, `"fit-tolerance"?`, `"fair"?` | the CAD file (attachment), its report's `cad` object in the `X-Fair-Cad` header |
 //!
 //! <a id="loaded"></a>A loaded curve or surface is `{"name", "type": "curve" | "surface",
 //! "points", ("rows", "columns" for a surface), "report", "drawing"}`, the report being
@@ -72,7 +73,7 @@ pub fn handle(request: &Request, context: &Context) -> Response {
         "/style.css" => get(|_| page::style()),
         "/api/methods" => get(|context| Response::json(200, &engine::methods(&context.catalog))),
         "/api/datasets" => get(datasets),
-        "/api/inspect" | "/api/curve" | "/api/surface" => {
+        "/api/inspect" | "/api/curve" | "/api/surface" | "/api/cad" => {
             if request.method != "POST" {
                 return not_allowed("POST");
             }
@@ -82,6 +83,7 @@ pub fn handle(request: &Request, context: &Context) -> Response {
             let result = match path {
                 "/api/inspect" => inspect(&context.catalog, &request.body),
                 "/api/curve" => fair_curve(&context.catalog, &request.body),
+                "/api/cad" => cad_file(&context.catalog, &request.body),
                 _ => fair_surface(&context.catalog, &request.body),
             };
             result.unwrap_or_else(|refusal| refusal)
@@ -139,6 +141,9 @@ fn request_field(option: &str) -> &str {
         "--kind" => "kind",
         "--method" => "method",
         "--set" => "params",
+        "--control-points" => "control-points",
+        "--fit-tolerance" => "fit-tolerance",
+        "-o" | "--cad" => "format",
         other => other,
     }
 }
@@ -516,6 +521,143 @@ fn fair_surface(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
             "drawing": { "before": before, "after": after },
         }),
     ))
+}
+
+/// The CAD part of a `/api/cad` body: the format, a rebuild, and whether to fair first.
+#[derive(Debug, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+struct CadBody {
+    format: String,
+    #[serde(default)]
+    control_points: Option<usize>,
+    #[serde(default)]
+    fit_tolerance: Option<f64>,
+    #[serde(default = "yes")]
+    fair: bool,
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// A file name made of the request's name: letters, digits, `.`, `-` and `_` kept, the rest `_`.
+fn file_stem(name: &str) -> String {
+    let stem = crate::commands::curve::stem(name);
+    stem.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || "._-".contains(c) {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+/// `POST /api/cad`: fairs the body as `/api/curve` (or `/api/surface` when it has `rows`)
+/// does — or, with `"fair": false`, takes its points as already faired — and answers the CAD
+/// file `fair curve -o NAME.EXT` would write, as an attachment; the report's `cad` object is
+/// in the `X-Fair-Cad` header. The page sends the request of the step that made the current
+/// result, so that the file holds that step's own curve.
+fn cad_file(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
+    let mut value: Value = parse_body(body)?;
+    let object = value
+        .as_object_mut()
+        .ok_or_else(|| Response::error(400, "request body: expected a JSON object"))?;
+    let mut cad_part = serde_json::Map::new();
+    for key in ["format", "control-points", "fit-tolerance", "fair"] {
+        if let Some(v) = object.remove(key) {
+            cad_part.insert(key.into(), v);
+        }
+    }
+    let cad_body: CadBody = serde_json::from_value(Value::Object(cad_part))
+        .map_err(|e| Response::error(400, format!("request body: {e}")))?;
+    let format: cad::Format = cad_body.format.parse().map_err(|_| {
+        Response::error(
+            400,
+            format!(
+                "format: `{}` is not a CAD format (iges, step or dxf)",
+                cad_body.format
+            ),
+        )
+    })?;
+    let surface = object.contains_key("rows");
+    let rest = serde_json::to_vec(&value).unwrap_or_default();
+    let mut args = engine::arguments(&Job::default(), KindArg::Auto).map_err(failure)?;
+    args.output = Some(format!("points.{}", format.extension()));
+    args.cad.control_points = cad_body.control_points;
+    args.cad.fit_tolerance = cad_body.fit_tolerance;
+    let mut target = crate::cad_file::target(&args, surface)
+        .map_err(failure)?
+        .ok_or_else(|| Response::error(500, "no CAD target"))?;
+    let (name, made) = if surface {
+        let body: SurfaceBody = parse_body(&rest)?;
+        let name = body.name.unwrap_or_else(|| "points".into());
+        let grid = grid_points(body.rows, body.columns, &body.points)?;
+        let (grid, record, method) = if cad_body.fair {
+            let input = engine::surface_input(&name, grid);
+            let job = Job {
+                method: body.method,
+                params: body.params,
+                constraints: body.constraints.into_job()?,
+            };
+            let result = engine::fair_surface(catalog, &input, &job).map_err(failure)?;
+            (result.grid, result.report.curve, result.report.method)
+        } else {
+            (grid, Value::Null, "points".to_string())
+        };
+        let stem = format!("{}-{method}", file_stem(&name));
+        target.path = format!("{stem}.{}", format.extension());
+        let made = crate::cad_file::export_surface(&target, &record, &grid, &stem).map_err(failure)?;
+        (stem, made)
+    } else {
+        let body: CurveBody = parse_body(&rest)?;
+        let kind = kind_of(body.kind.as_deref())?;
+        let name = body.name.unwrap_or_else(|| "points".into());
+        let input = engine::curve_input(&name, curve_points(&body.points)?);
+        let (points, record, kind, method) = if cad_body.fair {
+            let job = Job {
+                method: body.method,
+                params: body.params,
+                constraints: body.constraints.into_job()?,
+            };
+            let result = engine::fair_curve(catalog, &input, kind, &job).map_err(failure)?;
+            (
+                result.points,
+                result.report.curve,
+                result.kind,
+                result.report.method,
+            )
+        } else {
+            input
+                .require_at_least(crate::commands::curve::MIN_CURVE_POINTS, "a curve")
+                .map_err(failure)?;
+            let kind = crate::kind::resolve(kind, &input).map_err(failure)?;
+            (input.points, Value::Null, kind, "points".to_string())
+        };
+        let stem = format!("{}-{method}", file_stem(&name));
+        target.path = format!("{stem}.{}", format.extension());
+        let made = crate::cad_file::export_curve(&target, &record, &points, kind, &stem)
+            .map_err(|e| failure(crate::commands::measure::in_file(e, &name)))?;
+        (stem, made)
+    };
+    let content_type = match format {
+        cad::Format::Iges => "model/iges",
+        cad::Format::Step => "model/step",
+        cad::Format::Dxf => "image/vnd.dxf",
+    };
+    Ok(Response {
+        status: 200,
+        content_type,
+        headers: vec![
+            (
+                "Content-Disposition",
+                format!("attachment; filename=\"{name}.{}\"", format.extension()),
+            ),
+            ("X-Fair-Cad", made.summary.to_string()),
+        ],
+        body: made.text.into_bytes(),
+    })
 }
 
 #[cfg(test)]

@@ -176,7 +176,7 @@ fn setting_text(name: &str, value: &serde_json::Value) -> Result<Option<String>>
 }
 
 /// The command line a job stands for (`fair curve` / `fair surface` options; no files).
-fn arguments(job: &Job, kind: KindArg) -> Result<FairArgs> {
+pub(crate) fn arguments(job: &Job, kind: KindArg) -> Result<FairArgs> {
     let mut settings = Vec::new();
     for (name, value) in &job.params {
         if let Some(value) = setting_text(name, value)? {
@@ -225,6 +225,7 @@ fn arguments(job: &Job, kind: KindArg) -> Result<FairArgs> {
         quiet: true,
         print_config: false,
         batch: false,
+        cad: Default::default(),
     })
 }
 

@@ -9,7 +9,8 @@
 
 Every function does what the command does, bit for bit: `curve` is `fair curve`, `surface`
 is `fair surface`, `inspect` is `fair inspect`, `methods` is `fair methods`, and `pipeline`
-takes the config files `--config` takes. Reports are dicts with exactly the fields of the
+takes the config files `--config` takes; `export_cad` writes a result as an exact
+B-spline into IGES, STEP or DXF (`fair curve -o FILE.igs`) and `read_cad` reads such files. Reports are dicts with exactly the fields of the
 command's JSON report. Bad input raises ValueError with the framework's message; the GIL is
 released while a curve is faired, so threads fair curves in parallel.
 """
@@ -21,9 +22,11 @@ from ._native import (
     __version__,
     curve,
     default_methods,
+    export_cad,
     inspect,
     methods,
     pipeline,
+    read_cad,
     surface,
 )
 
@@ -34,8 +37,10 @@ __all__ = [
     "__version__",
     "curve",
     "default_methods",
+    "export_cad",
     "inspect",
     "methods",
     "pipeline",
+    "read_cad",
     "surface",
 ]

@@ -132,3 +132,79 @@ def default_methods() -> dict[str, str]:
 
 def pipeline(config: Union[Mapping[str, Any], str, os.PathLike[str]]) -> Pipeline:
     """A pipeline from a config dict, TOML text, or a path to a .toml/.json file."""
+
+Units = Literal["mm", "cm", "m", "um", "in", "ft"]
+CadFormat = Literal["iges", "step", "dxf"]
+
+class CurvatureCounts(TypedDict):
+    inflections: int | None
+    vibrations: int
+
+class CadSummary(TypedDict, total=False):
+    """The report's `cad` object: what was written and how close it is to the faired points."""
+
+    format: CadFormat
+    file: str
+    units: Units
+    tolerance: float
+    representation: str
+    exact: bool
+    degree: int
+    control_points: int
+    max_deviation: float
+    fit_tolerance: float | None
+    exact_fallback: bool
+    faired: CurvatureCounts
+    written: CurvatureCounts
+    wiggles_back: bool
+    net: list[int]
+
+def export_cad(
+    result: Union[FairedCurve, FairedSurface, ArrayLike],
+    path: Union[str, os.PathLike[str]],
+    format: CadFormat | None = None,
+    control_points: int | None = None,
+    fit_tolerance: float | None = None,
+    kind: Kind | None = None,
+) -> CadSummary:
+    """Write a faired result as an exact B-spline into a CAD file, as `fair curve -o FILE.igs`.
+
+    result: a FairedCurve or FairedSurface (the method's own curve or surface is written),
+        or an (n, 2)/(n, 3) curve or (m, n, 3) grid taken as already faired (written as the
+        interpolating spline the report measures).
+    path: the file; its extension (.igs/.iges, .step/.stp, .dxf) chooses the format.
+    format: "iges", "step" or "dxf" (`--cad`; DXF holds curves only).
+    control_points: rebuild a curve with this many control points (`--control-points`).
+    fit_tolerance: rebuild with the fewest control points within this distance of every
+        faired point (`--fit-tolerance`); the exact curve when no fit with at most half as
+        many control points as points meets it.
+    kind: for points only, "function", "parametric" or "auto".
+
+    Returns the report's `cad` dict. Raises ValueError for a bad combination, naming the
+    argument (a DXF surface, a rebuild of a surface, both rebuild options, ...).
+    """
+
+class CadCurve(TypedDict):
+    name: str
+    degree: int
+    knots: list[float]
+    control_points: list[list[float]]
+    weights: list[float]
+
+class CadSurface(TypedDict):
+    name: str
+    degrees: list[int]
+    u_knots: list[float]
+    v_knots: list[float]
+    control_points: list[list[list[float]]]
+    weights: list[list[float]]
+
+class CadModel(TypedDict):
+    units: Units
+    tolerance: float
+    curves: list[CadCurve]
+    surfaces: list[CadSurface]
+
+def read_cad(path: Union[str, os.PathLike[str]], format: CadFormat | None = None) -> CadModel:
+    """Read an IGES, STEP or DXF file (ours, OpenCASCADE's, ezdxf's): its B-spline curves and
+    surfaces, every number as written (the round trip is exact)."""

@@ -1,0 +1,545 @@
+//! The faired result as a CAD file (`-o FILE.igs|.step|.dxf`, `--cad FORMAT`): the method's
+//! own representation converted exactly by `fair-cad`, or a least-squares rebuild of it
+//! (`--control-points`, `--fit-tolerance`).
+//!
+//! Which curve is written: the report's `curve` record, read back as the curve it describes
+//! (a NURBS of `nurbs-weights` and `sapidis-farin`, the Hermite spline of `strain-energy`,
+//! Okada's Ferguson chain of `batten`, the natural spline of `smoothing-spline`, the spline
+//! function or interpolating cubic of `two-phase`), provided the faired points lie on it to
+//! 1e-9 of their size; otherwise (a record of another kind, or none) the interpolating spline
+//! of the faired points that the report measures, which is exact for what `fair` measures. A
+//! surface is the bicubic spline surface on the record's knots. The report's `cad` object
+//! says which (`representation`), with the deviation and the curvature counts of what was
+//! written.
+
+use cad::{CadCurve, CadSettings, CadSurface, CurveKind as CadKind, Format, Shape, WriteOptions};
+use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings, CubicPieces, NurbsCurve, Vec3, Vector};
+use serde_json::{json, Value};
+
+use crate::args::FairArgs;
+use crate::error::{Error, Result};
+use crate::input::{Grid, Points};
+use crate::kind::CurveKind;
+
+/// Relative accuracy (of the points' size) to which the faired points must lie on the
+/// method's own curve for it to be written; the conversions are exact up to rounding.
+pub const ON_CURVE: f64 = 1e-9;
+
+/// What a command line asks to write as CAD: the format, the file (`-` for standard output)
+/// and the export settings.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CadTarget {
+    /// The format: `--cad`, else `-o`'s extension.
+    pub format: Format,
+    /// The file `-o` names.
+    pub path: String,
+    /// Rebuild and header settings.
+    pub settings: CadSettings,
+}
+
+/// The CAD format a command line asks for, if any: `--cad`, else `-o`'s extension.
+pub fn format_of(args: &FairArgs) -> Option<Format> {
+    args.cad
+        .cad
+        .or_else(|| args.output.as_deref().and_then(Format::from_path))
+}
+
+/// The option that chose the format, for messages.
+fn format_option(args: &FairArgs) -> &'static str {
+    if args.cad.cad.is_some() {
+        "--cad"
+    } else {
+        "-o"
+    }
+}
+
+/// Checks the CAD options of a command line (before anything runs) and returns what to write,
+/// or `None` for no CAD output. Refused, exit status 2 naming the option: `--control-points`
+/// or `--fit-tolerance` without a CAD output, `--cad` without `-o`, `--cad` against a CAD
+/// extension of another format, a batch, DXF or a rebuild for a surface, and settings the
+/// library refuses (both rebuild options, fewer than 4 control points).
+pub fn target(args: &FairArgs, surface: bool) -> Result<Option<CadTarget>> {
+    let rebuild_option = match (args.cad.control_points, args.cad.fit_tolerance) {
+        (Some(_), _) => Some("--control-points"),
+        (None, Some(_)) => Some("--fit-tolerance"),
+        (None, None) => None,
+    };
+    let Some(format) = format_of(args) else {
+        return match rebuild_option {
+            Some(option) => Err(Error::Argument {
+                option,
+                message: "rebuilds the curve written to a CAD file: give -o FILE.igs|.step|.dxf or --cad FORMAT with -o".into(),
+            }),
+            None => Ok(None),
+        };
+    };
+    let option = format_option(args);
+    let Some(path) = args.output.clone() else {
+        return Err(Error::Argument {
+            option: "--cad",
+            message: format!(
+                "writes the {format} file that -o names (-o - for standard output); no -o given"
+            ),
+        });
+    };
+    if let (Some(asked), Some(named)) = (args.cad.cad, Format::from_path(&path)) {
+        if asked != named {
+            return Err(Error::Argument {
+                option: "--cad",
+                message: format!(
+                    "`{asked}`, but -o `{path}` is a {named} file by its extension; give one format"
+                ),
+            });
+        }
+    }
+    if crate::commands::curve::batch::is_batch(args) {
+        return Err(Error::Argument {
+            option,
+            message: "a batch writes points; CAD files are written for one curve at a time (fair curve FILE -o OUT.igs)".into(),
+        });
+    }
+    if surface {
+        if format == Format::Dxf {
+            return Err(Error::Argument {
+                option,
+                message: "DXF has no exact B-spline surface; write the surface as .igs or .step".into(),
+            });
+        }
+        if let Some(option) = rebuild_option {
+            return Err(Error::Argument {
+                option,
+                message: "rebuilds curves; a surface is written exactly".into(),
+            });
+        }
+    }
+    let settings = CadSettings {
+        control_points: args.cad.control_points,
+        fit_tolerance: args.cad.fit_tolerance,
+        ..CadSettings::default()
+    };
+    settings
+        .validate()
+        .map_err(|e| cad_error(e, option, rebuild_option))?;
+    Ok(Some(CadTarget {
+        format,
+        path,
+        settings,
+    }))
+}
+
+/// A `fair-cad` error as the command's: a refused parameter names its option (exit status 2),
+/// anything else is internal.
+fn cad_error(error: cad::Error, format_option: &'static str, rebuild_option: Option<&'static str>) -> Error {
+    match &error {
+        cad::Error::BadParameter { name, .. } => Error::Argument {
+            option: match *name {
+                "control-points" => "--control-points",
+                "fit-tolerance" => "--fit-tolerance",
+                _ => rebuild_option.unwrap_or(format_option),
+            },
+            message: error.to_string(),
+        },
+        cad::Error::Unsupported(_) | cad::Error::UnknownFormat(_) => Error::Argument {
+            option: rebuild_option.unwrap_or(format_option),
+            message: error.to_string(),
+        },
+        cad::Error::Io { path, message } => Error::Write {
+            path: path.clone(),
+            reason: message.clone(),
+        },
+        _ => match rebuild_option {
+            Some(option) => Error::Argument {
+                option,
+                message: error.to_string(),
+            },
+            None => Error::Internal {
+                message: format!("CAD export: {error}"),
+            },
+        },
+    }
+}
+
+/// A CAD file made: its text and the report's `cad` object.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CadOutput {
+    /// The file's text (IGES, STEP and DXF are ASCII).
+    pub text: String,
+    /// The report's `cad` object.
+    pub summary: Value,
+}
+
+fn f64s(value: &Value) -> Option<Vec<f64>> {
+    value.as_array()?.iter().map(Value::as_f64).collect()
+}
+
+fn vectors<const D: usize>(value: &Value) -> Option<Vec<Vector<D>>> {
+    value
+        .as_array()?
+        .iter()
+        .map(|row| {
+            let row = f64s(row)?;
+            (row.len() == D).then(|| Vector::<D>::from_iterator(row))
+        })
+        .collect()
+}
+
+/// Cumulative chord length of `points`, from 0.
+fn chord_breaks<const D: usize>(points: &[Vector<D>]) -> Vec<f64> {
+    let mut breaks = Vec::with_capacity(points.len());
+    let mut total = 0.0;
+    breaks.push(0.0);
+    for w in points.windows(2) {
+        total += (w[1] - w[0]).norm();
+        breaks.push(total);
+    }
+    breaks
+}
+
+/// The natural cubic spline of values y_i and second derivatives M_i at knots t_i, as
+/// tangents for the Hermite form: S'(t_i) = Δy/h − h(2M_i + M_{i+1})/6 on the right of each
+/// knot, Δy/h + h(M_{i−1} + 2M_i)/6 at the last. Exact: the cubic on each span is fixed by
+/// its end values and second derivatives.
+fn natural_tangents<const D: usize>(t: &[f64], y: &[Vector<D>], m: &[Vector<D>]) -> Option<Vec<Vector<D>>> {
+    let n = t.len();
+    if n < 2 || y.len() != n || m.len() != n {
+        return None;
+    }
+    let mut tangents: Vec<Vector<D>> = (0..n - 1)
+        .map(|i| {
+            let h = t[i + 1] - t[i];
+            (y[i + 1] - y[i]) / h - (m[i] * 2.0 + m[i + 1]) * (h / 6.0)
+        })
+        .collect();
+    let h = t[n - 1] - t[n - 2];
+    tangents.push((y[n - 1] - y[n - 2]) / h + (m[n - 2] + m[n - 1] * 2.0) * (h / 6.0));
+    Some(tangents)
+}
+
+/// The curve the report's `curve` record describes, through the faired `points`; `None`
+/// when the record is of another kind or does not fit the points.
+fn method_curve<const D: usize>(record: &Value, points: &[Vector<D>]) -> Option<CadCurve> {
+    let by_x = record.get("parametrization").and_then(Value::as_str) == Some("x");
+    let as_function = |c: CadCurve| if by_x { c.with_kind(CadKind::Function) } else { c };
+    match record.get("type")?.as_str()? {
+        "nurbs" => {
+            let degree = usize::try_from(record.get("degree")?.as_u64()?).ok()?;
+            let curve = NurbsCurve::<D>::new(
+                degree,
+                f64s(record.get("knots")?)?,
+                vectors::<D>(record.get("control_points")?)?,
+                f64s(record.get("weights")?)?,
+            )
+            .ok()?;
+            let params = f64s(record.get("params")?)?;
+            CadCurve::from_nurbs(&curve, points, &params)
+                .ok()
+                .map(as_function)
+        }
+        "hermite" => {
+            let knots = f64s(record.get("knots").or_else(|| record.get("params"))?)?;
+            let nodes = vectors::<D>(record.get("points")?)?;
+            let tangents = vectors::<D>(record.get("tangents")?)?;
+            let pieces = CubicPieces::from_hermite(&knots, &nodes, &tangents).ok()?;
+            let parameters = knots.get(..points.len())?;
+            CadCurve::from_pieces(&pieces, points, parameters).ok()
+        }
+        "natural-cubic-spline" => {
+            let knots = f64s(record.get("knots")?)?;
+            let values = vectors::<D>(record.get("values")?)?;
+            let second = vectors::<D>(record.get("second_derivatives")?)?;
+            let tangents = natural_tangents(&knots, &values, &second)?;
+            let pieces = CubicPieces::from_hermite(&knots, &values, &tangents).ok()?;
+            CadCurve::from_pieces(&pieces, points, &knots)
+                .ok()
+                .map(as_function)
+        }
+        "ferguson" => {
+            let segments: Vec<[Vector<D>; 4]> = record
+                .get("segments")?
+                .as_array()?
+                .iter()
+                .map(|s| vectors::<D>(s)?.try_into().ok())
+                .collect::<Option<_>>()?;
+            let breaks = chord_breaks(points);
+            let pieces = CubicPieces::from_unit_power(&breaks, &segments).ok()?;
+            CadCurve::from_pieces(&pieces, points, &breaks).ok()
+        }
+        // Both are the spline the report measures, built below.
+        _ => None,
+    }
+}
+
+/// The spline the report measures through the faired points.
+fn measured_curve<const D: usize>(points: &[Vector<D>], kind: CurveKind) -> Result<CadCurve> {
+    let curve = match kind {
+        CurveKind::Function => {
+            let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
+            let y: Vec<f64> = points.iter().map(|p| p[1]).collect();
+            CadCurve::measured_function(&x, &y)
+        }
+        CurveKind::Parametric => CadCurve::measured_parametric(points),
+    };
+    curve.map_err(|e| Error::Internal {
+        message: format!("CAD export: the measured spline: {e}"),
+    })
+}
+
+/// The largest distance of the curve's data points from the curve at their parameters
+/// (vertical |Δy| for a function, as the rebuild measures it).
+fn deviation(curve: &CadCurve) -> f64 {
+    curve
+        .points
+        .iter()
+        .zip(&curve.parameters)
+        .map(|(q, &t)| {
+            let p = curve.curve.point(t);
+            match curve.kind {
+                CadKind::Function => (q.y - p.y).abs(),
+                CadKind::Parametric => (q - p).norm(),
+            }
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The exact faired curve: the method's own when the record gives one the faired points lie
+/// on, else the measured spline; with the name of what it is.
+pub fn faired_curve(record: &Value, faired: &Points, kind: CurveKind) -> Result<(CadCurve, String)> {
+    fn pick<const D: usize>(
+        record: &Value,
+        points: &[Vector<D>],
+        kind: CurveKind,
+    ) -> Result<(CadCurve, String)> {
+        let lifted: Vec<Vec3> = points
+            .iter()
+            .map(|p| Vec3::from_fn(|i, _| if i < D { p[i] } else { 0.0 }))
+            .collect();
+        let scale = cad::model::size(&lifted).max(f64::MIN_POSITIVE);
+        let own = method_curve(record, points).filter(|c| {
+            c.points.len() == points.len()
+                && deviation(&c.clone().with_kind(CadKind::Parametric)) <= ON_CURVE * scale
+        });
+        let name = record.get("type").and_then(Value::as_str).unwrap_or("");
+        match own {
+            Some(curve) => Ok((curve, name.to_string())),
+            None => {
+                let spline = measured_curve(points, kind)?;
+                let what = match (name, kind) {
+                    ("spline-function" | "interpolating-cubic", _) => name.to_string(),
+                    (_, CurveKind::Function) => "measured-spline-function".to_string(),
+                    (_, CurveKind::Parametric) => "measured-natural-cubic".to_string(),
+                };
+                Ok((spline, what))
+            }
+        }
+    }
+    match faired {
+        Points::Planar(p) => pick(record, p, kind),
+        Points::Spatial(p) => pick(record, p, kind),
+    }
+}
+
+/// The exact faired surface: the bicubic spline surface on the record's knots when the grid
+/// lies on it, else on chord-length averaged knots (the surface the report measures).
+pub fn faired_surface(record: &Value, grid: &Grid) -> Result<(CadSurface, String)> {
+    let rows: Vec<Vec<Vec3>> = grid.points.chunks(grid.columns).map(<[Vec3]>::to_vec).collect();
+    let own = (|| {
+        if record.get("type")?.as_str()? != "bicubic" {
+            return None;
+        }
+        let settings = BicubicSurfaceSettings::default()
+            .with_u_knots(f64s(record.get("u_knots")?)?)
+            .with_v_knots(f64s(record.get("v_knots")?)?);
+        let surface = BicubicSplineSurface::with_settings(&rows, &settings).ok()?;
+        CadSurface::from_bicubic(&surface).ok()
+    })();
+    let scale = cad::model::size(&grid.points).max(f64::MIN_POSITIVE);
+    let on_surface = |s: &CadSurface| {
+        s.u_parameters.iter().enumerate().all(|(i, &u)| {
+            s.v_parameters
+                .iter()
+                .enumerate()
+                .all(|(j, &v)| (s.point_at(u, v) - rows[i][j]).norm() <= ON_CURVE * scale)
+        })
+    };
+    match own.filter(on_surface) {
+        Some(surface) => Ok((surface, "bicubic".into())),
+        None => CadSurface::measured(&rows)
+            .map(|s| (s, "measured-bicubic".into()))
+            .map_err(|e| Error::Internal {
+                message: format!("CAD export: the measured surface: {e}"),
+            }),
+    }
+}
+
+/// The header options for a file at `path` (its name recorded inside).
+fn options(path: &str) -> WriteOptions {
+    let file_name = if path == "-" {
+        String::new()
+    } else {
+        std::path::Path::new(path)
+            .file_name()
+            .and_then(|n| n.to_str())
+            .unwrap_or_default()
+            .to_string()
+    };
+    WriteOptions {
+        file_name,
+        ..WriteOptions::default()
+    }
+}
+
+fn counts(c: &cad::CurvatureCounts) -> Value {
+    json!({ "inflections": c.inflections, "vibrations": c.vibrations })
+}
+
+/// Writes the faired curve as `target` asks: the exact curve ([`faired_curve`]) or its
+/// rebuild. The `cad` object: `format`, `file`, `units`, `tolerance` (written into the
+/// file), `representation` (which curve), `exact` (the file holds the faired curve itself),
+/// `degree`, `control_points`, `max_deviation` (largest distance of a faired point from the
+/// written curve at its parameter, |Δy| for a function), `fit_tolerance`, `exact_fallback`,
+/// `faired` and `written` curvature counts at the faired points' parameters, `wiggles_back`.
+pub fn export_curve(
+    target: &CadTarget,
+    record: &Value,
+    faired: &Points,
+    kind: CurveKind,
+    name: &str,
+) -> Result<CadOutput> {
+    let rebuild_option = match (target.settings.control_points, target.settings.fit_tolerance) {
+        (Some(_), _) => Some("--control-points"),
+        (None, Some(_)) => Some("--fit-tolerance"),
+        _ => None,
+    };
+    let (curve, representation) = faired_curve(record, faired, kind)?;
+    let curve = curve.with_name(name);
+    let options = options(&target.path);
+    let export = cad::export(
+        &Shape::Curve(curve.clone()),
+        target.format,
+        &target.settings,
+        &options,
+    )
+    .map_err(|e| cad_error(e, "-o", rebuild_option))?;
+    let written = export.model.curves.first().ok_or_else(|| Error::Internal {
+        message: "CAD export wrote no curve".into(),
+    })?;
+    let (faired_counts, written_counts, max_deviation, exact, fallback, wiggles) = match &export.rebuild {
+        Some(r) => (
+            r.faired,
+            r.rebuilt,
+            r.max_deviation,
+            r.exact_fallback,
+            r.exact_fallback,
+            r.wiggles_back,
+        ),
+        None => {
+            let c =
+                cad::rebuild::curvature_counts(&curve.curve, curve.dimension, curve.kind, &curve.parameters)
+                    .map_err(|e| Error::Internal {
+                        message: format!("CAD export: curvature counts: {e}"),
+                    })?;
+            (c, c, deviation(&curve), true, false, false)
+        }
+    };
+    let summary = json!({
+        "format": target.format,
+        "file": target.path,
+        "units": export.model.units,
+        "tolerance": export.model.tolerance,
+        "representation": representation,
+        "exact": exact,
+        "degree": written.curve.degree(),
+        "control_points": written.curve.control_points().len(),
+        "max_deviation": max_deviation,
+        "fit_tolerance": target.settings.fit_tolerance,
+        "exact_fallback": fallback,
+        "faired": counts(&faired_counts),
+        "written": counts(&written_counts),
+        "wiggles_back": wiggles,
+    });
+    Ok(CadOutput {
+        text: export.text,
+        summary,
+    })
+}
+
+/// Writes the faired surface as `target` asks (exactly). The `cad` object as for a curve,
+/// `control_points` counting the net (rows × columns), `max_deviation` the grid's from the
+/// surface at its parameters, no counts.
+pub fn export_surface(target: &CadTarget, record: &Value, grid: &Grid, name: &str) -> Result<CadOutput> {
+    let (surface, representation) = faired_surface(record, grid)?;
+    let surface = surface.with_name(name);
+    let max_deviation = surface
+        .u_parameters
+        .iter()
+        .enumerate()
+        .flat_map(|(i, &u)| {
+            let surface = &surface;
+            surface.v_parameters.iter().enumerate().map(move |(j, &v)| {
+                (surface.point_at(u, v) - surface.points[i * surface.v_parameters.len() + j]).norm()
+            })
+        })
+        .fold(0.0, f64::max);
+    let options = options(&target.path);
+    let export = cad::export(
+        &Shape::Surface(surface),
+        target.format,
+        &target.settings,
+        &options,
+    )
+    .map_err(|e| cad_error(e, "-o", None))?;
+    let summary = export.summary();
+    let net = export.model.surfaces.first().map(|s| s.surface.net_size());
+    Ok(CadOutput {
+        text: export.text,
+        summary: json!({
+            "format": target.format,
+            "file": target.path,
+            "units": export.model.units,
+            "tolerance": export.model.tolerance,
+            "representation": representation,
+            "exact": true,
+            "degree": summary.degree,
+            "control_points": summary.control_points,
+            "net": net.map(|(r, c)| [r, c]),
+            "max_deviation": max_deviation,
+        }),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use curve_repr::Vec2;
+
+    #[test]
+    fn natural_tangents_are_the_cubic_s_derivatives() {
+        // y = t³ − 3t on knots 0, 1, 3 is not natural, but any cubic's values and second
+        // derivatives give its own tangents: y' = 3t² − 3, y'' = 6t.
+        let t = [0.0, 1.0, 3.0];
+        let y: Vec<Vector<1>> = t.iter().map(|&t| Vector::<1>::new(t * t * t - 3.0 * t)).collect();
+        let m: Vec<Vector<1>> = t.iter().map(|&t| Vector::<1>::new(6.0 * t)).collect();
+        let d = natural_tangents(&t, &y, &m).unwrap();
+        for (k, &t) in t.iter().enumerate() {
+            assert!((d[k][0] - (3.0 * t * t - 3.0)).abs() < 1e-12, "{k}: {}", d[k][0]);
+        }
+    }
+
+    #[test]
+    fn an_unknown_record_falls_back_to_the_measured_spline() {
+        let points = Points::Planar(vec![
+            Vec2::new(0.0, 0.0),
+            Vec2::new(1.0, 0.5),
+            Vec2::new(2.0, 0.2),
+            Vec2::new(3.0, 0.9),
+        ]);
+        let (curve, what) = faired_curve(&json!({"type": "mystery"}), &points, CurveKind::Function).unwrap();
+        assert_eq!(what, "measured-spline-function");
+        assert!(deviation(&curve) <= 1e-15);
+        // A NURBS record that does not pass through the points is not written.
+        let wrong = json!({"type": "nurbs", "degree": 1, "knots": [0.0, 0.0, 1.0, 1.0],
+            "control_points": [[0.0, 5.0], [3.0, 5.0]], "weights": [1.0, 1.0], "params": [0.0, 0.3, 0.6, 1.0]});
+        let (_, what) = faired_curve(&wrong, &points, CurveKind::Parametric).unwrap();
+        assert_eq!(what, "measured-natural-cubic");
+    }
+}
