@@ -25,7 +25,7 @@ def test_readme_example_runs(monkeypatch, capsys):
     namespace: dict = {}
     exec(compile(blocks[0], "README.md (Python example)", "exec"), namespace)
     printed = capsys.readouterr().out
-    assert "two-phase: inflections" in printed and "csaps at the same M_d" in printed
+    assert "jump-lsq: inflections" in printed and "csaps at the same M_d" in printed
     if importlib.util.find_spec("matplotlib") is None:
         return  # the plot is optional
     monkeypatch.setenv("MPLBACKEND", "Agg")
@@ -33,5 +33,5 @@ def test_readme_example_runs(monkeypatch, capsys):
     import matplotlib.pyplot as plt
 
     lines = plt.gca().get_lines()
-    assert [line.get_label() for line in lines] == ["measured", "csaps, same M_d", "fair two-phase"]
+    assert [line.get_label() for line in lines] == ["measured", "csaps, same M_d", "fair jump-lsq"]
     plt.close("all")

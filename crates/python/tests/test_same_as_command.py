@@ -82,7 +82,7 @@ CASES = [
     ("kjellander", WATERLINE, {"max-iterations": 50}, {"tolerance": 0.01, "kind": "parametric"}),
     ("nurbs-weights", FUNCTION, {"criterion": "ek"}, {}),
     ("two-phase", WATERLINE, {}, {"fixed": [3, 40]}),
-    ("sapidis-farin", CONTOUR, {"tolerance": 0.001}, {}),
+    ("sapidis-farin", CONTOUR, {"jump-reduction": 0.001}, {}),
     ("batten", SECTION, {"update": "jacobi"}, {}),
 ]
 

@@ -716,7 +716,7 @@ mod tests {
             &format!(r#"{{"points": {points}, "params": {{"zz": 1}}}}"#),
         );
         assert!(
-            message(&r).starts_with("params: `zz` is not a parameter of `two-phase`"),
+            message(&r).starts_with("params: `zz` is not a parameter of `jump-lsq`"),
             "{}",
             message(&r)
         );
