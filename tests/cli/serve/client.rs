@@ -42,7 +42,13 @@ impl Reply {
 
 /// Sends raw bytes (a whole request) and reads the answer to the end of the connection.
 pub fn raw(address: &str, bytes: &[u8]) -> std::io::Result<Reply> {
-    let mut stream = TcpStream::connect(address)?;
+    // A signal (a child process of another test ending) may interrupt a system call: retry.
+    let mut stream = loop {
+        match TcpStream::connect(address) {
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+            other => break other?,
+        }
+    };
     stream.set_read_timeout(Some(Duration::from_secs(120)))?;
     // A server that refuses early may close before it read everything: keep reading its answer.
     let _ = stream.write_all(bytes);
@@ -52,6 +58,7 @@ pub fn raw(address: &str, bytes: &[u8]) -> std::io::Result<Reply> {
         match stream.read(&mut buffer) {
             Ok(0) => break,
             Ok(n) => answer.extend_from_slice(&buffer[..n]),
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
             Err(e) if answer.is_empty() => return Err(e),
             Err(_) => break,
         }
