@@ -279,6 +279,20 @@ fn schema_of<S: Settings>() -> Value {
     serde_json::to_value(schemars::schema_for!(S)).unwrap_or_default()
 }
 
+/// The default settings of `S` as JSON (what a curve and a surface adapter both report).
+fn defaults_of<S: Settings>() -> Value {
+    serde_json::to_value(S::default()).unwrap_or_default()
+}
+
+/// Whether `settings` deserialise as `S` (and, with `validate`, pass its range checks).
+fn accept_as<S: Settings>(settings: &Value, validate: bool) -> Result<()> {
+    let typed = deserialize::<S>(settings)?;
+    if validate {
+        typed.validate()?;
+    }
+    Ok(())
+}
+
 pub(crate) struct CurveAdapter<M>(pub M);
 pub(crate) struct SurfaceAdapter<M>(pub M);
 
@@ -287,17 +301,13 @@ impl<M: CurveMethod> ErasedMethod for CurveAdapter<M> {
         schema_of::<M::Settings>()
     }
     fn defaults(&self) -> Value {
-        serde_json::to_value(M::Settings::default()).unwrap_or_default()
+        defaults_of::<M::Settings>()
     }
     fn key_order(&self) -> Vec<String> {
         schema::key_order(&M::Settings::default())
     }
     fn accept(&self, settings: &Value, validate: bool) -> Result<()> {
-        let typed = deserialize::<M::Settings>(settings)?;
-        if validate {
-            typed.validate()?;
-        }
-        Ok(())
+        accept_as::<M::Settings>(settings, validate)
     }
     fn takes_bad_points(&self) -> bool {
         self.0.takes_bad_points()
@@ -321,17 +331,13 @@ impl<M: SurfaceMethod> ErasedMethod for SurfaceAdapter<M> {
         schema_of::<M::Settings>()
     }
     fn defaults(&self) -> Value {
-        serde_json::to_value(M::Settings::default()).unwrap_or_default()
+        defaults_of::<M::Settings>()
     }
     fn key_order(&self) -> Vec<String> {
         schema::key_order(&M::Settings::default())
     }
     fn accept(&self, settings: &Value, validate: bool) -> Result<()> {
-        let typed = deserialize::<M::Settings>(settings)?;
-        if validate {
-            typed.validate()?;
-        }
-        Ok(())
+        accept_as::<M::Settings>(settings, validate)
     }
     fn takes_bad_points(&self) -> bool {
         self.0.takes_bad_points()
