@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Opens every file that `cargo run -p fair-cad --example cad_check -- DIR` wrote with
+"""Opens every file that the test `cargo test -p fair-cad --test cad occ_check` wrote (into
+`target/tmp/cad-check`, or DIR = `$FAIR_CAD_CHECK_DIR`) with
 OpenCASCADE's readers (IGESControl_Reader, STEPControl_Reader) and ezdxf, evaluates each
 curve or surface at the parameters in DIR/check.json (1 000 per curve, 32 x 32 per surface),
 and compares with our own evaluation to 1e-9 of the shape's size; the faired points must lie
@@ -154,4 +155,4 @@ def main(directory):
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1] if len(sys.argv) > 1 else "target/cad-check"))
+    sys.exit(main(sys.argv[1] if len(sys.argv) > 1 else "target/tmp/cad-check"))

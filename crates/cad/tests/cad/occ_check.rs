@@ -1,11 +1,17 @@
 //! Writes one faired shape of each kind as IGES, STEP and DXF, and `check.json` with our own
 //! evaluation of each at 1 000 parameters and the faired points with their parameters, for
-//! `tests/python/check_cad.py` to compare with OpenCASCADE's and ezdxf's readers.
+//! `tests/python/check_cad.py` to compare with OpenCASCADE's and ezdxf's readers. The files go
+//! to `$FAIR_CAD_CHECK_DIR` if set, else to `cad-check` in cargo's test scratch directory
+//! (`target/tmp/cad-check`); `.ci/run` runs the script on them after the test suite:
 //!
 //! ```sh
-//! cargo run -p fair-cad --example cad_check -- OUT_DIR
-//! python tests/python/check_cad.py OUT_DIR
+//! cargo test -p fair-cad --test cad occ_check
+//! python tests/python/check_cad.py target/tmp/cad-check
 //! ```
+//!
+//! (A test rather than an example so that the suite's own build writes the files: an example
+//! run with `cargo run -p fair-cad` resolves features for that package alone and recompiled
+//! most dependencies in CI.)
 //!
 //! Shapes: a spline function y(x) (x(t) = t), an open and a closed planar natural spline, a
 //! spatial spline, a rational interpolating NURBS (non-unit weights, as the weight method
@@ -239,12 +245,16 @@ fn record(shape: &Shape, export: &cad::Export, files: Value) -> Value {
     }
 }
 
-fn main() -> Result<(), Failure> {
-    let out = PathBuf::from(
-        std::env::args()
-            .nth(1)
-            .unwrap_or_else(|| "target/cad-check".into()),
-    );
+/// The directory the files go to (see the module's documentation).
+fn out_dir() -> PathBuf {
+    std::env::var_os("FAIR_CAD_CHECK_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_TARGET_TMPDIR")).join("cad-check"))
+}
+
+#[test]
+fn writes_every_kind_for_opencascade_and_ezdxf() -> Result<(), Failure> {
+    let out = out_dir();
     std::fs::create_dir_all(&out)?;
     let mut records = Vec::new();
     for (shape, settings) in shapes()? {
@@ -268,10 +278,10 @@ fn main() -> Result<(), Failure> {
         }
         let export = first.ok_or("no format written")?;
         records.push(record(&shape, &export, Value::Object(files)));
-        println!("{name}: {}", serde_json::to_string(&export.summary())?);
     }
+    // Nine shapes: each kind the module's documentation lists.
+    assert_eq!(records.len(), 9, "shapes written");
     std::fs::write(out.join("check.json"), serde_json::to_string(&records)?)?;
-    println!("wrote {} shapes to {}", records.len(), out.display());
     Ok(())
 }
 
