@@ -75,8 +75,9 @@
 //! only the averaged knot steps next to i and j, but every u-line shares the u knots, so the
 //! responses, tangents and jumps of all n + 1 u-lines change near i (O(n · window) a move,
 //! against O(window) for the move itself); one full refresh per step is the cheaper schedule.
-//! The thin-plate option reads the twists and updates the surface after every move (O(m·n)
-//! per move).
+//! The thin-plate option reads the twists and updates the surface after every move
+//! ([`BicubicSplineSurface::move_points`]: two unit responses, O(m + n), and the tangents and
+//! twists in a window round the point).
 
 // The building blocks index the grid directly (their callers validate it first), so they
 // stay inside the crate; `SurfaceFairing` is the checked entry point.
