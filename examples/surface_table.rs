@@ -23,6 +23,7 @@ use std::time::Instant;
 use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings, GridTopology, Vec3};
 use fairing::strategies::{
     Closure, Region, SurfaceFairing, SurfaceFairingSettings, SurfaceSmoothing, SurfaceSmoothingSettings,
+    SweepOrder,
 };
 
 type Net = Vec<Vec<Vec3>>;
@@ -232,6 +233,10 @@ fn fair_all(name: &str, net: &Net, clean: Option<&Net>) -> Result<(), Box<dyn Er
     let clean_flat = clean.map(flat);
     let methods: Vec<(&str, SurfaceFairingSettings)> = vec![
         ("zhang-cheng", SurfaceFairingSettings::zhang_cheng()),
+        (
+            "zhang-cheng, order=queue",
+            SurfaceFairingSettings::zhang_cheng().with_order(SweepOrder::Queue),
+        ),
         (
             "zhang-cheng as printed",
             SurfaceFairingSettings::zhang_cheng().as_printed(),

@@ -44,17 +44,24 @@ fn build(c: &mut Criterion) {
     group.finish();
 }
 
+/// One point moved and the surface rebuilt locally (tangents and twists in a window round the
+/// point): the time should not grow with the grid (O(m + n) for the two unit responses, a
+/// small part, and O(window²) for the twists).
 fn move_one_point(c: &mut Criterion) {
-    let mut surface = BicubicSplineSurface::new(&grid(200)).unwrap_or_else(|error| panic!("{error}"));
     let mut group = c.benchmark_group("bicubic_surface_move");
-    let mut toggle = false;
-    group.bench_function("one point 200x200", |b| {
-        b.iter(|| {
-            toggle = !toggle;
-            let z = if toggle { 0.5 } else { -0.5 };
-            surface.move_points(black_box(&[((100, 77), Vec3::new(10.0, 7.7, z))]))
-        })
-    });
+    for count in sizes(&[50usize, 100, 200, 400]) {
+        let mut surface = BicubicSplineSurface::new(&grid(count)).unwrap_or_else(|error| panic!("{error}"));
+        let (i, j) = (count / 2, count * 3 / 8);
+        let (x, y) = (i as f64 * 0.1, j as f64 * 0.1);
+        let mut toggle = false;
+        group.bench_function(format!("one point {count}x{count}"), |b| {
+            b.iter(|| {
+                toggle = !toggle;
+                let z = if toggle { 0.5 } else { -0.5 };
+                surface.move_points(black_box(&[((i, j), Vec3::new(x, y, z))]))
+            })
+        });
+    }
     group.finish();
 }
 

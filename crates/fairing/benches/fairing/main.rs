@@ -5,6 +5,7 @@ mod jump_lsq;
 mod smoothing_spline;
 mod strain_energy;
 mod surface_fairing;
+mod surface_order;
 mod two_phase;
 
 criterion::criterion_main!(
@@ -12,5 +13,6 @@ criterion::criterion_main!(
     smoothing_spline::benches,
     strain_energy::benches,
     surface_fairing::benches,
+    surface_order::benches,
     two_phase::benches,
 );

@@ -31,7 +31,7 @@ pub use smoothing_spline::{
 pub use strain_energy::{Mode, Replacement, StrainEnergy, StrainEnergySettings};
 pub use surface::{
     Closure, Objective, Refusal, Region, SurfaceFairing, SurfaceFairingResult, SurfaceFairingSettings,
-    SurfaceMode, SurfaceStep,
+    SurfaceMode, SurfaceStep, SweepOrder,
 };
 pub use surface_smoothing::{
     smooth_grid, SurfaceSmoothing, SurfaceSmoothingResult, SurfaceSmoothingSettings,

@@ -13,12 +13,20 @@
 //!   `radius_scale` · |P̄_ij − P_ij| (P̄ from Eq. 21 on the surface after step 2.1); then every
 //!   step fairs every interior point once, the largest z_ij (Eq. 26) first, each kept in its
 //!   sphere; the surface is rebuilt (2.5) and the run stops when the network strain energy
-//!   changes by at most `tolerance` × its value in one step (2.6). The order of work is
-//!   the paper's: z_ij at the step's start, sorted once per step (O(m·n log(m·n)), the same
-//!   order as the step's own O(m·n) moves). A priority queue on the *current* z_ij (keys
-//!   refreshed as neighbours move) was measured and converged more slowly: every point is
-//!   moved once per step anyway. Kjellander, which moves one point per step, takes its
-//!   worst point off such a queue.
+//!   changes by at most `tolerance` × its value in one step (2.6). The order of work
+//!   ([`SweepOrder`]) is by default the paper's: z_ij at the step's start, sorted once per
+//!   step (O(m·n log(m·n)), against the step's own O(m·n) moves of O(window) each). The
+//!   other order, `order = queue`, takes the point of largest *current* z_ij off an indexed
+//!   heap whose keys are raised in place as moves raise them (exactly the nodes a move
+//!   changes are looked at; a pop is what a full rescan of the current z would choose). It
+//!   was measured against the sort on the surface table's nets and lost: equal or worse
+//!   largest z_ij at the end (twisted strip 0.0353 against 0.0231, noisy 100 × 100 grid 35.1
+//!   against 27.9; equal on the teapot, hull and panel), and about three times the CPU per
+//!   step (the heap's pops and re-keys miss the cache where the sort reads an array); on the
+//!   noisy 200 × 200 grid it reaches a lower z (27.7 against 35.1, where the sort's run is
+//!   stopped by the max-z rule) but takes 116 steps to converge against 16. So the sort
+//!   stays the default. Kjellander, which moves one point per step, takes its worst point
+//!   off a lazy queue.
 //! - **Interactive** (§4.4, algorithm 1): the user's bad points are sorted by z_ij and grouped
 //!   as step 1.3 says (the next two adjacent: a pair, Eq. 23; diagonal: the 2×2 block they
 //!   span, Eq. 25; else one point, Eq. 20); one step fairs every group once; stop on the
@@ -60,9 +68,16 @@
 //! Within a step, moves go to the iso-parametric spline network (`network::Network`): the
 //! tangents of u-line j and v-line i of the moved point updated by the spline's measured
 //! response to a unit move, in a window of knots, and the energy by an exact O(1) formula: a
-//! move costs O(window), a constant. A step adds O(m·n) for the judgement and the knot
-//! refresh (one network rebuild, one pass over z_ij). The thin-plate option reads the twists
-//! and updates the surface after every move (O(m·n) per move).
+//! move costs O(window), a constant (the window is set by the knots' spacing, not the
+//! grid's size). A step adds O(m·n) for the judgement and the knot refresh (one network
+//! rebuild, one pass over z_ij), amortised over the step's m·n moves: O(1) per point. The
+//! refresh is not made after every move because it cannot be local: a move of P_ij changes
+//! only the averaged knot steps next to i and j, but every u-line shares the u knots, so the
+//! responses, tangents and jumps of all n + 1 u-lines change near i (O(n · window) a move,
+//! against O(window) for the move itself); one full refresh per step is the cheaper schedule.
+//! The thin-plate option reads the twists and updates the surface after every move
+//! ([`BicubicSplineSurface::move_points`]: two unit responses, O(m + n), and the tangents and
+//! twists in a window round the point).
 
 // The building blocks index the grid directly (their callers validate it first), so they
 // stay inside the crate; `SurfaceFairing` is the checked entry point.
@@ -163,6 +178,23 @@ pub enum Region {
     MedianFloor,
 }
 
+/// The order in which the automatic mode's step visits the points (every movable interior
+/// point once per step either way, Zhang–Cheng §4.4 steps 2.3–2.4). See the module docs for
+/// the measurement that chose the default.
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum SweepOrder {
+    /// The paper's: z_ij at the step's start, sorted once per step, largest first (the
+    /// default).
+    #[default]
+    Sort,
+    /// Largest *current* z_ij first, off an indexed priority queue whose keys are raised in
+    /// place when a move raises them.
+    Queue,
+}
+
 /// The rule that refused a step (see the module docs, "refusal rules").
 #[derive(
     Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
@@ -238,6 +270,8 @@ pub struct SurfaceFairingSettings {
     pub refresh_knots: bool,
     /// Refuse a step that raises the largest z_ij or the energy (on, default), or take every step (off, the paper).
     pub guard: bool,
+    /// Automatic mode's order within a step: sort (the paper's: by z_ij at the step's start) or queue (largest current z_ij first).
+    pub order: SweepOrder,
 }
 
 impl Default for SurfaceFairingSettings {
@@ -259,6 +293,7 @@ impl Default for SurfaceFairingSettings {
             quantum_scale: 1.0,
             refresh_knots: true,
             guard: true,
+            order: SweepOrder::Sort,
         }
     }
 }
@@ -405,11 +440,17 @@ impl SurfaceFairingSettings {
         self.guard = guard;
         self
     }
+    /// Sets the automatic mode's order within a step.
+    pub fn with_order(mut self, order: SweepOrder) -> Self {
+        self.order = order;
+        self
+    }
     /// The paper's algorithm as printed: knots fixed for the run, no refusal rule, the
-    /// paper's restraining spheres, closed nets treated as open (their seams and poles as
-    /// boundaries). The energy tolerance is kept (the paper gives no value).
+    /// paper's restraining spheres and per-step sort, closed nets treated as open (their seams
+    /// and poles as boundaries). The energy tolerance is kept (the paper gives no value).
     pub fn as_printed(self) -> Self {
         self.with_refresh_knots(false)
+            .with_order(SweepOrder::Sort)
             .with_guard(false)
             .with_region(Region::Sphere)
             .with_radius_scale(1.0)

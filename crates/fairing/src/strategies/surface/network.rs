@@ -478,35 +478,57 @@ impl Network {
     /// tightened, only when the bound passes the cap). O(window).
     pub fn exceeds(&mut self, i: usize, j: usize, cap: f64) -> bool {
         let vc = self.v_count;
-        let check = |network: &mut Self, k: usize| -> bool {
-            if network.z_bounds[k] <= cap {
-                return false;
-            }
-            let z = network.u_jumps[k].norm() + network.v_jumps[k].norm();
-            network.z_bounds[k] = z;
-            z > cap
-        };
-        let (u_lo, u_len) = (
-            self.u_stiffness.jump_response[i].0,
-            self.u_stiffness.jump_response[i].1.len(),
-        );
-        for offset in 0..u_len {
-            let l = (u_lo + offset) % self.u_count;
-            if check(self, l * vc + j) {
-                return true;
+        let (u_lo, u_values) = &self.u_stiffness.jump_response[i];
+        for (start, _, len) in runs(*u_lo, u_values.len(), self.u_count) {
+            for l in start..start + len {
+                let k = l * vc + j;
+                if self.z_bounds[k] > cap && self.tighten(k) > cap {
+                    return true;
+                }
             }
         }
-        let (v_lo, v_len) = (
-            self.v_stiffness.jump_response[j].0,
-            self.v_stiffness.jump_response[j].1.len(),
-        );
-        for offset in 0..v_len {
-            let l = (v_lo + offset) % self.v_count;
-            if check(self, i * vc + l) {
-                return true;
+        let (v_lo, v_values) = &self.v_stiffness.jump_response[j];
+        for (start, _, len) in runs(*v_lo, v_values.len(), self.v_count) {
+            for k in i * vc + start..i * vc + start + len {
+                if self.z_bounds[k] > cap && self.tighten(k) > cap {
+                    return true;
+                }
             }
         }
         false
+    }
+
+    /// The flat indices of the nodes whose z a move of P_ij changes: u-line j and v-line i
+    /// within the jump responses (P_ij itself twice), into `out` (cleared first). O(window).
+    pub fn affected(&self, i: usize, j: usize, out: &mut Vec<usize>) {
+        out.clear();
+        let vc = self.v_count;
+        let (u_lo, u_values) = &self.u_stiffness.jump_response[i];
+        for (start, _, len) in runs(*u_lo, u_values.len(), self.u_count) {
+            out.extend((start..start + len).map(|l| l * vc + j));
+        }
+        let (v_lo, v_values) = &self.v_stiffness.jump_response[j];
+        for (start, _, len) in runs(*v_lo, v_values.len(), self.v_count) {
+            out.extend(i * vc + start..i * vc + start + len);
+        }
+    }
+
+    /// z of the node at flat index k (i·v_count + j): |J^u| + |J^v| (Eq. 26). O(1).
+    pub fn z_at(&self, k: usize) -> f64 {
+        self.u_jumps[k].norm() + self.v_jumps[k].norm()
+    }
+
+    /// An upper bound of the z of the node at flat index k, kept by every move (exact after a
+    /// rebuild or [`tighten`](Self::tighten)). O(1).
+    pub fn z_bound(&self, k: usize) -> f64 {
+        self.z_bounds[k]
+    }
+
+    /// The z of the node at flat index k, its bound set to it. O(1).
+    pub fn tighten(&mut self, k: usize) -> f64 {
+        let z = self.z_at(k);
+        self.z_bounds[k] = z;
+        z
     }
 
     fn move_one(&mut self, i: usize, j: usize, position: Vec3) -> Result<()> {
@@ -546,27 +568,50 @@ impl Network {
         self.points[i * vc + j] += delta;
         if self.track_tangents {
             let (u_lo, u_values) = &self.u_stiffness.response[i];
-            for (offset, &r) in u_values.iter().enumerate() {
-                let k = (u_lo + offset) % self.u_count;
-                self.u_tangents[k * vc + j] += delta * r;
+            for (start, offset, len) in runs(*u_lo, u_values.len(), self.u_count) {
+                for (l, &r) in (start..start + len).zip(&u_values[offset..offset + len]) {
+                    self.u_tangents[l * vc + j] += delta * r;
+                }
             }
             let (v_lo, v_values) = &self.v_stiffness.response[j];
-            for (offset, &r) in v_values.iter().enumerate() {
-                let k = (v_lo + offset) % self.v_count;
-                self.v_tangents[i * vc + k] += delta * r;
+            for (start, offset, len) in runs(*v_lo, v_values.len(), self.v_count) {
+                let row = i * vc + start;
+                for (t, &r) in self.v_tangents[row..row + len]
+                    .iter_mut()
+                    .zip(&v_values[offset..offset + len])
+                {
+                    *t += delta * r;
+                }
             }
         }
         let (u_lo, u_values) = &self.u_stiffness.jump_response[i];
-        for (offset, &r) in u_values.iter().enumerate() {
-            let k = ((u_lo + offset) % self.u_count) * vc + j;
-            self.u_jumps[k] += delta * r;
-            self.z_bounds[k] += r.abs() * size;
+        for (start, offset, len) in runs(*u_lo, u_values.len(), self.u_count) {
+            for (l, &r) in (start..start + len).zip(&u_values[offset..offset + len]) {
+                let k = l * vc + j;
+                self.u_jumps[k] += delta * r;
+                self.z_bounds[k] += r.abs() * size;
+            }
         }
         let (v_lo, v_values) = &self.v_stiffness.jump_response[j];
-        for (offset, &r) in v_values.iter().enumerate() {
-            let k = i * vc + (v_lo + offset) % self.v_count;
-            self.v_jumps[k] += delta * r;
-            self.z_bounds[k] += r.abs() * size;
+        for (start, offset, len) in runs(*v_lo, v_values.len(), self.v_count) {
+            let row = i * vc + start;
+            let values = &v_values[offset..offset + len];
+            for ((jump, bound), &r) in self.v_jumps[row..row + len]
+                .iter_mut()
+                .zip(&mut self.z_bounds[row..row + len])
+                .zip(values)
+            {
+                *jump += delta * r;
+                *bound += r.abs() * size;
+            }
         }
     }
+}
+
+/// A window of `len` entries from node `lo` along a line of `count` nodes (wrapping round a
+/// closed line) as at most two runs of consecutive nodes: (first node, offset into the
+/// window's values, length). The second run is empty unless the window wraps.
+fn runs(lo: usize, len: usize, count: usize) -> [(usize, usize, usize); 2] {
+    let first = len.min(count - lo);
+    [(lo, 0, first), (0, first, len - first)]
 }

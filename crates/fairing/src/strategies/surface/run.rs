@@ -11,10 +11,10 @@ use fairness::GaussLegendre;
 
 use super::closed_form::{fixed_tangent_targets, limit_target, limit_targets};
 use super::network::Network;
-use super::queue::LazyQueue;
+use super::queue::{LazyQueue, SweepQueue};
 use super::{
     boundary, group_bad_points, singular, thin_plate, NodeMove, Objective, Refusal, Region,
-    SurfaceFairingResult, SurfaceFairingSettings, SurfaceMode, SurfaceStep,
+    SurfaceFairingResult, SurfaceFairingSettings, SurfaceMode, SurfaceStep, SweepOrder,
 };
 use crate::strategies::Replacement;
 use crate::{project_into_ball, Error, Result, TerminationReason};
@@ -696,10 +696,25 @@ impl Run<'_> {
         }
         let mut moved = 0;
         match mode {
+            SurfaceMode::Automatic if self.settings.order == SweepOrder::Queue => {
+                // Steps 2.3–2.4 by current z: every point once, the largest z of those still
+                // to come first (ties by index), re-keyed as moves raise it.
+                let layout = &self.layout;
+                let mut queue = SweepQueue::new(
+                    &self.state.network,
+                    candidates.iter().map(|&(i, j)| layout.index(i, j)),
+                );
+                while let Some(k) = queue.pop(&self.state.network) {
+                    let (i, j) = node(k);
+                    if self.move_group(&[(i, j)])? {
+                        moved += 1;
+                    }
+                    queue.moved(&mut self.state.network, i, j);
+                }
+            }
             SurfaceMode::Automatic => {
-                // Step 2.3: every point once, by z at the step's start, largest first (ties by
-                // index). (A queue on the current z, re-read as neighbours move, was measured
-                // and converged more slowly: see the module docs.)
+                // Step 2.3 as printed: every point once, by z at the step's start, largest
+                // first (ties by index).
                 let network = &self.state.network;
                 let mut order: Vec<(f64, usize)> = candidates
                     .iter()

@@ -512,8 +512,140 @@ fn boundary_curves_are_faired_by_the_curve_method_first() {
 }
 
 mod properties {
+    use super::super::queue::SweepQueue;
     use super::*;
     use proptest::prelude::*;
+
+    /// A grid of random heights over slightly uneven spacing, and its network over
+    /// chord-length knots (periodic along the closed directions: the last line is not
+    /// repeated in the network's distinct nodes).
+    fn random_network(rows: usize, columns: usize, heights: &[f64], closed: (bool, bool)) -> Network {
+        let points: Vec<Vec3> = (0..rows)
+            .flat_map(|i| (0..columns).map(move |j| (i, j)))
+            .map(|(i, j)| {
+                let h = heights[(i * 13 + j) % heights.len()];
+                Vec3::new(i as f64 * (1.0 + 0.05 * j as f64), j as f64 + 0.1 * h, h)
+            })
+            .collect();
+        let knots = |count: usize, closed: bool, step: &dyn Fn(usize) -> f64| -> Vec<f64> {
+            let mut t = vec![0.0];
+            for k in 0..count - usize::from(!closed) {
+                t.push(t[k] + step(k));
+            }
+            t
+        };
+        let u = knots(rows, closed.0, &|k| 1.0 + 0.3 * (k as f64 * 1.3).sin().abs());
+        let v = knots(columns, closed.1, &|k| 0.7 + 0.2 * (k as f64 * 0.9).cos().abs());
+        Network::new(&points, &u, &v, closed).unwrap()
+    }
+
+    /// The flat index of the largest z among `live` (ties: smaller index), by a full rescan.
+    fn rescan(network: &Network, live: &[bool]) -> Option<usize> {
+        let mut best: Option<(f64, usize)> = None;
+        for (k, _) in live.iter().enumerate().filter(|(_, &l)| l) {
+            let z = network.z_at(k);
+            if best.is_none_or(|(b, _)| z > b) {
+                best = Some((z, k));
+            }
+        }
+        best.map(|b| b.1)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(32))]
+
+        /// The local update of the network (O(window) per move) equals a full rebuild over the
+        /// same knots to 1e-12 after random moves: tangents, jumps, every z and the energy.
+        #[test]
+        fn local_moves_equal_a_full_rebuild(
+            rows in 4usize..40,
+            columns in 4usize..40,
+            heights in proptest::collection::vec(-1.0f64..1.0, 64),
+            moves in proptest::collection::vec((0usize..1000, 0usize..1000, -1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0), 1..24),
+            closed_u in any::<bool>(),
+            closed_v in any::<bool>(),
+        ) {
+            let closed = (closed_u, closed_v);
+            let mut network = random_network(rows, columns, &heights, closed);
+            let nv = columns;
+            let u_count = network.points().len() / nv;
+            let interior: Vec<(usize, usize)> = (0..u_count)
+                .flat_map(|i| (0..nv).map(move |j| (i, j)))
+                .filter(|&(i, j)| network.is_interior(i, j))
+                .collect();
+            for &(a, b, x, y, z) in &moves {
+                let (i, j) = interior[(a * 1000 + b) % interior.len()];
+                let to = network.point(i, j) + Vec3::new(x, y, z);
+                network.move_points(&[((i, j), to)]).unwrap();
+            }
+            let u_knots: Vec<f64> = {
+                let s = network.u_stiffness();
+                let mut t = vec![0.0];
+                for k in 0..u_count - usize::from(!closed_u) { t.push(t[k] + s.step(k)); }
+                t
+            };
+            let v_knots: Vec<f64> = {
+                let s = network.v_stiffness();
+                let mut t = vec![0.0];
+                for k in 0..nv - usize::from(!closed_v) { t.push(t[k] + s.step(k)); }
+                t
+            };
+            let rebuilt = Network::new(network.points(), &u_knots, &v_knots, closed).unwrap();
+            let scale = |f: &dyn Fn(&Network, usize, usize) -> Vec3| {
+                interior.iter().fold(1e-300f64, |m, &(i, j)| m.max(f(&rebuilt, i, j).norm()))
+            };
+            let (ju, jv) = (scale(&|n, i, j| n.u_jump(i, j)), scale(&|n, i, j| n.v_jump(i, j)));
+            let (tu, tv) = (scale(&|n, i, j| n.u_tangent(i, j)), scale(&|n, i, j| n.v_tangent(i, j)));
+            for i in 0..u_count {
+                for j in 0..nv {
+                    prop_assert!((network.u_jump(i, j) - rebuilt.u_jump(i, j)).norm() <= 1e-12 * ju);
+                    prop_assert!((network.v_jump(i, j) - rebuilt.v_jump(i, j)).norm() <= 1e-12 * jv);
+                    prop_assert!((network.u_tangent(i, j) - rebuilt.u_tangent(i, j)).norm() <= 1e-12 * tu);
+                    prop_assert!((network.v_tangent(i, j) - rebuilt.v_tangent(i, j)).norm() <= 1e-12 * tv);
+                    let k = i * nv + j;
+                    prop_assert!(network.z_bound(k) >= rebuilt.z_at(k) * (1.0 - 1e-12));
+                }
+            }
+            let (e, f) = (network.energy(), rebuilt.energy());
+            prop_assert!((e - f).abs() <= 1e-12 * f, "{} vs {}", e, f);
+        }
+
+        /// The automatic mode's queue pops, after every move, the node a full rescan of the
+        /// current z of the nodes still to come chooses.
+        #[test]
+        fn the_queue_pops_what_a_full_rescan_chooses(
+            rows in 4usize..30,
+            columns in 4usize..30,
+            heights in proptest::collection::vec(-1.0f64..1.0, 64),
+            steps in proptest::collection::vec((-1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0), 64),
+            closed_u in any::<bool>(),
+            to_limit in any::<bool>(),
+        ) {
+            let mut network = random_network(rows, columns, &heights, (closed_u, false));
+            let count = network.points().len();
+            let u_count = count / columns;
+            let mut live: Vec<bool> = (0..count).map(|k| network.is_interior(k / columns, k % columns)).collect();
+            let mut queue = SweepQueue::new(&network, (0..count).filter(|&k| live[k]));
+            let mut made = 0;
+            while let Some(k) = queue.pop(&network) {
+                prop_assert_eq!(Some(k), rescan(&network, &live));
+                live[k] = false;
+                let (i, j) = (k / columns, k % columns);
+                // The limit point (Eq. 21) or a random shove, as the sweep's moves are.
+                let to = if to_limit {
+                    limit_targets(&network, &[(i, j)]).unwrap()[0]
+                } else {
+                    let (x, y, z) = steps[made % steps.len()];
+                    network.point(i, j) + Vec3::new(x, y, z)
+                };
+                network.move_points(&[((i, j), to)]).unwrap();
+                queue.moved(&mut network, i, j);
+                made += 1;
+            }
+            prop_assert_eq!(rescan(&network, &live), None);
+            prop_assert_eq!(made, (0..u_count).flat_map(|i| (0..columns).map(move |j| (i, j))).filter(|&(i, j)| network.is_interior(i, j)).count());
+        }
+    }
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(24))]
@@ -527,17 +659,22 @@ mod properties {
             heights in proptest::collection::vec(-1.0f64..1.0, 49),
             fixed_index in 0usize..49,
             kjellander in any::<bool>(),
+            sort in any::<bool>(),
         ) {
             let grid: Vec<Vec<Vec3>> = (0..rows)
                 .map(|i| (0..columns).map(|j| Vec3::new(i as f64 * (1.0 + 0.1 * j as f64), j as f64, heights[i * 7 + j])).collect())
                 .collect();
             let fixed = (fixed_index % rows, (fixed_index / 7) % columns);
-            let base = if kjellander { SurfaceFairingSettings::kjellander().with_max_steps(300) } else { SurfaceFairingSettings::zhang_cheng() };
+            let order = if sort { SweepOrder::Sort } else { SweepOrder::Queue };
+            let base = if kjellander { SurfaceFairingSettings::kjellander().with_max_steps(300) } else { SurfaceFairingSettings::zhang_cheng().with_order(order) };
             let result = SurfaceFairing::new(base.with_fixed([fixed])).run(&grid).unwrap();
-            let mut previous = result.start.energy;
+            // The refusal rules: neither the energy nor the largest z_ij ever rises.
+            let (mut previous, mut previous_z) = (result.start.energy, result.start.max_z);
             for step in &result.history {
                 prop_assert!(step.energy <= previous * (1.0 + 1e-12) + 1e-300);
+                prop_assert!(step.max_z <= previous_z * (1.0 + 1e-12) + 1e-300);
                 previous = step.energy;
+                previous_z = step.max_z;
             }
             spheres_hold(&result);
             prop_assert_eq!(result.surface.point(fixed.0, fixed.1).unwrap(), grid[fixed.0][fixed.1]);

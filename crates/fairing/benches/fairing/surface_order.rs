@@ -1,0 +1,62 @@
+//! The cost of the automatic Zhang–Cheng step per point, by order of work: four steps on a
+//! noisy net (the surface table's: a smooth wave with ±0.01 hashed noise on every point) from
+//! 50 × 50 to 400 × 400, reported per point moved (criterion's throughput: 4 · size²
+//! elements). Flat time per element means each move costs O(window) whatever the grid's
+//! size, and the step's O(m·n) parts (the knot refresh and judgement, the order) are
+//! amortised over its m·n moves. `queue`: largest current z first off an indexed heap;
+//! `sort`: the paper's sort of the step's starting z. Filter with
+//! `cargo bench -p fairing --bench fairing -- surface_step`.
+
+use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
+use curve_repr::Vec3;
+use fairing::strategies::{SurfaceFairing, SurfaceFairingSettings, SweepOrder};
+
+/// Under `cargo test` (no `--bench` flag) only the smallest size runs.
+fn sizes<T: Copy>(all: &[T]) -> Vec<T> {
+    if std::env::args().any(|a| a == "--bench") {
+        all.to_vec()
+    } else {
+        all[..1].to_vec()
+    }
+}
+
+/// A deterministic pseudo-random number in [−1, 1] (the surface table's).
+fn noise(i: usize, j: usize) -> f64 {
+    let x = ((i * 7919 + j * 104_729 + 3 * 1_299_709) as f64 * 12.9898).sin() * 43_758.545_3;
+    2.0 * (x - x.floor()) - 1.0
+}
+
+fn noisy_net(size: usize) -> Vec<Vec<Vec3>> {
+    (0..size)
+        .map(|i| {
+            (0..size)
+                .map(|j| {
+                    let (x, y) = (i as f64 / 10.0, j as f64 / 10.0);
+                    Vec3::new(x, y, (0.3 * x).sin() * (0.2 * y).cos() + 0.01 * noise(i, j))
+                })
+                .collect()
+        })
+        .collect()
+}
+
+const STEPS: usize = 4;
+
+fn bench(c: &mut Criterion) {
+    let mut group = c.benchmark_group("surface_step");
+    group.sample_size(10);
+    for size in sizes(&[50usize, 100, 200, 400]) {
+        let net = noisy_net(size);
+        group.throughput(Throughput::Elements((STEPS * size * size) as u64));
+        for (name, order) in [("queue", SweepOrder::Queue), ("sort", SweepOrder::Sort)] {
+            let settings = SurfaceFairingSettings::zhang_cheng()
+                .with_order(order)
+                .with_max_steps(STEPS);
+            group.bench_with_input(BenchmarkId::new(name, size), &net, |b, net| {
+                b.iter(|| SurfaceFairing::new(settings.clone()).run(net).unwrap())
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench);
