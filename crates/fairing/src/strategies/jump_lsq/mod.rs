@@ -108,7 +108,7 @@
 //! # Costs
 //!
 //! O(n) time and memory per solve: assembly O(n·(4 + d)²), factorisation O(n·(5 + d)²) (four
-//! times that for closed curves), a discrepancy search 4–8 solves, GCV about 60 solves with
+//! times that for closed curves), a discrepancy search 3–8 solves, GCV about 60 solves with
 //! selected inverses; the parametric kind multiplies this by 1 + `refits`.
 
 mod basis;
