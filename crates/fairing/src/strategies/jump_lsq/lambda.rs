@@ -9,8 +9,10 @@
 //!   `noise-factor` · σ̂). RSS grows monotonically with λ, so the root is unique; it is found
 //!   by Newton's method on f(ρ) = ln RSS(e^ρ) − ln(n_f target²), with
 //!   dRSS/dλ = 2 Σ_k w_k (y_k(λ) − y⁰_k)·dy_k/dλ and dγ/dλ = −K⁻¹[Bγ; 0] (one more solve with
-//!   the same factor), safeguarded by bisection once the root is bracketed. Typically 4–8
-//!   evaluations from λ = 1.
+//!   the same factor), safeguarded by bisection once the root is bracketed. Before the
+//!   search first climbs into the range of the Givens QR (below) it tries λ_max: dense noisy
+//!   data puts the root there or beyond, where the tangent falls short at every step.
+//!   Typically 3–8 evaluations from λ = 1 (3, one of them QR, on 10^4–10^6 noisy points).
 //! - **GCV** (Craven & Wahba 1979): minimise V(λ) = (RSS/(n_f·c)) / (1 − tr A(λ)/n_f)² over
 //!   log λ, c the number of smoothed coordinates and tr A(λ) the trace of the influence
 //!   matrix (the same for every coordinate), read in O(n) from the selected inverse of the
@@ -31,7 +33,7 @@
 use curve_repr::Vector;
 
 use super::envelope::PivotFailure;
-use super::system::System;
+use super::system::{System, DIRECT_LIMIT};
 
 /// The largest λ·max_j(B_jj/A_jj) the solve is trusted with (module docs): at this ratio the
 /// banded Givens QR ([`super::qr`]) still agrees with a dense Householder QR of the stacked
@@ -59,26 +61,44 @@ pub(crate) struct Evaluation<const D: usize> {
     pub trace: Option<f64>,
 }
 
-/// Solves at `lambda`; with `slope`, also dRSS/d ln λ; with `trace`, tr A(λ). O(n).
+/// Solves at `lambda`; with `slope`, also dRSS/d ln λ; with `trace`, tr A(λ); and the
+/// spline's values at the knots. O(n).
 pub(crate) fn evaluate<const D: usize>(
     system: &System<'_, D>,
     lambda: f64,
     slope: bool,
     trace: bool,
 ) -> Result<Evaluation<D>, PivotFailure> {
+    let mut evaluation = trial(system, lambda, slope, trace)?;
+    evaluation.values = system.values(&evaluation.gamma);
+    Ok(evaluation)
+}
+
+/// [`evaluate`] without the values (left empty): a rule's trial, which needs only RSS and its
+/// slope, keeps n points fewer in memory at the peak. O(n).
+fn trial<const D: usize>(
+    system: &System<'_, D>,
+    lambda: f64,
+    slope: bool,
+    trace: bool,
+) -> Result<Evaluation<D>, PivotFailure> {
     let solution = system.solve(lambda)?;
-    let values = system.values(&solution.gamma);
-    let rss = system.residual(&values);
+    // The residual of every counted point, its value formed one at a time.
+    let residuals = || {
+        system
+            .data()
+            .iter()
+            .zip(system.counted())
+            .enumerate()
+            .filter(|(_, (_, c))| **c)
+            .map(|(k, (y, _))| (k, system.value_at(k, &solution.gamma) - y))
+    };
+    let rss: f64 = residuals().map(|(_, r)| r.norm_squared()).sum();
     let rss_slope = if slope {
         let dgamma = system.gamma_derivative(&solution)?;
-        let dvalues = system.values(&dgamma);
-        let d: f64 = values
-            .iter()
-            .zip(system.data())
-            .zip(&dvalues)
-            .zip(system.counted())
-            .filter(|(_, c)| **c)
-            .map(|(((v, y), dv), _)| 2.0 * (v - y).dot(dv))
+        // dRSS/dλ = 2 Σ (y_k − y⁰_k)·dy_k/dλ.
+        let d: f64 = residuals()
+            .map(|(k, r)| 2.0 * r.dot(&system.value_at(k, &dgamma)))
             .sum();
         Some(d * lambda)
     } else {
@@ -92,11 +112,24 @@ pub(crate) fn evaluate<const D: usize>(
     Ok(Evaluation {
         lambda,
         gamma: solution.gamma,
-        values,
+        values: Vec::new(),
         rss,
         rss_slope,
         trace,
     })
+}
+
+/// The chosen trial with its values filled in (a missing one is a failure: no trial ran).
+fn with_values<const D: usize>(
+    system: &System<'_, D>,
+    evaluation: Option<Evaluation<D>>,
+) -> Result<Evaluation<D>, PivotFailure> {
+    let mut evaluation = evaluation.ok_or(PivotFailure {
+        row: 0,
+        pivot: f64::NAN,
+    })?;
+    evaluation.values = system.values(&evaluation.gamma);
+    Ok(evaluation)
 }
 
 /// What a rule chose.
@@ -142,8 +175,11 @@ pub(crate) fn discrepancy<const D: usize>(
     let (mut lo, mut hi): (Option<f64>, Option<f64>) = (None, None);
     let mut best: Option<(f64, Evaluation<D>)> = None;
     let mut evaluations = 0;
+    // Where the direct solve ends and the QR begins, and whether λ_max was tried early.
+    let rho_direct = (DIRECT_LIMIT / system.stiffness().max(f64::MIN_POSITIVE)).ln();
+    let mut probed = false;
     loop {
-        let evaluation = evaluate(system, rho.exp(), true, false)?;
+        let evaluation = trial(system, rho.exp(), true, false)?;
         evaluations += 1;
         let f = evaluation.rss.ln() - goal;
         let slope = evaluation.rss_slope.unwrap_or(0.0) / evaluation.rss;
@@ -159,10 +195,7 @@ pub(crate) fn discrepancy<const D: usize>(
         if f < 0.0 {
             if at_max {
                 // Even λ_max moves the points less than the target.
-                let evaluation = best.map(|(_, e)| e).ok_or(PivotFailure {
-                    row: 0,
-                    pivot: f64::NAN,
-                })?;
+                let evaluation = with_values(system, best.map(|(_, e)| e))?;
                 return Ok(Choice {
                     evaluation,
                     limited: true,
@@ -178,13 +211,26 @@ pub(crate) fn discrepancy<const D: usize>(
             hi = Some(rho);
         }
         let (left, right) = (lo.unwrap_or(rho_min), hi.unwrap_or(rho_max));
-        let newton = if slope.is_finite() && slope > 0.0 && f.is_finite() {
+        let tangent = slope.is_finite() && slope > 0.0 && f.is_finite();
+        let newton = if tangent {
             rho - (f / slope).clamp(-LARGEST_STEP, LARGEST_STEP)
         } else if f < 0.0 {
             rho + LARGEST_STEP
         } else {
             rho - LARGEST_STEP
         };
+        if f < 0.0 && hi.is_none() && !probed && newton.max(rho) > rho_direct {
+            // The search climbs into the range of the Givens QR (about four times the cost
+            // of a direct solve) with no upper bracket yet: try λ_max first. Dense noisy
+            // data (10^5 points and more) wants a λ there or beyond, where ln RSS is concave
+            // in ln λ, so Newton's tangent (above the curve) falls short at every step and
+            // the climb would take several QR solves; one tells whether the target lies
+            // beyond λ_max (then the search is done) or brackets the root below it (then
+            // the safeguarded search continues inside, one solve more).
+            probed = true;
+            rho = rho_max;
+            continue;
+        }
         rho = if newton > left && newton < right {
             newton
         } else if lo.is_some() && hi.is_some() {
@@ -195,10 +241,7 @@ pub(crate) fn discrepancy<const D: usize>(
             newton.max(rho_min)
         };
     }
-    let evaluation = best.map(|(_, e)| e).ok_or(PivotFailure {
-        row: 0,
-        pivot: f64::NAN,
-    })?;
+    let evaluation = with_values(system, best.map(|(_, e)| e))?;
     Ok(Choice {
         evaluation,
         limited: false,
@@ -230,7 +273,7 @@ pub(crate) fn gcv<const D: usize>(
     let mut best: Option<(f64, f64, Evaluation<D>)> = None;
     let mut consider =
         |rho: f64, best: &mut Option<(f64, f64, Evaluation<D>)>| -> Result<f64, PivotFailure> {
-            let e = evaluate(system, 10f64.powf(rho), false, true)?;
+            let e = trial(system, 10f64.powf(rho), false, true)?;
             evaluations += 1;
             let v = score(&e);
             if best.as_ref().is_none_or(|(g, _, _)| v < *g) {
@@ -269,6 +312,7 @@ pub(crate) fn gcv<const D: usize>(
         row: 0,
         pivot: f64::NAN,
     })?;
+    let evaluation = with_values(system, Some(evaluation))?;
     Ok(Choice {
         limited: rho >= top - 0.01,
         evaluation,

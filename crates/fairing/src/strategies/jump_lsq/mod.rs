@@ -108,7 +108,7 @@
 //! # Costs
 //!
 //! O(n) time and memory per solve: assembly O(n·(4 + d)²), factorisation O(n·(5 + d)²) (four
-//! times that for closed curves), a discrepancy search 4–8 solves, GCV about 60 solves with
+//! times that for closed curves), a discrepancy search 3–8 solves, GCV about 60 solves with
 //! selected inverses; the parametric kind multiplies this by 1 + `refits`.
 
 mod basis;
@@ -572,7 +572,8 @@ pub fn fair<const D: usize>(
         }
         _ => Vec::new(),
     };
-    let penalty_before = jump_penalty(points, domain, closed, settings)?;
+    // The input's penalty on its own knots: those of round 0 (set there, from its system).
+    let mut penalty_before = f64::NAN;
     let sigma_hat = noise::noise(points, mask, closed);
     let coordinates = mask.iter().filter(|m| **m).count();
     let exact = |i: usize| frozen[i] || held.iter().any(|(j, _)| *j == i);
@@ -606,10 +607,11 @@ pub fn fair<const D: usize>(
         reweighted: 0,
         band_rounds: 0,
         clipped: 0,
-        penalty_before,
+        penalty_before: f64::NAN,
         penalty_after: 0.0,
     };
     let mut last_knots = Vec::new();
+    let mut last_evaluation: Option<(Space, Evaluation<D>)> = None;
     for round in 0..rounds {
         let knots = knots_of(&current, domain, closed)?;
         let mut space = Space::new(knots, ends, penalty).map_err(|e| space_error(e, n, closed))?;
@@ -642,6 +644,17 @@ pub fn fair<const D: usize>(
         let mut base = base_of(&space);
         let mut weights: Vec<f64> = vec![1.0; n];
         let system = System::new(&space, &data, &weights, &base);
+        if round == 0 {
+            // Round 0's knots are the input's own, so the interpolant of the input is the
+            // solve at λ = 0 without constraints: this system's when it has none (one
+            // factorisation, no second assembly), else a system of its own on this space.
+            let gamma = if base.is_empty() {
+                system.solve(0.0).map_err(pivot_error)?.gamma
+            } else {
+                space.interpolate(&data).map_err(pivot_error)?
+            };
+            penalty_before = space.penalty_of(&gamma);
+        }
         let lambda_max = lambda::STIFFNESS_LIMIT / system.stiffness().max(f64::MIN_POSITIVE);
         let choice: Choice<D> = if space.penalty_rows() == 0 {
             let evaluation = lambda::evaluate(&system, 0.0, false, false).map_err(pivot_error)?;
@@ -764,6 +777,9 @@ pub fn fair<const D: usize>(
         }
         report.pinned = pins.len() - held.len();
         current = assemble(points, &evaluation.values, &frozen, &pins, mask);
+        if round + 1 == rounds {
+            last_evaluation = Some((space, evaluation));
+        }
     }
     if report.lambda == 0.0 {
         // At λ = 0 the minimiser is the interpolant of the data itself: whatever the solve
@@ -791,7 +807,23 @@ pub fn fair<const D: usize>(
     report.clipped = (0..n)
         .filter(|&i| (current[i] - original[i]).norm() > constraints.allowed_distance(i))
         .count();
-    report.penalty_after = jump_penalty(&current, domain, closed, settings)?;
+    report.penalty_before = penalty_before;
+    // The output's penalty on its own knots. For a function they are the last solve's (x
+    // never moves), and where every output point is the spline's value (no fixed or pinned
+    // point replaced it) the interpolant of the output is that spline itself: its penalty is
+    // read from the solve's unknowns instead of a second assembly and factorisation.
+    report.penalty_after = match last_evaluation {
+        Some((space, evaluation))
+            if domain == CurveDomain::Function
+                && current
+                    .iter()
+                    .zip(&evaluation.values)
+                    .all(|(p, v)| (0..D).all(|c| !mask[c] || p[c] == v[c])) =>
+        {
+            space.penalty_of(&evaluation.gamma)
+        }
+        _ => jump_penalty(&current, domain, closed, settings)?,
+    };
     Ok(Faired {
         points: current,
         report,

@@ -52,10 +52,11 @@ pub(crate) struct Form {
 impl Form {
     /// The form's (index, coefficient) pairs for m unknowns.
     pub fn entries(&self, m: usize) -> impl Iterator<Item = (usize, f64)> + Clone + '_ {
-        self.c[..self.len]
-            .iter()
-            .enumerate()
-            .map(move |(r, &c)| ((self.start + r) % m, c))
+        // start < m and len ≤ m, so one subtraction wraps an index (no division per entry).
+        self.c[..self.len].iter().enumerate().map(move |(r, &c)| {
+            let j = self.start + r;
+            (if j >= m { j - m } else { j }, c)
+        })
     }
 
     /// Σ c_r x_{index}: the form applied to `x` (γ values).
@@ -648,27 +649,71 @@ impl<'s, const D: usize> System<'s, D> {
         const PENALTY: u64 = 1 << 30;
         const CONSTRAINT: u64 = 2 << 30;
         let mut reach: Vec<usize> = (0..m).collect();
-        let mut rows: Vec<u64> = Vec::with_capacity(2 * m + self.constraints.len());
-        let mut add = |form: &Form, tag: u64| {
+        let lead_end = |form: &Form| {
             let lead = form.entries(m).map(|(j, _)| order(j)).min().unwrap_or(0);
             let end = form.entries(m).map(|(j, _)| order(j)).max().unwrap_or(0);
-            reach[lead] = reach[lead].max(end);
-            rows.push(((lead as u64) << 32) | tag);
+            (lead, end)
         };
-        for k in 0..m {
-            if self.weights[k] > 0.0 {
-                add(&space.value_form(k), k as u64);
+        // Open curves without constraints (the common case, and the large one): the data
+        // rows' and the penalty rows' leading columns each increase with their index, so the
+        // rows in order are a merge of the two streams (data first on a tie, as the sort
+        // below orders them), without a list of 2n rows to sort.
+        let merged = !closed && self.constraints.is_empty() && self.weights.iter().all(|w| *w > 0.0);
+        let mut rows: Vec<u64> = Vec::new();
+        if merged {
+            for k in 0..m {
+                let (lead, end) = lead_end(&space.value_form(k));
+                reach[lead] = reach[lead].max(end);
             }
+            for r in 0..space.penalty_rows() {
+                let (lead, end) = lead_end(&space.penalty_row(r).0);
+                reach[lead] = reach[lead].max(end);
+            }
+        } else {
+            rows.reserve(2 * m + self.constraints.len());
+            let mut add = |form: &Form, tag: u64| {
+                let (lead, end) = lead_end(form);
+                reach[lead] = reach[lead].max(end);
+                rows.push(((lead as u64) << 32) | tag);
+            };
+            for k in 0..m {
+                if self.weights[k] > 0.0 {
+                    add(&space.value_form(k), k as u64);
+                }
+            }
+            for r in 0..space.penalty_rows() {
+                add(&space.penalty_row(r).0, PENALTY | r as u64);
+            }
+            for (c, constraint) in self.constraints.iter().enumerate() {
+                add(&constraint.form, CONSTRAINT | c as u64);
+            }
+            rows.sort_unstable();
         }
-        for r in 0..space.penalty_rows() {
-            add(&space.penalty_row(r).0, PENALTY | r as u64);
-        }
-        for (c, constraint) in self.constraints.iter().enumerate() {
-            add(&constraint.form, CONSTRAINT | c as u64);
-        }
-        rows.sort_unstable();
+        let (mut next_data, mut next_penalty, penalty_rows) = (0usize, 0usize, space.penalty_rows());
+        let mut merge = move || {
+            let data = (next_data < m).then(|| lead_end(&space.value_form(next_data)).0);
+            let penalty =
+                (next_penalty < penalty_rows).then(|| lead_end(&space.penalty_row(next_penalty).0).0);
+            match (data, penalty) {
+                (Some(d), Some(p)) if d <= p => {
+                    next_data += 1;
+                    Some(((d as u64) << 32) | (next_data - 1) as u64)
+                }
+                (_, Some(p)) => {
+                    next_penalty += 1;
+                    Some(((p as u64) << 32) | PENALTY | (next_penalty - 1) as u64)
+                }
+                (Some(d), None) => {
+                    next_data += 1;
+                    Some(((d as u64) << 32) | (next_data - 1) as u64)
+                }
+                (None, None) => None,
+            }
+        };
+        let mut sorted = rows.into_iter();
+        let ordered = std::iter::from_fn(|| if merged { merge() } else { sorted.next() });
         let mut qr = GivensQr::new(reach);
-        for packed in rows {
+        for packed in ordered {
             let tag = packed & 0xFFFF_FFFF;
             let index = (tag & 0x3FFF_FFFF) as usize;
             let row = match tag >> 30 {
@@ -736,6 +781,11 @@ impl<'s, const D: usize> System<'s, D> {
             .collect()
     }
 
+    /// The spline's value at knot k for unknowns `gamma`. O(1).
+    pub fn value_at(&self, k: usize, gamma: &[Vector<D>]) -> Vector<D> {
+        self.space.value_form(k).apply(gamma)
+    }
+
     /// dγ/dλ at a solution: K z = [−Bγ; 0] (the constraints' targets do not depend on λ;
     /// in the QR path RᵀR z = −Bγ, the constraints held by their weights). O(n).
     pub fn gamma_derivative(&self, solution: &Solution<'_, D>) -> Result<Vec<Vector<D>>, PivotFailure> {
@@ -748,6 +798,15 @@ impl<'s, const D: usize> System<'s, D> {
                     *v = -*v;
                 }
                 ldlt.solve_in_place(&mut z);
+                if self.var_pos.windows(2).all(|w| w[0] < w[1]) {
+                    // Open curves: the unknowns' positions increase, so they are gathered to
+                    // the front in place (no second vector of n points at the peak).
+                    for (j, &p) in self.var_pos.iter().enumerate() {
+                        z[j] = z[p];
+                    }
+                    z.truncate(m);
+                    return Ok(z);
+                }
                 Ok(self.var_pos.iter().map(|&p| z[p]).collect())
             }
             Factor::Qr(qr) => {
@@ -761,6 +820,9 @@ impl<'s, const D: usize> System<'s, D> {
                     }
                 }
                 qr.solve_normal(&mut z)?;
+                if !closed {
+                    return Ok(z);
+                }
                 Ok((0..m).map(|j| z[Self::order_of(closed, m, j)]).collect())
             }
         }
@@ -774,17 +836,6 @@ impl<'s, const D: usize> System<'s, D> {
     /// The data.
     pub fn data(&self) -> &[Vector<D>] {
         self.data
-    }
-
-    /// Σ_k |value_k·γ − y_k|² over the counted points: the residual sum of squares. O(n).
-    pub fn residual(&self, values: &[Vector<D>]) -> f64 {
-        values
-            .iter()
-            .zip(self.data)
-            .zip(&self.counted)
-            .filter(|(_, c)| **c)
-            .map(|((v, y), _)| (v - y).norm_squared())
-            .sum()
     }
 
     /// The trace of the influence matrix ∂(value_k·γ)/∂y_k summed over the counted points:

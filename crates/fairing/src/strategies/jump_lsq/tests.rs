@@ -768,3 +768,97 @@ fn the_solves_stay_accurate_up_to_the_precision_limit() {
         }
     }
 }
+
+#[test]
+fn penalties_reported_are_those_of_the_input_and_the_output_on_their_own_knots() {
+    // penalty-before is read from round 0's system and penalty-after from the last solve's
+    // unknowns when no point replaced the spline's value: both must equal the penalties of
+    // the interpolants computed afresh, with and without fixed points (which take the other
+    // paths).
+    let points = wavy(200);
+    let settings = JumpLsqSettings::default();
+    for constraints in [
+        Constraints::default(),
+        Constraints::default().with_fixed([7, 8, 150]),
+    ] {
+        let faired = fair(
+            &points,
+            &points,
+            &constraints,
+            CurveDomain::Function,
+            false,
+            &settings,
+        )
+        .unwrap();
+        let before = jump_penalty(&points, CurveDomain::Function, false, &settings).unwrap();
+        let after = jump_penalty(&faired.points, CurveDomain::Function, false, &settings).unwrap();
+        let report = &faired.report;
+        assert!(after < 0.5 * before, "{report:?}");
+        assert!(
+            (report.penalty_before / before - 1.0).abs() < 1e-9,
+            "{} vs {before}",
+            report.penalty_before
+        );
+        assert!(
+            (report.penalty_after / after - 1.0).abs() < 1e-6,
+            "{} vs {after}",
+            report.penalty_after
+        );
+    }
+}
+
+#[test]
+fn dense_noise_beyond_the_precision_limit_takes_one_qr_trial_and_a_target_below_it_is_still_met() {
+    // 20 000 points of two half-periods of a sine with noise 0.01 (the speed peer's data): the
+    // discrepancy target lies beyond λ_max, which the search tries as soon as it would climb
+    // into the QR range — two direct trials and one at λ_max (it took five before).
+    let n = 20_000;
+    let step = 4.0 * std::f64::consts::PI / n as f64;
+    let uniform = |k: usize| ((k as f64 * 12.9898).sin() * 43758.5453).rem_euclid(1.0);
+    let mut x = 0.0;
+    let points: Vec<Vector<2>> = (0..n)
+        .map(|k| {
+            x += (0.5 + uniform(3 * k + 1)) * step;
+            let noise = ((0..4).map(|j| uniform(4 * k + j + 7)).sum::<f64>() - 2.0) * 3f64.sqrt();
+            Vector::<2>::new(x, (x / 2.0).sin() + 0.01 * noise)
+        })
+        .collect();
+    let none = Constraints::default();
+    let settings = JumpLsqSettings::default();
+    let faired = fair(&points, &points, &none, CurveDomain::Function, false, &settings).unwrap();
+    let report = &faired.report;
+    assert!(report.lambda_limited, "{report:?}");
+    assert!(report.solves <= 3, "{report:?}");
+    assert!(report.rms_displacement < report.target_sd.unwrap(), "{report:?}");
+    // A target reached inside the QR range (at λ_max/1e4, stiffness 1e14): λ_max brackets it
+    // and the search still meets it.
+    let xs: Vec<f64> = points.iter().map(|p| p[0]).collect();
+    let space = Space::new(Knots::open(xs), Ends::Runout, penalty_of(&settings)).unwrap();
+    let data = masked(&points, [false, true]);
+    let weights = vec![1.0; n];
+    let lambda_max = lambda::STIFFNESS_LIMIT / System::new(&space, &data, &weights, &[]).stiffness();
+    let given = settings.clone().with_lambda(1e-4 * lambda_max);
+    let target = fair(&points, &points, &none, CurveDomain::Function, false, &given)
+        .unwrap()
+        .report
+        .rms_displacement;
+    let faired = fair(
+        &points,
+        &points,
+        &none,
+        CurveDomain::Function,
+        false,
+        &settings.with_target_sd(target),
+    )
+    .unwrap();
+    let report = &faired.report;
+    assert!(!report.lambda_limited, "{report:?}");
+    assert!(
+        (report.rms_displacement / target - 1.0).abs() < 1e-3,
+        "{report:?}"
+    );
+    assert!(
+        report.lambda > system::DIRECT_LIMIT / System::new(&space, &data, &weights, &[]).stiffness(),
+        "{report:?}"
+    );
+}
