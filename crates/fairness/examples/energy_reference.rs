@@ -1,6 +1,6 @@
 //! Ek and Ek′ of a noisy spline function against a much finer reference computation.
 //!
-//! `cargo run --release -p fairness --example energy_reference -- FILE.csv [generic]`
+//! `cargo run --release -p fairness --example energy_reference -- FILE.csv [generic|report-only]`
 //!
 //! FILE.csv has a header `x,y` and x increasing (the file `speed.py N FILE.csv` writes). The
 //! curve is the report's: the spline function with the parabolic-runout end condition. The
@@ -10,10 +10,10 @@
 //! - with `generic`, the generic path ([`Energies::measure`], every node searches its piece);
 //! - a reference written independently of the library's quadrature: on every piece the graph's
 //!   integrands y″²/q^{5/2} and (y‴q − 3y′y″²)²/q^{11/2} (q = 1 + y′²) in the variable
-//!   s = asinh((x − x*)/w) around each zero x* of y′ (w = 1/|y″(x*)|, the width of the
-//!   curvature peak there), on panels of at most `ds` in s with a `points`-point Gauss–Legendre
+//!   s = asinh((x − x*)/w) around each pole x* + iw of the integrands (the roots of
+//!   y′(x) = ±i, from the quadratic formula in complex arithmetic), on panels of at most `ds` in s with a `points`-point Gauss–Legendre
 //!   rule; pieces with no narrow peak on 32 equal panels. It is run twice (ds 0.25 with 20
-//!   points, ds 0.125 with 24 points): their difference says how many digits it has.
+//!   points, ds 0.0625 with 24 points): their difference says how many digits it has.
 
 use std::time::Instant;
 
@@ -67,32 +67,43 @@ impl Piece {
         (ek, ek_prime)
     }
 
-    /// The zeros of y′ inside [0, h] where the peak is narrow (w = 1/|y″| < h/4), with w.
+    /// The poles of the integrands near [0, h]: the zeros of q = 1 + y′² = (y′ − i)(y′ + i),
+    /// the roots of y′(u) = ±i (conjugate pairs, so the roots of y′ = i give them all), as
+    /// (centre: the real part clamped to the piece, width: the distance to it), where the
+    /// width is below h/4.
     fn peaks(&self) -> Vec<(f64, f64)> {
-        let mut roots = Vec::new();
-        let (qa, qb, qc) = (0.5 * self.c, self.b, self.a);
+        // (c/2) u² + b u + (a − i) = 0, in complex arithmetic written out.
+        let (qa, qb) = (0.5 * self.c, self.b);
+        let (cr, ci) = (self.a, -1.0);
+        let mut roots: Vec<(f64, f64)> = Vec::new();
         if qa != 0.0 {
-            let disc = qb * qb - 4.0 * qa * qc;
-            if disc >= 0.0 {
-                let r = disc.sqrt();
-                // The stable pair of roots.
-                let t = -0.5 * (qb + qb.signum() * r);
-                if t != 0.0 {
-                    roots.push(t / qa);
-                    roots.push(qc / t);
-                } else {
-                    roots.push(0.0);
-                }
+            // discriminant b² − 4 qa (a − i) = (b² − 4 qa a) + i (4 qa)
+            let (dr, di) = (qb * qb - 4.0 * qa * cr, -4.0 * qa * ci);
+            let modulus = dr.hypot(di);
+            let (mut sr, mut si) = (((modulus + dr) / 2.0).sqrt(), ((modulus - dr) / 2.0).sqrt());
+            if di < 0.0 {
+                si = -si;
+            }
+            if qb * sr < 0.0 {
+                sr = -sr;
+                si = -si;
+            }
+            // t = −(b + √D)/2; roots t/qa and (a − i)/t.
+            let (tr, ti) = (-0.5 * (qb + sr), -0.5 * si);
+            roots.push((tr / qa, ti / qa));
+            let norm = tr * tr + ti * ti;
+            if norm > 0.0 {
+                roots.push(((cr * tr + ci * ti) / norm, (ci * tr - cr * ti) / norm));
             }
         } else if qb != 0.0 {
-            roots.push(-qc / qb);
+            roots.push((-cr / qb, -ci / qb));
         }
         let mut peaks: Vec<(f64, f64)> = roots
             .into_iter()
-            .filter(|u| u.is_finite() && (0.0..=self.h).contains(u))
-            .filter_map(|u| {
-                let w = 1.0 / (self.b + self.c * u).abs();
-                (w < self.h / 4.0).then_some((u, w))
+            .filter_map(|(re, im)| {
+                let centre = re.clamp(0.0, self.h);
+                let width = (re - centre).hypot(im);
+                (width.is_finite() && width < self.h / 4.0).then_some((centre, width))
             })
             .collect();
         peaks.sort_by(|x, y| x.0.total_cmp(&y.0));
@@ -193,6 +204,9 @@ fn main() {
         a.errors.ek_prime,
         a.within_tolerance.ek_prime
     );
+    if args.iter().any(|a| a == "report-only") {
+        return;
+    }
     if args.iter().any(|a| a == "generic") {
         let start = Instant::now();
         let measured = Energies::measure(&spline, &energy_settings()).unwrap();
@@ -214,8 +228,8 @@ fn main() {
         "reference ds 0.25, 20 points ({:.2} s): Ek {ek:.15e}, Ek' {ek_prime:.15e}",
         start.elapsed().as_secs_f64()
     );
-    let (ek2, ek_prime2) = reference(&spline, 24, 0.125);
-    println!("reference ds 0.125, 24 points: Ek {ek2:.15e}, Ek' {ek_prime2:.15e}");
+    let (ek2, ek_prime2) = reference(&spline, 24, 0.0625);
+    println!("reference ds 0.0625, 24 points: Ek {ek2:.15e}, Ek' {ek_prime2:.15e}");
     println!(
         "reference self-difference: Ek {:.2e}, Ek' {:.2e} (relative)",
         ((ek - ek2) / ek2).abs(),

@@ -184,7 +184,12 @@ fn speed_minima<const D: usize>(taylor: &[Vector<D>; 3], length: f64, push: &mut
         return;
     }
     // p(u) = C′·C″ = a·b + (a·c + |b|²) u + 3/2 (b·c) u² + 1/2 |c|² u³.
-    let k = [a.dot(b), a.dot(c) + b.norm_squared(), 1.5 * b.dot(c), 0.5 * c.norm_squared()];
+    let k = [
+        a.dot(b),
+        a.dot(c) + b.norm_squared(),
+        1.5 * b.dot(c),
+        0.5 * c.norm_squared(),
+    ];
     let p = |u: f64| k[0] + u * (k[1] + u * (k[2] + u * k[3]));
     // The stretches where p is monotone: split at the roots of p′ = B + 2Cu + 3Du².
     let mut cuts = [0.0, length, f64::NAN, f64::NAN];

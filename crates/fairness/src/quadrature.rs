@@ -26,7 +26,9 @@ use crate::{Error, Result};
 
 mod segments;
 
-pub use segments::{estimate_many, estimate_many_parallel, Segment, SinhMap, SINH_PANEL};
+pub use segments::{
+    estimate_many, estimate_many_parallel, Segment, SinhMap, SINH_CORE, SINH_PANEL, SINH_TAIL,
+};
 
 /// An n-point Gauss–Legendre rule on [−1, 1].
 #[derive(Clone, Debug, PartialEq)]
@@ -764,11 +766,17 @@ mod tests {
             estimate_many(&[settings; 2], ["peak", "squared peak"], f, &[0.0, 1.0], segments).unwrap();
         for (estimate, exact) in [(one, exact_1), (two, exact_2)] {
             assert!(estimate.met, "{estimate:?}");
-            assert!((estimate.value - exact).abs() <= estimate.error.max(1e-15 * exact), "{estimate:?} against {exact}");
-            assert!((estimate.value - exact).abs() <= 1e-9 * exact, "{estimate:?} against {exact}");
+            assert!(
+                (estimate.value - exact).abs() <= estimate.error.max(1e-15 * exact),
+                "{estimate:?} against {exact}"
+            );
+            assert!(
+                (estimate.value - exact).abs() <= 1e-9 * exact,
+                "{estimate:?} against {exact}"
+            );
         }
-        // s runs over asinh(0.7/w) + asinh(0.3/w) ≈ 27: 14 intervals of at most 2, then a
-        // few halvings at most. In t, G7K15 without the map sees neither peak.
+        // s runs over asinh(0.7/w) + asinh(0.3/w) ≈ 27: 12 core intervals of ½ and 8 tail
+        // intervals of at most 3, then a few halvings at most. In t, G7K15 without the map sees neither peak.
         let used = evaluations.load(std::sync::atomic::Ordering::Relaxed);
         assert!(used <= 15 * 16 * 3, "{used} evaluations");
         let unmapped = Adaptive::default()
@@ -807,7 +815,10 @@ mod tests {
         let settings = [Adaptive::default(); 2];
         let sequential = estimate_many(&settings, ["a", "b"], f, &breaks, segments).unwrap();
         for threads in [1, 2, 3] {
-            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
             let parallel = pool
                 .install(|| estimate_many_parallel(&settings, ["a", "b"], f, &breaks, segments))
                 .unwrap();
@@ -824,5 +835,4 @@ mod tests {
         assert!(sequential[0].met);
         assert!((sequential[0].value - exact).abs() <= sequential[0].error.max(1e-12 * exact));
     }
-
 }
