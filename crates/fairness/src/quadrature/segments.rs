@@ -326,15 +326,14 @@ impl<const K: usize> Pass1<K> {
                 let interval = new_interval(what, f, (piece, origin), segment.map, (left, right), 0)?;
                 self.length += interval.span;
                 let mut early = true;
-                for k in 0..K {
+                for (k, setting) in settings.iter().enumerate() {
                     self.value[k].add(interval.value[k]);
                     self.error[k].add(interval.error[k]);
                     self.magnitude[k] += interval.value[k].abs();
                     // Within half the relative tolerance of its own value, an interval meets
                     // the |value| half of its share already (for an integrand of one sign,
                     // whose Σ|v| is |T|).
-                    early &=
-                        interval.error[k] <= 0.5 * settings[k].relative_tolerance * interval.value[k].abs();
+                    early &= interval.error[k] <= 0.5 * setting.relative_tolerance * interval.value[k].abs();
                 }
                 if early {
                     for k in 0..K {
