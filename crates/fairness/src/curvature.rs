@@ -29,6 +29,23 @@ pub trait CurvatureForm: Sized {
 
     /// dκ/ds from the first three derivatives; `None` where C′ = 0 or the result is not finite.
     fn curvature_slope(d1: &Self, d2: &Self, d3: &Self) -> Option<f64>;
+
+    /// κ²|C′| and (dκ/ds)²|C′| from C′, C″, C‴: the integrands of Ek and Ek′, sharing one
+    /// square root and one division (`None` where the tangent vanishes or a value is not
+    /// finite).
+    fn curvature_integrands(d1: &Self, d2: &Self, d3: &Self) -> Option<[f64; 2]>;
+
+    /// Where the curvature integrands of a cubic piece have their poles, near the piece: for
+    /// C′(u) = a + bu + cu²/2 on [0, `length`] (`taylor` = [a, b, c]), pushes `(centre,
+    /// width)` for each narrow peak — `centre` in [0, `length`], `width` below `length`/8 —
+    /// around which the curvature energies integrate after a sinh change of variable.
+    ///
+    /// Planar: the zeros ρ of C′ₓ + iC′ᵧ (a quadratic; with their conjugates, the zeros of
+    /// |C′|²), centre Re ρ clamped to the piece and width the distance from ρ to it. Spatial
+    /// (|C′|² has no such factorisation): the minima u* of |C′|² on the piece, width
+    /// √(2q(u*)/q″(u*)), the zeros of its local quadratic model q(u*) + ½q″(u*)(u − u*)².
+    /// O(1).
+    fn speed_poles(taylor: &[Self; 3], length: f64, push: &mut dyn FnMut(f64, f64));
 }
 
 fn finite(value: f64) -> Option<f64> {
@@ -59,6 +76,62 @@ impl CurvatureForm for Vec2 {
         // dκ/dt = numerator / |C′|⁵, then divide by |C′| for dκ/ds.
         finite(numerator / (speed2 * speed2 * speed2))
     }
+
+    fn curvature_integrands(d1: &Vec2, d2: &Vec2, d3: &Vec2) -> Option<[f64; 2]> {
+        // κ = N/|C′|³ and dκ/ds = M/q³ with q = |C′|², N = C′ × C″ and
+        // M = (C′ × C‴) q − 3 N (C′ · C″) (see `curvature_slope`): κ²|C′| = N² r/q³ and
+        // (dκ/ds)²|C′| = M² r/q⁶, r = √q.
+        let q = d1.norm_squared();
+        if q == 0.0 {
+            return None;
+        }
+        let r = q.sqrt();
+        let n = cross2(d1, d2);
+        let m = cross2(d1, d3) * q - 3.0 * n * d1.dot(d2);
+        let inverse = 1.0 / q;
+        let cube = inverse * inverse * inverse;
+        let ek = n * n * cube * r;
+        let ek_prime = m * m * cube * cube * r;
+        (ek.is_finite() && ek_prime.is_finite()).then_some([ek, ek_prime])
+    }
+
+    fn speed_poles(taylor: &[Vec2; 3], length: f64, push: &mut dyn FnMut(f64, f64)) {
+        use nalgebra::Complex;
+        let [a, b, c] = taylor;
+        // z(u) = C′ₓ(u) + i C′ᵧ(u) = A + Bu + ½Cu².
+        let (za, zb, zc) = (
+            Complex::new(a.x, a.y),
+            Complex::new(b.x, b.y),
+            Complex::new(0.5 * c.x, 0.5 * c.y),
+        );
+        let mut roots = [Complex::new(f64::NAN, 0.0); 2];
+        if zc.norm_sqr() > 0.0 {
+            let disc = zb * zb - zc * za * 4.0;
+            let mut root = disc.sqrt();
+            if (zb.conj() * root).re < 0.0 {
+                root = -root;
+            }
+            // The stable pair: q = −(B ± √D)/2 with the sign that avoids cancellation.
+            let q = -(zb + root) * 0.5;
+            if q.norm_sqr() > 0.0 {
+                roots = [q / zc, za / q];
+            } else {
+                roots[0] = Complex::new(0.0, 0.0);
+            }
+        } else if zb.norm_sqr() > 0.0 {
+            roots[0] = -za / zb;
+        }
+        for rho in roots {
+            if !(rho.re.is_finite() && rho.im.is_finite()) {
+                continue;
+            }
+            let centre = rho.re.clamp(0.0, length);
+            let width = (rho.re - centre).hypot(rho.im).max(1e-14 * length);
+            if width < length / 8.0 {
+                push(centre, width);
+            }
+        }
+    }
 }
 
 impl CurvatureForm for Vec3 {
@@ -87,6 +160,104 @@ impl CurvatureForm for Vec3 {
         };
         let numerator = first - 3.0 * b_norm * d1.dot(d2);
         finite(numerator / (speed2 * speed2 * speed2))
+    }
+
+    fn curvature_integrands(d1: &Vec3, d2: &Vec3, d3: &Vec3) -> Option<[f64; 2]> {
+        let speed = d1.norm();
+        let k = Self::curvature(d1, d2)?;
+        let slope = Self::curvature_slope(d1, d2, d3)?;
+        Some([k * k * speed, slope * slope * speed])
+    }
+
+    fn speed_poles(taylor: &[Vec3; 3], length: f64, push: &mut dyn FnMut(f64, f64)) {
+        speed_minima(taylor, length, push)
+    }
+}
+
+/// The minima u* of q(u) = |C′(u)|² on [0, `length`] for C′(u) = a + bu + cu²/2, with the
+/// widths √(2q(u*)/q″(u*)) below `length`/8: the roots of the cubic C′·C″ = ½q′ where it
+/// turns from negative to positive (bisection on its monotone stretches), or an end of the
+/// piece. O(1).
+fn speed_minima<const D: usize>(taylor: &[Vector<D>; 3], length: f64, push: &mut dyn FnMut(f64, f64)) {
+    let [a, b, c] = taylor;
+    if length.is_nan() || length <= 0.0 {
+        return;
+    }
+    // p(u) = C′·C″ = a·b + (a·c + |b|²) u + 3/2 (b·c) u² + 1/2 |c|² u³.
+    let k = [
+        a.dot(b),
+        a.dot(c) + b.norm_squared(),
+        1.5 * b.dot(c),
+        0.5 * c.norm_squared(),
+    ];
+    let p = |u: f64| k[0] + u * (k[1] + u * (k[2] + u * k[3]));
+    // The stretches where p is monotone: split at the roots of p′ = B + 2Cu + 3Du².
+    let mut cuts = [0.0, length, f64::NAN, f64::NAN];
+    let (qa, qb, qc) = (3.0 * k[3], 2.0 * k[2], k[1]);
+    if qa != 0.0 {
+        let discriminant = qb * qb - 4.0 * qa * qc;
+        if discriminant > 0.0 {
+            let root = discriminant.sqrt();
+            cuts[2] = (-qb - root) / (2.0 * qa);
+            cuts[3] = (-qb + root) / (2.0 * qa);
+        }
+    } else if qb != 0.0 {
+        cuts[2] = -qc / qb;
+    }
+    let cuts = {
+        let mut kept = [0.0; 4];
+        let mut n = 0;
+        for u in cuts {
+            if u.is_finite() && (0.0..=length).contains(&u) {
+                kept[n] = u;
+                n += 1;
+            }
+        }
+        kept[..n].sort_by(f64::total_cmp);
+        (kept, n)
+    };
+    let mut minima = [f64::NAN; 5];
+    let mut count = 0;
+    if p(0.0) > 0.0 {
+        minima[count] = 0.0;
+        count += 1;
+    }
+    if p(length) < 0.0 {
+        minima[count] = length;
+        count += 1;
+    }
+    for w in cuts.0[..cuts.1].windows(2) {
+        let (mut low, mut high) = (w[0], w[1]);
+        if !(p(low) < 0.0 && p(high) > 0.0) {
+            continue;
+        }
+        // 40 halvings place u* within 1e-12 of the piece: far inside the narrowest width kept.
+        for _ in 0..40 {
+            let mid = 0.5 * (low + high);
+            if mid <= low || mid >= high {
+                break;
+            }
+            if p(mid) < 0.0 {
+                low = mid;
+            } else {
+                high = mid;
+            }
+        }
+        minima[count] = 0.5 * (low + high);
+        count += 1;
+    }
+    for &centre in &minima[..count] {
+        let speed = a + (b + c * (0.5 * centre)) * centre;
+        let bend = b + c * centre;
+        let q = speed.norm_squared();
+        let curvature_of_q = 2.0 * (bend.norm_squared() + speed.dot(c));
+        if curvature_of_q.is_nan() || curvature_of_q <= 0.0 {
+            continue;
+        }
+        let width = (2.0 * q / curvature_of_q).sqrt().max(1e-14 * length);
+        if width < length / 8.0 {
+            push(centre, width);
+        }
     }
 }
 
