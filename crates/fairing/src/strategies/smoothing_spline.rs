@@ -313,7 +313,8 @@ impl Reinsch {
             for k in 1..=EXTRA_STEPS {
                 let rho = edge + direction * f64::from(k) * STEP;
                 let g = eval(rho);
-                if !(g < best.0) {
+                // (A NaN-free GCV: eval maps failures to +∞.)
+                if g >= best.0 {
                     break;
                 }
                 best = (g, rho);
