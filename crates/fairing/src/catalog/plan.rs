@@ -21,7 +21,7 @@ use super::config::{toml_text, ConfigConstraints, ConfigFile};
 use super::job::{CurveJob, CurveKind, CurvePoints, CurveRun, Represented, SurfaceJob, SurfaceRun};
 use super::parameters::ParameterMap;
 use super::{Catalog, MethodKind};
-use crate::displacement::unasked_move;
+use crate::displacement::{unasked_move_as, NoiseModel};
 use crate::{Constraints, EndClamp, Error, Result};
 
 /// One stage of a plan: a method of the catalogue and its complete settings.
@@ -297,9 +297,11 @@ impl Catalog {
     /// shared out as the [module docs](self) say. O(sum of the stages' costs) plus O(n) per
     /// stage.
     ///
-    /// Every run's extras get `largest_move` ([`UnaskedMove::to_json`]): the farthest move
-    /// (index, distance) against the bound the user did not ask to exceed (the data's noise
-    /// and decimal step, or a wider `--tolerance`), and whether it `exceeds` it. O(n).
+    /// Every run's extras get `largest_move` ([`UnaskedMove::to_json`](crate::displacement::UnaskedMove::to_json)): the farthest move
+    /// (index, distance) against the bound the user did not ask to exceed (the data's noise,
+    /// read vertically for a function ([`NoiseModel::Vertical`]) and normal to the curve
+    /// otherwise, and decimal step, or a wider `--tolerance`), and whether it `exceeds` it.
+    /// O(n).
     pub fn run_curve_plan(
         &self,
         plan: &Plan,
@@ -308,9 +310,15 @@ impl Catalog {
         constraints: &PlanConstraints,
     ) -> Result<CurveRun> {
         let mut run = self.run_curve_stages(plan, points, kind, constraints)?;
+        // A function's methods move y only, and its noise is read in y.
+        let model = match kind {
+            CurveKind::Function => NoiseModel::Vertical,
+            CurveKind::Parametric => NoiseModel::Normal,
+        };
+        let tolerance = constraints.tolerance;
         let unasked = match (points, &run.points) {
-            (CurvePoints::Planar(a), CurvePoints::Planar(b)) => unasked_move(a, b, constraints.tolerance),
-            (CurvePoints::Spatial(a), CurvePoints::Spatial(b)) => unasked_move(a, b, constraints.tolerance),
+            (CurvePoints::Planar(a), CurvePoints::Planar(b)) => unasked_move_as(a, b, tolerance, model),
+            (CurvePoints::Spatial(a), CurvePoints::Spatial(b)) => unasked_move_as(a, b, tolerance, model),
             _ => {
                 return Err(Error::Strategy {
                     strategy: plan.name(),

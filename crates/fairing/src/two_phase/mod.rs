@@ -220,6 +220,7 @@ impl FairingStrategy<2> for TwoPhase {
         if state.is_closed() {
             return Err(strategy_error("two-phase", "a function segment cannot be closed"));
         }
+        self.settings.noise = crate::displacement::vertical_noise_estimate(state.points());
         let (x, y): (Vec<f64>, Vec<f64>) = state.points().iter().map(|p| (p.x, p.y)).unzip();
         let n = x.len();
         let keep = |k: usize| k == 0 || k + 1 >= n || !state.is_movable(k);
@@ -309,6 +310,7 @@ impl SegmentFairer for TwoPhase {
         kept: &[bool],
         allowed: &[f64],
     ) -> Result<Option<Vec<Vec2>>> {
+        self.settings.noise = crate::displacement::noise_estimate(points);
         if self.settings.denoise == Denoise::Off {
             return Ok(None);
         }

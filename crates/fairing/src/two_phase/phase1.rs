@@ -581,7 +581,9 @@ pub(super) fn guarded_pass(
                     && k + 1 < n
                     && movable(k)
                     && g.is_finite()
-                    && g.abs() <= settings.max_move_factor * (x[k] - x[k - 1]).min(x[k + 1] - x[k])
+                    && g.abs()
+                        <= (settings.max_move_factor * (x[k] - x[k - 1]).min(x[k + 1] - x[k]))
+                            .max(settings.noise_moves * settings.noise)
             });
         if !allowed {
             report.skipped += 1;

@@ -142,6 +142,11 @@ fn detect_with(spline: &SplineFunction, i: usize, max_run: usize, zero: f64) -> 
     if s == 0 {
         return None;
     }
+    // A run starts at i only after a value of the other sign (or at the left end): checked
+    // before the scan, so that a long run is not rescanned from each of its points.
+    if i > 0 && sg(i - 1) != -s {
+        return None;
+    }
     let case = |kind, last: usize| Case {
         kind,
         first: i,
@@ -455,7 +460,7 @@ fn absorb(spline: &SplineFunction, case: Case, settings: &TwoPhaseSettings, zero
 /// condition remains and one factor meets it). The flank is the shortest that qualifies with
 /// 0 < μ ≤ 1 − 1/`alpha_divisor`, grown one point at a time up to `max_run` points and kept
 /// two points from the other end; `None` if none does. Only for the parabolic runout (whose
-/// end row c_0 = c_1 the move keeps: both are set to α). O(flank²).
+/// end row c_0 = c_1 the move keeps: both are set to α). O(run + flank).
 fn absorb_at_end(
     spline: &SplineFunction,
     case: Case,
@@ -491,25 +496,37 @@ fn absorb_at_end(
     let alpha = f64::from(goal) * value(run).abs() / settings.alpha_divisor;
     let limit = 1.0 - 1.0 / settings.alpha_divisor;
     let cap = settings.max_run.max(2);
+    // δy at the window's far end is −Σ_p w_p δc_p (the one moment condition of
+    // [`end_y_change`], about the end point): w_p = h_{p−1}X_{p−1} + 2(h_{p−1} + h_p)X_p +
+    // h_p X_{p+1}, X_p the distance of position p from the end. So the run's part is summed
+    // once and the flank's grows by one term a point: O(flank), not O(flank²).
+    let mut distance = vec![0.0; 1];
+    let mut weight = |p: usize| {
+        while distance.len() <= p + 1 {
+            let q = distance.len() - 1;
+            let next = distance[q] + h(q);
+            distance.push(next);
+        }
+        let before = if p == 0 { 0.0 } else { h(p - 1) * distance[p - 1] };
+        let around = if p == 0 { h(p) } else { h(p - 1) + h(p) };
+        before + 2.0 * around * distance[p] + h(p) * distance[p + 1]
+    };
+    let a: f64 = (0..run).map(|p| (alpha - value(p)) * weight(p)).sum();
+    let mut b = 0.0;
     let mut hi = run - 1;
     loop {
         if hi + 1 - run >= cap || hi + 4 > n || sign(value(hi + 1), zero) != goal {
             return None;
         }
         hi += 1;
-        let run_change: Vec<f64> = (0..=hi)
-            .map(|p| if p < run { alpha - value(p) } else { 0.0 })
-            .collect();
-        let flank: Vec<f64> = (0..=hi).map(|p| if p < run { 0.0 } else { value(p) }).collect();
-        let (a, b) = (end_y_change(&h, &run_change), end_y_change(&h, &flank));
-        let (Some(&a), Some(&b)) = (a.last(), b.last()) else {
-            return None;
-        };
+        b += value(hi) * weight(hi);
         let mu = a / b;
         if !(mu.is_finite() && mu > 0.0 && mu <= limit) {
             continue;
         }
-        let dc: Vec<f64> = run_change.iter().zip(&flank).map(|(r, f)| r - mu * f).collect();
+        let dc: Vec<f64> = (0..=hi)
+            .map(|p| if p < run { alpha - value(p) } else { -mu * value(p) })
+            .collect();
         let dy = end_y_change(&h, &dc);
         return Some(Proposal {
             moves: (1..=hi)

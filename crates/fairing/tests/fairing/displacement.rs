@@ -1,11 +1,15 @@
 //! The data bound of `fairing::displacement`: the noise estimate finds the noise it was given
 //! (and none on clean curves), the decimal step is read from typed data, and the largest move
-//! is found and compared with the bound.
+//! is found and compared with the bound; a function's noise is read vertically, at any
+//! spacing, so a fairing that moves its points by the noise stays within the bound.
 
 use std::f64::consts::PI;
 
 use curve_repr::{Vec2, Vec3};
-use fairing::displacement::{data_bound, decimal_quantum, largest_move, noise_estimate, NOISE_BOUND_OFFSET};
+use fairing::displacement::{
+    data_bound, decimal_quantum, largest_move, noise_estimate, noise_estimate_as, unasked_move,
+    unasked_move_as, vertical_noise_estimate, NoiseModel, NOISE_BOUND_OFFSET,
+};
 use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
 
@@ -126,4 +130,153 @@ fn the_largest_move_is_found_and_compared() {
     assert!(largest_move::<2>(&[], &[], 1.0).is_err());
     faired[2].x = f64::NAN;
     assert!(largest_move(&data, &faired, 1.0).is_err());
+}
+
+/// The points with N(0, σ²) added to y only.
+fn noisy_y(clean: &[Vec2], sigma: f64, seed: u64) -> Vec<Vec2> {
+    let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
+    let normal = Normal::new(0.0, sigma).unwrap();
+    clean
+        .iter()
+        .map(|p| Vec2::new(p.x, p.y + normal.sample(&mut rng)))
+        .collect()
+}
+
+/// y = sin(x/2) + N(0, σ²) on n points over [0, 4π], the steps (0.5 + U(0, 1)) · 4π/n (the
+/// issue's dense file when n = 10^5 and σ = 0.01), and its clean twin.
+fn noisy_sine(n: usize, sigma: f64, seed: u64) -> (Vec<Vec2>, Vec<Vec2>) {
+    use rand::RngExt;
+    let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
+    let normal = Normal::new(0.0, sigma).unwrap();
+    let mut x = 0.0;
+    let (mut noisy, mut clean) = (Vec::with_capacity(n), Vec::with_capacity(n));
+    for _ in 0..n {
+        x += (0.5 + rng.random::<f64>()) * 4.0 * PI / n as f64;
+        let y = (x / 2.0).sin();
+        clean.push(Vec2::new(x, y));
+        noisy.push(Vec2::new(x, y + normal.sample(&mut rng)));
+    }
+    (noisy, clean)
+}
+
+#[test]
+fn the_vertical_noise_estimate_finds_the_noise_of_a_function_at_any_spacing() {
+    // (points, σ, relative error allowed): dense (σ/h from 0.08 to 8000) and sparse; the
+    // median of n values has a relative spread of about 1.2/√n, the allowance 4 of those.
+    for (n, tolerance) in [(100_000, 0.03), (2_000, 0.12), (200, 0.3)] {
+        for sigma in [1e-4, 1e-2, 1.0] {
+            for seed in 0..2 {
+                let (noisy, _) = noisy_sine(n, sigma, seed);
+                let estimate = vertical_noise_estimate(&noisy);
+                assert!(
+                    (estimate / sigma - 1.0).abs() < tolerance,
+                    "n = {n}, σ = {sigma}: {estimate}"
+                );
+                assert_eq!(noise_estimate_as(&noisy, NoiseModel::Vertical), estimate);
+            }
+        }
+    }
+    // Where the noise dwarfs the spacing the normal offsets read far too small (the reason
+    // for the vertical model): 10^5 points, σ = 0.01, h ≈ 1.3e-4.
+    let (dense, clean) = noisy_sine(100_000, 0.01, 7);
+    assert!(noise_estimate(&dense) < 0.1 * 0.01, "{}", noise_estimate(&dense));
+    // A clean function has (almost) none: its third divided differences are y‴/6.
+    assert!(
+        vertical_noise_estimate(&clean) < 1e-9,
+        "{}",
+        vertical_noise_estimate(&clean)
+    );
+    let parabola: Vec<Vec2> = (0..50)
+        .map(|k| {
+            let x = (k as f64 * 0.37).powf(1.3);
+            Vec2::new(x, 2.0 - x + 0.5 * x * x)
+        })
+        .collect();
+    // A parabola at uneven spacing has none (to rounding: y reaches 1e3 here).
+    let top = parabola.iter().fold(0.0f64, |m, p| m.max(p.y.abs()));
+    assert!(
+        vertical_noise_estimate(&parabola) < 1e-13 * top,
+        "{} of {top}",
+        vertical_noise_estimate(&parabola)
+    );
+    // Outliers and a sharp bend do not move it (the median).
+    let (mut bumped, _) = noisy_sine(2_000, 1e-3, 3);
+    for k in [100, 700, 1300] {
+        bumped[k].y += 0.5;
+    }
+    assert!((vertical_noise_estimate(&bumped) / 1e-3 - 1.0).abs() < 0.12);
+    // Uneven sparse spacing (cosine, 61 points of an airfoil-like surface).
+    let upper: Vec<Vec2> = (0..61)
+        .map(|k| {
+            let x = (1.0 - (PI * k as f64 / 60.0).cos()) / 2.0;
+            Vec2::new(
+                x,
+                0.6 * (0.2969 * x.sqrt() - 0.126 * x - 0.3516 * x * x + 0.2843 * x.powi(3)),
+            )
+        })
+        .collect();
+    // Its nose (y ~ √x) bends the first few differences; the median over seeds is the noise.
+    let mut estimates: Vec<f64> = (0..21)
+        .map(|seed| vertical_noise_estimate(&noisy_y(&upper, 3e-4, seed)))
+        .collect();
+    estimates.sort_by(f64::total_cmp);
+    assert!((estimates[10] / 3e-4 - 1.0).abs() < 0.1, "{estimates:?}");
+    assert_eq!(vertical_noise_estimate(&upper[..3]), 0.0);
+    assert_eq!(vertical_noise_estimate::<1>(&[]), 0.0);
+}
+
+#[test]
+fn a_function_moved_by_its_noise_stays_within_the_data_bound() {
+    // The faired function is the clean twin: every point moved by exactly its noise.
+    for (n, sigma) in [(100_000, 0.01), (10_000, 1.0), (200, 0.01), (2_000, 1e-4)] {
+        let (noisy, clean) = noisy_sine(n, sigma, 11);
+        let vertical = unasked_move_as(&noisy, &clean, None, NoiseModel::Vertical).unwrap();
+        assert!(!vertical.largest.exceeds, "n = {n}, σ = {sigma}: {vertical:?}");
+        assert!((vertical.data.noise / sigma - 1.0).abs() < 0.3, "{vertical:?}");
+        // ... and a move of three bounds is still reported.
+        let mut far = clean.clone();
+        far[n / 2].y += 3.0 * vertical.bound();
+        assert!(
+            unasked_move_as(&noisy, &far, None, NoiseModel::Vertical)
+                .unwrap()
+                .largest
+                .exceeds
+        );
+    }
+    // The normal offsets said `exceeds` on the dense file (the warning on every dense curve).
+    let (noisy, clean) = noisy_sine(100_000, 0.01, 11);
+    assert!(unasked_move(&noisy, &clean, None).unwrap().largest.exceeds);
+}
+
+#[test]
+fn a_function_report_reads_its_noise_vertically() {
+    use fairing::catalog::{Catalog, CurveKind, CurvePoints, MethodKind, ParameterMap, PlanConstraints};
+    // 10^4 points, σ/h ≈ 8: the smoothing spline moves them by about the noise, and a
+    // function's report says that is within the data's bound.
+    let (noisy, _) = noisy_sine(10_000, 0.01, 5);
+    let catalog = Catalog::builtin();
+    let plan = catalog
+        .plan(
+            MethodKind::Curve,
+            Some("smoothing-spline"),
+            "smoothing-spline",
+            None,
+            &ParameterMap::new(),
+        )
+        .unwrap();
+    let input = CurvePoints::Planar(noisy.clone());
+    let constraints = PlanConstraints::default();
+    let run = catalog
+        .run_curve_plan(&plan, &input, CurveKind::Function, &constraints)
+        .unwrap();
+    let largest = &run.extras["largest_move"];
+    let noise = largest["noise"].as_f64().unwrap();
+    assert!((noise / 0.01 - 1.0).abs() < 0.1, "{largest}");
+    assert_eq!(largest["exceeds"], false, "{largest}");
+    assert!(largest["distance"].as_f64().unwrap() > 2.0 * 0.01, "{largest}");
+    // The same points as a parametric curve: the normal offsets read the noise too small.
+    let run = catalog
+        .run_curve_plan(&plan, &input, CurveKind::Parametric, &constraints)
+        .unwrap();
+    assert!(run.extras["largest_move"]["noise"].as_f64().unwrap() < 0.5 * 0.01);
 }
