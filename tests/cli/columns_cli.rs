@@ -278,8 +278,8 @@ fn usage_mistakes_are_named() {
 /// quadrature. What makes its curvature energies hard is the ratio σ/h of the noise to the
 /// step (|y′| ~ σ/h, speed dips of relative width h/σ in every piece): the issue's 10⁵ points
 /// with σ = 0.01 have σ/h ≈ 80, its 10⁶ points ≈ 800; 2·10⁴ points with σ = 1 have ≈ 1600,
-/// the regime where Ek and Ek′ cannot meet their tolerance within the linear budget (the
-/// failure of the issue). Every method with a function form fairs it and reports finite
+/// the regime where bisection could not meet Ek's and Ek′'s tolerance within the linear
+/// budget. Every method with a function form fairs it and reports finite
 /// energies with their accuracy. (The issue's own sizes run in the `cli` bench,
 /// `cargo bench -p fair-cli --bench cli`, at 10⁴ … 10⁶ points.)
 #[test]
@@ -361,12 +361,19 @@ fn a_noisy_segment_fairs_with_every_function_method_and_reports_its_accuracy() {
             }
             assert!(accuracy["exact"]["e2"].as_bool().unwrap());
         }
-        // The input is in the regime of the issue: a curvature energy of the noisy points
-        // misses its tolerance, and is reported as its estimate with its error instead.
-        let missed = &r["before"]["energy_accuracy"]["within_tolerance"];
-        assert!(
-            missed["ek"] == false || missed["ek_prime"] == false,
-            "{method}: {missed}"
-        );
+        // Bisection alone missed the tolerance of Ek and Ek′ on these noisy points; the
+        // quadrature with the sinh change of variable at the speed's dips meets it. An energy
+        // reported within tolerance must have its error within it (the path where a
+        // tolerance is missed, an estimate with its error, is tested in `fairness`'s energy
+        // module, where a bisection budget of zero forces it).
+        let accuracy = &r["before"]["energy_accuracy"];
+        let tolerance = accuracy["relative_tolerance"].as_f64().unwrap();
+        for name in ["ek", "ek_prime"] {
+            let value = r["before"]["energies"][name].as_f64().unwrap();
+            let error = accuracy["errors"][name].as_f64().unwrap();
+            if accuracy["within_tolerance"][name] == true {
+                assert!(error <= tolerance * value, "{method} {name}: {accuracy}");
+            }
+        }
     }
 }

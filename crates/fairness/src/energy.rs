@@ -339,7 +339,10 @@ where
     )
 }
 
-/// One of the two curvature energies alone (`which` 0: Ek, 1: Ek′).
+/// One of the two curvature energies (`which` 0: Ek, 1: Ek′), taken from the pair computed
+/// together ([`curvature_pair`]), so that a criterion's Ek or Ek′ is bit for bit the value
+/// [`Energies::measure`] reports for the same curve (the integrand gives both at once; the
+/// pair only refines where either misses its share).
 fn curvature_one<const D: usize, J: PieceJets<D>>(
     jets: &J,
     settings: &Adaptive,
@@ -348,15 +351,8 @@ fn curvature_one<const D: usize, J: PieceJets<D>>(
 where
     Vector<D>: CurvatureForm,
 {
-    let units = [EnergyUnits::Curvature, EnergyUnits::CurvatureSlope][which];
-    let [estimate] = estimate_many(
-        &[with_floor(settings, jets, units)],
-        [CURVATURE_NAMES[which]],
-        |piece, u| [curvature_integrands(jets, piece, u)[which]],
-        jets.breaks(),
-        |piece, out| curvature_segments(jets, CURVATURE_NAMES[which], piece, out),
-    )?;
-    Ok(estimate)
+    let pair = curvature_pair(jets, settings)?;
+    Ok(pair[which])
 }
 
 fn any_curve<const D: usize, C: Curve<D> + ?Sized>(curve: &C) -> AnyCurve<'_, C> {
