@@ -149,10 +149,11 @@ pub fn vertical_noise_estimate<const D: usize>(points: &[Vector<D>]) -> f64 {
 }
 
 /// 1.4826 · MAD is σ for normally distributed values.
-const MAD_TO_SIGMA: f64 = 1.482_602_218_505_602;
+pub(crate) const MAD_TO_SIGMA: f64 = 1.482_602_218_505_602;
 
-/// The median of `values` (reordered in place); `None` when empty. O(n).
-fn median(values: &mut [f64]) -> Option<f64> {
+/// The median of `values` (reordered in place); the mean of the two middle values for an
+/// even count. `None` when empty. O(n). (Also jump-lsq's σ̂.)
+pub(crate) fn median(values: &mut [f64]) -> Option<f64> {
     let n = values.len();
     if n == 0 {
         return None;

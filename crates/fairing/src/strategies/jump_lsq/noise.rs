@@ -13,23 +13,7 @@
 
 use curve_repr::Vector;
 
-/// 1.4826 · MAD is σ for normally distributed values.
-const MAD_TO_SIGMA: f64 = 1.482_602_218_505_602;
-
-/// The median of `values` (reordered in place); the mean of the two middle values for an
-/// even count. O(n). `None` when empty.
-fn median(values: &mut [f64]) -> Option<f64> {
-    let n = values.len();
-    if n == 0 {
-        return None;
-    }
-    let (_, &mut upper, _) = values.select_nth_unstable_by(n / 2, f64::total_cmp);
-    if n % 2 == 1 {
-        return Some(upper);
-    }
-    let lower = values[..n / 2].iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    Some(0.5 * (lower + upper))
-}
+use crate::displacement::{median, MAD_TO_SIGMA};
 
 /// σ̂ of one sequence of values (module docs). 0 for fewer than 4 values (no third
 /// difference) unless closed with at least 4.
