@@ -304,6 +304,19 @@ pub struct SurfaceJob<'a> {
     pub catalog: &'a Catalog,
 }
 
+impl SurfaceJob<'_> {
+    /// The grid nodes (i, j) a surface method must keep: the fixed points, and the whole
+    /// boundary when the end clamp is `g0`. O(m + n + fixed).
+    pub fn fixed_nodes<T: FromIterator<(usize, usize)>>(&self) -> T {
+        let columns = self.grid.columns.max(1);
+        let mut fixed: Vec<usize> = self.constraints.fixed().iter().copied().collect();
+        if self.constraints.end_clamp() == crate::EndClamp::G0 {
+            fixed.extend(self.grid.boundary());
+        }
+        fixed.into_iter().map(|k| (k / columns, k % columns)).collect()
+    }
+}
+
 impl std::fmt::Debug for SurfaceJob<'_> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("SurfaceJob")

@@ -75,11 +75,7 @@ impl SurfaceMethod for SurfaceFairingMethod {
         let columns = grid.columns.max(1);
         let node = |k: usize| (k / columns, k % columns);
         let mut settings = settings.clone();
-        let mut fixed: Vec<usize> = job.constraints.fixed().iter().copied().collect();
-        if job.constraints.end_clamp() == EndClamp::G0 {
-            fixed.extend(grid.boundary());
-        }
-        settings.fixed = fixed.into_iter().map(node).collect();
+        settings.fixed = job.fixed_nodes();
         settings.max_distance = job.constraints.tolerance();
         if !job.bad_points.is_empty() {
             settings.mode = SurfaceMode::Interactive(job.bad_points.iter().map(|&k| node(k)).collect());

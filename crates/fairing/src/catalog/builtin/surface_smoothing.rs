@@ -61,13 +61,8 @@ impl SurfaceMethod for SurfaceSmoothingMethod {
     fn run(&self, settings: &SurfaceSmoothingSettings, job: &SurfaceJob) -> Result<SurfaceRun> {
         let grid = job.grid;
         let columns = grid.columns.max(1);
-        let node = |k: usize| (k / columns, k % columns);
         let mut settings = settings.clone();
-        let mut fixed: Vec<usize> = job.constraints.fixed().iter().copied().collect();
-        if job.constraints.end_clamp() == EndClamp::G0 {
-            fixed.extend(grid.boundary());
-        }
-        settings.fixed = fixed.into_iter().map(node).collect();
+        settings.fixed = job.fixed_nodes();
         let result = SurfaceSmoothing::new(settings.clone()).run(&grid.to_rows())?;
         let record = bicubic_record(&result.surface, settings.parametrization, &result.topology);
         let mut extras = std::collections::BTreeMap::new();
