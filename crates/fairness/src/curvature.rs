@@ -35,6 +35,25 @@ pub trait CurvatureForm: Sized {
     /// finite).
     fn curvature_integrands(d1: &Self, d2: &Self, d3: &Self) -> Option<[f64; 2]>;
 
+    /// [`curvature_integrands`](Self::curvature_integrands) of the cubic piece
+    /// C′(u) = a + bu + cu²/2 (`taylor` = [a, b, c]) at the N parameters `u`: `out[0][i]` =
+    /// κ²|C′| and `out[1][i]` = (dκ/ds)²|C′| at u[i], NaN or ±∞ where the tangent vanishes.
+    /// One loop over the nodes that the compiler can vectorise: what the quadrature of Ek and
+    /// Ek′ spends its time in. O(N).
+    fn curvature_integrands_at<const N: usize>(taylor: &[Self; 3], u: &[f64; N], out: &mut [[f64; N]; 2])
+    where
+        Self: Clone + std::ops::Add<Output = Self> + std::ops::Mul<f64, Output = Self>,
+    {
+        let [a, b, c] = taylor;
+        for (i, &u) in u.iter().enumerate() {
+            let d1 = a.clone() + (b.clone() + c.clone() * (0.5 * u)) * u;
+            let d2 = b.clone() + c.clone() * u;
+            let [ek, ek_prime] = Self::curvature_integrands(&d1, &d2, c).unwrap_or([f64::NAN; 2]);
+            out[0][i] = ek;
+            out[1][i] = ek_prime;
+        }
+    }
+
     /// Where the curvature integrands of a cubic piece have their poles, near the piece: for
     /// C′(u) = a + bu + cu²/2 on [0, `length`] (`taylor` = [a, b, c]), pushes `(centre,
     /// width)` for each narrow peak — `centre` in [0, `length`], `width` below `length`/8 —
@@ -93,6 +112,29 @@ impl CurvatureForm for Vec2 {
         let ek = n * n * cube * r;
         let ek_prime = m * m * cube * cube * r;
         (ek.is_finite() && ek_prime.is_finite()).then_some([ek, ek_prime])
+    }
+
+    fn curvature_integrands_at<const N: usize>(taylor: &[Vec2; 3], u: &[f64; N], out: &mut [[f64; N]; 2]) {
+        // `curvature_integrands` written per coordinate, with no early exit, so that the loop
+        // vectorises; the arithmetic is the same, operation for operation.
+        let [a, b, c] = taylor;
+        let [ek_out, ek_prime_out] = out;
+        for i in 0..N {
+            let u = u[i];
+            let half_u = 0.5 * u;
+            let d1x = a.x + (b.x + c.x * half_u) * u;
+            let d1y = a.y + (b.y + c.y * half_u) * u;
+            let d2x = b.x + c.x * u;
+            let d2y = b.y + c.y * u;
+            let q = d1x * d1x + d1y * d1y;
+            let r = q.sqrt();
+            let n = d1x * d2y - d1y * d2x;
+            let m = (d1x * c.y - d1y * c.x) * q - 3.0 * n * (d1x * d2x + d1y * d2y);
+            let inverse = 1.0 / q;
+            let cube = inverse * inverse * inverse;
+            ek_out[i] = n * n * cube * r;
+            ek_prime_out[i] = m * m * cube * cube * r;
+        }
     }
 
     fn speed_poles(taylor: &[Vec2; 3], length: f64, push: &mut dyn FnMut(f64, f64)) {

@@ -39,7 +39,10 @@ use std::marker::PhantomData;
 use curve_repr::{Curve, Side, Vector};
 
 use crate::curvature::CurvatureForm;
-use crate::quadrature::{estimate_many, estimate_many_parallel, Adaptive, Estimate, GaussLegendre, Segment};
+use crate::quadrature::{
+    estimate_many_nodes, estimate_many_nodes_parallel, Adaptive, Estimate, GaussLegendre, Segment,
+    KRONROD_POINTS,
+};
 use crate::{Criterion, Error, Result};
 
 /// How E1–E3 integrate each piece between break points.
@@ -93,6 +96,20 @@ trait PieceJets<const D: usize> {
     fn local(&self, piece: usize, u: f64) -> [Vector<D>; 3] {
         self.derivatives(piece, self.breaks()[piece] + u)
     }
+    /// Ek's and Ek′'s integrands at the nodes `u` (local parameters) of piece `piece`:
+    /// `out[0]` κ²|C′|, `out[1]` (dκ/ds)²|C′|, NaN where the tangent vanishes. Pointwise
+    /// through [`local`](Self::local) unless the jets know better.
+    fn curvature_nodes(&self, piece: usize, u: &[f64; KRONROD_POINTS], out: &mut [[f64; KRONROD_POINTS]; 2])
+    where
+        Vector<D>: CurvatureForm,
+    {
+        for (i, &u) in u.iter().enumerate() {
+            let [d1, d2, d3] = self.local(piece, u);
+            let [ek, ek_prime] = CurvatureForm::curvature_integrands(&d1, &d2, &d3).unwrap_or([f64::NAN; 2]);
+            out[0][i] = ek;
+            out[1][i] = ek_prime;
+        }
+    }
 }
 
 /// Any curve, evaluated through [`Curve::jet`] (which finds the piece itself).
@@ -124,8 +141,9 @@ impl<const D: usize> CubicPieces<D> {
         let breaks = curve.breaks();
         let starts = breaks
             .windows(2)
-            .map(|w| {
-                let jet = curve.jet(w[0], Side::Right);
+            .enumerate()
+            .map(|(i, w)| {
+                let jet = curve.jet_on_piece(i, w[0]);
                 [jet[1], jet[2], jet[3]]
             })
             .collect();
@@ -148,6 +166,12 @@ impl<const D: usize> PieceJets<D> for CubicPieces<D> {
     fn local(&self, piece: usize, u: f64) -> [Vector<D>; 3] {
         let [d1, d2, d3] = self.starts[piece];
         [d1 + (d2 + d3 * (0.5 * u)) * u, d2 + d3 * u, d3]
+    }
+    fn curvature_nodes(&self, piece: usize, u: &[f64; KRONROD_POINTS], out: &mut [[f64; KRONROD_POINTS]; 2])
+    where
+        Vector<D>: CurvatureForm,
+    {
+        CurvatureForm::curvature_integrands_at(&self.starts[piece], u, out)
     }
 }
 
@@ -288,16 +312,6 @@ fn derivative_estimate<const D: usize, J: PieceJets<D>>(
 /// The names of the two curvature energies, as errors give them.
 const CURVATURE_NAMES: [&str; 2] = ["Ek", "Ek'"];
 
-/// Ek's and Ek′'s integrands at u = t − tᵢ in piece `piece`: κ²|C′| and (dκ/ds)²|C′| (NaN
-/// where the tangent vanishes, so that the quadrature reports a non-finite integrand).
-fn curvature_integrands<const D: usize, J: PieceJets<D>>(jets: &J, piece: usize, u: f64) -> [f64; 2]
-where
-    Vector<D>: CurvatureForm,
-{
-    let [d1, d2, d3] = jets.local(piece, u);
-    CurvatureForm::curvature_integrands(&d1, &d2, &d3).unwrap_or([f64::NAN; 2])
-}
-
 /// The settings of Ek and Ek′: `settings` with each one's round-off floor.
 fn curvature_settings<const D: usize, J: PieceJets<D>>(jets: &J, settings: &Adaptive) -> [Adaptive; 2] {
     [
@@ -312,10 +326,12 @@ fn curvature_pair<const D: usize, J: PieceJets<D>>(jets: &J, settings: &Adaptive
 where
     Vector<D>: CurvatureForm,
 {
-    estimate_many(
+    estimate_many_nodes(
         &curvature_settings(jets, settings),
         CURVATURE_NAMES,
-        |piece, u| curvature_integrands(jets, piece, u),
+        |piece: usize, u: &[f64; KRONROD_POINTS], out: &mut [[f64; KRONROD_POINTS]; 2]| {
+            jets.curvature_nodes(piece, u, out)
+        },
         jets.breaks(),
         |piece, out| curvature_segments(jets, CURVATURE_NAMES[0], piece, out),
     )
@@ -330,10 +346,12 @@ fn curvature_pair_parallel<const D: usize, J: PieceJets<D> + Sync>(
 where
     Vector<D>: CurvatureForm,
 {
-    estimate_many_parallel(
+    estimate_many_nodes_parallel(
         &curvature_settings(jets, settings),
         CURVATURE_NAMES,
-        |piece, u| curvature_integrands(jets, piece, u),
+        |piece: usize, u: &[f64; KRONROD_POINTS], out: &mut [[f64; KRONROD_POINTS]; 2]| {
+            jets.curvature_nodes(piece, u, out)
+        },
         jets.breaks(),
         |piece, out| curvature_segments(jets, CURVATURE_NAMES[0], piece, out),
     )
@@ -858,7 +876,12 @@ where
     }
     let ([e1, e2, e3], [ek, ek_prime]) = if degree <= 3 {
         let jets = CubicPieces::of(curve);
-        (exact(&jets, degree)?, curvature_pair_parallel(&jets, settings)?)
+        // The exact sums run beside the adaptive pass (one more task for rayon's threads).
+        let (exact, curvature) = rayon::join(
+            || exact(&jets, degree),
+            || curvature_pair_parallel(&jets, settings),
+        );
+        (exact?, curvature?)
     } else {
         let jets = any_curve(curve);
         (exact(&jets, degree)?, curvature_pair(&jets, settings)?)

@@ -62,7 +62,10 @@ where
 /// - `energies` of the graph (x, y(x)) over its parameter x (E1–E3 exact for cubic pieces,
 ///   Ek and Ek′ adaptive to [`ENERGY_TOLERANCE`]) with their accuracy (see the module doc).
 pub fn function_of(spline: &SplineFunction) -> Result<FairnessSummary> {
-    let xc = XcPolyline::of_spline(spline)?;
+    // The energies' quadrature on rayon's threads, the counts beside it.
+    let (xc, (energies, energy_accuracy)) =
+        rayon::join(|| XcPolyline::of_spline(spline), || cubic_energies(spline));
+    let xc = xc?;
     let e_s = spline.second_derivative_energy();
     if !e_s.is_finite() {
         return Err(Error::NonFinite {
@@ -70,7 +73,6 @@ pub fn function_of(spline: &SplineFunction) -> Result<FairnessSummary> {
             parameter: spline.x().first().copied().unwrap_or(0.0),
         });
     }
-    let (energies, energy_accuracy) = cubic_energies(spline);
     Ok(FairnessSummary {
         inflections: Some(xc.inflections()),
         vibrations: Some(xc.vibrations()),

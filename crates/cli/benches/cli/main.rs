@@ -71,6 +71,22 @@ fn curve_end_to_end(c: &mut Criterion) {
         group.throughput(Throughput::Elements(n as u64));
         // The smoothing spline at csaps' own p = 0.999 on csaps' convention: the same
         // computation speed.py times, plus reading, measuring before and after, writing.
+        // The default method (jump-lsq, λ chosen by its rule), as a user runs it.
+        group.bench_function(BenchmarkId::new("default-method", n), |b| {
+            b.iter(|| {
+                let code = fair_cli::run_from([
+                    "fair",
+                    "curve",
+                    input.to_str().unwrap(),
+                    "-o",
+                    output.to_str().unwrap(),
+                    "--report",
+                    report.to_str().unwrap(),
+                    "-q",
+                ]);
+                assert_eq!(code, std::process::ExitCode::SUCCESS);
+            })
+        });
         group.bench_function(BenchmarkId::new("smoothing-spline-p0.999", n), |b| {
             b.iter(|| {
                 let code = fair_cli::run_from([

@@ -172,8 +172,10 @@ fn process_points(
     if kind == CurveKind::Function {
         check_still_a_function(&faired, &plan)?;
     }
-    let mut before = measure::curve(kind, &input.points)?;
-    let mut after = measure::curve(kind, &faired)?;
+    // The plot's samples only when a plot is asked for (the figure is drawn only then).
+    let drawn = args.plot.is_some();
+    let mut before = measure::curve_with(kind, &input.points, drawn)?;
+    let mut after = measure::curve_with(kind, &faired, drawn)?;
     // Criteria on the curve as represented: the method's own curves when it has them, else
     // the spline the report measures (whose energies are already in the measures).
     let mut failed = BTreeMap::new();

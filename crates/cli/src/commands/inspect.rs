@@ -56,9 +56,8 @@ pub fn run(catalog: &Catalog, args: &InspectArgs) -> Result<()> {
         &args.read_options(),
         args.quiet,
     )?;
-    let text = report.to_json()?;
     if let Some(path) = &args.report {
-        crate::output::write_text(&path.display().to_string(), &text)?;
+        crate::output::write_text(&path.display().to_string(), &report.to_json()?)?;
     }
     say(
         args.quiet,
@@ -152,7 +151,8 @@ pub fn inspect_with(
                 &format!("measuring {} ({} points)", source.name, input.len()),
                 quiet,
             );
-            measure::curve(kind, &input.points).map_err(|e| measure::in_file(e, &input.source))?
+            measure::curve_with(kind, &input.points, plot.is_some())
+                .map_err(|e| measure::in_file(e, &input.source))?
         };
         if let Some(path) = plot {
             let plot = CurvePlot {

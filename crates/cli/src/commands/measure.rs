@@ -14,7 +14,7 @@
 //! (exit status 2) with the path [`POINTS`]; [`in_file`] puts the input's name there.
 
 use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings, Curve, EndCondition, HermiteSpline};
-use curve_repr::{Side, SplineFunction, Vec2, Vec3, Vector};
+use curve_repr::{SplineFunction, Vec2, Vec3, Vector};
 use fairness::summary;
 use fairness::{CurvatureForm, FairnessSummary, XcPolyline};
 
@@ -112,14 +112,17 @@ fn measures(summary: &FairnessSummary, with_energies: bool) -> Measures {
 }
 
 /// Sample parameters: `per` points per interval of `breaks`, the last break included.
-fn sample_parameters(breaks: &[f64]) -> Vec<f64> {
+fn sample_parameters(breaks: &[f64]) -> Vec<(usize, f64)> {
     let intervals = breaks.len().saturating_sub(1).max(1);
     let per = (MAX_SAMPLES / intervals).clamp(2, 16);
-    let mut t: Vec<f64> = breaks
-        .windows(2)
-        .flat_map(|w| (0..per).map(move |k| w[0] + (w[1] - w[0]) * k as f64 / per as f64))
-        .collect();
-    t.extend(breaks.last());
+    let mut t: Vec<(usize, f64)> = Vec::with_capacity(per * intervals + 1);
+    t.extend(
+        breaks
+            .windows(2)
+            .enumerate()
+            .flat_map(|(i, w)| (0..per).map(move |k| (i, w[0] + (w[1] - w[0]) * k as f64 / per as f64))),
+    );
+    t.extend(breaks.len().checked_sub(2).map(|i| (i, breaks[i + 1])));
     t
 }
 
@@ -131,65 +134,90 @@ fn padded(interior: impl IntoIterator<Item = f64>) -> Vec<f64> {
     z
 }
 
-/// Measures a curve of the given kind (DESIGN.md "Definitions"). O(n).
+/// Measures a curve of the given kind (DESIGN.md "Definitions"), with what a plot shows.
+/// O(n).
 pub fn curve(kind: CurveKind, points: &Points) -> Result<CurveMeasurement> {
+    curve_with(kind, points, true)
+}
+
+/// [`curve`], with the plot's samples, comb and curvature line only when `plot` is set
+/// (`samples`, `comb` and `curvature` are `None` otherwise): at 10⁶ points they are two
+/// million evaluations and a few hundred MB that only a picture needs. The measures, the
+/// `curve` record and z are the same either way. O(n).
+pub fn curve_with(kind: CurveKind, points: &Points, plot: bool) -> Result<CurveMeasurement> {
     match (kind, points) {
-        (CurveKind::Function, Points::Planar(p)) => function(p),
+        (CurveKind::Function, Points::Planar(p)) => function(p, plot),
         (CurveKind::Function, Points::Spatial(_)) => Err(Error::Invalid {
             path: POINTS.into(),
             message: "the function kind needs planar points x,y".into(),
         }),
-        (CurveKind::Parametric, Points::Planar(p)) => parametric(p, |v| [v.x, v.y], planar_normal),
-        (CurveKind::Parametric, Points::Spatial(p)) => parametric(p, |v| [v.x, v.z], spatial_normal),
+        (CurveKind::Parametric, Points::Planar(p)) => parametric(p, |v| [v.x, v.y], planar_normal, plot),
+        (CurveKind::Parametric, Points::Spatial(p)) => parametric(p, |v| [v.x, v.z], spatial_normal, plot),
     }
 }
 
 /// The function kind: the runout spline function y(x), its x–c polyline.
-fn function(points: &[Vec2]) -> Result<CurveMeasurement> {
+fn function(points: &[Vec2], plot: bool) -> Result<CurveMeasurement> {
     let x: Vec<f64> = points.iter().map(|p| p.x).collect();
     let y: Vec<f64> = points.iter().map(|p| p.y).collect();
     let spline = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).map_err(from_curve_repr)?;
-    let summary = summary::function_of(&spline).map_err(from_fairness)?;
-    let xc = XcPolyline::of_spline(&spline).map_err(from_fairness)?;
-    let mut samples = Vec::new();
-    let mut comb = CombData::default();
-    for t in sample_parameters(&x) {
-        let (value, slope, second) = (
-            spline.value(t),
-            spline.first_derivative(t),
-            spline.second_derivative(t),
-        );
-        let speed = (1.0 + slope * slope).sqrt();
-        let kappa = second / (speed * speed * speed);
-        if value.is_finite() && kappa.is_finite() && speed.is_finite() {
-            samples.push([t, value]);
-            comb.points.push([t, value]);
-            comb.normals.push([-slope / speed, 1.0 / speed]);
-            comb.curvature.push(kappa);
-        }
-    }
-    let curvature = CurvaturePlot {
-        title: "x–c polyline (c = y''/6)".into(),
-        x_label: "x".into(),
-        y_label: "c".into(),
-        line: x.iter().zip(&xc.c).map(|(x, c)| [*x, *c]).collect(),
-        knots: x.iter().zip(&xc.c).map(|(x, c)| [*x, *c]).collect(),
+    // The record and the plot's samples are made while the summary's quadrature runs on
+    // rayon's threads.
+    let (summary, drawn) = rayon::join(
+        || summary::function_of(&spline).map_err(from_fairness),
+        || function_drawing(&spline, x, y, plot),
+    );
+    let mut measurement = drawn?;
+    measurement.measures = measures(&summary?, true);
+    Ok(measurement)
+}
+
+/// Everything of a function's [`CurveMeasurement`] but the measures: the `curve` record, z,
+/// and with `plot` the samples, comb and x–c plot. O(n).
+fn function_drawing(
+    spline: &SplineFunction,
+    x: Vec<f64>,
+    y: Vec<f64>,
+    plot: bool,
+) -> Result<CurveMeasurement> {
+    let xc = XcPolyline::of_spline(spline).map_err(from_fairness)?;
+    let mut measurement = CurveMeasurement {
+        z: Some(padded(xc.e.iter().map(|e| 6.0 * e.abs()))),
+        ..CurveMeasurement::default()
     };
-    let curve = serde_json::json!({
+    if plot {
+        let mut samples = Vec::new();
+        let mut comb = CombData::default();
+        for (piece, t) in sample_parameters(&x) {
+            let [value, slope, second, _] = spline.jet_in(piece, t);
+            let speed = (1.0 + slope * slope).sqrt();
+            let kappa = second / (speed * speed * speed);
+            if value.is_finite() && kappa.is_finite() && speed.is_finite() {
+                samples.push([t, value]);
+                comb.points.push([t, value]);
+                comb.normals.push([-slope / speed, 1.0 / speed]);
+                comb.curvature.push(kappa);
+            }
+        }
+        let line: Vec<[f64; 2]> = x.iter().zip(&xc.c).map(|(x, c)| [*x, *c]).collect();
+        measurement.samples = Some(samples);
+        measurement.comb = Some(comb);
+        measurement.curvature = Some(CurvaturePlot {
+            title: "x–c polyline (c = y''/6)".into(),
+            x_label: "x".into(),
+            y_label: "c".into(),
+            knots: line.clone(),
+            line,
+        });
+    }
+    measurement.curve = serde_json::json!({
         "type": "spline-function",
         "end_condition": "parabolic-runout",
         "x": x,
         "y": y,
         "c": xc.c,
     });
-    Ok(CurveMeasurement {
-        measures: measures(&summary, true),
-        curve,
-        samples: Some(samples),
-        comb: Some(comb),
-        z: Some(padded(xc.e.iter().map(|e| 6.0 * e.abs()))),
-        curvature: Some(curvature),
-    })
+    Ok(measurement)
 }
 
 /// The unit left normal of a planar curve from its first derivative.
@@ -217,22 +245,79 @@ fn parametric<const D: usize>(
     points: &[Vector<D>],
     project: fn(&Vector<D>) -> [f64; 2],
     normal: fn(&[Vector<D>; 4]) -> Option<[f64; 2]>,
+    plot: bool,
 ) -> Result<CurveMeasurement>
 where
     Vector<D>: CurvatureForm,
 {
     let spline = HermiteSpline::natural(points).map_err(from_curve_repr)?;
-    let summary = summary::parametric_of(&spline).map_err(from_fairness)?;
+    let (summary, drawn) = rayon::join(
+        || summary::parametric_of(&spline).map_err(from_fairness),
+        || parametric_drawing(&spline, points, project, normal, plot),
+    );
+    let mut measurement = drawn?;
+    measurement.measures = measures(&summary?, true);
+    Ok(measurement)
+}
+
+/// Everything of a parametric curve's [`CurveMeasurement`] but the measures (see
+/// [`function_drawing`]). O(n).
+fn parametric_drawing<const D: usize>(
+    spline: &HermiteSpline<D>,
+    points: &[Vector<D>],
+    project: fn(&Vector<D>) -> [f64; 2],
+    normal: fn(&[Vector<D>; 4]) -> Option<[f64; 2]>,
+    plot: bool,
+) -> Result<CurveMeasurement>
+where
+    Vector<D>: CurvatureForm,
+{
     let breaks = spline.breaks();
-    let kappa = fairness::curvature::curvature_at_breaks(&spline).map_err(from_fairness)?;
-    let jumps = fairness::jumps::third_derivative_jumps(&spline).map_err(from_fairness)?;
+    let jumps = fairness::jumps::third_derivative_jumps(spline).map_err(from_fairness)?;
+    let mut measurement = CurveMeasurement {
+        z: Some(padded(jumps)),
+        ..CurveMeasurement::default()
+    };
+    if plot {
+        let kappa = fairness::curvature::curvature_at_breaks(spline).map_err(from_fairness)?;
+        let (samples, comb, curvature) = parametric_samples(spline, &breaks, &kappa, project, normal);
+        measurement.samples = Some(samples);
+        measurement.comb = Some(comb);
+        measurement.curvature = Some(curvature);
+    }
+    let rows: Vec<Vec<f64>> = points.iter().map(|p| p.iter().copied().collect()).collect();
+    let tangents: Vec<Vec<f64>> = spline
+        .tangents()
+        .iter()
+        .map(|p| p.iter().copied().collect())
+        .collect();
+    measurement.curve = serde_json::json!({
+        "type": "hermite",
+        "ends": "natural",
+        "parametrization": "chord-length",
+        "params": breaks,
+        "points": rows,
+        "tangents": tangents,
+    });
+    Ok(measurement)
+}
+
+/// A parametric curve's plot samples, comb and curvature line.
+fn parametric_samples<const D: usize>(
+    spline: &HermiteSpline<D>,
+    breaks: &[f64],
+    kappa: &[f64],
+    project: fn(&Vector<D>) -> [f64; 2],
+    normal: fn(&[Vector<D>; 4]) -> Option<[f64; 2]>,
+) -> (Vec<[f64; 2]>, CombData, CurvaturePlot)
+where
+    Vector<D>: CurvatureForm,
+{
     let mut samples = Vec::new();
     let mut comb = CombData::default();
     let mut kappa_line = Vec::new();
-    let last = breaks.last().copied().unwrap_or(0.0);
-    for t in sample_parameters(&breaks) {
-        let side = if t >= last { Side::Left } else { Side::Right };
-        let jet = spline.jet(t, side);
+    for (piece, t) in sample_parameters(breaks) {
+        let jet = spline.jet_on_piece(piece, t);
         let point = project(&jet[0]);
         if !(point[0].is_finite() && point[1].is_finite()) {
             continue;
@@ -252,30 +337,9 @@ where
         x_label: "t".into(),
         y_label: "κ".into(),
         line: kappa_line,
-        knots: breaks.iter().zip(&kappa).map(|(t, k)| [*t, *k]).collect(),
+        knots: breaks.iter().zip(kappa).map(|(t, k)| [*t, *k]).collect(),
     };
-    let rows: Vec<Vec<f64>> = points.iter().map(|p| p.iter().copied().collect()).collect();
-    let tangents: Vec<Vec<f64>> = spline
-        .tangents()
-        .iter()
-        .map(|p| p.iter().copied().collect())
-        .collect();
-    let curve = serde_json::json!({
-        "type": "hermite",
-        "ends": "natural",
-        "parametrization": "chord-length",
-        "params": breaks,
-        "points": rows,
-        "tangents": tangents,
-    });
-    Ok(CurveMeasurement {
-        measures: measures(&summary, true),
-        curve,
-        samples: Some(samples),
-        comb: Some(comb),
-        z: Some(padded(jumps)),
-        curvature: Some(curvature),
-    })
+    (samples, comb, curvature)
 }
 
 /// Measures a surface grid (DESIGN.md "Definitions", surface kind). O(m·n).
@@ -331,6 +395,32 @@ mod tests {
             let comb = m.comb.unwrap();
             assert_eq!(comb.points.len(), comb.curvature.len());
             assert!(!comb.points.is_empty());
+        }
+    }
+
+    #[test]
+    fn measuring_without_a_plot_gives_the_same_measures_and_record() {
+        let planar: Vec<Vec2> = (0..30)
+            .map(|i| Vec2::new(i as f64 * 0.2, (i as f64 * 0.5).sin()))
+            .collect();
+        let spatial: Vec<Vec3> = (0..30)
+            .map(|i| {
+                let t = i as f64 * 0.3;
+                Vec3::new(t.cos(), t.sin(), 0.2 * t)
+            })
+            .collect();
+        for (kind, points) in [
+            (CurveKind::Function, Points::Planar(planar.clone())),
+            (CurveKind::Parametric, Points::Planar(planar)),
+            (CurveKind::Parametric, Points::Spatial(spatial)),
+        ] {
+            let full = curve(kind, &points).unwrap();
+            let bare = curve_with(kind, &points, false).unwrap();
+            assert_eq!(bare.measures, full.measures);
+            assert_eq!(bare.curve, full.curve);
+            assert_eq!(bare.z, full.z);
+            assert!(bare.samples.is_none() && bare.comb.is_none() && bare.curvature.is_none());
+            assert!(full.samples.is_some() && full.comb.is_some() && full.curvature.is_some());
         }
     }
 

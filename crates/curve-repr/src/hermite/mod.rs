@@ -215,7 +215,11 @@ impl<const D: usize> Curve<D> for HermiteSpline<D> {
     /// the one starting there. A closed curve is not wrapped: outside its domain, and at
     /// t_0 and t_{n+1}, its first and last segments are used like those of an open one.
     fn jet(&self, t: f64, side: Side) -> [Vector<D>; 4] {
-        let segment = self.segment_at(t, side);
+        self.jet_on_piece(self.segment_at(t, side), t)
+    }
+
+    fn jet_on_piece(&self, segment: usize, t: f64) -> [Vector<D>; 4] {
+        let segment = segment.min(self.segment_count().saturating_sub(1));
         let [p, m, c2, c3] = self.coefficients(segment);
         let u = t - self.knots[segment];
         [

@@ -169,7 +169,13 @@ impl SplineFunction {
     /// continuous). Han Eq. 2 for y; its derivatives, which give Eq. 3 at the ends of an
     /// interval. O(log n) (binary search for the interval).
     pub fn jet_at(&self, t: f64, side: Side) -> [f64; 4] {
-        let i = self.interval(t, side);
+        self.jet_in(self.interval(t, side), t)
+    }
+
+    /// [`jet_at`](Self::jet_at) on interval `i` ([x_i, x_{i+1}], clamped to the last one; `t`
+    /// normally inside it): no search. NaN for an empty spline. O(1).
+    pub fn jet_in(&self, i: usize, t: f64) -> [f64; 4] {
+        let i = i.min(self.x.len().saturating_sub(2));
         let (Some(&x0), Some(&y0), Some(&c0), Some(&c1)) =
             (self.x.get(i), self.y.get(i), self.c.get(i), self.c.get(i + 1))
         else {
@@ -219,6 +225,16 @@ impl SplineFunction {
     }
 }
 
+/// The jet of the graph (x, y(x)) at x = `t` from y's jet.
+fn graph_jet(t: f64, [value, slope, second, third]: [f64; 4]) -> [Vec2; 4] {
+    [
+        Vec2::new(t, value),
+        Vec2::new(1.0, slope),
+        Vec2::new(0.0, second),
+        Vec2::new(0.0, third),
+    ]
+}
+
 impl Curve<2> for SplineFunction {
     fn domain(&self) -> (f64, f64) {
         (
@@ -229,13 +245,11 @@ impl Curve<2> for SplineFunction {
 
     /// (x, y), (1, y'), (0, y''), (0, y''') at parameter x = `t`.
     fn jet(&self, t: f64, side: Side) -> [Vec2; 4] {
-        let [value, slope, second, third] = self.jet_at(t, side);
-        [
-            Vec2::new(t, value),
-            Vec2::new(1.0, slope),
-            Vec2::new(0.0, second),
-            Vec2::new(0.0, third),
-        ]
+        graph_jet(t, self.jet_at(t, side))
+    }
+
+    fn jet_on_piece(&self, piece: usize, t: f64) -> [Vec2; 4] {
+        graph_jet(t, self.jet_in(piece, t))
     }
 
     /// The x_i.
