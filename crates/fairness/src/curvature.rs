@@ -349,6 +349,47 @@ mod tests {
     use super::*;
     use crate::test_curves::{Helix, Parabola, TwistedCubic};
 
+    /// The vectorised node loop of a planar cubic piece gives the pointwise integrands bit
+    /// for bit (the same operations), and a non-finite value where the tangent vanishes.
+    #[test]
+    fn planar_node_integrands_equal_the_pointwise_ones() {
+        let taylor = [Vec2::new(0.3, -1.2), Vec2::new(2.5, 0.7), Vec2::new(-4.0, 9.0)];
+        let u: [f64; 15] = std::array::from_fn(|i| -0.2 + 0.1 * i as f64);
+        let mut out = [[0.0; 15]; 2];
+        Vec2::curvature_integrands_at(&taylor, &u, &mut out);
+        for (i, &u) in u.iter().enumerate() {
+            let [a, b, c] = taylor;
+            let d1 = a + (b + c * (0.5 * u)) * u;
+            let d2 = b + c * u;
+            let expected = Vec2::curvature_integrands(&d1, &d2, &c).unwrap();
+            assert_eq!([out[0][i], out[1][i]], expected, "node {i}");
+        }
+        // C′(u) = (u, 0): the tangent vanishes at u = 0.
+        let stop = [Vec2::zeros(), Vec2::new(1.0, 0.0), Vec2::new(0.0, 2.0)];
+        let mut out = [[0.0; 1]; 2];
+        Vec2::curvature_integrands_at(&stop, &[0.0], &mut out);
+        assert!(!out[0][0].is_finite() || !out[1][0].is_finite());
+    }
+
+    /// The default node loop (spatial curves) is the pointwise formula at each node.
+    #[test]
+    fn spatial_node_integrands_equal_the_pointwise_ones() {
+        let taylor = [
+            Vec3::new(0.3, -1.2, 0.5),
+            Vec3::new(2.5, 0.7, -1.0),
+            Vec3::new(-4.0, 9.0, 3.0),
+        ];
+        let u = [0.0, 0.25, 0.5];
+        let mut out = [[0.0; 3]; 2];
+        Vec3::curvature_integrands_at(&taylor, &u, &mut out);
+        for (i, &u) in u.iter().enumerate() {
+            let [a, b, c] = taylor;
+            let expected =
+                Vec3::curvature_integrands(&(a + (b + c * (0.5 * u)) * u), &(b + c * u), &c).unwrap();
+            assert_eq!([out[0][i], out[1][i]], expected);
+        }
+    }
+
     #[test]
     fn parabola_curvature_matches_closed_form() {
         for a in [0.5, -2.0, 3.0] {
