@@ -52,11 +52,13 @@ impl Activity {
         let thread = std::thread::spawn(move || {
             let step = Duration::from_millis(50);
             let mut waited = Duration::ZERO;
+            // Parked, not asleep: `drop` unparks the thread, so that a short piece of work
+            // does not wait for the end of a step.
             while waited < SPINNER_DELAY {
                 if flag.load(Ordering::Acquire) {
                     return;
                 }
-                std::thread::sleep(step);
+                std::thread::park_timeout(step);
                 waited += step;
             }
             let spinner = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
@@ -66,7 +68,7 @@ impl Activity {
             spinner.set_message(message);
             spinner.enable_steady_tick(Duration::from_millis(100));
             while !flag.load(Ordering::Acquire) {
-                std::thread::sleep(step);
+                std::thread::park_timeout(step);
             }
             spinner.finish_and_clear();
         });
@@ -81,6 +83,7 @@ impl Drop for Activity {
     fn drop(&mut self) {
         self.done.store(true, Ordering::Release);
         if let Some(thread) = self.thread.take() {
+            thread.thread().unpark();
             let _ = thread.join();
         }
     }
