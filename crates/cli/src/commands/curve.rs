@@ -173,9 +173,12 @@ fn process_points(
         check_still_a_function(&faired, &plan)?;
     }
     // The plot's samples only when a plot is asked for (the figure is drawn only then).
-    let drawn = args.plot.is_some();
-    let mut before = measure::curve_with(kind, &input.points, drawn)?;
-    let mut after = measure::curve_with(kind, &faired, drawn)?;
+    let detail = measure::Detail {
+        plot: args.plot.is_some(),
+        record: true,
+    };
+    let mut before = measure::curve_with(kind, &input.points, detail)?;
+    let mut after = measure::curve_with(kind, &faired, detail)?;
     // Criteria on the curve as represented: the method's own curves when it has them, else
     // the spline the report measures (whose energies are already in the measures).
     let mut failed = BTreeMap::new();

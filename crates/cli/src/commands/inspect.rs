@@ -52,7 +52,10 @@ pub fn run(catalog: &Catalog, args: &InspectArgs) -> Result<()> {
         &source,
         args.kind,
         args.surface,
-        args.plot.as_deref(),
+        Outputs {
+            plot: args.plot.as_deref(),
+            record: args.report.is_some(),
+        },
         &args.read_options(),
         args.quiet,
     )?;
@@ -82,23 +85,35 @@ pub fn inspect(
         source,
         kind_arg,
         surface,
-        plot,
+        Outputs { plot, record: true },
         &ReadOptions::default(),
         true,
     )
 }
 
-/// [`inspect`] with `--columns` ([`ReadOptions`]); the reader's notes and a progress spinner
-/// on standard error unless `quiet`.
+/// What `fair inspect` writes besides the measures: the plot (to this path), and whether the
+/// report's `curve` record is wanted (a curve's record is O(n) JSON values: at 10⁶ points a
+/// few hundred MB that a run without `--report` need not build; it is then `null`).
+#[derive(Debug, Clone, Copy)]
+pub struct Outputs<'a> {
+    /// Draw the plot here.
+    pub plot: Option<&'a Path>,
+    /// Build the report's `curve` record.
+    pub record: bool,
+}
+
+/// [`inspect`] with `--columns` ([`ReadOptions`]) and a choice of [`Outputs`]; the reader's
+/// notes and a progress spinner on standard error unless `quiet`.
 pub fn inspect_with(
     catalog: &Catalog,
     source: &Source,
     kind_arg: KindArg,
     surface: bool,
-    plot: Option<&Path>,
+    outputs: Outputs<'_>,
     options: &ReadOptions,
     quiet: bool,
 ) -> Result<Report> {
+    let plot = outputs.plot;
     let report = if surface || looks_like_surface(source) {
         if options.columns.is_some() {
             return Err(crate::error::Error::Argument {
@@ -151,7 +166,11 @@ pub fn inspect_with(
                 &format!("measuring {} ({} points)", source.name, input.len()),
                 quiet,
             );
-            measure::curve_with(kind, &input.points, plot.is_some())
+            let detail = measure::Detail {
+                plot: plot.is_some(),
+                record: outputs.record,
+            };
+            measure::curve_with(kind, &input.points, detail)
                 .map_err(|e| measure::in_file(e, &input.source))?
         };
         if let Some(path) = plot {

@@ -137,27 +137,45 @@ fn padded(interior: impl IntoIterator<Item = f64>) -> Vec<f64> {
 /// Measures a curve of the given kind (DESIGN.md "Definitions"), with what a plot shows.
 /// O(n).
 pub fn curve(kind: CurveKind, points: &Points) -> Result<CurveMeasurement> {
-    curve_with(kind, points, true)
+    curve_with(kind, points, Detail::ALL)
 }
 
-/// [`curve`], with the plot's samples, comb and curvature line only when `plot` is set
-/// (`samples`, `comb` and `curvature` are `None` otherwise): at 10⁶ points they are two
-/// million evaluations and a few hundred MB that only a picture needs. The measures, the
-/// `curve` record and z are the same either way. O(n).
-pub fn curve_with(kind: CurveKind, points: &Points, plot: bool) -> Result<CurveMeasurement> {
+/// What of a [`CurveMeasurement`] besides the measures and z to make.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Detail {
+    /// The plot's samples, comb and curvature line (`samples`, `comb`, `curvature`).
+    pub plot: bool,
+    /// The report's `curve` record (else `Value::Null`).
+    pub record: bool,
+}
+
+impl Detail {
+    /// Everything.
+    pub const ALL: Detail = Detail {
+        plot: true,
+        record: true,
+    };
+}
+
+/// [`curve`], with the plot's samples, comb and curvature line only when `detail.plot` is set
+/// (`samples`, `comb` and `curvature` are `None` otherwise) and the `curve` record only when
+/// `detail.record` is (else `Value::Null`): at 10⁶ points they are two million evaluations
+/// and a few hundred MB that only a picture or a written report needs. The measures and z
+/// are the same either way. O(n).
+pub fn curve_with(kind: CurveKind, points: &Points, detail: Detail) -> Result<CurveMeasurement> {
     match (kind, points) {
-        (CurveKind::Function, Points::Planar(p)) => function(p, plot),
+        (CurveKind::Function, Points::Planar(p)) => function(p, detail),
         (CurveKind::Function, Points::Spatial(_)) => Err(Error::Invalid {
             path: POINTS.into(),
             message: "the function kind needs planar points x,y".into(),
         }),
-        (CurveKind::Parametric, Points::Planar(p)) => parametric(p, |v| [v.x, v.y], planar_normal, plot),
-        (CurveKind::Parametric, Points::Spatial(p)) => parametric(p, |v| [v.x, v.z], spatial_normal, plot),
+        (CurveKind::Parametric, Points::Planar(p)) => parametric(p, |v| [v.x, v.y], planar_normal, detail),
+        (CurveKind::Parametric, Points::Spatial(p)) => parametric(p, |v| [v.x, v.z], spatial_normal, detail),
     }
 }
 
 /// The function kind: the runout spline function y(x), its x–c polyline.
-fn function(points: &[Vec2], plot: bool) -> Result<CurveMeasurement> {
+fn function(points: &[Vec2], detail: Detail) -> Result<CurveMeasurement> {
     let x: Vec<f64> = points.iter().map(|p| p.x).collect();
     let y: Vec<f64> = points.iter().map(|p| p.y).collect();
     let spline = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).map_err(from_curve_repr)?;
@@ -165,27 +183,27 @@ fn function(points: &[Vec2], plot: bool) -> Result<CurveMeasurement> {
     // rayon's threads.
     let (summary, drawn) = rayon::join(
         || summary::function_of(&spline).map_err(from_fairness),
-        || function_drawing(&spline, x, y, plot),
+        || function_drawing(&spline, x, y, detail),
     );
     let mut measurement = drawn?;
     measurement.measures = measures(&summary?, true);
     Ok(measurement)
 }
 
-/// Everything of a function's [`CurveMeasurement`] but the measures: the `curve` record, z,
-/// and with `plot` the samples, comb and x–c plot. O(n).
+/// Everything of a function's [`CurveMeasurement`] but the measures: z, and as `detail` says
+/// the `curve` record and the samples, comb and x–c plot. O(n).
 fn function_drawing(
     spline: &SplineFunction,
     x: Vec<f64>,
     y: Vec<f64>,
-    plot: bool,
+    detail: Detail,
 ) -> Result<CurveMeasurement> {
     let xc = XcPolyline::of_spline(spline).map_err(from_fairness)?;
     let mut measurement = CurveMeasurement {
         z: Some(padded(xc.e.iter().map(|e| 6.0 * e.abs()))),
         ..CurveMeasurement::default()
     };
-    if plot {
+    if detail.plot {
         let mut samples = Vec::new();
         let mut comb = CombData::default();
         for (piece, t) in sample_parameters(&x) {
@@ -210,13 +228,15 @@ fn function_drawing(
             line,
         });
     }
-    measurement.curve = serde_json::json!({
-        "type": "spline-function",
-        "end_condition": "parabolic-runout",
-        "x": x,
-        "y": y,
-        "c": xc.c,
-    });
+    if detail.record {
+        measurement.curve = serde_json::json!({
+            "type": "spline-function",
+            "end_condition": "parabolic-runout",
+            "x": x,
+            "y": y,
+            "c": xc.c,
+        });
+    }
     Ok(measurement)
 }
 
@@ -245,7 +265,7 @@ fn parametric<const D: usize>(
     points: &[Vector<D>],
     project: fn(&Vector<D>) -> [f64; 2],
     normal: fn(&[Vector<D>; 4]) -> Option<[f64; 2]>,
-    plot: bool,
+    detail: Detail,
 ) -> Result<CurveMeasurement>
 where
     Vector<D>: CurvatureForm,
@@ -253,7 +273,7 @@ where
     let spline = HermiteSpline::natural(points).map_err(from_curve_repr)?;
     let (summary, drawn) = rayon::join(
         || summary::parametric_of(&spline).map_err(from_fairness),
-        || parametric_drawing(&spline, points, project, normal, plot),
+        || parametric_drawing(&spline, points, project, normal, detail),
     );
     let mut measurement = drawn?;
     measurement.measures = measures(&summary?, true);
@@ -267,7 +287,7 @@ fn parametric_drawing<const D: usize>(
     points: &[Vector<D>],
     project: fn(&Vector<D>) -> [f64; 2],
     normal: fn(&[Vector<D>; 4]) -> Option<[f64; 2]>,
-    plot: bool,
+    detail: Detail,
 ) -> Result<CurveMeasurement>
 where
     Vector<D>: CurvatureForm,
@@ -278,27 +298,29 @@ where
         z: Some(padded(jumps)),
         ..CurveMeasurement::default()
     };
-    if plot {
+    if detail.plot {
         let kappa = fairness::curvature::curvature_at_breaks(spline).map_err(from_fairness)?;
         let (samples, comb, curvature) = parametric_samples(spline, &breaks, &kappa, project, normal);
         measurement.samples = Some(samples);
         measurement.comb = Some(comb);
         measurement.curvature = Some(curvature);
     }
-    let rows: Vec<Vec<f64>> = points.iter().map(|p| p.iter().copied().collect()).collect();
-    let tangents: Vec<Vec<f64>> = spline
-        .tangents()
-        .iter()
-        .map(|p| p.iter().copied().collect())
-        .collect();
-    measurement.curve = serde_json::json!({
-        "type": "hermite",
-        "ends": "natural",
-        "parametrization": "chord-length",
-        "params": breaks,
-        "points": rows,
-        "tangents": tangents,
-    });
+    if detail.record {
+        let rows: Vec<Vec<f64>> = points.iter().map(|p| p.iter().copied().collect()).collect();
+        let tangents: Vec<Vec<f64>> = spline
+            .tangents()
+            .iter()
+            .map(|p| p.iter().copied().collect())
+            .collect();
+        measurement.curve = serde_json::json!({
+            "type": "hermite",
+            "ends": "natural",
+            "parametrization": "chord-length",
+            "params": breaks,
+            "points": rows,
+            "tangents": tangents,
+        });
+    }
     Ok(measurement)
 }
 
@@ -415,7 +437,29 @@ mod tests {
             (CurveKind::Parametric, Points::Spatial(spatial)),
         ] {
             let full = curve(kind, &points).unwrap();
-            let bare = curve_with(kind, &points, false).unwrap();
+            let drawn = curve_with(
+                kind,
+                &points,
+                Detail {
+                    plot: true,
+                    record: false,
+                },
+            )
+            .unwrap();
+            assert_eq!(drawn.curve, serde_json::Value::Null);
+            assert_eq!(
+                (drawn.samples.as_ref(), drawn.comb.as_ref()),
+                (full.samples.as_ref(), full.comb.as_ref())
+            );
+            let bare = curve_with(
+                kind,
+                &points,
+                Detail {
+                    plot: false,
+                    record: true,
+                },
+            )
+            .unwrap();
             assert_eq!(bare.measures, full.measures);
             assert_eq!(bare.curve, full.curve);
             assert_eq!(bare.z, full.z);
