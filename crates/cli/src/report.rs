@@ -195,6 +195,39 @@ impl Report {
         }
     }
 
+    /// Writes the report as pretty JSON to `path` (`-`: standard output), after
+    /// [`Report::check_finite`]: the same text as [`to_json`](Self::to_json), streamed through
+    /// a buffer rather than built in memory (at 10⁶ points the text of a curve record is a few
+    /// hundred MB).
+    pub fn write_json(&self, path: &str) -> Result<()> {
+        use std::io::Write;
+        self.check_finite()?;
+        let failed = |e: std::io::Error| Error::Write {
+            path: if path == "-" {
+                "<stdout>".into()
+            } else {
+                path.into()
+            },
+            reason: crate::input::io_reason(&e),
+        };
+        let sink: Box<dyn Write> = if path == "-" {
+            Box::new(std::io::stdout().lock())
+        } else {
+            Box::new(std::fs::File::create(path).map_err(failed)?)
+        };
+        let mut writer = std::io::BufWriter::new(sink);
+        serde_json::to_writer_pretty(&mut writer, self).map_err(|e| match e.io_error_kind() {
+            Some(kind) => failed(std::io::Error::new(kind, e.to_string())),
+            None => Error::Internal {
+                message: e.to_string(),
+            },
+        })?;
+        match writer.write_all(b"\n").and_then(|()| writer.flush()) {
+            Err(e) if path == "-" && e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+            other => other.map_err(failed),
+        }
+    }
+
     /// The report as pretty JSON, after [`Report::check_finite`].
     pub fn to_json(&self) -> Result<String> {
         self.check_finite()?;
@@ -238,6 +271,21 @@ impl NurbsRecord {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn written_json_is_the_json_text() {
+        let dir = std::env::temp_dir().join(format!("fair-report-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("report.json");
+        let report = sample();
+        report.write_json(path.to_str().unwrap()).unwrap();
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), report.to_json().unwrap());
+        let missing = dir.join("no/such/dir/report.json");
+        let e = report.write_json(missing.to_str().unwrap()).unwrap_err();
+        assert_eq!(e.exit_code(), 2);
+        assert!(e.one_line().contains("report.json"), "{}", e.one_line());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 
     fn sample() -> Report {
         let measures = Measures {

@@ -60,7 +60,7 @@ pub fn run(catalog: &Catalog, args: &InspectArgs) -> Result<()> {
         args.quiet,
     )?;
     if let Some(path) = &args.report {
-        crate::output::write_text(&path.display().to_string(), &report.to_json()?)?;
+        report.write_json(&path.display().to_string())?;
     }
     say(
         args.quiet,

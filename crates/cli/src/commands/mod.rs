@@ -78,10 +78,6 @@ pub(crate) fn write_results(
 ) -> Result<()> {
     // The report is checked even when not written: a non-finite measure is an error either way.
     report.check_finite()?;
-    let report_text = match &args.report {
-        Some(_) => Some(report.to_json()?),
-        None => None,
-    };
     // Every target checked before the first is written, so that a bad --report or --plot path
     // does not leave a fresh output file behind an exit status of 2.
     let targets = [
@@ -95,8 +91,8 @@ pub(crate) fn write_results(
     if let Some(out) = &args.output {
         crate::output::write_text(out, points_text)?;
     }
-    if let (Some(path), Some(text)) = (&args.report, &report_text) {
-        crate::output::write_text(&path.display().to_string(), text)?;
+    if let Some(path) = &args.report {
+        report.write_json(&path.display().to_string())?;
     }
     if let Some(path) = &args.plot {
         figure().write(path)?;
