@@ -643,6 +643,40 @@ impl<'a, const K: usize> Refinement<'a, K> {
     }
 }
 
+/// Pass 1 over chunk `chunk` of [`CHUNK`] pieces (its sums, and its intervals to refine when
+/// `keep`): the unit both engines merge in chunk order.
+fn pass1_chunk<const K: usize, F, S>(
+    settings: &[Adaptive; K],
+    what: [&'static str; K],
+    f: &mut F,
+    segments: &mut S,
+    breaks: &[f64],
+    chunk: usize,
+    keep: bool,
+) -> Result<Pass1<K>>
+where
+    F: NodeIntegrands<K>,
+    S: FnMut(usize, &mut Vec<Segment>) -> Result<()>,
+{
+    let pieces = breaks.len().saturating_sub(1);
+    let (first, last) = (chunk * CHUNK, ((chunk + 1) * CHUNK).min(pieces));
+    let mut pass1 = Pass1::new(last - first, keep);
+    let mut scratch = Vec::new();
+    for piece in first..last {
+        scratch.clear();
+        segments(piece, &mut scratch)?;
+        pass1.piece(
+            settings,
+            what,
+            f,
+            piece,
+            (breaks[piece], breaks[piece + 1]),
+            &scratch,
+        )?;
+    }
+    Ok(pass1)
+}
+
 fn validated<const K: usize>(settings: &[Adaptive; K], breaks: &[f64]) -> Result<usize> {
     for s in settings {
         s.validate()?;
@@ -735,23 +769,16 @@ where
     // The chunks of the parallel engine, one after the other: the same sums in the same order.
     let mut pass = |keep: bool| -> Result<Pass1<K>> {
         let mut pass1 = Pass1::new(0, keep);
-        let mut scratch = Vec::new();
         for chunk in 0..pieces.div_ceil(CHUNK) {
-            let (first, last) = (chunk * CHUNK, ((chunk + 1) * CHUNK).min(pieces));
-            let mut part = Pass1::new(last - first, keep);
-            for piece in first..last {
-                scratch.clear();
-                segments(piece, &mut scratch)?;
-                part.piece(
-                    settings,
-                    what,
-                    &mut f,
-                    piece,
-                    (breaks[piece], breaks[piece + 1]),
-                    &scratch,
-                )?;
-            }
-            pass1.merge(part);
+            pass1.merge(pass1_chunk(
+                settings,
+                what,
+                &mut f,
+                &mut segments,
+                breaks,
+                chunk,
+                keep,
+            )?);
         }
         Ok(pass1)
     };
@@ -822,25 +849,10 @@ where
         let chunks: Vec<Result<Pass1<K>>> = (0..pieces.div_ceil(CHUNK))
             .into_par_iter()
             .map(|chunk| {
-                let first = chunk * CHUNK;
-                let last = (first + CHUNK).min(pieces);
-                let mut pass1 = Pass1::new(last - first, keep);
-                let mut scratch = Vec::new();
                 let mut g =
                     |i: usize, u: &[f64; KRONROD_POINTS], out: &mut [[f64; KRONROD_POINTS]; K]| f(i, u, out);
-                for piece in first..last {
-                    scratch.clear();
-                    segments(piece, &mut scratch)?;
-                    pass1.piece(
-                        settings,
-                        what,
-                        &mut g,
-                        piece,
-                        (breaks[piece], breaks[piece + 1]),
-                        &scratch,
-                    )?;
-                }
-                Ok(pass1)
+                let mut cut = |i: usize, out: &mut Vec<Segment>| segments(i, out);
+                pass1_chunk(settings, what, &mut g, &mut cut, breaks, chunk, keep)
             })
             .collect();
         let mut pass1 = Pass1::new(0, keep);
