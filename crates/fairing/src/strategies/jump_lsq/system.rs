@@ -388,26 +388,14 @@ impl Space {
         } else {
             row as isize + 1
         };
-        let signs = binomial_signs(d);
         let closed = self.is_closed();
-        // Open curves: 1 ≤ a and a + d ≤ n − 2, so the spans a − 1 … a + d and the knots
-        // a − 1 … a + d + 1 need no wrapping.
-        let third = |k: isize| {
-            if closed {
-                self.third_of(k)
-            } else {
-                self.third[k as usize]
-            }
+        // One copy per order, so that the loops unroll and c stays in registers.
+        let c = match d {
+            0 => self.difference_of_jumps::<0>(a),
+            1 => self.difference_of_jumps::<1>(a),
+            2 => self.difference_of_jumps::<2>(a),
+            _ => self.difference_of_jumps::<3>(a),
         };
-        let mut c = [0.0; 9];
-        for (q, &w) in signs.iter().enumerate().take(d + 1) {
-            let right = third(a + q as isize);
-            let left = third(a + q as isize - 1);
-            for r in 0..4 {
-                c[q + 1 + r] += w * right[r];
-                c[q + r] -= w * left[r];
-            }
-        }
         let width = if closed {
             self.knots.knot(a + d as isize + 1) - self.knots.knot(a - 1)
         } else {
@@ -415,7 +403,7 @@ impl Space {
             t[a as usize + d + 1] - t[a as usize - 1]
         };
         let mean = width / ((d + 2) as f64 * self.h_median);
-        let scale = self.h_median.powi(3);
+        let scale = powi(self.h_median, 3);
         let exponent = self.penalty.exponent;
         let power = if exponent.fract() == 0.0 && exponent.abs() <= 64.0 {
             powi(mean, exponent as i32)
@@ -424,6 +412,54 @@ impl Space {
         };
         let weight = power * scale * scale;
         (self.reduce(a - 1, &c[..5 + d]), weight)
+    }
+
+    /// The first and last unknown of [`value_form`](Self::value_form)`(k)`, without building
+    /// it away from an open curve's ends (where it is γ_{k−1} … γ_{k+1}). O(1).
+    #[inline]
+    pub fn value_extent(&self, k: usize) -> (usize, usize) {
+        if !self.is_closed() && k > 1 && k + 2 < self.len() {
+            return (k - 1, k + 1);
+        }
+        let form = self.value_form(k);
+        (form.start, form.start + form.len - 1)
+    }
+
+    /// The first and last unknown of [`penalty_row`](Self::penalty_row)`(row)`, without
+    /// building it away from an open curve's ends (γ_{row−1} … γ_{row+3+d} there). O(1).
+    #[inline]
+    pub fn penalty_extent(&self, row: usize) -> (usize, usize) {
+        let d = self.penalty.order;
+        if !self.is_closed() && row > 1 && row + 4 + d < self.len() {
+            return (row - 1, row + 3 + d);
+        }
+        let form = self.penalty_row(row).0;
+        (form.start, form.start + form.len - 1)
+    }
+
+    /// The β-coefficients (from β_{a−1}) of Δ^ORDER J over the jumps J_a … J_{a+ORDER}.
+    #[inline]
+    fn difference_of_jumps<const ORDER: usize>(&self, a: isize) -> [f64; 9] {
+        let signs = binomial_signs(ORDER);
+        let closed = self.is_closed();
+        // Open curves: 1 ≤ a and a + d ≤ n − 2, so the spans a − 1 … a + d need no wrapping.
+        let third = |k: isize| {
+            if closed {
+                self.third_of(k)
+            } else {
+                self.third[k as usize]
+            }
+        };
+        let mut c = [0.0; 9];
+        for (q, &w) in signs.iter().enumerate().take(ORDER + 1) {
+            let right = third(a + q as isize);
+            let left = third(a + q as isize - 1);
+            for r in 0..4 {
+                c[q + 1 + r] += w * right[r];
+                c[q + r] -= w * left[r];
+            }
+        }
+        c
     }
 
     /// Σ_rows weight · |row · γ|²: the penalty of the spline with unknowns `gamma`. O(n).
@@ -625,31 +661,38 @@ impl<const D: usize> Kkt<D> {
         for j in 0..m {
             var_at[order(j)] = j;
         }
-        // Each multiplier goes right after the last (in order) unknown of its form.
-        let mut anchored: Vec<Vec<usize>> = vec![Vec::new(); m];
-        for (c, constraint) in constraints.iter().enumerate() {
-            let anchor = constraint
-                .form
-                .entries(m)
-                .map(|(j, _)| order(j))
-                .max()
-                .unwrap_or(0);
-            anchored[anchor].push(c);
-        }
+        // Each multiplier goes right after the last (in order) unknown of its form: the
+        // constraints as (anchor, index), sorted (stable: the given order on a shared anchor).
+        let mut anchored: Vec<(usize, usize)> = constraints
+            .iter()
+            .enumerate()
+            .map(|(c, constraint)| {
+                let anchor = constraint
+                    .form
+                    .entries(m)
+                    .map(|(j, _)| order(j))
+                    .max()
+                    .unwrap_or(0);
+                (anchor, c)
+            })
+            .collect();
+        anchored.sort_by_key(|&(anchor, _)| anchor);
         let total = m + constraints.len();
         let mut var_pos = vec![0usize; m];
         let mut con_pos = vec![0usize; constraints.len()];
         let mut negative = vec![false; total];
         let mut p = 0;
+        let mut next = anchored.iter().peekable();
         for (o, &j) in var_at.iter().enumerate() {
             var_pos[j] = p;
             p += 1;
-            for &c in &anchored[o] {
+            while let Some(&(_, c)) = next.next_if(|(anchor, _)| *anchor == o) {
                 con_pos[c] = p;
                 negative[p] = true;
                 p += 1;
             }
         }
+        drop(var_at);
         let mut first: Vec<usize> = (0..total).collect();
         let widen = |form: &Form, first: &mut Vec<usize>| {
             let lowest = form.entries(m).map(|(j, _)| var_pos[j]).min().unwrap_or(0);
@@ -675,7 +718,8 @@ impl<const D: usize> Kkt<D> {
         }
         let profile = Profile::new(first);
         let mut a = profile.zeros();
-        let mut b = profile.zeros();
+        // Without the penalty B is empty (K(λ) = A).
+        let mut b = if with_penalty { profile.zeros() } else { Vec::new() };
         // weight · formᵀ form added to the lower triangle (the form's positions gathered once,
         // each row's storage offset looked up once).
         let outer = |values: &mut [f64], form: &Form, weight: f64| {
@@ -746,7 +790,11 @@ impl<'s, const D: usize> System<'s, D> {
             let kkt = self.kkt();
             let mut values = self.pool.take();
             values.clear();
-            values.extend(kkt.a.iter().zip(&kkt.b).map(|(a, b)| a + lambda * b));
+            if kkt.b.is_empty() {
+                values.extend_from_slice(&kkt.a);
+            } else {
+                values.extend(kkt.a.iter().zip(&kkt.b).map(|(a, b)| a + lambda * b));
+            }
             if let Ok(ldlt) = Ldlt::factor_in(&kkt.profile, values, &kkt.negative, Some(&self.pool)) {
                 let mut x = kkt.rhs.clone();
                 ldlt.solve_in_place(&mut x);
@@ -782,7 +830,9 @@ impl<'s, const D: usize> System<'s, D> {
             let kkt = self.kkt();
             kkt.profile
                 .index(kkt.var_pos[j], kkt.var_pos[j])
-                .map_or(0.0, |index| kkt.a[index] + lambda * kkt.b[index])
+                .map_or(0.0, |index| {
+                    kkt.a[index] + lambda * kkt.b.get(index).unwrap_or(&0.0)
+                })
         };
         // Rows in the order of their leading column, so that each is deposited in R after at
         // most the band's width of rotations (data rows first would fill R and leave every
@@ -810,15 +860,14 @@ impl<'s, const D: usize> System<'s, D> {
         let merged = !closed && self.constraints.is_empty() && self.weights.iter().all(|w| *w > 0.0);
         let mut rows: Vec<u64> = Vec::new();
         if merged {
-            let mut widen = |form: &Form| {
-                let end = form.start + form.len - 1;
-                reach[form.start] = reach[form.start].max(end);
+            let mut widen = |(lead, end): (usize, usize)| {
+                reach[lead] = reach[lead].max(end);
             };
             for k in 0..m {
-                widen(&space.value_form(k));
+                widen(space.value_extent(k));
             }
             for r in 0..space.penalty_rows() {
-                widen(&space.penalty_row(r).0);
+                widen(space.penalty_extent(r));
             }
         } else {
             rows.reserve(2 * m + self.constraints.len());
@@ -962,7 +1011,9 @@ impl<'s, const D: usize> System<'s, D> {
             Factor::Kkt { ldlt, x } => {
                 let kkt = self.kkt();
                 let mut z = vec![Vector::<D>::zeros(); kkt.profile.size()];
-                kkt.profile.multiply(&kkt.b, x, &mut z);
+                if !kkt.b.is_empty() {
+                    kkt.profile.multiply(&kkt.b, x, &mut z);
+                }
                 for v in z.iter_mut() {
                     *v = -*v;
                 }

@@ -862,3 +862,37 @@ fn dense_noise_beyond_the_precision_limit_takes_one_qr_trial_and_a_target_below_
         "{report:?}"
     );
 }
+
+#[test]
+fn extents_are_those_of_the_forms() {
+    // The short cuts for a form's first and last unknown (used by the QR's merged path, open
+    // curves only) agree with the forms themselves, at the ends (end substitutions) and
+    // inside, for every difference order and both open end conditions.
+    let xs: Vec<f64> = (0..14).map(|i| i as f64 + 0.3 * ((i * 5) as f64).sin()).collect();
+    for order in 0..=3 {
+        let penalty = Penalty { order, exponent: 8.0 };
+        for ends in [Ends::Runout, Ends::Natural] {
+            let space = Space::new(Knots::open(xs.clone()), ends, penalty).unwrap();
+            let m = space.len();
+            let extent = |form: &system::Form| {
+                let columns: Vec<usize> = form.entries(m).map(|(j, _)| j).collect();
+                (columns[0], *columns.last().unwrap())
+            };
+            for k in 0..m {
+                assert_eq!(
+                    space.value_extent(k),
+                    extent(&space.value_form(k)),
+                    "{ends:?} value {k}"
+                );
+            }
+            for r in 0..space.penalty_rows() {
+                let form = space.penalty_row(r).0;
+                assert_eq!(
+                    space.penalty_extent(r),
+                    extent(&form),
+                    "{ends:?} d {order} row {r}"
+                );
+            }
+        }
+    }
+}
