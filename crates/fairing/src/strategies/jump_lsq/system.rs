@@ -441,19 +441,23 @@ impl Space {
     #[inline]
     fn difference_of_jumps<const ORDER: usize>(&self, a: isize) -> [f64; 9] {
         let signs = binomial_signs(ORDER);
-        let closed = self.is_closed();
-        // Open curves: 1 ≤ a and a + d ≤ n − 2, so the spans a − 1 … a + d need no wrapping.
-        let third = |k: isize| {
-            if closed {
-                self.third_of(k)
-            } else {
-                self.third[k as usize]
-            }
-        };
         let mut c = [0.0; 9];
+        if !self.is_closed() {
+            // Open curves: 1 ≤ a and a + d ≤ n − 2, so the spans a − 1 … a + d need no
+            // wrapping; they are read in place (copies of them through the stack stalled).
+            let spans = &self.third[a as usize - 1..=a as usize + ORDER];
+            for (q, &w) in signs.iter().enumerate().take(ORDER + 1) {
+                let (left, right) = (&spans[q], &spans[q + 1]);
+                for r in 0..4 {
+                    c[q + 1 + r] += w * right[r];
+                    c[q + r] -= w * left[r];
+                }
+            }
+            return c;
+        }
         for (q, &w) in signs.iter().enumerate().take(ORDER + 1) {
-            let right = third(a + q as isize);
-            let left = third(a + q as isize - 1);
+            let right = self.third_of(a + q as isize);
+            let left = self.third_of(a + q as isize - 1);
             for r in 0..4 {
                 c[q + 1 + r] += w * right[r];
                 c[q + r] -= w * left[r];
