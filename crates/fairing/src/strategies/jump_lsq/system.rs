@@ -596,10 +596,10 @@ impl<'s, const D: usize> System<'s, D> {
         if with_penalty {
             let mut diagonal_a = vec![0.0; m];
             let mut diagonal_b = vec![0.0; m];
-            for k in 0..m {
-                if weights[k] > 0.0 {
+            for (k, &w) in weights.iter().enumerate().take(m) {
+                if w > 0.0 {
                     for (j, c) in space.value_form(k).entries(m) {
-                        diagonal_a[j] += weights[k] * c * c;
+                        diagonal_a[j] += w * c * c;
                     }
                 }
             }
