@@ -1,10 +1,12 @@
 //! Time and peak memory of one jump-lsq fairing (λ chosen automatically) on a CSV of points,
 //! e.g. the speed peer's data: `python speed.py 1000000 sine.csv` prints csaps's time on it.
 //!
-//! Run: `cargo run --release --example jump_lsq_speed -- FILE.csv [function|parametric]`
-//! Prints the median of three runs of `jump_lsq::fair` and of the same through a `Pipeline`
-//! (moves recorded in the trace, as the command runs it), the λ chosen, and the peak heap
-//! bytes per point of each (counted by this example's global allocator, the input excluded).
+//! Run: `cargo run --release --example jump_lsq_speed -- FILE.csv [function|parametric] [RUNS]
+//! [--no-pipeline]`. Prints the medians of RUNS (default 3) runs of `jump_lsq::fair` and of the
+//! same through a `Pipeline` (moves recorded in the trace, as the command runs it): wall time,
+//! CPU time of the thread (Linux; steadier on a loaded machine), the λ chosen, and the peak
+//! heap bytes per point of each (counted by this example's global allocator, the input
+//! excluded).
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -39,20 +41,41 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static ALLOCATOR: Counting = Counting;
 
-/// Runs `f` three times; returns the median seconds and the peak heap growth in bytes.
-fn measure(mut f: impl FnMut()) -> (f64, usize) {
+/// The CPU time this thread has run, in seconds (Linux: `/proc/thread-self/schedstat`), or
+/// None where that is not available. On a loaded machine it is steadier than the wall time.
+fn cpu_seconds() -> Option<f64> {
+    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let nanoseconds: f64 = text.split_whitespace().next()?.parse().ok()?;
+    Some(nanoseconds * 1e-9)
+}
+
+/// Runs `f` `runs` times; returns the median wall seconds, the median CPU seconds (if known)
+/// and the peak heap growth in bytes.
+fn measure(runs: usize, mut f: impl FnMut()) -> (f64, Option<f64>, usize) {
     let mut times = Vec::new();
+    let mut cpu = Vec::new();
     let mut peak = 0;
-    for _ in 0..3 {
+    for _ in 0..runs {
         let base = IN_USE.load(Ordering::Relaxed);
         PEAK.store(base, Ordering::Relaxed);
+        let cpu_start = cpu_seconds();
         let start = Instant::now();
         f();
         times.push(start.elapsed().as_secs_f64());
+        if let (Some(a), Some(b)) = (cpu_start, cpu_seconds()) {
+            cpu.push(b - a);
+        }
         peak = peak.max(PEAK.load(Ordering::Relaxed) - base);
     }
     times.sort_by(f64::total_cmp);
-    (times[1], peak)
+    cpu.sort_by(f64::total_cmp);
+    let cpu = (cpu.len() == runs).then(|| cpu[runs / 2]);
+    (times[runs / 2], cpu, peak)
+}
+
+/// "0.123 s CPU" or nothing.
+fn cpu_text(cpu: Option<f64>) -> String {
+    cpu.map_or(String::new(), |c| format!(", {c:.3} s CPU"))
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -65,6 +88,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Some("parametric") => CurveDomain::Parametric,
         Some(other) => return Err(format!("unknown kind {other}").into()),
     };
+    // Optional: the number of runs (default 3) and `--no-pipeline`.
+    let mut runs = 3;
+    let mut pipeline = true;
+    for arg in args {
+        if arg == "--no-pipeline" {
+            pipeline = false;
+        } else {
+            runs = arg
+                .parse::<usize>()
+                .ok()
+                .filter(|r| *r > 0)
+                .ok_or(format!("bad argument {arg:?}: a number of runs or --no-pipeline"))?;
+        }
+    }
     let text = std::fs::read_to_string(&path)?;
     let mut points = Vec::new();
     for line in text.lines().skip(1).filter(|l| !l.trim().is_empty()) {
@@ -78,13 +115,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let settings = JumpLsqSettings::default();
     let none = Constraints::default();
     let mut report = None;
-    let (seconds, peak) = measure(|| {
+    let (seconds, cpu, peak) = measure(runs, || {
         let faired = fair(&points, &points, &none, domain, false, &settings).expect("fair");
         report = Some(faired.report);
     });
     let report = report.ok_or("no run")?;
     println!(
-        "jump-lsq fair:     {n} points, {seconds:.3} s (median of 3), peak heap {:.0} bytes/point",
+        "jump-lsq fair:     {n} points, {seconds:.3} s{} (medians of {runs}), {:.3} µs/point, peak heap {:.0} bytes/point",
+        cpu_text(cpu),
+        seconds * 1e6 / n as f64,
         peak as f64 / n as f64
     );
     println!(
@@ -100,14 +139,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         report.rms_displacement,
         report.solves
     );
-    let (seconds, peak) = measure(|| {
-        Pipeline::new(JumpLsq::<2>::new(settings.clone(), domain))
-            .run(points.clone())
-            .expect("pipeline");
-    });
-    println!(
-        "through a Pipeline: {seconds:.3} s (median of 3), peak heap {:.0} bytes/point (trace of every move included)",
-        peak as f64 / n as f64
-    );
+    if pipeline {
+        let (seconds, cpu, peak) = measure(runs, || {
+            Pipeline::new(JumpLsq::<2>::new(settings.clone(), domain))
+                .run(points.clone())
+                .expect("pipeline");
+        });
+        println!(
+            "through a Pipeline: {seconds:.3} s{} (medians of {runs}), peak heap {:.0} bytes/point (trace of every move included)",
+            cpu_text(cpu),
+            peak as f64 / n as f64
+        );
+    }
     Ok(())
 }

@@ -72,6 +72,12 @@ impl Profile {
         (f <= j && j <= i).then(|| self.start[i] + (j - f))
     }
 
+    /// Row i's first stored column and the storage index of that entry.
+    #[inline]
+    pub fn row(&self, i: usize) -> (usize, usize) {
+        (self.first[i], self.start[i])
+    }
+
     /// A zero matrix of this profile.
     pub fn zeros(&self) -> Vec<f64> {
         vec![0.0; self.stored()]
@@ -115,6 +121,25 @@ pub(crate) struct PivotFailure {
 pub(crate) struct Ldlt<'p> {
     profile: &'p Profile,
     values: Vec<f64>,
+    /// Where the storage goes back when the factors are dropped, for the next factorisation
+    /// on the same profile (a trial λ reuses the last trial's pages instead of faulting in
+    /// fresh ones: at 10^6 points they are 50 MB).
+    pool: Option<&'p Pool>,
+}
+
+/// Storage kept between factorisations ([`Ldlt::factor_in`]).
+pub(crate) type Pool = std::cell::RefCell<Vec<f64>>;
+
+impl Drop for Ldlt<'_> {
+    fn drop(&mut self) {
+        if let Some(pool) = self.pool {
+            if let Ok(mut kept) = pool.try_borrow_mut() {
+                if kept.capacity() < self.values.capacity() {
+                    *kept = std::mem::take(&mut self.values);
+                }
+            }
+        }
+    }
 }
 
 impl<'p> Ldlt<'p> {
@@ -125,11 +150,31 @@ impl<'p> Ldlt<'p> {
     /// Row-oriented (Crout) envelope LDLᵀ: for j from first(i) to i − 1,
     /// v_j = A_ij − Σ_l v_l L_jl (l from max(first(i), first(j)) to j − 1), then
     /// L_ij = v_j / d_j and d_i = A_ii − Σ_j v_j L_ij (v_j = L_ij d_j, the entries of L D).
-    pub fn factor(
+    #[cfg(test)]
+    pub fn factor(profile: &'p Profile, values: Vec<f64>, negative: &[bool]) -> Result<Self, PivotFailure> {
+        Self::factor_in(profile, values, negative, None)
+    }
+
+    /// [`factor`](Self::factor), returning the storage to `pool` when the factors (or a
+    /// failed attempt) are dropped.
+    pub fn factor_in(
         profile: &'p Profile,
-        mut values: Vec<f64>,
+        values: Vec<f64>,
         negative: &[bool],
+        pool: Option<&'p Pool>,
     ) -> Result<Self, PivotFailure> {
+        let mut ldlt = Ldlt {
+            profile,
+            values,
+            pool,
+        };
+        ldlt.factor_values(negative)?;
+        Ok(ldlt)
+    }
+
+    fn factor_values(&mut self, negative: &[bool]) -> Result<(), PivotFailure> {
+        let profile = self.profile;
+        let values = &mut self.values;
         let m = profile.size();
         for i in 0..m {
             let fi = profile.first[i];
@@ -184,13 +229,17 @@ impl<'p> Ldlt<'p> {
             }
             diag[0] = d;
         }
-        Ok(Ldlt { profile, values })
+        Ok(())
     }
 
     /// Factors given directly: `values` holds L's strict lower part and D on the diagonal,
     /// on `profile`.
     pub fn from_factors(profile: &'p Profile, values: Vec<f64>) -> Self {
-        Ldlt { profile, values }
+        Ldlt {
+            profile,
+            values,
+            pool: None,
+        }
     }
 
     /// Solves A x = `rhs` in place. O(m·b).

@@ -9,10 +9,11 @@
 //!   `noise-factor` · σ̂). RSS grows monotonically with λ, so the root is unique; it is found
 //!   by Newton's method on f(ρ) = ln RSS(e^ρ) − ln(n_f target²), with
 //!   dRSS/dλ = 2 Σ_k w_k (y_k(λ) − y⁰_k)·dy_k/dλ and dγ/dλ = −K⁻¹[Bγ; 0] (one more solve with
-//!   the same factor), safeguarded by bisection once the root is bracketed. Before the
-//!   search first climbs into the range of the Givens QR (below) it tries λ_max: dense noisy
-//!   data puts the root there or beyond, where the tangent falls short at every step.
-//!   Typically 3–8 evaluations from λ = 1 (3, one of them QR, on 10^4–10^6 noisy points).
+//!   the same factor), safeguarded by bisection once the root is bracketed. The search first
+//!   tries λ_max (in the range of the Givens QR, below): dense noisy data puts the root there
+//!   or beyond, and then that one solve is the answer (10^3–10^6 points of the speed peer's
+//!   noisy sine); otherwise λ_max brackets the root and Newton's method starts from λ = 1
+//!   (typically 3–8 evaluations more).
 //! - **GCV** (Craven & Wahba 1979): minimise V(λ) = (RSS/(n_f·c)) / (1 − tr A(λ)/n_f)² over
 //!   log λ, c the number of smoothed coordinates and tr A(λ) the trace of the influence
 //!   matrix (the same for every coordinate), read in O(n) from the selected inverse of the
@@ -178,6 +179,31 @@ pub(crate) fn discrepancy<const D: usize>(
     // Where the direct solve ends and the QR begins, and whether λ_max was tried early.
     let rho_direct = (DIRECT_LIMIT / system.stiffness().max(f64::MIN_POSITIVE)).ln();
     let mut probed = false;
+    // λ_max first: dense noisy data (measured: 10^3–10^6 points of the speed peer's noisy
+    // sine) asks for a λ at or beyond it, and when even λ_max moves the points less than the
+    // target the search is over after this one solve (the normal equations are never
+    // assembled). Otherwise λ_max is the upper bracket and the search goes on from `start`
+    // as before, one QR solve dearer than a search that stays in the direct range. The
+    // probe needs no slope: Newton's steps start from `start`.
+    if rho_max > rho_direct {
+        probed = true;
+        let evaluation = trial(system, lambda_max, false, false)?;
+        evaluations += 1;
+        let f = evaluation.rss.ln() - goal;
+        if f < 0.0 || f.abs() <= TOLERANCE {
+            let evaluation = with_values(system, Some(evaluation))?;
+            return Ok(Choice {
+                evaluation,
+                limited: f < -TOLERANCE,
+                gcv: None,
+                evaluations,
+            });
+        }
+        hi = Some(rho_max);
+        if !f.is_nan() {
+            best = Some((f, evaluation));
+        }
+    }
     loop {
         let evaluation = trial(system, rho.exp(), true, false)?;
         evaluations += 1;

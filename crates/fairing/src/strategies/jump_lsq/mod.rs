@@ -108,8 +108,10 @@
 //! # Costs
 //!
 //! O(n) time and memory per solve: assembly O(n·(4 + d)²), factorisation O(n·(5 + d)²) (four
-//! times that for closed curves), a discrepancy search 3–8 solves, GCV about 60 solves with
-//! selected inverses; the parametric kind multiplies this by 1 + `refits`.
+//! times that for closed curves), a discrepancy search one QR solve when λ stops at the
+//! precision limit (dense noisy data; the normal equations are then never assembled), else
+//! 3–9 solves, GCV about 60 solves with selected inverses; the parametric kind multiplies
+//! this by 1 + `refits`.
 
 mod basis;
 mod envelope;
@@ -643,18 +645,14 @@ pub fn fair<const D: usize>(
         };
         let mut base = base_of(&space);
         let mut weights: Vec<f64> = vec![1.0; n];
-        let system = System::new(&space, &data, &weights, &base);
         if round == 0 {
             // Round 0's knots are the input's own, so the interpolant of the input is the
-            // solve at λ = 0 without constraints: this system's when it has none (one
-            // factorisation, no second assembly), else a system of its own on this space.
-            let gamma = if base.is_empty() {
-                system.solve(0.0).map_err(pivot_error)?.gamma
-            } else {
-                space.interpolate(&data).map_err(pivot_error)?
-            };
+            // solve at λ = 0 without constraints, on the data rows' narrow band (before the
+            // penalised system is assembled, so that the two are never held together).
+            let gamma = space.interpolate(&data).map_err(pivot_error)?;
             penalty_before = space.penalty_of(&gamma);
         }
+        let system = System::new(&space, &data, &weights, &base);
         let lambda_max = lambda::STIFFNESS_LIMIT / system.stiffness().max(f64::MIN_POSITIVE);
         let choice: Choice<D> = if space.penalty_rows() == 0 {
             let evaluation = lambda::evaluate(&system, 0.0, false, false).map_err(pivot_error)?;

@@ -56,17 +56,36 @@ impl<const D: usize> GivensQr<D> {
 
     /// Rotates the row with coefficients `entries` (column, value) and right side `rhs` into
     /// R. O(b²).
-    pub fn add_row(&mut self, entries: impl Iterator<Item = (usize, f64)> + Clone, mut rhs: Vector<D>) {
+    pub fn add_row(&mut self, entries: impl Iterator<Item = (usize, f64)> + Clone, rhs: Vector<D>) {
         let Some(lead) = entries.clone().map(|(j, _)| j).min() else {
             return;
         };
         let end = entries.clone().map(|(j, _)| j).max().unwrap_or(lead);
-        let mut width = self.last[end].max(end) - lead + 1;
+        let width = self.last[end].max(end) - lead + 1;
         self.buffer.clear();
         self.buffer.resize(width, 0.0);
         for (j, c) in entries {
             self.buffer[j - lead] += c;
         }
+        self.rotate_in(lead, width, rhs);
+    }
+
+    /// [`add_row`](Self::add_row) for a row whose coefficients are those of the columns
+    /// `lead`, `lead + 1`, … in order. O(b²).
+    pub fn add_contiguous(&mut self, lead: usize, coefficients: &[f64], rhs: Vector<D>) {
+        if coefficients.is_empty() {
+            return;
+        }
+        let end = lead + coefficients.len() - 1;
+        let width = self.last[end].max(end) - lead + 1;
+        self.buffer.clear();
+        self.buffer.extend_from_slice(coefficients);
+        self.buffer.resize(width, 0.0);
+        self.rotate_in(lead, width, rhs);
+    }
+
+    /// Rotates the row held in the buffer (columns `lead` … `lead + width − 1`) into R.
+    fn rotate_in(&mut self, lead: usize, mut width: usize, mut rhs: Vector<D>) {
         let mut k = lead;
         while k - lead < width {
             let b = self.buffer[k - lead];

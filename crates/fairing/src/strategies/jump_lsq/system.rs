@@ -13,7 +13,7 @@
 use curve_repr::Vector;
 
 use super::basis::{cubic_ders, Knots};
-use super::envelope::{Ldlt, PivotFailure, Profile};
+use super::envelope::{Ldlt, PivotFailure, Pool, Profile};
 use super::qr::GivensQr;
 
 /// The largest stiffness λ·max_j(B_jj/A_jj) at which K(λ) is factored directly; beyond it the
@@ -106,6 +106,30 @@ pub(crate) enum SpaceError {
     TooFewPoints { needed: usize },
     /// An end condition could not be solved for its coefficient (degenerate knots).
     Degenerate,
+}
+
+/// x^e by binary powering, the same products in the same order as `f64::powi` (the
+/// compiler's `__powidf2`), inlined: the penalty weight of every row takes one.
+#[inline]
+fn powi(mut x: f64, e: i32) -> f64 {
+    let recip = e < 0;
+    let mut b = e.unsigned_abs();
+    let mut r = 1.0;
+    loop {
+        if b & 1 != 0 {
+            r *= x;
+        }
+        b /= 2;
+        if b == 0 {
+            break;
+        }
+        x *= x;
+    }
+    if recip {
+        1.0 / r
+    } else {
+        r
+    }
 }
 
 fn binomial_signs(order: usize) -> [f64; 4] {
@@ -209,7 +233,25 @@ impl Space {
     /// open curves β_1 and β_n are replaced by their end conditions and the rest renumbered
     /// (β_0 → γ_0, β_j → γ_{j−1} for 2 ≤ j ≤ n − 1, β_{n+1} → γ_{n−1}); for closed curves the
     /// indices are taken modulo n and coefficients on the same unknown added.
+    #[inline]
     fn reduce(&self, start: isize, coefficients: &[f64]) -> Form {
+        // Open, away from the ends (nearly every form): β_j is γ_{j−1}.
+        let hi = start + coefficients.len() as isize - 1;
+        if !self.is_closed() && start > 1 && hi < self.len() as isize {
+            let mut c = [0.0; MAX_FORM];
+            c[..coefficients.len()].copy_from_slice(coefficients);
+            return Form {
+                start: (start - 1) as usize,
+                len: coefficients.len(),
+                c,
+            };
+        }
+        self.reduce_near_ends(start, coefficients)
+    }
+
+    /// [`reduce`](Self::reduce) for closed curves and forms that touch an open curve's end
+    /// substitutions.
+    fn reduce_near_ends(&self, start: isize, coefficients: &[f64]) -> Form {
         let n = self.len();
         let mut form = Form {
             start: 0,
@@ -225,15 +267,8 @@ impl Space {
             }
             return form;
         }
-        // Open, away from the ends: β_j is γ_{j−1}.
         let (mut lo, mut hi) = (start, start + coefficients.len() as isize - 1);
         let nb = n as isize;
-        if lo > 1 && hi < nb {
-            form.start = (lo - 1) as usize;
-            form.len = coefficients.len();
-            form.c[..coefficients.len()].copy_from_slice(coefficients);
-            return form;
-        }
         // Near an end: a buffer over β_lo … β_hi.
         let touches_start = lo <= 1 && 1 <= hi;
         let touches_end = lo <= nb && nb <= hi;
@@ -280,8 +315,20 @@ impl Space {
     }
 
     /// The value s(t_k) at knot k.
+    #[inline]
     pub fn value_form(&self, k: usize) -> Form {
         self.reduce(k as isize, &self.value[k])
+    }
+
+    /// The value s(t_k) at knot k for unknowns `gamma`: [`value_form`](Self::value_form)
+    /// applied, without building the form away from an open curve's ends. O(1).
+    #[inline]
+    pub fn value_of<const D: usize>(&self, k: usize, gamma: &[Vector<D>]) -> Vector<D> {
+        if !self.is_closed() && k > 1 && k + 2 < self.len() {
+            let c = &self.value[k];
+            return gamma[k - 1] * c[0] + gamma[k] * c[1] + gamma[k + 1] * c[2];
+        }
+        self.value_form(k).apply(gamma)
     }
 
     /// The derivative of `order` (1 or 2) at the start (`at_end` false) or end of an open
@@ -333,6 +380,7 @@ impl Space {
     /// Penalty row `row`: the form Δ^d J over J_a … J_{a+d} (a = row + 1 open, a = row
     /// closed) and its weight (h̄^a h_med⁶ with h̄ the mean length of the d + 2 spans it
     /// spans, relative to the median spacing).
+    #[inline]
     pub fn penalty_row(&self, row: usize) -> (Form, f64) {
         let d = self.penalty.order;
         let a = if self.is_closed() {
@@ -340,9 +388,74 @@ impl Space {
         } else {
             row as isize + 1
         };
-        let signs = binomial_signs(d);
+        let closed = self.is_closed();
+        // One copy per order, so that the loops unroll and c stays in registers.
+        let c = match d {
+            0 => self.difference_of_jumps::<0>(a),
+            1 => self.difference_of_jumps::<1>(a),
+            2 => self.difference_of_jumps::<2>(a),
+            _ => self.difference_of_jumps::<3>(a),
+        };
+        let width = if closed {
+            self.knots.knot(a + d as isize + 1) - self.knots.knot(a - 1)
+        } else {
+            let t = self.knots.values();
+            t[a as usize + d + 1] - t[a as usize - 1]
+        };
+        let mean = width / ((d + 2) as f64 * self.h_median);
+        let scale = powi(self.h_median, 3);
+        let exponent = self.penalty.exponent;
+        let power = if exponent.fract() == 0.0 && exponent.abs() <= 64.0 {
+            powi(mean, exponent as i32)
+        } else {
+            mean.powf(exponent)
+        };
+        let weight = power * scale * scale;
+        (self.reduce(a - 1, &c[..5 + d]), weight)
+    }
+
+    /// The first and last unknown of [`value_form`](Self::value_form)`(k)`, without building
+    /// it away from an open curve's ends (where it is γ_{k−1} … γ_{k+1}). O(1).
+    #[inline]
+    pub fn value_extent(&self, k: usize) -> (usize, usize) {
+        if !self.is_closed() && k > 1 && k + 2 < self.len() {
+            return (k - 1, k + 1);
+        }
+        let form = self.value_form(k);
+        (form.start, form.start + form.len - 1)
+    }
+
+    /// The first and last unknown of [`penalty_row`](Self::penalty_row)`(row)`, without
+    /// building it away from an open curve's ends (γ_{row−1} … γ_{row+3+d} there). O(1).
+    #[inline]
+    pub fn penalty_extent(&self, row: usize) -> (usize, usize) {
+        let d = self.penalty.order;
+        if !self.is_closed() && row > 1 && row + 4 + d < self.len() {
+            return (row - 1, row + 3 + d);
+        }
+        let form = self.penalty_row(row).0;
+        (form.start, form.start + form.len - 1)
+    }
+
+    /// The β-coefficients (from β_{a−1}) of Δ^ORDER J over the jumps J_a … J_{a+ORDER}.
+    #[inline]
+    fn difference_of_jumps<const ORDER: usize>(&self, a: isize) -> [f64; 9] {
+        let signs = binomial_signs(ORDER);
         let mut c = [0.0; 9];
-        for (q, &w) in signs.iter().enumerate().take(d + 1) {
+        if !self.is_closed() {
+            // Open curves: 1 ≤ a and a + d ≤ n − 2, so the spans a − 1 … a + d need no
+            // wrapping; they are read in place (copies of them through the stack stalled).
+            let spans = &self.third[a as usize - 1..=a as usize + ORDER];
+            for (q, &w) in signs.iter().enumerate().take(ORDER + 1) {
+                let (left, right) = (&spans[q], &spans[q + 1]);
+                for r in 0..4 {
+                    c[q + 1 + r] += w * right[r];
+                    c[q + r] -= w * left[r];
+                }
+            }
+            return c;
+        }
+        for (q, &w) in signs.iter().enumerate().take(ORDER + 1) {
             let right = self.third_of(a + q as isize);
             let left = self.third_of(a + q as isize - 1);
             for r in 0..4 {
@@ -350,17 +463,7 @@ impl Space {
                 c[q + r] -= w * left[r];
             }
         }
-        let width = self.knots.knot(a + d as isize + 1) - self.knots.knot(a - 1);
-        let mean = width / ((d + 2) as f64 * self.h_median);
-        let scale = self.h_median.powi(3);
-        let exponent = self.penalty.exponent;
-        let power = if exponent.fract() == 0.0 && exponent.abs() <= 64.0 {
-            mean.powi(exponent as i32)
-        } else {
-            mean.powf(exponent)
-        };
-        let weight = power * scale * scale;
-        (self.reduce(a - 1, &c[..5 + d]), weight)
+        c
     }
 
     /// Σ_rows weight · |row · γ|²: the penalty of the spline with unknowns `gamma`. O(n).
@@ -377,8 +480,11 @@ impl Space {
     /// at λ = 0 without constraints. O(n).
     pub fn interpolate<const D: usize>(&self, values: &[Vector<D>]) -> Result<Vec<Vector<D>>, PivotFailure> {
         let weights = vec![1.0; self.len()];
-        let system = System::new(self, values, &weights, &[]);
-        Ok(system.solve(0.0)?.gamma)
+        // Without the penalty's rows the envelope is the data rows' narrow band (half-width
+        // 2 inside instead of 4 + d): a third of the storage and of the factorisation's work.
+        let system = System::assemble(self, values, &weights, &[], false);
+        let gamma = system.solve(0.0)?.gamma;
+        Ok(gamma)
     }
 }
 
@@ -402,17 +508,29 @@ pub(crate) struct Constraint<const D: usize> {
 #[derive(Clone, Debug)]
 pub(crate) struct System<'s, const D: usize> {
     space: &'s Space,
+    data: &'s [Vector<D>],
+    weights: &'s [f64],
+    counted: Vec<bool>,
+    constraints: Vec<Constraint<D>>,
+    with_penalty: bool,
+    stiffness: f64,
+    /// The normal equations, assembled at the first direct solve: a search that goes straight
+    /// to the Givens QR (dense data, λ at the precision limit) never needs them.
+    kkt: std::cell::OnceCell<Kkt<D>>,
+    /// The storage of the last factorisation, reused by the next trial λ.
+    pool: Pool,
+}
+
+/// The KKT matrices of a [`System`] on their envelope: A = NᵀWN with the constraint rows, B
+/// the penalty's Gram matrix, the right side, and where each unknown and multiplier sits.
+#[derive(Clone, Debug)]
+struct Kkt<const D: usize> {
     profile: Profile,
     var_pos: Vec<usize>,
     negative: Vec<bool>,
     a: Vec<f64>,
     b: Vec<f64>,
     rhs: Vec<Vector<D>>,
-    data: &'s [Vector<D>],
-    weights: &'s [f64],
-    counted: Vec<bool>,
-    constraints: Vec<Constraint<D>>,
-    stiffness: f64,
 }
 
 /// How the system at one λ was factored.
@@ -459,38 +577,126 @@ impl<'s, const D: usize> System<'s, D> {
         weights: &'s [f64],
         constraints: &[Constraint<D>],
     ) -> Self {
+        Self::assemble(space, data, weights, constraints, true)
+    }
+
+    /// [`new`](Self::new), with the penalty (B) or without it (B = 0, for solves at λ = 0
+    /// only, on the narrower envelope of the data and constraint rows).
+    fn assemble(
+        space: &'s Space,
+        data: &'s [Vector<D>],
+        weights: &'s [f64],
+        constraints: &[Constraint<D>],
+        with_penalty: bool,
+    ) -> Self {
+        let m = space.len();
+        // The stiffness from the diagonals of A and B alone (the same sums, in the same order,
+        // as the assembled matrices' diagonals).
+        let mut stiffness: f64 = 0.0;
+        if with_penalty {
+            let mut diagonal_a = vec![0.0; m];
+            let mut diagonal_b = vec![0.0; m];
+            for (k, &w) in weights.iter().enumerate().take(m) {
+                if w > 0.0 {
+                    for (j, c) in space.value_form(k).entries(m) {
+                        diagonal_a[j] += w * c * c;
+                    }
+                }
+            }
+            for r in 0..space.penalty_rows() {
+                let (form, weight) = space.penalty_row(r);
+                for (j, c) in form.entries(m) {
+                    diagonal_b[j] += weight * c * c;
+                }
+            }
+            for (a, b) in diagonal_a.iter().zip(&diagonal_b) {
+                if *a > 0.0 {
+                    stiffness = stiffness.max(b / a);
+                }
+            }
+        }
+        let mut counted = vec![true; m];
+        for c in constraints {
+            if let Some(k) = c.point {
+                counted[k] = false;
+            }
+        }
+        System {
+            space,
+            data,
+            weights,
+            counted,
+            constraints: constraints.to_vec(),
+            with_penalty,
+            stiffness,
+            kkt: std::cell::OnceCell::new(),
+            pool: Pool::default(),
+        }
+    }
+
+    /// The KKT matrices, assembled on first use. O(n).
+    fn kkt(&self) -> &Kkt<D> {
+        self.kkt.get_or_init(|| {
+            Kkt::assemble(
+                self.space,
+                self.data,
+                self.weights,
+                &self.constraints,
+                self.with_penalty,
+            )
+        })
+    }
+}
+
+impl<const D: usize> Kkt<D> {
+    /// Assembles the KKT matrices (module docs of [`System`]). O(n).
+    fn assemble(
+        space: &Space,
+        data: &[Vector<D>],
+        weights: &[f64],
+        constraints: &[Constraint<D>],
+        with_penalty: bool,
+    ) -> Self {
+        let penalty_rows = if with_penalty { space.penalty_rows() } else { 0 };
         let m = space.len();
         let closed = space.is_closed();
-        let order = |j: usize| Self::order_of(closed, m, j);
+        let order = |j: usize| System::<D>::order_of(closed, m, j);
         let mut var_at = vec![0usize; m];
         for j in 0..m {
             var_at[order(j)] = j;
         }
-        // Each multiplier goes right after the last (in order) unknown of its form.
-        let mut anchored: Vec<Vec<usize>> = vec![Vec::new(); m];
-        for (c, constraint) in constraints.iter().enumerate() {
-            let anchor = constraint
-                .form
-                .entries(m)
-                .map(|(j, _)| order(j))
-                .max()
-                .unwrap_or(0);
-            anchored[anchor].push(c);
-        }
+        // Each multiplier goes right after the last (in order) unknown of its form: the
+        // constraints as (anchor, index), sorted (stable: the given order on a shared anchor).
+        let mut anchored: Vec<(usize, usize)> = constraints
+            .iter()
+            .enumerate()
+            .map(|(c, constraint)| {
+                let anchor = constraint
+                    .form
+                    .entries(m)
+                    .map(|(j, _)| order(j))
+                    .max()
+                    .unwrap_or(0);
+                (anchor, c)
+            })
+            .collect();
+        anchored.sort_by_key(|&(anchor, _)| anchor);
         let total = m + constraints.len();
         let mut var_pos = vec![0usize; m];
         let mut con_pos = vec![0usize; constraints.len()];
         let mut negative = vec![false; total];
         let mut p = 0;
+        let mut next = anchored.iter().peekable();
         for (o, &j) in var_at.iter().enumerate() {
             var_pos[j] = p;
             p += 1;
-            for &c in &anchored[o] {
+            while let Some(&(_, c)) = next.next_if(|(anchor, _)| *anchor == o) {
                 con_pos[c] = p;
                 negative[p] = true;
                 p += 1;
             }
         }
+        drop(var_at);
         let mut first: Vec<usize> = (0..total).collect();
         let widen = |form: &Form, first: &mut Vec<usize>| {
             let lowest = form.entries(m).map(|(j, _)| var_pos[j]).min().unwrap_or(0);
@@ -502,7 +708,7 @@ impl<'s, const D: usize> System<'s, D> {
         for (k, _) in weights.iter().enumerate().take(m).filter(|(_, w)| **w > 0.0) {
             widen(&space.value_form(k), &mut first);
         }
-        for r in 0..space.penalty_rows() {
+        for r in 0..penalty_rows {
             widen(&space.penalty_row(r).0, &mut first);
         }
         for (c, constraint) in constraints.iter().enumerate() {
@@ -516,15 +722,22 @@ impl<'s, const D: usize> System<'s, D> {
         }
         let profile = Profile::new(first);
         let mut a = profile.zeros();
-        let mut b = profile.zeros();
+        // Without the penalty B is empty (K(λ) = A).
+        let mut b = if with_penalty { profile.zeros() } else { Vec::new() };
+        // weight · formᵀ form added to the lower triangle (the form's positions gathered once,
+        // each row's storage offset looked up once).
         let outer = |values: &mut [f64], form: &Form, weight: f64| {
-            for (j, cj) in form.entries(m) {
-                for (l, cl) in form.entries(m) {
-                    let (pj, pl) = (var_pos[j], var_pos[l]);
-                    if pj >= pl {
-                        if let Some(index) = profile.index(pj, pl) {
-                            values[index] += weight * cj * cl;
-                        }
+            let len = form.len;
+            let mut pos = [0usize; MAX_FORM];
+            for (p, (j, _)) in pos.iter_mut().zip(form.entries(m)) {
+                *p = var_pos[j];
+            }
+            for (&pj, &cj) in pos[..len].iter().zip(&form.c[..len]) {
+                let (first, start) = profile.row(pj);
+                let wc = weight * cj;
+                for (&pl, &cl) in pos[..len].iter().zip(&form.c[..len]) {
+                    if pl <= pj && pl >= first {
+                        values[start + (pl - first)] += wc * cl;
                     }
                 }
             }
@@ -539,7 +752,7 @@ impl<'s, const D: usize> System<'s, D> {
                 }
             }
         }
-        for r in 0..space.penalty_rows() {
+        for r in 0..penalty_rows {
             let (form, weight) = space.penalty_row(r);
             outer(&mut b, &form, weight);
         }
@@ -552,41 +765,18 @@ impl<'s, const D: usize> System<'s, D> {
             }
             rhs[row] = constraint.target;
         }
-        let mut stiffness: f64 = 0.0;
-        for &p in &var_pos {
-            if let Some(index) = profile.index(p, p) {
-                if a[index] > 0.0 {
-                    stiffness = stiffness.max(b[index] / a[index]);
-                }
-            }
-        }
-        let mut counted = vec![true; m];
-        for c in constraints {
-            if let Some(k) = c.point {
-                counted[k] = false;
-            }
-        }
-        System {
-            space,
+        Kkt {
             profile,
             var_pos,
             negative,
             a,
             b,
             rhs,
-            data,
-            weights,
-            counted,
-            constraints: constraints.to_vec(),
-            stiffness,
         }
     }
+}
 
-    /// The number of rows (unknowns and multipliers).
-    pub fn size(&self) -> usize {
-        self.profile.size()
-    }
-
+impl<'s, const D: usize> System<'s, D> {
     /// The largest ratio B_jj / A_jj over the unknowns with A_jj > 0: how much a given λ lets
     /// the penalty outweigh the data locally (λ times this is the stiffness that decides the
     /// solver, [`DIRECT_LIMIT`]).
@@ -601,17 +791,27 @@ impl<'s, const D: usize> System<'s, D> {
     /// tells a consistent set from a contradictory one). O(n).
     pub fn solve(&self, lambda: f64) -> Result<Solution<'_, D>, PivotFailure> {
         if lambda * self.stiffness <= DIRECT_LIMIT {
-            let values: Vec<f64> = self.a.iter().zip(&self.b).map(|(a, b)| a + lambda * b).collect();
-            if let Ok(ldlt) = Ldlt::factor(&self.profile, values, &self.negative) {
-                let mut x = self.rhs.clone();
+            let kkt = self.kkt();
+            let mut values = self.pool.take();
+            values.clear();
+            if kkt.b.is_empty() {
+                values.extend_from_slice(&kkt.a);
+            } else {
+                values.extend(kkt.a.iter().zip(&kkt.b).map(|(a, b)| a + lambda * b));
+            }
+            if let Ok(ldlt) = Ldlt::factor_in(&kkt.profile, values, &kkt.negative, Some(&self.pool)) {
+                let mut x = kkt.rhs.clone();
                 ldlt.solve_in_place(&mut x);
-                let gamma = self.var_pos.iter().map(|&p| x[p]).collect();
+                let gamma = kkt.var_pos.iter().map(|&p| x[p]).collect();
                 return Ok(Solution {
                     factor: Factor::Kkt { ldlt, x },
                     gamma,
                 });
             }
         }
+        // The kept storage of the direct solves is not needed by the QR: freed before the QR
+        // allocates its own, so that the peak memory stays that of one factorisation.
+        drop(self.pool.take());
         let qr = self.qr(lambda);
         let y = qr.solve()?;
         let m = self.space.len();
@@ -631,9 +831,12 @@ impl<'s, const D: usize> System<'s, D> {
         let closed = space.is_closed();
         let order = |j: usize| Self::order_of(closed, m, j);
         let diagonal = |j: usize| -> f64 {
-            self.profile
-                .index(self.var_pos[j], self.var_pos[j])
-                .map_or(0.0, |index| self.a[index] + lambda * self.b[index])
+            let kkt = self.kkt();
+            kkt.profile
+                .index(kkt.var_pos[j], kkt.var_pos[j])
+                .map_or(0.0, |index| {
+                    kkt.a[index] + lambda * kkt.b.get(index).unwrap_or(&0.0)
+                })
         };
         // Rows in the order of their leading column, so that each is deposited in R after at
         // most the band's width of rotations (data rows first would fill R and leave every
@@ -661,13 +864,14 @@ impl<'s, const D: usize> System<'s, D> {
         let merged = !closed && self.constraints.is_empty() && self.weights.iter().all(|w| *w > 0.0);
         let mut rows: Vec<u64> = Vec::new();
         if merged {
-            for k in 0..m {
-                let (lead, end) = lead_end(&space.value_form(k));
+            let mut widen = |(lead, end): (usize, usize)| {
                 reach[lead] = reach[lead].max(end);
+            };
+            for k in 0..m {
+                widen(space.value_extent(k));
             }
             for r in 0..space.penalty_rows() {
-                let (lead, end) = lead_end(&space.penalty_row(r).0);
-                reach[lead] = reach[lead].max(end);
+                widen(space.penalty_extent(r));
             }
         } else {
             rows.reserve(2 * m + self.constraints.len());
@@ -689,31 +893,47 @@ impl<'s, const D: usize> System<'s, D> {
             }
             rows.sort_unstable();
         }
-        let (mut next_data, mut next_penalty, penalty_rows) = (0usize, 0usize, space.penalty_rows());
-        let mut merge = move || {
-            let data = (next_data < m).then(|| lead_end(&space.value_form(next_data)).0);
-            let penalty =
-                (next_penalty < penalty_rows).then(|| lead_end(&space.penalty_row(next_penalty).0).0);
-            match (data, penalty) {
-                (Some(d), Some(p)) if d <= p => {
-                    next_data += 1;
-                    Some(((d as u64) << 32) | (next_data - 1) as u64)
-                }
-                (_, Some(p)) => {
-                    next_penalty += 1;
-                    Some(((p as u64) << 32) | PENALTY | (next_penalty - 1) as u64)
-                }
-                (Some(d), None) => {
-                    next_data += 1;
-                    Some(((d as u64) << 32) | (next_data - 1) as u64)
-                }
-                (None, None) => None,
-            }
-        };
-        let mut sorted = rows.into_iter();
-        let ordered = std::iter::from_fn(|| if merged { merge() } else { sorted.next() });
         let mut qr = GivensQr::new(reach);
-        for packed in ordered {
+        if merged {
+            // Each row's form built once: the next data row and the next penalty row are held,
+            // and the one with the smaller leading column goes in (data first on a tie). Open
+            // curves: the unknowns are in order and each form's columns are contiguous from
+            // its start.
+            let penalty_rows = space.penalty_rows();
+            let mut scaled = [0.0; MAX_FORM];
+            let (mut k, mut r) = (0usize, 0usize);
+            let mut data_form = (m > 0).then(|| space.value_form(0));
+            let mut penalty_form = (penalty_rows > 0).then(|| space.penalty_row(0));
+            loop {
+                let take_data = match (&data_form, &penalty_form) {
+                    (Some(d), Some((p, _))) => d.start <= p.start,
+                    (Some(_), None) => true,
+                    (None, Some(_)) => false,
+                    (None, None) => break,
+                };
+                if take_data {
+                    let form = data_form.take().unwrap_or_else(|| space.value_form(k));
+                    let root = self.weights[k].sqrt();
+                    for (s, c) in scaled.iter_mut().zip(&form.c[..form.len]) {
+                        *s = c * root;
+                    }
+                    qr.add_contiguous(form.start, &scaled[..form.len], self.data[k] * root);
+                    k += 1;
+                    data_form = (k < m).then(|| space.value_form(k));
+                } else {
+                    let (form, weight) = penalty_form.take().unwrap_or_else(|| space.penalty_row(r));
+                    let root = (lambda * weight).sqrt();
+                    for (s, c) in scaled.iter_mut().zip(&form.c[..form.len]) {
+                        *s = c * root;
+                    }
+                    qr.add_contiguous(form.start, &scaled[..form.len], Vector::<D>::zeros());
+                    r += 1;
+                    penalty_form = (r < penalty_rows).then(|| space.penalty_row(r));
+                }
+            }
+            return qr;
+        }
+        for packed in rows {
             let tag = packed & 0xFFFF_FFFF;
             let index = (tag & 0x3FFF_FFFF) as usize;
             let row = match tag >> 30 {
@@ -777,13 +997,14 @@ impl<'s, const D: usize> System<'s, D> {
     /// The values of the spline at the knots for unknowns `gamma`. O(n).
     pub fn values(&self, gamma: &[Vector<D>]) -> Vec<Vector<D>> {
         (0..self.space.len())
-            .map(|k| self.space.value_form(k).apply(gamma))
+            .map(|k| self.space.value_of(k, gamma))
             .collect()
     }
 
     /// The spline's value at knot k for unknowns `gamma`. O(1).
+    #[inline]
     pub fn value_at(&self, k: usize, gamma: &[Vector<D>]) -> Vector<D> {
-        self.space.value_form(k).apply(gamma)
+        self.space.value_of(k, gamma)
     }
 
     /// dγ/dλ at a solution: K z = [−Bγ; 0] (the constraints' targets do not depend on λ;
@@ -792,22 +1013,25 @@ impl<'s, const D: usize> System<'s, D> {
         let m = self.space.len();
         match &solution.factor {
             Factor::Kkt { ldlt, x } => {
-                let mut z = vec![Vector::<D>::zeros(); self.size()];
-                self.profile.multiply(&self.b, x, &mut z);
+                let kkt = self.kkt();
+                let mut z = vec![Vector::<D>::zeros(); kkt.profile.size()];
+                if !kkt.b.is_empty() {
+                    kkt.profile.multiply(&kkt.b, x, &mut z);
+                }
                 for v in z.iter_mut() {
                     *v = -*v;
                 }
                 ldlt.solve_in_place(&mut z);
-                if self.var_pos.windows(2).all(|w| w[0] < w[1]) {
+                if kkt.var_pos.windows(2).all(|w| w[0] < w[1]) {
                     // Open curves: the unknowns' positions increase, so they are gathered to
                     // the front in place (no second vector of n points at the peak).
-                    for (j, &p) in self.var_pos.iter().enumerate() {
+                    for (j, &p) in kkt.var_pos.iter().enumerate() {
                         z[j] = z[p];
                     }
                     z.truncate(m);
                     return Ok(z);
                 }
-                Ok(self.var_pos.iter().map(|&p| z[p]).collect())
+                Ok(kkt.var_pos.iter().map(|&p| z[p]).collect())
             }
             Factor::Qr(qr) => {
                 let closed = self.space.is_closed();
@@ -850,8 +1074,8 @@ impl<'s, const D: usize> System<'s, D> {
         let (z, profile, position): (Vec<f64>, &Profile, Position<'_>) = match &solution.factor {
             Factor::Kkt { ldlt, .. } => (
                 ldlt.selected_inverse(),
-                &self.profile,
-                Box::new(|j| self.var_pos[j]),
+                &self.kkt().profile,
+                Box::new(|j| self.kkt().var_pos[j]),
             ),
             Factor::Qr(qr) => {
                 qr_profile = qr.ldlt_profile();
