@@ -33,6 +33,15 @@
 //! by 2(J^u_ij + J^v_ij)·δ + (K_u[i,i] + K_v[j,j]) |δ|², computed in O(1) from the jumps before
 //! the move. A move costs O(window), a constant (~30 knots per side for uniform knots, at most
 //! ~57); [`Network::recompute_energy`] sums the segments exactly in O(m·n).
+//!
+//! **Memory layout.** A move writes the jumps of a window of u-line j (a column of the grid)
+//! and of v-line i (a row). The u-line data (tangents M^u, jumps J^u) are stored
+//! column-major and the v-line data row-major, so both windows are contiguous runs (~17
+//! cache lines each). In the automatic mode the moves come in the order of z, scattered over
+//! the grid, and once the grid outgrows the cache every line a move touches is a miss: with
+//! the u-line data row-major, as the points are, the u-window touched one line per node
+//! (~45). The z bounds (one f64 per node, a third of the jumps' size) stay row-major, so
+//! their u-window is strided.
 
 use curve_repr::{HermiteEnds, HermiteSettings, HermiteSpline, Interpolant, Vec3, Vector};
 
@@ -209,15 +218,17 @@ pub struct Network {
     v_count: usize,
     /// P_ij at i·v_count + j.
     points: Vec<Vec3>,
-    /// M^u_ij at i·v_count + j.
+    /// M^u_ij at j·u_count + i (column-major: a u-line is contiguous).
     u_tangents: Vec<Vec3>,
     /// M^v_ij at i·v_count + j.
     v_tangents: Vec<Vec3>,
-    /// J^u_ij (0 where the node is an open end along u).
+    /// J^u_ij at j·u_count + i, column-major as `u_tangents` (0 where the node is an open
+    /// end along u).
     u_jumps: Vec<Vec3>,
-    /// J^v_ij (0 where the node is an open end along v).
+    /// J^v_ij at i·v_count + j (row-major: a v-line is contiguous; 0 where the node is an
+    /// open end along v).
     v_jumps: Vec<Vec3>,
-    /// An upper bound of z_ij at every node (exact after a rebuild, raised by moves).
+    /// An upper bound of z_ij at i·v_count + j (exact after a rebuild, raised by moves).
     z_bounds: Vec<f64>,
     /// Whether moves update the tangents (only Eq. 20 and the energy sum read them; the
     /// jumps, z and the energy change do not).
@@ -251,13 +262,10 @@ impl Network {
             }
         };
         let (u_settings, v_settings) = (settings(u_knots, closed.0), settings(v_knots, closed.1));
-        let mut u_tangents = vec![Vec3::zeros(); points.len()];
+        let mut u_tangents = Vec::with_capacity(points.len());
         for j in 0..v_count {
             let line: Vec<Vec3> = points.iter().skip(j).step_by(v_count).copied().collect();
-            let spline = HermiteSpline::new(&line, &u_settings)?;
-            for (i, t) in spline.tangents().iter().take(u_count).enumerate() {
-                u_tangents[i * v_count + j] = *t;
-            }
+            u_tangents.extend_from_slice(&HermiteSpline::new(&line, &u_settings)?.tangents()[..u_count]);
         }
         let mut v_tangents = Vec::with_capacity(points.len());
         for line in points.chunks(v_count) {
@@ -284,23 +292,29 @@ impl Network {
 
     /// The jumps and the z bounds from the tangents. O(m·n).
     fn recompute_jumps(&mut self) {
-        let total = self.u_count * self.v_count;
-        let (mut u_jumps, mut v_jumps) = (vec![Vec3::zeros(); total], vec![Vec3::zeros(); total]);
-        for i in 0..self.u_count {
-            for j in 0..self.v_count {
-                let k = self.index(i, j);
+        let (uc, vc) = (self.u_count, self.v_count);
+        let mut u_jumps = Vec::with_capacity(uc * vc);
+        for j in 0..vc {
+            u_jumps.extend((0..uc).map(|i| {
                 if self.u_stiffness.is_interior(i) {
-                    u_jumps[k] = self.u_jump_from_tangents(i, j);
+                    self.u_jump_from_tangents(i, j)
+                } else {
+                    Vec3::zeros()
                 }
-                if self.v_stiffness.is_interior(j) {
-                    v_jumps[k] = self.v_jump_from_tangents(i, j);
-                }
-            }
+            }));
         }
-        self.z_bounds = u_jumps
-            .iter()
-            .zip(&v_jumps)
-            .map(|(a, b)| a.norm() + b.norm())
+        let mut v_jumps = Vec::with_capacity(uc * vc);
+        for i in 0..uc {
+            v_jumps.extend((0..vc).map(|j| {
+                if self.v_stiffness.is_interior(j) {
+                    self.v_jump_from_tangents(i, j)
+                } else {
+                    Vec3::zeros()
+                }
+            }));
+        }
+        self.z_bounds = (0..uc * vc)
+            .map(|k| u_jumps[(k % vc) * uc + k / vc].norm() + v_jumps[k].norm())
             .collect();
         self.u_jumps = u_jumps;
         self.v_jumps = v_jumps;
@@ -317,8 +331,8 @@ impl Network {
                     energy += hermite_energy(
                         self.points[a],
                         self.points[b],
-                        self.u_tangents[a],
-                        self.u_tangents[b],
+                        self.u_tangents[self.column_index(i, j)],
+                        self.u_tangents[self.column_index(n, j)],
                         self.u_stiffness.step(i),
                     );
                 }
@@ -341,8 +355,15 @@ impl Network {
         self.energy = energy;
     }
 
+    /// Row-major index of node (i, j): points, v-line data, z bounds and the flat indices of
+    /// the API.
     fn index(&self, i: usize, j: usize) -> usize {
         i * self.v_count + j
+    }
+
+    /// Column-major index of node (i, j): u-line data.
+    fn column_index(&self, i: usize, j: usize) -> usize {
+        j * self.u_count + i
     }
 
     /// Whether node (i, j) has a z_ij (interior along both directions, a seam counting as
@@ -366,7 +387,7 @@ impl Network {
 
     /// M^u_ij = ∂S/∂u(u_i, v_j).
     pub fn u_tangent(&self, i: usize, j: usize) -> Vec3 {
-        self.u_tangents[self.index(i, j)]
+        self.u_tangents[self.column_index(i, j)]
     }
 
     /// M^v_ij = ∂S/∂v(u_i, v_j).
@@ -402,7 +423,7 @@ impl Network {
 
     /// ∂³S/∂u³(u_i+, v_j) − ∂³S/∂u³(u_i−, v_j) (0 at an open end along u). O(1).
     pub fn u_jump(&self, i: usize, j: usize) -> Vec3 {
-        self.u_jumps[self.index(i, j)]
+        self.u_jumps[self.column_index(i, j)]
     }
 
     /// ∂³S/∂v³(u_i, v_j+) − ∂³S/∂v³(u_i, v_j−) (0 at an open end along v). O(1).
@@ -421,14 +442,13 @@ impl Network {
 
     /// (J^u, J^v) at every node, flat (i-major).
     pub fn u_jumps_and_v_jumps(&self) -> impl Iterator<Item = (Vec3, Vec3)> + '_ {
-        self.u_jumps.iter().copied().zip(self.v_jumps.iter().copied())
+        (0..self.u_count * self.v_count).map(|k| (self.u_jumps[self.column_of(k)], self.v_jumps[k]))
     }
 
     /// z_ij = |u jump| + |v jump| (Eq. 26, corrected in papers/README.md), interior nodes.
     /// O(1).
     pub fn z(&self, i: usize, j: usize) -> f64 {
-        let k = self.index(i, j);
-        self.u_jumps[k].norm() + self.v_jumps[k].norm()
+        self.u_jump(i, j).norm() + self.v_jump(i, j).norm()
     }
 
     /// max z_ij over the interior nodes (0 when there are none). O(m·n).
@@ -515,7 +535,12 @@ impl Network {
 
     /// z of the node at flat index k (i·v_count + j): |J^u| + |J^v| (Eq. 26). O(1).
     pub fn z_at(&self, k: usize) -> f64 {
-        self.u_jumps[k].norm() + self.v_jumps[k].norm()
+        self.u_jumps[self.column_of(k)].norm() + self.v_jumps[k].norm()
+    }
+
+    /// The column-major index of the node at flat (row-major) index k.
+    fn column_of(&self, k: usize) -> usize {
+        (k % self.v_count) * self.u_count + k / self.v_count
     }
 
     /// An upper bound of the z of the node at flat index k, kept by every move (exact after a
@@ -563,14 +588,18 @@ impl Network {
 
     /// Adds `delta` to P_ij and its responses to the tangents, the jumps and the z bounds.
     fn shift(&mut self, i: usize, j: usize, delta: Vec3) {
-        let vc = self.v_count;
+        let (uc, vc) = (self.u_count, self.v_count);
         let size = delta.norm();
         self.points[i * vc + j] += delta;
         if self.track_tangents {
             let (u_lo, u_values) = &self.u_stiffness.response[i];
-            for (start, offset, len) in runs(*u_lo, u_values.len(), self.u_count) {
-                for (l, &r) in (start..start + len).zip(&u_values[offset..offset + len]) {
-                    self.u_tangents[l * vc + j] += delta * r;
+            for (start, offset, len) in runs(*u_lo, u_values.len(), uc) {
+                let column = j * uc + start;
+                for (t, &r) in self.u_tangents[column..column + len]
+                    .iter_mut()
+                    .zip(&u_values[offset..offset + len])
+                {
+                    *t += delta * r;
                 }
             }
             let (v_lo, v_values) = &self.v_stiffness.response[j];
@@ -585,11 +614,16 @@ impl Network {
             }
         }
         let (u_lo, u_values) = &self.u_stiffness.jump_response[i];
-        for (start, offset, len) in runs(*u_lo, u_values.len(), self.u_count) {
-            for (l, &r) in (start..start + len).zip(&u_values[offset..offset + len]) {
-                let k = l * vc + j;
-                self.u_jumps[k] += delta * r;
-                self.z_bounds[k] += r.abs() * size;
+        for (start, offset, len) in runs(*u_lo, u_values.len(), uc) {
+            // The jumps along the u-line are contiguous; the z bounds are strided (a small
+            // array, module docs).
+            let column = j * uc + start;
+            for ((l, jump), &r) in (start..start + len)
+                .zip(&mut self.u_jumps[column..column + len])
+                .zip(&u_values[offset..offset + len])
+            {
+                *jump += delta * r;
+                self.z_bounds[l * vc + j] += r.abs() * size;
             }
         }
         let (v_lo, v_values) = &self.v_stiffness.jump_response[j];
