@@ -42,6 +42,10 @@
 //! the u-line data row-major, as the points are, the u-window touched one line per node
 //! (~45). The z bounds (one f64 per node, a third of the jumps' size) stay row-major, so
 //! their u-window is strided.
+//!
+//! The moves' scattered order also makes the first load of each move (its point, jumps and
+//! bound) a miss that stalls it; [`Network::prefetch`] lets the caller, which knows the
+//! order, start those loads two moves ahead.
 
 use curve_repr::{HermiteEnds, HermiteSettings, HermiteSpline, Interpolant, Vec3, Vector};
 
@@ -556,6 +560,18 @@ impl Network {
         z
     }
 
+    /// Asks the processor to start loading what a move of P_ij reads first (the point, its
+    /// jumps, its z bound): a caller that knows its next moves issues this a few moves ahead,
+    /// so that the loads overlap the moves in between instead of stalling the next one (module
+    /// docs, "memory layout"). Changes no value. O(1).
+    pub fn prefetch(&self, i: usize, j: usize) {
+        let k = self.index(i, j);
+        prefetch(&self.points[k]);
+        prefetch(&self.u_jumps[self.column_index(i, j)]);
+        prefetch(&self.v_jumps[k]);
+        prefetch(&self.z_bounds[k]);
+    }
+
     fn move_one(&mut self, i: usize, j: usize, position: Vec3) -> Result<()> {
         if !self.is_interior(i, j) {
             return Err(Error::BadConstraint {
@@ -640,6 +656,21 @@ impl Network {
             }
         }
     }
+}
+
+/// A hint to the processor to bring the cache line of `value` into its caches (x86-64's
+/// `prefetcht0`; nothing elsewhere). It has no effect on any value.
+pub(crate) fn prefetch<T>(value: &T) {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: a prefetch reads no memory architecturally and cannot fault, whatever the
+    // address (here a live reference); SSE, which provides it, is part of every x86-64
+    // target.
+    unsafe {
+        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+        _mm_prefetch::<_MM_HINT_T0>(std::ptr::from_ref(value).cast());
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = value;
 }
 
 /// A window of `len` entries from node `lo` along a line of `count` nodes (wrapping round a
