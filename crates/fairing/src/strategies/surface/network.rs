@@ -32,7 +32,7 @@
 //! E(P + δ e_i) = E + 2 J_i·δ + K_ii |δ|². A move of P_ij therefore changes the network energy
 //! by 2(J^u_ij + J^v_ij)·δ + (K_u[i,i] + K_v[j,j]) |δ|², computed in O(1) from the jumps before
 //! the move. A move costs O(window), a constant (~30 knots per side for uniform knots, at most
-//! ~57); [`Network::recompute_energy`] sums the segments exactly in O(m·n).
+//! ~57); a rebuild ([`Network::new`]) sums the segments exactly in O(m·n).
 //!
 //! **Memory layout.** A move writes the jumps of a window of u-line j (a column of the grid)
 //! and of v-line i (a row). The u-line data (tangents M^u, jumps J^u) are stored
@@ -266,10 +266,12 @@ impl Network {
             }
         };
         let (u_settings, v_settings) = (settings(u_knots, closed.0), settings(v_knots, closed.1));
+        // The u-lines' passes read the points column-major, from one blocked transpose rather
+        // than strided (a miss per point on a grid larger than the cache).
+        let columns = transpose(points, u_count, v_count);
         let mut u_tangents = Vec::with_capacity(points.len());
-        for j in 0..v_count {
-            let line: Vec<Vec3> = points.iter().skip(j).step_by(v_count).copied().collect();
-            u_tangents.extend_from_slice(&HermiteSpline::new(&line, &u_settings)?.tangents()[..u_count]);
+        for line in columns.chunks(u_count) {
+            u_tangents.extend_from_slice(&HermiteSpline::new(line, &u_settings)?.tangents()[..u_count]);
         }
         let mut v_tangents = Vec::with_capacity(points.len());
         for line in points.chunks(v_count) {
@@ -289,19 +291,24 @@ impl Network {
             u_stiffness: Stiffness::new(u_knots, closed.0)?,
             v_stiffness: Stiffness::new(v_knots, closed.1)?,
         };
-        network.recompute_energy();
-        network.recompute_jumps();
+        network.recompute_energy(&columns);
+        network.recompute_jumps(&columns);
         Ok(network)
     }
 
-    /// The jumps and the z bounds from the tangents. O(m·n).
-    fn recompute_jumps(&mut self) {
+    /// The jumps and the z bounds from the tangents (`columns`: the points column-major).
+    /// O(m·n).
+    fn recompute_jumps(&mut self, columns: &[Vec3]) {
         let (uc, vc) = (self.u_count, self.v_count);
         let mut u_jumps = Vec::with_capacity(uc * vc);
         for j in 0..vc {
+            let (line, tangents) = (
+                &columns[j * uc..(j + 1) * uc],
+                &self.u_tangents[j * uc..(j + 1) * uc],
+            );
             u_jumps.extend((0..uc).map(|i| {
                 if self.u_stiffness.is_interior(i) {
-                    self.u_jump_from_tangents(i, j)
+                    self.u_jump_from_tangents(line, tangents, i)
                 } else {
                     Vec3::zeros()
                 }
@@ -325,18 +332,19 @@ impl Network {
     }
 
     /// The network energy as the sum of every segment's ∫|C''|² (drops the rounding that the
-    /// O(1) updates gather). O(m·n).
-    pub fn recompute_energy(&mut self) {
+    /// O(1) updates gather; `columns`: the points column-major). O(m·n).
+    fn recompute_energy(&mut self, columns: &[Vec3]) {
+        let uc = self.u_count;
         let mut energy = 0.0;
         for j in 0..self.v_count {
-            for i in 0..self.u_count {
+            for i in 0..uc {
                 if let Some(n) = self.u_stiffness.next(i) {
-                    let (a, b) = (self.index(i, j), self.index(n, j));
+                    let (a, b) = (j * uc + i, j * uc + n);
                     energy += hermite_energy(
-                        self.points[a],
-                        self.points[b],
-                        self.u_tangents[self.column_index(i, j)],
-                        self.u_tangents[self.column_index(n, j)],
+                        columns[a],
+                        columns[b],
+                        self.u_tangents[a],
+                        self.u_tangents[b],
                         self.u_stiffness.step(i),
                     );
                 }
@@ -400,9 +408,9 @@ impl Network {
     }
 
     /// ∂³S/∂u³(u_i+, v_j) − ∂³S/∂u³(u_i−, v_j) from the tangents, at a node interior along u.
-    fn u_jump_from_tangents(&self, i: usize, j: usize) -> Vec3 {
+    fn u_jump_from_tangents(&self, line: &[Vec3], tangents: &[Vec3], i: usize) -> Vec3 {
         let s = &self.u_stiffness;
-        let (p, m) = (|k: usize| self.point(k, j), |k: usize| self.u_tangent(k, j));
+        let (p, m) = (|k: usize| line[k], |k: usize| tangents[k]);
         let after = s
             .next(i)
             .map_or(Vec3::zeros(), |n| third(p(i), p(n), m(i), m(n), s.step(i)));
@@ -457,11 +465,17 @@ impl Network {
 
     /// max z_ij over the interior nodes (0 when there are none). O(m·n).
     pub fn max_z(&self) -> f64 {
+        // In bands of rows, so that both the column-major u-jumps and the row-major v-jumps
+        // are read in runs (the largest value does not depend on the order).
+        const BAND: usize = 8;
         let mut max = 0.0f64;
-        for i in 0..self.u_count {
+        for first in (0..self.u_count).step_by(BAND) {
+            let band = first..(first + BAND).min(self.u_count);
             for j in 0..self.v_count {
-                if self.is_interior(i, j) {
-                    max = max.max(self.z(i, j));
+                for i in band.clone() {
+                    if self.is_interior(i, j) {
+                        max = max.max(self.z(i, j));
+                    }
                 }
             }
         }
@@ -671,6 +685,23 @@ pub(crate) fn prefetch<T>(value: &T) {
     }
     #[cfg(not(target_arch = "x86_64"))]
     let _ = value;
+}
+
+/// The `rows` × `columns` row-major `values` column-major, in square blocks (each read and
+/// written in runs). O(rows · columns).
+fn transpose(values: &[Vec3], rows: usize, columns: usize) -> Vec<Vec3> {
+    const BLOCK: usize = 8;
+    let mut out = vec![Vec3::zeros(); values.len()];
+    for i0 in (0..rows).step_by(BLOCK) {
+        for j0 in (0..columns).step_by(BLOCK) {
+            for i in i0..(i0 + BLOCK).min(rows) {
+                for j in j0..(j0 + BLOCK).min(columns) {
+                    out[j * rows + i] = values[i * columns + j];
+                }
+            }
+        }
+    }
+    out
 }
 
 /// A window of `len` entries from node `lo` along a line of `count` nodes (wrapping round a
