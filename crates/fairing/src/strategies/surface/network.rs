@@ -32,7 +32,20 @@
 //! E(P + δ e_i) = E + 2 J_i·δ + K_ii |δ|². A move of P_ij therefore changes the network energy
 //! by 2(J^u_ij + J^v_ij)·δ + (K_u[i,i] + K_v[j,j]) |δ|², computed in O(1) from the jumps before
 //! the move. A move costs O(window), a constant (~30 knots per side for uniform knots, at most
-//! ~57); [`Network::recompute_energy`] sums the segments exactly in O(m·n).
+//! ~57); a rebuild ([`Network::new`]) sums the segments exactly in O(m·n).
+//!
+//! **Memory layout.** A move writes the jumps of a window of u-line j (a column of the grid)
+//! and of v-line i (a row). The u-line data (tangents M^u, jumps J^u) are stored
+//! column-major and the v-line data row-major, so both windows are contiguous runs (~17
+//! cache lines each). In the automatic mode the moves come in the order of z, scattered over
+//! the grid, and once the grid outgrows the cache every line a move touches is a miss: with
+//! the u-line data row-major, as the points are, the u-window touched one line per node
+//! (~45). The z bounds (one f64 per node, a third of the jumps' size) stay row-major, so
+//! their u-window is strided.
+//!
+//! The moves' scattered order also makes the first load of each move (its point, jumps and
+//! bound) a miss that stalls it; [`Network::prefetch`] lets the caller, which knows the
+//! order, start those loads two moves ahead.
 
 use curve_repr::{HermiteEnds, HermiteSettings, HermiteSpline, Interpolant, Vec3, Vector};
 
@@ -209,15 +222,17 @@ pub struct Network {
     v_count: usize,
     /// P_ij at i·v_count + j.
     points: Vec<Vec3>,
-    /// M^u_ij at i·v_count + j.
+    /// M^u_ij at j·u_count + i (column-major: a u-line is contiguous).
     u_tangents: Vec<Vec3>,
     /// M^v_ij at i·v_count + j.
     v_tangents: Vec<Vec3>,
-    /// J^u_ij (0 where the node is an open end along u).
+    /// J^u_ij at j·u_count + i, column-major as `u_tangents` (0 where the node is an open
+    /// end along u).
     u_jumps: Vec<Vec3>,
-    /// J^v_ij (0 where the node is an open end along v).
+    /// J^v_ij at i·v_count + j (row-major: a v-line is contiguous; 0 where the node is an
+    /// open end along v).
     v_jumps: Vec<Vec3>,
-    /// An upper bound of z_ij at every node (exact after a rebuild, raised by moves).
+    /// An upper bound of z_ij at i·v_count + j (exact after a rebuild, raised by moves).
     z_bounds: Vec<f64>,
     /// Whether moves update the tangents (only Eq. 20 and the energy sum read them; the
     /// jumps, z and the energy change do not).
@@ -251,13 +266,12 @@ impl Network {
             }
         };
         let (u_settings, v_settings) = (settings(u_knots, closed.0), settings(v_knots, closed.1));
-        let mut u_tangents = vec![Vec3::zeros(); points.len()];
-        for j in 0..v_count {
-            let line: Vec<Vec3> = points.iter().skip(j).step_by(v_count).copied().collect();
-            let spline = HermiteSpline::new(&line, &u_settings)?;
-            for (i, t) in spline.tangents().iter().take(u_count).enumerate() {
-                u_tangents[i * v_count + j] = *t;
-            }
+        // The u-lines' passes read the points column-major, from one blocked transpose rather
+        // than strided (a miss per point on a grid larger than the cache).
+        let columns = transpose(points, u_count, v_count);
+        let mut u_tangents = Vec::with_capacity(points.len());
+        for line in columns.chunks(u_count) {
+            u_tangents.extend_from_slice(&HermiteSpline::new(line, &u_settings)?.tangents()[..u_count]);
         }
         let mut v_tangents = Vec::with_capacity(points.len());
         for line in points.chunks(v_count) {
@@ -277,46 +291,58 @@ impl Network {
             u_stiffness: Stiffness::new(u_knots, closed.0)?,
             v_stiffness: Stiffness::new(v_knots, closed.1)?,
         };
-        network.recompute_energy();
-        network.recompute_jumps();
+        network.recompute_energy(&columns);
+        network.recompute_jumps(&columns);
         Ok(network)
     }
 
-    /// The jumps and the z bounds from the tangents. O(m·n).
-    fn recompute_jumps(&mut self) {
-        let total = self.u_count * self.v_count;
-        let (mut u_jumps, mut v_jumps) = (vec![Vec3::zeros(); total], vec![Vec3::zeros(); total]);
-        for i in 0..self.u_count {
-            for j in 0..self.v_count {
-                let k = self.index(i, j);
+    /// The jumps and the z bounds from the tangents (`columns`: the points column-major).
+    /// O(m·n).
+    fn recompute_jumps(&mut self, columns: &[Vec3]) {
+        let (uc, vc) = (self.u_count, self.v_count);
+        let mut u_jumps = Vec::with_capacity(uc * vc);
+        for j in 0..vc {
+            let (line, tangents) = (
+                &columns[j * uc..(j + 1) * uc],
+                &self.u_tangents[j * uc..(j + 1) * uc],
+            );
+            u_jumps.extend((0..uc).map(|i| {
                 if self.u_stiffness.is_interior(i) {
-                    u_jumps[k] = self.u_jump_from_tangents(i, j);
+                    self.u_jump_from_tangents(line, tangents, i)
+                } else {
+                    Vec3::zeros()
                 }
-                if self.v_stiffness.is_interior(j) {
-                    v_jumps[k] = self.v_jump_from_tangents(i, j);
-                }
-            }
+            }));
         }
-        self.z_bounds = u_jumps
-            .iter()
-            .zip(&v_jumps)
-            .map(|(a, b)| a.norm() + b.norm())
+        let mut v_jumps = Vec::with_capacity(uc * vc);
+        for i in 0..uc {
+            v_jumps.extend((0..vc).map(|j| {
+                if self.v_stiffness.is_interior(j) {
+                    self.v_jump_from_tangents(i, j)
+                } else {
+                    Vec3::zeros()
+                }
+            }));
+        }
+        self.z_bounds = (0..uc * vc)
+            .map(|k| u_jumps[(k % vc) * uc + k / vc].norm() + v_jumps[k].norm())
             .collect();
         self.u_jumps = u_jumps;
         self.v_jumps = v_jumps;
     }
 
     /// The network energy as the sum of every segment's ∫|C''|² (drops the rounding that the
-    /// O(1) updates gather). O(m·n).
-    pub fn recompute_energy(&mut self) {
+    /// O(1) updates gather; `columns`: the points column-major). O(m·n).
+    fn recompute_energy(&mut self, columns: &[Vec3]) {
+        let uc = self.u_count;
         let mut energy = 0.0;
         for j in 0..self.v_count {
-            for i in 0..self.u_count {
+            for i in 0..uc {
                 if let Some(n) = self.u_stiffness.next(i) {
-                    let (a, b) = (self.index(i, j), self.index(n, j));
+                    let (a, b) = (j * uc + i, j * uc + n);
                     energy += hermite_energy(
-                        self.points[a],
-                        self.points[b],
+                        columns[a],
+                        columns[b],
                         self.u_tangents[a],
                         self.u_tangents[b],
                         self.u_stiffness.step(i),
@@ -341,8 +367,15 @@ impl Network {
         self.energy = energy;
     }
 
+    /// Row-major index of node (i, j): points, v-line data, z bounds and the flat indices of
+    /// the API.
     fn index(&self, i: usize, j: usize) -> usize {
         i * self.v_count + j
+    }
+
+    /// Column-major index of node (i, j): u-line data.
+    fn column_index(&self, i: usize, j: usize) -> usize {
+        j * self.u_count + i
     }
 
     /// Whether node (i, j) has a z_ij (interior along both directions, a seam counting as
@@ -366,7 +399,7 @@ impl Network {
 
     /// M^u_ij = ∂S/∂u(u_i, v_j).
     pub fn u_tangent(&self, i: usize, j: usize) -> Vec3 {
-        self.u_tangents[self.index(i, j)]
+        self.u_tangents[self.column_index(i, j)]
     }
 
     /// M^v_ij = ∂S/∂v(u_i, v_j).
@@ -375,9 +408,9 @@ impl Network {
     }
 
     /// ∂³S/∂u³(u_i+, v_j) − ∂³S/∂u³(u_i−, v_j) from the tangents, at a node interior along u.
-    fn u_jump_from_tangents(&self, i: usize, j: usize) -> Vec3 {
+    fn u_jump_from_tangents(&self, line: &[Vec3], tangents: &[Vec3], i: usize) -> Vec3 {
         let s = &self.u_stiffness;
-        let (p, m) = (|k: usize| self.point(k, j), |k: usize| self.u_tangent(k, j));
+        let (p, m) = (|k: usize| line[k], |k: usize| tangents[k]);
         let after = s
             .next(i)
             .map_or(Vec3::zeros(), |n| third(p(i), p(n), m(i), m(n), s.step(i)));
@@ -402,7 +435,7 @@ impl Network {
 
     /// ∂³S/∂u³(u_i+, v_j) − ∂³S/∂u³(u_i−, v_j) (0 at an open end along u). O(1).
     pub fn u_jump(&self, i: usize, j: usize) -> Vec3 {
-        self.u_jumps[self.index(i, j)]
+        self.u_jumps[self.column_index(i, j)]
     }
 
     /// ∂³S/∂v³(u_i, v_j+) − ∂³S/∂v³(u_i, v_j−) (0 at an open end along v). O(1).
@@ -421,23 +454,28 @@ impl Network {
 
     /// (J^u, J^v) at every node, flat (i-major).
     pub fn u_jumps_and_v_jumps(&self) -> impl Iterator<Item = (Vec3, Vec3)> + '_ {
-        self.u_jumps.iter().copied().zip(self.v_jumps.iter().copied())
+        (0..self.u_count * self.v_count).map(|k| (self.u_jumps[self.column_of(k)], self.v_jumps[k]))
     }
 
     /// z_ij = |u jump| + |v jump| (Eq. 26, corrected in papers/README.md), interior nodes.
     /// O(1).
     pub fn z(&self, i: usize, j: usize) -> f64 {
-        let k = self.index(i, j);
-        self.u_jumps[k].norm() + self.v_jumps[k].norm()
+        self.u_jump(i, j).norm() + self.v_jump(i, j).norm()
     }
 
     /// max z_ij over the interior nodes (0 when there are none). O(m·n).
     pub fn max_z(&self) -> f64 {
+        // In bands of rows, so that both the column-major u-jumps and the row-major v-jumps
+        // are read in runs (the largest value does not depend on the order).
+        const BAND: usize = 8;
         let mut max = 0.0f64;
-        for i in 0..self.u_count {
+        for first in (0..self.u_count).step_by(BAND) {
+            let band = first..(first + BAND).min(self.u_count);
             for j in 0..self.v_count {
-                if self.is_interior(i, j) {
-                    max = max.max(self.z(i, j));
+                for i in band.clone() {
+                    if self.is_interior(i, j) {
+                        max = max.max(self.z(i, j));
+                    }
                 }
             }
         }
@@ -515,7 +553,12 @@ impl Network {
 
     /// z of the node at flat index k (i·v_count + j): |J^u| + |J^v| (Eq. 26). O(1).
     pub fn z_at(&self, k: usize) -> f64 {
-        self.u_jumps[k].norm() + self.v_jumps[k].norm()
+        self.u_jumps[self.column_of(k)].norm() + self.v_jumps[k].norm()
+    }
+
+    /// The column-major index of the node at flat (row-major) index k.
+    fn column_of(&self, k: usize) -> usize {
+        (k % self.v_count) * self.u_count + k / self.v_count
     }
 
     /// An upper bound of the z of the node at flat index k, kept by every move (exact after a
@@ -529,6 +572,18 @@ impl Network {
         let z = self.z_at(k);
         self.z_bounds[k] = z;
         z
+    }
+
+    /// Asks the processor to start loading what a move of P_ij reads first (the point, its
+    /// jumps, its z bound): a caller that knows its next moves issues this a few moves ahead,
+    /// so that the loads overlap the moves in between instead of stalling the next one (module
+    /// docs, "memory layout"). Changes no value. O(1).
+    pub fn prefetch(&self, i: usize, j: usize) {
+        let k = self.index(i, j);
+        prefetch(&self.points[k]);
+        prefetch(&self.u_jumps[self.column_index(i, j)]);
+        prefetch(&self.v_jumps[k]);
+        prefetch(&self.z_bounds[k]);
     }
 
     fn move_one(&mut self, i: usize, j: usize, position: Vec3) -> Result<()> {
@@ -563,14 +618,18 @@ impl Network {
 
     /// Adds `delta` to P_ij and its responses to the tangents, the jumps and the z bounds.
     fn shift(&mut self, i: usize, j: usize, delta: Vec3) {
-        let vc = self.v_count;
+        let (uc, vc) = (self.u_count, self.v_count);
         let size = delta.norm();
         self.points[i * vc + j] += delta;
         if self.track_tangents {
             let (u_lo, u_values) = &self.u_stiffness.response[i];
-            for (start, offset, len) in runs(*u_lo, u_values.len(), self.u_count) {
-                for (l, &r) in (start..start + len).zip(&u_values[offset..offset + len]) {
-                    self.u_tangents[l * vc + j] += delta * r;
+            for (start, offset, len) in runs(*u_lo, u_values.len(), uc) {
+                let column = j * uc + start;
+                for (t, &r) in self.u_tangents[column..column + len]
+                    .iter_mut()
+                    .zip(&u_values[offset..offset + len])
+                {
+                    *t += delta * r;
                 }
             }
             let (v_lo, v_values) = &self.v_stiffness.response[j];
@@ -585,11 +644,16 @@ impl Network {
             }
         }
         let (u_lo, u_values) = &self.u_stiffness.jump_response[i];
-        for (start, offset, len) in runs(*u_lo, u_values.len(), self.u_count) {
-            for (l, &r) in (start..start + len).zip(&u_values[offset..offset + len]) {
-                let k = l * vc + j;
-                self.u_jumps[k] += delta * r;
-                self.z_bounds[k] += r.abs() * size;
+        for (start, offset, len) in runs(*u_lo, u_values.len(), uc) {
+            // The jumps along the u-line are contiguous; the z bounds are strided (a small
+            // array, module docs).
+            let column = j * uc + start;
+            for ((l, jump), &r) in (start..start + len)
+                .zip(&mut self.u_jumps[column..column + len])
+                .zip(&u_values[offset..offset + len])
+            {
+                *jump += delta * r;
+                self.z_bounds[l * vc + j] += r.abs() * size;
             }
         }
         let (v_lo, v_values) = &self.v_stiffness.jump_response[j];
@@ -606,6 +670,38 @@ impl Network {
             }
         }
     }
+}
+
+/// A hint to the processor to bring the cache line of `value` into its caches (x86-64's
+/// `prefetcht0`; nothing elsewhere). It has no effect on any value.
+pub(crate) fn prefetch<T>(value: &T) {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: a prefetch reads no memory architecturally and cannot fault, whatever the
+    // address (here a live reference); SSE, which provides it, is part of every x86-64
+    // target.
+    unsafe {
+        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+        _mm_prefetch::<_MM_HINT_T0>(std::ptr::from_ref(value).cast());
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = value;
+}
+
+/// The `rows` × `columns` row-major `values` column-major, in square blocks (each read and
+/// written in runs). O(rows · columns).
+fn transpose(values: &[Vec3], rows: usize, columns: usize) -> Vec<Vec3> {
+    const BLOCK: usize = 8;
+    let mut out = vec![Vec3::zeros(); values.len()];
+    for i0 in (0..rows).step_by(BLOCK) {
+        for j0 in (0..columns).step_by(BLOCK) {
+            for i in i0..(i0 + BLOCK).min(rows) {
+                for j in j0..(j0 + BLOCK).min(columns) {
+                    out[j * rows + i] = values[i * columns + j];
+                }
+            }
+        }
+    }
+    out
 }
 
 /// A window of `len` entries from node `lo` along a line of `count` nodes (wrapping round a

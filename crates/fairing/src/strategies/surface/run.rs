@@ -10,7 +10,7 @@ use fairness::surface::thin_plate_energy;
 use fairness::GaussLegendre;
 
 use super::closed_form::{fixed_tangent_targets, limit_target, limit_targets};
-use super::network::Network;
+use super::network::{prefetch, Network};
 use super::queue::{LazyQueue, SweepQueue};
 use super::{
     boundary, group_bad_points, singular, thin_plate, NodeMove, Objective, Refusal, Region,
@@ -21,6 +21,10 @@ use crate::{project_into_ball, Error, Result, TerminationReason};
 
 /// The fractions of a refused step tried before the run ends (module docs, refusal rules).
 const RETRIES: [f64; 3] = [0.5, 0.25, 0.125];
+
+/// How many moves ahead the sorted sweep prefetches a move's first loads
+/// ([`Network::prefetch`]); 1 and 2 measured alike at 400 × 400, about 10 % less time.
+const PREFETCH_AHEAD: usize = 2;
 
 /// How many grid lines on each side of a node whose z rose the max-z rule pins.
 const PIN_REACH: usize = 2;
@@ -721,7 +725,17 @@ impl Run<'_> {
                     .map(|&(i, j)| (network.z(i, j), self.layout.index(i, j)))
                     .collect();
                 order.sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
-                for (_, k) in order {
+                for (step, &(_, k)) in order.iter().enumerate() {
+                    // The order is scattered over the grid: the first loads of the move two
+                    // ahead are started now (no effect on any value).
+                    if let Some(&(_, next)) = order.get(step + PREFETCH_AHEAD) {
+                        let (a, b) = node(next);
+                        self.state.network.prefetch(a, b);
+                        prefetch(&self.original[next]);
+                        if let Some(radii) = &self.radii {
+                            prefetch(&radii[next]);
+                        }
+                    }
                     if self.move_group(&[node(k)])? {
                         moved += 1;
                     }
