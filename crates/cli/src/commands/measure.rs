@@ -185,8 +185,10 @@ fn function(points: &[Vec2], detail: Detail) -> Result<CurveMeasurement> {
         || summary::function_of(&spline).map_err(from_fairness),
         || function_drawing(&spline, x, y, detail),
     );
+    // The summary's error first, as when the two ran one after the other.
+    let summary = summary?;
     let mut measurement = drawn?;
-    measurement.measures = measures(&summary?, true);
+    measurement.measures = measures(&summary, true);
     Ok(measurement)
 }
 
@@ -275,8 +277,10 @@ where
         || summary::parametric_of(&spline).map_err(from_fairness),
         || parametric_drawing(&spline, points, project, normal, detail),
     );
+    // The summary's error first, as when the two ran one after the other.
+    let summary = summary?;
     let mut measurement = drawn?;
-    measurement.measures = measures(&summary?, true);
+    measurement.measures = measures(&summary, true);
     Ok(measurement)
 }
 
