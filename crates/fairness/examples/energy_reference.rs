@@ -18,7 +18,7 @@
 use std::time::Instant;
 
 use curve_repr::{EndCondition, Side, SplineFunction};
-use fairness::energy::Energies;
+use fairness::energy::{Energies, MeasuredEnergies};
 use fairness::quadrature::GaussLegendre;
 use fairness::summary::energy_settings;
 
@@ -178,6 +178,22 @@ fn reference(spline: &SplineFunction, points: usize, ds: f64) -> (f64, f64) {
     (ek.total(), ek_prime.total())
 }
 
+/// One line: Ek and Ek′ as the library measured them, with their errors, and the time since
+/// `start`.
+fn print_measured(label: &str, start: Instant, measured: &MeasuredEnergies) {
+    let (v, a) = (measured.values, measured.accuracy);
+    println!(
+        "{label} ({:.2} s): Ek {:.12e} ± {:.3e} (met {}), Ek' {:.12e} ± {:.3e} (met {})",
+        start.elapsed().as_secs_f64(),
+        v.ek,
+        a.errors.ek,
+        a.within_tolerance.ek,
+        v.ek_prime,
+        a.errors.ek_prime,
+        a.within_tolerance.ek_prime
+    );
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let path = args.get(1).expect("usage: energy_reference FILE.csv [generic]");
@@ -193,34 +209,15 @@ fn main() {
 
     let start = Instant::now();
     let measured = Energies::measure_polynomial(&spline, 3, &energy_settings()).unwrap();
+    print_measured("report path", start, &measured);
     let (v, a) = (measured.values, measured.accuracy);
-    println!(
-        "report path ({:.2} s): Ek {:.12e} ± {:.3e} (met {}), Ek' {:.12e} ± {:.3e} (met {})",
-        start.elapsed().as_secs_f64(),
-        v.ek,
-        a.errors.ek,
-        a.within_tolerance.ek,
-        v.ek_prime,
-        a.errors.ek_prime,
-        a.within_tolerance.ek_prime
-    );
     if args.iter().any(|a| a == "report-only") {
         return;
     }
     if args.iter().any(|a| a == "generic") {
         let start = Instant::now();
         let measured = Energies::measure(&spline, &energy_settings()).unwrap();
-        let (v, a) = (measured.values, measured.accuracy);
-        println!(
-            "generic path ({:.2} s): Ek {:.12e} ± {:.3e} (met {}), Ek' {:.12e} ± {:.3e} (met {})",
-            start.elapsed().as_secs_f64(),
-            v.ek,
-            a.errors.ek,
-            a.within_tolerance.ek,
-            v.ek_prime,
-            a.errors.ek_prime,
-            a.within_tolerance.ek_prime
-        );
+        print_measured("generic path", start, &measured);
     }
     let start = Instant::now();
     let (ek, ek_prime) = reference(&spline, 20, 0.25);

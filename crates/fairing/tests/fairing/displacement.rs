@@ -144,7 +144,7 @@ fn noisy_y(clean: &[Vec2], sigma: f64, seed: u64) -> Vec<Vec2> {
 
 /// y = sin(x/2) + N(0, σ²) on n points over [0, 4π], the steps (0.5 + U(0, 1)) · 4π/n (the
 /// issue's dense file when n = 10^5 and σ = 0.01), and its clean twin.
-fn noisy_sine(n: usize, sigma: f64, seed: u64) -> (Vec<Vec2>, Vec<Vec2>) {
+pub(crate) fn noisy_sine(n: usize, sigma: f64, seed: u64) -> (Vec<Vec2>, Vec<Vec2>) {
     use rand::RngExt;
     let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
     let normal = Normal::new(0.0, sigma).unwrap();

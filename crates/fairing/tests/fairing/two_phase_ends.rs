@@ -217,20 +217,11 @@ fn a_dent_at_a_segment_join_is_removed() {
 fn dense_noisy_data_end_with_the_clean_curves_inflections() {
     use fairing::displacement::{unasked_move_as, NoiseModel};
     use fairing::two_phase::counts;
-    use rand::{RngExt, SeedableRng};
-    use rand_distr::{Distribution, Normal};
     let n = 20_000;
     let sigma = 0.01;
     for seed in 0..2 {
-        let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
-        let normal = Normal::new(0.0, sigma).unwrap();
-        let mut x = 0.0;
-        let (mut noisy, mut clean) = (Vec::with_capacity(n), Vec::with_capacity(n));
-        for _ in 0..n {
-            x += (0.5 + rng.random::<f64>()) * 4.0 * PI / n as f64;
-            clean.push(Vec2::new(x, (x / 2.0).sin()));
-            noisy.push(Vec2::new(x, (x / 2.0).sin() + normal.sample(&mut rng)));
-        }
+        // The same draws as before, from the one generator of this data.
+        let (noisy, clean) = crate::displacement::noisy_sine(n, sigma, seed);
         let spline = |p: &[Vec2]| {
             let (x, y): (Vec<f64>, Vec<f64>) = p.iter().map(|p| (p.x, p.y)).unzip();
             SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap()
