@@ -250,20 +250,25 @@ fn main() -> Result<(), Error> {
             "HAN_MAX_RUN" => tuned.max_run = value.parse()?,
             "HAN_LIMIT" => tuned_partition.limit = value.parse::<f64>()?.to_radians(),
             "HAN_MMF" => tuned.max_move_factor = value.parse()?,
+            "HAN_DENOISE" => {
+                tuned.denoise = serde_json::from_value(serde_json::Value::String(value))?;
+            }
+            "HAN_PASSES" => tuned.max_passes = value.parse()?,
+            "HAN_NOISE_MOVES" => tuned.noise_moves = value.parse()?,
             _ => {}
         }
     }
     let variants = [
         (
             "default",
-            tuned,
+            tuned.clone(),
             tuned_partition,
             SegmentedFairing::<TwoPhase>::DEFAULT_PASSES,
         ),
         ("paper", TwoPhaseSettings::paper(), PartitionSettings::paper(), 3),
         (
             "prepass",
-            TwoPhaseSettings::default().with_max_passes(0),
+            tuned.clone().with_max_passes(0),
             PartitionSettings::default(),
             1,
         ),
