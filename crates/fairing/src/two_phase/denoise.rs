@@ -29,7 +29,10 @@
 //! On dense data jump-lsq's λ can stop at its precision limit ([`jump_lsq`]'s λ_max) before
 //! its rule is met, and the fit then leaves noise: on 2·10^4 points of a noisy sine with
 //! uneven spacing it left 15–26 inflections (the clean curve has 1–2) and the phases ended 5
-//! where the cubic pre-pass ends 1. When λ is limited the jump-lsq variants therefore fall
+//! where the cubic pre-pass ends 1 (λ limited there and on 10^5 such points; not on 10^5
+//! evenly spaced points of sin(x/2), x = 0.1k, where jump-lsq then ends with 1592 vibrations
+//! against the cubic pre-pass's 22 177–22 692, both with the clean curve's 1591 inflections,
+//! seeds 1–4). When λ is limited the jump-lsq variants therefore fall
 //! back to the cubic smoothing spline of `gcv` (for that fit; a closed curve's periodic fit
 //! falls back to `gcv`'s seam blend).
 //!
