@@ -25,8 +25,14 @@
 //! hull lines as functions y(x)) are faired the same way, without a clean twin.
 //! `examples/two_phase_judge.py` runs the judge over `cases.tsv` and prints the table.
 //!
+//! It also writes `_prepass.csv`: the default variant's noise pre-pass alone for curves (no
+//! phase pass); for functions the pre-pass and one full pass (the pipeline's first step).
+//!
 //! Run: `cargo run --release -p fairing --example two_phase_judge -- [OUT_DIR] [SEEDS]`
-//! (default `out/two_phase_judge`, seeds 1).
+//! (default `out/two_phase_judge`, seeds 1). For measurements, environment variables override
+//! the default variant's settings: `HAN_DENOISE` (`off`, `gcv`, `jump-lsq`, `jump-lsq-gcv`),
+//! `HAN_MAX_RUN`, `HAN_LIMIT` (turning limit in degrees), `HAN_MMF` (`max-move-factor`),
+//! `HAN_PASSES` (`max-passes`), `HAN_NOISE_MOVES`.
 
 use std::f64::consts::PI;
 use std::fmt::Write as _;
