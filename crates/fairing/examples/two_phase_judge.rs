@@ -25,8 +25,14 @@
 //! hull lines as functions y(x)) are faired the same way, without a clean twin.
 //! `examples/two_phase_judge.py` runs the judge over `cases.tsv` and prints the table.
 //!
+//! It also writes `_prepass.csv`: the default variant's noise pre-pass alone for curves (no
+//! phase pass); for functions the pre-pass and one full pass (the pipeline's first step).
+//!
 //! Run: `cargo run --release -p fairing --example two_phase_judge -- [OUT_DIR] [SEEDS]`
-//! (default `out/two_phase_judge`, seeds 1).
+//! (default `out/two_phase_judge`, seeds 1). For measurements, environment variables override
+//! the default variant's settings: `HAN_DENOISE` (`off`, `gcv`, `jump-lsq`, `jump-lsq-gcv`),
+//! `HAN_MAX_RUN`, `HAN_LIMIT` (turning limit in degrees), `HAN_MMF` (`max-move-factor`),
+//! `HAN_PASSES` (`max-passes`), `HAN_NOISE_MOVES`.
 
 use std::f64::consts::PI;
 use std::fmt::Write as _;
@@ -250,20 +256,25 @@ fn main() -> Result<(), Error> {
             "HAN_MAX_RUN" => tuned.max_run = value.parse()?,
             "HAN_LIMIT" => tuned_partition.limit = value.parse::<f64>()?.to_radians(),
             "HAN_MMF" => tuned.max_move_factor = value.parse()?,
+            "HAN_DENOISE" => {
+                tuned.denoise = serde_json::from_value(serde_json::Value::String(value))?;
+            }
+            "HAN_PASSES" => tuned.max_passes = value.parse()?,
+            "HAN_NOISE_MOVES" => tuned.noise_moves = value.parse()?,
             _ => {}
         }
     }
     let variants = [
         (
             "default",
-            tuned,
+            tuned.clone(),
             tuned_partition,
             SegmentedFairing::<TwoPhase>::DEFAULT_PASSES,
         ),
         ("paper", TwoPhaseSettings::paper(), PartitionSettings::paper(), 3),
         (
             "prepass",
-            TwoPhaseSettings::default().with_max_passes(0),
+            tuned.clone().with_max_passes(0),
             PartitionSettings::default(),
             1,
         ),

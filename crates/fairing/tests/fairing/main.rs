@@ -11,5 +11,6 @@ mod strain_energy;
 mod surface;
 mod two_phase;
 mod two_phase_curves;
+mod two_phase_denoise;
 mod two_phase_ends;
 mod two_phase_fine;
