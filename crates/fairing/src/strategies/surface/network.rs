@@ -302,6 +302,8 @@ pub struct Network {
     v_count: usize,
     /// P_ij at i·v_count + j.
     points: Vec<Vec3>,
+    /// Scratch of a rebuild: the points column-major (kept for the next rebuild's storage).
+    columns: Vec<Vec3>,
     /// M^u_ij at j·u_count + i (column-major: a u-line is contiguous).
     u_tangents: Vec<Vec3>,
     /// M^v_ij at i·v_count + j.
@@ -327,8 +329,47 @@ impl Network {
     /// given knots: one per node along an open direction, one per node and the closing one
     /// along a closed direction (`closed` = (u, v)). O(m·n + (m + n) · window).
     pub fn new(points: &[Vec3], u_knots: &[f64], v_knots: &[f64], closed: (bool, bool)) -> Result<Self> {
-        let u_count = u_knots.len() - usize::from(closed.0);
-        let v_count = v_knots.len() - usize::from(closed.1);
+        let mut network = Self {
+            u_count: 0,
+            v_count: 0,
+            points: Vec::new(),
+            columns: Vec::new(),
+            u_tangents: Vec::new(),
+            v_tangents: Vec::new(),
+            u_jumps: Vec::new(),
+            v_jumps: Vec::new(),
+            z_bounds: Vec::new(),
+            track_tangents: true,
+            energy: 0.0,
+            u_stiffness: Stiffness::new(u_knots, closed.0)?,
+            v_stiffness: Stiffness::new(v_knots, closed.1)?,
+        };
+        network.fill(points, u_knots, v_knots)?;
+        Ok(network)
+    }
+
+    /// The network of other points and knots in this one's storage (the same values as
+    /// [`new`](Self::new), without a fresh allocation of its m·n arrays: a run rebuilds once
+    /// per step, and fresh arrays of that size are fresh pages, each a fault on first
+    /// touch). Tangents are tracked again. On an error the network is left unusable.
+    /// O(m·n + (m + n) · window).
+    pub fn rebuild(
+        &mut self,
+        points: &[Vec3],
+        u_knots: &[f64],
+        v_knots: &[f64],
+        closed: (bool, bool),
+    ) -> Result<()> {
+        self.u_stiffness = Stiffness::new(u_knots, closed.0)?;
+        self.v_stiffness = Stiffness::new(v_knots, closed.1)?;
+        self.track_tangents = true;
+        self.fill(points, u_knots, v_knots)
+    }
+
+    /// Points, tangents, jumps, bounds and energy over the knots of the stiffnesses. O(m·n).
+    fn fill(&mut self, points: &[Vec3], u_knots: &[f64], v_knots: &[f64]) -> Result<()> {
+        let (u_count, v_count) = (self.u_stiffness.count, self.v_stiffness.count);
+        let closed = (self.u_stiffness.closed, self.v_stiffness.closed);
         if points.len() != u_count * v_count {
             return Err(curve_repr::Error::LengthMismatch {
                 what: "grid points",
@@ -337,6 +378,7 @@ impl Network {
             }
             .into());
         }
+        (self.u_count, self.v_count) = (u_count, v_count);
         let settings = |knots: &[f64], closed: bool| {
             let s = HermiteSettings::<3>::new().with_parameters(knots.to_vec());
             if closed {
@@ -348,39 +390,36 @@ impl Network {
         let (u_settings, v_settings) = (settings(u_knots, closed.0), settings(v_knots, closed.1));
         // The u-lines' passes read the points column-major, from one blocked transpose rather
         // than strided (a miss per point on a grid larger than the cache).
-        let columns = transpose(points, u_count, v_count);
-        let mut u_tangents = Vec::with_capacity(points.len());
-        for line in columns.chunks(u_count) {
-            u_tangents.extend_from_slice(&HermiteSpline::new(line, &u_settings)?.tangents()[..u_count]);
+        transpose_into(points, u_count, v_count, &mut self.columns);
+        self.u_tangents.clear();
+        for line in self.columns.chunks(u_count) {
+            self.u_tangents
+                .extend_from_slice(&HermiteSpline::new(line, &u_settings)?.tangents()[..u_count]);
         }
-        let mut v_tangents = Vec::with_capacity(points.len());
+        self.v_tangents.clear();
         for line in points.chunks(v_count) {
-            v_tangents.extend_from_slice(&HermiteSpline::new(line, &v_settings)?.tangents()[..v_count]);
+            self.v_tangents
+                .extend_from_slice(&HermiteSpline::new(line, &v_settings)?.tangents()[..v_count]);
         }
-        let mut network = Self {
-            u_count,
-            v_count,
-            points: points.to_vec(),
-            u_tangents,
-            v_tangents,
-            u_jumps: Vec::new(),
-            v_jumps: Vec::new(),
-            z_bounds: Vec::new(),
-            track_tangents: true,
-            energy: 0.0,
-            u_stiffness: Stiffness::new(u_knots, closed.0)?,
-            v_stiffness: Stiffness::new(v_knots, closed.1)?,
-        };
-        network.recompute_energy(&columns);
-        network.recompute_jumps(&columns);
-        Ok(network)
+        self.points.clear();
+        self.points.extend_from_slice(points);
+        self.recompute_energy();
+        self.recompute_jumps();
+        Ok(())
     }
 
     /// The jumps and the z bounds from the tangents (`columns`: the points column-major).
     /// O(m·n).
-    fn recompute_jumps(&mut self, columns: &[Vec3]) {
+    fn recompute_jumps(&mut self) {
         let (uc, vc) = (self.u_count, self.v_count);
-        let mut u_jumps = Vec::with_capacity(uc * vc);
+        // Taken out while they are filled (the jumps are read through `self`), then put back.
+        let (columns, mut u_jumps, mut v_jumps, mut z_bounds) = (
+            std::mem::take(&mut self.columns),
+            std::mem::take(&mut self.u_jumps),
+            std::mem::take(&mut self.v_jumps),
+            std::mem::take(&mut self.z_bounds),
+        );
+        u_jumps.clear();
         for j in 0..vc {
             let (line, tangents) = (
                 &columns[j * uc..(j + 1) * uc],
@@ -394,7 +433,7 @@ impl Network {
                 }
             }));
         }
-        let mut v_jumps = Vec::with_capacity(uc * vc);
+        v_jumps.clear();
         for i in 0..uc {
             v_jumps.extend((0..vc).map(|j| {
                 if self.v_stiffness.is_interior(j) {
@@ -404,17 +443,15 @@ impl Network {
                 }
             }));
         }
-        self.z_bounds = (0..uc * vc)
-            .map(|k| u_jumps[(k % vc) * uc + k / vc].norm() + v_jumps[k].norm())
-            .collect();
-        self.u_jumps = u_jumps;
-        self.v_jumps = v_jumps;
+        z_bounds.clear();
+        z_bounds.extend((0..uc * vc).map(|k| u_jumps[(k % vc) * uc + k / vc].norm() + v_jumps[k].norm()));
+        (self.columns, self.u_jumps, self.v_jumps, self.z_bounds) = (columns, u_jumps, v_jumps, z_bounds);
     }
 
     /// The network energy as the sum of every segment's ∫|C''|² (drops the rounding that the
-    /// O(1) updates gather; `columns`: the points column-major). O(m·n).
-    fn recompute_energy(&mut self, columns: &[Vec3]) {
-        let uc = self.u_count;
+    /// O(1) updates gather; read after the points and their column-major copy). O(m·n).
+    fn recompute_energy(&mut self) {
+        let (uc, columns) = (self.u_count, &self.columns);
         let mut energy = 0.0;
         for j in 0..self.v_count {
             for i in 0..uc {
@@ -523,13 +560,12 @@ impl Network {
         self.v_jumps[self.index(i, j)]
     }
 
-    /// Stops (or resumes, after a rebuild) keeping the tangents up to date during moves: a
+    /// Stops keeping the tangents up to date during moves, until the next rebuild: a
     /// network used with the limit replacement (Eq. 21) reads only jumps, and skipping the
     /// tangents halves a move's cost. [`u_tangent`](Self::u_tangent) and
     /// [`v_tangent`](Self::v_tangent) are stale after moves made without them.
-    pub fn without_tangents(mut self) -> Self {
+    pub fn stop_tracking_tangents(&mut self) {
         self.track_tangents = false;
-        self
     }
 
     /// (J^u, J^v) at every node, flat (i-major).
@@ -767,11 +803,12 @@ pub(crate) fn prefetch<T>(value: &T) {
     let _ = value;
 }
 
-/// The `rows` × `columns` row-major `values` column-major, in square blocks (each read and
-/// written in runs). O(rows · columns).
-fn transpose(values: &[Vec3], rows: usize, columns: usize) -> Vec<Vec3> {
+/// The `rows` × `columns` row-major `values` column-major into `out`, in square blocks (each
+/// read and written in runs). O(rows · columns).
+fn transpose_into(values: &[Vec3], rows: usize, columns: usize, out: &mut Vec<Vec3>) {
     const BLOCK: usize = 8;
-    let mut out = vec![Vec3::zeros(); values.len()];
+    out.clear();
+    out.resize(values.len(), Vec3::zeros());
     for i0 in (0..rows).step_by(BLOCK) {
         for j0 in (0..columns).step_by(BLOCK) {
             for i in i0..(i0 + BLOCK).min(rows) {
@@ -781,7 +818,6 @@ fn transpose(values: &[Vec3], rows: usize, columns: usize) -> Vec<Vec3> {
             }
         }
     }
-    out
 }
 
 /// A window of `len` entries from node `lo` along a line of `count` nodes (wrapping round a
