@@ -115,14 +115,11 @@ impl Stiffness {
             let tangents = line.tangents();
             let tangent = |k: usize| tangents[k][0];
             let point = |k: usize| if k == i { 1.0 } else { 0.0 };
-            let jump = |k: usize| -> f64 {
-                let after = stiffness.next(k).map_or(0.0, |n| {
-                    third1(point(k), point(n), tangent(k), tangent(n), stiffness.steps[k])
-                });
-                let before = stiffness.previous(k).map_or(0.0, |p| {
-                    third1(point(p), point(k), tangent(p), tangent(k), stiffness.steps[p])
-                });
-                after - before
+            // The third derivative on the segment from node k to its next node, if any.
+            let third_from = |k: usize| {
+                stiffness
+                    .next(k)
+                    .map(|n| third1(point(k), point(n), tangent(k), tangent(n), stiffness.steps[k]))
             };
             // The tangents' support, one node wider for the jumps (a jump reads the tangents
             // next to it); the whole line when that band would meet itself round a closed one.
@@ -152,16 +149,30 @@ impl Stiffness {
             });
             tangent_band.clear();
             tangent_band.extend(nodes.clone().map(tangent));
+            // The jump at a node is the third derivative after it minus the one before it:
+            // each segment's once, the segment before a band node being the one after the
+            // band node before it.
             jump_band.clear();
-            jump_band.extend(nodes.map(|k| if stiffness.is_interior(k) { jump(k) } else { 0.0 }));
+            let mut before = stiffness.previous(first).and_then(third_from);
+            for k in nodes {
+                let after = third_from(k);
+                jump_band.push(if stiffness.is_interior(k) {
+                    after.unwrap_or(0.0) - before.unwrap_or(0.0)
+                } else {
+                    0.0
+                });
+                before = after;
+            }
             let response = band_window(&tangent_band, back, i, count);
             let jump_window = band_window(&jump_band, back, i, count);
-            let diagonal = stiffness.is_interior(i).then(|| jump(i));
+            // i is band node `back`, its previous node (if any) band node `back` − 1.
+            let own = back as usize;
+            let diagonal = stiffness.is_interior(i).then(|| jump_band[own]);
             // K_{p,i} = ∂J_p/∂P_i, p the previous node.
             let side = stiffness
                 .previous(i)
                 .filter(|&p| stiffness.is_interior(p) && stiffness.is_interior(i))
-                .map(|p| (p, jump(p)));
+                .map(|p| (p, jump_band[own - 1]));
             stiffness.response.push(response);
             stiffness.jump_response.push(jump_window);
             if let Some(value) = diagonal {
