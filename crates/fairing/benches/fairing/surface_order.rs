@@ -3,7 +3,10 @@
 //! 50 × 50 to 400 × 400, reported per point moved (criterion's throughput: 4 · size²
 //! elements). Flat time per element means each move costs O(window) whatever the grid's
 //! size, and the step's O(m·n) parts (the knot refresh and judgement, the order) are
-//! amortised over its m·n moves. `queue`: largest current z first off an indexed heap;
+//! amortised over its m·n moves. Costs per grid line and per run (the boundary curves'
+//! fairing, the unit responses of the knot vectors) are not amortised that way, and make the
+//! smallest net the slowest per point (the surface module's docs, "cost of a step").
+//! `queue`: largest current z first off an indexed heap;
 //! `sort`: the paper's sort of the step's starting z. Filter with
 //! `cargo bench -p fairing --bench fairing -- surface_step`.
 

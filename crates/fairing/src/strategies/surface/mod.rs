@@ -84,22 +84,46 @@
 //!   in O(1) each, and the sort, O(m·n log(m·n)): the only super-linear term, 2–4 % of a
 //!   step at 400 × 400) and the judgement: chord-length knots from the moved points, the
 //!   network rebuilt over them (one spline solve per grid line, the unit responses of the
-//!   two knot vectors, O(m² + n²) = O(m·n) on a square grid), its energy and largest z. The
+//!   two knot vectors, O((m + n) · window)), its energy and largest z, in the storage of the
+//!   step before (a fresh grid-sized array is fresh pages, a fault per 4 KB). The
 //!   knot refresh cannot be local: a move of P_ij changes only the averaged knot steps next
 //!   to i and j, but every u-line shares the u knots, so the responses, tangents and jumps
 //!   of all n + 1 u-lines change near i (O(n · window) a move, against O(window) for the
 //!   move itself); one full refresh per step is the cheaper schedule. The max-z and energy
 //!   rules judge the whole surface over the refreshed knots, which a local measure cannot
 //!   replace either.
-//! - *What still grows with the size:* memory traffic, not work. The moves come in the
-//!   order of z, scattered over the grid; once its data outgrow the processor's caches
-//!   (from ~200 × 200 on the machine of the notes) the cache lines a move touches (~50: its
-//!   point and its two windows of jumps and z bounds) are misses. The network keeps the
-//!   windows contiguous where it can (`network`'s "memory layout") and the sweep prefetches
-//!   the move two ahead: in the `surface_step` bench (4 steps, the whole run) the time per
-//!   point at 400 × 400 went from 1.55× that at 100 × 100 to 1.32×. No order of the same
-//!   moves avoids the rest: each move's result depends on every earlier move whose windows
-//!   cross its own, so the paper's order can be followed but not regrouped by place.
+//! - *Per grid line, not per point (so a small grid pays more per point):* the unit
+//!   responses, O((m + n) · window) per step (they were O(m² + n²), quadratic on a long
+//!   strip: a 10 × 20 000 strip's two steps took 10.1 s, now 0.86 s), and once per run the
+//!   boundary fairing of step 2.1, the curve method on the four boundary curves to its own
+//!   convergence (O(perimeter) per curve step, some 540 steps at 50 × 50). In the
+//!   `surface_step` bench (4 steps, the whole run) at 50 × 50 the boundary fairing is 28 % of
+//!   the instructions (callgrind) and the unit responses 13 %; at 400 × 400, 3.3 % and 3.6 %.
+//!   Per point moved that is 3 200 and 1 500 instructions at 50 × 50 against 260 and 280 at
+//!   400 × 400, while the rest costs 6 600 against 7 400: these two terms are the whole
+//!   difference in instructions between the sizes.
+//! - *What grows with the size:* memory traffic, not work. The moves come in the order of
+//!   z, scattered over the grid; once its data outgrow the processor's caches the cache lines
+//!   a move touches (~50: its point and its two windows of jumps and z bounds) are misses.
+//!   The network keeps the windows contiguous where it can (`network`'s "memory layout") and
+//!   the sweep prefetches the move two ahead (prefetching the move's whole windows as well
+//!   measured slower: 1.29–1.39 against 1.49–1.54 M points/s of CPU time at 400 × 400). No
+//!   order of the same moves avoids the rest: each move's result depends on every earlier
+//!   move whose windows cross its own, so the paper's order can be followed but not
+//!   regrouped by place. How much this costs depends on the machine: the earlier notes
+//!   measured the time per point at 400 × 400 at 1.32× that at 100 × 100; on the machine of
+//!   the numbers below (2 MB of L2 per core, 32 MB of L3) it is within 5 % of it.
+//! - *Measured* (2 shared cores, AMD EPYC with 2 MB L2 per core and 32 MB L3, load 2–5
+//!   from other work; the build before the storage reuse and the banded responses run
+//!   alternately with this one): `cargo bench -p fairing --bench fairing --
+//!   surface_step/sort`, medians of six rounds each, 0.95–1.13 / 1.15–1.36 / 1.44–1.59 /
+//!   1.20–1.31 M points/s at 50² / 100² / 200² / 400² before, 1.02–1.22 / 1.38–1.48 /
+//!   1.41–1.78 / 1.05–1.51 after; on the process's CPU time over the same 4-step runs in a
+//!   loop (medians of three rounds, load ~2) before 1.05 / 1.25 / 1.35 / 1.25, after 1.13 /
+//!   1.39 / 1.45 / 1.33; the same points bit for bit. Not flat at the small end (1.28× from
+//!   50² to 200²): 50 × 50 is the slowest per point, by the per-line and per-run costs
+//!   above; with the boundary fairing off (CPU time, two rounds) the order reverses, 1.95 /
+//!   1.91 / 1.76 / 1.25–1.61, the largest grid paying its cache misses.
 
 // The building blocks index the grid directly (their callers validate it first), so they
 // stay inside the crate; `SurfaceFairing` is the checked entry point.

@@ -46,6 +46,10 @@
 //! The moves' scattered order also makes the first load of each move (its point, jumps and
 //! bound) a miss that stalls it; [`Network::prefetch`] lets the caller, which knows the
 //! order, start those loads two moves ahead.
+//!
+//! A run rebuilds its network once per step ([`Network::rebuild`]): into the storage it
+//! already has, so that a step touches no fresh pages (at 400 × 400 a step's arrays were
+//! ~45 MB of new allocations).
 
 use curve_repr::{HermiteEnds, HermiteSettings, HermiteSpline, Interpolant, Vec3, Vector};
 
@@ -84,14 +88,20 @@ impl Stiffness {
     /// Measures the responses by moving one point at a time of the zero scalar spline over
     /// `knots` to 1 (the tangents are linear in the points, so the response is exact up to
     /// rounding), and K from the jumps next to it. `knots` has one entry per node, plus the
-    /// closing one when `closed`. O(N · window).
+    /// closing one when `closed`. O(N · window): each unit move changes the tangents only in
+    /// the spline's update window and leaves them exactly 0 elsewhere (the move back to 0
+    /// re-solves that window with zero data), so the jumps are read in that band only
+    /// (see [`band_of`]); the values are bit for bit those of reading the whole line. (Up
+    /// to [`COPY_RESET`] nodes the line is reset by an O(N) copy, cheaper there than a
+    /// re-solve.) Was O(N²): quadratic on a long strip.
     pub fn new(knots: &[f64], closed: bool) -> Result<Self> {
         let count = knots.len() - usize::from(closed);
         let mut settings = HermiteSettings::<1>::new().with_parameters(knots.to_vec());
         if closed {
             settings = settings.with_ends(HermiteEnds::Closed);
         }
-        let mut line = HermiteSpline::new(&vec![Vector::<1>::zeros(); count], &settings)?;
+        let zero = HermiteSpline::new(&vec![Vector::<1>::zeros(); count], &settings)?;
+        let mut line = zero.clone();
         let steps: Vec<f64> = knots.windows(2).map(|w| w[1] - w[0]).collect();
         let mut stiffness = Self {
             count,
@@ -102,30 +112,72 @@ impl Stiffness {
             jump_response: Vec::with_capacity(count),
             steps,
         };
+        let mut tangent_band = Vec::new();
+        let mut jump_band = Vec::new();
         for i in 0..count {
             line.move_points(&[(i, Vector::<1>::new(1.0))])?;
-            let tangents: Vec<f64> = line.tangents().iter().map(|t| t[0]).collect();
-            stiffness.response.push(window(&tangents, i, closed));
+            let tangents = line.tangents();
+            let tangent = |k: usize| tangents[k][0];
             let point = |k: usize| if k == i { 1.0 } else { 0.0 };
-            let jump = |k: usize| -> f64 {
-                let after = stiffness.next(k).map_or(0.0, |n| {
-                    third1(point(k), point(n), tangents[k], tangents[n], stiffness.steps[k])
-                });
-                let before = stiffness.previous(k).map_or(0.0, |p| {
-                    third1(point(p), point(k), tangents[p], tangents[k], stiffness.steps[p])
-                });
-                after - before
+            // The third derivative on the segment from node k to its next node, if any.
+            let third_from = |k: usize| {
+                stiffness
+                    .next(k)
+                    .map(|n| third1(point(k), point(n), tangent(k), tangent(n), stiffness.steps[k]))
             };
-            let jumps: Vec<f64> = (0..count)
-                .map(|k| if stiffness.is_interior(k) { jump(k) } else { 0.0 })
-                .collect();
-            let jump_window = window(&jumps, i, closed);
-            let diagonal = stiffness.is_interior(i).then(|| jump(i));
+            // The tangents' support, one node wider for the jumps (a jump reads the tangents
+            // next to it); the whole line when that band would meet itself round a closed one.
+            // Round a closed line the whole line is read in the order of `window`'s ring.
+            let whole = if closed {
+                let back = (count as isize - 1) / 2;
+                (back, count as isize - 1 - back)
+            } else {
+                (i as isize, (count - 1 - i) as isize)
+            };
+            let (back, ahead) = band_of(tangents, i, closed).map_or(whole, |(b, a)| {
+                if closed {
+                    (b + 1, a + 1)
+                } else {
+                    ((b + 1).min(whole.0), (a + 1).min(whole.1))
+                }
+            });
+            // The band's nodes in order, wrapping round a closed line.
+            let first = (i as isize - back).rem_euclid(count as isize) as usize;
+            let nodes = (0..=(back + ahead) as usize).map(|d| {
+                let k = first + d;
+                if k >= count {
+                    k - count
+                } else {
+                    k
+                }
+            });
+            tangent_band.clear();
+            tangent_band.extend(nodes.clone().map(tangent));
+            // The jump at a node is the third derivative after it minus the one before it:
+            // each segment's once, the segment before a band node being the one after the
+            // band node before it.
+            jump_band.clear();
+            let mut before = stiffness.previous(first).and_then(third_from);
+            for k in nodes {
+                let after = third_from(k);
+                jump_band.push(if stiffness.is_interior(k) {
+                    after.unwrap_or(0.0) - before.unwrap_or(0.0)
+                } else {
+                    0.0
+                });
+                before = after;
+            }
+            let response = band_window(&tangent_band, back, i, count);
+            let jump_window = band_window(&jump_band, back, i, count);
+            // i is band node `back`, its previous node (if any) band node `back` − 1.
+            let own = back as usize;
+            let diagonal = stiffness.is_interior(i).then(|| jump_band[own]);
             // K_{p,i} = ∂J_p/∂P_i, p the previous node.
             let side = stiffness
                 .previous(i)
                 .filter(|&p| stiffness.is_interior(p) && stiffness.is_interior(i))
-                .map(|p| (p, jump(p)));
+                .map(|p| (p, jump_band[own - 1]));
+            stiffness.response.push(response);
             stiffness.jump_response.push(jump_window);
             if let Some(value) = diagonal {
                 stiffness.diagonal[i] = value;
@@ -133,7 +185,13 @@ impl Stiffness {
             if let Some((p, value)) = side {
                 stiffness.side[p] = value;
             }
-            line.move_points(&[(i, Vector::<1>::zeros())])?;
+            // Back to zero: the unit move re-solved with zero data gives exact zeros, which a
+            // copy of the zero line gives as well, cheaper on a short line.
+            if count <= COPY_RESET {
+                line.clone_from(&zero);
+            } else {
+                line.move_points(&[(i, Vector::<1>::zeros())])?;
+            }
         }
         Ok(stiffness)
     }
@@ -191,26 +249,63 @@ fn third1(p0: f64, p1: f64, m0: f64, m1: f64, h: f64) -> f64 {
 /// the move's own effect, and the network is rebuilt exactly at every step.
 pub const RESPONSE_TRIM: f64 = 1e-13;
 
-/// The significant part of a response around node i: `(lo, values)` with values for lo,
-/// lo + 1, … (mod N when closed), from the first to the last entry above [`RESPONSE_TRIM`]
-/// of the largest.
-fn window(values: &[f64], i: usize, closed: bool) -> (usize, Vec<f64>) {
-    let count = values.len();
-    let largest = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+/// Up to this many nodes [`Stiffness::new`] resets its line after a unit move by copying the
+/// zero line (O(N)) rather than re-solving the move's window with zero data (~60 rows, some
+/// 16 000 instructions): the same exact zeros either way.
+const COPY_RESET: usize = 512;
+
+/// How many exact zeros in a row end the support of a unit move's tangents: inside the
+/// spline's update window the response decays by at most 1/2 per knot from 1 down to
+/// ~1e-17, so it holds no run of exact zeros (a single one can occur, at the moved node of a
+/// symmetric stretch), and outside it every tangent is exactly 0.
+const ZERO_RUN: usize = 4;
+
+/// The support of the tangents after a unit move of node i of a line of zeros: (nodes
+/// before i, nodes after i) up to the last nonzero tangent each way, scanning out from i
+/// until [`ZERO_RUN`] exact zeros in a row. `None` on a closed line whose support reaches
+/// round to within a node of itself (the caller then reads the whole line). O(window).
+fn band_of(tangents: &[Vector<1>], i: usize, closed: bool) -> Option<(isize, isize)> {
+    let count = tangents.len() as isize;
+    let at = |d: isize| tangents[(i as isize + d).rem_euclid(count) as usize][0];
+    // Offsets −⌊(N−1)/2⌋ … ⌊N/2⌋ round i name every node of a closed line once; the band
+    // with its extra node for the jumps must stay inside them.
+    let (most_back, most_ahead) = if closed {
+        ((count - 1) / 2 - 1, count / 2 - 1)
+    } else {
+        (i as isize, count - 1 - i as isize)
+    };
+    let reach = |sign: isize, most: isize| -> Option<isize> {
+        let (mut last, mut zeros, mut d) = (0, 0, 1);
+        while zeros < ZERO_RUN as isize {
+            if d > most {
+                return if closed { None } else { Some(last) };
+            }
+            if at(sign * d) == 0.0 {
+                zeros += 1;
+            } else {
+                (last, zeros) = (d, 0);
+            }
+            d += 1;
+        }
+        Some(last)
+    };
+    Some((reach(-1, most_back)?, reach(1, most_ahead)?))
+}
+
+/// The significant part of a response around node i, for a line whose values are zero
+/// outside a band: `(lo, values)` with values for lo, lo + 1, … (mod N when closed), from the
+/// first to the last entry above [`RESPONSE_TRIM`] of the largest (i alone when none is).: `band` holds the values of
+/// nodes i − back … (wrapping round a closed line of `count` nodes), a band that, round a
+/// closed line, stays within the offsets −⌊(N−1)/2⌋ … ⌊N/2⌋ of i. The values outside the
+/// band being 0, it is the window of the whole line (the test `stiffness_equals_whole_line`).
+fn band_window(band: &[f64], back: isize, i: usize, count: usize) -> (usize, Vec<f64>) {
+    let largest = band.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let significant = |v: &f64| v.abs() > RESPONSE_TRIM * largest;
-    if !closed {
-        let lo = values.iter().position(significant).unwrap_or(i);
-        let hi = values.iter().rposition(significant).unwrap_or(i);
-        return (lo, values[lo..=hi.max(lo)].to_vec());
-    }
-    // Offsets −⌊(N−1)/2⌋ … ⌊N/2⌋ round i name every node once.
-    let back = (count - 1) / 2;
-    let ring: Vec<f64> = (0..count)
-        .map(|d| values[(i + count - back + d) % count])
-        .collect();
-    let first = ring.iter().position(significant).unwrap_or(back);
-    let last = ring.iter().rposition(significant).unwrap_or(back).max(first);
-    ((i + count - back + first) % count, ring[first..=last].to_vec())
+    let own = back as usize;
+    let first = band.iter().position(significant).unwrap_or(own);
+    let last = band.iter().rposition(significant).unwrap_or(own).max(first);
+    let lo = (i as isize - back + first as isize).rem_euclid(count as isize) as usize;
+    (lo, band[first..=last].to_vec())
 }
 
 /// The iso-parametric spline network of a grid of distinct nodes (see the module docs).
@@ -222,6 +317,8 @@ pub struct Network {
     v_count: usize,
     /// P_ij at i·v_count + j.
     points: Vec<Vec3>,
+    /// Scratch of a rebuild: the points column-major (kept for the next rebuild's storage).
+    columns: Vec<Vec3>,
     /// M^u_ij at j·u_count + i (column-major: a u-line is contiguous).
     u_tangents: Vec<Vec3>,
     /// M^v_ij at i·v_count + j.
@@ -247,8 +344,47 @@ impl Network {
     /// given knots: one per node along an open direction, one per node and the closing one
     /// along a closed direction (`closed` = (u, v)). O(m·n + (m + n) · window).
     pub fn new(points: &[Vec3], u_knots: &[f64], v_knots: &[f64], closed: (bool, bool)) -> Result<Self> {
-        let u_count = u_knots.len() - usize::from(closed.0);
-        let v_count = v_knots.len() - usize::from(closed.1);
+        let mut network = Self {
+            u_count: 0,
+            v_count: 0,
+            points: Vec::new(),
+            columns: Vec::new(),
+            u_tangents: Vec::new(),
+            v_tangents: Vec::new(),
+            u_jumps: Vec::new(),
+            v_jumps: Vec::new(),
+            z_bounds: Vec::new(),
+            track_tangents: true,
+            energy: 0.0,
+            u_stiffness: Stiffness::new(u_knots, closed.0)?,
+            v_stiffness: Stiffness::new(v_knots, closed.1)?,
+        };
+        network.fill(points, u_knots, v_knots)?;
+        Ok(network)
+    }
+
+    /// The network of other points and knots in this one's storage (the same values as
+    /// [`new`](Self::new), without a fresh allocation of its m·n arrays: a run rebuilds once
+    /// per step, and fresh arrays of that size are fresh pages, each a fault on first
+    /// touch). Tangents are tracked again. On an error the network is left unusable.
+    /// O(m·n + (m + n) · window).
+    pub fn rebuild(
+        &mut self,
+        points: &[Vec3],
+        u_knots: &[f64],
+        v_knots: &[f64],
+        closed: (bool, bool),
+    ) -> Result<()> {
+        self.u_stiffness = Stiffness::new(u_knots, closed.0)?;
+        self.v_stiffness = Stiffness::new(v_knots, closed.1)?;
+        self.track_tangents = true;
+        self.fill(points, u_knots, v_knots)
+    }
+
+    /// Points, tangents, jumps, bounds and energy over the knots of the stiffnesses. O(m·n).
+    fn fill(&mut self, points: &[Vec3], u_knots: &[f64], v_knots: &[f64]) -> Result<()> {
+        let (u_count, v_count) = (self.u_stiffness.count, self.v_stiffness.count);
+        let closed = (self.u_stiffness.closed, self.v_stiffness.closed);
         if points.len() != u_count * v_count {
             return Err(curve_repr::Error::LengthMismatch {
                 what: "grid points",
@@ -257,6 +393,7 @@ impl Network {
             }
             .into());
         }
+        (self.u_count, self.v_count) = (u_count, v_count);
         let settings = |knots: &[f64], closed: bool| {
             let s = HermiteSettings::<3>::new().with_parameters(knots.to_vec());
             if closed {
@@ -268,39 +405,36 @@ impl Network {
         let (u_settings, v_settings) = (settings(u_knots, closed.0), settings(v_knots, closed.1));
         // The u-lines' passes read the points column-major, from one blocked transpose rather
         // than strided (a miss per point on a grid larger than the cache).
-        let columns = transpose(points, u_count, v_count);
-        let mut u_tangents = Vec::with_capacity(points.len());
-        for line in columns.chunks(u_count) {
-            u_tangents.extend_from_slice(&HermiteSpline::new(line, &u_settings)?.tangents()[..u_count]);
+        transpose_into(points, u_count, v_count, &mut self.columns);
+        self.u_tangents.clear();
+        for line in self.columns.chunks(u_count) {
+            self.u_tangents
+                .extend_from_slice(&HermiteSpline::new(line, &u_settings)?.tangents()[..u_count]);
         }
-        let mut v_tangents = Vec::with_capacity(points.len());
+        self.v_tangents.clear();
         for line in points.chunks(v_count) {
-            v_tangents.extend_from_slice(&HermiteSpline::new(line, &v_settings)?.tangents()[..v_count]);
+            self.v_tangents
+                .extend_from_slice(&HermiteSpline::new(line, &v_settings)?.tangents()[..v_count]);
         }
-        let mut network = Self {
-            u_count,
-            v_count,
-            points: points.to_vec(),
-            u_tangents,
-            v_tangents,
-            u_jumps: Vec::new(),
-            v_jumps: Vec::new(),
-            z_bounds: Vec::new(),
-            track_tangents: true,
-            energy: 0.0,
-            u_stiffness: Stiffness::new(u_knots, closed.0)?,
-            v_stiffness: Stiffness::new(v_knots, closed.1)?,
-        };
-        network.recompute_energy(&columns);
-        network.recompute_jumps(&columns);
-        Ok(network)
+        self.points.clear();
+        self.points.extend_from_slice(points);
+        self.recompute_energy();
+        self.recompute_jumps();
+        Ok(())
     }
 
     /// The jumps and the z bounds from the tangents (`columns`: the points column-major).
     /// O(m·n).
-    fn recompute_jumps(&mut self, columns: &[Vec3]) {
+    fn recompute_jumps(&mut self) {
         let (uc, vc) = (self.u_count, self.v_count);
-        let mut u_jumps = Vec::with_capacity(uc * vc);
+        // Taken out while they are filled (the jumps are read through `self`), then put back.
+        let (columns, mut u_jumps, mut v_jumps, mut z_bounds) = (
+            std::mem::take(&mut self.columns),
+            std::mem::take(&mut self.u_jumps),
+            std::mem::take(&mut self.v_jumps),
+            std::mem::take(&mut self.z_bounds),
+        );
+        u_jumps.clear();
         for j in 0..vc {
             let (line, tangents) = (
                 &columns[j * uc..(j + 1) * uc],
@@ -314,7 +448,7 @@ impl Network {
                 }
             }));
         }
-        let mut v_jumps = Vec::with_capacity(uc * vc);
+        v_jumps.clear();
         for i in 0..uc {
             v_jumps.extend((0..vc).map(|j| {
                 if self.v_stiffness.is_interior(j) {
@@ -324,17 +458,15 @@ impl Network {
                 }
             }));
         }
-        self.z_bounds = (0..uc * vc)
-            .map(|k| u_jumps[(k % vc) * uc + k / vc].norm() + v_jumps[k].norm())
-            .collect();
-        self.u_jumps = u_jumps;
-        self.v_jumps = v_jumps;
+        z_bounds.clear();
+        z_bounds.extend((0..uc * vc).map(|k| u_jumps[(k % vc) * uc + k / vc].norm() + v_jumps[k].norm()));
+        (self.columns, self.u_jumps, self.v_jumps, self.z_bounds) = (columns, u_jumps, v_jumps, z_bounds);
     }
 
     /// The network energy as the sum of every segment's ∫|C''|² (drops the rounding that the
-    /// O(1) updates gather; `columns`: the points column-major). O(m·n).
-    fn recompute_energy(&mut self, columns: &[Vec3]) {
-        let uc = self.u_count;
+    /// O(1) updates gather; read after the points and their column-major copy). O(m·n).
+    fn recompute_energy(&mut self) {
+        let (uc, columns) = (self.u_count, &self.columns);
         let mut energy = 0.0;
         for j in 0..self.v_count {
             for i in 0..uc {
@@ -443,13 +575,12 @@ impl Network {
         self.v_jumps[self.index(i, j)]
     }
 
-    /// Stops (or resumes, after a rebuild) keeping the tangents up to date during moves: a
+    /// Stops keeping the tangents up to date during moves, until the next rebuild: a
     /// network used with the limit replacement (Eq. 21) reads only jumps, and skipping the
     /// tangents halves a move's cost. [`u_tangent`](Self::u_tangent) and
     /// [`v_tangent`](Self::v_tangent) are stale after moves made without them.
-    pub fn without_tangents(mut self) -> Self {
+    pub fn stop_tracking_tangents(&mut self) {
         self.track_tangents = false;
-        self
     }
 
     /// (J^u, J^v) at every node, flat (i-major).
@@ -687,11 +818,12 @@ pub(crate) fn prefetch<T>(value: &T) {
     let _ = value;
 }
 
-/// The `rows` × `columns` row-major `values` column-major, in square blocks (each read and
-/// written in runs). O(rows · columns).
-fn transpose(values: &[Vec3], rows: usize, columns: usize) -> Vec<Vec3> {
+/// The `rows` × `columns` row-major `values` column-major into `out`, in square blocks (each
+/// read and written in runs). O(rows · columns).
+fn transpose_into(values: &[Vec3], rows: usize, columns: usize, out: &mut Vec<Vec3>) {
     const BLOCK: usize = 8;
-    let mut out = vec![Vec3::zeros(); values.len()];
+    out.clear();
+    out.resize(values.len(), Vec3::zeros());
     for i0 in (0..rows).step_by(BLOCK) {
         for j0 in (0..columns).step_by(BLOCK) {
             for i in i0..(i0 + BLOCK).min(rows) {
@@ -701,7 +833,6 @@ fn transpose(values: &[Vec3], rows: usize, columns: usize) -> Vec<Vec3> {
             }
         }
     }
-    out
 }
 
 /// A window of `len` entries from node `lo` along a line of `count` nodes (wrapping round a
@@ -710,4 +841,117 @@ fn transpose(values: &[Vec3], rows: usize, columns: usize) -> Vec<Vec3> {
 fn runs(lo: usize, len: usize, count: usize) -> [(usize, usize, usize); 2] {
     let first = len.min(count - lo);
     [(lo, 0, first), (0, first, len - first)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The significant part of a response around node i: `(lo, values)` with values for lo,
+    /// lo + 1, … (mod N when closed), from the first to the last entry above [`RESPONSE_TRIM`]
+    /// of the largest.
+    fn whole_window(values: &[f64], i: usize, closed: bool) -> (usize, Vec<f64>) {
+        let count = values.len();
+        let largest = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let significant = |v: &f64| v.abs() > RESPONSE_TRIM * largest;
+        if !closed {
+            let lo = values.iter().position(significant).unwrap_or(i);
+            let hi = values.iter().rposition(significant).unwrap_or(i);
+            return (lo, values[lo..=hi.max(lo)].to_vec());
+        }
+        // Offsets −⌊(N−1)/2⌋ … ⌊N/2⌋ round i name every node once.
+        let back = (count - 1) / 2;
+        let ring: Vec<f64> = (0..count)
+            .map(|d| values[(i + count - back + d) % count])
+            .collect();
+        let first = ring.iter().position(significant).unwrap_or(back);
+        let last = ring.iter().rposition(significant).unwrap_or(back).max(first);
+        ((i + count - back + first) % count, ring[first..=last].to_vec())
+    }
+
+    /// The responses as measured before the band: the whole line read after every unit
+    /// move, and the move undone by a second windowed re-solve. O(N²).
+    fn whole_line_stiffness(knots: &[f64], closed: bool) -> Stiffness {
+        let count = knots.len() - usize::from(closed);
+        let mut settings = HermiteSettings::<1>::new().with_parameters(knots.to_vec());
+        if closed {
+            settings = settings.with_ends(HermiteEnds::Closed);
+        }
+        let zero = HermiteSpline::new(&vec![Vector::<1>::zeros(); count], &settings).unwrap();
+        let mut line = zero.clone();
+        let steps: Vec<f64> = knots.windows(2).map(|w| w[1] - w[0]).collect();
+        let mut stiffness = Stiffness {
+            count,
+            closed,
+            diagonal: vec![0.0; count],
+            side: vec![0.0; count],
+            response: Vec::new(),
+            jump_response: Vec::new(),
+            steps,
+        };
+        for i in 0..count {
+            line.move_points(&[(i, Vector::<1>::new(1.0))]).unwrap();
+            let tangents: Vec<f64> = line.tangents().iter().map(|t| t[0]).collect();
+            stiffness.response.push(whole_window(&tangents, i, closed));
+            let point = |k: usize| if k == i { 1.0 } else { 0.0 };
+            let jump = |k: usize| -> f64 {
+                let after = stiffness.next(k).map_or(0.0, |n| {
+                    third1(point(k), point(n), tangents[k], tangents[n], stiffness.steps[k])
+                });
+                let before = stiffness.previous(k).map_or(0.0, |p| {
+                    third1(point(p), point(k), tangents[p], tangents[k], stiffness.steps[p])
+                });
+                after - before
+            };
+            let jumps: Vec<f64> = (0..count)
+                .map(|k| if stiffness.is_interior(k) { jump(k) } else { 0.0 })
+                .collect();
+            let jump_window = whole_window(&jumps, i, closed);
+            let diagonal = stiffness.is_interior(i).then(|| jump(i));
+            let side = stiffness
+                .previous(i)
+                .filter(|&p| stiffness.is_interior(p) && stiffness.is_interior(i))
+                .map(|p| (p, jump(p)));
+            stiffness.jump_response.push(jump_window);
+            if let Some(value) = diagonal {
+                stiffness.diagonal[i] = value;
+            }
+            if let Some((p, value)) = side {
+                stiffness.side[p] = value;
+            }
+            line.move_points(&[(i, Vector::<1>::zeros())]).unwrap();
+            // The premise of the band and of the copy reset: undone, the move leaves exact
+            // zeros.
+            assert_eq!(line, zero, "node {i} of {count}");
+        }
+        stiffness
+    }
+
+    /// Knots with steps from a deterministic sequence spanning `spread` (1: uniform).
+    fn knots(count: usize, spread: f64) -> Vec<f64> {
+        let mut t = vec![0.0];
+        for k in 0..count - 1 {
+            let x = ((k as f64 + 1.0) * 12.9898).sin() * 43_758.545_3;
+            let unit = x - x.floor();
+            t.push(t[k] + spread.powf(unit - 0.5));
+        }
+        t
+    }
+
+    #[test]
+    fn stiffness_equals_whole_line() {
+        // Short and long lines, on both sides of the copy-reset limit, with uniform, uneven
+        // and wildly uneven steps (ratios up to 10^6: the widest update windows), open and
+        // closed (a closed line of N nodes has N + 1 knots).
+        for count in [3, 4, 5, 7, 12, 40, 121, 300, COPY_RESET + 90] {
+            for spread in [1.0, 3.0, 1e6] {
+                for closed in [false, true] {
+                    let t = knots(count + usize::from(closed), spread);
+                    let banded = Stiffness::new(&t, closed).unwrap();
+                    let whole = whole_line_stiffness(&t, closed);
+                    assert!(banded == whole, "{count} nodes, spread {spread}, closed {closed}");
+                }
+            }
+        }
+    }
 }

@@ -74,6 +74,16 @@ impl Layout {
             .collect()
     }
 
+    /// The grid's layout, from the distinct nodes' values: the values themselves when no
+    /// direction is closed, else a copy with the repeats (copied exactly).
+    fn expand_ref<'a, T: Copy>(&self, distinct: &'a [T]) -> std::borrow::Cow<'a, [T]> {
+        if self.nu == self.u_count && self.nv == self.v_count {
+            std::borrow::Cow::Borrowed(distinct)
+        } else {
+            std::borrow::Cow::Owned(self.expand(distinct))
+        }
+    }
+
     /// The grid's layout, from the distinct nodes' values (repeats copied exactly).
     fn expand<T: Copy>(&self, distinct: &[T]) -> Vec<T> {
         (0..self.u_count)
@@ -175,6 +185,11 @@ struct Run<'a> {
     cap: f64,
     refused_moves: usize,
     refused_steps: usize,
+    /// Storage kept from step to step (fresh arrays of the grid's size are fresh pages):
+    /// the points after a step, a shorter retry of it, and the sorted sweep's order.
+    after: Vec<Vec3>,
+    shorter: Vec<Vec3>,
+    order: Vec<(f64, usize)>,
 }
 
 /// Runs the fairing (the settings checked by the caller).
@@ -267,6 +282,9 @@ pub(super) fn run(
         cap: f64::INFINITY,
         refused_moves: 0,
         refused_steps: 0,
+        after: Vec::new(),
+        shorter: Vec::new(),
+        order: Vec::new(),
     };
     let mut history = Vec::new();
 
@@ -295,12 +313,7 @@ pub(super) fn run(
             |i, j| settings.fixed.contains(&(i, j)),
         )?;
         if !moves.is_empty() {
-            run.state = State::new(
-                settings,
-                &run.layout,
-                run.layout.shrink(&points),
-                run.fixed_knots.as_ref(),
-            )?;
+            run.rebuild_state(&run.layout.shrink(&points))?;
             boundary_steps = steps;
             boundary_pending = true;
         }
@@ -355,7 +368,7 @@ pub(super) fn run(
     }
     if boundary_pending && !matches!(run.judge()?, Verdict::Accepted) {
         // Judged alone (no step was left): pinned lines do not help it; it is undone.
-        run.state = run.state_of(run.accepted_points.clone())?;
+        run.rebuild_accepted()?;
         boundary_steps = 0;
     }
 
@@ -406,39 +419,100 @@ impl State {
         points: Vec<Vec3>,
         fixed_knots: Option<&(Vec<f64>, Vec<f64>)>,
     ) -> Result<Self> {
+        let (knots, judged_knots) = Self::knots_of(settings, layout, &points, fixed_knots)?;
+        let closed = (layout.topology.closed_u, layout.topology.closed_v);
+        let network = Network::new(&points, &knots.0, &knots.1, closed)?;
+        let judged = match &judged_knots {
+            None => None,
+            Some(k) => Some(Network::new(&points, &k.0, &k.1, closed)?),
+        };
+        let mut state = Self {
+            knots,
+            network,
+            judged,
+            measure: Measure {
+                max_z: 0.0,
+                energy: 0.0,
+                thin_plate: None,
+            },
+        };
+        state.finish(settings, layout, judged_knots)?;
+        Ok(state)
+    }
+
+    /// This state made the state of other distinct `points`, in its own storage: the same
+    /// values as [`new`](Self::new) without fresh m·n arrays (a run rebuilds its state at
+    /// every step). On an error the state is left unusable. O(m·n).
+    fn rebuild(
+        &mut self,
+        settings: &SurfaceFairingSettings,
+        layout: &Layout,
+        points: &[Vec3],
+        fixed_knots: Option<&(Vec<f64>, Vec<f64>)>,
+    ) -> Result<()> {
+        let (knots, judged_knots) = Self::knots_of(settings, layout, points, fixed_knots)?;
+        let closed = (layout.topology.closed_u, layout.topology.closed_v);
+        self.network.rebuild(points, &knots.0, &knots.1, closed)?;
+        self.knots = knots;
+        match (&judged_knots, &mut self.judged) {
+            (None, judged) => *judged = None,
+            (Some(k), Some(judged)) => judged.rebuild(points, &k.0, &k.1, closed)?,
+            (Some(k), judged) => *judged = Some(Network::new(points, &k.0, &k.1, closed)?),
+        }
+        self.finish(settings, layout, judged_knots)
+    }
+
+    /// The knots of distinct `points` (or the fixed ones), and the output's knots when they
+    /// differ (the judgement is over the knots a user measures the output with: chord-length
+    /// averaged over the points as they are, the run's own when it works on those).
+    #[allow(clippy::type_complexity)]
+    fn knots_of(
+        settings: &SurfaceFairingSettings,
+        layout: &Layout,
+        points: &[Vec3],
+        fixed_knots: Option<&(Vec<f64>, Vec<f64>)>,
+    ) -> Result<((Vec<f64>, Vec<f64>), Option<(Vec<f64>, Vec<f64>)>)> {
+        let grid = layout.expand_ref(points);
         let knots = match fixed_knots {
             Some(knots) => knots.clone(),
             None => layout.surface_settings(settings.parametrization).knots(
-                &layout.expand(&points),
+                &grid,
                 layout.u_count,
                 layout.v_count,
             )?,
         };
-        let closed = (layout.topology.closed_u, layout.topology.closed_v);
-        let mut network = Network::new(&points, &knots.0, &knots.1, closed)?;
-        if settings.objective == Objective::Network && settings.replacement == Replacement::Limit {
-            network = network.without_tangents();
-        }
-        // The judgement is over the knots a user measures the output with: chord-length
-        // averaged over the points as they are (the run's own when it works on those).
         let own = fixed_knots.is_none() && settings.parametrization == Parametrization::ChordLength;
         let judged_knots = if own {
-            knots.clone()
-        } else {
-            layout.surface_settings(Parametrization::ChordLength).knots(
-                &layout.expand(&points),
-                layout.u_count,
-                layout.v_count,
-            )?
-        };
-        let judged = if own {
             None
         } else {
-            Some(Network::new(&points, &judged_knots.0, &judged_knots.1, closed)?)
+            Some(layout.surface_settings(Parametrization::ChordLength).knots(
+                &grid,
+                layout.u_count,
+                layout.v_count,
+            )?)
         };
-        let measured = judged.as_ref().unwrap_or(&network);
+        Ok((knots, judged_knots))
+    }
+
+    /// The network's tracking of tangents as the settings need it, and the measure.
+    fn finish(
+        &mut self,
+        settings: &SurfaceFairingSettings,
+        layout: &Layout,
+        judged_knots: Option<(Vec<f64>, Vec<f64>)>,
+    ) -> Result<()> {
+        if settings.objective == Objective::Network && settings.replacement == Replacement::Limit {
+            self.network.stop_tracking_tangents();
+        }
+        let judged_knots = judged_knots.as_ref().unwrap_or(&self.knots);
+        let measured = self.judged.as_ref().unwrap_or(&self.network);
         let thin_plate = if settings.objective == Objective::ThinPlate {
-            let surface = surface_through(layout, &points, &judged_knots, Parametrization::ChordLength)?;
+            let surface = surface_through(
+                layout,
+                measured.points(),
+                judged_knots,
+                Parametrization::ChordLength,
+            )?;
             let rule =
                 GaussLegendre::new(4).map_err(|e| crate::state::strategy_error("surface", e.to_string()))?;
             Some(
@@ -448,17 +522,12 @@ impl State {
         } else {
             None
         };
-        let measure = Measure {
+        self.measure = Measure {
             max_z: measured.max_z(),
             energy: measured.energy(),
             thin_plate,
         };
-        Ok(Self {
-            knots,
-            network,
-            judged,
-            measure,
-        })
+        Ok(())
     }
 }
 
@@ -692,10 +761,10 @@ impl Run<'_> {
     /// (points moved, steps made); a Kjellander step is one move and never more than
     /// `budget` are made.
     fn sweep(&mut self, mode: &SurfaceMode, budget: usize) -> Result<(usize, usize)> {
-        let candidates = self.candidates(mode);
         let nv = self.layout.nv;
         let node = |k: usize| (k / nv, k % nv);
         if self.settings.one_point_per_step {
+            let candidates = self.candidates(mode);
             return self.kjellander_sweep(&candidates, budget);
         }
         let mut moved = 0;
@@ -703,6 +772,7 @@ impl Run<'_> {
             SurfaceMode::Automatic if self.settings.order == SweepOrder::Queue => {
                 // Steps 2.3–2.4 by current z: every point once, the largest z of those still
                 // to come first (ties by index), re-keyed as moves raise it.
+                let candidates = self.candidates(mode);
                 let layout = &self.layout;
                 let mut queue = SweepQueue::new(
                     &self.state.network,
@@ -719,29 +789,24 @@ impl Run<'_> {
             SurfaceMode::Automatic => {
                 // Step 2.3 as printed: every point once, by z at the step's start, largest
                 // first (ties by index).
+                // The candidates (the movable nodes, i-major) with their z, in the run's
+                // storage.
+                let mut order = std::mem::take(&mut self.order);
+                order.clear();
                 let network = &self.state.network;
-                let mut order: Vec<(f64, usize)> = candidates
-                    .iter()
-                    .map(|&(i, j)| (network.z(i, j), self.layout.index(i, j)))
-                    .collect();
+                order.extend(
+                    (0..self.layout.nu)
+                        .flat_map(|i| (0..nv).map(move |j| (i, j)))
+                        .filter(|&(i, j)| self.is_movable(i, j))
+                        .map(|(i, j)| (network.z(i, j), self.layout.index(i, j))),
+                );
                 order.sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
-                for (step, &(_, k)) in order.iter().enumerate() {
-                    // The order is scattered over the grid: the first loads of the move two
-                    // ahead are started now (no effect on any value).
-                    if let Some(&(_, next)) = order.get(step + PREFETCH_AHEAD) {
-                        let (a, b) = node(next);
-                        self.state.network.prefetch(a, b);
-                        prefetch(&self.original[next]);
-                        if let Some(radii) = &self.radii {
-                            prefetch(&radii[next]);
-                        }
-                    }
-                    if self.move_group(&[node(k)])? {
-                        moved += 1;
-                    }
-                }
+                let result = self.sorted_sweep(&order);
+                self.order = order;
+                moved = result?;
             }
             SurfaceMode::Interactive(_) => {
+                let candidates = self.candidates(mode);
                 // Steps 1.2–1.3: by z, largest first (ties by index), grouped.
                 let network = &self.state.network;
                 let mut order: Vec<((usize, usize), f64)> = candidates
@@ -759,6 +824,30 @@ impl Run<'_> {
             }
         }
         Ok((moved, 1))
+    }
+
+    /// The moves of a sorted step, one per node of `order` (z, flat index) in turn. Returns
+    /// the points moved.
+    fn sorted_sweep(&mut self, order: &[(f64, usize)]) -> Result<usize> {
+        let nv = self.layout.nv;
+        let node = |k: usize| (k / nv, k % nv);
+        let mut moved = 0;
+        for (step, &(_, k)) in order.iter().enumerate() {
+            // The order is scattered over the grid: the first loads of the move two ahead are
+            // started now (no effect on any value).
+            if let Some(&(_, next)) = order.get(step + PREFETCH_AHEAD) {
+                let (a, b) = node(next);
+                self.state.network.prefetch(a, b);
+                prefetch(&self.original[next]);
+                if let Some(radii) = &self.radii {
+                    prefetch(&radii[next]);
+                }
+            }
+            if self.move_group(&[node(k)])? {
+                moved += 1;
+            }
+        }
+        Ok(moved)
     }
 
     /// Kjellander: up to one sweep (as many steps as candidates) of single moves, each of the
@@ -825,59 +914,84 @@ impl Run<'_> {
         Ok((steps, steps))
     }
 
-    /// The state of distinct points under the run's settings.
-    fn state_of(&self, points: Vec<Vec3>) -> Result<State> {
-        State::new(self.settings, &self.layout, points, self.fixed_knots.as_ref())
-    }
-
-    /// Judges the points moved since the last accepted state, over the knots the output would
-    /// have: accepted when no rule breaks against it. A rise of the largest z first pins the
+    /// Judges the points moved since the last accepted state (the working state's), over the
+    /// knots the output would have: accepted when no rule breaks against it. A rise of the largest z first pins the
     /// grid lines whose chord lengths set the knots at the nodes that rose (see [`pin`]) and
     /// asks for the step again; else the step is retried at 1/2, 1/4, 1/8 of the way from
     /// the accepted state; else the working state goes back to it and the rule is returned.
     ///
     /// [`pin`]: Self::pin
     fn judge(&mut self) -> Result<Verdict> {
-        let after = self.state.network.points().to_vec();
-        let mut candidate = self.state_of(after.clone())?;
+        // The working state becomes the candidate in place: its points are copied out first
+        // and it is rebuilt from the accepted points whenever the step is not accepted.
+        let mut after = std::mem::take(&mut self.after);
+        after.clear();
+        after.extend_from_slice(self.state.network.points());
+        let result = self.judge_points(&after);
+        self.after = after;
+        result
+    }
+
+    /// [`judge`](Self::judge) of the points `after` the step.
+    fn judge_points(&mut self, after: &[Vec3]) -> Result<Verdict> {
+        self.rebuild_state(after)?;
         let mut rule = if self.settings.guard {
-            candidate.measure.worse_than(&self.accepted)
+            self.state.measure.worse_than(&self.accepted)
         } else {
             None
         };
-        if rule == Some(Refusal::MaxZ) && self.pin(&candidate) {
+        if rule == Some(Refusal::MaxZ) && self.pin() {
             self.refused_steps += 1;
-            self.state = self.state_of(self.accepted_points.clone())?;
+            self.rebuild_accepted()?;
             return Ok(Verdict::Pinned);
         }
+        let mut shorter = std::mem::take(&mut self.shorter);
         for fraction in RETRIES {
             if rule.is_none() {
                 break;
             }
             self.refused_steps += 1;
-            let shorter: Vec<Vec3> = self
-                .accepted_points
-                .iter()
-                .zip(&after)
-                .map(|(p, q)| if p == q { *p } else { p + (q - p) * fraction })
-                .collect();
-            candidate = self.state_of(shorter)?;
-            rule = candidate.measure.worse_than(&self.accepted);
+            shorter.clear();
+            shorter.extend(self.accepted_points.iter().zip(after).map(|(p, q)| {
+                if p == q {
+                    *p
+                } else {
+                    p + (q - p) * fraction
+                }
+            }));
+            self.rebuild_state(&shorter)?;
+            rule = self.state.measure.worse_than(&self.accepted);
         }
+        self.shorter = shorter;
         match rule {
             None => {
-                self.accepted = candidate.measure;
-                self.accepted_points = candidate.network.points().to_vec();
-                self.accepted_parts = jump_parts(candidate.measured());
-                self.state = candidate;
+                self.accepted = self.state.measure;
+                self.accepted_points.clear();
+                self.accepted_points
+                    .extend_from_slice(self.state.network.points());
+                jump_parts_into(self.state.measured(), &mut self.accepted_parts);
                 Ok(Verdict::Accepted)
             }
             Some(rule) => {
                 self.refused_steps += 1;
-                self.state = self.state_of(self.accepted_points.clone())?;
+                self.rebuild_accepted()?;
                 Ok(Verdict::Refused(rule))
             }
         }
+    }
+
+    /// The working state rebuilt in place as the state of distinct `points`.
+    fn rebuild_state(&mut self, points: &[Vec3]) -> Result<()> {
+        self.state
+            .rebuild(self.settings, &self.layout, points, self.fixed_knots.as_ref())
+    }
+
+    /// The working state rebuilt in place as the last accepted state.
+    fn rebuild_accepted(&mut self) -> Result<()> {
+        let accepted = std::mem::take(&mut self.accepted_points);
+        let result = self.rebuild_state(&accepted);
+        self.accepted_points = accepted;
+        result
     }
 
     /// The max-z rule's remedy for the knots. Over the output's knots a node's z changes
@@ -888,8 +1002,8 @@ impl Run<'_> {
     /// within [`PIN_REACH`] of it when its u-jump grew (their chord lengths make its u knot
     /// steps), the lines along v when its v-jump grew. Returns whether anything new was
     /// pinned. O(m·n).
-    fn pin(&mut self, candidate: &State) -> bool {
-        let network = candidate.measured();
+    fn pin(&mut self) -> bool {
+        let network = self.state.measured();
         let (nu, nv) = (self.layout.nu, self.layout.nv);
         let limit = self.accepted.max_z + SLACK * self.accepted.max_z.abs();
         let (closed_u, closed_v) = (self.layout.topology.closed_u, self.layout.topology.closed_v);
@@ -943,10 +1057,15 @@ impl Run<'_> {
 
 /// (|J^u|, |J^v|) at every distinct node.
 fn jump_parts(network: &Network) -> Vec<(f64, f64)> {
-    network
-        .u_jumps_and_v_jumps()
-        .map(|(u, v)| (u.norm(), v.norm()))
-        .collect()
+    let mut parts = Vec::new();
+    jump_parts_into(network, &mut parts);
+    parts
+}
+
+/// [`jump_parts`] into `parts` (its storage reused).
+fn jump_parts_into(network: &Network, parts: &mut Vec<(f64, f64)>) {
+    parts.clear();
+    parts.extend(network.u_jumps_and_v_jumps().map(|(u, v)| (u.norm(), v.norm())));
 }
 
 #[cfg(test)]
