@@ -26,8 +26,12 @@ use super::Segment;
 /// strophoid loop seed 1 and the closed airfoil seed 1 (10 → 0). The chunk of
 /// [`CURVE_GUARD_CHUNK`] points was chosen there: whole segments (vibrations 32–38 on the
 /// clothoid) and 24 or 32 points let more vibrations through, 8 or fewer points keep
-/// inflections that 16 removes (each chunk alone cannot remove them). `pass` alone undoes
-/// every pass on these curves (the result is the pre-pass).
+/// inflections that 16 removes (each chunk alone cannot remove them). `pass` alone keeps
+/// the whole passes that remove the last inflection with all their vibrations (clothoid
+/// 52–60, strophoid seed 3 48) and undoes all others (the pre-pass's points). The cost: the
+/// closed airfoil keeps the pre-pass's 8 / 5 / 5 inflections on seeds 2–4 (`off`: 0 / 2 / 6,
+/// with 40 / 32 / 36 vibrations against 26 / 19 / 19), and a dent the pre-pass only smoothed
+/// stays where the phases would have spread it (`tests/fairing/two_phase_ends.rs`).
 #[derive(
     Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
 )]

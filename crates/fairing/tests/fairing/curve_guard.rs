@@ -13,6 +13,9 @@ fn summary_counts(points: &[Vec2]) -> (usize, usize) {
     (s.inflections.unwrap(), s.vibrations.unwrap())
 }
 
+/// A segment fairer: y over x, the fixed flags.
+type Fairer = fn(&[f64], &mut [f64], &[bool]) -> Result<()>;
+
 /// 61 points on a half circle of radius 1 (more than one segment at the default 120° limit).
 fn half_circle() -> Vec<Vec2> {
     (0..61)
@@ -23,11 +26,7 @@ fn half_circle() -> Vec<Vec2> {
         .collect()
 }
 
-fn run(
-    points: &[Vec2],
-    guard: CurveGuard,
-    fairer: fn(&[f64], &mut [f64], &[bool]) -> Result<()>,
-) -> Vec<Vec2> {
+fn run(points: &[Vec2], guard: CurveGuard, fairer: Fairer) -> Vec<Vec2> {
     Pipeline::new(
         SegmentedFairing::new(fairer)
             .with_passes(3)
