@@ -8,7 +8,8 @@
 //! chord-length spline, zeros dropped) and the RMS distance of the data points to the clean
 //! strophoid, before and after: with the paper's settings (turning limit π, the paper's
 //! rules: [`TwoPhaseSettings::paper`], [`PartitionSettings::paper`]), the paper's rules with the
-//! 2π/3 limit (papers/README.md), and the defaults (noise pre-pass, long runs, 2π/3); writes
+//! 2π/3 limit (papers/README.md), both without the curve guard, and the defaults (noise
+//! pre-pass, long runs, 2π/3, the curve guard `local`); writes
 //! before/after SVGs to out/examples/.
 //!
 //! Run: `cargo run --release --example strophoid_fig5`
@@ -18,7 +19,7 @@ use std::f64::consts::PI;
 use curve_repr::Vec2;
 use fair_cli::svg::{Color, Figure, Line, Markers, Panel};
 use fairing::two_phase::{TwoPhase, TwoPhaseSettings};
-use fairing::{PartitionSettings, Pipeline, SegmentedFairing};
+use fairing::{CurveGuard, PartitionSettings, Pipeline, SegmentedFairing};
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
@@ -138,30 +139,34 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Color::palette(1),
         &dir.join("strophoid_fig5_before.svg"),
     )?;
-    for (name, settings, partition, file) in [
+    for (name, settings, partition, guard, file) in [
         (
             "faired, the paper's settings (π)",
             TwoPhaseSettings::paper(),
             PartitionSettings::paper(),
+            CurveGuard::Off,
             "strophoid_fig5_after.svg",
         ),
         (
             "the paper's rules, limit 2π/3",
             TwoPhaseSettings::paper(),
             PartitionSettings::paper().with_limit(2.0 * PI / 3.0),
+            CurveGuard::Off,
             "strophoid_fig5_after_limit_2pi3.svg",
         ),
         (
             "faired, default settings",
             TwoPhaseSettings::default(),
             PartitionSettings::default(),
+            SegmentedFairing::<TwoPhase>::DEFAULT_CURVE_GUARD,
             "strophoid_fig5_after_default.svg",
         ),
     ] {
         let result = Pipeline::new(
             SegmentedFairing::new(TwoPhase::new(settings))
                 .with_partition(partition)
-                .with_passes(SegmentedFairing::<TwoPhase>::DEFAULT_PASSES),
+                .with_passes(SegmentedFairing::<TwoPhase>::DEFAULT_PASSES)
+                .with_curve_guard(guard),
         )
         .run(noisy.clone())?;
         let (v, i) = counts(&result.points)?;

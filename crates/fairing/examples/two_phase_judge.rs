@@ -32,7 +32,8 @@
 //! (default `out/two_phase_judge`, seeds 1). For measurements, environment variables override
 //! the default variant's settings: `HAN_DENOISE` (`off`, `gcv`, `jump-lsq`, `jump-lsq-gcv`),
 //! `HAN_MAX_RUN`, `HAN_LIMIT` (turning limit in degrees), `HAN_MMF` (`max-move-factor`),
-//! `HAN_PASSES` (`max-passes`), `HAN_NOISE_MOVES`.
+//! `HAN_PASSES` (`max-passes`), `HAN_NOISE_MOVES`, `HAN_CURVE_GUARD` (`off`, `pass`, `local`;
+//! the paper variant always runs `off`).
 
 use std::f64::consts::PI;
 use std::fmt::Write as _;
@@ -40,7 +41,7 @@ use std::path::{Path, PathBuf};
 
 use curve_repr::Vec2;
 use fairing::two_phase::{TwoPhase, TwoPhaseSettings};
-use fairing::{PartitionSettings, Pipeline, SegmentedFairing};
+use fairing::{CurveGuard, PartitionSettings, Pipeline, SegmentedFairing};
 use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
 
@@ -226,6 +227,7 @@ fn fair(
     settings: &TwoPhaseSettings,
     partition: PartitionSettings,
     passes: usize,
+    guard: CurveGuard,
 ) -> Result<Vec<Vec2>, Error> {
     let result = match kind {
         Kind::Function => Pipeline::new(TwoPhase::new(settings.clone()))
@@ -234,7 +236,8 @@ fn fair(
         Kind::Open | Kind::Closed => Pipeline::new(
             SegmentedFairing::new(TwoPhase::new(settings.clone()))
                 .with_partition(partition)
-                .with_passes(passes),
+                .with_passes(passes)
+                .with_curve_guard(guard),
         )
         .with_closed(kind == Kind::Closed)
         .with_max_iterations(passes)
@@ -251,6 +254,7 @@ fn main() -> Result<(), Error> {
     let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data");
     let mut tuned = TwoPhaseSettings::default();
     let mut tuned_partition = PartitionSettings::default();
+    let mut tuned_guard = SegmentedFairing::<TwoPhase>::DEFAULT_CURVE_GUARD;
     for (key, value) in std::env::vars() {
         match key.as_str() {
             "HAN_MAX_RUN" => tuned.max_run = value.parse()?,
@@ -261,6 +265,9 @@ fn main() -> Result<(), Error> {
             }
             "HAN_PASSES" => tuned.max_passes = value.parse()?,
             "HAN_NOISE_MOVES" => tuned.noise_moves = value.parse()?,
+            "HAN_CURVE_GUARD" => {
+                tuned_guard = serde_json::from_value(serde_json::Value::String(value))?;
+            }
             _ => {}
         }
     }
@@ -270,13 +277,21 @@ fn main() -> Result<(), Error> {
             tuned.clone(),
             tuned_partition,
             SegmentedFairing::<TwoPhase>::DEFAULT_PASSES,
+            tuned_guard,
         ),
-        ("paper", TwoPhaseSettings::paper(), PartitionSettings::paper(), 3),
+        (
+            "paper",
+            TwoPhaseSettings::paper(),
+            PartitionSettings::paper(),
+            3,
+            CurveGuard::Off,
+        ),
         (
             "prepass",
             tuned.clone().with_max_passes(0),
             PartitionSettings::default(),
             1,
+            CurveGuard::Off,
         ),
     ];
     let mut manifest = String::new();
@@ -285,9 +300,9 @@ fn main() -> Result<(), Error> {
         if let Some(clean) = clean {
             write(&out.join(format!("{name}_clean.csv")), clean)?;
         }
-        for (variant, settings, partition, passes) in &variants {
+        for (variant, settings, partition, passes, guard) in &variants {
             let start = std::time::Instant::now();
-            let faired = fair(noisy, kind, settings, *partition, *passes)?;
+            let faired = fair(noisy, kind, settings, *partition, *passes, *guard)?;
             println!(
                 "{name:28} {variant:8} {:8.1} ms",
                 start.elapsed().as_secs_f64() * 1e3

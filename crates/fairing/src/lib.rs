@@ -31,7 +31,9 @@ pub mod two_phase;
 pub use constraints::{project_into_ball, Constraints, EndClamp};
 pub use error::{Error, Refusal, Result};
 pub use observer::Observer;
-pub use partition::{partition, PartitionSettings, Segment, SegmentFairer, SegmentedFairing};
+pub use partition::{
+    curve_counts, partition, CurveGuard, PartitionSettings, Segment, SegmentFairer, SegmentedFairing,
+};
 pub use pipeline::{FairingResult, Pipeline, StageReport, TerminationReason};
 pub use state::{strategy_error, FairingState, Move};
 pub use strategy::{reject_derivative_clamps, FairingStrategy, StepOutcome};

@@ -31,10 +31,12 @@
 
 mod blend;
 mod frame;
+mod guard;
 mod segmented;
 
 pub use blend::blend;
 pub use frame::Frame;
+pub use guard::{curve_counts, CurveGuard, CURVE_GUARD_CHUNK, CURVE_GUARD_MARGIN};
 pub use segmented::{SegmentFairer, SegmentedFairing};
 
 use std::f64::consts::PI;

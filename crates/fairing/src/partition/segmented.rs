@@ -2,7 +2,8 @@
 
 use curve_repr::Vec2;
 
-use super::{blend, partition, PartitionSettings};
+use super::guard::{pass_keeps_counts, segment_moves};
+use super::{blend, partition, CurveGuard, PartitionSettings};
 use crate::{Error, FairingState, FairingStrategy, Result, StepOutcome};
 
 /// Fairs one function segment y(x) in place: the inner method of [`SegmentedFairing`]
@@ -63,18 +64,28 @@ impl<F: FnMut(&[f64], &mut [f64], &[bool]) -> Result<()>> SegmentFairer for F {
 /// fairer has no end-tangent condition in the original frame), as is any end clamp on a
 /// closed curve.
 ///
-/// Cost per pass: O(n · overlap) plus the fairer's cost on every segment.
+/// Not in the paper: the blended moves pass the arbitrary-curve guard ([`CurveGuard`],
+/// default [`CurveGuard::Local`]; [`CurveGuard::Off`] is §4.2.4 as printed), which refuses
+/// moves that make the whole curve's own inflection and vibration counts worse (the segments'
+/// fairer lowers the counts in its frame, not the curve's).
+///
+/// Cost per pass: O(n · overlap) plus the fairer's cost on every segment, plus the guard's
+/// O(n · margin / chunk).
 pub struct SegmentedFairing<F> {
     fairer: F,
     settings: PartitionSettings,
     passes: usize,
     done: usize,
     name: String,
+    guard: CurveGuard,
 }
 
 impl<F: SegmentFairer> SegmentedFairing<F> {
     /// The default number of passes (the paper says "several times").
     pub const DEFAULT_PASSES: usize = 3;
+
+    /// The default arbitrary-curve guard (its measurements: [`CurveGuard`]).
+    pub const DEFAULT_CURVE_GUARD: CurveGuard = CurveGuard::Local;
 
     /// A driver around `fairer` with the default partition and passes.
     pub fn new(fairer: F) -> Self {
@@ -85,7 +96,14 @@ impl<F: SegmentFairer> SegmentedFairing<F> {
             passes: Self::DEFAULT_PASSES,
             done: 0,
             name,
+            guard: Self::DEFAULT_CURVE_GUARD,
         }
+    }
+
+    /// Sets the arbitrary-curve guard ([`CurveGuard::Off`]: Han §4.2.4 as printed).
+    pub fn with_curve_guard(mut self, guard: CurveGuard) -> Self {
+        self.guard = guard;
+        self
     }
 
     /// Sets the partition settings.
@@ -182,12 +200,23 @@ impl<F: SegmentFairer> FairingStrategy<2> for SegmentedFairing<F> {
             );
         }
         let moves = blend(points.len(), &segments, &displacements)?;
+        let moves = segment_moves(self.guard, &points, state.is_closed(), &segments, &moves);
         for (i, (p, d)) in points.iter().zip(&moves).enumerate() {
             if d.x != 0.0 || d.y != 0.0 {
                 state.move_point(i, p + d)?;
             }
         }
         self.done += 1;
+        if self.guard != CurveGuard::Off && !pass_keeps_counts(&points, state.points()) {
+            // The pass raised a count of the whole curve: undo it; the next pass would
+            // start from the same points, so the stage ends.
+            for (i, p) in points.iter().enumerate() {
+                if state.points()[i] != *p {
+                    state.move_point(i, *p)?;
+                }
+            }
+            self.done = self.passes;
+        }
         Ok(if self.done >= self.passes {
             StepOutcome::done(None)
         } else {

@@ -4,6 +4,7 @@ mod batten;
 mod catalog;
 mod composition;
 mod contract;
+mod curve_guard;
 mod displacement;
 mod jump_lsq;
 mod sapidis_farin_data;

@@ -8,7 +8,7 @@ use std::f64::consts::PI;
 
 use curve_repr::{EndCondition, SplineFunction, Vec2};
 use fairing::two_phase::{detect_fine, fine_displacement, Case, CaseKind, TwoPhase, TwoPhaseSettings};
-use fairing::{partition, PartitionSettings, Pipeline, SegmentedFairing};
+use fairing::{curve_counts, partition, CurveGuard, PartitionSettings, Pipeline, SegmentedFairing};
 use fairness::xc::XcPolyline;
 
 fn uniform(n: usize) -> Vec<f64> {
@@ -198,10 +198,28 @@ fn a_dent_at_a_segment_join_is_removed() {
     );
     let default = faired(&points, TwoPhaseSettings::default(), PartitionSettings::default());
     assert_eq!(inflections(&default), 0);
-    // The dent is filled, not moved elsewhere: every point ends near the arc.
-    for (k, p) in default.iter().enumerate() {
+    // The phases as printed (the curve guard off): the dent is filled, not moved elsewhere;
+    // every point ends near the arc.
+    let unguarded = Pipeline::new(
+        SegmentedFairing::new(TwoPhase::default())
+            .with_passes(SegmentedFairing::<TwoPhase>::DEFAULT_PASSES)
+            .with_curve_guard(CurveGuard::Off),
+    )
+    .run(points.clone())
+    .unwrap()
+    .points;
+    assert_eq!(inflections(&unguarded), 0);
+    for (k, p) in unguarded.iter().enumerate() {
         assert!((p.norm() - 3.0).abs() < 0.02, "point {k} at radius {}", p.norm());
     }
+    // The default's guard keeps the curve's counts no worse than that. Measured cost: it
+    // refuses the phases' spreading of the dent (30 vibrations against the pre-pass's 26), so
+    // the pre-pass's smoothed dent stays (peak 0.022 outwards at point 36, against 0.014).
+    let (guarded, spread) = (curve_counts(&default).unwrap(), curve_counts(&unguarded).unwrap());
+    assert!(
+        guarded.0 <= spread.0 && guarded.1 <= spread.1,
+        "{guarded:?} against {spread:?}"
+    );
     let _ = PI;
 }
 

@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::catalog::{CurveJob, CurveKind, CurveMethod, CurvePoints, CurveRun, Settings};
 use crate::two_phase::{TwoPhase, TwoPhaseSettings};
-use crate::{EndClamp, Error, PartitionSettings, Pipeline, Refusal, Result, SegmentedFairing};
+use crate::{CurveGuard, EndClamp, Error, PartitionSettings, Pipeline, Refusal, Result, SegmentedFairing};
 
 /// The parameters of `two-phase`: Han's phases ([`TwoPhaseSettings`]) and the options of the
 /// arbitrary-curve pipeline (§4.2) that parametric input runs through.
@@ -29,6 +29,10 @@ pub struct TwoPhaseCurveSettings {
     pub overlap: usize,
     /// Parametric input: true for a closed curve (last point joins the first).
     pub closed: bool,
+    /// Parametric input: refuse moves (local), passes (pass) or none (off, the paper) that make the curve's inflections or vibrations worse.
+    ///
+    /// Not in the paper; [`CurveGuard`] says what is counted and what it measured.
+    pub curve_guard: CurveGuard,
 }
 
 impl Default for TwoPhaseCurveSettings {
@@ -40,6 +44,7 @@ impl Default for TwoPhaseCurveSettings {
             turning_limit: partition.limit.to_degrees(),
             overlap: partition.overlap,
             closed: false,
+            curve_guard: SegmentedFairing::<TwoPhase>::DEFAULT_CURVE_GUARD,
         }
     }
 }
@@ -150,7 +155,8 @@ impl CurveMethod for TwoPhaseMethod {
             CurveKind::Parametric => Pipeline::new(
                 SegmentedFairing::new(TwoPhase::new(phases))
                     .with_partition(settings.partition())
-                    .with_passes(settings.segment_passes),
+                    .with_passes(settings.segment_passes)
+                    .with_curve_guard(settings.curve_guard),
             )
             .with_closed(settings.closed)
             .with_constraints(job.constraints.clone())
