@@ -149,6 +149,16 @@ impl<const D: usize> HermiteSpline<D> {
         Ok(())
     }
 
+    /// [`Interpolant::move_points`], also telling which tangents it re-solved: `Some((first,
+    /// last))`, the rows first..=last (for a closed curve they may wrap past the last point,
+    /// then first > last; every row after a full solve), `None` for no moves. Tangents
+    /// outside those rows are unchanged bit for bit, so a caller that keeps values derived
+    /// from the tangents (jumps, segment energies) needs to refresh them only there and
+    /// next to the moved points, which lie inside.
+    pub fn move_points_within(&mut self, moves: &[(usize, Vector<D>)]) -> Result<Option<(usize, usize)>> {
+        update::move_points(self, moves)
+    }
+
     /// The index of the point at the end of segment `segment`.
     fn next(&self, segment: usize) -> usize {
         if segment + 1 >= self.points.len() {
@@ -264,7 +274,7 @@ impl<const D: usize> Interpolant<D> for HermiteSpline<D> {
     /// Moves points and updates the tangents in a window around each move (see
     /// [`HermiteSpline::rebuild`] and the `update` module): O(moves · window) rather than O(n).
     fn move_points(&mut self, moves: &[(usize, Vector<D>)]) -> Result<()> {
-        update::move_points(self, moves)
+        update::move_points(self, moves).map(|_| ())
     }
 }
 

@@ -85,12 +85,21 @@ fn window_of<const D: usize>(spline: &HermiteSpline<D>, j: usize) -> (isize, isi
     }
 }
 
+/// Moves of at most this many points keep their bookkeeping (old positions, windows) on the
+/// stack; more allocate.
+const STACK_MOVES: usize = 4;
+
+/// Windows of at most this many rows in all are solved in storage on the stack (a single
+/// move's window is at most ~117 rows); longer ones allocate.
+const STACK_ROWS: usize = 128;
+
 /// Validates `moves`, applies them and updates the tangents window by window; on failure
-/// restores the points and tangents.
+/// restores the points and tangents. Returns the rows whose tangents were re-solved (see
+/// [`HermiteSpline::move_points_within`](super::HermiteSpline::move_points_within)).
 pub(super) fn move_points<const D: usize>(
     spline: &mut HermiteSpline<D>,
     moves: &[(usize, Vector<D>)],
-) -> Result<()> {
+) -> Result<Option<(usize, usize)>> {
     let count = spline.points.len();
     for &(index, position) in moves {
         if index >= count {
@@ -105,10 +114,18 @@ pub(super) fn move_points<const D: usize>(
         }
     }
     if moves.is_empty() {
-        return Ok(());
+        return Ok(None);
     }
-    let old_points: Vec<(usize, Vector<D>)> = moves.iter().map(|&(i, _)| (i, spline.points[i])).collect();
-    for &(index, position) in moves {
+    let mut small = [(0, Vector::<D>::zeros()); STACK_MOVES];
+    let mut large = Vec::new();
+    let old_points: &mut [(usize, Vector<D>)] = if moves.len() <= STACK_MOVES {
+        &mut small[..moves.len()]
+    } else {
+        large.resize(moves.len(), (0, Vector::<D>::zeros()));
+        &mut large
+    };
+    for (old, &(index, position)) in old_points.iter_mut().zip(moves) {
+        *old = (index, spline.points[index]);
         spline.points[index] = position;
     }
     let result = update_tangents(spline, moves);
@@ -120,66 +137,115 @@ pub(super) fn move_points<const D: usize>(
     result
 }
 
-/// Merges sorted intervals that overlap or touch (no row left between them).
-fn merge(sorted: &[(isize, isize)]) -> Vec<(isize, isize)> {
-    let mut merged: Vec<(isize, isize)> = Vec::with_capacity(sorted.len());
-    for &(lo, hi) in sorted {
-        match merged.last_mut() {
-            Some(last) if lo <= last.1 + 1 => last.1 = last.1.max(hi),
-            _ => merged.push((lo, hi)),
+/// Merges sorted intervals that overlap or touch (no row left between them) in place;
+/// returns how many are left, at the front.
+fn merge(intervals: &mut [(isize, isize)]) -> usize {
+    let mut len = 0;
+    for k in 0..intervals.len() {
+        let (lo, hi) = intervals[k];
+        if len > 0 && lo <= intervals[len - 1].1 + 1 {
+            intervals[len - 1].1 = intervals[len - 1].1.max(hi);
+        } else {
+            intervals[len] = (lo, hi);
+            len += 1;
         }
     }
-    merged
+    len
 }
 
 /// Merges the windows of the moved points and solves each; falls back to a full solve when
 /// the windows of a closed curve cover it. Tangents are written only after every solve
-/// succeeded.
+/// succeeded. Returns the first and last row re-solved (a closed curve's rows wrap: then
+/// the first may be the larger), `(0, count − 1)` after a full solve.
 fn update_tangents<const D: usize>(
     spline: &mut HermiteSpline<D>,
     moves: &[(usize, Vector<D>)],
-) -> Result<()> {
+) -> Result<Option<(usize, usize)>> {
     let count = spline.points.len() as isize;
-    let mut windows: Vec<(isize, isize)> = moves.iter().map(|&(j, _)| window_of(spline, j)).collect();
+    let mut small = [(0isize, 0isize); STACK_MOVES];
+    let mut large = Vec::new();
+    let windows: &mut [(isize, isize)] = if moves.len() <= STACK_MOVES {
+        &mut small[..moves.len()]
+    } else {
+        large.resize(moves.len(), (0, 0));
+        &mut large
+    };
+    for (window, &(j, _)) in windows.iter_mut().zip(moves) {
+        *window = window_of(spline, j);
+    }
     if spline.is_closed() {
         // Normalise so that lo ∈ [0, count); a window as long as the curve means a full solve.
-        for window in &mut windows {
+        for window in windows.iter_mut() {
             let shift = window.0.div_euclid(count) * count;
             *window = (window.0 - shift, window.1 - shift);
         }
     }
     windows.sort_unstable();
-    let mut merged = merge(&windows);
+    let mut merged = merge(windows);
     if spline.is_closed() {
         // The last window may wrap onto the first (and the grown first onto the next).
-        while merged.len() > 1 {
-            let (first, last) = (merged[0], merged[merged.len() - 1]);
+        while merged > 1 {
+            let (first, last) = (windows[0], windows[merged - 1]);
             if last.1 + 1 < first.0 + count {
                 break;
             }
-            merged.pop();
-            merged[0] = (last.0 - count, first.1.max(last.1 - count));
-            merged = merge(&merged);
+            merged -= 1;
+            windows[0] = (last.0 - count, first.1.max(last.1 - count));
+            merged = merge(&mut windows[..merged]);
         }
         // A window must leave at least two rows outside it.
-        let covered: isize = merged.iter().map(|(lo, hi)| hi - lo + 1).sum();
+        let covered: isize = windows[..merged].iter().map(|(lo, hi)| hi - lo + 1).sum();
         if covered >= count - 1 {
-            return spline.rebuild();
+            spline.rebuild()?;
+            return Ok(Some((0, count as usize - 1)));
         }
     }
-    let mut solutions = Vec::with_capacity(merged.len());
-    for &(lo, hi) in &merged {
+    let windows = &windows[..merged];
+    let total = windows
+        .iter()
+        .map(|(lo, hi)| (hi - lo + 1) as usize)
+        .sum::<usize>();
+    let mut stack = ([0.0; STACK_ROWS * 4], [Vector::<D>::zeros(); STACK_ROWS]);
+    let mut heap = (Vec::new(), Vec::new());
+    let (numbers, values): (&mut [f64], &mut [Vector<D>]) = if total <= STACK_ROWS {
+        (&mut stack.0[..4 * total], &mut stack.1[..total])
+    } else {
+        heap.0.resize(4 * total, 0.0);
+        heap.1.resize(total, Vector::<D>::zeros());
+        (&mut heap.0, &mut heap.1)
+    };
+    let (lower, rest) = numbers.split_at_mut(total);
+    let (diag, rest) = rest.split_at_mut(total);
+    let (upper, scratch) = rest.split_at_mut(total);
+    let mut offset = 0;
+    for &(lo, hi) in windows {
         let start = lo.rem_euclid(count) as usize;
-        let len = (hi - lo + 1) as usize;
-        solutions.push((start, solve::window(spline, start, len)?));
+        let range = offset..offset + (hi - lo + 1) as usize;
+        let rows = solve::WindowRows {
+            lower: &mut lower[range.clone()],
+            diag: &mut diag[range.clone()],
+            upper: &mut upper[range.clone()],
+            scratch: &mut scratch[range.clone()],
+            values: &mut values[range.clone()],
+        };
+        solve::window(spline, start, rows)?;
+        offset = range.end;
     }
     let total = spline.points.len();
-    for (start, values) in solutions {
-        for (k, value) in values.into_iter().enumerate() {
+    let mut offset = 0;
+    for &(lo, hi) in windows {
+        let start = lo.rem_euclid(count) as usize;
+        let len = (hi - lo + 1) as usize;
+        for (k, &value) in values[offset..offset + len].iter().enumerate() {
             spline.tangents[(start + k) % total] = value;
         }
+        offset += len;
     }
-    Ok(())
+    let (first, last) = (windows[0].0, windows[windows.len() - 1].1);
+    Ok(Some((
+        first.rem_euclid(count) as usize,
+        last.rem_euclid(count) as usize,
+    )))
 }
 
 #[cfg(test)]
