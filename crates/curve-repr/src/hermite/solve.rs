@@ -112,7 +112,7 @@ pub(super) fn tangents<const D: usize>(spline: &HermiteSpline<D>) -> Result<Vec<
 
 /// Storage of a windowed solve, one entry per row of the window: the system's three
 /// diagonals, the Thomas algorithm's scratch and the right-hand side, which the solve
-/// overwrites with the tangents. Borrowed, so that the caller can keep it on the stack.
+/// overwrites with the tangents. Borrowed from the spline's workspace.
 pub(super) struct WindowRows<'a, const D: usize> {
     pub(super) lower: &'a mut [f64],
     pub(super) diag: &'a mut [f64],

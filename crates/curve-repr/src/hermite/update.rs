@@ -89,9 +89,28 @@ fn window_of<const D: usize>(spline: &HermiteSpline<D>, j: usize) -> (isize, isi
 /// stack; more allocate.
 const STACK_MOVES: usize = 4;
 
-/// Windows of at most this many rows in all are solved in storage on the stack (a single
-/// move's window is at most ~117 rows); longer ones allocate.
-const STACK_ROWS: usize = 128;
+/// Storage of the windowed solves, kept by the spline between moves so that a move
+/// allocates nothing once it has grown to the longest window met. Not part of the spline's
+/// value: equal to any other, empty in a clone.
+#[derive(Default)]
+pub(super) struct Workspace<const D: usize> {
+    /// Four f64 per row: the three diagonals and the Thomas algorithm's scratch.
+    numbers: Vec<f64>,
+    /// The right-hand sides, then the tangents.
+    values: Vec<Vector<D>>,
+}
+
+impl<const D: usize> PartialEq for Workspace<D> {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
+}
+
+impl<const D: usize> std::fmt::Debug for Workspace<D> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Workspace")
+    }
+}
 
 /// Validates `moves`, applies them and updates the tangents window by window; on failure
 /// restores the points and tangents. Returns the rows whose tangents were re-solved (see
@@ -135,6 +154,35 @@ pub(super) fn move_points<const D: usize>(
         }
     }
     result
+}
+
+/// Solves every window (`total` rows in all) into the workspace's first `total` rows, in order.
+fn solve_windows<const D: usize>(
+    spline: &HermiteSpline<D>,
+    windows: &[(isize, isize)],
+    total: usize,
+    workspace: &mut Workspace<D>,
+) -> Result<()> {
+    let count = spline.points.len() as isize;
+    let (lower, rest) = workspace.numbers[..4 * total].split_at_mut(total);
+    let (diag, rest) = rest.split_at_mut(total);
+    let (upper, scratch) = rest.split_at_mut(total);
+    let values = &mut workspace.values[..total];
+    let mut offset = 0;
+    for &(lo, hi) in windows {
+        let start = lo.rem_euclid(count) as usize;
+        let range = offset..offset + (hi - lo + 1) as usize;
+        let rows = solve::WindowRows {
+            lower: &mut lower[range.clone()],
+            diag: &mut diag[range.clone()],
+            upper: &mut upper[range.clone()],
+            scratch: &mut scratch[range.clone()],
+            values: &mut values[range.clone()],
+        };
+        solve::window(spline, start, rows)?;
+        offset = range.end;
+    }
+    Ok(())
 }
 
 /// Merges sorted intervals that overlap or touch (no row left between them) in place;
@@ -205,42 +253,26 @@ fn update_tangents<const D: usize>(
         .iter()
         .map(|(lo, hi)| (hi - lo + 1) as usize)
         .sum::<usize>();
-    let mut stack = ([0.0; STACK_ROWS * 4], [Vector::<D>::zeros(); STACK_ROWS]);
-    let mut heap = (Vec::new(), Vec::new());
-    let (numbers, values): (&mut [f64], &mut [Vector<D>]) = if total <= STACK_ROWS {
-        (&mut stack.0[..4 * total], &mut stack.1[..total])
-    } else {
-        heap.0.resize(4 * total, 0.0);
-        heap.1.resize(total, Vector::<D>::zeros());
-        (&mut heap.0, &mut heap.1)
-    };
-    let (lower, rest) = numbers.split_at_mut(total);
-    let (diag, rest) = rest.split_at_mut(total);
-    let (upper, scratch) = rest.split_at_mut(total);
-    let mut offset = 0;
-    for &(lo, hi) in windows {
-        let start = lo.rem_euclid(count) as usize;
-        let range = offset..offset + (hi - lo + 1) as usize;
-        let rows = solve::WindowRows {
-            lower: &mut lower[range.clone()],
-            diag: &mut diag[range.clone()],
-            upper: &mut upper[range.clone()],
-            scratch: &mut scratch[range.clone()],
-            values: &mut values[range.clone()],
-        };
-        solve::window(spline, start, rows)?;
-        offset = range.end;
+    let mut workspace = std::mem::take(&mut spline.workspace);
+    if workspace.values.len() < total {
+        workspace.numbers.resize(4 * total, 0.0);
+        workspace.values.resize(total, Vector::<D>::zeros());
     }
-    let total = spline.points.len();
-    let mut offset = 0;
-    for &(lo, hi) in windows {
-        let start = lo.rem_euclid(count) as usize;
-        let len = (hi - lo + 1) as usize;
-        for (k, &value) in values[offset..offset + len].iter().enumerate() {
-            spline.tangents[(start + k) % total] = value;
+    let solved = solve_windows(spline, windows, total, &mut workspace);
+    if solved.is_ok() {
+        let total = spline.points.len();
+        let mut offset = 0;
+        for &(lo, hi) in windows {
+            let start = lo.rem_euclid(count) as usize;
+            let len = (hi - lo + 1) as usize;
+            for (k, &value) in workspace.values[offset..offset + len].iter().enumerate() {
+                spline.tangents[(start + k) % total] = value;
+            }
+            offset += len;
         }
-        offset += len;
     }
+    spline.workspace = workspace;
+    solved?;
     let (first, last) = (windows[0].0, windows[windows.len() - 1].1);
     Ok(Some((
         first.rem_euclid(count) as usize,
