@@ -368,9 +368,16 @@ impl<const D: usize> StrainEnergy<D> {
                 }
             }
             None => {
-                for k in lo.max(1)..=(last + 1).min(n.saturating_sub(2)) {
-                    let z = jump(spline, k).norm();
-                    set_z(&mut self.z, &mut self.stamp, &mut self.heap, k, z);
+                // z_k = |jump(k)|, each segment's third derivative computed once.
+                let (from, to) = (lo.max(1), (last + 1).min(n.saturating_sub(2)));
+                if from <= to {
+                    let mut before = third(spline, from - 1);
+                    for k in from..=to {
+                        let after = third(spline, k);
+                        let z = (after - before).norm();
+                        before = after;
+                        set_z(&mut self.z, &mut self.stamp, &mut self.heap, k, z);
+                    }
                 }
             }
         }
@@ -391,15 +398,23 @@ impl<const D: usize> StrainEnergy<D> {
     }
 
     /// The worst unblocked candidate, dropping stale entries. The lazy heap is rebuilt from z
-    /// when stale entries outnumber live ones eightfold (amortised O(1) per pushed entry).
+    /// (in its own storage, the blocked points left out: they are never candidates again)
+    /// when it holds more than 2n + 64 entries, amortised O(1) per pushed entry; the live
+    /// entries, and so the order of the moves, do not depend on when.
     fn pop_worst(&mut self) -> Option<usize> {
-        if self.heap.len() > 8 * self.z.len() + 1024 {
-            self.heap = self
-                .z
-                .iter()
-                .enumerate()
-                .map(|(k, &z)| Entry(z, k, self.stamp.get(k).copied().unwrap_or(0)))
-                .collect();
+        if self.heap.len() > 2 * self.z.len() + 64 {
+            let mut entries = std::mem::take(&mut self.heap).into_vec();
+            entries.clear();
+            entries.extend(
+                self.z
+                    .iter()
+                    .zip(&self.stamp)
+                    .zip(&self.blocked)
+                    .enumerate()
+                    .filter(|(_, (_, &blocked))| !blocked)
+                    .map(|(k, ((&z, &stamp), _))| Entry(z, k, stamp)),
+            );
+            self.heap = BinaryHeap::from(entries);
         }
         while let Some(Entry(z, k, st)) = self.heap.pop() {
             if self.stamp.get(k) == Some(&st) && !self.blocked.get(k).copied().unwrap_or(true) {
