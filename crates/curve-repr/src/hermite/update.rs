@@ -335,6 +335,32 @@ mod tests {
         assert_eq!(window_of(&spline, 499).1, 499);
     }
 
+    /// `move_points_within` names every row whose tangent changed (and the moved points);
+    /// the rows outside keep their tangents bit for bit, and the storage a spline keeps
+    /// between moves changes no result.
+    #[test]
+    fn reported_rows_hold_every_changed_tangent() {
+        let mut spline = HermiteSpline::natural(&wave(300)).unwrap();
+        let before = spline.clone();
+        let moves = [(150, Vec2::new(150.0, 3.0)), (152, Vec2::new(152.0, -2.0))];
+        let (first, last) = spline.move_points_within(&moves).unwrap().unwrap();
+        assert!(first < 150 && last > 152 && last - first < 160, "{first}..{last}");
+        for k in (0..300).filter(|k| !(first..=last).contains(k)) {
+            assert_eq!(spline.tangents[k], before.tangents[k], "row {k}");
+        }
+        for k in [149, 151, 153] {
+            assert_ne!(spline.tangents[k], before.tangents[k], "row {k}");
+        }
+        assert_eq!(spline.move_points_within(&[]).unwrap(), None);
+        // A fresh copy (no storage yet) and the used spline give the same bits.
+        let mut fresh = spline.clone();
+        let again = [(40, Vec2::new(40.0, 1.0))];
+        spline.move_points(&again).unwrap();
+        fresh.move_points(&again).unwrap();
+        assert_eq!(spline, fresh);
+        assert!(spline.tangents.iter().zip(&fresh.tangents).all(|(a, b)| a == b));
+    }
+
     #[test]
     fn bad_moves_are_errors_and_change_nothing() {
         let mut spline = HermiteSpline::natural(&wave(10)).unwrap();
