@@ -44,34 +44,59 @@ fn check_lengths(n: usize, lower: &[f64], upper: &[f64], rhs_len: usize) -> Resu
 pub fn solve<T: Field>(lower: &[f64], diag: &[f64], upper: &[f64], rhs: &[T]) -> Result<Vec<T>> {
     let n = diag.len();
     check_lengths(n, lower, upper, rhs.len())?;
+    let mut x = rhs.to_vec();
+    let mut upper_prime = vec![0.0; n];
+    solve_in_place(lower, diag, upper, &mut x, &mut upper_prime)?;
+    Ok(x)
+}
+
+/// [`solve`] without allocating: `values` holds the right-hand side on entry and the
+/// solution on success (unspecified on failure); `upper_prime` (at least as long as
+/// `diag`) is scratch. The same operations in the same order as [`solve`], so the same
+/// bits.
+///
+/// Fails like [`solve`].
+pub fn solve_in_place<T: Field>(
+    lower: &[f64],
+    diag: &[f64],
+    upper: &[f64],
+    values: &mut [T],
+    upper_prime: &mut [f64],
+) -> Result<()> {
+    let n = diag.len();
+    check_lengths(n, lower, upper, values.len())?;
+    if upper_prime.len() < n {
+        return Err(Error::LengthMismatch {
+            what: "scratch",
+            expected: n,
+            got: upper_prime.len(),
+        });
+    }
     if n == 0 {
-        return Ok(Vec::new());
+        return Ok(());
     }
     let singular = Error::Singular {
         what: "solving a tridiagonal system",
     };
-    let mut upper_prime = vec![0.0; n];
-    let mut x: Vec<T> = Vec::with_capacity(n);
     let mut pivot = diag[0];
     let scale = |i: usize| diag[i].abs() + lower[i].abs() + upper[i].abs();
     if !pivot.is_finite() || pivot.abs() <= PIVOT_TOLERANCE * scale(0) {
         return Err(singular);
     }
     upper_prime[0] = upper[0] / pivot;
-    x.push(rhs[0] * (1.0 / pivot));
+    values[0] = values[0] * (1.0 / pivot);
     for i in 1..n {
         pivot = diag[i] - lower[i] * upper_prime[i - 1];
         if !pivot.is_finite() || pivot.abs() <= PIVOT_TOLERANCE * scale(i) {
             return Err(singular);
         }
         upper_prime[i] = upper[i] / pivot;
-        let value = (rhs[i] - x[i - 1] * lower[i]) * (1.0 / pivot);
-        x.push(value);
+        values[i] = (values[i] - values[i - 1] * lower[i]) * (1.0 / pivot);
     }
     for i in (0..n - 1).rev() {
-        x[i] = x[i] - x[i + 1] * upper_prime[i];
+        values[i] = values[i] - values[i + 1] * upper_prime[i];
     }
-    Ok(x)
+    Ok(())
 }
 
 /// Solves the cyclic system, whose row 0 also holds `lower[0]·x[n−1]` and row n−1 also

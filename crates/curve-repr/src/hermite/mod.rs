@@ -36,13 +36,36 @@ use crate::{Error, Result, Vector};
 /// more segment, P_n → P_0, on [t_n, t_{n+1}].
 ///
 /// Evaluation costs O(log n) (a binary search for the segment); construction O(n).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub struct HermiteSpline<const D: usize> {
     points: Vec<Vector<D>>,
     /// The knots: one per point, plus the closing one for a closed curve.
     knots: Vec<f64>,
     tangents: Vec<Vector<D>>,
     ends: HermiteEnds<D>,
+    /// Storage of the windowed updates, reused from one move to the next.
+    workspace: update::Workspace<D>,
+}
+
+impl<const D: usize> Clone for HermiteSpline<D> {
+    fn clone(&self) -> Self {
+        Self {
+            points: self.points.clone(),
+            knots: self.knots.clone(),
+            tangents: self.tangents.clone(),
+            ends: self.ends,
+            workspace: update::Workspace::default(),
+        }
+    }
+
+    /// Reuses this spline's storage (and keeps its workspace): a reset to a saved spline
+    /// allocates nothing when the sizes agree.
+    fn clone_from(&mut self, source: &Self) {
+        self.points.clone_from(&source.points);
+        self.knots.clone_from(&source.knots);
+        self.tangents.clone_from(&source.tangents);
+        self.ends = source.ends;
+    }
 }
 
 impl<const D: usize> HermiteSpline<D> {
@@ -94,6 +117,7 @@ impl<const D: usize> HermiteSpline<D> {
             knots,
             tangents: Vec::new(),
             ends,
+            workspace: update::Workspace::default(),
         };
         spline.tangents = solve::tangents(&spline)?;
         Ok(spline)
@@ -147,6 +171,16 @@ impl<const D: usize> HermiteSpline<D> {
     pub fn rebuild(&mut self) -> Result<()> {
         self.tangents = solve::tangents(self)?;
         Ok(())
+    }
+
+    /// [`Interpolant::move_points`], also telling which tangents it re-solved: `Some((first,
+    /// last))`, the rows first..=last (for a closed curve they may wrap past the last point,
+    /// then first > last; every row after a full solve), `None` for no moves. Tangents
+    /// outside those rows are unchanged bit for bit, so a caller that keeps values derived
+    /// from the tangents (jumps, segment energies) needs to refresh them only there and
+    /// next to the moved points, which lie inside.
+    pub fn move_points_within(&mut self, moves: &[(usize, Vector<D>)]) -> Result<Option<(usize, usize)>> {
+        update::move_points(self, moves)
     }
 
     /// The index of the point at the end of segment `segment`.
@@ -264,7 +298,7 @@ impl<const D: usize> Interpolant<D> for HermiteSpline<D> {
     /// Moves points and updates the tangents in a window around each move (see
     /// [`HermiteSpline::rebuild`] and the `update` module): O(moves · window) rather than O(n).
     fn move_points(&mut self, moves: &[(usize, Vector<D>)]) -> Result<()> {
-        update::move_points(self, moves)
+        update::move_points(self, moves).map(|_| ())
     }
 }
 

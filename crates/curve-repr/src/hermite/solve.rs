@@ -30,36 +30,39 @@ impl<const D: usize> HermiteSpline<D> {
         (self.points[self.next(segment)] - self.points[segment]) / self.step(segment)
     }
 
-    /// Row `i` (0 ≤ i < number of points) of the tangent system, from the current points.
-    pub(super) fn row(&self, i: usize) -> Row<D> {
+    /// Row `i` (0 ≤ i < number of points) of the tangent system, from the current points,
+    /// given the chord slope of the segment before `i` when the caller has it (the row
+    /// before computed it); returns the slope of segment `i` too when it was computed, for
+    /// the row after. The same operations as computing each slope anew, so the same bits,
+    /// with one chord slope per row instead of two.
+    pub(super) fn row_with(
+        &self,
+        i: usize,
+        previous_slope: Option<Vector<D>>,
+    ) -> (Row<D>, Option<Vector<D>>) {
         let count = self.points.len();
-        let open_end = |ends: Option<(f64, f64, Vector<D>)>, at_start: bool| {
-            ends.map(|(first, second, rhs)| {
-                if at_start {
-                    Row {
-                        lower: 0.0,
-                        diag: first,
-                        upper: second,
-                        rhs,
-                    }
-                } else {
-                    Row {
-                        lower: first,
-                        diag: second,
-                        upper: 0.0,
-                        rhs,
-                    }
-                }
-            })
-        };
         if !self.is_closed() {
             if i == 0 {
-                if let Some(row) = open_end(self.ends.start_row(self.chord_slope(0)), true) {
-                    return row;
+                let slope = self.chord_slope(0);
+                if let Some((diag, upper, rhs)) = self.ends.start_row(slope) {
+                    let row = Row {
+                        lower: 0.0,
+                        diag,
+                        upper,
+                        rhs,
+                    };
+                    return (row, Some(slope));
                 }
             } else if i + 1 == count {
-                if let Some(row) = open_end(self.ends.end_row(self.chord_slope(i - 1)), false) {
-                    return row;
+                let slope = previous_slope.unwrap_or_else(|| self.chord_slope(i - 1));
+                if let Some((lower, diag, rhs)) = self.ends.end_row(slope) {
+                    let row = Row {
+                        lower,
+                        diag,
+                        upper: 0.0,
+                        rhs,
+                    };
+                    return (row, None);
                 }
             }
         }
@@ -67,12 +70,15 @@ impl<const D: usize> HermiteSpline<D> {
         let (h0, h1) = (self.step(previous), self.step(i));
         let a = h1 / (h0 + h1);
         let b = h0 / (h0 + h1);
-        Row {
+        let before = previous_slope.unwrap_or_else(|| self.chord_slope(previous));
+        let after = self.chord_slope(i);
+        let row = Row {
             lower: a,
             diag: 2.0,
             upper: b,
-            rhs: (self.chord_slope(previous) * a + self.chord_slope(i) * b) * 3.0,
-        }
+            rhs: (before * a + after * b) * 3.0,
+        };
+        (row, Some(after))
     }
 }
 
@@ -86,8 +92,10 @@ pub(super) fn tangents<const D: usize>(spline: &HermiteSpline<D>) -> Result<Vec<
     let mut diag = Vec::with_capacity(count);
     let mut upper = Vec::with_capacity(count);
     let mut rhs = Vec::with_capacity(count);
+    let mut slope = None;
     for i in 0..count {
-        let row = spline.row(i);
+        let (row, next) = spline.row_with(i, slope);
+        slope = next;
         lower.push(row.lower);
         diag.push(row.diag);
         upper.push(row.upper);
@@ -102,45 +110,62 @@ pub(super) fn tangents<const D: usize>(spline: &HermiteSpline<D>) -> Result<Vec<
     Ok(solution)
 }
 
-/// Solves rows `start..start + len` (indices modulo the point count for a closed curve) for
-/// their tangents, holding the tangents just outside the window at their current values.
-/// O(len). The window must not cover a closed curve's every row.
+/// Storage of a windowed solve, one entry per row of the window: the system's three
+/// diagonals, the Thomas algorithm's scratch and the right-hand side, which the solve
+/// overwrites with the tangents. Borrowed from the spline's workspace.
+pub(super) struct WindowRows<'a, const D: usize> {
+    pub(super) lower: &'a mut [f64],
+    pub(super) diag: &'a mut [f64],
+    pub(super) upper: &'a mut [f64],
+    pub(super) scratch: &'a mut [f64],
+    pub(super) values: &'a mut [Vector<D>],
+}
+
+/// Solves rows `start..start + len` (indices modulo the point count for a closed curve,
+/// `len` the length of `rows`' slices) for their tangents, holding the tangents just outside
+/// the window at their current values; the tangents are left in `rows.values`. O(len), no
+/// allocation. The window must not cover a closed curve's every row.
 pub(super) fn window<const D: usize>(
     spline: &HermiteSpline<D>,
     start: usize,
-    len: usize,
-) -> Result<Vec<Vector<D>>> {
+    rows: WindowRows<'_, D>,
+) -> Result<()> {
+    let WindowRows {
+        lower,
+        diag,
+        upper,
+        scratch,
+        values,
+    } = rows;
+    let len = values.len();
     let count = spline.points.len();
     let index = |k: usize| (start + k) % count;
-    let mut lower = Vec::with_capacity(len);
-    let mut diag = Vec::with_capacity(len);
-    let mut upper = Vec::with_capacity(len);
-    let mut rhs = Vec::with_capacity(len);
-    for k in 0..len {
-        let row = spline.row(index(k));
-        lower.push(row.lower);
-        diag.push(row.diag);
-        upper.push(row.upper);
-        rhs.push(row.rhs);
-    }
     if len == 0 {
-        return Ok(Vec::new());
+        return Ok(());
+    }
+    let mut slope = None;
+    for k in 0..len {
+        let (row, next) = spline.row_with(index(k), slope);
+        slope = next;
+        lower[k] = row.lower;
+        diag[k] = row.diag;
+        upper[k] = row.upper;
+        values[k] = row.rhs;
     }
     // Boundary tangents move to the right-hand side (their coefficients are 0 at open ends).
     if lower[0] != 0.0 {
         let outside = spline.tangents[(start + count - 1) % count];
-        rhs[0] -= outside * lower[0];
+        values[0] -= outside * lower[0];
         lower[0] = 0.0;
     }
     let last = len - 1;
     if upper[last] != 0.0 {
         let outside = spline.tangents[index(len)];
-        rhs[last] -= outside * upper[last];
+        values[last] -= outside * upper[last];
         upper[last] = 0.0;
     }
-    let solution = tridiagonal::solve(&lower, &diag, &upper, &rhs)?;
-    check_tangents(&solution)?;
-    Ok(solution)
+    tridiagonal::solve_in_place(lower, diag, upper, values, scratch)?;
+    check_tangents(values)
 }
 
 fn check_tangents<const D: usize>(tangents: &[Vector<D>]) -> Result<()> {

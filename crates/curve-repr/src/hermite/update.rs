@@ -85,12 +85,40 @@ fn window_of<const D: usize>(spline: &HermiteSpline<D>, j: usize) -> (isize, isi
     }
 }
 
+/// Moves of at most this many points keep their bookkeeping (old positions, windows) on the
+/// stack; more allocate.
+const STACK_MOVES: usize = 4;
+
+/// Storage of the windowed solves, kept by the spline between moves so that a move
+/// allocates nothing once it has grown to the longest window met. Not part of the spline's
+/// value: equal to any other, empty in a clone.
+#[derive(Default)]
+pub(super) struct Workspace<const D: usize> {
+    /// Four f64 per row: the three diagonals and the Thomas algorithm's scratch.
+    numbers: Vec<f64>,
+    /// The right-hand sides, then the tangents.
+    values: Vec<Vector<D>>,
+}
+
+impl<const D: usize> PartialEq for Workspace<D> {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
+}
+
+impl<const D: usize> std::fmt::Debug for Workspace<D> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Workspace")
+    }
+}
+
 /// Validates `moves`, applies them and updates the tangents window by window; on failure
-/// restores the points and tangents.
+/// restores the points and tangents. Returns the rows whose tangents were re-solved (see
+/// [`HermiteSpline::move_points_within`](super::HermiteSpline::move_points_within)).
 pub(super) fn move_points<const D: usize>(
     spline: &mut HermiteSpline<D>,
     moves: &[(usize, Vector<D>)],
-) -> Result<()> {
+) -> Result<Option<(usize, usize)>> {
     let count = spline.points.len();
     for &(index, position) in moves {
         if index >= count {
@@ -105,10 +133,18 @@ pub(super) fn move_points<const D: usize>(
         }
     }
     if moves.is_empty() {
-        return Ok(());
+        return Ok(None);
     }
-    let old_points: Vec<(usize, Vector<D>)> = moves.iter().map(|&(i, _)| (i, spline.points[i])).collect();
-    for &(index, position) in moves {
+    let mut small = [(0, Vector::<D>::zeros()); STACK_MOVES];
+    let mut large = Vec::new();
+    let old_points: &mut [(usize, Vector<D>)] = if moves.len() <= STACK_MOVES {
+        &mut small[..moves.len()]
+    } else {
+        large.resize(moves.len(), (0, Vector::<D>::zeros()));
+        &mut large
+    };
+    for (old, &(index, position)) in old_points.iter_mut().zip(moves) {
+        *old = (index, spline.points[index]);
         spline.points[index] = position;
     }
     let result = update_tangents(spline, moves);
@@ -120,66 +156,128 @@ pub(super) fn move_points<const D: usize>(
     result
 }
 
-/// Merges sorted intervals that overlap or touch (no row left between them).
-fn merge(sorted: &[(isize, isize)]) -> Vec<(isize, isize)> {
-    let mut merged: Vec<(isize, isize)> = Vec::with_capacity(sorted.len());
-    for &(lo, hi) in sorted {
-        match merged.last_mut() {
-            Some(last) if lo <= last.1 + 1 => last.1 = last.1.max(hi),
-            _ => merged.push((lo, hi)),
+/// Solves every window (`total` rows in all) into the workspace's first `total` rows, in order.
+fn solve_windows<const D: usize>(
+    spline: &HermiteSpline<D>,
+    windows: &[(isize, isize)],
+    total: usize,
+    workspace: &mut Workspace<D>,
+) -> Result<()> {
+    let count = spline.points.len() as isize;
+    let (lower, rest) = workspace.numbers[..4 * total].split_at_mut(total);
+    let (diag, rest) = rest.split_at_mut(total);
+    let (upper, scratch) = rest.split_at_mut(total);
+    let values = &mut workspace.values[..total];
+    let mut offset = 0;
+    for &(lo, hi) in windows {
+        let start = lo.rem_euclid(count) as usize;
+        let range = offset..offset + (hi - lo + 1) as usize;
+        let rows = solve::WindowRows {
+            lower: &mut lower[range.clone()],
+            diag: &mut diag[range.clone()],
+            upper: &mut upper[range.clone()],
+            scratch: &mut scratch[range.clone()],
+            values: &mut values[range.clone()],
+        };
+        solve::window(spline, start, rows)?;
+        offset = range.end;
+    }
+    Ok(())
+}
+
+/// Merges sorted intervals that overlap or touch (no row left between them) in place;
+/// returns how many are left, at the front.
+fn merge(intervals: &mut [(isize, isize)]) -> usize {
+    let mut len = 0;
+    for k in 0..intervals.len() {
+        let (lo, hi) = intervals[k];
+        if len > 0 && lo <= intervals[len - 1].1 + 1 {
+            intervals[len - 1].1 = intervals[len - 1].1.max(hi);
+        } else {
+            intervals[len] = (lo, hi);
+            len += 1;
         }
     }
-    merged
+    len
 }
 
 /// Merges the windows of the moved points and solves each; falls back to a full solve when
 /// the windows of a closed curve cover it. Tangents are written only after every solve
-/// succeeded.
+/// succeeded. Returns the first and last row re-solved (a closed curve's rows wrap: then
+/// the first may be the larger), `(0, count − 1)` after a full solve.
 fn update_tangents<const D: usize>(
     spline: &mut HermiteSpline<D>,
     moves: &[(usize, Vector<D>)],
-) -> Result<()> {
+) -> Result<Option<(usize, usize)>> {
     let count = spline.points.len() as isize;
-    let mut windows: Vec<(isize, isize)> = moves.iter().map(|&(j, _)| window_of(spline, j)).collect();
+    let mut small = [(0isize, 0isize); STACK_MOVES];
+    let mut large = Vec::new();
+    let windows: &mut [(isize, isize)] = if moves.len() <= STACK_MOVES {
+        &mut small[..moves.len()]
+    } else {
+        large.resize(moves.len(), (0, 0));
+        &mut large
+    };
+    for (window, &(j, _)) in windows.iter_mut().zip(moves) {
+        *window = window_of(spline, j);
+    }
     if spline.is_closed() {
         // Normalise so that lo ∈ [0, count); a window as long as the curve means a full solve.
-        for window in &mut windows {
+        for window in windows.iter_mut() {
             let shift = window.0.div_euclid(count) * count;
             *window = (window.0 - shift, window.1 - shift);
         }
     }
     windows.sort_unstable();
-    let mut merged = merge(&windows);
+    let mut merged = merge(windows);
     if spline.is_closed() {
         // The last window may wrap onto the first (and the grown first onto the next).
-        while merged.len() > 1 {
-            let (first, last) = (merged[0], merged[merged.len() - 1]);
+        while merged > 1 {
+            let (first, last) = (windows[0], windows[merged - 1]);
             if last.1 + 1 < first.0 + count {
                 break;
             }
-            merged.pop();
-            merged[0] = (last.0 - count, first.1.max(last.1 - count));
-            merged = merge(&merged);
+            merged -= 1;
+            windows[0] = (last.0 - count, first.1.max(last.1 - count));
+            merged = merge(&mut windows[..merged]);
         }
         // A window must leave at least two rows outside it.
-        let covered: isize = merged.iter().map(|(lo, hi)| hi - lo + 1).sum();
+        let covered: isize = windows[..merged].iter().map(|(lo, hi)| hi - lo + 1).sum();
         if covered >= count - 1 {
-            return spline.rebuild();
+            spline.rebuild()?;
+            return Ok(Some((0, count as usize - 1)));
         }
     }
-    let mut solutions = Vec::with_capacity(merged.len());
-    for &(lo, hi) in &merged {
-        let start = lo.rem_euclid(count) as usize;
-        let len = (hi - lo + 1) as usize;
-        solutions.push((start, solve::window(spline, start, len)?));
+    let windows = &windows[..merged];
+    let total = windows
+        .iter()
+        .map(|(lo, hi)| (hi - lo + 1) as usize)
+        .sum::<usize>();
+    let mut workspace = std::mem::take(&mut spline.workspace);
+    if workspace.values.len() < total {
+        workspace.numbers.resize(4 * total, 0.0);
+        workspace.values.resize(total, Vector::<D>::zeros());
     }
-    let total = spline.points.len();
-    for (start, values) in solutions {
-        for (k, value) in values.into_iter().enumerate() {
-            spline.tangents[(start + k) % total] = value;
+    let solved = solve_windows(spline, windows, total, &mut workspace);
+    if solved.is_ok() {
+        let total = spline.points.len();
+        let mut offset = 0;
+        for &(lo, hi) in windows {
+            let start = lo.rem_euclid(count) as usize;
+            let len = (hi - lo + 1) as usize;
+            for (k, &value) in workspace.values[offset..offset + len].iter().enumerate() {
+                spline.tangents[(start + k) % total] = value;
+            }
+            offset += len;
         }
     }
-    Ok(())
+    spline.workspace = workspace;
+    solved?;
+    let (first, last) = (windows[0].0, windows[windows.len() - 1].1);
+    Ok(Some((
+        first.rem_euclid(count) as usize,
+        last.rem_euclid(count) as usize,
+    )))
 }
 
 #[cfg(test)]
@@ -235,6 +333,32 @@ mod tests {
         assert!(lo > 100 && hi < 400);
         assert_eq!(window_of(&spline, 0).0, 0);
         assert_eq!(window_of(&spline, 499).1, 499);
+    }
+
+    /// `move_points_within` names every row whose tangent changed (and the moved points);
+    /// the rows outside keep their tangents bit for bit, and the storage a spline keeps
+    /// between moves changes no result.
+    #[test]
+    fn reported_rows_hold_every_changed_tangent() {
+        let mut spline = HermiteSpline::natural(&wave(300)).unwrap();
+        let before = spline.clone();
+        let moves = [(150, Vec2::new(150.0, 3.0)), (152, Vec2::new(152.0, -2.0))];
+        let (first, last) = spline.move_points_within(&moves).unwrap().unwrap();
+        assert!(first < 150 && last > 152 && last - first < 160, "{first}..{last}");
+        for k in (0..300).filter(|k| !(first..=last).contains(k)) {
+            assert_eq!(spline.tangents[k], before.tangents[k], "row {k}");
+        }
+        for k in [149, 151, 153] {
+            assert_ne!(spline.tangents[k], before.tangents[k], "row {k}");
+        }
+        assert_eq!(spline.move_points_within(&[]).unwrap(), None);
+        // A fresh copy (no storage yet) and the used spline give the same bits.
+        let mut fresh = spline.clone();
+        let again = [(40, Vec2::new(40.0, 1.0))];
+        spline.move_points(&again).unwrap();
+        fresh.move_points(&again).unwrap();
+        assert_eq!(spline, fresh);
+        assert!(spline.tangents.iter().zip(&fresh.tangents).all(|(a, b)| a == b));
     }
 
     #[test]

@@ -7,8 +7,12 @@
 //! fairing, the unit responses of the knot vectors) are not amortised that way, and make the
 //! smallest net the slowest per point (the surface module's docs, "cost of a step").
 //! `queue`: largest current z first off an indexed heap;
-//! `sort`: the paper's sort of the step's starting z. Filter with
-//! `cargo bench -p fairing --bench fairing -- surface_step`.
+//! `sort`: the paper's sort of the step's starting z;
+//! `sort_steps`: `sort` without the boundary fairing (step 2.1, once per run), so the four
+//! steps alone: their per-point cost, which the per-run cost does not blur at the small end
+//! (a different run: the boundary curves stay as they are). Filter with
+//! `cargo bench -p fairing --bench fairing -- surface_step` (`surface_step/sort` gives both
+//! `sort` entries).
 
 use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
 use curve_repr::Vec3;
@@ -50,9 +54,14 @@ fn bench(c: &mut Criterion) {
     for size in sizes(&[50usize, 100, 200, 400]) {
         let net = noisy_net(size);
         group.throughput(Throughput::Elements((STEPS * size * size) as u64));
-        for (name, order) in [("queue", SweepOrder::Queue), ("sort", SweepOrder::Sort)] {
+        for (name, order, boundary) in [
+            ("queue", SweepOrder::Queue, true),
+            ("sort", SweepOrder::Sort, true),
+            ("sort_steps", SweepOrder::Sort, false),
+        ] {
             let settings = SurfaceFairingSettings::zhang_cheng()
                 .with_order(order)
+                .with_fair_boundary(boundary)
                 .with_max_steps(STEPS);
             group.bench_with_input(BenchmarkId::new(name, size), &net, |b, net| {
                 b.iter(|| SurfaceFairing::new(settings.clone()).run(net).unwrap())

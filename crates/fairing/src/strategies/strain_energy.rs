@@ -9,14 +9,16 @@
 //! J = K P with K symmetric, and Zhang–Cheng's energy is E = const · Σ P_k·J_k.
 //!
 //! Knots are fixed during fairing: the spline is built once with the chosen
-//! [`Parametrization`] and updated by [`Interpolant::move_points`] (O(window)). The
-//! indicator, the energy and the max-heap are updated only inside [`WINDOW`] knots around a
-//! move, so a step costs O(window · log) independent of n.
+//! [`Parametrization`] and updated by [`HermiteSpline::move_points_within`] (O(window)). The
+//! indicator, the energy and the max-heap are updated only over the rows whose tangents that
+//! update re-solved (at most [`WINDOW`] knots on each side of a move), and a z that did not
+//! change keeps its heap entry, so a step costs O(window · log) independent of n and
+//! allocates nothing.
 
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
-use curve_repr::{Curve, HermiteSettings, HermiteSpline, Interpolant, Parametrization, Vector};
+use curve_repr::{Curve, HermiteSettings, HermiteSpline, Parametrization, Vector};
 
 use crate::catalog::SharedIndicator;
 use crate::state::strategy_error;
@@ -25,7 +27,8 @@ use fairness::LocalIndicator;
 
 /// Knots on each side of a move within which tangents (and so jumps and segment energies) can
 /// change: the Hermite update window is at most ~57 knots per side for any spacing
-/// (see curve-repr's `hermite::update`), so 64 covers it.
+/// (see curve-repr's `hermite::update`), so 64 covers it. A step refreshes the window the
+/// update reports, not this bound.
 pub const WINDOW: usize = 64;
 
 /// How bad points are chosen.
@@ -209,6 +212,18 @@ impl Ord for Entry {
     }
 }
 
+/// Sets z_k and, when it changed (or was never set: stamp 0), pushes its new heap entry (the
+/// new stamp makes the old entry stale).
+fn set_z(z: &mut [f64], stamp: &mut [u64], heap: &mut BinaryHeap<Entry>, k: usize, value: f64) {
+    if let (Some(zs), Some(st)) = (z.get_mut(k), stamp.get_mut(k)) {
+        if zs.to_bits() != value.to_bits() || *st == 0 {
+            *zs = value;
+            *st += 1;
+            heap.push(Entry(value, k, *st));
+        }
+    }
+}
+
 /// Zhang–Cheng strain-energy fairing as a [`FairingStrategy`]. Open curves only.
 #[derive(Clone, Debug)]
 pub struct StrainEnergy<const D: usize> {
@@ -288,88 +303,118 @@ impl<const D: usize> StrainEnergy<D> {
             .ok_or_else(|| strategy_error(&self.name, "step before init"))
     }
 
-    /// Recomputes z and segment energies for knots lo..=hi and updates the heap and energy.
-    fn refresh(&mut self, lo: usize, hi: usize) -> Result<()> {
-        let spline = self.spline_ref()?;
+    /// Recomputes what depends on the points and tangents of rows `first..=last` (those a
+    /// move changed): the segment energies of segments first − 1..=last and z at knots
+    /// first − 1..=last + 1, and updates the energy and the heap. Everything else is
+    /// unchanged bit for bit, so recomputing it would give the same values: the energy's
+    /// running sum gets the same nonzero terms in the same order, and a z whose value did
+    /// not change keeps its heap entry (the live entries, and so the order of the moves, are
+    /// the same as pushing it anew). No allocation with the paper's indicator.
+    fn refresh(&mut self, first: usize, last: usize) -> Result<()> {
+        let Some(spline) = self.spline.as_ref() else {
+            return Err(strategy_error(&self.name, "step before init"));
+        };
         let n = spline.points().len();
         let segs = n.saturating_sub(1);
-        let mut new_e = Vec::new();
-        let seg_hi = hi.min(segs.saturating_sub(1));
-        for s in lo..=seg_hi {
-            new_e.push((s, segment_energy(spline, s)));
-        }
-        let mut new_z = Vec::new();
-        for k in lo.max(1)..=hi.min(n.saturating_sub(2)) {
-            new_z.push((k, jump(spline, k).norm()));
-        }
-        if let Some(indicator) = &self.indicator {
-            let values = indicator.values(spline as &dyn Curve<D>)?;
-            let offset = match values.len() {
-                len if len == n => 0,
-                len if len + 2 == n => 1,
-                len => {
+        let lo = first.saturating_sub(1);
+        // Another indicator's values first: a bad one is an error before anything changes.
+        let values = match &self.indicator {
+            Some(indicator) => {
+                let values = indicator.values(spline as &dyn Curve<D>)?;
+                let offset = match values.len() {
+                    len if len == n => 0,
+                    len if len + 2 == n => 1,
+                    len => {
+                        return Err(strategy_error(
+                            &self.name,
+                            format!(
+                                "indicator `{}` gave {len} values for {n} points",
+                                indicator.name()
+                            ),
+                        ))
+                    }
+                };
+                if let Some(k) = (1..n.saturating_sub(1)).find(|&k| !values[k - offset].is_finite()) {
                     return Err(strategy_error(
                         &self.name,
                         format!(
-                            "indicator `{}` gave {len} values for {n} points",
-                            indicator.name()
+                            "indicator `{}` is {} at point {k}",
+                            indicator.name(),
+                            values[k - offset]
                         ),
-                    ))
+                    ));
                 }
-            };
-            new_z = (1..n.saturating_sub(1))
-                .map(|k| (k, values[k - offset]))
-                .collect();
-            if let Some((k, v)) = new_z.iter().find(|(_, v)| !v.is_finite()) {
-                return Err(strategy_error(
-                    &self.name,
-                    format!("indicator `{}` is {v} at point {k}", indicator.name()),
-                ));
+                Some((values, offset))
             }
-        }
-        for (s, e) in new_e {
+            None => None,
+        };
+        for s in lo..=last.min(segs.saturating_sub(1)) {
+            let e = segment_energy(spline, s);
             if let Some(slot) = self.segment_energy.get_mut(s) {
                 self.energy += e - *slot;
                 *slot = e;
             }
         }
-        for (k, z) in new_z {
-            if let (Some(zs), Some(st)) = (self.z.get_mut(k), self.stamp.get_mut(k)) {
-                *zs = z;
-                *st += 1;
-                self.heap.push(Entry(z, k, *st));
+        match values {
+            Some((values, offset)) => {
+                for k in 1..n.saturating_sub(1) {
+                    set_z(
+                        &mut self.z,
+                        &mut self.stamp,
+                        &mut self.heap,
+                        k,
+                        values[k - offset],
+                    );
+                }
+            }
+            None => {
+                // z_k = |jump(k)|, each segment's third derivative computed once.
+                let (from, to) = (lo.max(1), (last + 1).min(n.saturating_sub(2)));
+                if from <= to {
+                    let mut before = third(spline, from - 1);
+                    for k in from..=to {
+                        let after = third(spline, k);
+                        let z = (after - before).norm();
+                        before = after;
+                        set_z(&mut self.z, &mut self.stamp, &mut self.heap, k, z);
+                    }
+                }
             }
         }
         Ok(())
     }
 
-    /// Moves point `index` of the internal spline (knots fixed) and refreshes the window.
+    /// Moves the points of the internal spline (knots fixed) and refreshes what the move
+    /// changed (the rows whose tangents the spline re-solved).
     fn apply(&mut self, moves: &[(usize, Vector<D>)]) -> Result<()> {
         let spline = self
             .spline
             .as_mut()
             .ok_or_else(|| strategy_error("strain-energy", "step before init"))?;
-        spline.move_points(moves)?;
-        let lo = moves
-            .iter()
-            .map(|m| m.0)
-            .min()
-            .unwrap_or(0)
-            .saturating_sub(WINDOW);
-        let hi = moves.iter().map(|m| m.0).max().unwrap_or(0) + WINDOW;
-        self.refresh(lo, hi)
+        match spline.move_points_within(moves)? {
+            Some((first, last)) => self.refresh(first, last),
+            None => Ok(()),
+        }
     }
 
     /// The worst unblocked candidate, dropping stale entries. The lazy heap is rebuilt from z
-    /// when stale entries outnumber live ones eightfold (amortised O(1) per pushed entry).
+    /// (in its own storage, the blocked points left out: they are never candidates again)
+    /// when it holds more than 2n + 64 entries, amortised O(1) per pushed entry; the live
+    /// entries, and so the order of the moves, do not depend on when.
     fn pop_worst(&mut self) -> Option<usize> {
-        if self.heap.len() > 8 * self.z.len() + 1024 {
-            self.heap = self
-                .z
-                .iter()
-                .enumerate()
-                .map(|(k, &z)| Entry(z, k, self.stamp.get(k).copied().unwrap_or(0)))
-                .collect();
+        if self.heap.len() > 2 * self.z.len() + 64 {
+            let mut entries = std::mem::take(&mut self.heap).into_vec();
+            entries.clear();
+            entries.extend(
+                self.z
+                    .iter()
+                    .zip(&self.stamp)
+                    .zip(&self.blocked)
+                    .enumerate()
+                    .filter(|(_, (_, &blocked))| !blocked)
+                    .map(|(k, ((&z, &stamp), _))| Entry(z, k, stamp)),
+            );
+            self.heap = BinaryHeap::from(entries);
         }
         while let Some(Entry(z, k, st)) = self.heap.pop() {
             if self.stamp.get(k) == Some(&st) && !self.blocked.get(k).copied().unwrap_or(true) {
@@ -495,7 +540,7 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
         self.stiffness = stiffness_band(&spline)
             .ok_or_else(|| strategy_error(&self.name, "singular tangent system (Eq. 11)"))?;
         self.spline = Some(spline);
-        self.refresh(0, n)?;
+        self.refresh(0, n.saturating_sub(1))?;
         if self.settings.mode == Mode::Automatic {
             // §3.3 step 2.1: radii from the ORIGINAL curve's Eq. (11) points.
             // |P̄_k − P_k| = |J_k| / K_kk with K's diagonal computed in O(n) above.

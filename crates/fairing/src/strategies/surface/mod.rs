@@ -97,11 +97,17 @@
 //!   strip: a 10 × 20 000 strip's two steps took 10.1 s, now 0.86 s), and once per run the
 //!   boundary fairing of step 2.1, the curve method on the four boundary curves to its own
 //!   convergence (O(perimeter) per curve step, some 540 steps at 50 × 50). In the
-//!   `surface_step` bench (4 steps, the whole run) at 50 × 50 the boundary fairing is 28 % of
-//!   the instructions (callgrind) and the unit responses 13 %; at 400 × 400, 3.3 % and 3.6 %.
-//!   Per point moved that is 3 200 and 1 500 instructions at 50 × 50 against 260 and 280 at
-//!   400 × 400, while the rest costs 6 600 against 7 400: these two terms are the whole
-//!   difference in instructions between the sizes.
+//!   `surface_step` bench (4 steps, the whole run) at 50 × 50 the boundary fairing was 28 %
+//!   of the instructions (callgrind) and the unit responses 13 %; at 400 × 400, 3.3 % and
+//!   3.6 %. Per point moved that was 3 200 and 1 500 instructions at 50 × 50 against 260 and
+//!   280 at 400 × 400, while the rest cost 6 600 against 7 400: these two terms were the
+//!   whole difference in instructions between the sizes. Both now run on the spline's
+//!   windowed update without allocating (its storage kept by the spline, one chord slope per
+//!   row), and the curve method refreshes only the rows the update re-solved, computes each
+//!   segment's C‴ once and pushes a z onto its heap only when it changed (same results bit
+//!   for bit): at 50 × 50 the boundary fairing is 20 % of the instructions (1 840 per point
+//!   moved) and the unit responses 12 % (1 140), the rest 6 350: 373 M instructions for
+//!   four such runs against 451 M.
 //! - *What grows with the size:* memory traffic, not work. The moves come in the order of
 //!   z, scattered over the grid; once its data outgrow the processor's caches the cache lines
 //!   a move touches (~50: its point and its two windows of jumps and z bounds) are misses.
@@ -112,18 +118,21 @@
 //!   move whose windows cross its own, so the paper's order can be followed but not
 //!   regrouped by place. How much this costs depends on the machine: the earlier notes
 //!   measured the time per point at 400 × 400 at 1.32× that at 100 × 100; on the machine of
-//!   the numbers below (2 MB of L2 per core, 32 MB of L3) it is within 5 % of it.
-//! - *Measured* (2 shared cores, AMD EPYC with 2 MB L2 per core and 32 MB L3, load 2–5
-//!   from other work; the build before the storage reuse and the banded responses run
-//!   alternately with this one): `cargo bench -p fairing --bench fairing --
-//!   surface_step/sort`, medians of six rounds each, 0.95–1.13 / 1.15–1.36 / 1.44–1.59 /
-//!   1.20–1.31 M points/s at 50² / 100² / 200² / 400² before, 1.02–1.22 / 1.38–1.48 /
-//!   1.41–1.78 / 1.05–1.51 after; on the process's CPU time over the same 4-step runs in a
-//!   loop (medians of three rounds, load ~2) before 1.05 / 1.25 / 1.35 / 1.25, after 1.13 /
-//!   1.39 / 1.45 / 1.33; the same points bit for bit. Not flat at the small end (1.28× from
-//!   50² to 200²): 50 × 50 is the slowest per point, by the per-line and per-run costs
-//!   above; with the boundary fairing off (CPU time, two rounds) the order reverses, 1.95 /
-//!   1.91 / 1.76 / 1.25–1.61, the largest grid paying its cache misses.
+//!   the numbers below (2 MB of L2 per core, 32 MB of L3) it was within 5 % of it, and is
+//!   1.11–1.13× now that the work per move is smaller.
+//! - *Measured* (2 shared cores, AMD EPYC with 2 MB L2 per core and 32 MB L3, load 2–3
+//!   from other work; the build before this change run alternately with it): `cargo bench
+//!   -p fairing --bench fairing -- surface_step/sort`, three rounds each, criterion's
+//!   medians 1.08–1.22 / 1.33–1.48 / 1.58–1.69 / 1.17–1.47 M points/s at 50² / 100² /
+//!   200² / 400² before, 1.45–1.52 / 1.64–1.85 / 1.77–1.92 / 1.52–1.69 after (slowest to
+//!   fastest size 1.39–1.46× before, 1.20–1.26× after; 1.23× on the medians of the three
+//!   rounds, 1.48 against 1.83); on the process's CPU time over the same 4-step runs in a
+//!   loop (medians of five rounds) before 1.18 / 1.46 / 1.56 / 1.42, after 1.47 / 1.71 /
+//!   1.73 / 1.52 (1.18× from 50² to 200²); the same points, energies and counts bit for
+//!   bit. Nearly flat, the small end still the slowest by the per-line and per-run costs
+//!   above. The `sort_steps` entry (the four steps without the boundary fairing, a
+//!   different run) shows the steps alone: 2.33 / 2.28 / 2.18 / 1.57 M points/s (medians of
+//!   three rounds), the largest grid paying its cache misses.
 
 // The building blocks index the grid directly (their callers validate it first), so they
 // stay inside the crate; `SurfaceFairing` is the checked entry point.
