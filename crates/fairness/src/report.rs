@@ -61,10 +61,8 @@ impl FairnessSummary {
         C: Curve<D> + ?Sized,
         Vector<D>: CurvatureForm,
     {
-        let kappa = curvature_at_breaks(curve)?;
-        let breaks = curve.breaks();
-        let inflections = <Vector<D> as CurvatureForm>::SIGNED.then(|| sign_changes(&kappa));
-        let vibrations = Some(sign_changes(&curvature_vibrations(&breaks, &kappa)?));
+        let (inflections, vibrations) = parametric_counts(curve)?;
+        let vibrations = Some(vibrations);
         let max_z = third_derivative_jumps(curve)?.into_iter().fold(0.0, f64::max);
         Ok(FairnessSummary {
             inflections,
@@ -75,6 +73,23 @@ impl FairnessSummary {
             energy_accuracy: None,
         })
     }
+}
+
+/// DESIGN.md's parametric-kind counts of `curve` (the `inflections` and `vibrations` of
+/// [`FairnessSummary::of_parametric_curve`]): sign changes of the signed curvature κ at the
+/// breaks (`None` in 3D, where κ has no sign) and of e_i built from (t_i, κ_i)
+/// ([`curvature_vibrations`]). For code that needs the counts without the energies (a
+/// fairing's guard). O(n).
+pub fn parametric_counts<const D: usize, C>(curve: &C) -> Result<(Option<usize>, usize)>
+where
+    C: Curve<D> + ?Sized,
+    Vector<D>: CurvatureForm,
+{
+    let kappa = curvature_at_breaks(curve)?;
+    let breaks = curve.breaks();
+    let inflections = <Vector<D> as CurvatureForm>::SIGNED.then(|| sign_changes(&kappa));
+    let vibrations = sign_changes(&curvature_vibrations(&breaks, &kappa)?);
+    Ok((inflections, vibrations))
 }
 
 #[cfg(test)]

@@ -2,9 +2,7 @@
 //! the curve's own inflection or vibration counts worse are refused (not in the paper).
 
 use curve_repr::{HermiteSpline, Vec2};
-use fairness::curvature::curvature_at_breaks;
-use fairness::jumps::curvature_vibrations;
-use fairness::sign_changes;
+use fairness::report::parametric_counts;
 
 use super::Segment;
 
@@ -62,7 +60,7 @@ pub const CURVE_GUARD_CHUNK: usize = 16;
 
 /// (inflections, vibrations) of the natural cubic spline through `points` with chord-length
 /// parameters: sign changes of the signed curvature κ at the knots, and of Han's e built from
-/// (t, κ) ([`curvature_vibrations`]), both under DESIGN.md's sign rule. `None` when the spline
+/// (t, κ), both under DESIGN.md's sign rule ([`parametric_counts`], the report's counts). `None` when the spline
 /// or its curvature cannot be built (fewer than 3 points, coincident consecutive points, a
 /// vanishing tangent). O(n).
 pub fn curve_counts(points: &[Vec2]) -> Option<(usize, usize)> {
@@ -70,10 +68,8 @@ pub fn curve_counts(points: &[Vec2]) -> Option<(usize, usize)> {
         return None;
     }
     let spline = HermiteSpline::natural(points).ok()?;
-    let kappa = curvature_at_breaks(&spline).ok()?;
-    let t = curve_repr::Curve::breaks(&spline);
-    let e = curvature_vibrations(&t, &kappa).ok()?;
-    Some((sign_changes(&kappa), sign_changes(&e)))
+    let (inflections, vibrations) = parametric_counts(&spline).ok()?;
+    Some((inflections?, vibrations))
 }
 
 /// Whether `new` has fewer inflections than `old`, or as many and no more vibrations. A count that
