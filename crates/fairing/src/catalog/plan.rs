@@ -293,8 +293,10 @@ impl Catalog {
         })
     }
 
-    /// Runs `plan` on a curve: each stage on the previous stage's points, the constraints
-    /// shared out as the [module docs](self) say. O(sum of the stages' costs) plus O(n) per
+    /// Runs `plan` on a curve: each stage on the previous stage's points; fixed points and the
+    /// end clamp passed to every stage, the tolerance band D shared out (stage k gets D minus
+    /// the largest distance any point has already moved; when nothing is left the remaining
+    /// stages are skipped and the report says so). O(sum of the stages' costs) plus O(n) per
     /// stage.
     ///
     /// Every run's extras get `largest_move` ([`UnaskedMove::to_json`](crate::displacement::UnaskedMove::to_json)): the farthest move

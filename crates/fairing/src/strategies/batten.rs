@@ -74,7 +74,7 @@ pub struct BattenSettings {
     #[serde(with = "crate::catalog::value::unbounded")]
     #[schemars(with = "crate::catalog::value::BoundNumber")]
     pub range: f64,
-    /// Prescribed tangent directions, INDEX:DX,DY[,DZ] separated by ';'.
+    /// Prescribed tangent directions, `INDEX:DX,DY[,DZ]` separated by ';'.
     ///
     /// Okada Step 1 (4): (point index, direction components). The direction's length is
     /// ignored; its magnitude is found as in Step 2 (2). Default none. Written as text

@@ -79,7 +79,7 @@
 //! C₁ of full row rank (distinct constraint rows), so LDLᵀ without pivoting exists, with
 //! positive pivots at the unknowns and negative ones at the multipliers; the envelope
 //! (profile) of the interleaved matrix is a band plus a few columns, and the factorisation
-//! fills only inside it ([`envelope`]). A constrained point keeps its data row: the
+//! fills only inside it (the `envelope` module). A constrained point keeps its data row: the
 //! constraint makes that term constant, so the solution does not change, and H stays
 //! positive definite for every λ ≥ 0 (N is square and invertible), λ = 0 included; its
 //! residual is left out of the discrepancy and of GCV.
@@ -92,7 +92,7 @@
 //!
 //! # Choosing λ, the noise estimate, the precision limit
 //!
-//! See [`lambda`] and [`noise`]. By default λ is chosen by the discrepancy principle: the RMS
+//! See the `lambda` and `noise` modules. By default λ is chosen by the discrepancy principle: the RMS
 //! displacement of the free points equals `noise-factor` · σ̂, σ̂ the noise estimated from the
 //! points' third differences. `lambda` or `target-sd` override it; `rule = gcv` chooses by
 //! generalised cross-validation instead.
