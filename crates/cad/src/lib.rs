@@ -14,10 +14,10 @@
 //!    [`dxf`] (R2000 `SPLINE`), with the unit and a tolerance in the header. Reals are written
 //!    with the shortest digits that read back bit for bit, so a round trip returns the same
 //!    knots, weights and control points to the last bit in all three formats;
-//! 3. rebuilds a curve with few control points ([`rebuild`], The NURBS Book Eq. 9.63–9.69)
+//! 3. rebuilds a curve with few control points ([`rebuild()`], The NURBS Book Eq. 9.63–9.69)
 //!    and says whether the rebuild brought wiggles back.
 //!
-//! The command needs one call, [`export`] (or [`export_to_path`]): the faired shape, a
+//! The command needs one call, [`export()`] (or [`export_to_path`]): the faired shape, a
 //! [`Format`] (from `-o`'s extension or `--cad`), [`CadSettings`] (unit, tolerance,
 //! `--control-points`, `--fit-tolerance`), header [`WriteOptions`].
 //!

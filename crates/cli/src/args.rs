@@ -91,6 +91,8 @@ pub struct FairArgs {
     pub columns: Option<Vec<String>>,
     /// A TOML or JSON config: method parameters (the names `--set` takes), [constraints] and
     /// [[stage]] pipelines.
+    // The comment is the command's help text, not rustdoc: its TOML table names are not links.
+    #[allow(rustdoc::broken_intra_doc_links)]
     #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
     /// Set one method parameter, e.g. --set p=0.999 (repeatable; overrides --config).

@@ -37,7 +37,7 @@ pub trait CurvatureForm: Sized {
 
     /// [`curvature_integrands`](Self::curvature_integrands) of the cubic piece
     /// C′(u) = a + bu + cu²/2 (`taylor` = [a, b, c]) at the N parameters `u`: `out[0][i]` =
-    /// κ²|C′| and `out[1][i]` = (dκ/ds)²|C′| at u[i], NaN or ±∞ where the tangent vanishes.
+    /// κ²|C′| and `out[1][i]` = (dκ/ds)²|C′| at `u[i]`, NaN or ±∞ where the tangent vanishes.
     /// One loop over the nodes that the compiler can vectorise: what the quadrature of Ek and
     /// Ek′ spends its time in. O(N).
     fn curvature_integrands_at<const N: usize>(taylor: &[Self; 3], u: &[f64; N], out: &mut [[f64; N]; 2])

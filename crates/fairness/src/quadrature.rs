@@ -289,7 +289,7 @@ impl Default for Adaptive {
 }
 
 /// An integral with its accuracy: what [`Adaptive::estimate_pieces`] and
-/// [`GaussLegendre::estimate_pieces`] return, whether or not the tolerance was met.
+/// [`GaussLegendre::estimate_indexed`] return, whether or not the tolerance was met.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Estimate {
     /// The best estimate of the integral.

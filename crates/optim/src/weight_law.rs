@@ -80,7 +80,7 @@ pub fn positive_weight(log_weight: f64) -> f64 {
     log_weight.clamp(-MAX_LOG_WEIGHT, MAX_LOG_WEIGHT).exp()
 }
 
-/// d/dx [`positive_weight`](x): the weight inside the clamp, 0 beyond it (the law is flat).
+/// d/dx [`positive_weight`]`(x)`: the weight inside the clamp, 0 beyond it (the law is flat).
 pub fn positive_weight_derivative(log_weight: f64) -> f64 {
     if log_weight.abs() < MAX_LOG_WEIGHT {
         log_weight.exp()

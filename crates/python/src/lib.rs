@@ -1,8 +1,8 @@
 //! Python bindings of the fair framework: the module `fair` (its native part, `fair._native`).
 //!
 //! `pip install ./crates/python` builds and installs it (maturin). The functions mirror the
-//! command: [`curve`] is `fair curve`, [`surface`] is `fair surface`, [`inspect`] is
-//! `fair inspect`, [`methods`] is `fair methods` and [`pipeline`] takes the config files
+//! command: `curve` is `fair curve`, `surface` is `fair surface`, `inspect` is
+//! `fair inspect`, `methods` is `fair methods` and `pipeline` takes the config files
 //! `--config` takes. The results are the command's bit for bit: the same faired points and a
 //! report dict with exactly the fields of its JSON report.
 //!

@@ -5,7 +5,7 @@
 //! build pulls in image and date libraries; the group codes of one entity and the table
 //! boilerplate of a drawing are short.
 //!
-//! - [`write`]: a complete R2000 drawing (header with `$INSUNITS` and `$MEASUREMENT`, the
+//! - [`write()`]: a complete R2000 drawing (header with `$INSUNITS` and `$MEASUREMENT`, the
 //!   symbol tables, model and paper space blocks, a root dictionary) whose ENTITIES section
 //!   holds one `SPLINE` per curve: degree, knots, control points, weights when the curve is
 //!   rational, the planar flag and normal (0, 0, 1) for a 2D curve; each named curve on a

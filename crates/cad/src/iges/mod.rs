@@ -4,7 +4,7 @@
 //! two lines per entity), Parameter Data (`P`) and Terminate (`T`) sections, the section
 //! letter in column 73 and a sequence number in columns 74–80.
 //!
-//! - [`write`]: each curve as one entity 126 (PROP1 planar for a 2D curve with the normal
+//! - [`write()`]: each curve as one entity 126 (PROP1 planar for a 2D curve with the normal
 //!   (0, 0, 1), PROP2 closed, PROP3 polynomial when all weights are equal), each surface as one
 //!   entity 128; the Global section carries the unit (parameters 14–15), the model's
 //!   resolution (19) and the largest coordinate (20). Reals are written with the shortest

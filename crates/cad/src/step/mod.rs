@@ -1,7 +1,7 @@
 //! STEP (ISO 10303-21) of AP214 or AP242: `B_SPLINE_CURVE_WITH_KNOTS` and
 //! `B_SPLINE_SURFACE_WITH_KNOTS`, rational as complex instances.
 //!
-//! - [`write`]: one product whose shape is a geometrically bounded wireframe representation
+//! - [`write()`]: one product whose shape is a geometrically bounded wireframe representation
 //!   (a `GEOMETRIC_CURVE_SET` of the curves) or, with surfaces, a geometrically bounded
 //!   surface representation (a `GEOMETRIC_SET`), in a context that carries the length unit
 //!   and the model's uncertainty. A curve whose weights are all equal is written as

@@ -29,9 +29,9 @@
 //! closed direction every grid line is the *periodic* cubic spline through its points (the
 //! last repeating the first), so the surface is C2 across the seam as across any interior
 //! knot line, the seam's nodes are interior nodes with a z_ij like any other, and the repeated
-//! line is stored (the layout of the input) but counted once by [`max_z`](Self::max_z),
-//! [`third_derivative_jumps`](Self::third_derivative_jumps) and
-//! [`network_strain_energy`](Self::network_strain_energy). Everything above holds with
+//! line is stored (the layout of the input) but counted once by [`max_z`](BicubicSplineSurface::max_z),
+//! [`third_derivative_jumps`](BicubicSplineSurface::third_derivative_jumps) and
+//! [`network_strain_energy`](BicubicSplineSurface::network_strain_energy). Everything above holds with
 //! "natural" read as "periodic" in that direction.
 
 mod build;

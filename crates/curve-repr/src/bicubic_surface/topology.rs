@@ -48,7 +48,9 @@ impl Poles {
     }
 }
 
-/// Seams and poles of a net (see the [module docs](self)).
+/// Seams and poles of a net: closed in v when the last column repeats the first, in u when the
+/// last row repeats the first; a pole is a boundary line collapsed to one point
+/// ([`GridTopology::detect`] finds both).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct GridTopology {
     /// Row i = m repeats row i = 0: the net is periodic along u.

@@ -224,7 +224,7 @@ impl ExpTable {
 }
 
 /// The K integrands on the [`KRONROD_POINTS`] nodes `u` (in the piece's local parameter) of
-/// piece `piece`: `out[k][i]` = f_k(piece, u[i]). What [`estimate_many_nodes`] integrates.
+/// piece `piece`: `out[k][i]` = f_k(piece, `u[i]`). What [`estimate_many_nodes`] integrates.
 pub trait NodeIntegrands<const K: usize> {
     /// Fills `out`.
     fn eval(&mut self, piece: usize, u: &[f64; KRONROD_POINTS], out: &mut [[f64; KRONROD_POINTS]; K]);
@@ -735,7 +735,7 @@ fn refinement<'a, const K: usize>(
 /// each [`SinhMap`]ped one integrated in s on the intervals [`SINH_PANEL`] describes.
 /// `settings[k]` gives component k's tolerances; the depth and the pool of
 /// bisections are the largest of them, shared. `f(i, u)` is called with the local parameter
-/// u = t − breaks[i] (kept apart from tᵢ so that a peak of width w at u* is resolved to
+/// u = t − `breaks[i]` (kept apart from tᵢ so that a peak of width w at u* is resolved to
 /// ε·u*/w, not ε·tᵢ/w). O(pieces + segments).
 pub fn estimate_many<const K: usize, F, S>(
     settings: &[Adaptive; K],
