@@ -291,13 +291,21 @@ fn free_ends_still_keep_clamped_ends_and_fixed_points_bit_for_bit() {
     let (points, _) = sine_with_a_bad_end();
     let n = points.len();
     for mode in [Denoise::Gcv, Denoise::JumpLsq, Denoise::JumpLsqGcv] {
-        let settings = TwoPhaseSettings::default().with_ends(Ends::Free).with_denoise(mode);
+        let settings = TwoPhaseSettings::default()
+            .with_ends(Ends::Free)
+            .with_denoise(mode);
         let clamped = two_phase(
             &points,
             settings.clone(),
-            Constraints::default().with_end_clamp(EndClamp::G0).with_fixed([60]),
+            Constraints::default()
+                .with_end_clamp(EndClamp::G0)
+                .with_fixed([60]),
         );
-        let fixed = two_phase(&points, settings, Constraints::default().with_fixed([0, 60, n - 1]));
+        let fixed = two_phase(
+            &points,
+            settings,
+            Constraints::default().with_fixed([0, 60, n - 1]),
+        );
         for faired in [&clamped, &fixed] {
             for k in [0, 60, n - 1] {
                 assert_eq!(faired[k].x.to_bits(), points[k].x.to_bits(), "{mode:?}: x of {k}");
