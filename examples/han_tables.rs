@@ -173,7 +173,8 @@ fn main() -> Result<(), Error> {
         let twin = case.twin.map(read);
         let mut rows = vec![row("input".into(), &x, &y, &y, twin.as_ref())?];
 
-        // Two-phase as `fair curve` runs it (the TwoPhase strategy; its ends never move).
+        // Two-phase as `fair curve` runs it (the TwoPhase strategy; the default's noise pre-pass
+        // fits the end points, `ends` = `free`; the paper's keep them).
         let run = |settings: TwoPhaseSettings| -> Result<(Vec<f64>, usize), Error> {
             let points: Vec<Vec2> = x.iter().zip(&y).map(|(&x, &y)| Vec2::new(x, y)).collect();
             let result = Pipeline::new(TwoPhase::new(settings.clone()))

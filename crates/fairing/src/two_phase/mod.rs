@@ -21,7 +21,7 @@ mod settings;
 pub use denoise::{denoise, denoise_curve, Denoise, Limits};
 pub use phase1::{coarse_pass, counts, detect, displacement, e_at, Case, CaseKind, PassReport};
 pub use phase2::{detect_fine, end_y_change, fine_displacement, fine_pass, zero_level};
-pub use settings::{CountGuard, TwoPhaseSettings};
+pub use settings::{CountGuard, Ends, TwoPhaseSettings};
 
 use curve_repr::{EndCondition, SplineFunction, Vec2};
 
@@ -171,7 +171,9 @@ impl Stall {
 ///
 /// Constraints: fixed points, radii and tolerance are honoured through
 /// [`FairingState::move_point`] (a shortened move is read back into the spline); G1/G2 end
-/// clamps are rejected with `ConstraintUnsupported`. The end points never move (Han §3.3).
+/// clamps are rejected with `ConstraintUnsupported`. The phases never move the end points
+/// (Han §3.3); the noise pre-pass moves them with [`Ends::Free`] (the default,
+/// [`TwoPhaseSettings::ends`]) unless they are fixed or clamped (`G0`).
 #[derive(Clone, Debug, Default)]
 pub struct TwoPhase {
     settings: TwoPhaseSettings,
@@ -223,7 +225,8 @@ impl FairingStrategy<2> for TwoPhase {
         self.settings.noise = crate::displacement::vertical_noise_estimate(state.points());
         let (x, y): (Vec<f64>, Vec<f64>) = state.points().iter().map(|p| (p.x, p.y)).unzip();
         let n = x.len();
-        let keep = |k: usize| k == 0 || k + 1 >= n || !state.is_movable(k);
+        let free = self.settings.ends == Ends::Free;
+        let keep = |k: usize| (!free && (k == 0 || k + 1 >= n)) || !state.is_movable(k);
         let allowed = |k: usize| state.constraints().allowed_distance(k);
         let limits = Limits {
             keep: &keep,

@@ -218,7 +218,11 @@ fn strategy_honours_fixed_points_and_rejects_g1() {
     let points: Vec<Vec2> = x.iter().zip(&y).map(|(a, b)| Vec2::new(*a, *b)).collect();
     let fixed = [5usize, 40, 41, 77];
     let result = Pipeline::new(TwoPhase::default())
-        .with_constraints(Constraints::default().with_fixed(fixed))
+        .with_constraints(
+            Constraints::default()
+                .with_fixed(fixed)
+                .with_end_clamp(EndClamp::G0),
+        )
         .with_max_iterations(50)
         .run(points.clone())
         .unwrap();

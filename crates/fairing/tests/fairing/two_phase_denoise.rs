@@ -5,8 +5,8 @@
 use std::f64::consts::PI;
 
 use curve_repr::Vec2;
-use fairing::two_phase::{denoise, denoise_curve, Denoise, Limits, TwoPhase, TwoPhaseSettings};
-use fairing::{Constraints, Pipeline};
+use fairing::two_phase::{denoise, denoise_curve, Denoise, Ends, Limits, TwoPhase, TwoPhaseSettings};
+use fairing::{Constraints, EndClamp, Pipeline};
 
 const SMOOTHING: [Denoise; 3] = [Denoise::Gcv, Denoise::JumpLsq, Denoise::JumpLsqGcv];
 
@@ -218,6 +218,7 @@ fn two_phase_with_the_jump_lsq_pre_pass_keeps_fixed_points_and_the_tolerance() {
             .with_constraints(
                 Constraints::default()
                     .with_fixed([30, 90])
+                    .with_end_clamp(EndClamp::G0)
                     .with_tolerance(tolerance),
             )
             .with_max_iterations(50)
@@ -233,5 +234,84 @@ fn two_phase_with_the_jump_lsq_pre_pass_keeps_fixed_points_and_the_tolerance() {
                 "{mode:?}: point {k}"
             );
         }
+    }
+}
+
+/// 200 points of y = sin(x/2) + noise of σ = 0.01, x = 0.1 k, the last point 0.05 (5σ) too
+/// high; with the clean curve.
+fn sine_with_a_bad_end() -> (Vec<Vec2>, Vec<f64>) {
+    let n = 200;
+    let x: Vec<f64> = (0..n).map(|k| 0.1 * k as f64).collect();
+    let clean: Vec<f64> = x.iter().map(|x| (x / 2.0).sin()).collect();
+    let mut y: Vec<f64> = clean.iter().zip(noise(4, n, 0.01)).map(|(c, e)| c + e).collect();
+    y[n - 1] = clean[n - 1] + 0.05;
+    (x.iter().zip(&y).map(|(&x, &y)| Vec2::new(x, y)).collect(), clean)
+}
+
+fn two_phase(points: &[Vec2], settings: TwoPhaseSettings, constraints: Constraints) -> Vec<Vec2> {
+    Pipeline::new(TwoPhase::new(settings))
+        .with_constraints(constraints)
+        .with_max_iterations(50)
+        .run(points.to_vec())
+        .unwrap()
+        .points
+}
+
+#[test]
+fn free_ends_bring_a_noisy_end_point_nearer_the_clean_curve() {
+    let (points, clean) = sine_with_a_bad_end();
+    let n = points.len();
+    // The error over the last 20 points (the kept end drags its neighbours).
+    let end_error = |faired: &[Vec2]| {
+        let tail: Vec<f64> = faired[n - 20..].iter().map(|p| p.y).collect();
+        rms(&tail, &clean[n - 20..])
+    };
+    let default = two_phase(&points, TwoPhaseSettings::default(), Constraints::default());
+    let kept = two_phase(
+        &points,
+        TwoPhaseSettings::default().with_ends(Ends::Keep),
+        Constraints::default(),
+    );
+    assert_eq!(TwoPhaseSettings::default().ends, Ends::Free);
+    assert_eq!(kept[n - 1], points[n - 1], "ends = keep moved the end point");
+    let (free_end, kept_end) = ((default[n - 1].y - clean[n - 1]).abs(), 0.05);
+    assert!(free_end < 0.5 * kept_end, "end point error {free_end}");
+    let (free_tail, kept_tail) = (end_error(&default), end_error(&kept));
+    // The end point's own error is halved at least; its neighbours, which the outlier drags
+    // either way (a fit's free end follows it part of the way), no farther.
+    assert!(
+        free_tail < kept_tail,
+        "RMS over the last 20 points: free {free_tail}, keep {kept_tail}"
+    );
+    eprintln!("end point error {free_end} (kept 0.05); last 20: {free_tail} against {kept_tail}");
+}
+
+#[test]
+fn free_ends_still_keep_clamped_ends_and_fixed_points_bit_for_bit() {
+    let (points, _) = sine_with_a_bad_end();
+    let n = points.len();
+    for mode in [Denoise::Gcv, Denoise::JumpLsq, Denoise::JumpLsqGcv] {
+        let settings = TwoPhaseSettings::default()
+            .with_ends(Ends::Free)
+            .with_denoise(mode);
+        let clamped = two_phase(
+            &points,
+            settings.clone(),
+            Constraints::default()
+                .with_end_clamp(EndClamp::G0)
+                .with_fixed([60]),
+        );
+        let fixed = two_phase(
+            &points,
+            settings,
+            Constraints::default().with_fixed([0, 60, n - 1]),
+        );
+        for faired in [&clamped, &fixed] {
+            for k in [0, 60, n - 1] {
+                assert_eq!(faired[k].x.to_bits(), points[k].x.to_bits(), "{mode:?}: x of {k}");
+                assert_eq!(faired[k].y.to_bits(), points[k].y.to_bits(), "{mode:?}: y of {k}");
+            }
+        }
+        assert_ne!(clamped[1], points[1], "{mode:?}: nothing moved");
     }
 }
