@@ -1,6 +1,6 @@
 //! Settings of Han's two-phase fairing (Han et al. §4.1).
 
-use super::Denoise;
+use super::{Denoise, Projection};
 use crate::{Error, Result};
 
 /// Settings of [`TwoPhase`](super::TwoPhase) and [`coarse_pass`](super::coarse_pass).
@@ -133,6 +133,16 @@ pub struct TwoPhaseSettings {
     /// `jump-lsq-gcv`: with it two-phase beats csaps at equal S_d on 37 of the judge's 45 rows
     /// (seeds 1–4), against 26 with `gcv`, the default before.
     pub denoise: Denoise,
+    /// Arbitrary curves: the pre-pass's points become the foot points of the data on its fitted curve (foot-point) or stay its values at the data's chord-length parameters (off).
+    ///
+    /// Not in the paper: after the noise pre-pass of an arbitrary curve
+    /// ([`denoise_curve`](super::denoise_curve)), each free point is replaced by the point of
+    /// the fitted curve nearest to its data point, searched near its own parameter
+    /// ([`foot_point`](super::foot_point) says how, and why the tangential part of the fit's
+    /// move is lost displacement). Never farther from the data than the fit's value, so the
+    /// allowed distances hold; kept points bit for bit. No effect on functions (y over fixed
+    /// x) or with `denoise` = `off`. Default `off` (the pre-pass as before).
+    pub project: Projection,
 }
 
 /// The guards that keep a coarse pass from increasing Infl_num or Vib_num (not in the paper).
@@ -166,6 +176,7 @@ impl Default for TwoPhaseSettings {
             count_guard: CountGuard::Local,
             detection_floor: 0.0,
             denoise: Denoise::JumpLsqGcv,
+            project: Projection::Off,
         }
     }
 }
@@ -178,6 +189,7 @@ impl TwoPhaseSettings {
         TwoPhaseSettings {
             max_run: 2,
             denoise: Denoise::Off,
+            project: Projection::Off,
             noise_moves: 0.0,
             ..TwoPhaseSettings::default()
         }
@@ -248,6 +260,12 @@ impl TwoPhaseSettings {
     /// Sets the noise pre-pass.
     pub fn with_denoise(mut self, denoise: Denoise) -> Self {
         self.denoise = denoise;
+        self
+    }
+
+    /// Sets the projection of the curve pre-pass's points.
+    pub fn with_project(mut self, project: Projection) -> Self {
+        self.project = project;
         self
     }
 
