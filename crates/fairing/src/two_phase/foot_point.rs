@@ -44,10 +44,11 @@ use curve_repr::{Curve, HermiteSpline, Vec2};
 pub enum Projection {
     /// The fit's values at the data's chord-length parameters (the pre-pass before
     /// projection; the paper has no pre-pass).
-    #[default]
     Off,
     /// Each free point becomes the foot point of its data point on the fitted curve, searched
-    /// near its own parameter ([module doc](self)).
+    /// near its own parameter ([module doc](self)). The default (measured in
+    /// [`TwoPhaseSettings::project`](super::TwoPhaseSettings::project)).
+    #[default]
     FootPoint,
     /// Hoschek's parameter correction: the curve is refitted on the foot-point parameters of
     /// the data on the previous fit
