@@ -33,7 +33,8 @@
 //! the default variant's settings: `HAN_DENOISE` (`off`, `gcv`, `jump-lsq`, `jump-lsq-gcv`),
 //! `HAN_MAX_RUN`, `HAN_LIMIT` (turning limit in degrees), `HAN_MMF` (`max-move-factor`),
 //! `HAN_PASSES` (`max-passes`), `HAN_NOISE_MOVES`, `HAN_CURVE_GUARD` (`off`, `pass`, `local`;
-//! the paper variant always runs `off`), `HAN_ENDS` (`keep`, `free`).
+//! the paper variant always runs `off`), `HAN_ENDS` (`keep`, `free`), `HAN_PROJECT` (`project`:
+//! `off`, `foot-point`, `parameter-correction`).
 
 use std::f64::consts::PI;
 use std::fmt::Write as _;
@@ -267,6 +268,9 @@ fn main() -> Result<(), Error> {
             "HAN_NOISE_MOVES" => tuned.noise_moves = value.parse()?,
             "HAN_ENDS" => {
                 tuned.ends = serde_json::from_value(serde_json::Value::String(value))?;
+            }
+            "HAN_PROJECT" => {
+                tuned.project = serde_json::from_value(serde_json::Value::String(value))?;
             }
             "HAN_CURVE_GUARD" => {
                 tuned_guard = serde_json::from_value(serde_json::Value::String(value))?;

@@ -50,8 +50,11 @@
 
 use std::f64::consts::PI;
 
-use curve_repr::{Parametrization, Vec2, Vector};
+use curve_repr::{HermiteEnds, HermiteSettings, HermiteSpline, Parametrization, Vec2, Vector};
 
+use super::foot_point::{foot_points, Projection};
+
+use crate::state::strategy_error;
 use crate::strategies::jump_lsq;
 use crate::strategies::{
     CurveDomain, JumpLsqSettings, LambdaRule, SmoothingRule, SmoothingSettings, SmoothingSpline,
@@ -183,6 +186,20 @@ fn jump_fit<const D: usize>(
     limits: &Limits<'_>,
     settings: &JumpLsqSettings,
 ) -> Result<Option<Vec<Vector<D>>>> {
+    Ok(jump_fit_on_knots(data, domain, closed, limits, settings, None)?.map(|(values, _)| values))
+}
+
+/// [`jump_fit`] with the knots of its last solve, the fitted spline's (closed: with the
+/// closing knot, one more than the points); on `given` knots (a planar curve only,
+/// [`jump_lsq::fair_on_knots`]) when they are given.
+fn jump_fit_on_knots<const D: usize>(
+    data: &[Vector<D>],
+    domain: CurveDomain,
+    closed: bool,
+    limits: &Limits<'_>,
+    settings: &JumpLsqSettings,
+    given: Option<&[f64]>,
+) -> Result<Option<(Vec<Vector<D>>, Vec<f64>)>> {
     let n = data.len();
     let radii: Vec<f64> = (0..n).map(|i| (limits.allowed)(i)).collect();
     let mut constraints = Constraints::default().with_fixed((0..n).filter(|&i| (limits.keep)(i)));
@@ -190,11 +207,18 @@ fn jump_fit<const D: usize>(
         constraints = constraints.with_restraining_radii(radii);
     }
     let settings = settings.clone().with_closed(closed);
-    let faired = jump_lsq::fair(data, data, &constraints, domain, closed, &settings)?;
+    let faired = match given {
+        Some(knots) => jump_lsq::fair_on_knots(data, data, &constraints, knots, closed, &settings)?,
+        None => jump_lsq::fair(data, data, &constraints, domain, closed, &settings)?,
+    };
     if faired.report.lambda_limited {
         return Ok(None);
     }
-    Ok(Some(
+    let mut knots = faired.knots;
+    if let (Some(period), Some(&first)) = (faired.period, knots.first()) {
+        knots.push(first + period);
+    }
+    Ok(Some((
         faired
             .points
             .into_iter()
@@ -202,7 +226,8 @@ fn jump_fit<const D: usize>(
             .enumerate()
             .map(|(i, (v, old))| if (limits.keep)(i) { *old } else { v })
             .collect(),
-    ))
+        knots,
+    )))
 }
 
 /// The pre-pass on a function segment y(x) (module doc): the new y; the kept points bit for
@@ -223,6 +248,10 @@ pub fn denoise(mode: Denoise, x: &[f64], y: &[f64], limits: &Limits<'_>) -> Resu
     let data: Vec<Vector<1>> = y.iter().map(|&v| Vector::<1>::new(v)).collect();
     Ok(bounded_fit(x, &data, limits)?.iter().map(|v| v[0]).collect())
 }
+
+/// Refits on the foot-point parameters of the previous fit that
+/// [`Projection::ParameterCorrection`] makes.
+pub const CORRECTION_ROUNDS: usize = 3;
 
 /// A turn (radians) from which the point of a closed curve where the direction turns most is
 /// a corner (an airfoil's trailing edge) that [`denoise_curve`] keeps as the seam of its fit.
@@ -247,14 +276,25 @@ pub const CORNER_REACH: usize = 3;
 /// point takes the fit in which it lies far from the seam, where the fit's natural end
 /// conditions do not bend it. `Denoise::Off` or fewer than 4 points return the points.
 ///
+/// With `projection` = [`Projection::FootPoint`] each free point then becomes the foot point
+/// of its data point on the fitted curve ([`foot_points`]; the blend of two fits: on the
+/// periodic spline through the blended points over their own chord lengths), no farther from
+/// the data than the fit's value; kept points stay bit for bit.
+///
 /// Errors: repeated consecutive points, non-finite values.
-pub fn denoise_curve(mode: Denoise, points: &[Vec2], closed: bool, limits: &Limits<'_>) -> Result<Vec<Vec2>> {
+pub fn denoise_curve(
+    mode: Denoise,
+    projection: Projection,
+    points: &[Vec2],
+    closed: bool,
+    limits: &Limits<'_>,
+) -> Result<Vec<Vec2>> {
     let n = points.len();
     if mode == Denoise::Off || n < 4 {
         return Ok(points.to_vec());
     }
     // One open fit of the points in `order` (a closed walk repeats its first point last).
-    let fit = |order: &[usize]| -> Result<Vec<Vec2>> {
+    let fit = |order: &[usize], projection: Projection| -> Result<Vec<Vec2>> {
         let sequence: Vec<Vec2> = order.iter().map(|&i| points[i]).collect();
         let last = order.len() - 1;
         let keep = |k: usize| (limits.keep)(order[k]) || (closed && (k == 0 || k == last));
@@ -263,17 +303,11 @@ pub fn denoise_curve(mode: Denoise, points: &[Vec2], closed: bool, limits: &Limi
             keep: &keep,
             allowed: &allowed,
         };
-        let jump = match mode.jump_lsq() {
-            Some(settings) => jump_fit(&sequence, CurveDomain::Parametric, false, &limits, &settings)?,
-            None => None,
-        };
-        let values = match jump {
+        let values = match curve_fit(mode, projection, &sequence, false, &limits)? {
             Some(values) => values,
-            None => bounded_fit(
-                &Parametrization::ChordLength.parameters(&sequence)?,
-                &sequence,
-                &limits,
-            )?,
+            // jump-lsq's λ limited: the cubic smoothing spline.
+            None => curve_fit(Denoise::Gcv, projection, &sequence, false, &limits)?
+                .ok_or_else(|| strategy_error("two-phase", "the cubic pre-pass gave no fit"))?,
         };
         let mut out = points.to_vec();
         for (k, &i) in order
@@ -287,7 +321,7 @@ pub fn denoise_curve(mode: Denoise, points: &[Vec2], closed: bool, limits: &Limi
     };
     if !closed {
         let order: Vec<usize> = (0..n).collect();
-        return fit(&order);
+        return fit(&order, projection);
     }
     // The turn between the chords to the points CORNER_REACH away: at a dense, noisy nose
     // the turn from one point to the next can exceed that of a real corner.
@@ -304,17 +338,17 @@ pub fn denoise_curve(mode: Denoise, points: &[Vec2], closed: bool, limits: &Limi
         );
     let around = |start: usize| -> Vec<usize> { (0..=n).map(|k| (start + k) % n).collect() };
     if largest >= CORNER_TURN {
-        return fit(&around(seam));
+        return fit(&around(seam), projection);
     }
-    if let Some(settings) = mode.jump_lsq() {
+    if mode.jump_lsq().is_some() {
         // No corner: jump-lsq's periodic spline has no seam to hide.
-        if let Some(fit) = jump_fit(points, CurveDomain::Parametric, true, limits, &settings)? {
-            return Ok(fit);
+        if let Some(values) = curve_fit(mode, projection, points, true, limits)? {
+            return Ok(values);
         }
     }
-    let first = fit(&around(seam))?;
-    let second = fit(&around((seam + n / 2) % n))?;
-    Ok((0..n)
+    let first = fit(&around(seam), Projection::Off)?;
+    let second = fit(&around((seam + n / 2) % n), Projection::Off)?;
+    let blended: Vec<Vec2> = (0..n)
         .map(|i| {
             if (limits.keep)(i) {
                 return points[i];
@@ -323,5 +357,107 @@ pub fn denoise_curve(mode: Denoise, points: &[Vec2], closed: bool, limits: &Limi
             let w = (PI * k as f64 / n as f64).sin().powi(2);
             first[i] * w + second[i] * (1.0 - w)
         })
+        .collect();
+    if projection == Projection::Off {
+        return Ok(blended);
+    }
+    // The blend is no single fit: its points are projected onto the periodic spline through
+    // them on their own chord lengths (no parameter correction).
+    let knots = Parametrization::ChordLength.closed_parameters(&blended)?;
+    let curve = fitted_curve(&blended, knots, true)?;
+    Ok(foot_points(&curve, points, limits.keep)
+        .into_iter()
+        .map(|f| f.point)
         .collect())
+}
+
+/// The spline through a fit's `values` at its `knots` (closed: with the closing knot): the
+/// fitted curve itself, since both smoothers fit natural (open) or periodic (`periodic`)
+/// cubic splines on those knots and a spline is fixed by its values there. O(n).
+fn fitted_curve(values: &[Vec2], knots: Vec<f64>, periodic: bool) -> Result<HermiteSpline<2>> {
+    let ends = if periodic {
+        HermiteEnds::Closed
+    } else {
+        HermiteEnds::Natural
+    };
+    let settings = HermiteSettings::default().with_parameters(knots).with_ends(ends);
+    Ok(HermiteSpline::new(values, &settings)?)
+}
+
+/// One smoother's fit of `sequence` (an open curve, or `periodic`: jump-lsq only) on `knots`
+/// (`None`: chord lengths; jump-lsq then refits on the chord lengths of its results) with its
+/// knots, or `None` when jump-lsq's λ stopped at its precision limit (or a periodic fit was
+/// asked of `gcv`).
+fn smoother_fit(
+    mode: Denoise,
+    sequence: &[Vec2],
+    periodic: bool,
+    knots: Option<&[f64]>,
+    limits: &Limits<'_>,
+) -> Result<Option<(Vec<Vec2>, Vec<f64>)>> {
+    if let Some(settings) = mode.jump_lsq() {
+        return jump_fit_on_knots(
+            sequence,
+            CurveDomain::Parametric,
+            periodic,
+            limits,
+            &settings,
+            knots,
+        );
+    }
+    if periodic {
+        return Ok(None);
+    }
+    let t = match knots {
+        Some(knots) => knots.to_vec(),
+        None => Parametrization::ChordLength.parameters(sequence)?,
+    };
+    Ok(Some((bounded_fit(&t, sequence, limits)?, t)))
+}
+
+/// The pre-pass's fit of `sequence` by `mode`'s smoother, its values replaced as `projection`
+/// says ([`Projection`]): the foot points of `sequence` on the fit, after
+/// [`CORRECTION_ROUNDS`] refits on the previous fit's foot-point parameters for
+/// `parameter-correction` (a refit whose λ is limited ends the rounds). `None` as
+/// [`smoother_fit`]. O(n) per solve.
+fn curve_fit(
+    mode: Denoise,
+    projection: Projection,
+    sequence: &[Vec2],
+    periodic: bool,
+    limits: &Limits<'_>,
+) -> Result<Option<Vec<Vec2>>> {
+    let Some((mut values, mut knots)) = smoother_fit(mode, sequence, periodic, None, limits)? else {
+        return Ok(None);
+    };
+    if projection == Projection::Off {
+        return Ok(Some(values));
+    }
+    let rounds = match projection {
+        Projection::ParameterCorrection => CORRECTION_ROUNDS,
+        _ => 0,
+    };
+    for _ in 0..rounds {
+        let curve = fitted_curve(&values, knots.clone(), periodic)?;
+        let mut feet: Vec<f64> = foot_points(&curve, sequence, limits.keep)
+            .iter()
+            .map(|f| f.parameter)
+            .collect();
+        if periodic {
+            // The closing knot: point 0's foot parameter one period on.
+            let period = knots[knots.len() - 1] - knots[0];
+            feet.push(feet[0] + period);
+        }
+        match smoother_fit(mode, sequence, periodic, Some(&feet), limits)? {
+            Some(refit) => (values, knots) = refit,
+            None => break,
+        }
+    }
+    let curve = fitted_curve(&values, knots, periodic)?;
+    Ok(Some(
+        foot_points(&curve, sequence, limits.keep)
+            .into_iter()
+            .map(|f| f.point)
+            .collect(),
+    ))
 }

@@ -14,11 +14,13 @@
 //!   open or closed planar curves (Han §4.2).
 
 mod denoise;
+pub mod foot_point;
 pub mod phase1;
 pub mod phase2;
 mod settings;
 
-pub use denoise::{denoise, denoise_curve, Denoise, Limits};
+pub use denoise::{denoise, denoise_curve, Denoise, Limits, CORRECTION_ROUNDS};
+pub use foot_point::{foot_points, FootPoint, Projection};
 pub use phase1::{coarse_pass, counts, detect, displacement, e_at, Case, CaseKind, PassReport};
 pub use phase2::{detect_fine, end_y_change, fine_displacement, fine_pass, zero_level};
 pub use settings::{CountGuard, Ends, TwoPhaseSettings};
@@ -304,8 +306,9 @@ impl SegmentFairer for TwoPhase {
         5
     }
 
-    /// The noise pre-pass ([`TwoPhaseSettings::denoise`]) on the whole curve
-    /// ([`denoise_curve`]), the `kept` points interpolated, the `allowed` distances honoured.
+    /// The noise pre-pass ([`TwoPhaseSettings::denoise`], projected as
+    /// [`TwoPhaseSettings::project`] says) on the whole curve ([`denoise_curve`]), the `kept`
+    /// points interpolated, the `allowed` distances honoured.
     fn prepare(
         &mut self,
         points: &[Vec2],
@@ -323,7 +326,14 @@ impl SegmentFairer for TwoPhase {
             keep: &keep,
             allowed: &allowed,
         };
-        denoise_curve(self.settings.denoise, points, closed, &limits).map(Some)
+        denoise_curve(
+            self.settings.denoise,
+            self.settings.project,
+            points,
+            closed,
+            &limits,
+        )
+        .map(Some)
     }
 
     /// Runs [`fair_function`] on the segment; points with `fixed[j]` never move.

@@ -15,3 +15,4 @@ mod two_phase_curves;
 mod two_phase_denoise;
 mod two_phase_ends;
 mod two_phase_fine;
+mod two_phase_foot_point;

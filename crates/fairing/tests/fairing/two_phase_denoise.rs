@@ -5,13 +5,15 @@
 use std::f64::consts::PI;
 
 use curve_repr::Vec2;
-use fairing::two_phase::{denoise, denoise_curve, Denoise, Ends, Limits, TwoPhase, TwoPhaseSettings};
+use fairing::two_phase::{
+    denoise, denoise_curve, Denoise, Ends, Limits, Projection, TwoPhase, TwoPhaseSettings,
+};
 use fairing::{Constraints, EndClamp, Pipeline};
 
 const SMOOTHING: [Denoise; 3] = [Denoise::Gcv, Denoise::JumpLsq, Denoise::JumpLsqGcv];
 
 /// Deterministic noise in [−σ√3, σ√3) (standard deviation σ) from an LCG.
-fn noise(seed: u64, count: usize, sigma: f64) -> Vec<f64> {
+pub(super) fn noise(seed: u64, count: usize, sigma: f64) -> Vec<f64> {
     let mut state = seed.wrapping_mul(2862933555777941757).wrapping_add(3037000493);
     (0..count)
         .map(|_| {
@@ -120,7 +122,7 @@ fn the_curve_pre_pass_keeps_kept_points_and_nears_the_clean_curve_open_and_close
         let to_curve =
             |p: &[Vec2]| (p.iter().map(|p| distance(p, closed).powi(2)).sum::<f64>() / n as f64).sqrt();
         for mode in SMOOTHING {
-            let smooth = denoise_curve(mode, &noisy, closed, &limits).unwrap();
+            let smooth = denoise_curve(mode, Projection::Off, &noisy, closed, &limits).unwrap();
             for k in (0..n).filter(|&k| keep(k)) {
                 assert_eq!(smooth[k], noisy[k], "{mode:?} closed {closed}: point {k} moved");
             }
@@ -169,7 +171,7 @@ fn a_closed_curves_corner_stays_where_it_is() {
         allowed: &free,
     };
     for mode in [Denoise::JumpLsq, Denoise::JumpLsqGcv] {
-        let smooth = denoise_curve(mode, &noisy, true, &limits).unwrap();
+        let smooth = denoise_curve(mode, Projection::Off, &noisy, true, &limits).unwrap();
         // The corner of largest turn is the seam of the fit: kept, so it stays sharp.
         let corners = [0, m].map(|k| smooth[k] == noisy[k]);
         assert!(corners.iter().any(|c| *c), "{mode:?}: both corners moved");
@@ -196,7 +198,7 @@ fn the_pre_pass_refuses_bad_input() {
         let mut repeated = points.clone();
         repeated[2] = repeated[1];
         assert!(
-            denoise_curve(mode, &repeated, false, &limits).is_err(),
+            denoise_curve(mode, Projection::Off, &repeated, false, &limits).is_err(),
             "{mode:?}: repeated point"
         );
     }

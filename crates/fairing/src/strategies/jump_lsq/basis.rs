@@ -107,6 +107,11 @@ impl Knots {
         self.t.len()
     }
 
+    /// The period T of closed knots (`None` when open).
+    pub fn period(&self) -> Option<f64> {
+        self.period
+    }
+
     /// Whether the knots are periodic.
     pub fn is_closed(&self) -> bool {
         self.period.is_some()

@@ -343,6 +343,9 @@ pub struct Faired<const D: usize> {
     /// The knots of the last solve: the output's spline for the end clamps (the output's own
     /// chord-length knots differ slightly for the parametric kind).
     pub knots: Vec<f64>,
+    /// The period of the last solve's knots for a closed curve (its closing knot is
+    /// `knots[0] + period`), `None` for an open one.
+    pub period: Option<f64>,
 }
 
 /// Rounds of the tolerance band's active set at most.
@@ -521,6 +524,72 @@ pub fn fair<const D: usize>(
     closed: bool,
     settings: &JumpLsqSettings,
 ) -> Result<Faired<D>> {
+    fair_from(points, original, constraints, domain, closed, settings, None)
+}
+
+/// [`fair`] of a parametric curve on given knots instead of chord lengths: one solve round on
+/// `knots` (strictly increasing; one per point, and for a closed curve one more, the closing
+/// knot t_n = t_0 + period), no refits (they would return to chord lengths). For a parameter
+/// correction (Hoschek's intrinsic parametrisation: the knots are the foot-point parameters
+/// of the points on an earlier fit). The reported `penalty-before` is the input's on its own
+/// chord-length knots, as [`fair`] reports it. O(n) per solve.
+///
+/// Errors: those of [`fair`], the function kind, knots of the wrong count, not finite or not
+/// strictly increasing.
+pub fn fair_on_knots<const D: usize>(
+    points: &[Vector<D>],
+    original: &[Vector<D>],
+    constraints: &Constraints,
+    knots: &[f64],
+    closed: bool,
+    settings: &JumpLsqSettings,
+) -> Result<Faired<D>> {
+    let n = points.len();
+    let expected = n + usize::from(closed);
+    if knots.len() != expected {
+        return Err(curve_repr::Error::LengthMismatch {
+            what: "jump-lsq knots",
+            expected,
+            got: knots.len(),
+        }
+        .into());
+    }
+    curve_repr::vector::check_finite_values("jump-lsq knots", knots)?;
+    if let Some(index) = knots.windows(2).position(|w| w[1] - w[0] <= 0.0) {
+        return Err(curve_repr::Error::NotIncreasing {
+            what: "jump-lsq knots",
+            index: index + 1,
+            previous: knots[index],
+            value: knots[index + 1],
+        }
+        .into());
+    }
+    let given = if closed {
+        Knots::closed(knots.to_vec())
+    } else {
+        Knots::open(knots.to_vec())
+    };
+    fair_from(
+        points,
+        original,
+        constraints,
+        CurveDomain::Parametric,
+        closed,
+        settings,
+        Some(given),
+    )
+}
+
+/// [`fair`], on `given` knots in one round when they are given ([`fair_on_knots`]).
+fn fair_from<const D: usize>(
+    points: &[Vector<D>],
+    original: &[Vector<D>],
+    constraints: &Constraints,
+    domain: CurveDomain,
+    closed: bool,
+    settings: &JumpLsqSettings,
+    given: Option<Knots>,
+) -> Result<Faired<D>> {
     settings.validate()?;
     check_kind::<D>(domain, closed)?;
     let n = points.len();
@@ -588,7 +657,7 @@ pub fn fair<const D: usize>(
             LambdaRule::Gcv => ("gcv", None),
         },
     };
-    let rounds = if domain == CurveDomain::Parametric {
+    let rounds = if domain == CurveDomain::Parametric && given.is_none() {
         settings.refits + 1
     } else {
         1
@@ -613,11 +682,16 @@ pub fn fair<const D: usize>(
         penalty_after: 0.0,
     };
     let mut last_knots = Vec::new();
+    let mut last_period = None;
     let mut last_evaluation: Option<(Space, Evaluation<D>)> = None;
     for round in 0..rounds {
-        let knots = knots_of(&current, domain, closed)?;
+        let knots = match &given {
+            Some(knots) => knots.clone(),
+            None => knots_of(&current, domain, closed)?,
+        };
         let mut space = Space::new(knots, ends, penalty).map_err(|e| space_error(e, n, closed))?;
         last_knots = space.knots().values().to_vec();
+        last_period = space.knots().period();
         let base_of = |space: &Space| {
             let mut base: Vec<Constraint<D>> = Vec::new();
             for (i, _) in frozen.iter().enumerate().filter(|(_, f)| **f) {
@@ -645,7 +719,9 @@ pub fn fair<const D: usize>(
         };
         let mut base = base_of(&space);
         let mut weights: Vec<f64> = vec![1.0; n];
-        if round == 0 {
+        if round == 0 && given.is_some() {
+            penalty_before = jump_penalty(points, domain, closed, settings)?;
+        } else if round == 0 {
             // Round 0's knots are the input's own, so the interpolant of the input is the
             // solve at λ = 0 without constraints, on the data rows' narrow band (before the
             // penalised system is assembled, so that the two are never held together).
@@ -751,6 +827,7 @@ pub fn fair<const D: usize>(
                                 space = Space::new(knots, ends, penalty)
                                     .map_err(|e| space_error(e, n, closed))?;
                                 last_knots = space.knots().values().to_vec();
+                                last_period = space.knots().period();
                                 base = base_of(&space);
                             }
                             for (i, _) in pins.drain(held.len()..) {
@@ -826,6 +903,7 @@ pub fn fair<const D: usize>(
         points: current,
         report,
         knots: last_knots,
+        period: last_period,
     })
 }
 

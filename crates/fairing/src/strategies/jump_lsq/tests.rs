@@ -896,3 +896,52 @@ fn extents_are_those_of_the_forms() {
         }
     }
 }
+
+#[test]
+fn given_knots_are_the_solves_knots_and_bad_ones_are_refused() {
+    let points = helix(40);
+    let settings = JumpLsqSettings::default().with_lambda(5.0);
+    // Uniform knots, not the chord lengths: one round on them, no refit back to chords.
+    let knots: Vec<f64> = (0..points.len()).map(|k| 0.5 * k as f64).collect();
+    let faired = fair_on_knots(
+        &points,
+        &points,
+        &Constraints::default(),
+        &knots,
+        false,
+        &settings,
+    )
+    .unwrap();
+    assert_eq!(faired.knots, knots);
+    assert_eq!(faired.report.refits, 0);
+    // The output is the spline on those knots: its interpolant there has the solve's penalty,
+    // smaller than on the output's own chord lengths.
+    let space = Space::new(Knots::open(knots.clone()), Ends::Natural, penalty_of(&settings)).unwrap();
+    let on_given = space.penalty_of(&space.interpolate(&faired.points).unwrap());
+    assert!(
+        on_given < faired.report.penalty_after,
+        "{on_given} vs {}",
+        faired.report.penalty_after
+    );
+    let mut repeated = knots.clone();
+    repeated[7] = repeated[6];
+    let mut nan = knots.clone();
+    nan[3] = f64::NAN;
+    for bad in [&knots[1..], &repeated[..], &nan[..]] {
+        assert!(fair_on_knots(&points, &points, &Constraints::default(), bad, false, &settings).is_err());
+    }
+    // A closed curve takes the closing knot too.
+    let mut closed = knots.clone();
+    closed.push(0.5 * points.len() as f64);
+    let faired = fair_on_knots(
+        &points,
+        &points,
+        &Constraints::default(),
+        &closed,
+        true,
+        &settings,
+    )
+    .unwrap();
+    assert_eq!(faired.period, Some(0.5 * points.len() as f64));
+    assert!(fair_on_knots(&points, &points, &Constraints::default(), &knots, true, &settings).is_err());
+}
