@@ -24,10 +24,17 @@ pub trait SegmentFairer {
         4
     }
 
+    /// Whether [`prepare`](Self::prepare) may move the end points of an open curve (that are
+    /// neither fixed nor clamped). The segments never move them; with `true` they keep where
+    /// the preparation put them. Default `false`: the ends stay the data's.
+    fn prepares_ends(&self) -> bool {
+        false
+    }
+
     /// Prepares the whole curve before the first pass (e.g. removes its noise): returns the
     /// new points, or `None` to leave them. `kept[i]` marks the points that must not move
-    /// (fixed points, clamped ends, and the ends of an open curve, which the segments never
-    /// move either), `allowed[i]` how far point i may move (the tolerance band and radii, +∞
+    /// (fixed points, clamped ends, and, unless [`prepares_ends`](Self::prepares_ends), the
+    /// ends of an open curve, which the segments never move either), `allowed[i]` how far point i may move (the tolerance band and radii, +∞
     /// without them). Called once per run, on the planar points in curve order (`closed`: the
     /// last joins the first). Default: `None`.
     fn prepare(
@@ -147,8 +154,9 @@ impl<F: SegmentFairer> FairingStrategy<2> for SegmentedFairing<F> {
         if self.done == 0 {
             let n = state.len();
             let closed = state.is_closed();
+            let ends_kept = !closed && !self.fairer.prepares_ends();
             let kept: Vec<bool> = (0..n)
-                .map(|i| !state.is_movable(i) || (!closed && (i == 0 || i + 1 == n)))
+                .map(|i| !state.is_movable(i) || (ends_kept && (i == 0 || i + 1 == n)))
                 .collect();
             let allowed: Vec<f64> = (0..n).map(|i| state.constraints().allowed_distance(i)).collect();
             if let Some(prepared) = self.fairer.prepare(state.points(), closed, &kept, &allowed)? {

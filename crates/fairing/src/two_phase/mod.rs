@@ -306,6 +306,11 @@ impl SegmentFairer for TwoPhase {
         5
     }
 
+    /// With [`Ends::Free`] the noise pre-pass fits an open curve's end points too.
+    fn prepares_ends(&self) -> bool {
+        self.settings.ends == Ends::Free && self.settings.denoise != Denoise::Off
+    }
+
     /// The noise pre-pass ([`TwoPhaseSettings::denoise`], projected as
     /// [`TwoPhaseSettings::project`] says) on the whole curve ([`denoise_curve`]), the `kept`
     /// points interpolated, the `allowed` distances honoured.

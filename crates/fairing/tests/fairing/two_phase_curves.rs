@@ -79,9 +79,9 @@ fn noisy_open_spiral_arc() {
         .unwrap();
     assert!(constraints.check(&noisy, &result.points).is_ok());
     assert_eq!(result.points[40], noisy[40]);
-    // The ends of an open curve do not move (every segment keeps its end points).
-    assert_eq!(result.points[0], noisy[0]);
-    assert_eq!(result.points[n - 1], noisy[n - 1]);
+    // The ends of an open curve: the segments never move them; the default's pre-pass fits
+    // them (`ends` = `free`) within the tolerance like every point (checked above), and with
+    // `ends` = `keep` they stay bit for bit (`two_phase_foot_point`).
     let (before, after) = (counts(&noisy), counts(&result.points));
     println!("open spiral: (inflections, vibrations) {before:?} -> {after:?}");
     assert!(after.1 < before.1, "vibrations {before:?} -> {after:?}");
