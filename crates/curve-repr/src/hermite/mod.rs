@@ -65,6 +65,8 @@ impl<const D: usize> Clone for HermiteSpline<D> {
         self.knots.clone_from(&source.knots);
         self.tangents.clone_from(&source.tangents);
         self.ends = source.ends;
+        // The knots may differ: the decay bounds of the windowed update are measured again.
+        self.workspace.decays.clear();
     }
 }
 

@@ -43,7 +43,12 @@ fn decay<const D: usize>(spline: &HermiteSpline<D>, k: usize, forward: bool) -> 
 /// The window of rows, as an unwrapped interval `[lo, hi]` (a closed curve's rows wrap
 /// modulo the point count), whose tangents a move of point `j` changes by more than
 /// [`WINDOW_TOLERANCE`] relative.
-fn window_of<const D: usize>(spline: &HermiteSpline<D>, j: usize) -> (isize, isize) {
+fn window_of<const D: usize>(spline: &mut HermiteSpline<D>, j: usize) -> (isize, isize) {
+    if spline.workspace.decays.len() != spline.points.len() {
+        let decays = decays_of(spline);
+        spline.workspace.decays = decays;
+    }
+    let decays = &spline.workspace.decays;
     let count = spline.points.len() as isize;
     let j = j as isize;
     let wrap = |k: isize| k.rem_euclid(count) as usize;
@@ -52,12 +57,12 @@ fn window_of<const D: usize>(spline: &HermiteSpline<D>, j: usize) -> (isize, isi
         let mut product = 1.0;
         while product > WINDOW_TOLERANCE && hi - j < count {
             hi += 1;
-            product *= decay(spline, wrap(hi), true);
+            product *= decays[wrap(hi)].0;
         }
         let mut product = 1.0;
         while product > WINDOW_TOLERANCE && j - lo < count {
             lo -= 1;
-            product *= decay(spline, wrap(lo), false);
+            product *= decays[wrap(lo)].1;
         }
         (lo, hi)
     } else {
@@ -70,7 +75,7 @@ fn window_of<const D: usize>(spline: &HermiteSpline<D>, j: usize) -> (isize, isi
                 hi = last;
                 break;
             }
-            product *= decay(spline, hi as usize, true);
+            product *= decays[hi as usize].0;
         }
         let mut product = 1.0;
         while lo > 0 && product > WINDOW_TOLERANCE {
@@ -79,10 +84,25 @@ fn window_of<const D: usize>(spline: &HermiteSpline<D>, j: usize) -> (isize, isi
                 lo = 0;
                 break;
             }
-            product *= decay(spline, lo as usize, false);
+            product *= decays[lo as usize].1;
         }
         (lo, hi)
     }
+}
+
+/// [`decay`] forward and backward at every row where [`window_of`] reads it (every row of a
+/// closed curve, the interior rows of an open one; 1 elsewhere, never read). O(n).
+fn decays_of<const D: usize>(spline: &HermiteSpline<D>) -> Vec<(f64, f64)> {
+    let count = spline.points.len();
+    (0..count)
+        .map(|k| {
+            if spline.is_closed() || (k >= 1 && k + 1 < count) {
+                (decay(spline, k, true), decay(spline, k, false))
+            } else {
+                (1.0, 1.0)
+            }
+        })
+        .collect()
 }
 
 /// Moves of at most this many points keep their bookkeeping (old positions, windows) on the
@@ -98,6 +118,10 @@ pub(super) struct Workspace<const D: usize> {
     numbers: Vec<f64>,
     /// The right-hand sides, then the tangents.
     pub(super) values: Vec<Vector<D>>,
+    /// The decay bounds of [`window_of`] at every row, forward and backward ([`decays_of`]):
+    /// they depend on the knots only. Empty until the first move, and after
+    /// [`Clone::clone_from`] (which may change the knots).
+    pub(super) decays: Vec<(f64, f64)>,
 }
 
 impl<const D: usize> PartialEq for Workspace<D> {
@@ -207,7 +231,7 @@ fn merge(intervals: &mut [(isize, isize)]) -> usize {
 /// count); `None` when the windows of a closed curve cover it (then every row is re-solved,
 /// by the full cyclic solve).
 fn plan<const D: usize>(
-    spline: &HermiteSpline<D>,
+    spline: &mut HermiteSpline<D>,
     moves: &[(usize, Vector<D>)],
     windows: &mut [(isize, isize)],
 ) -> Option<usize> {
@@ -446,12 +470,12 @@ mod tests {
 
     #[test]
     fn windows_are_local_and_clipped_at_the_ends() {
-        let spline = HermiteSpline::natural(&wave(500)).unwrap();
-        let (lo, hi) = window_of(&spline, 250);
+        let mut spline = HermiteSpline::natural(&wave(500)).unwrap();
+        let (lo, hi) = window_of(&mut spline, 250);
         assert!(hi - lo < 130, "{lo}..{hi}");
         assert!(lo > 100 && hi < 400);
-        assert_eq!(window_of(&spline, 0).0, 0);
-        assert_eq!(window_of(&spline, 499).1, 499);
+        assert_eq!(window_of(&mut spline, 0).0, 0);
+        assert_eq!(window_of(&mut spline, 499).1, 499);
     }
 
     /// `move_points_within` names every row whose tangent changed (and the moved points);
