@@ -193,11 +193,14 @@ impl<const D: usize> HermiteSpline<D> {
     /// result). For measuring a line's response to unit moves without moving it back.
     /// O(window), O(n) when a closed curve's window covers it. Fails as
     /// `move_points_within` does on a bad index or position, or a failed solve.
-    pub fn tangents_after_move(&mut self, index: usize, position: Vector<D>) -> Result<(usize, &[Vector<D>])> {
+    pub fn tangents_after_move(
+        &mut self,
+        index: usize,
+        position: Vector<D>,
+    ) -> Result<(usize, &[Vector<D>])> {
         let (first, rows) = update::tangents_after_move(self, index, position)?;
         Ok((first, &self.workspace.values[..rows]))
     }
-
 }
 
 impl HermiteSpline<1> {

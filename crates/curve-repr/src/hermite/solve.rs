@@ -130,7 +130,8 @@ fn rows_into<const D: usize>(
             carried = next.map(|slope| (spline.step(i), slope));
         } else {
             let previous = if i == 0 { count - 1 } else { i - 1 };
-            let (h0, before) = carried.unwrap_or_else(|| (spline.step(previous), spline.chord_slope(previous)));
+            let (h0, before) =
+                carried.unwrap_or_else(|| (spline.step(previous), spline.chord_slope(previous)));
             let h1 = spline.step(i);
             let a = h1 / (h0 + h1);
             let b = h0 / (h0 + h1);

@@ -347,8 +347,9 @@ pub(super) fn tangents_after_move<const D: usize>(
     let old = std::mem::replace(&mut spline.points[index], position);
     let mut window = [(0isize, 0isize)];
     let result = match plan(spline, &[(index, position)], &mut window) {
-        Some(_) => solve_planned(spline, &window)
-            .map(|rows| (window[0].0.rem_euclid(count as isize) as usize, rows)),
+        Some(_) => {
+            solve_planned(spline, &window).map(|rows| (window[0].0.rem_euclid(count as isize) as usize, rows))
+        }
         None => solve::tangents(spline).map(|all| {
             let values = &mut spline.workspace.values;
             values.clear();
@@ -502,6 +503,70 @@ mod tests {
         fresh.move_points(&again).unwrap();
         assert_eq!(spline, fresh);
         assert!(spline.tangents.iter().zip(&fresh.tangents).all(|(a, b)| a == b));
+    }
+
+    /// `tangents_after_move` gives the rows `move_points_within` re-solves and their
+    /// tangents bit for bit, and leaves the spline as it was; `unit_move_tangents` on a
+    /// zero line is the move of a point to 1 (natural ends by its own rows, other ends by
+    /// the general path), on short lines, long ones and closed ones.
+    #[test]
+    fn trial_moves_are_the_moves_bit_for_bit() {
+        let mut spline = HermiteSpline::natural(&wave(200)).unwrap();
+        let before = spline.clone();
+        for (index, position) in [
+            (0, Vec2::new(0.5, 1.0)),
+            (77, Vec2::new(70.0, -3.0)),
+            (199, Vec2::new(1.0, 2.0)),
+        ] {
+            let (first, trial) = spline.tangents_after_move(index, position).unwrap();
+            let trial = trial.to_vec();
+            assert_eq!(spline, before);
+            let mut moved = spline.clone();
+            let (lo, hi) = moved.move_points_within(&[(index, position)]).unwrap().unwrap();
+            assert_eq!((first, first + trial.len() - 1), (lo, hi));
+            for (k, t) in trial.iter().enumerate() {
+                let m = moved.tangents[first + k];
+                assert!(
+                    t.iter().zip(m.iter()).all(|(a, b)| a.to_bits() == b.to_bits()),
+                    "row {}",
+                    first + k
+                );
+            }
+        }
+        assert!(spline.tangents_after_move(200, Vec2::zeros()).is_err());
+        assert!(spline.tangents_after_move(3, Vec2::new(f64::NAN, 0.0)).is_err());
+        let knots: Vec<f64> = (0..=130)
+            .map(|k| k as f64 + 0.4 * (k as f64 * 0.7).sin())
+            .collect();
+        for count in [2, 3, 5, 40, 130] {
+            for ends in [
+                HermiteEnds::Natural,
+                HermiteEnds::ParabolicRunout,
+                HermiteEnds::Closed,
+            ] {
+                if count < ends.min_points() {
+                    continue;
+                }
+                let closed = ends.is_closed();
+                let settings = HermiteSettings::new()
+                    .with_parameters(knots[..count + usize::from(closed)].to_vec())
+                    .with_ends(ends);
+                let mut zero =
+                    HermiteSpline::<1>::new(&vec![Vector::<1>::zeros(); count], &settings).unwrap();
+                for i in 0..count {
+                    let (first, unit) = zero.unit_move_tangents(i).unwrap();
+                    let unit = unit.to_vec();
+                    let mut moved = zero.clone();
+                    moved.move_points(&[(i, Vector::<1>::new(1.0))]).unwrap();
+                    for k in 0..count {
+                        let offset = (k + count - first) % count;
+                        let expected = moved.tangents[k][0].to_bits();
+                        let got = unit.get(offset).map_or(0.0f64.to_bits(), |t| t[0].to_bits());
+                        assert_eq!(got, expected, "{count} points, {ends:?}, move {i}, row {k}");
+                    }
+                }
+            }
+        }
     }
 
     #[test]
