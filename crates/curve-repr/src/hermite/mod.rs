@@ -65,6 +65,8 @@ impl<const D: usize> Clone for HermiteSpline<D> {
         self.knots.clone_from(&source.knots);
         self.tangents.clone_from(&source.tangents);
         self.ends = source.ends;
+        // The knots may differ: the decay bounds of the windowed update are measured again.
+        self.workspace.decays.clear();
     }
 }
 
@@ -183,6 +185,39 @@ impl<const D: usize> HermiteSpline<D> {
         update::move_points(self, moves)
     }
 
+    /// The tangents that [`move_points_within`](Self::move_points_within) would give for a
+    /// move of point `index` to `position`, without making it: `(first, tangents)`, the
+    /// new tangents of the rows first, first + 1, … (wrapping round a closed curve) that
+    /// the move re-solves, bit for bit those of the move; every other tangent would keep
+    /// its value. The spline is left as it was (its storage for windowed solves holds the
+    /// result). For measuring a line's response to unit moves without moving it back.
+    /// O(window), O(n) when a closed curve's window covers it. Fails as
+    /// `move_points_within` does on a bad index or position, or a failed solve.
+    pub fn tangents_after_move(
+        &mut self,
+        index: usize,
+        position: Vector<D>,
+    ) -> Result<(usize, &[Vector<D>])> {
+        let (first, rows) = update::tangents_after_move(self, index, position)?;
+        Ok((first, &self.workspace.values[..rows]))
+    }
+}
+
+impl HermiteSpline<1> {
+    /// [`tangents_after_move`](Self::tangents_after_move) of point `index` to 1, for a
+    /// scalar spline whose points are all 0: the response of the tangents to a unit move
+    /// (the tangents are linear in the points), bit for bit what the move would give. On a
+    /// natural open spline the window's rows are built from the knots directly (a unit
+    /// move's right-hand side is 0 but at three rows), some five times cheaper than the
+    /// general rows; other ends take the general path. The points must be 0 (else the
+    /// result is not the move's). O(window).
+    pub fn unit_move_tangents(&mut self, index: usize) -> Result<(usize, &[Vector<1>])> {
+        let (first, rows) = update::unit_move_tangents(self, index)?;
+        Ok((first, &self.workspace.values[..rows]))
+    }
+}
+
+impl<const D: usize> HermiteSpline<D> {
     /// The index of the point at the end of segment `segment`.
     fn next(&self, segment: usize) -> usize {
         if segment + 1 >= self.points.len() {

@@ -88,19 +88,11 @@ impl<const D: usize> HermiteSpline<D> {
 /// [`Error::NonFinite`] if a tangent overflows.
 pub(super) fn tangents<const D: usize>(spline: &HermiteSpline<D>) -> Result<Vec<Vector<D>>> {
     let count = spline.points.len();
-    let mut lower = Vec::with_capacity(count);
-    let mut diag = Vec::with_capacity(count);
-    let mut upper = Vec::with_capacity(count);
-    let mut rhs = Vec::with_capacity(count);
-    let mut slope = None;
-    for i in 0..count {
-        let (row, next) = spline.row_with(i, slope);
-        slope = next;
-        lower.push(row.lower);
-        diag.push(row.diag);
-        upper.push(row.upper);
-        rhs.push(row.rhs);
-    }
+    let mut lower = vec![0.0; count];
+    let mut diag = vec![0.0; count];
+    let mut upper = vec![0.0; count];
+    let mut rhs = vec![Vector::<D>::zeros(); count];
+    rows_into(spline, 0, &mut lower, &mut diag, &mut upper, &mut rhs);
     let solution = if spline.is_closed() {
         tridiagonal::solve_cyclic(&lower, &diag, &upper, &rhs)?
     } else {
@@ -108,6 +100,53 @@ pub(super) fn tangents<const D: usize>(spline: &HermiteSpline<D>) -> Result<Vec<
     };
     check_tangents(&solution)?;
     Ok(solution)
+}
+
+/// Rows `start`, `start + 1`, … (modulo the point count for a closed curve; as many as the
+/// slices hold) of the system, as [`HermiteSpline::row_with`] gives them (the same
+/// operations, so the same bits), with the right-hand sides in `values`. An interior row
+/// takes the knot step and the chord slope of the segment before it from the row before,
+/// so each row computes one step, two weights and one slope. O(rows).
+fn rows_into<const D: usize>(
+    spline: &HermiteSpline<D>,
+    start: usize,
+    lower: &mut [f64],
+    diag: &mut [f64],
+    upper: &mut [f64],
+    values: &mut [Vector<D>],
+) {
+    let count = spline.points.len();
+    let closed = spline.is_closed();
+    // The knot step and the chord slope of the segment ending at the row, when known.
+    let mut carried: Option<(f64, Vector<D>)> = None;
+    let mut i = start;
+    for k in 0..values.len() {
+        if !closed && (i == 0 || i + 1 == count) {
+            let (row, next) = spline.row_with(i, carried.map(|(_, slope)| slope));
+            lower[k] = row.lower;
+            diag[k] = row.diag;
+            upper[k] = row.upper;
+            values[k] = row.rhs;
+            carried = next.map(|slope| (spline.step(i), slope));
+        } else {
+            let previous = if i == 0 { count - 1 } else { i - 1 };
+            let (h0, before) =
+                carried.unwrap_or_else(|| (spline.step(previous), spline.chord_slope(previous)));
+            let h1 = spline.step(i);
+            let a = h1 / (h0 + h1);
+            let b = h0 / (h0 + h1);
+            let after = (spline.points[spline.next(i)] - spline.points[i]) / h1;
+            lower[k] = a;
+            diag[k] = 2.0;
+            upper[k] = b;
+            values[k] = (before * a + after * b) * 3.0;
+            carried = Some((h1, after));
+        }
+        i += 1;
+        if i == count {
+            i = 0;
+        }
+    }
 }
 
 /// Storage of a windowed solve, one entry per row of the window: the system's three
@@ -143,15 +182,7 @@ pub(super) fn window<const D: usize>(
     if len == 0 {
         return Ok(());
     }
-    let mut slope = None;
-    for k in 0..len {
-        let (row, next) = spline.row_with(index(k), slope);
-        slope = next;
-        lower[k] = row.lower;
-        diag[k] = row.diag;
-        upper[k] = row.upper;
-        values[k] = row.rhs;
-    }
+    rows_into(spline, start, lower, diag, upper, values);
     // Boundary tangents move to the right-hand side (their coefficients are 0 at open ends).
     if lower[0] != 0.0 {
         let outside = spline.tangents[(start + count - 1) % count];
@@ -168,7 +199,7 @@ pub(super) fn window<const D: usize>(
     check_tangents(values)
 }
 
-fn check_tangents<const D: usize>(tangents: &[Vector<D>]) -> Result<()> {
+pub(super) fn check_tangents<const D: usize>(tangents: &[Vector<D>]) -> Result<()> {
     match tangents.iter().position(|m| m.iter().any(|c| !c.is_finite())) {
         Some(index) => Err(Error::NonFinite {
             what: "tangent",

@@ -43,7 +43,12 @@ fn decay<const D: usize>(spline: &HermiteSpline<D>, k: usize, forward: bool) -> 
 /// The window of rows, as an unwrapped interval `[lo, hi]` (a closed curve's rows wrap
 /// modulo the point count), whose tangents a move of point `j` changes by more than
 /// [`WINDOW_TOLERANCE`] relative.
-fn window_of<const D: usize>(spline: &HermiteSpline<D>, j: usize) -> (isize, isize) {
+fn window_of<const D: usize>(spline: &mut HermiteSpline<D>, j: usize) -> (isize, isize) {
+    if spline.workspace.decays.len() != spline.points.len() {
+        let decays = decays_of(spline);
+        spline.workspace.decays = decays;
+    }
+    let decays = &spline.workspace.decays;
     let count = spline.points.len() as isize;
     let j = j as isize;
     let wrap = |k: isize| k.rem_euclid(count) as usize;
@@ -52,12 +57,12 @@ fn window_of<const D: usize>(spline: &HermiteSpline<D>, j: usize) -> (isize, isi
         let mut product = 1.0;
         while product > WINDOW_TOLERANCE && hi - j < count {
             hi += 1;
-            product *= decay(spline, wrap(hi), true);
+            product *= decays[wrap(hi)].0;
         }
         let mut product = 1.0;
         while product > WINDOW_TOLERANCE && j - lo < count {
             lo -= 1;
-            product *= decay(spline, wrap(lo), false);
+            product *= decays[wrap(lo)].1;
         }
         (lo, hi)
     } else {
@@ -70,7 +75,7 @@ fn window_of<const D: usize>(spline: &HermiteSpline<D>, j: usize) -> (isize, isi
                 hi = last;
                 break;
             }
-            product *= decay(spline, hi as usize, true);
+            product *= decays[hi as usize].0;
         }
         let mut product = 1.0;
         while lo > 0 && product > WINDOW_TOLERANCE {
@@ -79,10 +84,25 @@ fn window_of<const D: usize>(spline: &HermiteSpline<D>, j: usize) -> (isize, isi
                 lo = 0;
                 break;
             }
-            product *= decay(spline, lo as usize, false);
+            product *= decays[lo as usize].1;
         }
         (lo, hi)
     }
+}
+
+/// [`decay`] forward and backward at every row where [`window_of`] reads it (every row of a
+/// closed curve, the interior rows of an open one; 1 elsewhere, never read). O(n).
+fn decays_of<const D: usize>(spline: &HermiteSpline<D>) -> Vec<(f64, f64)> {
+    let count = spline.points.len();
+    (0..count)
+        .map(|k| {
+            if spline.is_closed() || (k >= 1 && k + 1 < count) {
+                (decay(spline, k, true), decay(spline, k, false))
+            } else {
+                (1.0, 1.0)
+            }
+        })
+        .collect()
 }
 
 /// Moves of at most this many points keep their bookkeeping (old positions, windows) on the
@@ -97,7 +117,11 @@ pub(super) struct Workspace<const D: usize> {
     /// Four f64 per row: the three diagonals and the Thomas algorithm's scratch.
     numbers: Vec<f64>,
     /// The right-hand sides, then the tangents.
-    values: Vec<Vector<D>>,
+    pub(super) values: Vec<Vector<D>>,
+    /// The decay bounds of [`window_of`] at every row, forward and backward ([`decays_of`]):
+    /// they depend on the knots only. Empty until the first move, and after
+    /// [`Clone::clone_from`] (which may change the knots).
+    pub(super) decays: Vec<(f64, f64)>,
 }
 
 impl<const D: usize> PartialEq for Workspace<D> {
@@ -201,23 +225,17 @@ fn merge(intervals: &mut [(isize, isize)]) -> usize {
     len
 }
 
-/// Merges the windows of the moved points and solves each; falls back to a full solve when
-/// the windows of a closed curve cover it. Tangents are written only after every solve
-/// succeeded. Returns the first and last row re-solved (a closed curve's rows wrap: then
-/// the first may be the larger), `(0, count − 1)` after a full solve.
-fn update_tangents<const D: usize>(
+/// The rows whose tangents moves of the points `moves` name change: the windows of the
+/// moved points, merged, into the front of `windows` (one slot per move; their number
+/// returned), unwrapped intervals in order (a closed curve's rows wrap modulo the point
+/// count); `None` when the windows of a closed curve cover it (then every row is re-solved,
+/// by the full cyclic solve).
+fn plan<const D: usize>(
     spline: &mut HermiteSpline<D>,
     moves: &[(usize, Vector<D>)],
-) -> Result<Option<(usize, usize)>> {
+    windows: &mut [(isize, isize)],
+) -> Option<usize> {
     let count = spline.points.len() as isize;
-    let mut small = [(0isize, 0isize); STACK_MOVES];
-    let mut large = Vec::new();
-    let windows: &mut [(isize, isize)] = if moves.len() <= STACK_MOVES {
-        &mut small[..moves.len()]
-    } else {
-        large.resize(moves.len(), (0, 0));
-        &mut large
-    };
     for (window, &(j, _)) in windows.iter_mut().zip(moves) {
         *window = window_of(spline, j);
     }
@@ -244,11 +262,15 @@ fn update_tangents<const D: usize>(
         // A window must leave at least two rows outside it.
         let covered: isize = windows[..merged].iter().map(|(lo, hi)| hi - lo + 1).sum();
         if covered >= count - 1 {
-            spline.rebuild()?;
-            return Ok(Some((0, count as usize - 1)));
+            return None;
         }
     }
-    let windows = &windows[..merged];
+    Some(merged)
+}
+
+/// Solves the merged `windows` into the spline's workspace (grown as needed), in order;
+/// returns the rows solved in all.
+fn solve_planned<const D: usize>(spline: &mut HermiteSpline<D>, windows: &[(isize, isize)]) -> Result<usize> {
     let total = windows
         .iter()
         .map(|(lo, hi)| (hi - lo + 1) as usize)
@@ -259,25 +281,147 @@ fn update_tangents<const D: usize>(
         workspace.values.resize(total, Vector::<D>::zeros());
     }
     let solved = solve_windows(spline, windows, total, &mut workspace);
-    if solved.is_ok() {
-        let total = spline.points.len();
-        let mut offset = 0;
-        for &(lo, hi) in windows {
-            let start = lo.rem_euclid(count) as usize;
-            let len = (hi - lo + 1) as usize;
-            for (k, &value) in workspace.values[offset..offset + len].iter().enumerate() {
-                spline.tangents[(start + k) % total] = value;
-            }
-            offset += len;
-        }
-    }
     spline.workspace = workspace;
-    solved?;
+    solved.map(|()| total)
+}
+
+/// Merges the windows of the moved points and solves each; falls back to a full solve when
+/// the windows of a closed curve cover it. Tangents are written only after every solve
+/// succeeded. Returns the first and last row re-solved (a closed curve's rows wrap: then
+/// the first may be the larger), `(0, count − 1)` after a full solve.
+fn update_tangents<const D: usize>(
+    spline: &mut HermiteSpline<D>,
+    moves: &[(usize, Vector<D>)],
+) -> Result<Option<(usize, usize)>> {
+    let count = spline.points.len() as isize;
+    let mut small = [(0isize, 0isize); STACK_MOVES];
+    let mut large = Vec::new();
+    let windows: &mut [(isize, isize)] = if moves.len() <= STACK_MOVES {
+        &mut small[..moves.len()]
+    } else {
+        large.resize(moves.len(), (0, 0));
+        &mut large
+    };
+    let Some(merged) = plan(spline, moves, windows) else {
+        spline.rebuild()?;
+        return Ok(Some((0, count as usize - 1)));
+    };
+    let windows = &windows[..merged];
+    solve_planned(spline, windows)?;
+    let total = spline.points.len();
+    let mut offset = 0;
+    for &(lo, hi) in windows {
+        let start = lo.rem_euclid(count) as usize;
+        let len = (hi - lo + 1) as usize;
+        for (k, &value) in spline.workspace.values[offset..offset + len].iter().enumerate() {
+            spline.tangents[(start + k) % total] = value;
+        }
+        offset += len;
+    }
     let (first, last) = (windows[0].0, windows[windows.len() - 1].1);
     Ok(Some((
         first.rem_euclid(count) as usize,
         last.rem_euclid(count) as usize,
     )))
+}
+
+/// The tangents a move of point `index` to `position` gives, without making it (see
+/// [`HermiteSpline::tangents_after_move`](super::HermiteSpline::tangents_after_move)):
+/// `(first row, rows)`, their tangents in the workspace's first `rows` values.
+pub(super) fn tangents_after_move<const D: usize>(
+    spline: &mut HermiteSpline<D>,
+    index: usize,
+    position: Vector<D>,
+) -> Result<(usize, usize)> {
+    let count = spline.points.len();
+    if index >= count {
+        return Err(Error::IndexOutOfRange {
+            what: "data points",
+            index,
+            len: count,
+        });
+    }
+    if position.iter().any(|c| !c.is_finite()) {
+        return Err(Error::NonFinite { what: "point", index });
+    }
+    let old = std::mem::replace(&mut spline.points[index], position);
+    let mut window = [(0isize, 0isize)];
+    let result = match plan(spline, &[(index, position)], &mut window) {
+        Some(_) => {
+            solve_planned(spline, &window).map(|rows| (window[0].0.rem_euclid(count as isize) as usize, rows))
+        }
+        None => solve::tangents(spline).map(|all| {
+            let values = &mut spline.workspace.values;
+            values.clear();
+            values.extend_from_slice(&all);
+            (0, count)
+        }),
+    };
+    spline.points[index] = old;
+    result
+}
+
+/// [`tangents_after_move`] of point `index` to 1 on a natural open scalar spline whose
+/// points are all 0 (see
+/// [`HermiteSpline::unit_move_tangents`](super::HermiteSpline::unit_move_tangents)): the
+/// window's rows built from the knots and the unit data directly, and the same
+/// elimination as [`solve::window`] and [`tridiagonal::solve_in_place`] in the same order,
+/// so the same bits, without the general rows' chord slopes of every row, the vector
+/// arithmetic and the bookkeeping of a move. `(first row, rows)` as there.
+///
+/// [`tridiagonal::solve_in_place`]: crate::tridiagonal::solve_in_place
+pub(super) fn unit_move_tangents(spline: &mut HermiteSpline<1>, index: usize) -> Result<(usize, usize)> {
+    let count = spline.points.len();
+    if spline.is_closed() || spline.ends != super::HermiteEnds::Natural || count < 2 || index >= count {
+        return tangents_after_move(spline, index, Vector::<1>::new(1.0));
+    }
+    let (lo, hi) = window_of(spline, index);
+    let (lo, hi) = (lo as usize, hi as usize);
+    let len = hi - lo + 1;
+    let mut workspace = std::mem::take(&mut spline.workspace);
+    if workspace.values.len() < len {
+        workspace.numbers.resize(4 * len, 0.0);
+        workspace.values.resize(len, Vector::<1>::zeros());
+    }
+    let (lower, rest) = workspace.numbers[..4 * len].split_at_mut(len);
+    let (diag, rest) = rest.split_at_mut(len);
+    let (upper, scratch) = rest.split_at_mut(len);
+    let values = &mut workspace.values[..len];
+    let knots = &spline.knots;
+    let point = |k: usize| if k == index { 1.0 } else { 0.0 };
+    // The chord slope of segment s, as `chord_slope` computes it from the unit data.
+    let slope = |s: usize| (point(s + 1) - point(s)) / (knots[s + 1] - knots[s]);
+    // The rows of `row_with`, natural ends.
+    for (r, k) in (lo..=hi).enumerate() {
+        let (l, d, u, rhs) = if k == 0 {
+            (0.0, 2.0, 1.0, slope(0) * 3.0)
+        } else if k + 1 == count {
+            (1.0, 2.0, 0.0, slope(k - 1) * 3.0)
+        } else {
+            let (h0, h1) = (knots[k] - knots[k - 1], knots[k + 1] - knots[k]);
+            let a = h1 / (h0 + h1);
+            let b = h0 / (h0 + h1);
+            (a, 2.0, b, (slope(k - 1) * a + slope(k) * b) * 3.0)
+        };
+        lower[r] = l;
+        diag[r] = d;
+        upper[r] = u;
+        values[r] = Vector::<1>::new(rhs);
+    }
+    // The tangents just outside the window are those of the zero line: 0 (`solve::window`
+    // moves them to the right-hand side all the same, which keeps the signs of zeros).
+    if lower[0] != 0.0 {
+        values[0] -= Vector::<1>::zeros() * lower[0];
+        lower[0] = 0.0;
+    }
+    if upper[len - 1] != 0.0 {
+        values[len - 1] -= Vector::<1>::zeros() * upper[len - 1];
+        upper[len - 1] = 0.0;
+    }
+    let solved = crate::tridiagonal::solve_in_place(lower, diag, upper, values, scratch)
+        .and_then(|()| solve::check_tangents(values));
+    spline.workspace = workspace;
+    solved.map(|()| (lo, len))
 }
 
 #[cfg(test)]
@@ -327,12 +471,12 @@ mod tests {
 
     #[test]
     fn windows_are_local_and_clipped_at_the_ends() {
-        let spline = HermiteSpline::natural(&wave(500)).unwrap();
-        let (lo, hi) = window_of(&spline, 250);
+        let mut spline = HermiteSpline::natural(&wave(500)).unwrap();
+        let (lo, hi) = window_of(&mut spline, 250);
         assert!(hi - lo < 130, "{lo}..{hi}");
         assert!(lo > 100 && hi < 400);
-        assert_eq!(window_of(&spline, 0).0, 0);
-        assert_eq!(window_of(&spline, 499).1, 499);
+        assert_eq!(window_of(&mut spline, 0).0, 0);
+        assert_eq!(window_of(&mut spline, 499).1, 499);
     }
 
     /// `move_points_within` names every row whose tangent changed (and the moved points);
@@ -359,6 +503,70 @@ mod tests {
         fresh.move_points(&again).unwrap();
         assert_eq!(spline, fresh);
         assert!(spline.tangents.iter().zip(&fresh.tangents).all(|(a, b)| a == b));
+    }
+
+    /// `tangents_after_move` gives the rows `move_points_within` re-solves and their
+    /// tangents bit for bit, and leaves the spline as it was; `unit_move_tangents` on a
+    /// zero line is the move of a point to 1 (natural ends by its own rows, other ends by
+    /// the general path), on short lines, long ones and closed ones.
+    #[test]
+    fn trial_moves_are_the_moves_bit_for_bit() {
+        let mut spline = HermiteSpline::natural(&wave(200)).unwrap();
+        let before = spline.clone();
+        for (index, position) in [
+            (0, Vec2::new(0.5, 1.0)),
+            (77, Vec2::new(70.0, -3.0)),
+            (199, Vec2::new(1.0, 2.0)),
+        ] {
+            let (first, trial) = spline.tangents_after_move(index, position).unwrap();
+            let trial = trial.to_vec();
+            assert_eq!(spline, before);
+            let mut moved = spline.clone();
+            let (lo, hi) = moved.move_points_within(&[(index, position)]).unwrap().unwrap();
+            assert_eq!((first, first + trial.len() - 1), (lo, hi));
+            for (k, t) in trial.iter().enumerate() {
+                let m = moved.tangents[first + k];
+                assert!(
+                    t.iter().zip(m.iter()).all(|(a, b)| a.to_bits() == b.to_bits()),
+                    "row {}",
+                    first + k
+                );
+            }
+        }
+        assert!(spline.tangents_after_move(200, Vec2::zeros()).is_err());
+        assert!(spline.tangents_after_move(3, Vec2::new(f64::NAN, 0.0)).is_err());
+        let knots: Vec<f64> = (0..=130)
+            .map(|k| k as f64 + 0.4 * (k as f64 * 0.7).sin())
+            .collect();
+        for count in [2, 3, 5, 40, 130] {
+            for ends in [
+                HermiteEnds::Natural,
+                HermiteEnds::ParabolicRunout,
+                HermiteEnds::Closed,
+            ] {
+                if count < ends.min_points() {
+                    continue;
+                }
+                let closed = ends.is_closed();
+                let settings = HermiteSettings::new()
+                    .with_parameters(knots[..count + usize::from(closed)].to_vec())
+                    .with_ends(ends);
+                let mut zero =
+                    HermiteSpline::<1>::new(&vec![Vector::<1>::zeros(); count], &settings).unwrap();
+                for i in 0..count {
+                    let (first, unit) = zero.unit_move_tangents(i).unwrap();
+                    let unit = unit.to_vec();
+                    let mut moved = zero.clone();
+                    moved.move_points(&[(i, Vector::<1>::new(1.0))]).unwrap();
+                    for k in 0..count {
+                        let offset = (k + count - first) % count;
+                        let expected = moved.tangents[k][0].to_bits();
+                        let got = unit.get(offset).map_or(0.0f64.to_bits(), |t| t[0].to_bits());
+                        assert_eq!(got, expected, "{count} points, {ends:?}, move {i}, row {k}");
+                    }
+                }
+            }
+        }
     }
 
     #[test]

@@ -107,7 +107,16 @@
 //!   segment's C‴ once and pushes a z onto its heap only when it changed (same results bit
 //!   for bit): at 50 × 50 the boundary fairing is 20 % of the instructions (1 840 per point
 //!   moved) and the unit responses 12 % (1 140), the rest 6 350: 373 M instructions for
-//!   four such runs against 451 M.
+//!   four such runs against 451 M. Since then the unit responses no longer move the line
+//!   back (the spline's trial move, `HermiteSpline::unit_move_tangents`, builds a unit
+//!   move's window rows from the knots), the windowed solves build their rows in one loop
+//!   that carries the knot step and chord slope, the window's decay bounds are measured
+//!   once per knot vector, and an open net's input surface is built once (same results bit
+//!   for bit): per point moved as above (callgrind, 4 steps), 8 560 instructions at
+//!   50 × 50 (the boundary fairing 1 620, the unit responses 900, the rest 6 030) against
+//!   9 370, 7 210 at 200 × 200 against 7 750, 7 100 at 400 × 400 against 7 510. The small
+//!   end still executes 1.19× the instructions per point of 200 × 200 (1.21× before): the
+//!   cuts in the rows and the surface build are cuts at every size.
 //! - *What grows with the size:* memory traffic, not work. The moves come in the order of
 //!   z, scattered over the grid; once its data outgrow the processor's caches the cache lines
 //!   a move touches (~50: its point and its two windows of jumps and z bounds) are misses.
@@ -132,7 +141,15 @@
 //!   bit. Nearly flat, the small end still the slowest by the per-line and per-run costs
 //!   above. The `sort_steps` entry (the four steps without the boundary fairing, a
 //!   different run) shows the steps alone: 2.33 / 2.28 / 2.18 / 1.57 M points/s (medians of
-//!   three rounds), the largest grid paying its cache misses.
+//!   three rounds), the largest grid paying its cache misses. After the cuts of the
+//!   per-line costs named above (the same points bit for bit), on the same machine at load
+//!   2–5, five rounds alternating with the build before: 0.65–0.89 / 0.88–1.08 /
+//!   0.63–0.92 / 0.53–0.80 M points/s (before 0.48–0.83 / 0.59–0.87 / 0.57–0.97 /
+//!   0.45–0.65): slowest to fastest size 1.20–1.85× per round, 1.29× on the rounds'
+//!   medians (1.45× before), the slowest now 400 × 400 in four rounds of five. So the time
+//!   per point is not within 1.2× reliably: under load the large grid's cache misses (the
+//!   caches shared with other processes), not the small grid's per-line costs, set the
+//!   spread.
 
 // The building blocks index the grid directly (their callers validate it first), so they
 // stay inside the crate; `SurfaceFairing` is the checked entry point.

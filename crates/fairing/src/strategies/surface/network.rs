@@ -51,7 +51,7 @@
 //! already has, so that a step touches no fresh pages (at 400 × 400 a step's arrays were
 //! ~45 MB of new allocations).
 
-use curve_repr::{HermiteEnds, HermiteSettings, HermiteSpline, Interpolant, Vec3, Vector};
+use curve_repr::{HermiteEnds, HermiteSettings, HermiteSpline, Vec3, Vector};
 
 use super::super::strain_energy::hermite_energy;
 use crate::{Error, Result};
@@ -89,19 +89,23 @@ impl Stiffness {
     /// `knots` to 1 (the tangents are linear in the points, so the response is exact up to
     /// rounding), and K from the jumps next to it. `knots` has one entry per node, plus the
     /// closing one when `closed`. O(N · window): each unit move changes the tangents only in
-    /// the spline's update window and leaves them exactly 0 elsewhere (the move back to 0
-    /// re-solves that window with zero data), so the jumps are read in that band only
-    /// (see [`band_of`]); the values are bit for bit those of reading the whole line. (Up
-    /// to [`COPY_RESET`] nodes the line is reset by an O(N) copy, cheaper there than a
-    /// re-solve.) Was O(N²): quadratic on a long strip.
+    /// the spline's update window and leaves them exactly 0 elsewhere, so the jumps are read
+    /// in that band only (see [`band_of`]); the values are bit for bit those of reading the
+    /// whole line. The move is not made: the spline's
+    /// [`unit_move_tangents`](HermiteSpline::unit_move_tangents) gives the re-solved rows
+    /// and the line stays zero (moving it back, or copying the zero line, cost as much as
+    /// the move again: 12 % of the instructions of a 50 × 50 run went to the responses).
+    /// Was O(N²): quadratic on a long strip.
     pub fn new(knots: &[f64], closed: bool) -> Result<Self> {
         let count = knots.len() - usize::from(closed);
         let mut settings = HermiteSettings::<1>::new().with_parameters(knots.to_vec());
         if closed {
             settings = settings.with_ends(HermiteEnds::Closed);
         }
-        let zero = HermiteSpline::new(&vec![Vector::<1>::zeros(); count], &settings)?;
-        let mut line = zero.clone();
+        let mut zero = HermiteSpline::new(&vec![Vector::<1>::zeros(); count], &settings)?;
+        // The line's tangents after the unit move: zero but in the rows the move re-solves,
+        // written there for each move and cleared after it.
+        let mut moved = vec![Vector::<1>::zeros(); count];
         let steps: Vec<f64> = knots.windows(2).map(|w| w[1] - w[0]).collect();
         let mut stiffness = Self {
             count,
@@ -115,8 +119,12 @@ impl Stiffness {
         let mut tangent_band = Vec::new();
         let mut jump_band = Vec::new();
         for i in 0..count {
-            line.move_points(&[(i, Vector::<1>::new(1.0))])?;
-            let tangents = line.tangents();
+            let (solved_from, solved) = zero.unit_move_tangents(i)?;
+            let solved_rows = solved.len();
+            for (d, &t) in solved.iter().enumerate() {
+                moved[(solved_from + d) % count] = t;
+            }
+            let tangents = &moved;
             let tangent = |k: usize| tangents[k][0];
             let point = |k: usize| if k == i { 1.0 } else { 0.0 };
             // The third derivative on the segment from node k to its next node, if any.
@@ -185,12 +193,9 @@ impl Stiffness {
             if let Some((p, value)) = side {
                 stiffness.side[p] = value;
             }
-            // Back to zero: the unit move re-solved with zero data gives exact zeros, which a
-            // copy of the zero line gives as well, cheaper on a short line.
-            if count <= COPY_RESET {
-                line.clone_from(&zero);
-            } else {
-                line.move_points(&[(i, Vector::<1>::zeros())])?;
+            // Back to the zero line's tangents.
+            for d in 0..solved_rows {
+                moved[(solved_from + d) % count] = Vector::<1>::zeros();
             }
         }
         Ok(stiffness)
@@ -248,11 +253,6 @@ fn third1(p0: f64, p1: f64, m0: f64, m1: f64, h: f64) -> f64 {
 /// far tail (it decays by ~0.27 per knot) changes a tangent or a jump by less than 1e-13 of
 /// the move's own effect, and the network is rebuilt exactly at every step.
 pub const RESPONSE_TRIM: f64 = 1e-13;
-
-/// Up to this many nodes [`Stiffness::new`] resets its line after a unit move by copying the
-/// zero line (O(N)) rather than re-solving the move's window with zero data (~60 rows, some
-/// 16 000 instructions): the same exact zeros either way.
-const COPY_RESET: usize = 512;
 
 /// How many exact zeros in a row end the support of a unit move's tangents: inside the
 /// spline's update window the response decays by at most 1/2 per knot from 1 down to
@@ -846,6 +846,7 @@ fn runs(lo: usize, len: usize, count: usize) -> [(usize, usize, usize); 2] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use curve_repr::Interpolant;
 
     /// The significant part of a response around node i: `(lo, values)` with values for lo,
     /// lo + 1, … (mod N when closed), from the first to the last entry above [`RESPONSE_TRIM`]
@@ -940,10 +941,11 @@ mod tests {
 
     #[test]
     fn stiffness_equals_whole_line() {
-        // Short and long lines, on both sides of the copy-reset limit, with uniform, uneven
+        // Short and long lines (the longest past the 512 nodes up to which the line was once
+        // reset by a copy), with uniform, uneven
         // and wildly uneven steps (ratios up to 10^6: the widest update windows), open and
         // closed (a closed line of N nodes has N + 1 knots).
-        for count in [3, 4, 5, 7, 12, 40, 121, 300, COPY_RESET + 90] {
+        for count in [3, 4, 5, 7, 12, 40, 121, 300, 602] {
             for spread in [1.0, 3.0, 1e6] {
                 for closed in [false, true] {
                     let t = knots(count + usize::from(closed), spread);

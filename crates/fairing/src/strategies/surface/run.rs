@@ -213,12 +213,19 @@ pub(super) fn run(
     }
     let topology = settings.closed.topology(open.points(), u_count, v_count);
     let layout = Layout::new(u_count, v_count, topology);
-    let input = BicubicSplineSurface::from_flat(
-        open.points().to_vec(),
-        u_count,
-        v_count,
-        &layout.surface_settings(settings.parametrization),
-    )?;
+    // The topology's settings differ from the open build's only in the closed directions:
+    // without one, the surface over them is the open one (building it again was one of a
+    // run's three surface builds, 2 % of the instructions of four steps at 50 × 50).
+    let input = if topology.closed_u || topology.closed_v {
+        BicubicSplineSurface::from_flat(
+            open.points().to_vec(),
+            u_count,
+            v_count,
+            &layout.surface_settings(settings.parametrization),
+        )?
+    } else {
+        open
+    };
     let original_full = input.points().to_vec();
     if let Some(&(i, j)) = settings
         .fixed
