@@ -269,8 +269,8 @@ pub const CORNER_REACH: usize = 3;
 /// corner (below) is fitted as a closed one, by jump-lsq's periodic spline; with a corner as
 /// below. With `gcv`, a closed curve (last point joined to the first) is
 /// fitted as an open one that starts and ends at a seam point, kept: at the point of the
-/// largest turn (measured over [`CORNER_REACH`] points) if that turn is a corner (at least
-/// [`CORNER_TURN`]), which then stays sharp;
+/// largest turn (measured over `CORNER_REACH` = 3 points) if that turn is a corner (at least
+/// `CORNER_TURN` = π/4), which then stays sharp;
 /// otherwise it is fitted twice, with seams half a curve apart, and the two fits are blended
 /// with weights sin²(πk/n) and cos²(πk/n) (k the position from the first seam), so that each
 /// point takes the fit in which it lies far from the seam, where the fit's natural end
