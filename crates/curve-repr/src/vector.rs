@@ -17,6 +17,21 @@ pub fn check_finite<const D: usize>(points: &[Vector<D>]) -> crate::Result<()> {
     }
 }
 
+/// Checks that the values strictly increase; `what` names the sequence in the error
+/// ([`Error::NotIncreasing`](crate::Error::NotIncreasing) at the first value not above its
+/// predecessor). Check finiteness first ([`check_finite_values`]): a NaN compares false.
+pub fn check_increasing_values(what: &'static str, values: &[f64]) -> crate::Result<()> {
+    match values.windows(2).position(|w| w[1] - w[0] <= 0.0) {
+        Some(index) => Err(crate::Error::NotIncreasing {
+            what,
+            index: index + 1,
+            previous: values[index],
+            value: values[index + 1],
+        }),
+        None => Ok(()),
+    }
+}
+
 /// Checks that every value is finite; `what` names the sequence in the error.
 pub fn check_finite_values(what: &'static str, values: &[f64]) -> crate::Result<()> {
     match values.iter().position(|v| !v.is_finite()) {

@@ -136,6 +136,21 @@ impl<const D: usize> std::fmt::Debug for Workspace<D> {
     }
 }
 
+/// A move of point `index` (of `count`) to `position`: an index in range, a finite position.
+fn check_move<const D: usize>(count: usize, index: usize, position: Vector<D>) -> Result<()> {
+    if index >= count {
+        return Err(Error::IndexOutOfRange {
+            what: "data points",
+            index,
+            len: count,
+        });
+    }
+    if position.iter().any(|c| !c.is_finite()) {
+        return Err(Error::NonFinite { what: "point", index });
+    }
+    Ok(())
+}
+
 /// Validates `moves`, applies them and updates the tangents window by window; on failure
 /// restores the points and tangents. Returns the rows whose tangents were re-solved (see
 /// [`HermiteSpline::move_points_within`](super::HermiteSpline::move_points_within)).
@@ -145,16 +160,7 @@ pub(super) fn move_points<const D: usize>(
 ) -> Result<Option<(usize, usize)>> {
     let count = spline.points.len();
     for &(index, position) in moves {
-        if index >= count {
-            return Err(Error::IndexOutOfRange {
-                what: "data points",
-                index,
-                len: count,
-            });
-        }
-        if position.iter().any(|c| !c.is_finite()) {
-            return Err(Error::NonFinite { what: "point", index });
-        }
+        check_move(count, index, position)?;
     }
     if moves.is_empty() {
         return Ok(None);
@@ -334,16 +340,7 @@ pub(super) fn tangents_after_move<const D: usize>(
     position: Vector<D>,
 ) -> Result<(usize, usize)> {
     let count = spline.points.len();
-    if index >= count {
-        return Err(Error::IndexOutOfRange {
-            what: "data points",
-            index,
-            len: count,
-        });
-    }
-    if position.iter().any(|c| !c.is_finite()) {
-        return Err(Error::NonFinite { what: "point", index });
-    }
+    check_move(count, index, position)?;
     let old = std::mem::replace(&mut spline.points[index], position);
     let mut window = [(0isize, 0isize)];
     let result = match plan(spline, &[(index, position)], &mut window) {

@@ -401,15 +401,7 @@ fn knots_of<const D: usize>(points: &[Vector<D>], domain: CurveDomain, closed: b
         CurveDomain::Function => {
             let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
             curve_repr::vector::check_finite_values("x", &x)?;
-            if let Some(index) = x.windows(2).position(|w| w[1] - w[0] <= 0.0) {
-                return Err(curve_repr::Error::NotIncreasing {
-                    what: "x of a function",
-                    index: index + 1,
-                    previous: x[index],
-                    value: x[index + 1],
-                }
-                .into());
-            }
+            curve_repr::vector::check_increasing_values("x of a function", &x)?;
             Ok(Knots::open(x))
         }
         CurveDomain::Parametric => {
@@ -555,15 +547,7 @@ pub fn fair_on_knots<const D: usize>(
         .into());
     }
     curve_repr::vector::check_finite_values("jump-lsq knots", knots)?;
-    if let Some(index) = knots.windows(2).position(|w| w[1] - w[0] <= 0.0) {
-        return Err(curve_repr::Error::NotIncreasing {
-            what: "jump-lsq knots",
-            index: index + 1,
-            previous: knots[index],
-            value: knots[index + 1],
-        }
-        .into());
-    }
+    curve_repr::vector::check_increasing_values("jump-lsq knots", knots)?;
     let given = if closed {
         Knots::closed(knots.to_vec())
     } else {
