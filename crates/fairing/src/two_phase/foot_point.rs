@@ -122,20 +122,21 @@ pub fn foot_points(
             let mut best = (own, (points[i] - target).norm_squared());
             // The piece before t_i (segment i − 1; the closing one for point 0 of a closed
             // curve, shifted by the period) and the piece after it (segment i, if any).
-            let mut pieces: Vec<(usize, f64, f64, f64)> = Vec::with_capacity(2);
-            if i > 0 {
+            let before = if i > 0 {
                 let h = t[i] - t[i - 1];
-                pieces.push((i - 1, t[i] - WINDOW * h, t[i], 0.0));
+                Some((i - 1, t[i] - WINDOW * h, t[i], 0.0))
             } else if closed {
                 let period = knots[segments] - knots[0];
                 let h = knots[segments] - t[n - 1];
-                pieces.push((segments - 1, t[0] - WINDOW * h, t[0], period));
-            }
-            if i < segments {
+                Some((segments - 1, t[0] - WINDOW * h, t[0], period))
+            } else {
+                None
+            };
+            let after = (i < segments).then(|| {
                 let h = knots[i + 1] - t[i];
-                pieces.push((i, t[i], t[i] + WINDOW * h, 0.0));
-            }
-            for (segment, a, b, shift) in pieces {
+                (i, t[i], t[i] + WINDOW * h, 0.0)
+            });
+            for (segment, a, b, shift) in before.into_iter().chain(after) {
                 let jet = |u: f64| curve.jet_on_piece(segment, u + shift);
                 if let Some((u, d2)) = nearest_on_piece(&jet, target, a, b) {
                     if d2 < best.1 {
