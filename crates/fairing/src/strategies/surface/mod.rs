@@ -158,6 +158,7 @@ pub(crate) mod closed_form;
 pub(crate) mod network;
 pub mod precision;
 mod queue;
+mod radix;
 mod run;
 pub(crate) mod thin_plate;
 
