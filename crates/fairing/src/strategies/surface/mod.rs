@@ -81,8 +81,9 @@
 //!   (~45 nodes) set by the decay of the spline's response (0.27 per knot) and its 1e-13
 //!   trim, not by m or n.
 //! - *O(m·n) per step, that is O(1) per point moved:* the order (z of every candidate, read
-//!   in O(1) each, and the sort, O(m·n log(m·n)): the only super-linear term, 2–4 % of a
-//!   step at 400 × 400) and the judgement: chord-length knots from the moved points, the
+//!   in O(1) each, and a radix sort, O(m·n), `radix`; the comparison sort it replaced,
+//!   O(m·n log(m·n)), was the only super-linear term, 7 % of the instructions of four steps
+//!   at 400 × 400) and the judgement: chord-length knots from the moved points, the
 //!   network rebuilt over them (one spline solve per grid line, the unit responses of the
 //!   two knot vectors, O((m + n) · window)), its energy and largest z, in the storage of the
 //!   step before (a fresh grid-sized array is fresh pages, a fault per 4 KB). The
@@ -150,6 +151,17 @@
 //!   per point is not within 1.2× reliably: under load the large grid's cache misses (the
 //!   caches shared with other processes), not the small grid's per-line costs, set the
 //!   spread.
+//! - *Where the large grid's time goes* (cachegrind, 4 MiB L2 simulated as the last level,
+//!   `sort_steps`): the instructions per point are flat (6 440 / 6 410 / 6 360 / 6 380 at
+//!   50² / 100² / 200² / 400² with the radix sort, 6 490–6 550 before), the L2 data misses
+//!   per point are not (~0 / 2 / 13 / 56), half of them in the moves' updates of the
+//!   windows of the jumps (48 B per node in two arrays of 3.8 MB at 400 × 400, against
+//!   4 MiB of L2). On a quiet machine of that L2 size 400 × 400 is the slowest size by
+//!   1.38–1.70× per point.
+//!   What was tried without a gain: prefetching a move's whole windows one or two moves
+//!   ahead, and transparent huge pages for the per-node arrays (`madvise`; glibc's
+//!   `glibc.malloc.hugetlb=1` tunable, which covers them fully, looked ~10 % faster at
+//!   400 × 400 in CPU time, not separable from the load of 7–10 it was measured at).
 
 // The building blocks index the grid directly (their callers validate it first), so they
 // stay inside the crate; `SurfaceFairing` is the checked entry point.
@@ -158,6 +170,7 @@ pub(crate) mod closed_form;
 pub(crate) mod network;
 pub mod precision;
 mod queue;
+mod radix;
 mod run;
 pub(crate) mod thin_plate;
 

@@ -190,6 +190,8 @@ struct Run<'a> {
     after: Vec<Vec3>,
     shorter: Vec<Vec3>,
     order: Vec<(f64, usize)>,
+    /// The radix sort's second buffer for `order`.
+    order_scratch: Vec<(f64, usize)>,
 }
 
 /// Runs the fairing (the settings checked by the caller).
@@ -292,6 +294,7 @@ pub(super) fn run(
         after: Vec::new(),
         shorter: Vec::new(),
         order: Vec::new(),
+        order_scratch: Vec::new(),
     };
     let mut history = Vec::new();
 
@@ -807,7 +810,7 @@ impl Run<'_> {
                         .filter(|&(i, j)| self.is_movable(i, j))
                         .map(|(i, j)| (network.z(i, j), self.layout.index(i, j))),
                 );
-                order.sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+                super::radix::sort_descending(&mut order, &mut self.order_scratch);
                 let result = self.sorted_sweep(&order);
                 self.order = order;
                 moved = result?;
