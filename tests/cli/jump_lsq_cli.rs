@@ -136,7 +136,23 @@ fn set_overrides_the_rule_and_bad_values_exit_2() {
     assert_ok(&out);
     assert_eq!(report["rule"], "target-sd");
     assert!((report["rms_displacement"].as_f64().unwrap() / 0.005 - 1.0).abs() < 1e-3);
-    for bad in ["lambda=-1", "exponent=20", "rule=oracle", "difference-order=7"] {
+    // The end rows (off by default) are one `--set` away and move the result.
+    let (out, with_ends, _) = fair(
+        &input,
+        &["--set", "end-jumps=2", "--set", "end-weight=100"],
+        "ends",
+    );
+    assert_ok(&out);
+    let (_, without, _) = fair(&input, &[], "no-ends");
+    assert_ne!(with_ends, without, "end-jumps=2 changed nothing");
+    for bad in [
+        "lambda=-1",
+        "exponent=20",
+        "rule=oracle",
+        "difference-order=7",
+        "end-jumps=4",
+        "end-weight=-1",
+    ] {
         let (out, _, _) = fair(&input, &["--set", bad], "bad");
         assert_eq!(out.status.code(), Some(2), "{bad}");
     }

@@ -90,6 +90,33 @@
 //! every trial λ, the indefinite KKT form needs no pivoting, and the selected inverse for
 //! GCV's trace (Takahashi's recurrence, which faer does not offer) runs on the same storage.
 //!
+//! # End rows (`end-jumps`, `end-weight`; off by default)
+//!
+//! On an open curve the jumps J_1 and J_{n−2} next to the ends appear in few rows Δ^d J, and
+//! Δ^d J = 0 leaves jumps that vary as a polynomial of degree d − 1 along the knots (for
+//! the natural spline and d = 1, a spline with equal non-zero jumps: the penalty's null space
+//! has one dimension more than the cubic smoothing spline's straight lines). `end-jumps` = e
+//! adds, at each end, rows on the jumps themselves (order 0):
+//!
+//! ```text
+//! λ ω_e Σ_{i ∈ {1 … e} ∪ {n−1−e … n−2}} ( h̄_i^(a/2) h_med³ J_i )²,   h̄_i = (t_{i+1} − t_{i−1}) / (2 h_med),
+//! ```
+//!
+//! ω_e = `end-weight`: the rows of order 0 of the same penalty, at the ends only. With ω_e > 0
+//! and 2e ≥ d (e ≥ 1 for d ≤ 2) jumps that vary as a polynomial of degree d − 1 pay unless
+//! they are zero, so the null space is that of the cubic spline's (lines for the natural spline, parabolas for the runout spline); as
+//! ω_e grows, J_1 … J_e → 0, i.e. the first e + 1 spans become one cubic (one parabola with
+//! runout). Each end row J_i involves the five unknowns of J_i, a subset of those of the row
+//! Δ^d J that starts at J_i (5 + d), so the matrix keeps its half-bandwidth 4 + d and stays
+//! positive definite (the rows only add ω_e Jᵀ J ⪰ 0); the rows are numbered in the order of
+//! their first unknown (the e start rows, the rows Δ^d J, the e end rows), which keeps the
+//! QR's rotations within the band. Closed curves have no ends and no end rows.
+//!
+//! Measured (`docs/two_phase_judge.md`, end treatment): as two-phase's pre-pass they leave
+//! the judge's count where it was or lower it, and they do not bring the misses' rows nearer
+//! their clean curves at csaps's S_d, so they are off by default (`end-jumps` = 0, the
+//! penalty of Δ^d J alone).
+//!
 //! # Choosing λ, the noise estimate, the precision limit
 //!
 //! See the `lambda` and `noise` modules. By default λ is chosen by the discrepancy principle: the RMS
@@ -107,7 +134,7 @@
 //!
 //! # Costs
 //!
-//! O(n) time and memory per solve: assembly O(n·(4 + d)²), factorisation O(n·(5 + d)²) (four
+//! O(n) time and memory per solve (end rows add 2e rows of five unknowns): assembly O(n·(4 + d)²), factorisation O(n·(5 + d)²) (four
 //! times that for closed curves), a discrepancy search one QR solve when λ stops at the
 //! precision limit (dense noisy data; the normal equations are then never assembled), else
 //! 3–9 solves, GCV about 60 solves with selected inverses; the parametric kind multiplies
@@ -189,6 +216,18 @@ pub struct JumpLsqSettings {
     /// Default 1 (jumps that vary alike are fair). The issue proposed 2; measured with the
     /// judge at noise-factor 1 (README), d = 1 met the goal on 5 of 6 test curves, d = 2 on 4.
     pub difference_order: usize,
+    /// Open curves: how many third-derivative jumps at each end are penalised themselves,
+    /// J_1 … J_e and J_{n−1−e} … J_{n−2}, besides the differences Δ^d J (0 to 3).
+    ///
+    /// Each end row adds ω_e · λ (h̄^(a/2) h_med³ J_i)² to the penalty, h̄ the mean of the two
+    /// spans beside knot i (module docs, "End rows"). Default 0, the penalty of Δ^d J alone:
+    /// measured as two-phase's pre-pass (`docs/two_phase_judge.md`), 2 beat csaps on 40 of
+    /// the 45 rows against 39 by one row turned on csaps's side, while 17 of the 24
+    /// synthetic open rows ended farther from their clean curves; 2 with `end-weight` 100 on
+    /// 37.
+    pub end_jumps: usize,
+    /// The factor ω_e ≥ 0 on the weight of the end rows (`end-jumps`); 0 turns them off.
+    pub end_weight: f64,
     /// Parametric kind: re-solves on the chord-length knots of the previous result.
     pub refits: usize,
     /// The points form a closed curve (the last joins the first): a periodic spline.
@@ -204,6 +243,8 @@ impl Default for JumpLsqSettings {
             noise_factor: 1.0,
             exponent: 8.0,
             difference_order: 1,
+            end_jumps: 0,
+            end_weight: 1.0,
             refits: 3,
             closed: false,
         }
@@ -240,6 +281,12 @@ impl JumpLsqSettings {
                 self.difference_order.to_string(),
                 "0, 1, 2 or 3",
             );
+        }
+        if self.end_jumps > 3 {
+            return bad("end-jumps", self.end_jumps.to_string(), "0, 1, 2 or 3");
+        }
+        if !(self.end_weight.is_finite() && self.end_weight >= 0.0) {
+            return bad("end-weight", self.end_weight.to_string(), "a finite number ≥ 0");
         }
         if self.refits > 100 {
             return bad("refits", self.refits.to_string(), "at most 100");
@@ -280,6 +327,18 @@ impl JumpLsqSettings {
     /// Sets the difference order d.
     pub fn with_difference_order(mut self, order: usize) -> Self {
         self.difference_order = order;
+        self
+    }
+
+    /// Sets the number of jumps penalised themselves at each open end.
+    pub fn with_end_jumps(mut self, jumps: usize) -> Self {
+        self.end_jumps = jumps;
+        self
+    }
+
+    /// Sets the factor on the end rows' weight.
+    pub fn with_end_weight(mut self, weight: f64) -> Self {
+        self.end_weight = weight;
         self
     }
 
@@ -430,6 +489,8 @@ fn penalty_of(settings: &JumpLsqSettings) -> Penalty {
     Penalty {
         order: settings.difference_order,
         exponent: settings.exponent,
+        end_jumps: settings.end_jumps,
+        end_weight: settings.end_weight,
     }
 }
 
@@ -442,15 +503,7 @@ pub fn jumps<const D: usize>(
     domain: CurveDomain,
     closed: bool,
 ) -> Result<Vec<Vector<D>>> {
-    let (space, gamma) = interpolant(
-        points,
-        domain,
-        closed,
-        Penalty {
-            order: 0,
-            exponent: 0.0,
-        },
-    )?;
+    let (space, gamma) = interpolant(points, domain, closed, Penalty::differences(0, 0.0))?;
     Ok(space
         .jump_knots()
         .map(|i| space.jump_form(i).apply(&gamma))
