@@ -101,6 +101,22 @@ pub struct TwoPhaseSettings {
     #[serde(skip)]
     #[schemars(skip)]
     pub(crate) noise: f64,
+    /// Guard: skip a case moving a point by more than this many data noise bounds (0: off).
+    ///
+    /// Guard (not in the paper), capping `max_move_factor` and `noise_moves`: a case whose
+    /// displacement |γ| exceeds `max_move_bound` · B is skipped, B the bound the data imply
+    /// ([`data_bound`](crate::displacement::data_bound): max((2 + √(2 ln n)) σ̂, the decimal
+    /// step of the coordinates), σ̂ as for `noise_moves`; the bound of the report's "largest
+    /// move" warning). The spacing bound is in x units and so no limit on a y move where y
+    /// changes fast: on the leading edge of an airfoil's lower surface (UA(2)-180, 28 points
+    /// exact to 5 digits) Phase 1 moved y at x = 0.046 by 4.5e-3, twice B (2.0e-3). 0 is the
+    /// earlier rule (no cap), as is [`TwoPhaseSettings::paper`]; the cap is off when B is 0
+    /// (through [`fair_function`](super::fair_function), which sees no raw data).
+    pub max_move_bound: f64,
+    /// The data bound B of the current run (set by the strategy; not a parameter).
+    #[serde(skip)]
+    #[schemars(skip)]
+    pub(crate) noise_bound: f64,
     /// Points on each side over which a move's counts are rechecked.
     ///
     /// Guard (not in the paper): points on each side of a case over which inflections and
@@ -226,6 +242,8 @@ impl Default for TwoPhaseSettings {
             max_move_factor: 0.5,
             noise_moves: 1.0,
             noise: 0.0,
+            max_move_bound: 0.0,
+            noise_bound: 0.0,
             guard_window: 16,
             count_guard: CountGuard::Local,
             detection_floor: 0.0,
@@ -302,6 +320,11 @@ impl TwoPhaseSettings {
         self.noise_moves = moves;
         self
     }
+    /// Sets the cap of a case's move in data bounds (≥ 0; 0: off).
+    pub fn with_max_move_bound(mut self, bounds: f64) -> Self {
+        self.max_move_bound = bounds;
+        self
+    }
     /// Sets the recount window of the local guard.
     pub fn with_guard_window(mut self, window: usize) -> Self {
         self.guard_window = window;
@@ -373,6 +396,13 @@ impl TwoPhaseSettings {
             return Err(bad(
                 "noise_moves",
                 self.noise_moves,
+                "must be finite and at least 0",
+            ));
+        }
+        if !(self.max_move_bound.is_finite() && self.max_move_bound >= 0.0) {
+            return Err(bad(
+                "max_move_bound",
+                self.max_move_bound,
                 "must be finite and at least 0",
             ));
         }
