@@ -266,6 +266,7 @@ fn main() -> Result<(), Error> {
             }
             "HAN_PASSES" => tuned.max_passes = value.parse()?,
             "HAN_NOISE_MOVES" => tuned.noise_moves = value.parse()?,
+            "HAN_MAX_MOVE_BOUND" => tuned.max_move_bound = value.parse()?,
             "HAN_ENDS" => {
                 tuned.ends = serde_json::from_value(serde_json::Value::String(value))?;
             }

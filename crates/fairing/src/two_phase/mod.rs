@@ -225,6 +225,9 @@ impl FairingStrategy<2> for TwoPhase {
             return Err(strategy_error("two-phase", "a function segment cannot be closed"));
         }
         self.settings.noise = crate::displacement::vertical_noise_estimate(state.points());
+        self.settings.noise_bound =
+            crate::displacement::data_bound_as(state.points(), crate::displacement::NoiseModel::Vertical)
+                .bound;
         let (x, y): (Vec<f64>, Vec<f64>) = state.points().iter().map(|p| (p.x, p.y)).unzip();
         let n = x.len();
         let free = self.settings.ends == Ends::Free;
@@ -322,6 +325,7 @@ impl SegmentFairer for TwoPhase {
         allowed: &[f64],
     ) -> Result<Option<Vec<Vec2>>> {
         self.settings.noise = crate::displacement::noise_estimate(points);
+        self.settings.noise_bound = crate::displacement::data_bound(points).bound;
         if self.settings.denoise == Denoise::Off {
             return Ok(None);
         }

@@ -503,6 +503,19 @@ pub(super) fn coarse_pass_from(
     guarded_pass(spline, settings, movable, 1, false, known, &find)
 }
 
+/// The largest |γ| a case may move a point whose smaller neighbouring spacing is `h`: the
+/// spacing bound `max_move_factor` · h widened to `noise_moves` · σ̂, capped at
+/// `max_move_bound` · B when both are positive ([`TwoPhaseSettings`]). O(1).
+pub(super) fn move_limit(settings: &TwoPhaseSettings, h: f64) -> f64 {
+    let limit = (settings.max_move_factor * h).max(settings.noise_moves * settings.noise);
+    let cap = settings.max_move_bound * settings.noise_bound;
+    if cap > 0.0 {
+        limit.min(cap)
+    } else {
+        limit
+    }
+}
+
 /// A detector for [`guarded_pass`]: the case starting at point i (if any) and its moves
 /// (`None` when the rule is degenerate).
 /// The finder gets the reciprocal spacings of [`inverse_steps`] too.
@@ -581,9 +594,7 @@ pub(super) fn guarded_pass(
                     && k + 1 < n
                     && movable(k)
                     && g.is_finite()
-                    && g.abs()
-                        <= (settings.max_move_factor * (x[k] - x[k - 1]).min(x[k + 1] - x[k]))
-                            .max(settings.noise_moves * settings.noise)
+                    && g.abs() <= move_limit(settings, (x[k] - x[k - 1]).min(x[k + 1] - x[k]))
             });
         if !allowed {
             report.skipped += 1;
@@ -679,6 +690,62 @@ mod tests {
     use super::{changes, count_change, count_change_with_zeros, detect, detect_above, e_at, CaseKind};
     use curve_repr::{EndCondition, SplineFunction};
     use fairness::sign::sign_changes;
+
+    /// A steep leading edge sampled as airfoil files are (cosine spacing, a first step of
+    /// 0.003 after the tip, five decimals): y = −0.09 √x (1 − x), exact to its digits.
+    fn leading_edge() -> (Vec<f64>, Vec<f64>) {
+        let round = |v: f64| (v * 1e5).round() / 1e5;
+        let x: Vec<f64> = (0..28)
+            .map(|k| round(0.5 * (1.0 - (std::f64::consts::PI * f64::from(k) / 27.0).cos())))
+            .collect();
+        let y = x.iter().map(|&t| round(-0.09 * t.sqrt() * (1.0 - t))).collect();
+        (x, y)
+    }
+
+    /// The moves of five full passes on [`leading_edge`] with `max_move_bound` = `cap`, B and
+    /// σ̂ set as the strategy sets them.
+    fn leading_edge_moves(cap: f64) -> (Vec<(usize, f64)>, f64) {
+        use crate::displacement::{data_bound_as, NoiseModel};
+        let (x, y) = leading_edge();
+        let points: Vec<curve_repr::Vec2> = x
+            .iter()
+            .zip(&y)
+            .map(|(&a, &b)| curve_repr::Vec2::new(a, b))
+            .collect();
+        let bound = data_bound_as(&points, NoiseModel::Vertical);
+        let mut settings = super::TwoPhaseSettings::default().with_max_move_bound(cap);
+        settings.noise = bound.noise;
+        settings.noise_bound = bound.bound;
+        let mut spline = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap();
+        let mut moves = Vec::new();
+        for _ in 0..5 {
+            let (coarse, fine) = super::super::full_pass(&mut spline, &settings, &|_| true).unwrap();
+            moves.extend(coarse.moves.into_iter().chain(fine.moves));
+        }
+        (moves, bound.bound)
+    }
+
+    /// `max_move_bound` (TwoPhaseSettings): on the exact points of a steep leading edge the
+    /// spacing bound (in x units) lets Phase 1 move y near the tip by many data bounds B (the
+    /// interpolating spline's c rings there); with the cap at 1 every move stays within B, and
+    /// 0 (the paper's value) is the rule without the cap, move for move.
+    #[test]
+    fn the_data_bound_caps_each_move_on_a_steep_leading_edge() {
+        let (uncapped, bound) = leading_edge_moves(0.0);
+        assert!(bound > 0.0);
+        assert!(
+            uncapped.iter().any(|m| m.1.abs() > 10.0 * bound),
+            "{uncapped:?} against B = {bound}"
+        );
+        let (capped, _) = leading_edge_moves(1.0);
+        assert!(!capped.is_empty());
+        assert!(
+            capped.iter().all(|m| m.1.abs() <= bound),
+            "{capped:?} against B = {bound}"
+        );
+        assert_eq!(leading_edge_moves(f64::MAX).0, uncapped);
+        assert_eq!(super::TwoPhaseSettings::paper().max_move_bound, 0.0);
+    }
 
     #[test]
     fn the_detection_floor_reads_small_e_as_zero() {

@@ -255,6 +255,8 @@ fn bad_settings_are_rejected() {
         TwoPhaseSettings::paper().with_coarse_lambda(0.0),
         TwoPhaseSettings::paper().with_coarse_lambda(f64::NAN),
         TwoPhaseSettings::paper().with_max_move_factor(-1.0),
+        TwoPhaseSettings::paper().with_max_move_bound(-1.0),
+        TwoPhaseSettings::paper().with_max_move_bound(f64::NAN),
     ] {
         assert!(matches!(
             coarse_pass(&mut spline, &s, &|_| true),
