@@ -224,10 +224,11 @@ impl FairingStrategy<2> for TwoPhase {
         if state.is_closed() {
             return Err(strategy_error("two-phase", "a function segment cannot be closed"));
         }
-        self.settings.noise = crate::displacement::vertical_noise_estimate(state.points());
-        self.settings.noise_bound =
-            crate::displacement::data_bound_as(state.points(), crate::displacement::NoiseModel::Vertical)
-                .bound;
+        // σ̂ and the data bound B from one noise estimate.
+        let bound =
+            crate::displacement::data_bound_as(state.points(), crate::displacement::NoiseModel::Vertical);
+        self.settings.noise = bound.noise;
+        self.settings.noise_bound = bound.bound;
         let (x, y): (Vec<f64>, Vec<f64>) = state.points().iter().map(|p| (p.x, p.y)).unzip();
         let n = x.len();
         let free = self.settings.ends == Ends::Free;
@@ -324,8 +325,9 @@ impl SegmentFairer for TwoPhase {
         kept: &[bool],
         allowed: &[f64],
     ) -> Result<Option<Vec<Vec2>>> {
-        self.settings.noise = crate::displacement::noise_estimate(points);
-        self.settings.noise_bound = crate::displacement::data_bound(points).bound;
+        let bound = crate::displacement::data_bound(points);
+        self.settings.noise = bound.noise;
+        self.settings.noise_bound = bound.bound;
         if self.settings.denoise == Denoise::Off {
             return Ok(None);
         }
