@@ -238,6 +238,10 @@ fn fair_all(name: &str, net: &Net, clean: Option<&Net>) -> Result<(), Box<dyn Er
             SurfaceFairingSettings::zhang_cheng().with_order(SweepOrder::Queue),
         ),
         (
+            "zhang-cheng, order=tiles",
+            SurfaceFairingSettings::zhang_cheng().with_order(SweepOrder::Tiles),
+        ),
+        (
             "zhang-cheng as printed",
             SurfaceFairingSettings::zhang_cheng().as_printed(),
         ),

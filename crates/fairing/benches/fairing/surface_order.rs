@@ -10,7 +10,9 @@
 //! `sort`: the paper's sort of the step's starting z;
 //! `sort_steps`: `sort` without the boundary fairing (step 2.1, once per run), so the four
 //! steps alone: their per-point cost, which the per-run cost does not blur at the small end
-//! (a different run: the boundary curves stay as they are). Filter with
+//! (a different run: the boundary curves stay as they are);
+//! `tiles`: the paper's sort inside 64 × 64 tiles, the tiles by their largest z (the same
+//! run as `sort` at 50 × 50). Filter with
 //! `cargo bench -p fairing --bench fairing -- surface_step` (`surface_step/sort` gives both
 //! `sort` entries).
 
@@ -58,6 +60,7 @@ fn bench(c: &mut Criterion) {
             ("queue", SweepOrder::Queue, true),
             ("sort", SweepOrder::Sort, true),
             ("sort_steps", SweepOrder::Sort, false),
+            ("tiles", SweepOrder::Tiles, true),
         ] {
             let settings = SurfaceFairingSettings::zhang_cheng()
                 .with_order(order)

@@ -811,6 +811,9 @@ impl Run<'_> {
                         .map(|(i, j)| (network.z(i, j), self.layout.index(i, j))),
                 );
                 super::radix::sort_descending(&mut order, &mut self.order_scratch);
+                if self.settings.order == SweepOrder::Tiles {
+                    super::tiles::regroup(&mut order, &mut self.order_scratch, self.layout.nu, nv);
+                }
                 let result = self.sorted_sweep(&order);
                 self.order = order;
                 moved = result?;
