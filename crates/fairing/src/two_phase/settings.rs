@@ -191,8 +191,8 @@ pub struct TwoPhaseSettings {
     /// with the judge (the 21 function rows, seeds 1–4): 1.2 and 1.4 turn the sine seed 4
     /// (RMS to the clean curve 0.00428 → 0.00303 / 0.00301, csaps at the new S_d 0.00306) but
     /// lose the Gunnerus waterline 3 (7 inflections at S_d 2.27 / 2.52, where csaps has 5 /
-    /// 4); 1.1 keeps Gunnerus (7 against csaps's 7) and turns no row (sine seed 4 0.00348
-    /// against 0.00306).
+    /// 4); 1.1 and 1.15 keep Gunnerus (7 against csaps's 7) and turn no row (sine seed 4
+    /// 0.00348 and 0.00341 against 0.00306 and 0.00307).
     pub function_gcv_gamma: f64,
     /// Arbitrary curves: the pre-pass's points become the foot points of the data on its fitted curve (foot-point), after refits on those parameters (parameter-correction), or stay its values at the data's chord-length parameters (off).
     ///
