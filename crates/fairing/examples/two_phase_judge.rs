@@ -34,7 +34,8 @@
 //! `HAN_MAX_RUN`, `HAN_LIMIT` (turning limit in degrees), `HAN_MMF` (`max-move-factor`),
 //! `HAN_PASSES` (`max-passes`), `HAN_NOISE_MOVES`, `HAN_CURVE_GUARD` (`off`, `pass`, `local`;
 //! the paper variant always runs `off`), `HAN_ENDS` (`keep`, `free`), `HAN_PROJECT` (`project`:
-//! `off`, `foot-point`, `parameter-correction`).
+//! `off`, `foot-point`, `parameter-correction`), `HAN_CURVE_GCV_GAMMA` and `HAN_FUNCTION_GCV_GAMMA`
+//! (`curve-gcv-gamma`, `function-gcv-gamma`).
 
 use std::f64::consts::PI;
 use std::fmt::Write as _;
@@ -266,6 +267,8 @@ fn main() -> Result<(), Error> {
             }
             "HAN_PASSES" => tuned.max_passes = value.parse()?,
             "HAN_NOISE_MOVES" => tuned.noise_moves = value.parse()?,
+            "HAN_CURVE_GCV_GAMMA" => tuned.curve_gcv_gamma = value.parse()?,
+            "HAN_FUNCTION_GCV_GAMMA" => tuned.function_gcv_gamma = value.parse()?,
             "HAN_MAX_MOVE_BOUND" => tuned.max_move_bound = value.parse()?,
             "HAN_ENDS" => {
                 tuned.ends = serde_json::from_value(serde_json::Value::String(value))?;

@@ -103,11 +103,16 @@ impl Denoise {
         }
     }
 
-    /// The jump-lsq settings of the jump-lsq variants (`None` for the others).
-    fn jump_lsq(self) -> Option<JumpLsqSettings> {
+    /// The jump-lsq settings of the jump-lsq variants (`None` for the others), GCV's trace
+    /// factor `gcv_gamma` for `jump-lsq-gcv`.
+    fn jump_lsq(self, gcv_gamma: f64) -> Option<JumpLsqSettings> {
         match self {
             Denoise::JumpLsq => Some(JumpLsqSettings::default()),
-            Denoise::JumpLsqGcv => Some(JumpLsqSettings::default().with_rule(LambdaRule::Gcv)),
+            Denoise::JumpLsqGcv => Some(
+                JumpLsqSettings::default()
+                    .with_rule(LambdaRule::Gcv)
+                    .with_gcv_gamma(gcv_gamma),
+            ),
             Denoise::Off | Denoise::Gcv => None,
         }
     }
@@ -236,10 +241,25 @@ fn jump_fit_on_knots<const D: usize>(
 ///
 /// Errors: x not strictly increasing, non-finite values (the smoothing spline's errors).
 pub fn denoise(mode: Denoise, x: &[f64], y: &[f64], limits: &Limits<'_>) -> Result<Vec<f64>> {
+    denoise_with(mode, 1.0, x, y, limits)
+}
+
+/// [`denoise`] with the factor γ on the trace of `jump-lsq-gcv`'s GCV rule
+/// ([`TwoPhaseSettings::function_gcv_gamma`](super::TwoPhaseSettings::function_gcv_gamma);
+/// [`denoise`] has 1).
+///
+/// Errors: as [`denoise`]; γ below 1.
+pub fn denoise_with(
+    mode: Denoise,
+    gcv_gamma: f64,
+    x: &[f64],
+    y: &[f64],
+    limits: &Limits<'_>,
+) -> Result<Vec<f64>> {
     if mode == Denoise::Off || x.len() < 4 {
         return Ok(y.to_vec());
     }
-    if let Some(settings) = mode.jump_lsq() {
+    if let Some(settings) = mode.jump_lsq(gcv_gamma) {
         let data: Vec<Vec2> = x.iter().zip(y).map(|(&x, &y)| Vec2::new(x, y)).collect();
         if let Some(fit) = jump_fit(&data, CurveDomain::Function, false, limits, &settings)? {
             return Ok(fit.iter().map(|p| p.y).collect());
@@ -289,6 +309,22 @@ pub fn denoise_curve(
     closed: bool,
     limits: &Limits<'_>,
 ) -> Result<Vec<Vec2>> {
+    denoise_curve_with(mode, 1.0, projection, points, closed, limits)
+}
+
+/// [`denoise_curve`] with the factor γ on the trace of `jump-lsq-gcv`'s GCV rule
+/// ([`TwoPhaseSettings::curve_gcv_gamma`](super::TwoPhaseSettings::curve_gcv_gamma);
+/// [`denoise_curve`] has 1).
+///
+/// Errors: as [`denoise_curve`]; γ below 1.
+pub fn denoise_curve_with(
+    mode: Denoise,
+    gcv_gamma: f64,
+    projection: Projection,
+    points: &[Vec2],
+    closed: bool,
+    limits: &Limits<'_>,
+) -> Result<Vec<Vec2>> {
     let n = points.len();
     if mode == Denoise::Off || n < 4 {
         return Ok(points.to_vec());
@@ -303,10 +339,10 @@ pub fn denoise_curve(
             keep: &keep,
             allowed: &allowed,
         };
-        let values = match curve_fit(mode, projection, &sequence, false, &limits)? {
+        let values = match curve_fit(mode, gcv_gamma, projection, &sequence, false, &limits)? {
             Some(values) => values,
             // jump-lsq's λ limited: the cubic smoothing spline.
-            None => curve_fit(Denoise::Gcv, projection, &sequence, false, &limits)?
+            None => curve_fit(Denoise::Gcv, gcv_gamma, projection, &sequence, false, &limits)?
                 .ok_or_else(|| strategy_error("two-phase", "the cubic pre-pass gave no fit"))?,
         };
         let mut out = points.to_vec();
@@ -340,9 +376,9 @@ pub fn denoise_curve(
     if largest >= CORNER_TURN {
         return fit(&around(seam), projection);
     }
-    if mode.jump_lsq().is_some() {
+    if mode.jump_lsq(gcv_gamma).is_some() {
         // No corner: jump-lsq's periodic spline has no seam to hide.
-        if let Some(values) = curve_fit(mode, projection, points, true, limits)? {
+        if let Some(values) = curve_fit(mode, gcv_gamma, projection, points, true, limits)? {
             return Ok(values);
         }
     }
@@ -390,12 +426,13 @@ fn fitted_curve(values: &[Vec2], knots: Vec<f64>, periodic: bool) -> Result<Herm
 /// asked of `gcv`).
 fn smoother_fit(
     mode: Denoise,
+    gcv_gamma: f64,
     sequence: &[Vec2],
     periodic: bool,
     knots: Option<&[f64]>,
     limits: &Limits<'_>,
 ) -> Result<Option<(Vec<Vec2>, Vec<f64>)>> {
-    if let Some(settings) = mode.jump_lsq() {
+    if let Some(settings) = mode.jump_lsq(gcv_gamma) {
         return jump_fit_on_knots(
             sequence,
             CurveDomain::Parametric,
@@ -422,12 +459,14 @@ fn smoother_fit(
 /// [`smoother_fit`]. O(n) per solve.
 fn curve_fit(
     mode: Denoise,
+    gcv_gamma: f64,
     projection: Projection,
     sequence: &[Vec2],
     periodic: bool,
     limits: &Limits<'_>,
 ) -> Result<Option<Vec<Vec2>>> {
-    let Some((mut values, mut knots)) = smoother_fit(mode, sequence, periodic, None, limits)? else {
+    let Some((mut values, mut knots)) = smoother_fit(mode, gcv_gamma, sequence, periodic, None, limits)?
+    else {
         return Ok(None);
     };
     if projection == Projection::Off {
@@ -448,7 +487,7 @@ fn curve_fit(
             let period = knots[knots.len() - 1] - knots[0];
             feet.push(feet[0] + period);
         }
-        match smoother_fit(mode, sequence, periodic, Some(&feet), limits)? {
+        match smoother_fit(mode, gcv_gamma, sequence, periodic, Some(&feet), limits)? {
             Some(refit) => (values, knots) = refit,
             None => break,
         }

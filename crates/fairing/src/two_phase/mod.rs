@@ -19,7 +19,9 @@ pub mod phase1;
 pub mod phase2;
 mod settings;
 
-pub use denoise::{denoise, denoise_curve, Denoise, Limits, CORRECTION_ROUNDS};
+pub use denoise::{
+    denoise, denoise_curve, denoise_curve_with, denoise_with, Denoise, Limits, CORRECTION_ROUNDS,
+};
 pub use foot_point::{foot_points, FootPoint, Projection};
 pub use phase1::{coarse_pass, counts, detect, displacement, e_at, Case, CaseKind, PassReport};
 pub use phase2::{detect_fine, end_y_change, fine_displacement, fine_pass, zero_level};
@@ -238,7 +240,13 @@ impl FairingStrategy<2> for TwoPhase {
             keep: &keep,
             allowed: &allowed,
         };
-        let smooth = denoise(self.settings.denoise, &x, &y, &limits)?;
+        let smooth = denoise_with(
+            self.settings.denoise,
+            self.settings.function_gcv_gamma,
+            &x,
+            &y,
+            &limits,
+        )?;
         for (k, (&new, &old)) in smooth.iter().zip(&y).enumerate() {
             if new != old {
                 state.move_point(k, Vec2::new(x[k], new))?;
@@ -337,8 +345,9 @@ impl SegmentFairer for TwoPhase {
             keep: &keep,
             allowed: &allowed,
         };
-        denoise_curve(
+        denoise_curve_with(
             self.settings.denoise,
+            self.settings.curve_gcv_gamma,
             self.settings.project,
             points,
             closed,

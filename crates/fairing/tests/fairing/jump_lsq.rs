@@ -416,3 +416,51 @@ fn noise_free_points_barely_move_and_noisy_ones_move_by_the_target() {
     assert!((r.rms_displacement / target - 1.0).abs() < 1e-3, "{r:?}");
     assert!((target - JumpLsqSettings::default().noise_factor * r.sigma_hat).abs() < 1e-12);
 }
+
+/// `gcv-gamma`: the trace factor γ of the GCV rule. γ = 1 is the rule as before (the default,
+/// bit for bit); a larger γ charges each degree of freedom more, so λ and the displacement
+/// grow with it; γ below 1 is refused.
+#[test]
+fn a_larger_gcv_gamma_smooths_more() {
+    let noisy: Vec<Vec2> = (0..300)
+        .map(|i| {
+            let x = i as f64 * 0.06;
+            Vec2::new(x, x.sin() + 0.01 * (((i * 7919) % 101) as f64 / 50.0 - 1.0) * 1.7)
+        })
+        .collect();
+    let run = |settings: &JumpLsqSettings| {
+        fair(
+            &noisy,
+            &noisy,
+            &Constraints::default(),
+            CurveDomain::Function,
+            false,
+            settings,
+        )
+    };
+    let gcv = JumpLsqSettings::default().with_rule(LambdaRule::Gcv);
+    assert_eq!(gcv.gcv_gamma, 1.0);
+    let plain = run(&gcv).unwrap();
+    assert_eq!(
+        run(&gcv.clone().with_gcv_gamma(1.0)).unwrap().points,
+        plain.points
+    );
+    let (mut lambda, mut moved) = (plain.report.lambda, plain.report.rms_displacement);
+    for gamma in [1.2, 1.4, 2.0] {
+        let r = run(&gcv.clone().with_gcv_gamma(gamma)).unwrap().report;
+        assert!(r.lambda > lambda, "γ {gamma}: λ {} after {lambda}", r.lambda);
+        assert!(r.rms_displacement > moved, "γ {gamma}: {r:?}");
+        (lambda, moved) = (r.lambda, r.rms_displacement);
+    }
+    let refused = run(&gcv.with_gcv_gamma(0.9));
+    assert!(
+        matches!(
+            refused,
+            Err(Error::BadParameter {
+                name: "gcv-gamma",
+                ..
+            })
+        ),
+        "{refused:?}"
+    );
+}

@@ -6,7 +6,8 @@ use std::f64::consts::PI;
 
 use curve_repr::Vec2;
 use fairing::two_phase::{
-    denoise, denoise_curve, Denoise, Ends, Limits, Projection, TwoPhase, TwoPhaseSettings,
+    denoise, denoise_curve, denoise_curve_with, denoise_with, Denoise, Ends, Limits, Projection, TwoPhase,
+    TwoPhaseSettings,
 };
 use fairing::{Constraints, EndClamp, Pipeline};
 
@@ -316,4 +317,86 @@ fn free_ends_still_keep_clamped_ends_and_fixed_points_bit_for_bit() {
         }
         assert_ne!(clamped[1], points[1], "{mode:?}: nothing moved");
     }
+}
+
+/// `curve-gcv-gamma` and `function-gcv-gamma` (the factor γ on the trace of `jump-lsq-gcv`'s
+/// GCV): γ = 1 is [`denoise`] and [`denoise_curve`] bit for bit; the curves' default (> 1)
+/// smooths more, on a function and on a curve; the other pre-passes ignore it; γ below 1 is
+/// refused with an error.
+#[test]
+fn gcv_gamma_of_the_pre_pass() {
+    let defaults = TwoPhaseSettings::default();
+    let gamma = defaults.curve_gcv_gamma;
+    assert!(gamma > 1.0, "{gamma}");
+    assert_eq!(defaults.function_gcv_gamma, 1.0);
+    let n = 200;
+    let x: Vec<f64> = (0..n).map(|k| 0.1 * k as f64).collect();
+    let y: Vec<f64> = x
+        .iter()
+        .zip(noise(7, n, 0.01))
+        .map(|(x, e)| (x / 2.0).sin() + e)
+        .collect();
+    let none = |_: usize| false;
+    let free = |_: usize| f64::INFINITY;
+    let limits = Limits {
+        keep: &none,
+        allowed: &free,
+    };
+    let moved = |a: &[f64]| a.iter().zip(&y).map(|(a, b)| (a - b).abs()).sum::<f64>();
+    let plain = denoise(Denoise::JumpLsqGcv, &x, &y, &limits).unwrap();
+    assert_eq!(
+        denoise_with(Denoise::JumpLsqGcv, 1.0, &x, &y, &limits).unwrap(),
+        plain
+    );
+    let smoother = denoise_with(Denoise::JumpLsqGcv, gamma, &x, &y, &limits).unwrap();
+    assert!(
+        moved(&smoother) > moved(&plain),
+        "{} against {}",
+        moved(&smoother),
+        moved(&plain)
+    );
+    for mode in [Denoise::Gcv, Denoise::JumpLsq, Denoise::Off] {
+        assert_eq!(
+            denoise_with(mode, gamma, &x, &y, &limits).unwrap(),
+            denoise(mode, &x, &y, &limits).unwrap(),
+            "{mode:?}"
+        );
+    }
+    // A noisy arc: radius 2 over 270°, 100 points.
+    let e = noise(5, 2 * 100, 0.01);
+    let arc: Vec<Vec2> = (0..100)
+        .map(|k| {
+            let t = 1.5 * PI * k as f64 / 99.0;
+            Vec2::new(2.0 * t.cos() + e[2 * k], 2.0 * t.sin() + e[2 * k + 1])
+        })
+        .collect();
+    let shift = |a: &[Vec2]| a.iter().zip(&arc).map(|(a, b)| (a - b).norm()).sum::<f64>();
+    let mode = Denoise::JumpLsqGcv;
+    let plain = denoise_curve(mode, Projection::Off, &arc, false, &limits).unwrap();
+    let same = denoise_curve_with(mode, 1.0, Projection::Off, &arc, false, &limits).unwrap();
+    assert_eq!(same, plain);
+    let smoother = denoise_curve_with(mode, gamma, Projection::Off, &arc, false, &limits).unwrap();
+    assert!(
+        shift(&smoother) > shift(&plain),
+        "{} against {}",
+        shift(&smoother),
+        shift(&plain)
+    );
+    assert!(denoise_with(mode, 0.5, &x, &y, &limits).is_err());
+    let points: Vec<Vec2> = x.iter().zip(&y).map(|(&x, &y)| Vec2::new(x, y)).collect();
+    let refused = Pipeline::new(TwoPhase::new(
+        TwoPhaseSettings::default().with_function_gcv_gamma(0.5),
+    ))
+    .run(points);
+    assert!(
+        matches!(
+            refused,
+            Err(fairing::Error::BadParameter {
+                name: "function_gcv_gamma",
+                ..
+            })
+        ),
+        "{:?}",
+        refused.err()
+    );
 }

@@ -14,10 +14,11 @@
 //!   or beyond, and then that one solve is the answer (10^3–10^6 points of the speed peer's
 //!   noisy sine); otherwise λ_max brackets the root and Newton's method starts from λ = 1
 //!   (typically 3–8 evaluations more).
-//! - **GCV** (Craven & Wahba 1979): minimise V(λ) = (RSS/(n_f·c)) / (1 − tr A(λ)/n_f)² over
+//! - **GCV** (Craven & Wahba 1979): minimise V(λ) = (RSS/(n_f·c)) / (1 − γ tr A(λ)/n_f)² over
 //!   log λ, c the number of smoothed coordinates and tr A(λ) the trace of the influence
 //!   matrix (the same for every coordinate), read in O(n) from the selected inverse of the
-//!   factor ([`super::envelope::Ldlt::selected_inverse`]). A grid of half decades, then a
+//!   factor ([`super::envelope::Ldlt::selected_inverse`]); γ = `gcv-gamma`, 1 by default
+//!   (above 1 the modified GCV, which smooths more). A grid of half decades, then a
 //!   golden-section search in the best cell.
 //!
 //! **The precision limit.** The penalty rows Δ^d J of a smooth curve are tiny differences of
@@ -277,16 +278,17 @@ pub(crate) fn discrepancy<const D: usize>(
 }
 
 /// The GCV rule (module docs) over λ ∈ [1e-6, `lambda_max`]; `coordinates` is the number of
-/// smoothed coordinates c.
+/// smoothed coordinates c, `gamma` the factor γ on the trace.
 pub(crate) fn gcv<const D: usize>(
     system: &System<'_, D>,
     coordinates: usize,
+    gamma: f64,
     lambda_max: f64,
 ) -> Result<Choice<D>, PivotFailure> {
     let free: f64 = system.counted().iter().filter(|c| **c).count() as f64;
     let score = |e: &Evaluation<D>| -> f64 {
         let tr = e.trace.unwrap_or(0.0);
-        let denominator = 1.0 - tr / free;
+        let denominator = 1.0 - gamma * tr / free;
         if denominator <= 0.0 {
             return f64::INFINITY;
         }

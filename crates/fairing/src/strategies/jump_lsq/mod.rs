@@ -203,6 +203,14 @@ pub struct JumpLsqSettings {
     pub target_sd: Option<f64>,
     /// How λ is chosen when not given: discrepancy (RMS displacement = noise-factor × σ̂) or gcv.
     pub rule: LambdaRule,
+    /// GCV rule: the factor γ ≥ 1 on the trace in V(λ) = (RSS/n) / (1 − γ tr A(λ)/n)².
+    ///
+    /// 1 is Craven and Wahba's GCV (the default). γ > 1 charges each degree of freedom more
+    /// (the modified GCV of Cummins, Filloon and Nychka 2001, γ = 1.4 in Kim and Gu 2004) and
+    /// so smooths more, against GCV's known tendency to pick too small a λ on some draws.
+    /// Two-phase's pre-pass sets its own
+    /// ([`TwoPhaseSettings::curve_gcv_gamma`](crate::two_phase::TwoPhaseSettings::curve_gcv_gamma)).
+    pub gcv_gamma: f64,
     /// Discrepancy rule: the target RMS displacement in units of the noise estimate σ̂.
     ///
     /// Default 1 (Morozov's principle). The dense prototype used 1.5; measured with
@@ -240,6 +248,7 @@ impl Default for JumpLsqSettings {
             lambda: None,
             target_sd: None,
             rule: LambdaRule::Discrepancy,
+            gcv_gamma: 1.0,
             noise_factor: 1.0,
             exponent: 8.0,
             difference_order: 1,
@@ -264,6 +273,9 @@ impl JumpLsqSettings {
             if !(t.is_finite() && t >= 0.0) {
                 return bad("target-sd", t.to_string(), "a finite length ≥ 0 (or auto)");
             }
+        }
+        if !(self.gcv_gamma.is_finite() && self.gcv_gamma >= 1.0) {
+            return bad("gcv-gamma", self.gcv_gamma.to_string(), "a finite number ≥ 1");
         }
         if !(self.noise_factor.is_finite() && self.noise_factor > 0.0) {
             return bad(
@@ -309,6 +321,12 @@ impl JumpLsqSettings {
     /// Sets the rule.
     pub fn with_rule(mut self, rule: LambdaRule) -> Self {
         self.rule = rule;
+        self
+    }
+
+    /// Sets the factor γ on the trace of the GCV rule (≥ 1; 1: Craven and Wahba's GCV).
+    pub fn with_gcv_gamma(mut self, gamma: f64) -> Self {
+        self.gcv_gamma = gamma;
         self
     }
 
@@ -787,7 +805,7 @@ fn fair_from<const D: usize>(
             lambda::discrepancy(&system, free as f64 * t * t, lambda_previous, lambda_max)
                 .map_err(pivot_error)?
         } else {
-            lambda::gcv(&system, coordinates, lambda_max).map_err(pivot_error)?
+            lambda::gcv(&system, coordinates, settings.gcv_gamma, lambda_max).map_err(pivot_error)?
         };
         if !system.holds(&choice.evaluation.gamma, &base) {
             return Err(crate::state::strategy_error(
