@@ -12,7 +12,8 @@
 //! steps alone: their per-point cost, which the per-run cost does not blur at the small end
 //! (a different run: the boundary curves stay as they are);
 //! `tiles`: the paper's sort inside 64 × 64 tiles, the tiles by their largest z (the same
-//! run as `sort` at 50 × 50). Filter with
+//! run as `sort` at 50 × 50; the default), `tiles_steps` the same without the boundary
+//! fairing. Filter with
 //! `cargo bench -p fairing --bench fairing -- surface_step` (`surface_step/sort` gives both
 //! `sort` entries).
 
@@ -61,6 +62,7 @@ fn bench(c: &mut Criterion) {
             ("sort", SweepOrder::Sort, true),
             ("sort_steps", SweepOrder::Sort, false),
             ("tiles", SweepOrder::Tiles, true),
+            ("tiles_steps", SweepOrder::Tiles, false),
         ] {
             let settings = SurfaceFairingSettings::zhang_cheng()
                 .with_order(order)

@@ -182,8 +182,8 @@ pub mod precision;
 mod queue;
 mod radix;
 mod run;
-mod tiles;
 pub(crate) mod thin_plate;
+mod tiles;
 
 #[cfg(test)]
 mod tests;

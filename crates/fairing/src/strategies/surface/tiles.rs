@@ -20,7 +20,12 @@ pub const TILE: usize = 64;
 /// ties by index) tile by tile: the tiles in the order of their first pair (their largest
 /// z), each tile's pairs in their order in `order` (a stable counting sort on the tile's
 /// rank). `scratch` is reused storage. O(len + tiles).
-pub(super) fn regroup(order: &mut Vec<(f64, usize)>, scratch: &mut Vec<(f64, usize)>, u_count: usize, v_count: usize) {
+pub(super) fn regroup(
+    order: &mut Vec<(f64, usize)>,
+    scratch: &mut Vec<(f64, usize)>,
+    u_count: usize,
+    v_count: usize,
+) {
     let tiles_u = u_count.div_ceil(TILE);
     let tiles_v = v_count.div_ceil(TILE);
     if tiles_u * tiles_v < 2 || order.len() < 2 {
