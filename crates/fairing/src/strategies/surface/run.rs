@@ -797,8 +797,8 @@ impl Run<'_> {
                 }
             }
             SurfaceMode::Automatic => {
-                // Step 2.3 as printed: every point once, by z at the step's start, largest
-                // first (ties by index).
+                // Step 2.3: every point once, by z at the step's start, largest first (ties
+                // by index); for `tiles` inside each tile, the tiles by their largest z.
                 // The candidates (the movable nodes, i-major) with their z, in the run's
                 // storage.
                 let mut order = std::mem::take(&mut self.order);
