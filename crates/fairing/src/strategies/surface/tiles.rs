@@ -102,7 +102,8 @@ mod tests {
         let tile = |k: usize| ((k / v) / TILE, (k % v) / TILE);
         // Each tile is one run; the runs come in the order of the tiles' first pair in the
         // sorted order; inside a run the sorted order is kept.
-        let mut runs: Vec<((usize, usize), Vec<(f64, usize)>)> = Vec::new();
+        type Run = ((usize, usize), Vec<(f64, usize)>);
+        let mut runs: Vec<Run> = Vec::new();
         for &p in &order {
             match runs.last_mut() {
                 Some((t, run)) if *t == tile(p.1) => run.push(p),
