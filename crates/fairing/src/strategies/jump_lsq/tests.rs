@@ -716,30 +716,45 @@ fn discrepancy_rule_reaches_its_target_and_gcv_minimises() {
         (report.rms_displacement / target - 1.0).abs() < 1e-3,
         "{report:?}"
     );
-    let settings = JumpLsqSettings::default()
-        .with_difference_order(2)
-        .with_rule(LambdaRule::Gcv);
-    let faired = fair(
-        &points,
-        &points,
-        &Constraints::default(),
-        CurveDomain::Function,
-        false,
-        &settings,
-    )
-    .unwrap();
-    let chosen = faired.report.lambda;
-    let g = faired.report.gcv.unwrap();
-    // GCV at λ·10^±0.3 is not lower than at the chosen λ.
+    // GCV (γ = 1, Craven–Wahba) and the modified GCV (γ = 1.4): V_γ(λ) = (RSS/n) /
+    // (1 − γ tr A(λ)/n)² at λ·10^±0.3 is not lower than at the chosen λ.
     let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
-    let space = Space::new(Knots::open(x), Ends::Runout, penalty_of(&settings)).unwrap();
     let data = masked(&points, [false, true]);
     let weights = vec![1.0; points.len()];
-    let system = System::new(&space, &data, &weights, &[]);
-    for factor in [0.5, 2.0] {
-        let e = lambda::evaluate(&system, chosen * factor, false, true).unwrap();
-        let v = (e.rss / points.len() as f64) / (1.0 - e.trace.unwrap() / points.len() as f64).powi(2);
-        assert!(v >= g * (1.0 - 1e-9), "GCV {v} at {factor}·λ below {g}");
+    for gamma in [1.0, 1.4] {
+        let settings = JumpLsqSettings::default()
+            .with_difference_order(2)
+            .with_rule(LambdaRule::Gcv)
+            .with_gcv_gamma(gamma);
+        let faired = fair(
+            &points,
+            &points,
+            &Constraints::default(),
+            CurveDomain::Function,
+            false,
+            &settings,
+        )
+        .unwrap();
+        let chosen = faired.report.lambda;
+        let g = faired.report.gcv.unwrap();
+        let space = Space::new(Knots::open(x.clone()), Ends::Runout, penalty_of(&settings)).unwrap();
+        let system = System::new(&space, &data, &weights, &[]);
+        let score = |factor: f64| {
+            let e = lambda::evaluate(&system, chosen * factor, false, true).unwrap();
+            let n = points.len() as f64;
+            (e.rss / n) / (1.0 - gamma * e.trace.unwrap() / n).powi(2)
+        };
+        // The reported score is V_γ at the chosen λ ...
+        assert!(
+            (score(1.0) / g - 1.0).abs() < 1e-9,
+            "γ {gamma}: V {} against {g}",
+            score(1.0)
+        );
+        // ... and no neighbour scores lower.
+        for factor in [0.5, 2.0] {
+            let v = score(factor);
+            assert!(v >= g * (1.0 - 1e-9), "γ {gamma}: V {v} at {factor}·λ below {g}");
+        }
     }
 }
 
