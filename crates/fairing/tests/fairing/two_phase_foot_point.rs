@@ -205,9 +205,9 @@ fn the_projected_pre_pass_honours_the_allowed_distances() {
 }
 
 #[test]
-fn a_closed_curve_stays_closed_and_its_corner_kept() {
+fn a_closed_curve_stays_closed_and_its_corner_sharp() {
     // The ellipse (no corner: one periodic fit, or the gcv blend) and a lens (two arcs
-    // meeting at corners (±1, 0): the fit starts and ends at the corner it keeps).
+    // meeting at corners (±1, 0): the fit starts and ends at one of them).
     let n = 120;
     let (_, ellipse) = clean_and_noisy(n, true, 0.01, 3);
     let m = 60;
@@ -279,9 +279,15 @@ fn a_closed_curve_stays_closed_and_its_corner_kept() {
             allowed: &free,
         };
         let smooth = denoise_curve(mode, projection, &lens, true, &lens_limits).unwrap();
+        // The corner the fit starts and ends at (its data exact here) is estimated from both
+        // branches: within the noise (σ = 1e-3) of where it is.
+        let nearest = [0, m]
+            .map(|k| (smooth[k] - lens[k]).norm())
+            .into_iter()
+            .fold(f64::INFINITY, f64::min);
         assert!(
-            smooth[0] == lens[0] || smooth[m] == lens[m],
-            "{mode:?} {projection:?}: both corners moved"
+            nearest < 1e-3,
+            "{mode:?} {projection:?}: both corners moved ({nearest})"
         );
     }
 }
