@@ -35,7 +35,8 @@
 //! `HAN_PASSES` (`max-passes`), `HAN_NOISE_MOVES`, `HAN_CURVE_GUARD` (`off`, `pass`, `local`;
 //! the paper variant always runs `off`), `HAN_ENDS` (`keep`, `free`), `HAN_PROJECT` (`project`:
 //! `off`, `foot-point`, `parameter-correction`), `HAN_CURVE_GCV_GAMMA` and `HAN_FUNCTION_GCV_GAMMA`
-//! (`curve-gcv-gamma`, `function-gcv-gamma`).
+//! (`curve-gcv-gamma`, `function-gcv-gamma`), `HAN_CURVE_ENDS` (`curve-ends`: `runout`,
+//! `natural`), `HAN_CURVE_END_RUNS` and `HAN_FUNCTION_END_RUNS` (`true`, `false`).
 
 use std::f64::consts::PI;
 use std::fmt::Write as _;
@@ -270,6 +271,11 @@ fn main() -> Result<(), Error> {
             "HAN_CURVE_GCV_GAMMA" => tuned.curve_gcv_gamma = value.parse()?,
             "HAN_FUNCTION_GCV_GAMMA" => tuned.function_gcv_gamma = value.parse()?,
             "HAN_MAX_MOVE_BOUND" => tuned.max_move_bound = value.parse()?,
+            "HAN_CURVE_END_RUNS" => tuned.curve_end_runs = value.parse()?,
+            "HAN_FUNCTION_END_RUNS" => tuned.function_end_runs = value.parse()?,
+            "HAN_CURVE_ENDS" => {
+                tuned.curve_ends = serde_json::from_value(serde_json::Value::String(value))?;
+            }
             "HAN_ENDS" => {
                 tuned.ends = serde_json::from_value(serde_json::Value::String(value))?;
             }

@@ -21,7 +21,7 @@ pub mod surface;
 pub mod surface_smoothing;
 
 pub use batten::{Batten, BattenSettings, PositionUpdate, Tangents};
-pub use jump_lsq::{JumpLsq, JumpLsqReport, JumpLsqSettings, LambdaRule};
+pub use jump_lsq::{CurveEnds, JumpLsq, JumpLsqReport, JumpLsqSettings, LambdaRule};
 pub use sapidis_farin::{
     KnotStep, MoveBound, MoveRule, SapidisFarin, SapidisFarinSettings, SapidisFarinStop,
 };

@@ -57,7 +57,7 @@ use super::foot_point::{foot_points, Projection};
 use crate::state::strategy_error;
 use crate::strategies::jump_lsq;
 use crate::strategies::{
-    CurveDomain, JumpLsqSettings, LambdaRule, SmoothingRule, SmoothingSettings, SmoothingSpline,
+    CurveDomain, CurveEnds, JumpLsqSettings, LambdaRule, SmoothingRule, SmoothingSettings, SmoothingSpline,
 };
 use crate::{Constraints, Result};
 
@@ -114,6 +114,15 @@ impl Denoise {
                     .with_gcv_gamma(gcv_gamma),
             ),
             Denoise::Off | Denoise::Gcv => None,
+        }
+    }
+
+    /// The end conditions of this smoother's open curve spline: `curve_ends` for the
+    /// jump-lsq variants, natural for the cubic smoothing spline.
+    fn curve_ends(self, curve_ends: CurveEnds) -> CurveEnds {
+        match self {
+            Denoise::JumpLsq | Denoise::JumpLsqGcv => curve_ends,
+            Denoise::Off | Denoise::Gcv => CurveEnds::Natural,
         }
     }
 }
@@ -314,17 +323,20 @@ pub fn denoise_curve(
     closed: bool,
     limits: &Limits<'_>,
 ) -> Result<Vec<Vec2>> {
-    denoise_curve_with(mode, 1.0, projection, points, closed, limits)
+    denoise_curve_with(mode, 1.0, CurveEnds::Natural, projection, points, closed, limits)
 }
 
 /// [`denoise_curve`] with the factor γ on the trace of `jump-lsq-gcv`'s GCV rule
 /// ([`TwoPhaseSettings::curve_gcv_gamma`](super::TwoPhaseSettings::curve_gcv_gamma);
-/// [`denoise_curve`] has 1).
+/// [`denoise_curve`] has 1) and the jump-lsq variants' end conditions of an open fit
+/// ([`TwoPhaseSettings::curve_ends`](super::TwoPhaseSettings::curve_ends); [`denoise_curve`]
+/// has natural ends; the cubic smoothing spline always has).
 ///
 /// Errors: as [`denoise_curve`]; γ below 1.
 pub fn denoise_curve_with(
     mode: Denoise,
     gcv_gamma: f64,
+    curve_ends: CurveEnds,
     projection: Projection,
     points: &[Vec2],
     closed: bool,
@@ -347,11 +359,20 @@ pub fn denoise_curve_with(
                 keep: &keep,
                 allowed: &allowed,
             };
-            let values = match curve_fit(mode, gcv_gamma, projection, &sequence, false, &limits)? {
+            let values = match curve_fit(mode, gcv_gamma, curve_ends, projection, &sequence, false, &limits)?
+            {
                 Some(values) => values,
                 // jump-lsq's λ limited: the cubic smoothing spline.
-                None => curve_fit(Denoise::Gcv, gcv_gamma, projection, &sequence, false, &limits)?
-                    .ok_or_else(|| strategy_error("two-phase", "the cubic pre-pass gave no fit"))?,
+                None => curve_fit(
+                    Denoise::Gcv,
+                    gcv_gamma,
+                    curve_ends,
+                    projection,
+                    &sequence,
+                    false,
+                    &limits,
+                )?
+                .ok_or_else(|| strategy_error("two-phase", "the cubic pre-pass gave no fit"))?,
             };
             let mut out = points.to_vec();
             for (k, &i) in order
@@ -396,7 +417,7 @@ pub fn denoise_curve_with(
     }
     if mode.jump_lsq(gcv_gamma).is_some() {
         // No corner: jump-lsq's periodic spline has no seam to hide.
-        if let Some(values) = curve_fit(mode, gcv_gamma, projection, points, true, limits)? {
+        if let Some(values) = curve_fit(mode, gcv_gamma, curve_ends, projection, points, true, limits)? {
             return Ok(values);
         }
     }
@@ -418,7 +439,7 @@ pub fn denoise_curve_with(
     // The blend is no single fit: its points are projected onto the periodic spline through
     // them on their own chord lengths (no parameter correction).
     let knots = Parametrization::ChordLength.closed_parameters(&blended)?;
-    let curve = fitted_curve(&blended, knots, true)?;
+    let curve = fitted_curve(&blended, knots, true, CurveEnds::Natural)?;
     Ok(foot_points(&curve, points, limits.keep)
         .into_iter()
         .map(|f| f.point)
@@ -426,13 +447,19 @@ pub fn denoise_curve_with(
 }
 
 /// The spline through a fit's `values` at its `knots` (closed: with the closing knot): the
-/// fitted curve itself, since both smoothers fit natural (open) or periodic (`periodic`)
-/// cubic splines on those knots and a spline is fixed by its values there. O(n).
-fn fitted_curve(values: &[Vec2], knots: Vec<f64>, periodic: bool) -> Result<HermiteSpline<2>> {
-    let ends = if periodic {
-        HermiteEnds::Closed
-    } else {
-        HermiteEnds::Natural
+/// fitted curve itself, since both smoothers fit cubic splines with these end conditions
+/// (`ends` for an open one, periodic for `periodic`) on those knots and a spline is fixed
+/// by its values there. O(n).
+fn fitted_curve(
+    values: &[Vec2],
+    knots: Vec<f64>,
+    periodic: bool,
+    ends: CurveEnds,
+) -> Result<HermiteSpline<2>> {
+    let ends = match (periodic, ends) {
+        (true, _) => HermiteEnds::Closed,
+        (false, CurveEnds::Natural) => HermiteEnds::Natural,
+        (false, CurveEnds::Runout) => HermiteEnds::ParabolicRunout,
     };
     let settings = HermiteSettings::default().with_parameters(knots).with_ends(ends);
     Ok(HermiteSpline::new(values, &settings)?)
@@ -445,6 +472,7 @@ fn fitted_curve(values: &[Vec2], knots: Vec<f64>, periodic: bool) -> Result<Herm
 fn smoother_fit(
     mode: Denoise,
     gcv_gamma: f64,
+    curve_ends: CurveEnds,
     sequence: &[Vec2],
     periodic: bool,
     knots: Option<&[f64]>,
@@ -456,7 +484,7 @@ fn smoother_fit(
             CurveDomain::Parametric,
             periodic,
             limits,
-            &settings,
+            &settings.with_curve_ends(curve_ends),
             knots,
         );
     }
@@ -478,12 +506,15 @@ fn smoother_fit(
 fn curve_fit(
     mode: Denoise,
     gcv_gamma: f64,
+    curve_ends: CurveEnds,
     projection: Projection,
     sequence: &[Vec2],
     periodic: bool,
     limits: &Limits<'_>,
 ) -> Result<Option<Vec<Vec2>>> {
-    let Some((mut values, mut knots)) = smoother_fit(mode, gcv_gamma, sequence, periodic, None, limits)?
+    let ends = mode.curve_ends(curve_ends);
+    let Some((mut values, mut knots)) =
+        smoother_fit(mode, gcv_gamma, ends, sequence, periodic, None, limits)?
     else {
         return Ok(None);
     };
@@ -495,7 +526,7 @@ fn curve_fit(
         _ => 0,
     };
     for _ in 0..rounds {
-        let curve = fitted_curve(&values, knots.clone(), periodic)?;
+        let curve = fitted_curve(&values, knots.clone(), periodic, ends)?;
         let mut feet: Vec<f64> = foot_points(&curve, sequence, limits.keep)
             .iter()
             .map(|f| f.parameter)
@@ -505,12 +536,12 @@ fn curve_fit(
             let period = knots[knots.len() - 1] - knots[0];
             feet.push(feet[0] + period);
         }
-        match smoother_fit(mode, gcv_gamma, sequence, periodic, Some(&feet), limits)? {
+        match smoother_fit(mode, gcv_gamma, ends, sequence, periodic, Some(&feet), limits)? {
             Some(refit) => (values, knots) = refit,
             None => break,
         }
     }
-    let curve = fitted_curve(&values, knots, periodic)?;
+    let curve = fitted_curve(&values, knots, periodic, ends)?;
     Ok(Some(
         foot_points(&curve, sequence, limits.keep)
             .into_iter()

@@ -100,7 +100,22 @@ pub fn fair_function(
     settings: &TwoPhaseSettings,
     movable: &dyn Fn(usize) -> bool,
 ) -> Result<usize> {
+    fair_spline(spline, settings, settings.function_end_runs, movable)
+}
+
+/// [`fair_function`] with Phase 2's end-run case on or off (`end_runs`: the function's or
+/// the arbitrary curve's setting).
+fn fair_spline(
+    spline: &mut SplineFunction,
+    settings: &TwoPhaseSettings,
+    end_runs: bool,
+    movable: &dyn Fn(usize) -> bool,
+) -> Result<usize> {
     settings.validate()?;
+    let settings = &TwoPhaseSettings {
+        end_runs,
+        ..settings.clone()
+    };
     let mut now = counts(spline);
     let mut stall = Stall::new(now);
     for pass in 1..=settings.max_passes {
@@ -231,6 +246,7 @@ impl FairingStrategy<2> for TwoPhase {
             crate::displacement::data_bound_as(state.points(), crate::displacement::NoiseModel::Vertical);
         self.settings.noise = bound.noise;
         self.settings.noise_bound = bound.bound;
+        self.settings.end_runs = self.settings.function_end_runs;
         let (x, y): (Vec<f64>, Vec<f64>) = state.points().iter().map(|p| (p.x, p.y)).unzip();
         let n = x.len();
         let free = self.settings.ends == Ends::Free;
@@ -348,6 +364,7 @@ impl SegmentFairer for TwoPhase {
         denoise_curve_with(
             self.settings.denoise,
             self.settings.curve_gcv_gamma,
+            self.settings.curve_ends,
             self.settings.project,
             points,
             closed,
@@ -356,11 +373,18 @@ impl SegmentFairer for TwoPhase {
         .map(Some)
     }
 
-    /// Runs [`fair_function`] on the segment; points with `fixed[j]` never move.
+    /// Runs Han's passes on the segment as [`fair_function`] does, with the arbitrary curve's
+    /// end-run setting ([`TwoPhaseSettings::curve_end_runs`]); points with `fixed[j]` never
+    /// move.
     fn fair(&mut self, x: &[f64], y: &mut [f64], fixed: &[bool]) -> Result<()> {
         let mut spline = SplineFunction::new(x, y, EndCondition::ParabolicRunout)?;
         let movable = |k: usize| !fixed.get(k).copied().unwrap_or(true);
-        fair_function(&mut spline, &self.settings, &movable)?;
+        fair_spline(
+            &mut spline,
+            &self.settings,
+            self.settings.curve_end_runs,
+            &movable,
+        )?;
         for (out, &v) in y.iter_mut().zip(spline.y()) {
             *out = v;
         }

@@ -128,10 +128,11 @@ fn sign(v: f64, zero: f64) -> i8 {
 /// `max_run` points (2 is the paper). O(n) for the zero level; the pass uses an O(max_run)
 /// version.
 pub fn detect_fine(spline: &SplineFunction, i: usize, max_run: usize) -> Option<Case> {
-    detect_with(spline, i, max_run, zero_level(spline))
+    detect_with(spline, i, max_run, true, zero_level(spline))
 }
 
-fn detect_with(spline: &SplineFunction, i: usize, max_run: usize, zero: f64) -> Option<Case> {
+/// [`detect_fine`] at the zero level `zero`, the end-run case taken only if `end_runs`.
+fn detect_with(spline: &SplineFunction, i: usize, max_run: usize, end_runs: bool, zero: f64) -> Option<Case> {
     let c = spline.c();
     let n = c.len();
     if n < 5 {
@@ -162,7 +163,7 @@ fn detect_with(spline: &SplineFunction, i: usize, max_run: usize, zero: f64) -> 
     // Beyond the paper (long-run option): a wrong-sign run at an end that the paper's end
     // case does not take, of up to `max_run` points and no longer than the run of the other
     // sign next to it (of two alternating runs, the shorter is taken for the noise).
-    let end_run = max_run > 2 && len <= max_run && len + 3 <= n;
+    let end_run = end_runs && max_run > 2 && len <= max_run && len + 3 <= n;
     let run_of = |mut k: usize, step: isize| {
         let mut length = 0;
         while length < len && sg(k) == -s {
@@ -633,7 +634,7 @@ pub(super) fn fine_pass_from(
     settings.validate()?;
     let zero = zero_level(spline).max(settings.detection_floor * 1e12 * zero_level(spline));
     let find = |spline: &SplineFunction, _: &[f64], i: usize| {
-        let case = detect_with(spline, i, settings.max_run, zero)?;
+        let case = detect_with(spline, i, settings.max_run, settings.end_runs, zero)?;
         Some((case, fine_with(spline, case, settings, zero)))
     };
     guarded_pass(spline, settings, movable, 0, settings.max_run > 2, known, &find)

