@@ -102,6 +102,31 @@ pub(super) fn tangents<const D: usize>(spline: &HermiteSpline<D>) -> Result<Vec<
     Ok(solution)
 }
 
+/// [`tangents`] of an open curve into the spline's tangents, solved in its workspace (grown
+/// as needed): the same rows and the same elimination as [`tridiagonal::solve`], so the
+/// same bits, without allocating. The tangents are written only when the solve succeeds.
+pub(super) fn open_tangents_in_place<const D: usize>(spline: &mut HermiteSpline<D>) -> Result<()> {
+    let count = spline.points.len();
+    let mut workspace = std::mem::take(&mut spline.workspace);
+    if workspace.values.len() < count {
+        workspace.numbers.resize(4 * count, 0.0);
+        workspace.values.resize(count, Vector::<D>::zeros());
+    }
+    let (lower, rest) = workspace.numbers[..4 * count].split_at_mut(count);
+    let (diag, rest) = rest.split_at_mut(count);
+    let (upper, scratch) = rest.split_at_mut(count);
+    let values = &mut workspace.values[..count];
+    rows_into(spline, 0, lower, diag, upper, values);
+    let solved =
+        tridiagonal::solve_in_place(lower, diag, upper, values, scratch).and_then(|()| check_tangents(values));
+    if solved.is_ok() {
+        spline.tangents.clear();
+        spline.tangents.extend_from_slice(values);
+    }
+    spline.workspace = workspace;
+    solved
+}
+
 /// Rows `start`, `start + 1`, … (modulo the point count for a closed curve; as many as the
 /// slices hold) of the system, as [`HermiteSpline::row_with`] gives them (the same
 /// operations, so the same bits), with the right-hand sides in `values`. An interior row

@@ -115,7 +115,7 @@ const STACK_MOVES: usize = 4;
 #[derive(Default)]
 pub(super) struct Workspace<const D: usize> {
     /// Four f64 per row: the three diagonals and the Thomas algorithm's scratch.
-    numbers: Vec<f64>,
+    pub(super) numbers: Vec<f64>,
     /// The right-hand sides, then the tangents.
     pub(super) values: Vec<Vector<D>>,
     /// The decay bounds of [`window_of`] at every row, forward and backward ([`decays_of`]):
