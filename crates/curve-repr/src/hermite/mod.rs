@@ -65,8 +65,10 @@ impl<const D: usize> Clone for HermiteSpline<D> {
         self.knots.clone_from(&source.knots);
         self.tangents.clone_from(&source.tangents);
         self.ends = source.ends;
-        // The knots may differ: the decay bounds of the windowed update are measured again.
+        // The knots may differ: the decay bounds of the windowed update are measured again,
+        // and the rows of the system built again.
         self.workspace.decays.clear();
+        self.workspace.rows.clear();
     }
 }
 
@@ -144,6 +146,7 @@ impl<const D: usize> HermiteSpline<D> {
             });
         }
         self.points.copy_from_slice(points);
+        self.workspace.rows.clear();
         if self.is_closed() {
             self.tangents = solve::tangents(self)?;
             Ok(())

@@ -122,6 +122,13 @@ pub(super) struct Workspace<const D: usize> {
     /// they depend on the knots only. Empty until the first move, and after
     /// [`Clone::clone_from`] (which may change the knots).
     pub(super) decays: Vec<(f64, f64)>,
+    /// The rows of the tangent system for the current points, where known (filled as the
+    /// windowed updates read them): a move of P_j changes only rows j − 1, j, j + 1, so a
+    /// window's other rows are copied rather than rebuilt (the same bits:
+    /// [`HermiteSpline::row_with`] is what the solve builds). Cleared whenever the points
+    /// change otherwise (a failed move, [`Clone::clone_from`],
+    /// [`HermiteSpline::refit`]).
+    pub(super) rows: Vec<Option<solve::Row<D>>>,
 }
 
 impl<const D: usize> PartialEq for Workspace<D> {
@@ -177,11 +184,23 @@ pub(super) fn move_points<const D: usize>(
         *old = (index, spline.points[index]);
         spline.points[index] = position;
     }
+    // The rows a moved point enters (its own and its neighbours') are built anew.
+    let rows = &mut spline.workspace.rows;
+    if rows.len() == count {
+        for &(index, _) in moves {
+            let previous = if index == 0 { count - 1 } else { index - 1 };
+            let next = if index + 1 == count { 0 } else { index + 1 };
+            for row in [previous, index, next] {
+                rows[row] = None;
+            }
+        }
+    }
     let result = update_tangents(spline, moves);
     if result.is_err() {
         for &(index, position) in old_points.iter().rev() {
             spline.points[index] = position;
         }
+        spline.workspace.rows.clear();
     }
     result
 }
@@ -192,8 +211,14 @@ fn solve_windows<const D: usize>(
     windows: &[(isize, isize)],
     total: usize,
     workspace: &mut Workspace<D>,
+    cached: bool,
 ) -> Result<()> {
     let count = spline.points.len() as isize;
+    if cached && workspace.rows.len() != count as usize {
+        workspace.rows.clear();
+        workspace.rows.resize(count as usize, None);
+    }
+    let mut cache = cached.then_some(&mut workspace.rows[..]);
     let (lower, rest) = workspace.numbers[..4 * total].split_at_mut(total);
     let (diag, rest) = rest.split_at_mut(total);
     let (upper, scratch) = rest.split_at_mut(total);
@@ -209,7 +234,7 @@ fn solve_windows<const D: usize>(
             scratch: &mut scratch[range.clone()],
             values: &mut values[range.clone()],
         };
-        solve::window(spline, start, rows)?;
+        solve::window(spline, start, rows, cache.as_deref_mut())?;
         offset = range.end;
     }
     Ok(())
@@ -276,7 +301,11 @@ fn plan<const D: usize>(
 
 /// Solves the merged `windows` into the spline's workspace (grown as needed), in order;
 /// returns the rows solved in all.
-fn solve_planned<const D: usize>(spline: &mut HermiteSpline<D>, windows: &[(isize, isize)]) -> Result<usize> {
+fn solve_planned<const D: usize>(
+    spline: &mut HermiteSpline<D>,
+    windows: &[(isize, isize)],
+    cached: bool,
+) -> Result<usize> {
     let total = windows
         .iter()
         .map(|(lo, hi)| (hi - lo + 1) as usize)
@@ -286,7 +315,7 @@ fn solve_planned<const D: usize>(spline: &mut HermiteSpline<D>, windows: &[(isiz
         workspace.numbers.resize(4 * total, 0.0);
         workspace.values.resize(total, Vector::<D>::zeros());
     }
-    let solved = solve_windows(spline, windows, total, &mut workspace);
+    let solved = solve_windows(spline, windows, total, &mut workspace, cached);
     spline.workspace = workspace;
     solved.map(|()| total)
 }
@@ -313,15 +342,17 @@ fn update_tangents<const D: usize>(
         return Ok(Some((0, count as usize - 1)));
     };
     let windows = &windows[..merged];
-    solve_planned(spline, windows)?;
+    solve_planned(spline, windows, true)?;
     let total = spline.points.len();
     let mut offset = 0;
     for &(lo, hi) in windows {
         let start = lo.rem_euclid(count) as usize;
         let len = (hi - lo + 1) as usize;
-        for (k, &value) in spline.workspace.values[offset..offset + len].iter().enumerate() {
-            spline.tangents[(start + k) % total] = value;
-        }
+        // The rows start.. to the end of the line, then (round a closed one) from row 0.
+        let values = &spline.workspace.values[offset..offset + len];
+        let first = len.min(total - start);
+        spline.tangents[start..start + first].copy_from_slice(&values[..first]);
+        spline.tangents[..len - first].copy_from_slice(&values[first..]);
         offset += len;
     }
     let (first, last) = (windows[0].0, windows[windows.len() - 1].1);
@@ -345,7 +376,8 @@ pub(super) fn tangents_after_move<const D: usize>(
     let mut window = [(0isize, 0isize)];
     let result = match plan(spline, &[(index, position)], &mut window) {
         Some(_) => {
-            solve_planned(spline, &window).map(|rows| (window[0].0.rem_euclid(count as isize) as usize, rows))
+            solve_planned(spline, &window, false)
+                .map(|rows| (window[0].0.rem_euclid(count as isize) as usize, rows))
         }
         None => solve::tangents(spline).map(|all| {
             let values = &mut spline.workspace.values;
