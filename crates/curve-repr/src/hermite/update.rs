@@ -598,6 +598,89 @@ mod tests {
         }
     }
 
+    /// The rows a spline keeps between moves change no bit: a long run of moves (single,
+    /// adjacent pairs, at the ends, across a closed curve's seam, a failed one) on one
+    /// spline gives the tangents and windows of the same moves on a fresh copy (no rows
+    /// kept) and of the trial move (rows built from the points every time); a refit gives
+    /// the spline built through the new points, and moves after it agree again.
+    #[test]
+    fn kept_rows_change_no_bit() {
+        let bits = |s: &HermiteSpline<2>| -> Vec<u64> {
+            s.tangents
+                .iter()
+                .chain(&s.points)
+                .flat_map(|v| v.iter().map(|c| c.to_bits()).collect::<Vec<_>>())
+                .collect()
+        };
+        for ends in [
+            HermiteEnds::Natural,
+            HermiteEnds::ParabolicRunout,
+            HermiteEnds::Clamped {
+                start: Vec2::new(1.0, 0.5),
+                end: Vec2::new(-0.5, 1.0),
+            },
+            HermiteEnds::Closed,
+        ] {
+            let count = 120;
+            let settings = HermiteSettings::default().with_ends(ends);
+            let mut kept = HermiteSpline::new(&wave(count), &settings).unwrap();
+            let mut moves: Vec<Vec<(usize, Vec2)>> = (0..60)
+                .map(|k| {
+                    let index = (k * 37 + 5) % count;
+                    let shift = Vec2::new(0.3 * (k as f64).sin(), 0.2 * (k as f64 * 1.7).cos());
+                    vec![(index, kept.points[index] + shift)]
+                })
+                .collect();
+            moves.extend([
+                vec![(0, Vec2::new(0.1, 0.4))],
+                vec![(count - 1, Vec2::new(119.0, -0.3))],
+                vec![(1, Vec2::new(1.2, 0.1)), (2, Vec2::new(2.1, -0.2))],
+                vec![(count - 1, Vec2::new(118.8, 0.2)), (0, Vec2::new(-0.1, 0.0))],
+                vec![(60, Vec2::new(60.0, 1e308)), (61, Vec2::new(61.0, -1e308))],
+                vec![(59, Vec2::new(59.0, 0.5)), (60, Vec2::new(60.2, 0.1))],
+                vec![(61, Vec2::new(61.0, 0.3))],
+            ]);
+            for (step, batch) in moves.iter().enumerate() {
+                let mut fresh = kept.clone();
+                let trial = (batch.len() == 1).then(|| {
+                    let mut copy = kept.clone();
+                    let (first, rows) = copy.tangents_after_move(batch[0].0, batch[0].1).unwrap();
+                    (first, rows.to_vec())
+                });
+                let (a, b) = (kept.move_points_within(batch), fresh.move_points_within(batch));
+                assert_eq!(a.is_ok(), b.is_ok(), "{ends:?}, step {step}");
+                assert_eq!(bits(&kept), bits(&fresh), "{ends:?}, step {step}");
+                if let (Ok(wa), Ok(wb)) = (&a, &b) {
+                    assert_eq!(wa, wb, "{ends:?}, step {step}");
+                }
+                if let (Ok(Some((lo, hi))), Some((first, rows))) = (a, trial) {
+                    if lo <= hi {
+                        assert_eq!((first, first + rows.len() - 1), (lo, hi), "{ends:?}, step {step}");
+                        for (k, t) in rows.iter().enumerate() {
+                            let m = kept.tangents[first + k];
+                            assert!(t.iter().zip(m.iter()).all(|(x, y)| x.to_bits() == y.to_bits()));
+                        }
+                    }
+                }
+            }
+            // The overflowing pair failed on both and left the points as they were.
+            let refit: Vec<Vec2> = wave(count).iter().map(|p| p * 1.5 + Vec2::new(0.0, 0.2)).collect();
+            kept.refit(&refit).unwrap();
+            let rebuilt = HermiteSpline::new(
+                &refit,
+                &settings.clone().with_parameters(kept.knots().to_vec()),
+            )
+            .unwrap();
+            assert_eq!(bits(&kept), bits(&rebuilt), "{ends:?}, refit");
+            let batch = [(30, Vec2::new(45.0, 2.0))];
+            let mut fresh = kept.clone();
+            kept.move_points(&batch).unwrap();
+            fresh.move_points(&batch).unwrap();
+            assert_eq!(bits(&kept), bits(&fresh), "{ends:?}, after the refit");
+            assert!(kept.refit(&refit[1..]).is_err());
+        }
+    }
+
     #[test]
     fn bad_moves_are_errors_and_change_nothing() {
         let mut spline = HermiteSpline::natural(&wave(10)).unwrap();
