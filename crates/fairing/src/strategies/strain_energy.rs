@@ -470,22 +470,24 @@ impl<const D: usize> StrainEnergy<D> {
         Some(k)
     }
 
-    /// Proposed replacement of the points `ks` (one, or two adjacent) per the settings.
-    fn target(&mut self, ks: &[usize]) -> Result<Vec<Vector<D>>> {
+    /// Proposed replacement of the points `ks` (one, or two adjacent) per the settings, the
+    /// first `ks.len()` entries.
+    fn target(&mut self, ks: &[usize]) -> Result<[Vector<D>; 2]> {
         let spline = self.spline_ref()?;
+        let zero = Vector::<D>::zeros();
         match (self.settings.replacement, ks) {
-            (Replacement::Iterated, [k]) => Ok(vec![eq8(spline, *k)]),
+            (Replacement::Iterated, [k]) => Ok([eq8(spline, *k), zero]),
             (Replacement::Iterated, [k, _]) => {
                 let (a, b) = eq13(spline, *k);
-                Ok(vec![a, b])
+                Ok([a, b])
             }
             (Replacement::Limit, [k]) => {
                 let p = self.limit_one(*k)?;
-                Ok(vec![p])
+                Ok([p, zero])
             }
             (Replacement::Limit, [k, _]) => {
                 let (a, b) = self.limit_two(*k)?;
-                Ok(vec![a, b])
+                Ok([a, b])
             }
             _ => Err(strategy_error(&self.name, "bad point set")),
         }
@@ -527,7 +529,8 @@ impl<const D: usize> StrainEnergy<D> {
         ks: &[usize],
         targets: &[Vector<D>],
     ) -> Result<(bool, bool)> {
-        let mut moves = Vec::new();
+        let mut moves = [(0, Vector::<D>::zeros()); 2];
+        let mut count = 0;
         let mut limited = false;
         for (&k, t) in ks.iter().zip(targets) {
             if !t.iter().all(|x| x.is_finite()) {
@@ -543,13 +546,14 @@ impl<const D: usize> StrainEnergy<D> {
             let to = state.move_point(k, proposed)?;
             limited |= to != *t;
             if to != before {
-                moves.push((k, to));
+                moves[count] = (k, to);
+                count += 1;
             }
         }
-        if moves.is_empty() {
+        if count == 0 {
             return Ok((false, limited));
         }
-        self.apply(&moves)?;
+        self.apply(&moves[..count])?;
         Ok((true, limited))
     }
 }
@@ -626,12 +630,13 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
             return Err(strategy_error(&self.name, "step before init"));
         }
         let before = self.energy;
-        let ks: Vec<usize> = match self.settings.mode.clone() {
+        // The point or pair of this step, on the stack (a step allocates nothing).
+        let (group, size): ([usize; 2], usize) = match self.settings.mode.clone() {
             Mode::Automatic => {
                 let Some(k) = self.pop_worst() else {
                     return Ok(StepOutcome::done(Some(self.energy)));
                 };
-                let mut ks = vec![k];
+                let mut ks = ([k, 0], 1);
                 if self.settings.pairs {
                     let zl = if self.blocked.get(k - 1) == Some(&false) {
                         self.z[k - 1]
@@ -646,9 +651,9 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
                     // step 1.3: pair with the neighbour when it is the second worst
                     let second = self.second_worst(k);
                     if second == Some(k + 1) && zr > 0.0 {
-                        ks = vec![k, k + 1];
+                        ks = ([k, k + 1], 2);
                     } else if second == Some(k - 1) && zl > 0.0 {
-                        ks = vec![k - 1, k];
+                        ks = ([k - 1, k], 2);
                     }
                 }
                 ks
@@ -661,26 +666,31 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
                 order.sort_by(|a, b| self.z[*b].total_cmp(&self.z[*a]).then(a.cmp(b)));
                 let first = order[0];
                 let ks = match order.get(1) {
-                    Some(&s) if s.abs_diff(first) == 1 => vec![first.min(s), first.max(s)],
-                    _ => vec![first],
+                    Some(&s) if s.abs_diff(first) == 1 => ([first.min(s), first.max(s)], 2),
+                    _ => ([first, 0], 1),
                 };
                 if self.settings.replacement == Replacement::Limit {
-                    self.pending.retain(|k| !ks.contains(k));
+                    self.pending.retain(|k| !ks.0[..ks.1].contains(k));
                 }
                 ks
             }
         };
-        let targets = self.target(&ks)?;
-        let old: Vec<Vector<D>> = ks.iter().map(|&k| state.points()[k]).collect();
-        let (mut moved, limited) = self.commit(state, &ks, &targets)?;
+        let ks = &group[..size];
+        let targets = self.target(ks)?;
+        let targets = &targets[..size];
+        let mut old = [Vector::<D>::zeros(); 2];
+        for (o, &k) in old.iter_mut().zip(ks) {
+            *o = state.points()[k];
+        }
+        let (mut moved, limited) = self.commit(state, ks, targets)?;
         // Guard for Theorem 1: a single point's energy is isotropic in P_k, so cutting its move
         // by a convex region never raises E; a pair's is not, so a cut pair move can. Undo it.
         if moved && self.energy > before {
-            let mut back = Vec::new();
-            for (&k, &p) in ks.iter().zip(&old) {
-                back.push((k, state.move_point(k, p)?));
+            let mut back = [(0, Vector::<D>::zeros()); 2];
+            for ((b, &k), &p) in back.iter_mut().zip(ks).zip(&old) {
+                *b = (k, state.move_point(k, p)?);
             }
-            self.apply(&back)?;
+            self.apply(&back[..size])?;
             moved = false;
         }
         // Choice where §3.3 is silent: a point whose move its restraining region (or a
@@ -688,7 +698,7 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
         // the automatic search, and its step does not count for the stopping test (else the
         // first saturated worst point, moving by a sliver, would end the whole run).
         if self.settings.mode == Mode::Automatic && (limited || !moved) {
-            for &k in &ks {
+            for &k in ks {
                 if let Some(b) = self.blocked.get_mut(k) {
                     *b = true;
                     self.worst.set_candidate(&self.z, k, false);
