@@ -68,6 +68,7 @@ impl<const D: usize> Clone for HermiteSpline<D> {
         // The knots may differ: the decay bounds of the windowed update are measured again,
         // and the rows of the system built again.
         self.workspace.decays.clear();
+        self.workspace.weights.clear();
         self.workspace.rows.clear();
     }
 }

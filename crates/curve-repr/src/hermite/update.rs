@@ -129,6 +129,10 @@ pub(super) struct Workspace<const D: usize> {
     /// change otherwise (a failed move, [`Clone::clone_from`],
     /// [`HermiteSpline::refit`]).
     pub(super) rows: Vec<Option<solve::Row<D>>>,
+    /// The weights (a_k, b_k) = (h_k, h_{k−1})/(h_{k−1} + h_k) of the rows of an open
+    /// natural line, for [`unit_move_tangents`]: they depend on the knots only. Empty until
+    /// the first unit move, and after [`Clone::clone_from`].
+    pub(super) weights: Vec<(f64, f64)>,
 }
 
 impl<const D: usize> PartialEq for Workspace<D> {
@@ -417,20 +421,38 @@ pub(super) fn unit_move_tangents(spline: &mut HermiteSpline<1>, index: usize) ->
     let (upper, scratch) = rest.split_at_mut(len);
     let values = &mut workspace.values[..len];
     let knots = &spline.knots;
+    if workspace.weights.len() != count {
+        workspace.weights.clear();
+        workspace.weights.extend((0..count).map(|k| {
+            if k == 0 || k + 1 == count {
+                (0.0, 0.0)
+            } else {
+                let (h0, h1) = (knots[k] - knots[k - 1], knots[k + 1] - knots[k]);
+                (h1 / (h0 + h1), h0 / (h0 + h1))
+            }
+        }));
+    }
+    let weights = &workspace.weights;
     let point = |k: usize| if k == index { 1.0 } else { 0.0 };
-    // The chord slope of segment s, as `chord_slope` computes it from the unit data.
+    // The chord slope of segment s, as `chord_slope` computes it from the unit data (0/h =
+    // +0 but next to the moved point).
     let slope = |s: usize| (point(s + 1) - point(s)) / (knots[s + 1] - knots[s]);
-    // The rows of `row_with`, natural ends.
+    // The rows of `row_with`, natural ends. An interior row whose chords both miss the moved
+    // point has the right-hand side (+0·a + +0·b)·3 = +0 when the weights are finite.
     for (r, k) in (lo..=hi).enumerate() {
         let (l, d, u, rhs) = if k == 0 {
             (0.0, 2.0, 1.0, slope(0) * 3.0)
         } else if k + 1 == count {
             (1.0, 2.0, 0.0, slope(k - 1) * 3.0)
         } else {
-            let (h0, h1) = (knots[k] - knots[k - 1], knots[k + 1] - knots[k]);
-            let a = h1 / (h0 + h1);
-            let b = h0 / (h0 + h1);
-            (a, 2.0, b, (slope(k - 1) * a + slope(k) * b) * 3.0)
+            let (a, b) = weights[k];
+            let far = k + 1 < index || k > index + 1;
+            let rhs = if far && a.is_finite() && b.is_finite() {
+                0.0
+            } else {
+                (slope(k - 1) * a + slope(k) * b) * 3.0
+            };
+            (a, 2.0, b, rhs)
         };
         lower[r] = l;
         diag[r] = d;
