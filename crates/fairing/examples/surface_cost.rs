@@ -51,7 +51,10 @@ fn curves(count: usize) {
             .with_trace(false)
             .run(line.clone())
             .expect("the curve fairs");
-        println!("iterations {} termination {:?}", result.iterations, result.termination);
+        println!(
+            "iterations {} termination {:?}",
+            result.iterations, result.termination
+        );
         for p in &result.points {
             println!("{:x} {:x} {:x}", p.x.to_bits(), p.y.to_bits(), p.z.to_bits());
         }
@@ -71,7 +74,9 @@ fn main() {
     let settings = SurfaceFairingSettings::zhang_cheng()
         .with_fair_boundary(boundary)
         .with_max_steps(4);
-    let result = SurfaceFairing::new(settings).run(&net).expect("the bench's net fairs");
+    let result = SurfaceFairing::new(settings)
+        .run(&net)
+        .expect("the bench's net fairs");
     if dump {
         println!(
             "steps {} boundary_steps {} moved {} refused {} {} termination {:?}",
@@ -83,7 +88,12 @@ fn main() {
             result.termination
         );
         for s in &result.history {
-            println!("step {:x} {:x} {}", s.energy.to_bits(), s.max_z.to_bits(), s.moves);
+            println!(
+                "step {:x} {:x} {}",
+                s.energy.to_bits(),
+                s.max_z.to_bits(),
+                s.moves
+            );
         }
         for p in result.surface.points() {
             println!("{:x} {:x} {:x}", p.x.to_bits(), p.y.to_bits(), p.z.to_bits());

@@ -117,8 +117,8 @@ pub(super) fn open_tangents_in_place<const D: usize>(spline: &mut HermiteSpline<
     let (upper, scratch) = rest.split_at_mut(count);
     let values = &mut workspace.values[..count];
     rows_into(spline, 0, lower, diag, upper, values);
-    let solved =
-        tridiagonal::solve_in_place(lower, diag, upper, values, scratch).and_then(|()| check_tangents(values));
+    let solved = tridiagonal::solve_in_place(lower, diag, upper, values, scratch)
+        .and_then(|()| check_tangents(values));
     if solved.is_ok() {
         spline.tangents.clear();
         spline.tangents.extend_from_slice(values);

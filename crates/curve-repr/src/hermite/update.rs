@@ -379,10 +379,8 @@ pub(super) fn tangents_after_move<const D: usize>(
     let old = std::mem::replace(&mut spline.points[index], position);
     let mut window = [(0isize, 0isize)];
     let result = match plan(spline, &[(index, position)], &mut window) {
-        Some(_) => {
-            solve_planned(spline, &window, false)
-                .map(|rows| (window[0].0.rem_euclid(count as isize) as usize, rows))
-        }
+        Some(_) => solve_planned(spline, &window, false)
+            .map(|rows| (window[0].0.rem_euclid(count as isize) as usize, rows)),
         None => solve::tangents(spline).map(|all| {
             let values = &mut spline.workspace.values;
             values.clear();
@@ -686,13 +684,13 @@ mod tests {
                 }
             }
             // The overflowing pair failed on both and left the points as they were.
-            let refit: Vec<Vec2> = wave(count).iter().map(|p| p * 1.5 + Vec2::new(0.0, 0.2)).collect();
+            let refit: Vec<Vec2> = wave(count)
+                .iter()
+                .map(|p| p * 1.5 + Vec2::new(0.0, 0.2))
+                .collect();
             kept.refit(&refit).unwrap();
-            let rebuilt = HermiteSpline::new(
-                &refit,
-                &settings.clone().with_parameters(kept.knots().to_vec()),
-            )
-            .unwrap();
+            let rebuilt =
+                HermiteSpline::new(&refit, &settings.clone().with_parameters(kept.knots().to_vec())).unwrap();
             assert_eq!(bits(&kept), bits(&rebuilt), "{ends:?}, refit");
             let batch = [(30, Vec2::new(45.0, 2.0))];
             let mut fresh = kept.clone();

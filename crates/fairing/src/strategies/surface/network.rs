@@ -516,8 +516,18 @@ impl Network {
             }
             Ok(())
         };
-        solve_lines(self.columns.chunks_exact(u_count), &u_settings, u_count, &mut self.u_tangents)?;
-        solve_lines(points.chunks_exact(v_count), &v_settings, v_count, &mut self.v_tangents)?;
+        solve_lines(
+            self.columns.chunks_exact(u_count),
+            &u_settings,
+            u_count,
+            &mut self.u_tangents,
+        )?;
+        solve_lines(
+            points.chunks_exact(v_count),
+            &v_settings,
+            v_count,
+            &mut self.v_tangents,
+        )?;
         self.points.clear();
         self.points.extend_from_slice(points);
         self.recompute_energy();
