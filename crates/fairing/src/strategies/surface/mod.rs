@@ -134,7 +134,9 @@
 //!   point moved at 50² / 100² / 200² (the boundary fairing 1 610 / 770 / 290, the unit
 //!   responses 905 / 560 / 307); after: 7 300 / 6 970 / 6 680 (the boundary fairing
 //!   1 000 / 480 / 181, the unit responses 696 / 428 / 234), so 50 × 50 executes 1.09× the
-//!   instructions per point of 200 × 200 (1.20× before). A boundary curve step (544 of them
+//!   instructions per point of 200 × 200 (1.20× before); at 400² 6 620 after, ~6 860
+//!   before (cachegrind's count of the whole program less the net's construction), and the
+//!   D1 misses of the whole 400² program 81.5 M against 82.1 M. A boundary curve step (544 of them
 //!   at 50 × 50, 1 698 at 400 × 400) cost ~29 500 instructions, now ~18 400. It was no
 //!   O(n) work: the update window (~30 knots each side of the move, to the 1e-17 of
 //!   `hermite::update`) covers most of a 50-point boundary, and the cost was per row. The
