@@ -262,7 +262,16 @@ impl Constraints {
             return Ok(*original);
         }
         let radius = self.allowed_distance(index);
-        let held: Vec<usize> = (0..D).filter(|&k| proposed[k] == current[k]).collect();
+        // The coordinates the proposal leaves as they are (on the stack: a move is O(D)).
+        let mut held = [0; D];
+        let mut count = 0;
+        for k in 0..D {
+            if proposed[k] == current[k] {
+                held[count] = k;
+                count += 1;
+            }
+        }
+        let held = &held[..count];
         if held.is_empty() || held.len() == D || !radius.is_finite() {
             return Ok(project_into_ball(original, radius, proposed));
         }
@@ -270,7 +279,7 @@ impl Constraints {
         // held coordinates replaced, radius² = r² − (held offset)².
         let mut center = *original;
         let mut offset2 = 0.0;
-        for &k in &held {
+        for &k in held {
             center[k] = current[k];
             offset2 += (current[k] - original[k]).powi(2);
         }

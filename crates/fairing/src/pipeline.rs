@@ -259,6 +259,8 @@ impl<'a, const D: usize> Pipeline<'a, D> {
                 }
                 if self.record_trace {
                     trace.steps.push(record);
+                } else {
+                    state.recycle_moves(record.moves);
                 }
                 if self.satisfied.as_mut().is_some_and(|p| p(&state)) {
                     reports.push(report(TerminationReason::IndicatorSatisfied, state.iteration));

@@ -153,6 +153,16 @@ impl<const D: usize> FairingState<D> {
         std::mem::take(&mut self.pending)
     }
 
+    /// Gives back the storage of moves taken by [`take_moves`](Self::take_moves) and no
+    /// longer needed (the pipeline's, when no trace keeps them), so that the next step's
+    /// moves do not allocate.
+    pub(crate) fn recycle_moves(&mut self, mut moves: Vec<Move<D>>) {
+        if self.pending.capacity() == 0 {
+            moves.clear();
+            self.pending = moves;
+        }
+    }
+
     /// Takes the points out of the state at the end of a run.
     pub(crate) fn into_points(self) -> (Vec<Vector<D>>, Vec<Vector<D>>) {
         (self.points, self.original)

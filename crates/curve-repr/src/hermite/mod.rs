@@ -65,8 +65,11 @@ impl<const D: usize> Clone for HermiteSpline<D> {
         self.knots.clone_from(&source.knots);
         self.tangents.clone_from(&source.tangents);
         self.ends = source.ends;
-        // The knots may differ: the decay bounds of the windowed update are measured again.
+        // The knots may differ: the decay bounds of the windowed update are measured again,
+        // and the rows of the system built again.
         self.workspace.decays.clear();
+        self.workspace.weights.clear();
+        self.workspace.rows.clear();
     }
 }
 
@@ -123,6 +126,34 @@ impl<const D: usize> HermiteSpline<D> {
         };
         spline.tangents = solve::tangents(&spline)?;
         Ok(spline)
+    }
+
+    /// The spline [`new`](Self::new) builds through `points` (as many as this spline's) with
+    /// this spline's knots and ends, in this spline's storage: the same tangents bit for bit
+    /// (the same rows and elimination), without allocating once the storage has grown, so
+    /// that many lines over one knot vector (a surface's network) are solved one after
+    /// another. O(n).
+    ///
+    /// Errors: those of `new` on the points (a non-finite point; a singular system or an
+    /// overflowing tangent), and [`Error::LengthMismatch`] for another number of points. On
+    /// an error the spline's points and tangents are unspecified.
+    pub fn refit(&mut self, points: &[Vector<D>]) -> Result<()> {
+        crate::vector::check_finite(points)?;
+        if points.len() != self.points.len() {
+            return Err(Error::LengthMismatch {
+                what: "points",
+                expected: self.points.len(),
+                got: points.len(),
+            });
+        }
+        self.points.copy_from_slice(points);
+        self.workspace.rows.clear();
+        if self.is_closed() {
+            self.tangents = solve::tangents(self)?;
+            Ok(())
+        } else {
+            solve::open_tangents_in_place(self)
+        }
     }
 
     /// The natural spline over chord-length parameters (Zhang–Cheng §2; the `fair` report's

@@ -102,6 +102,31 @@ pub(super) fn tangents<const D: usize>(spline: &HermiteSpline<D>) -> Result<Vec<
     Ok(solution)
 }
 
+/// [`tangents`] of an open curve into the spline's tangents, solved in its workspace (grown
+/// as needed): the same rows and the same elimination as [`tridiagonal::solve`], so the
+/// same bits, without allocating. The tangents are written only when the solve succeeds.
+pub(super) fn open_tangents_in_place<const D: usize>(spline: &mut HermiteSpline<D>) -> Result<()> {
+    let count = spline.points.len();
+    let mut workspace = std::mem::take(&mut spline.workspace);
+    if workspace.values.len() < count {
+        workspace.numbers.resize(4 * count, 0.0);
+        workspace.values.resize(count, Vector::<D>::zeros());
+    }
+    let (lower, rest) = workspace.numbers[..4 * count].split_at_mut(count);
+    let (diag, rest) = rest.split_at_mut(count);
+    let (upper, scratch) = rest.split_at_mut(count);
+    let values = &mut workspace.values[..count];
+    rows_into(spline, 0, lower, diag, upper, values);
+    let solved = tridiagonal::solve_in_place(lower, diag, upper, values, scratch)
+        .and_then(|()| check_tangents(values));
+    if solved.is_ok() {
+        spline.tangents.clear();
+        spline.tangents.extend_from_slice(values);
+    }
+    spline.workspace = workspace;
+    solved
+}
+
 /// Rows `start`, `start + 1`, … (modulo the point count for a closed curve; as many as the
 /// slices hold) of the system, as [`HermiteSpline::row_with`] gives them (the same
 /// operations, so the same bits), with the right-hand sides in `values`. An interior row
@@ -161,13 +186,15 @@ pub(super) struct WindowRows<'a, const D: usize> {
 }
 
 /// Solves rows `start..start + len` (indices modulo the point count for a closed curve,
-/// `len` the length of `rows`' slices) for their tangents, holding the tangents just outside
+/// `len` the length of `rows`' slices) for their tangents, the rows taken from `cache`
+/// where it knows them (see the workspace's `rows`) and built from the points otherwise, holding the tangents just outside
 /// the window at their current values; the tangents are left in `rows.values`. O(len), no
 /// allocation. The window must not cover a closed curve's every row.
 pub(super) fn window<const D: usize>(
     spline: &HermiteSpline<D>,
     start: usize,
     rows: WindowRows<'_, D>,
+    cache: Option<&mut [Option<Row<D>>]>,
 ) -> Result<()> {
     let WindowRows {
         lower,
@@ -182,7 +209,25 @@ pub(super) fn window<const D: usize>(
     if len == 0 {
         return Ok(());
     }
-    rows_into(spline, start, lower, diag, upper, values);
+    match cache {
+        // The rows known for the current points copied, the others built (by `row_with`,
+        // the same bits as `rows_into`) and kept.
+        Some(cache) => {
+            let mut i = start;
+            for k in 0..len {
+                let row = *cache[i].get_or_insert_with(|| spline.row_with(i, None).0);
+                lower[k] = row.lower;
+                diag[k] = row.diag;
+                upper[k] = row.upper;
+                values[k] = row.rhs;
+                i += 1;
+                if i == count {
+                    i = 0;
+                }
+            }
+        }
+        None => rows_into(spline, start, lower, diag, upper, values),
+    }
     // Boundary tangents move to the right-hand side (their coefficients are 0 at open ends).
     if lower[0] != 0.0 {
         let outside = spline.tangents[(start + count - 1) % count];

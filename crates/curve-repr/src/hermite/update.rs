@@ -115,13 +115,24 @@ const STACK_MOVES: usize = 4;
 #[derive(Default)]
 pub(super) struct Workspace<const D: usize> {
     /// Four f64 per row: the three diagonals and the Thomas algorithm's scratch.
-    numbers: Vec<f64>,
+    pub(super) numbers: Vec<f64>,
     /// The right-hand sides, then the tangents.
     pub(super) values: Vec<Vector<D>>,
     /// The decay bounds of [`window_of`] at every row, forward and backward ([`decays_of`]):
     /// they depend on the knots only. Empty until the first move, and after
     /// [`Clone::clone_from`] (which may change the knots).
     pub(super) decays: Vec<(f64, f64)>,
+    /// The rows of the tangent system for the current points, where known (filled as the
+    /// windowed updates read them): a move of P_j changes only rows j − 1, j, j + 1, so a
+    /// window's other rows are copied rather than rebuilt (the same bits:
+    /// [`HermiteSpline::row_with`] is what the solve builds). Cleared whenever the points
+    /// change otherwise (a failed move, [`Clone::clone_from`],
+    /// [`HermiteSpline::refit`]).
+    pub(super) rows: Vec<Option<solve::Row<D>>>,
+    /// The weights (a_k, b_k) = (h_k, h_{k−1})/(h_{k−1} + h_k) of the rows of an open
+    /// natural line, for [`unit_move_tangents`]: they depend on the knots only. Empty until
+    /// the first unit move, and after [`Clone::clone_from`].
+    pub(super) weights: Vec<(f64, f64)>,
 }
 
 impl<const D: usize> PartialEq for Workspace<D> {
@@ -177,11 +188,23 @@ pub(super) fn move_points<const D: usize>(
         *old = (index, spline.points[index]);
         spline.points[index] = position;
     }
+    // The rows a moved point enters (its own and its neighbours') are built anew.
+    let rows = &mut spline.workspace.rows;
+    if rows.len() == count {
+        for &(index, _) in moves {
+            let previous = if index == 0 { count - 1 } else { index - 1 };
+            let next = if index + 1 == count { 0 } else { index + 1 };
+            for row in [previous, index, next] {
+                rows[row] = None;
+            }
+        }
+    }
     let result = update_tangents(spline, moves);
     if result.is_err() {
         for &(index, position) in old_points.iter().rev() {
             spline.points[index] = position;
         }
+        spline.workspace.rows.clear();
     }
     result
 }
@@ -192,8 +215,14 @@ fn solve_windows<const D: usize>(
     windows: &[(isize, isize)],
     total: usize,
     workspace: &mut Workspace<D>,
+    cached: bool,
 ) -> Result<()> {
     let count = spline.points.len() as isize;
+    if cached && workspace.rows.len() != count as usize {
+        workspace.rows.clear();
+        workspace.rows.resize(count as usize, None);
+    }
+    let mut cache = cached.then_some(&mut workspace.rows[..]);
     let (lower, rest) = workspace.numbers[..4 * total].split_at_mut(total);
     let (diag, rest) = rest.split_at_mut(total);
     let (upper, scratch) = rest.split_at_mut(total);
@@ -209,7 +238,7 @@ fn solve_windows<const D: usize>(
             scratch: &mut scratch[range.clone()],
             values: &mut values[range.clone()],
         };
-        solve::window(spline, start, rows)?;
+        solve::window(spline, start, rows, cache.as_deref_mut())?;
         offset = range.end;
     }
     Ok(())
@@ -276,7 +305,11 @@ fn plan<const D: usize>(
 
 /// Solves the merged `windows` into the spline's workspace (grown as needed), in order;
 /// returns the rows solved in all.
-fn solve_planned<const D: usize>(spline: &mut HermiteSpline<D>, windows: &[(isize, isize)]) -> Result<usize> {
+fn solve_planned<const D: usize>(
+    spline: &mut HermiteSpline<D>,
+    windows: &[(isize, isize)],
+    cached: bool,
+) -> Result<usize> {
     let total = windows
         .iter()
         .map(|(lo, hi)| (hi - lo + 1) as usize)
@@ -286,7 +319,7 @@ fn solve_planned<const D: usize>(spline: &mut HermiteSpline<D>, windows: &[(isiz
         workspace.numbers.resize(4 * total, 0.0);
         workspace.values.resize(total, Vector::<D>::zeros());
     }
-    let solved = solve_windows(spline, windows, total, &mut workspace);
+    let solved = solve_windows(spline, windows, total, &mut workspace, cached);
     spline.workspace = workspace;
     solved.map(|()| total)
 }
@@ -313,15 +346,17 @@ fn update_tangents<const D: usize>(
         return Ok(Some((0, count as usize - 1)));
     };
     let windows = &windows[..merged];
-    solve_planned(spline, windows)?;
+    solve_planned(spline, windows, true)?;
     let total = spline.points.len();
     let mut offset = 0;
     for &(lo, hi) in windows {
         let start = lo.rem_euclid(count) as usize;
         let len = (hi - lo + 1) as usize;
-        for (k, &value) in spline.workspace.values[offset..offset + len].iter().enumerate() {
-            spline.tangents[(start + k) % total] = value;
-        }
+        // The rows start.. to the end of the line, then (round a closed one) from row 0.
+        let values = &spline.workspace.values[offset..offset + len];
+        let first = len.min(total - start);
+        spline.tangents[start..start + first].copy_from_slice(&values[..first]);
+        spline.tangents[..len - first].copy_from_slice(&values[first..]);
         offset += len;
     }
     let (first, last) = (windows[0].0, windows[windows.len() - 1].1);
@@ -344,9 +379,8 @@ pub(super) fn tangents_after_move<const D: usize>(
     let old = std::mem::replace(&mut spline.points[index], position);
     let mut window = [(0isize, 0isize)];
     let result = match plan(spline, &[(index, position)], &mut window) {
-        Some(_) => {
-            solve_planned(spline, &window).map(|rows| (window[0].0.rem_euclid(count as isize) as usize, rows))
-        }
+        Some(_) => solve_planned(spline, &window, false)
+            .map(|rows| (window[0].0.rem_euclid(count as isize) as usize, rows)),
         None => solve::tangents(spline).map(|all| {
             let values = &mut spline.workspace.values;
             values.clear();
@@ -385,20 +419,38 @@ pub(super) fn unit_move_tangents(spline: &mut HermiteSpline<1>, index: usize) ->
     let (upper, scratch) = rest.split_at_mut(len);
     let values = &mut workspace.values[..len];
     let knots = &spline.knots;
+    if workspace.weights.len() != count {
+        workspace.weights.clear();
+        workspace.weights.extend((0..count).map(|k| {
+            if k == 0 || k + 1 == count {
+                (0.0, 0.0)
+            } else {
+                let (h0, h1) = (knots[k] - knots[k - 1], knots[k + 1] - knots[k]);
+                (h1 / (h0 + h1), h0 / (h0 + h1))
+            }
+        }));
+    }
+    let weights = &workspace.weights;
     let point = |k: usize| if k == index { 1.0 } else { 0.0 };
-    // The chord slope of segment s, as `chord_slope` computes it from the unit data.
+    // The chord slope of segment s, as `chord_slope` computes it from the unit data (0/h =
+    // +0 but next to the moved point).
     let slope = |s: usize| (point(s + 1) - point(s)) / (knots[s + 1] - knots[s]);
-    // The rows of `row_with`, natural ends.
+    // The rows of `row_with`, natural ends. An interior row whose chords both miss the moved
+    // point has the right-hand side (+0·a + +0·b)·3 = +0 when the weights are finite.
     for (r, k) in (lo..=hi).enumerate() {
         let (l, d, u, rhs) = if k == 0 {
             (0.0, 2.0, 1.0, slope(0) * 3.0)
         } else if k + 1 == count {
             (1.0, 2.0, 0.0, slope(k - 1) * 3.0)
         } else {
-            let (h0, h1) = (knots[k] - knots[k - 1], knots[k + 1] - knots[k]);
-            let a = h1 / (h0 + h1);
-            let b = h0 / (h0 + h1);
-            (a, 2.0, b, (slope(k - 1) * a + slope(k) * b) * 3.0)
+            let (a, b) = weights[k];
+            let far = k + 1 < index || k > index + 1;
+            let rhs = if far && a.is_finite() && b.is_finite() {
+                0.0
+            } else {
+                (slope(k - 1) * a + slope(k) * b) * 3.0
+            };
+            (a, 2.0, b, rhs)
         };
         lower[r] = l;
         diag[r] = d;
@@ -563,6 +615,89 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    /// The rows a spline keeps between moves change no bit: a long run of moves (single,
+    /// adjacent pairs, at the ends, across a closed curve's seam, a failed one) on one
+    /// spline gives the tangents and windows of the same moves on a fresh copy (no rows
+    /// kept) and of the trial move (rows built from the points every time); a refit gives
+    /// the spline built through the new points, and moves after it agree again.
+    #[test]
+    fn kept_rows_change_no_bit() {
+        let bits = |s: &HermiteSpline<2>| -> Vec<u64> {
+            s.tangents
+                .iter()
+                .chain(&s.points)
+                .flat_map(|v| v.iter().map(|c| c.to_bits()).collect::<Vec<_>>())
+                .collect()
+        };
+        for ends in [
+            HermiteEnds::Natural,
+            HermiteEnds::ParabolicRunout,
+            HermiteEnds::Clamped {
+                start: Vec2::new(1.0, 0.5),
+                end: Vec2::new(-0.5, 1.0),
+            },
+            HermiteEnds::Closed,
+        ] {
+            let count = 120;
+            let settings = HermiteSettings::default().with_ends(ends);
+            let mut kept = HermiteSpline::new(&wave(count), &settings).unwrap();
+            let mut moves: Vec<Vec<(usize, Vec2)>> = (0..60)
+                .map(|k| {
+                    let index = (k * 37 + 5) % count;
+                    let shift = Vec2::new(0.3 * (k as f64).sin(), 0.2 * (k as f64 * 1.7).cos());
+                    vec![(index, kept.points[index] + shift)]
+                })
+                .collect();
+            moves.extend([
+                vec![(0, Vec2::new(0.1, 0.4))],
+                vec![(count - 1, Vec2::new(119.0, -0.3))],
+                vec![(1, Vec2::new(1.2, 0.1)), (2, Vec2::new(2.1, -0.2))],
+                vec![(count - 1, Vec2::new(118.8, 0.2)), (0, Vec2::new(-0.1, 0.0))],
+                vec![(60, Vec2::new(60.0, 1e308)), (61, Vec2::new(61.0, -1e308))],
+                vec![(59, Vec2::new(59.0, 0.5)), (60, Vec2::new(60.2, 0.1))],
+                vec![(61, Vec2::new(61.0, 0.3))],
+            ]);
+            for (step, batch) in moves.iter().enumerate() {
+                let mut fresh = kept.clone();
+                let trial = (batch.len() == 1).then(|| {
+                    let mut copy = kept.clone();
+                    let (first, rows) = copy.tangents_after_move(batch[0].0, batch[0].1).unwrap();
+                    (first, rows.to_vec())
+                });
+                let (a, b) = (kept.move_points_within(batch), fresh.move_points_within(batch));
+                assert_eq!(a.is_ok(), b.is_ok(), "{ends:?}, step {step}");
+                assert_eq!(bits(&kept), bits(&fresh), "{ends:?}, step {step}");
+                if let (Ok(wa), Ok(wb)) = (&a, &b) {
+                    assert_eq!(wa, wb, "{ends:?}, step {step}");
+                }
+                if let (Ok(Some((lo, hi))), Some((first, rows))) = (a, trial) {
+                    if lo <= hi {
+                        assert_eq!((first, first + rows.len() - 1), (lo, hi), "{ends:?}, step {step}");
+                        for (k, t) in rows.iter().enumerate() {
+                            let m = kept.tangents[first + k];
+                            assert!(t.iter().zip(m.iter()).all(|(x, y)| x.to_bits() == y.to_bits()));
+                        }
+                    }
+                }
+            }
+            // The overflowing pair failed on both and left the points as they were.
+            let refit: Vec<Vec2> = wave(count)
+                .iter()
+                .map(|p| p * 1.5 + Vec2::new(0.0, 0.2))
+                .collect();
+            kept.refit(&refit).unwrap();
+            let rebuilt =
+                HermiteSpline::new(&refit, &settings.clone().with_parameters(kept.knots().to_vec())).unwrap();
+            assert_eq!(bits(&kept), bits(&rebuilt), "{ends:?}, refit");
+            let batch = [(30, Vec2::new(45.0, 2.0))];
+            let mut fresh = kept.clone();
+            kept.move_points(&batch).unwrap();
+            fresh.move_points(&batch).unwrap();
+            assert_eq!(bits(&kept), bits(&fresh), "{ends:?}, after the refit");
+            assert!(kept.refit(&refit[1..]).is_err());
         }
     }
 

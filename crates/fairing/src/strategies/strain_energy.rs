@@ -10,13 +10,11 @@
 //!
 //! Knots are fixed during fairing: the spline is built once with the chosen
 //! [`Parametrization`] and updated by [`HermiteSpline::move_points_within`] (O(window)). The
-//! indicator, the energy and the max-heap are updated only over the rows whose tangents that
-//! update re-solved (at most [`WINDOW`] knots on each side of a move), and a z that did not
-//! change keeps its heap entry, so a step costs O(window · log) independent of n and
-//! allocates nothing.
+//! indicator, the energy and the tree of the worst point are updated only over the rows whose
+//! tangents that update re-solved (at most [`WINDOW`] knots on each side of a move), so a
+//! step costs O(window + log n) independent of n and allocates nothing.
 
 use std::cmp::Ordering;
-use std::collections::BinaryHeap;
 
 use curve_repr::{Curve, HermiteSettings, HermiteSpline, Parametrization, Vector};
 
@@ -197,30 +195,79 @@ impl StrainEnergySettings {
     }
 }
 
-/// Heap entry: (z, index, stamp); stale entries are skipped lazily.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Entry(f64, usize, u64);
-impl Eq for Entry {}
-impl PartialOrd for Entry {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for Entry {
-    fn cmp(&self, other: &Self) -> Ordering {
-        self.0.total_cmp(&other.0).then(other.1.cmp(&self.1))
-    }
+/// The worst candidate of the automatic mode, kept as a tournament (winner) tree over the
+/// points: every leaf is a point that can still move (or none), every inner node the winner
+/// of its two children, the larger z by [`f64::total_cmp`] and on a tie the smaller index,
+/// so the root is the point a full scan of z would pick (the order a max-heap of (z, index)
+/// gives; the lazy heap it replaces gave the same). A refresh that changed z over a run of
+/// points replays the matches above them only: O(run + log n), where the heap took a push
+/// per changed z and skipped the stale entries at every pop.
+#[derive(Clone, Debug, Default)]
+struct Tournament {
+    /// Leaves: a power of two ≥ the number of points.
+    leaves: usize,
+    /// Node v's winner (a point index, or [`Tournament::NONE`]); the root is node 1, the
+    /// leaf of point k node `leaves + k`.
+    nodes: Vec<usize>,
 }
 
-/// Sets z_k and, when it changed (or was never set: stamp 0), pushes its new heap entry (the
-/// new stamp makes the old entry stale).
-fn set_z(z: &mut [f64], stamp: &mut [u64], heap: &mut BinaryHeap<Entry>, k: usize, value: f64) {
-    if let (Some(zs), Some(st)) = (z.get_mut(k), stamp.get_mut(k)) {
-        if zs.to_bits() != value.to_bits() || *st == 0 {
-            *zs = value;
-            *st += 1;
-            heap.push(Entry(value, k, *st));
+impl Tournament {
+    const NONE: usize = usize::MAX;
+
+    /// A tree whose candidates are the points k with `!blocked[k]`. O(n).
+    fn new(z: &[f64], blocked: &[bool]) -> Self {
+        let leaves = z.len().next_power_of_two();
+        let mut nodes = vec![Self::NONE; 2 * leaves];
+        for (k, &b) in blocked.iter().enumerate().take(z.len()) {
+            if !b {
+                nodes[leaves + k] = k;
+            }
         }
+        let mut tree = Self { leaves, nodes };
+        if !z.is_empty() {
+            tree.replay(z, 0, z.len() - 1);
+        }
+        tree
+    }
+
+    /// The winner of two nodes' winners.
+    fn winner(z: &[f64], a: usize, b: usize) -> usize {
+        if a == Self::NONE {
+            return b;
+        }
+        if b == Self::NONE {
+            return a;
+        }
+        match z[a].total_cmp(&z[b]) {
+            Ordering::Greater => a,
+            Ordering::Less => b,
+            Ordering::Equal => a.min(b),
+        }
+    }
+
+    /// Replays the matches above the leaves of points `first..=last` (after their z or
+    /// candidacy changed). O(last − first + log n).
+    fn replay(&mut self, z: &[f64], first: usize, last: usize) {
+        let (mut lo, mut hi) = ((self.leaves + first) / 2, (self.leaves + last) / 2);
+        while lo >= 1 {
+            for v in lo..=hi {
+                self.nodes[v] = Self::winner(z, self.nodes[2 * v], self.nodes[2 * v + 1]);
+            }
+            (lo, hi) = (lo / 2, hi / 2);
+        }
+    }
+
+    /// Makes point k a candidate or not. O(log n).
+    fn set_candidate(&mut self, z: &[f64], k: usize, candidate: bool) {
+        if let Some(leaf) = self.nodes.get_mut(self.leaves + k) {
+            *leaf = if candidate { k } else { Self::NONE };
+            self.replay(z, k, k);
+        }
+    }
+
+    /// The candidate of the largest z (the smallest index among equals), if any. O(1).
+    fn best(&self) -> Option<usize> {
+        self.nodes.get(1).copied().filter(|&k| k != Self::NONE)
     }
 }
 
@@ -232,8 +279,8 @@ pub struct StrainEnergy<const D: usize> {
     spline: Option<HermiteSpline<D>>,
     /// z_k for every point (0 at the ends).
     z: Vec<f64>,
-    stamp: Vec<u64>,
-    heap: BinaryHeap<Entry>,
+    /// The unblocked point of largest z (automatic mode).
+    worst: Tournament,
     /// Points that can no longer move (stuck on their region); skipped by the automatic mode.
     blocked: Vec<bool>,
     /// Restraining radii of the automatic mode.
@@ -259,8 +306,7 @@ impl<const D: usize> StrainEnergy<D> {
             name: name.to_owned(),
             spline: None,
             z: Vec::new(),
-            stamp: Vec::new(),
-            heap: BinaryHeap::new(),
+            worst: Tournament::default(),
             blocked: Vec::new(),
             radii: Vec::new(),
             segment_energy: Vec::new(),
@@ -305,11 +351,10 @@ impl<const D: usize> StrainEnergy<D> {
 
     /// Recomputes what depends on the points and tangents of rows `first..=last` (those a
     /// move changed): the segment energies of segments first − 1..=last and z at knots
-    /// first − 1..=last + 1, and updates the energy and the heap. Everything else is
-    /// unchanged bit for bit, so recomputing it would give the same values: the energy's
-    /// running sum gets the same nonzero terms in the same order, and a z whose value did
-    /// not change keeps its heap entry (the live entries, and so the order of the moves, are
-    /// the same as pushing it anew). No allocation with the paper's indicator.
+    /// first − 1..=last + 1, and updates the energy and the tree of the worst point.
+    /// Everything else is unchanged bit for bit, so recomputing it would give the same
+    /// values: the energy's running sum gets the same nonzero terms in the same order. No
+    /// allocation with the paper's indicator.
     fn refresh(&mut self, first: usize, last: usize) -> Result<()> {
         let Some(spline) = self.spline.as_ref() else {
             return Err(strategy_error(&self.name, "step before init"));
@@ -348,38 +393,55 @@ impl<const D: usize> StrainEnergy<D> {
             }
             None => None,
         };
-        for s in lo..=last.min(segs.saturating_sub(1)) {
-            let e = segment_energy(spline, s);
-            if let Some(slot) = self.segment_energy.get_mut(s) {
-                self.energy += e - *slot;
-                *slot = e;
+        let energy_last = last.min(segs.saturating_sub(1));
+        let (from, to) = (lo.max(1), (last + 1).min(n.saturating_sub(2)));
+        if values.is_some() || from > to {
+            for s in lo..=energy_last {
+                let e = segment_energy(spline, s);
+                if let Some(slot) = self.segment_energy.get_mut(s) {
+                    self.energy += e - *slot;
+                    *slot = e;
+                }
             }
         }
         match values {
             Some((values, offset)) => {
                 for k in 1..n.saturating_sub(1) {
-                    set_z(
-                        &mut self.z,
-                        &mut self.stamp,
-                        &mut self.heap,
-                        k,
-                        values[k - offset],
-                    );
-                }
-            }
-            None => {
-                // z_k = |jump(k)|, each segment's third derivative computed once.
-                let (from, to) = (lo.max(1), (last + 1).min(n.saturating_sub(2)));
-                if from <= to {
-                    let mut before = third(spline, from - 1);
-                    for k in from..=to {
-                        let after = third(spline, k);
-                        let z = (after - before).norm();
-                        before = after;
-                        set_z(&mut self.z, &mut self.stamp, &mut self.heap, k, z);
+                    if let Some(z) = self.z.get_mut(k) {
+                        *z = values[k - offset];
                     }
                 }
+                if n >= 3 {
+                    self.worst.replay(&self.z, 1, n - 2);
+                }
             }
+            None if from <= to => {
+                // One pass over the segments from − 1..=to (those of the energies, lo..=
+                // energy_last, among them): each segment's chord slope, its C‴ and, in the
+                // energies' range, its energy, each once; z_k = |C‴_k − C‴_{k−1}|. The same
+                // operations as `segment_energy` and `third`, so the same bits, and the
+                // energy's running sum takes its terms in the same order.
+                let (p, t, m) = (spline.points(), spline.knots(), spline.tangents());
+                let mut before: Option<Vector<D>> = None;
+                for s in from - 1..=to {
+                    let h = t[s + 1] - t[s];
+                    let d = (p[s + 1] - p[s]) / h;
+                    if (lo..=energy_last).contains(&s) {
+                        let e = hermite_energy_of_slope(d, m[s], m[s + 1], h);
+                        if let Some(slot) = self.segment_energy.get_mut(s) {
+                            self.energy += e - *slot;
+                            *slot = e;
+                        }
+                    }
+                    let after = third_of_slope(d, m[s], m[s + 1], h);
+                    if let Some(before) = before {
+                        self.z[s] = (after - before).norm();
+                    }
+                    before = Some(after);
+                }
+                self.worst.replay(&self.z, from, to);
+            }
+            None => {}
         }
         Ok(())
     }
@@ -397,54 +459,35 @@ impl<const D: usize> StrainEnergy<D> {
         }
     }
 
-    /// The worst unblocked candidate, dropping stale entries. The lazy heap is rebuilt from z
-    /// (in its own storage, the blocked points left out: they are never candidates again)
-    /// when it holds more than 2n + 64 entries, amortised O(1) per pushed entry; the live
-    /// entries, and so the order of the moves, do not depend on when.
+    /// The worst unblocked candidate (the largest z, the smallest index among equals), or
+    /// none when its z is not positive and finite. O(1).
     fn pop_worst(&mut self) -> Option<usize> {
-        if self.heap.len() > 2 * self.z.len() + 64 {
-            let mut entries = std::mem::take(&mut self.heap).into_vec();
-            entries.clear();
-            entries.extend(
-                self.z
-                    .iter()
-                    .zip(&self.stamp)
-                    .zip(&self.blocked)
-                    .enumerate()
-                    .filter(|(_, (_, &blocked))| !blocked)
-                    .map(|(k, ((&z, &stamp), _))| Entry(z, k, stamp)),
-            );
-            self.heap = BinaryHeap::from(entries);
+        let k = self.worst.best()?;
+        let z = self.z[k];
+        if !z.is_finite() || z <= 0.0 {
+            return None;
         }
-        while let Some(Entry(z, k, st)) = self.heap.pop() {
-            if self.stamp.get(k) == Some(&st) && !self.blocked.get(k).copied().unwrap_or(true) {
-                if !z.is_finite() || z <= 0.0 {
-                    return None;
-                }
-                // keep it in the heap: it is current
-                self.heap.push(Entry(z, k, st));
-                return Some(k);
-            }
-        }
-        None
+        Some(k)
     }
 
-    /// Proposed replacement of the points `ks` (one, or two adjacent) per the settings.
-    fn target(&mut self, ks: &[usize]) -> Result<Vec<Vector<D>>> {
+    /// Proposed replacement of the points `ks` (one, or two adjacent) per the settings, the
+    /// first `ks.len()` entries.
+    fn target(&mut self, ks: &[usize]) -> Result<[Vector<D>; 2]> {
         let spline = self.spline_ref()?;
+        let zero = Vector::<D>::zeros();
         match (self.settings.replacement, ks) {
-            (Replacement::Iterated, [k]) => Ok(vec![eq8(spline, *k)]),
+            (Replacement::Iterated, [k]) => Ok([eq8(spline, *k), zero]),
             (Replacement::Iterated, [k, _]) => {
                 let (a, b) = eq13(spline, *k);
-                Ok(vec![a, b])
+                Ok([a, b])
             }
             (Replacement::Limit, [k]) => {
                 let p = self.limit_one(*k)?;
-                Ok(vec![p])
+                Ok([p, zero])
             }
             (Replacement::Limit, [k, _]) => {
                 let (a, b) = self.limit_two(*k)?;
-                Ok(vec![a, b])
+                Ok([a, b])
             }
             _ => Err(strategy_error(&self.name, "bad point set")),
         }
@@ -486,7 +529,8 @@ impl<const D: usize> StrainEnergy<D> {
         ks: &[usize],
         targets: &[Vector<D>],
     ) -> Result<(bool, bool)> {
-        let mut moves = Vec::new();
+        let mut moves = [(0, Vector::<D>::zeros()); 2];
+        let mut count = 0;
         let mut limited = false;
         for (&k, t) in ks.iter().zip(targets) {
             if !t.iter().all(|x| x.is_finite()) {
@@ -502,13 +546,14 @@ impl<const D: usize> StrainEnergy<D> {
             let to = state.move_point(k, proposed)?;
             limited |= to != *t;
             if to != before {
-                moves.push((k, to));
+                moves[count] = (k, to);
+                count += 1;
             }
         }
-        if moves.is_empty() {
+        if count == 0 {
             return Ok((false, limited));
         }
-        self.apply(&moves)?;
+        self.apply(&moves[..count])?;
         Ok((true, limited))
     }
 }
@@ -530,11 +575,10 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
         let spline = HermiteSpline::new(state.points(), &settings)?;
         let n = state.len();
         self.z = vec![0.0; n];
-        self.stamp = vec![0; n];
-        self.heap = BinaryHeap::new();
         self.blocked = (0..n)
             .map(|k| k == 0 || k + 1 >= n || !state.is_movable(k))
             .collect();
+        self.worst = Tournament::new(&self.z, &self.blocked);
         self.segment_energy = spline.segment_energies();
         self.energy = self.segment_energy.iter().sum();
         self.stiffness = stiffness_band(&spline)
@@ -586,12 +630,13 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
             return Err(strategy_error(&self.name, "step before init"));
         }
         let before = self.energy;
-        let ks: Vec<usize> = match self.settings.mode.clone() {
+        // The point or pair of this step, on the stack (a step allocates nothing).
+        let (group, size): ([usize; 2], usize) = match self.settings.mode.clone() {
             Mode::Automatic => {
                 let Some(k) = self.pop_worst() else {
                     return Ok(StepOutcome::done(Some(self.energy)));
                 };
-                let mut ks = vec![k];
+                let mut ks = ([k, 0], 1);
                 if self.settings.pairs {
                     let zl = if self.blocked.get(k - 1) == Some(&false) {
                         self.z[k - 1]
@@ -606,9 +651,9 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
                     // step 1.3: pair with the neighbour when it is the second worst
                     let second = self.second_worst(k);
                     if second == Some(k + 1) && zr > 0.0 {
-                        ks = vec![k, k + 1];
+                        ks = ([k, k + 1], 2);
                     } else if second == Some(k - 1) && zl > 0.0 {
-                        ks = vec![k - 1, k];
+                        ks = ([k - 1, k], 2);
                     }
                 }
                 ks
@@ -621,26 +666,31 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
                 order.sort_by(|a, b| self.z[*b].total_cmp(&self.z[*a]).then(a.cmp(b)));
                 let first = order[0];
                 let ks = match order.get(1) {
-                    Some(&s) if s.abs_diff(first) == 1 => vec![first.min(s), first.max(s)],
-                    _ => vec![first],
+                    Some(&s) if s.abs_diff(first) == 1 => ([first.min(s), first.max(s)], 2),
+                    _ => ([first, 0], 1),
                 };
                 if self.settings.replacement == Replacement::Limit {
-                    self.pending.retain(|k| !ks.contains(k));
+                    self.pending.retain(|k| !ks.0[..ks.1].contains(k));
                 }
                 ks
             }
         };
-        let targets = self.target(&ks)?;
-        let old: Vec<Vector<D>> = ks.iter().map(|&k| state.points()[k]).collect();
-        let (mut moved, limited) = self.commit(state, &ks, &targets)?;
+        let ks = &group[..size];
+        let targets = self.target(ks)?;
+        let targets = &targets[..size];
+        let mut old = [Vector::<D>::zeros(); 2];
+        for (o, &k) in old.iter_mut().zip(ks) {
+            *o = state.points()[k];
+        }
+        let (mut moved, limited) = self.commit(state, ks, targets)?;
         // Guard for Theorem 1: a single point's energy is isotropic in P_k, so cutting its move
         // by a convex region never raises E; a pair's is not, so a cut pair move can. Undo it.
         if moved && self.energy > before {
-            let mut back = Vec::new();
-            for (&k, &p) in ks.iter().zip(&old) {
-                back.push((k, state.move_point(k, p)?));
+            let mut back = [(0, Vector::<D>::zeros()); 2];
+            for ((b, &k), &p) in back.iter_mut().zip(ks).zip(&old) {
+                *b = (k, state.move_point(k, p)?);
             }
-            self.apply(&back)?;
+            self.apply(&back[..size])?;
             moved = false;
         }
         // Choice where §3.3 is silent: a point whose move its restraining region (or a
@@ -648,9 +698,10 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
         // the automatic search, and its step does not count for the stopping test (else the
         // first saturated worst point, moving by a sliver, would end the whole run).
         if self.settings.mode == Mode::Automatic && (limited || !moved) {
-            for &k in &ks {
+            for &k in ks {
                 if let Some(b) = self.blocked.get_mut(k) {
                     *b = true;
+                    self.worst.set_candidate(&self.z, k, false);
                 }
             }
             return Ok(StepOutcome::running(Some(self.energy)));
@@ -673,19 +724,13 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
 
 impl<const D: usize> StrainEnergy<D> {
     /// The second worst unblocked point, looking only at the two neighbours of `k` and the
-    /// heap top after `k`: a neighbour is "second worst" when its z is at least that of every
-    /// other candidate. O(log) amortised.
+    /// worst candidate other than `k`: a neighbour is "second worst" when its z is at least
+    /// that of every other candidate. O(log n).
     fn second_worst(&mut self, k: usize) -> Option<usize> {
-        let top = self.heap.pop()?;
-        let mut second = None;
-        while let Some(Entry(z, j, st)) = self.heap.peek().copied() {
-            if self.stamp.get(j) == Some(&st) && !self.blocked.get(j).copied().unwrap_or(true) && j != k {
-                second = Some((z, j));
-                break;
-            }
-            self.heap.pop();
-        }
-        self.heap.push(top);
+        let candidate = self.blocked.get(k) == Some(&false);
+        self.worst.set_candidate(&self.z, k, false);
+        let second = self.worst.best().map(|j| (self.z[j], j));
+        self.worst.set_candidate(&self.z, k, candidate);
         let (z2, j2) = second?;
         for nb in [k + 1, k - 1] {
             if self.blocked.get(nb) == Some(&false) && self.z.get(nb).copied().unwrap_or(-1.0) >= z2 {
@@ -701,7 +746,12 @@ fn third<const D: usize>(spline: &HermiteSpline<D>, s: usize) -> Vector<D> {
     let (p, t, m) = (spline.points(), spline.knots(), spline.tangents());
     let h = t[s + 1] - t[s];
     let d = (p[s + 1] - p[s]) / h;
-    ((m[s] + m[s + 1]) * 6.0 - d * 12.0) / (h * h)
+    third_of_slope(d, m[s], m[s + 1], h)
+}
+
+/// [`third`] from the segment's chord slope d, end tangents and length h.
+fn third_of_slope<const D: usize>(d: Vector<D>, m0: Vector<D>, m1: Vector<D>, h: f64) -> Vector<D> {
+    ((m0 + m1) * 6.0 - d * 12.0) / (h * h)
 }
 
 /// J_k = C'''(t_k+) − C'''(t_k−) at interior point k.
@@ -723,7 +773,11 @@ pub fn hermite_energy<const D: usize>(
     m1: Vector<D>,
     h: f64,
 ) -> f64 {
-    let d = (p1 - p0) / h;
+    hermite_energy_of_slope((p1 - p0) / h, m0, m1, h)
+}
+
+/// [`hermite_energy`] from the segment's chord slope d = (P1 − P0)/h.
+fn hermite_energy_of_slope<const D: usize>(d: Vector<D>, m0: Vector<D>, m1: Vector<D>, h: f64) -> f64 {
     let a = (d * 6.0 - m0 * 4.0 - m1 * 2.0) / h;
     let b = (m0 * 2.0 + m1 * 4.0 - d * 6.0) / h;
     h * (a.norm_squared() + a.dot(&b) + b.norm_squared()) / 3.0

@@ -125,8 +125,38 @@
 //!   for bit): per point moved as above (callgrind, 4 steps), 8 560 instructions at
 //!   50 × 50 (the boundary fairing 1 620, the unit responses 900, the rest 6 030) against
 //!   9 370, 7 210 at 200 × 200 against 7 750, 7 100 at 400 × 400 against 7 510. The small
-//!   end still executes 1.19× the instructions per point of 200 × 200 (1.21× before): the
+//!   end still executed 1.19× the instructions per point of 200 × 200 (1.21× before): the
 //!   cuts in the rows and the surface build are cuts at every size.
+//!
+//!   The next round measured with `examples/surface_cost.rs` (the bench's `tiles` run: 4
+//!   steps and the boundary fairing, on its noisy net), callgrind collecting inside
+//!   `SurfaceFairing::run` only, instructions / (4 · N²). Before: 8 450 / 7 610 / 7 030 per
+//!   point moved at 50² / 100² / 200² (the boundary fairing 1 610 / 770 / 290, the unit
+//!   responses 905 / 560 / 307); after: 7 300 / 6 970 / 6 680 (the boundary fairing
+//!   1 000 / 480 / 181, the unit responses 696 / 428 / 234), so 50 × 50 executes 1.09× the
+//!   instructions per point of 200 × 200 (1.20× before); at 400² 6 620 after, ~6 860
+//!   before (cachegrind's count of the whole program less the net's construction), and the
+//!   D1 misses of the whole 400² program 81.5 M against 82.1 M. A boundary curve step (544 of them
+//!   at 50 × 50, 1 698 at 400 × 400) cost ~29 500 instructions, now ~18 400. It was no
+//!   O(n) work: the update window (~30 knots each side of the move, to the 1e-17 of
+//!   `hermite::update`) covers most of a 50-point boundary, and the cost was per row. The
+//!   worst point now comes off a tournament tree replayed over the refreshed rows (the lazy
+//!   heap took a push per changed z, every z of the window, and skipped stale entries at
+//!   every pop), each segment's chord slope serves its energy and its C‴, the spline keeps
+//!   the rows of its tangent system between moves (a move of P_j changes rows j − 1..j + 1
+//!   only; the window's other rows are copied, not rebuilt), and a step allocates nothing.
+//!   The unit responses read the re-solved rows directly (no copy of the whole line) and
+//!   take the rows' weights once per knot vector; every grid line's tangents are solved in
+//!   one spline's storage (`HermiteSpline::refit`: a dozen allocations and a check of the
+//!   knots fewer per line). The same results bit for bit (the faired nets at 50², 100²,
+//!   200², 400² compared as bits, and the curve method alone on curves of 50–3 000 points:
+//!   one point, pairs, interactive). What the small end still pays: the boundary fairing's
+//!   ~18 400 instructions per curve step are the refresh of the window's segment energies,
+//!   C‴ and z (~9 200, ~2 000 of it the tree) and the windowed solve (~7 200), arithmetic
+//!   per row that the same bits need; a unit response ~11 600 per node, ~5 300 of it the
+//!   solve of the unit move. Tried without a gain: refreshing only the rows whose tangents
+//!   changed bit for bit (few fewer, and the comparison cost more), a tree keyed by the
+//!   bits of z, one array for all of a line's responses (slower moves at every size).
 //! - *What grows with the size:* memory traffic, not work. The moves come in the order of
 //!   z, scattered over the grid; once its data outgrow the processor's caches the cache lines
 //!   a move touches (~50: its point and its two windows of jumps and z bounds) are misses.

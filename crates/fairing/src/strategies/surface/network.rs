@@ -118,6 +118,13 @@ impl Stiffness {
         };
         let mut tangent_band = Vec::new();
         let mut jump_band = Vec::new();
+        if !closed {
+            for i in 0..count {
+                let (solved_from, solved) = zero.unit_move_tangents(i)?;
+                stiffness.open_node(i, solved_from, solved, &mut tangent_band, &mut jump_band);
+            }
+            return Ok(stiffness);
+        }
         for i in 0..count {
             let (solved_from, solved) = zero.unit_move_tangents(i)?;
             let solved_rows = solved.len();
@@ -199,6 +206,87 @@ impl Stiffness {
             }
         }
         Ok(stiffness)
+    }
+
+    /// [`new`](Self::new)'s reading of the unit move of node i of an open line, whose
+    /// re-solved tangents are `solved` from node `solved_from` on (every other tangent 0):
+    /// the same band ([`band_of`]'s scan), the same values in the same order as the general
+    /// path (which reads them from a copy of the whole line), so the same bits, read from
+    /// the re-solved rows directly. O(window).
+    fn open_node(
+        &mut self,
+        i: usize,
+        solved_from: usize,
+        solved: &[Vector<1>],
+        tangent_band: &mut Vec<f64>,
+        jump_band: &mut Vec<f64>,
+    ) {
+        let count = self.count;
+        let tangent = |k: usize| {
+            k.checked_sub(solved_from)
+                .and_then(|d| solved.get(d))
+                .map_or(0.0, |t| t[0])
+        };
+        let point = |k: usize| if k == i { 1.0 } else { 0.0 };
+        // `band_of` on the open line: out from i to the last nonzero tangent before a run of
+        // ZERO_RUN zeros or the end, then one node wider for the jumps, within the line.
+        let reach = |most: usize, at: &dyn Fn(usize) -> f64| -> usize {
+            let (mut last, mut zeros, mut d) = (0, 0, 1);
+            while zeros < ZERO_RUN {
+                if d > most {
+                    break;
+                }
+                if at(d) == 0.0 {
+                    zeros += 1;
+                } else {
+                    (last, zeros) = (d, 0);
+                }
+                d += 1;
+            }
+            last
+        };
+        let back = (reach(i, &|d| tangent(i - d)) + 1).min(i);
+        let ahead = (reach(count - 1 - i, &|d| tangent(i + d)) + 1).min(count - 1 - i);
+        let (first, last) = (i - back, i + ahead);
+        // The band's tangents with the nodes next to it (those the jumps read), and the
+        // band itself within them.
+        let (outer_first, outer_last) = (first.saturating_sub(1), (last + 1).min(count - 1));
+        tangent_band.clear();
+        tangent_band.extend((outer_first..=outer_last).map(tangent));
+        let outer = &tangent_band[..];
+        let band = first - outer_first..=last - outer_first;
+        // The jump at an interior node: the third derivative after it minus the one before
+        // it, each segment's once; 0 at the ends.
+        let steps = &self.steps;
+        let third_from = |k: usize| {
+            let r = k - outer_first;
+            third1(point(k), point(k + 1), outer[r], outer[r + 1], steps[k])
+        };
+        jump_band.clear();
+        let mut before = (first > 0).then(|| third_from(first - 1));
+        for k in first..=last {
+            let after = (k + 1 < count).then(|| third_from(k));
+            jump_band.push(if k >= 1 && k + 1 < count {
+                after.unwrap_or(0.0) - before.unwrap_or(0.0)
+            } else {
+                0.0
+            });
+            before = after;
+        }
+        let back = back as isize;
+        let response = band_window(&outer[band], back, i, count);
+        let jump_window = band_window(jump_band, back, i, count);
+        // i is band node `back`, its previous node (if any) band node `back` − 1.
+        let own = back as usize;
+        let interior = |k: usize| k >= 1 && k + 1 < count;
+        if interior(i) {
+            self.diagonal[i] = jump_band[own];
+            if interior(i - 1) {
+                self.side[i - 1] = jump_band[own - 1];
+            }
+        }
+        self.response.push(response);
+        self.jump_response.push(jump_window);
     }
 
     /// The next node along the line (wrapping when closed).
@@ -406,16 +494,40 @@ impl Network {
         // The u-lines' passes read the points column-major, from one blocked transpose rather
         // than strided (a miss per point on a grid larger than the cache).
         transpose_into(points, u_count, v_count, &mut self.columns);
-        self.u_tangents.clear();
-        for line in self.columns.chunks(u_count) {
-            self.u_tangents
-                .extend_from_slice(&HermiteSpline::new(line, &u_settings)?.tangents()[..u_count]);
-        }
-        self.v_tangents.clear();
-        for line in points.chunks(v_count) {
-            self.v_tangents
-                .extend_from_slice(&HermiteSpline::new(line, &v_settings)?.tangents()[..v_count]);
-        }
+        // One spline per direction, built through its first line and refitted through the
+        // others in its own storage (the same tangents as a spline built through each: a
+        // fresh spline per line was a dozen allocations and a check of the knots per line).
+        let solve_lines = |lines: std::slice::ChunksExact<'_, Vec3>,
+                           settings: &HermiteSettings<3>,
+                           count: usize,
+                           out: &mut Vec<Vec3>|
+         -> Result<()> {
+            out.clear();
+            let mut spline: Option<HermiteSpline<3>> = None;
+            for line in lines {
+                let spline = match &mut spline {
+                    Some(spline) => {
+                        spline.refit(line)?;
+                        spline
+                    }
+                    None => spline.insert(HermiteSpline::new(line, settings)?),
+                };
+                out.extend_from_slice(&spline.tangents()[..count]);
+            }
+            Ok(())
+        };
+        solve_lines(
+            self.columns.chunks_exact(u_count),
+            &u_settings,
+            u_count,
+            &mut self.u_tangents,
+        )?;
+        solve_lines(
+            points.chunks_exact(v_count),
+            &v_settings,
+            v_count,
+            &mut self.v_tangents,
+        )?;
         self.points.clear();
         self.points.extend_from_slice(points);
         self.recompute_energy();
