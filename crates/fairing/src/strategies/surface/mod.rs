@@ -157,6 +157,17 @@
 //!   solve of the unit move. Tried without a gain: refreshing only the rows whose tangents
 //!   changed bit for bit (few fewer, and the comparison cost more), a tree keyed by the
 //!   bits of z, one array for all of a line's responses (slower moves at every size).
+//!   Criterion after that round (`surface_step/{tiles,tiles_steps}`, one round on a quiet
+//!   machine, 2026-12-03, medians in M points moved/s at 50² / 100² / 200² / 400²): `tiles`
+//!   0.77 / 0.93 / 0.91 / 0.66 (before it, the same morning: 0.51 / 0.71 / 0.74 / 0.66),
+//!   `tiles_steps` 0.97 / 0.95 / 0.90 / 0.65. The small end is now within 1.2× of the
+//!   fastest size; the large end is not (1.42×): 400 × 400 executes the fewest instructions
+//!   per point of all four and is the slowest, its step's whole-grid passes (the knot
+//!   refresh and rebuilt network, the order, the energy and largest z) and its moves
+//!   running from L3 and memory. Tried, not adopted: tiles of 32 × 32 nodes (three rounds:
+//!   400² 0.70–0.74 against 0.66, but 100² 0.73–0.85 with the same code, the machine's
+//!   noise as large as the effect; it would change the result on nets of 33–64 nodes a side,
+//!   which now get the paper's order).
 //! - *What grows with the size:* memory traffic, not work. The moves come in the order of
 //!   z, scattered over the grid; once its data outgrow the processor's caches the cache lines
 //!   a move touches (~50: its point and its two windows of jumps and z bounds) are misses.
