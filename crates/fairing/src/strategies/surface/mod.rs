@@ -160,8 +160,8 @@
 //!   Criterion after that round (`surface_step/{tiles,tiles_steps}`, one round on a quiet
 //!   machine, 2026-12-03, medians in M points moved/s at 50² / 100² / 200² / 400²): `tiles`
 //!   0.77 / 0.93 / 0.91 / 0.66 (before it, the same morning: 0.51 / 0.71 / 0.74 / 0.66),
-//!   `tiles_steps` 0.97 / 0.95 / 0.90 / 0.65. The small end is now within 1.2× of the
-//!   fastest size; the large end is not (1.42×): 400 × 400 executes the fewest instructions
+//!   `tiles_steps` 0.97 / 0.95 / 0.90 / 0.65. The small end is now 1.21× the time per point of the
+//!   fastest size (1.45× before); the large end 1.42×: 400 × 400 executes the fewest instructions
 //!   per point of all four and is the slowest, its step's whole-grid passes (the knot
 //!   refresh and rebuilt network, the order, the energy and largest z) and its moves
 //!   running from L3 and memory. Tried, not adopted: tiles of 32 × 32 nodes (three rounds:
