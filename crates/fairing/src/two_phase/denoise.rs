@@ -14,8 +14,9 @@
 //! fairing ([`jump_lsq`](crate::strategies::jump_lsq): least squares with a penalty on the
 //! differences of the interpolating spline's third-derivative jumps, Zhang–Cheng's z_i / Han's
 //! e_i) with λ by generalised cross-validation, on the kind's own spline (parabolic runout
-//! over x for a function, as the phases use; natural over chord length for an open curve,
-//! periodic for a closed one without a corner). The kept points are its fixed points (bit for
+//! over x for a function, as the phases use; over chord length for an open curve, with the
+//! ends [`TwoPhaseSettings::curve_ends`](super::TwoPhaseSettings::curve_ends) says (runout by
+//! default); periodic for a closed one without a corner). The kept points are its fixed points (bit for
 //! bit), the allowed distances its restraining radii (held by its pins). Its penalty is zero
 //! on any cubic and small where the third derivative varies slowly, so at the same residual it
 //! bends a smooth curve less than the cubic smoothing spline, whose penalty ∫s″² flattens
@@ -298,7 +299,8 @@ pub const CORNER_REACH: usize = 3;
 /// largest turn (measured over `CORNER_REACH` = 3 points) is a corner (at least `CORNER_TURN`
 /// = π/4: an airfoil's trailing edge, a loop's node) is fitted as an open one that starts
 /// and ends at that corner, so that the corner stays sharp: first with both ends free
-/// (natural), the corner then placed at the mean of the two ends' values (each branch's
+/// (the open fit's end conditions), the corner then placed at the mean of the two ends'
+/// values (each branch's
 /// estimate of it), then again with the corner kept there. (Keeping the corner's data point
 /// instead put its noise into both branches: on the judge's strophoid loop, RMS to the clean
 /// curve 0.0126 → 0.0101 at seed 1, 0.0137 → 0.0113 at seed 7; `docs/two_phase_judge.md`.)
@@ -347,7 +349,7 @@ pub fn denoise_curve_with(
         return Ok(points.to_vec());
     }
     // One open fit of the points in `order` (a closed walk repeats its first point last). A
-    // closed walk's seam is kept (`free_seam` false), or fitted from both sides with natural
+    // closed walk's seam is kept (`free_seam` false), or fitted from both sides with free
     // ends and set to the mean of the two ends' values (`free_seam`: a corner).
     let fit =
         |points: &[Vec2], order: &[usize], projection: Projection, free_seam: bool| -> Result<Vec<Vec2>> {
@@ -407,7 +409,7 @@ pub fn denoise_curve_with(
         );
     let around = |start: usize| -> Vec<usize> { (0..=n).map(|k| (start + k) % n).collect() };
     if largest >= CORNER_TURN {
-        // The corner from both branches (natural ends), then the fit with it kept there: a
+        // The corner from both branches (free ends), then the fit with it kept there: a
         // kept data point at the corner carried its noise into both branches (measured in
         // `docs/two_phase_judge.md`, the strophoid loop).
         let corner = fit(points, &around(seam), Projection::Off, true)?[seam];

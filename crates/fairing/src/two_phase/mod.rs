@@ -93,7 +93,8 @@ fn full_pass_from(
 /// Fairs a function segment in place: [`full_pass`]es until one applies no case, after
 /// `max_passes`, (if `stall_passes` > 0) after `stall_passes` consecutive passes that
 /// reduced neither count, or (if `min_gain` > 0) after a pass that lowered the sum of the
-/// counts by less than that fraction; returns the number of passes made.
+/// counts by less than that fraction; returns the number of passes made. Phase 2's end-run
+/// case as [`TwoPhaseSettings::function_end_runs`] says.
 /// O(max_passes · n · guard_window).
 pub fn fair_function(
     spline: &mut SplineFunction,
