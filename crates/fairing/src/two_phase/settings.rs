@@ -89,9 +89,10 @@ pub struct TwoPhaseSettings {
     /// for noise and absorbs it. This one is for the segments of an arbitrary curve;
     /// functions have [`function_end_runs`](Self::function_end_runs). Default on: the curves'
     /// noisy ends leave such runs where the clean curve has none (the clothoid's start, whose
-    /// clean curvature is zero; measured with the judge, `docs/two_phase_judge.md`: off, an
-    /// end inflection the clean curve does not have stays on the four clothoids, the
-    /// strophoid seed 3, the loop seed 1 and the closed airfoil seed 1).
+    /// clean curvature is zero; measured with the judge, `docs/two_phase_judge.md`, seeds
+    /// 1–4, before the runout ends: off, an end inflection the clean curve does not have
+    /// stays on the four clothoids, the strophoid seed 3, the loop seed 1 and the closed
+    /// airfoil seed 1).
     pub curve_end_runs: bool,
     /// Functions: with the long-run option, a wrong-sign run at an end is absorbed too (the end-run case).
     ///
