@@ -13,25 +13,9 @@ use curve_repr::Vec3;
 use fairing::strategies::{Mode, StrainEnergy, StrainEnergySettings, SurfaceFairing, SurfaceFairingSettings};
 use fairing::Pipeline;
 
-/// A deterministic pseudo-random number in [−1, 1] (the surface table's).
-fn noise(i: usize, j: usize) -> f64 {
-    let x = ((i * 7919 + j * 104_729 + 3 * 1_299_709) as f64 * 12.9898).sin() * 43_758.545_3;
-    2.0 * (x - x.floor()) - 1.0
-}
-
-/// The bench's net: a smooth wave with ±0.01 hashed noise on every point.
-fn noisy_net(size: usize) -> Vec<Vec<Vec3>> {
-    (0..size)
-        .map(|i| {
-            (0..size)
-                .map(|j| {
-                    let (x, y) = (i as f64 / 10.0, j as f64 / 10.0);
-                    Vec3::new(x, y, (0.3 * x).sin() * (0.2 * y).cos() + 0.01 * noise(i, j))
-                })
-                .collect()
-        })
-        .collect()
-}
+#[path = "../benches/fairing/step_net.rs"]
+mod step_net;
+use step_net::{noise, noisy_net};
 
 /// The curve method on a noisy wave of `count` points, three ways, every point as bits.
 fn curves(count: usize) {

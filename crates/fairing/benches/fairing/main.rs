@@ -3,6 +3,7 @@
 
 mod jump_lsq;
 mod smoothing_spline;
+mod step_net;
 mod strain_energy;
 mod surface_fairing;
 mod surface_order;

@@ -18,8 +18,9 @@
 //! `sort` entries).
 
 use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
-use curve_repr::Vec3;
 use fairing::strategies::{SurfaceFairing, SurfaceFairingSettings, SweepOrder};
+
+use crate::step_net::noisy_net;
 
 /// Under `cargo test` (no `--bench` flag) only the smallest size runs.
 fn sizes<T: Copy>(all: &[T]) -> Vec<T> {
@@ -28,25 +29,6 @@ fn sizes<T: Copy>(all: &[T]) -> Vec<T> {
     } else {
         all[..1].to_vec()
     }
-}
-
-/// A deterministic pseudo-random number in [−1, 1] (the surface table's).
-fn noise(i: usize, j: usize) -> f64 {
-    let x = ((i * 7919 + j * 104_729 + 3 * 1_299_709) as f64 * 12.9898).sin() * 43_758.545_3;
-    2.0 * (x - x.floor()) - 1.0
-}
-
-fn noisy_net(size: usize) -> Vec<Vec<Vec3>> {
-    (0..size)
-        .map(|i| {
-            (0..size)
-                .map(|j| {
-                    let (x, y) = (i as f64 / 10.0, j as f64 / 10.0);
-                    Vec3::new(x, y, (0.3 * x).sin() * (0.2 * y).cos() + 0.01 * noise(i, j))
-                })
-                .collect()
-        })
-        .collect()
 }
 
 const STEPS: usize = 4;

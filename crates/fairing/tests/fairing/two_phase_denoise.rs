@@ -402,27 +402,20 @@ fn gcv_gamma_of_the_pre_pass() {
     let shift = |a: &[Vec2]| a.iter().zip(&arc).map(|(a, b)| (a - b).norm()).sum::<f64>();
     let mode = Denoise::JumpLsqGcv;
     let plain = denoise_curve(mode, Projection::Off, &arc, false, &limits).unwrap();
-    let same = denoise_curve_with(
-        mode,
-        1.0,
-        CurveEnds::Natural,
-        Projection::Off,
-        &arc,
-        false,
-        &limits,
-    )
-    .unwrap();
-    assert_eq!(same, plain);
-    let smoother = denoise_curve_with(
-        mode,
-        gamma,
-        CurveEnds::Natural,
-        Projection::Off,
-        &arc,
-        false,
-        &limits,
-    )
-    .unwrap();
+    let with_gamma = |gamma: f64| {
+        denoise_curve_with(
+            mode,
+            gamma,
+            CurveEnds::Natural,
+            Projection::Off,
+            &arc,
+            false,
+            &limits,
+        )
+        .unwrap()
+    };
+    assert_eq!(with_gamma(1.0), plain);
+    let smoother = with_gamma(gamma);
     assert!(
         shift(&smoother) > shift(&plain),
         "{} against {}",

@@ -697,19 +697,22 @@ fn parametric_refits_report_the_penalty_on_the_outputs_own_knots() {
 #[test]
 fn discrepancy_rule_reaches_its_target_and_gcv_minimises() {
     let points = wavy(200);
+    let run = |settings: &JumpLsqSettings| {
+        fair(
+            &points,
+            &points,
+            &Constraints::default(),
+            CurveDomain::Function,
+            false,
+            settings,
+        )
+        .unwrap()
+    };
     let target = 0.004;
     let settings = JumpLsqSettings::default()
         .with_difference_order(2)
         .with_target_sd(target);
-    let faired = fair(
-        &points,
-        &points,
-        &Constraints::default(),
-        CurveDomain::Function,
-        false,
-        &settings,
-    )
-    .unwrap();
+    let faired = run(&settings);
     let report = &faired.report;
     assert_eq!(report.rule, "target-sd");
     assert!(
@@ -726,15 +729,7 @@ fn discrepancy_rule_reaches_its_target_and_gcv_minimises() {
             .with_difference_order(2)
             .with_rule(LambdaRule::Gcv)
             .with_gcv_gamma(gamma);
-        let faired = fair(
-            &points,
-            &points,
-            &Constraints::default(),
-            CurveDomain::Function,
-            false,
-            &settings,
-        )
-        .unwrap();
+        let faired = run(&settings);
         let chosen = faired.report.lambda;
         let g = faired.report.gcv.unwrap();
         let space = Space::new(Knots::open(x.clone()), Ends::Runout, penalty_of(&settings)).unwrap();
