@@ -36,7 +36,8 @@
 //! the paper variant always runs `off`), `HAN_ENDS` (`keep`, `free`), `HAN_PROJECT` (`project`:
 //! `off`, `foot-point`, `parameter-correction`), `HAN_CURVE_GCV_GAMMA` and `HAN_FUNCTION_GCV_GAMMA`
 //! (`curve-gcv-gamma`, `function-gcv-gamma`), `HAN_CURVE_ENDS` (`curve-ends`: `runout`,
-//! `natural`), `HAN_CURVE_END_RUNS` and `HAN_FUNCTION_END_RUNS` (`true`, `false`).
+//! `natural`), `HAN_CURVE_END_RUNS` and `HAN_FUNCTION_END_RUNS` (`true`, `false`),
+//! `HAN_END_RUN_MAX_DEVIANCE` (`end-run-max-deviance`).
 
 use std::f64::consts::PI;
 use std::fmt::Write as _;
@@ -273,6 +274,7 @@ fn main() -> Result<(), Error> {
             "HAN_MAX_MOVE_BOUND" => tuned.max_move_bound = value.parse()?,
             "HAN_CURVE_END_RUNS" => tuned.curve_end_runs = value.parse()?,
             "HAN_FUNCTION_END_RUNS" => tuned.function_end_runs = value.parse()?,
+            "HAN_END_RUN_MAX_DEVIANCE" => tuned.end_run_max_deviance = value.parse()?,
             "HAN_CURVE_ENDS" => {
                 tuned.curve_ends = serde_json::from_value(serde_json::Value::String(value))?;
             }

@@ -250,6 +250,7 @@ impl FairingStrategy<2> for TwoPhase {
         self.settings.end_runs = self.settings.function_end_runs;
         let (x, y): (Vec<f64>, Vec<f64>) = state.points().iter().map(|p| (p.x, p.y)).unzip();
         let n = x.len();
+        self.settings.data = std::sync::Arc::from(y.clone());
         let free = self.settings.ends == Ends::Free;
         let keep = |k: usize| (!free && (k == 0 || k + 1 >= n)) || !state.is_movable(k);
         let allowed = |k: usize| state.constraints().allowed_distance(k);

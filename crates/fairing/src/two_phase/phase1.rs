@@ -108,6 +108,9 @@ pub struct PassReport {
     /// Of `skipped`: the moves refused (or, designed in c, undone) because they increased a
     /// local count.
     pub undone_by_count_guard: usize,
+    /// Of `skipped`: the moves the data refused
+    /// ([`TwoPhaseSettings::end_run_max_deviance`]).
+    pub refused_by_data: usize,
     /// The pass increased a global count and was undone whole.
     pub reverted: bool,
     /// Global (vibrations, inflections) after the pass (DESIGN.md counts, as [`counts`]), so
@@ -539,6 +542,36 @@ impl From<Vec<(usize, f64)>> for Proposal {
     }
 }
 
+/// Whether the data refuse a move ([`TwoPhaseSettings::end_run_max_deviance`]): an end-run
+/// case whose moves (point, γ) would raise the residual sum of squares against the data,
+/// Σ (y_k + γ_k − d_k)² − Σ (y_k − d_k)² over the moved points, by more than
+/// `end_run_max_deviance` · σ̂². Off when the data or σ̂ are unknown (arbitrary curves'
+/// segments, a direct [`fair_function`](super::fair_function)). O(|moves|²) (a move's points
+/// may repeat; end-run moves hold each point once).
+fn refused_by_data(settings: &TwoPhaseSettings, y: &[f64], kind: CaseKind, moves: &[(usize, f64)]) -> bool {
+    let limit = settings.end_run_max_deviance;
+    let data = &settings.data;
+    let sigma = settings.noise;
+    if kind != CaseKind::EndRun || limit <= 0.0 || data.len() != y.len() || !sigma.is_finite() || sigma <= 0.0
+    {
+        return false;
+    }
+    // Points may repeat in a move list: sum each point's moves first.
+    let mut total: Vec<(usize, f64)> = Vec::with_capacity(moves.len());
+    for &(k, g) in moves {
+        match total.iter_mut().find(|t| t.0 == k) {
+            Some(t) => t.1 += g,
+            None => total.push((k, g)),
+        }
+    }
+    let change: f64 = total
+        .iter()
+        .filter_map(|&(k, g)| Some((*y.get(k)? - *data.get(k)?, g)))
+        .map(|(r, g)| g * (2.0 * r + g))
+        .sum();
+    change > limit * sigma * sigma
+}
+
 /// The sweep shared by both phases: from `start`, at each i ask `find`; apply the moves if
 /// every moved point is interior, `movable` and within the size guard, then the local count
 /// guard; continue after the case's last point (`second`, else `first`), else at i + 1.
@@ -598,6 +631,11 @@ pub(super) fn guarded_pass(
             });
         if !allowed {
             report.skipped += 1;
+            continue;
+        }
+        if refused_by_data(settings, spline.y(), case.kind, &moves) {
+            report.skipped += 1;
+            report.refused_by_data += 1;
             continue;
         }
         let (Some(lo), Some(hi)) = (moves.iter().map(|m| m.0).min(), moves.iter().map(|m| m.0).max()) else {

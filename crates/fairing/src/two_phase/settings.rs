@@ -109,8 +109,44 @@ pub struct TwoPhaseSettings {
     /// surface seeds 1 and 4 gain an end inflection (0 → 1; their clean twin has 6) and come
     /// nearer, UA(2)-180 upper and R140 upper 0 → 1. Turn it off for data with a real
     /// inflection near an end and few points; no size of the run tells the true run from a
-    /// noisy one (measured, in the doc).
+    /// noisy one (measured, in the doc). A run the data hold clearly is refused by
+    /// [`end_run_max_deviance`](Self::end_run_max_deviance) (the sine seed 4's).
     pub function_end_runs: bool,
+    /// Functions: refuse an end-run move that raises the residual sum of squares against the data by more than this many noise variances (0: off).
+    ///
+    /// Not in the paper: a data-consistency test for the end-run case
+    /// ([`CaseKind::EndRun`](super::CaseKind::EndRun)) of a function. The move (point, γ)
+    /// is refused when Σ (y_k + γ_k − d_k)² − Σ (y_k − d_k)² > `end_run_max_deviance` · σ̂²
+    /// over the moved points, d the data before the pre-pass and σ̂ the noise estimate of
+    /// `noise_moves`: the move would fit the data worse by more than the noise accounts for.
+    /// 3.84 is the 95 % quantile of χ² with one degree of freedom, the likelihood-ratio bound
+    /// for a change along one direction under Gaussian noise of variance σ̂² (the move is one
+    /// direction, its size fixed by the case). A run the noise made costs the fit little to
+    /// absorb; a true run (a real inflection near the end) is one the data hold the curve to.
+    /// No effect on arbitrary curves (their segments do not see the data in their frames) or
+    /// with σ̂ = 0 (a direct [`fair_function`](super::fair_function)); 0 is the earlier
+    /// behaviour, as is [`TwoPhaseSettings::paper`] (which has no end-run case).
+    ///
+    /// Default 3.84 (not chosen by the judge), measured with the judge
+    /// (`docs/two_phase_judge.md`, all rows, seeds 1–8, against 0): three rows change, none
+    /// turns and none is lost. The sine seed 4, whose true end run (after its third
+    /// inflection, x = 6π) the end-run case would absorb at a cost of 17.5 σ̂², keeps the
+    /// clean curve's 3 inflections and comes nearer it (inflections / vibrations / RMS to the
+    /// clean curve 2/24/0.00428 → 3/20/0.00337; csaps at the new S_d 0.00293: still a miss,
+    /// the pre-pass's own distance); the NACA upper surface seed 4 (8.7 σ̂²) 0/13/0.000458 →
+    /// 1/13/0.000455 (its clean twin has 6); UA(2)-180 upper (23.6 σ̂²) 0/8 → 1/9 (csaps
+    /// 12/23). The other sines' true end runs cost 1.1–3.6 σ̂² (seed 7 −0.4) and are still
+    /// absorbed: within the noise, the data cannot tell them from noise (seed 6, 3.55 σ̂²,
+    /// would turn with the case off). The dense sine's end runs (`two_phase_ends.rs`, 2·10^4
+    /// points) move by under 0.001 σ̂ and pass. Applied to every case of Phases 1 and 2 (a
+    /// measurement, not an option) the test turned no row either and left more inflections on
+    /// the real airfoils (FX 63-137 upper 0 → 2, UA(2)-180 lower 2 → 4).
+    pub end_run_max_deviance: f64,
+    /// The data values y of the current run before the pre-pass (set by the strategy for a
+    /// function; empty when unknown). Not a parameter.
+    #[serde(skip)]
+    #[schemars(skip)]
+    pub(crate) data: std::sync::Arc<[f64]>,
     /// Whether Phase 2 takes end runs in the current run (set by the strategy from the two
     /// settings above; not a parameter).
     #[serde(skip, default = "take_end_runs")]
@@ -341,12 +377,14 @@ impl Default for TwoPhaseSettings {
             max_run: 1_000_000,
             curve_end_runs: true,
             function_end_runs: true,
+            end_run_max_deviance: 3.84,
             end_runs: true,
             stall_passes: 0,
             min_gain: 0.0,
             max_move_factor: 0.5,
             noise_moves: 1.0,
             noise: 0.0,
+            data: std::sync::Arc::from(Vec::new()),
             max_move_bound: 1.0,
             noise_bound: 0.0,
             guard_window: 16,
@@ -374,6 +412,7 @@ impl TwoPhaseSettings {
             project: Projection::Off,
             noise_moves: 0.0,
             max_move_bound: 0.0,
+            end_run_max_deviance: 0.0,
             ends: Ends::Keep,
             ..TwoPhaseSettings::default()
         }
@@ -489,6 +528,12 @@ impl TwoPhaseSettings {
         self
     }
 
+    /// Sets the data-consistency bound of a function's end-run moves (in σ̂²; 0: off).
+    pub fn with_end_run_max_deviance(mut self, deviance: f64) -> Self {
+        self.end_run_max_deviance = deviance;
+        self
+    }
+
     /// Sets the projection of the curve pre-pass's points.
     pub fn with_project(mut self, project: Projection) -> Self {
         self.project = project;
@@ -536,6 +581,13 @@ impl TwoPhaseSettings {
             return Err(bad(
                 "noise_moves",
                 self.noise_moves,
+                "must be finite and at least 0",
+            ));
+        }
+        if !(self.end_run_max_deviance.is_finite() && self.end_run_max_deviance >= 0.0) {
+            return Err(bad(
+                "end_run_max_deviance",
+                self.end_run_max_deviance,
                 "must be finite and at least 0",
             ));
         }
