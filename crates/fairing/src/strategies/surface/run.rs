@@ -192,6 +192,10 @@ struct Run<'a> {
     order: Vec<(f64, usize)>,
     /// The radix sort's second buffer for `order`.
     order_scratch: Vec<(f64, usize)>,
+    /// The runs of `order` in the sweep's order (one per tile for `tiles`), and one tile's
+    /// pairs while they are sorted.
+    order_runs: Vec<std::ops::Range<usize>>,
+    order_tile: Vec<(f64, usize)>,
 }
 
 /// Runs the fairing (the settings checked by the caller).
@@ -295,6 +299,8 @@ pub(super) fn run(
         shorter: Vec::new(),
         order: Vec::new(),
         order_scratch: Vec::new(),
+        order_runs: Vec::new(),
+        order_tile: Vec::new(),
     };
     let mut history = Vec::new();
 
@@ -799,23 +805,44 @@ impl Run<'_> {
             SurfaceMode::Automatic => {
                 // Step 2.3: every point once, by z at the step's start, largest first (ties
                 // by index); for `tiles` inside each tile, the tiles by their largest z.
-                // The candidates (the movable nodes, i-major) with their z, in the run's
-                // storage.
+                // The candidates (the movable nodes) with their z, in the run's storage; z
+                // from the exact bounds when the network is fresh (it is, at a step's
+                // start: one contiguous array), else from the jumps (the same values).
                 let mut order = std::mem::take(&mut self.order);
-                order.clear();
+                let mut runs = std::mem::take(&mut self.order_runs);
+                let mut tile = std::mem::take(&mut self.order_tile);
+                let mut scratch = std::mem::take(&mut self.order_scratch);
                 let network = &self.state.network;
-                order.extend(
-                    (0..self.layout.nu)
-                        .flat_map(|i| (0..nv).map(move |j| (i, j)))
-                        .filter(|&(i, j)| self.is_movable(i, j))
-                        .map(|(i, j)| (network.z(i, j), self.layout.index(i, j))),
-                );
-                super::radix::sort_descending(&mut order, &mut self.order_scratch);
+                let exact = network.exact_zs();
+                let z = |k: usize| exact.map_or_else(|| network.z_at(k), |zs| zs[k]);
+                let movable = |i: usize, j: usize| self.is_movable(i, j);
                 if self.settings.order == SweepOrder::Tiles {
-                    super::tiles::regroup(&mut order, &mut self.order_scratch, self.layout.nu, nv);
+                    super::tiles::tiled_order(
+                        self.layout.nu,
+                        nv,
+                        z,
+                        movable,
+                        &mut order,
+                        &mut runs,
+                        &mut tile,
+                        &mut scratch,
+                    );
+                } else {
+                    order.clear();
+                    order.extend(
+                        (0..self.layout.nu)
+                            .flat_map(|i| (0..nv).map(move |j| (i, j)))
+                            .filter(|&(i, j)| movable(i, j))
+                            .map(|(i, j)| (z(self.layout.index(i, j)), self.layout.index(i, j))),
+                    );
+                    super::radix::sort_descending(&mut order, &mut scratch);
+                    runs.clear();
+                    runs.push(0..order.len());
                 }
-                let result = self.sorted_sweep(&order);
+                (self.order_tile, self.order_scratch) = (tile, scratch);
+                let result = self.sorted_sweep(&order, &runs);
                 self.order = order;
+                self.order_runs = runs;
                 moved = result?;
             }
             SurfaceMode::Interactive(_) => {
@@ -839,16 +866,18 @@ impl Run<'_> {
         Ok((moved, 1))
     }
 
-    /// The moves of a sorted step, one per node of `order` (z, flat index) in turn. Returns
-    /// the points moved.
-    fn sorted_sweep(&mut self, order: &[(f64, usize)]) -> Result<usize> {
+    /// The moves of a sorted step, one per node of `order` (z, flat index) in turn, taking
+    /// the runs of `order` in `runs`' order. Returns the points moved.
+    fn sorted_sweep(&mut self, order: &[(f64, usize)], runs: &[std::ops::Range<usize>]) -> Result<usize> {
         let nv = self.layout.nv;
         let node = |k: usize| (k / nv, k % nv);
         let mut moved = 0;
-        for (step, &(_, k)) in order.iter().enumerate() {
+        let sequence = runs.iter().flat_map(|run| &order[run.clone()]);
+        let mut ahead = sequence.clone().skip(PREFETCH_AHEAD);
+        for &(_, k) in sequence {
             // The order is scattered over the grid: the first loads of the move two ahead are
             // started now (no effect on any value).
-            if let Some(&(_, next)) = order.get(step + PREFETCH_AHEAD) {
+            if let Some(&(_, next)) = ahead.next() {
                 let (a, b) = node(next);
                 self.state.network.prefetch(a, b);
                 prefetch(&self.original[next]);
