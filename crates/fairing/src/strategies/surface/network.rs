@@ -613,6 +613,14 @@ impl Network {
         &self.points
     }
 
+    /// Exchanges the points' storage with `other`: a caller that rebuilds the network from
+    /// its own points takes them out without a copy. The network is unusable until its
+    /// next [`rebuild`](Self::rebuild). O(1).
+    pub fn swap_points(&mut self, other: &mut Vec<Vec3>) {
+        std::mem::swap(&mut self.points, other);
+        self.fresh_max_z = None;
+    }
+
     /// P_ij (callers keep i, j inside the grid).
     pub fn point(&self, i: usize, j: usize) -> Vec3 {
         self.points[self.index(i, j)]

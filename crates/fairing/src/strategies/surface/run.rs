@@ -165,8 +165,6 @@ struct Run<'a> {
     fixed: Vec<bool>,
     /// Distinct nodes pinned by the max-z rule (see [`Verdict::Pinned`]).
     pinned: Vec<bool>,
-    /// (|J^u|, |J^v|) at every distinct node of the accepted state, over the output's knots.
-    accepted_parts: Vec<(f64, f64)>,
     /// Restraining radii per distinct node (automatic mode).
     radii: Option<Vec<f64>>,
     /// The cap on the radii from the data's quantisation (automatic mode), if any.
@@ -277,11 +275,9 @@ pub(super) fn run(
     let fixed_knots = (!settings.refresh_knots).then(|| (input.u_knots().to_vec(), input.v_knots().to_vec()));
     let state = State::new(settings, &layout, original.clone(), fixed_knots.as_ref())?;
     let start = state.measure;
-    let parts = jump_parts(state.measured());
     let mut run = Run {
         settings,
         pinned: vec![false; layout.nu * layout.nv],
-        accepted_parts: parts,
         layout,
         accepted_points: original.clone(),
         original,
@@ -964,11 +960,11 @@ impl Run<'_> {
     ///
     /// [`pin`]: Self::pin
     fn judge(&mut self) -> Result<Verdict> {
-        // The working state becomes the candidate in place: its points are copied out first
+        // The working state becomes the candidate in place: its points are taken out first
+        // (their storage exchanged with `after`'s, no copy: the rebuild copies them back)
         // and it is rebuilt from the accepted points whenever the step is not accepted.
         let mut after = std::mem::take(&mut self.after);
-        after.clear();
-        after.extend_from_slice(self.state.network.points());
+        self.state.network.swap_points(&mut after);
         let result = self.judge_points(&after);
         self.after = after;
         result
@@ -982,7 +978,7 @@ impl Run<'_> {
         } else {
             None
         };
-        if rule == Some(Refusal::MaxZ) && self.pin() {
+        if rule == Some(Refusal::MaxZ) && self.pin()? {
             self.refused_steps += 1;
             self.rebuild_accepted()?;
             return Ok(Verdict::Pinned);
@@ -1011,7 +1007,6 @@ impl Run<'_> {
                 self.accepted_points.clear();
                 self.accepted_points
                     .extend_from_slice(self.state.network.points());
-                jump_parts_into(self.state.measured(), &mut self.accepted_parts);
                 Ok(Verdict::Accepted)
             }
             Some(rule) => {
@@ -1044,7 +1039,8 @@ impl Run<'_> {
     /// within [`PIN_REACH`] of it when its u-jump grew (their chord lengths make its u knot
     /// steps), the lines along v when its v-jump grew. Returns whether anything new was
     /// pinned. O(m·n).
-    fn pin(&mut self) -> bool {
+    fn pin(&mut self) -> Result<bool> {
+        let accepted_parts = self.accepted_parts()?;
         let network = self.state.measured();
         let (nu, nv) = (self.layout.nu, self.layout.nv);
         let limit = self.accepted.max_z + SLACK * self.accepted.max_z.abs();
@@ -1069,7 +1065,7 @@ impl Run<'_> {
                 if !network.is_interior(i, j) || network.z(i, j) <= limit {
                     continue;
                 }
-                let (u_before, v_before) = self.accepted_parts[self.layout.index(i, j)];
+                let (u_before, v_before) = accepted_parts[self.layout.index(i, j)];
                 let (u_after, v_after) = (network.u_jump(i, j).norm(), network.v_jump(i, j).norm());
                 if u_after > u_before {
                     for l in reach(i, nu, closed_u) {
@@ -1093,21 +1089,27 @@ impl Run<'_> {
                 }
             }
         }
-        new
+        Ok(new)
+    }
+
+    /// (|J^u|, |J^v|) at every distinct node of the last accepted state, over the output's
+    /// knots: from the network of its points over those knots, built as the state built it
+    /// (the same values). Only the max-z rule's [`pin`](Self::pin) reads them, so they are
+    /// built when it does instead of kept at every acceptance (a whole-grid pass over both
+    /// jump arrays, one of them column-major, at every step). O(m·n).
+    fn accepted_parts(&self) -> Result<Vec<(f64, f64)>> {
+        let points = &self.accepted_points;
+        let (knots, judged_knots) =
+            State::knots_of(self.settings, &self.layout, points, self.fixed_knots.as_ref())?;
+        let (u, v) = judged_knots.as_ref().unwrap_or(&knots);
+        let closed = (self.layout.topology.closed_u, self.layout.topology.closed_v);
+        Ok(jump_parts(&Network::new(points, u, v, closed)?))
     }
 }
 
 /// (|J^u|, |J^v|) at every distinct node.
 fn jump_parts(network: &Network) -> Vec<(f64, f64)> {
-    let mut parts = Vec::new();
-    jump_parts_into(network, &mut parts);
-    parts
-}
-
-/// [`jump_parts`] into `parts` (its storage reused).
-fn jump_parts_into(network: &Network, parts: &mut Vec<(f64, f64)>) {
-    parts.clear();
-    parts.extend(network.u_jumps_and_v_jumps().map(|(u, v)| (u.norm(), v.norm())));
+    network.u_jumps_and_v_jumps().map(|(u, v)| (u.norm(), v.norm())).collect()
 }
 
 #[cfg(test)]
