@@ -484,7 +484,10 @@ impl Network {
     /// The network of other points and knots in this one's storage (the same values as
     /// [`new`](Self::new), without a fresh allocation of its m·n arrays: a run rebuilds once
     /// per step, and fresh arrays of that size are fresh pages, each a fault on first
-    /// touch). Tangents are tracked again. On an error the network is left unusable.
+    /// touch). Tangents are kept or not as before it ([`stop_tracking_tangents`]). On an
+    /// error the network is left unusable.
+    ///
+    /// [`stop_tracking_tangents`]: Self::stop_tracking_tangents
     /// O(m·n + (m + n) · window).
     pub fn rebuild(
         &mut self,
@@ -495,7 +498,6 @@ impl Network {
     ) -> Result<()> {
         self.u_stiffness = Stiffness::new(u_knots, closed.0)?;
         self.v_stiffness = Stiffness::new(v_knots, closed.1)?;
-        self.track_tangents = true;
         self.fill(points, u_knots, v_knots)
     }
 
@@ -545,7 +547,9 @@ impl Network {
                 None => spline.insert(HermiteSpline::new(line, &u_settings)?),
             };
             let tangents = &spline.tangents()[..u_count];
-            self.u_tangents.extend_from_slice(tangents);
+            if self.track_tangents {
+                self.u_tangents.extend_from_slice(tangents);
+            }
             add_line_energy(u_stiffness, line, tangents, &mut energy);
             push_line_jumps(u_stiffness, line, tangents, &mut self.u_jumps);
         }
@@ -568,7 +572,9 @@ impl Network {
                 None => spline.insert(HermiteSpline::new(line, &v_settings)?),
             };
             let tangents = &spline.tangents()[..v_count];
-            self.v_tangents.extend_from_slice(tangents);
+            if self.track_tangents {
+                self.v_tangents.extend_from_slice(tangents);
+            }
             self.points.extend_from_slice(line);
             add_line_energy(v_stiffness, line, tangents, &mut energy);
             push_line_jumps(v_stiffness, line, tangents, &mut self.v_jumps);
@@ -646,10 +652,12 @@ impl Network {
         self.v_jumps[self.index(i, j)]
     }
 
-    /// Stops keeping the tangents up to date during moves, until the next rebuild: a
-    /// network used with the limit replacement (Eq. 21) reads only jumps, and skipping the
-    /// tangents halves a move's cost. [`u_tangent`](Self::u_tangent) and
-    /// [`v_tangent`](Self::v_tangent) are stale after moves made without them.
+    /// Stops keeping the tangents, in moves and in rebuilds: a network used with the limit
+    /// replacement (Eq. 21) reads only jumps (the energy of a rebuild is summed from the
+    /// solves' own tangents), and skipping the tangents halves a move's cost and spares a
+    /// rebuild two grid-sized writes. [`u_tangent`](Self::u_tangent) and
+    /// [`v_tangent`](Self::v_tangent) are stale after moves made without them and are not
+    /// to be called after a rebuild without them (their arrays are empty then).
     pub fn stop_tracking_tangents(&mut self) {
         self.track_tangents = false;
     }

@@ -965,13 +965,14 @@ impl Run<'_> {
         // and it is rebuilt from the accepted points whenever the step is not accepted.
         let mut after = std::mem::take(&mut self.after);
         self.state.network.swap_points(&mut after);
-        let result = self.judge_points(&after);
+        let result = self.judge_points(&mut after);
         self.after = after;
         result
     }
 
-    /// [`judge`](Self::judge) of the points `after` the step.
-    fn judge_points(&mut self, after: &[Vec3]) -> Result<Verdict> {
+    /// [`judge`](Self::judge) of the points `after` the step (`after`'s storage may be
+    /// exchanged for other points').
+    fn judge_points(&mut self, after: &mut Vec<Vec3>) -> Result<Verdict> {
         self.rebuild_state(after)?;
         let mut rule = if self.settings.guard {
             self.state.measure.worse_than(&self.accepted)
@@ -984,13 +985,15 @@ impl Run<'_> {
             return Ok(Verdict::Pinned);
         }
         let mut shorter = std::mem::take(&mut self.shorter);
+        let mut retried = false;
         for fraction in RETRIES {
             if rule.is_none() {
                 break;
             }
+            retried = true;
             self.refused_steps += 1;
             shorter.clear();
-            shorter.extend(self.accepted_points.iter().zip(after).map(|(p, q)| {
+            shorter.extend(self.accepted_points.iter().zip(after.iter()).map(|(p, q)| {
                 if p == q {
                     *p
                 } else {
@@ -1000,13 +1003,13 @@ impl Run<'_> {
             self.rebuild_state(&shorter)?;
             rule = self.state.measure.worse_than(&self.accepted);
         }
-        self.shorter = shorter;
-        match rule {
+        let verdict = match rule {
             None => {
                 self.accepted = self.state.measure;
-                self.accepted_points.clear();
-                self.accepted_points
-                    .extend_from_slice(self.state.network.points());
+                // The accepted points are those the state was last rebuilt from (its
+                // network's are a copy): their storage is exchanged, not copied.
+                let built = if retried { &mut shorter } else { after };
+                std::mem::swap(&mut self.accepted_points, built);
                 Ok(Verdict::Accepted)
             }
             Some(rule) => {
@@ -1014,7 +1017,9 @@ impl Run<'_> {
                 self.rebuild_accepted()?;
                 Ok(Verdict::Refused(rule))
             }
-        }
+        };
+        self.shorter = shorter;
+        verdict
     }
 
     /// The working state rebuilt in place as the state of distinct `points`.
