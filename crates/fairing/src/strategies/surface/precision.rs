@@ -13,9 +13,7 @@
 //! the sampling coordinates of a table, stations 8.2 m apart, are multiples of their spacing
 //! and are left out). The candidates are the smallest gap between distinct values divided by
 //! 1 … 8; the largest that fits is the axis's step. The data's precision is the largest step
-//! of its quantised axes. O(m·n): the values sorted by a radix sort
-//! ([`radix`](super::radix); the comparison sort it replaced made this the run's one
-//! O(m·n log(m·n)) term).
+//! of its quantised axes. O(m·n log(m·n)).
 
 use curve_repr::Vec3;
 
@@ -25,25 +23,17 @@ pub fn quantum(points: &[Vec3], u_count: usize, v_count: usize) -> Option<f64> {
     if points.len() != u_count * v_count || points.len() < 4 {
         return None;
     }
-    let mut scratch = Vec::new();
     (0..3)
-        .filter_map(|axis| axis_quantum(points, u_count, v_count, axis, &mut scratch))
+        .filter_map(|axis| axis_quantum(points, u_count, v_count, axis))
         .fold(None, |best: Option<f64>, q| Some(best.map_or(q, |b| b.max(q))))
 }
 
-/// The step of one coordinate axis (module docs), `scratch` the sort's reused storage.
-fn axis_quantum(
-    points: &[Vec3],
-    u_count: usize,
-    v_count: usize,
-    axis: usize,
-    scratch: &mut Vec<f64>,
-) -> Option<f64> {
+fn axis_quantum(points: &[Vec3], u_count: usize, v_count: usize, axis: usize) -> Option<f64> {
     let mut values: Vec<f64> = points.iter().map(|p| p[axis]).collect();
     if values.iter().any(|v| !v.is_finite()) {
         return None;
     }
-    super::radix::sort_ascending(&mut values, scratch);
+    values.sort_unstable_by(f64::total_cmp);
     let range = values[values.len() - 1] - values[0];
     if range <= 0.0 {
         return None;

@@ -7,12 +7,6 @@
 //! pass whose digit every key shares (the sign and the top of the exponent, on any net whose
 //! z are within a few binades of each other). The order is the same: no two entries are
 //! equal (the indices differ), so every correct sort gives the same sequence.
-//!
-//! The same sort orders plain values ascending for the data's precision
-//! ([`precision`](super::precision), three sorts of every coordinate once per run, the
-//! run's one O(m·n log(m·n)) term, ~5 % of the instructions of four steps at 400 × 400):
-//! values equal under `f64::total_cmp` are the same bits, so there too every correct sort
-//! gives the same sequence.
 
 /// Digits per pass.
 const BITS: u32 = 8;
@@ -21,27 +15,13 @@ const BUCKETS: usize = 1 << BITS;
 /// Passes over a 64-bit key.
 const PASSES: usize = 64 / BITS as usize;
 
-/// The unsigned key whose ascending order is `f64::total_cmp`'s: the sign bit flipped on
-/// non-negative values and every bit on negative ones.
-fn ascending_key(z: f64) -> u64 {
-    let bits = z.to_bits();
-    if bits >> 63 == 1 {
-        !bits
-    } else {
-        bits | 1 << 63
-    }
-}
-
-/// The unsigned key whose ascending order is `f64::total_cmp`'s descending order (the
-/// complement reverses [`ascending_key`]'s).
+/// The unsigned key whose ascending order is `f64::total_cmp`'s descending order: the sign
+/// bit flipped on non-negative values and every bit on negative ones gives total_cmp's
+/// order, and the complement reverses it.
 fn descending_key(z: f64) -> u64 {
-    !ascending_key(z)
-}
-
-/// Sorts `values` ascending as `sort_unstable_by(f64::total_cmp)` does (the same sequence:
-/// see the module docs). `scratch` is reused storage. O(n).
-pub(super) fn sort_ascending(values: &mut Vec<f64>, scratch: &mut Vec<f64>) {
-    sort_by_key(values, scratch, |&z| ascending_key(z));
+    let bits = z.to_bits();
+    let ascending = if bits >> 63 == 1 { !bits } else { bits | 1 << 63 };
+    !ascending
 }
 
 /// Sorts `(z, index)` pairs by z descending (`f64::total_cmp`), pairs of equal z kept in
@@ -50,25 +30,19 @@ pub(super) fn sort_ascending(values: &mut Vec<f64>, scratch: &mut Vec<f64>) {
 /// reused from call to call (it may end up holding the sorted pairs' old storage). O(n): one
 /// read for the histograms of every pass, one scatter per pass not skipped.
 pub(super) fn sort_descending(items: &mut Vec<(f64, usize)>, scratch: &mut Vec<(f64, usize)>) {
-    sort_by_key(items, scratch, |&(z, _)| descending_key(z));
-}
-
-/// A stable least-significant-digit radix sort of `items` by the ascending order of
-/// `key`, skipping the passes whose digit every key shares. O(n).
-fn sort_by_key<T: Copy + Default>(items: &mut Vec<T>, scratch: &mut Vec<T>, key: impl Fn(&T) -> u64) {
     let n = items.len();
     if n < 2 {
         return;
     }
     let mut counts = [[0usize; BUCKETS]; PASSES];
-    for item in items.iter() {
-        let key = key(item);
+    for &(z, _) in items.iter() {
+        let key = descending_key(z);
         for (pass, count) in counts.iter_mut().enumerate() {
             count[digit(key, pass)] += 1;
         }
     }
     scratch.clear();
-    scratch.resize(n, T::default());
+    scratch.resize(n, (0.0, 0));
     for (pass, count) in counts.iter().enumerate() {
         // One digit for all: the pass would leave the order as it is.
         if count.contains(&n) {
@@ -81,7 +55,7 @@ fn sort_by_key<T: Copy + Default>(items: &mut Vec<T>, scratch: &mut Vec<T>, key:
             sum += c;
         }
         for &item in items.iter() {
-            let d = digit(key(&item), pass);
+            let d = digit(descending_key(item.0), pass);
             scratch[next[d]] = item;
             next[d] += 1;
         }
@@ -155,25 +129,5 @@ mod tests {
         let mut sorted = close.clone();
         sort_descending(&mut sorted, &mut scratch);
         assert_eq!(bits(&sorted), bits(&compared(&close)));
-        // Plain values ascending, as `sort_unstable_by(f64::total_cmp)`.
-        let mut value_scratch = Vec::new();
-        for n in [0, 1, 2, 3, 17, 256, 5000] {
-            let values: Vec<f64> = (0..n)
-                .map(|k| {
-                    let r = random();
-                    match r % 3 {
-                        0 => special[(r >> 8) as usize % special.len()],
-                        1 => ((r >> 8) % 7) as f64 * if k % 2 == 0 { 1.0 } else { -1.0 },
-                        _ => f64::from_bits(r >> 2) * if r & 2 == 0 { 1.0 } else { -1.0 },
-                    }
-                })
-                .collect();
-            let mut sorted = values.clone();
-            sort_ascending(&mut sorted, &mut value_scratch);
-            let mut compared = values.clone();
-            compared.sort_unstable_by(f64::total_cmp);
-            let as_bits = |v: &[f64]| v.iter().map(|z| z.to_bits()).collect::<Vec<_>>();
-            assert_eq!(as_bits(&sorted), as_bits(&compared), "{n} values");
-        }
     }
 }
