@@ -56,7 +56,10 @@ fn net_file(path: &str) {
         .skip(1)
         .filter(|l| !l.trim().is_empty())
         .map(|l| {
-            let f: Vec<f64> = l.split(',').map(|x| x.trim().parse().expect("a number")).collect();
+            let f: Vec<f64> = l
+                .split(',')
+                .map(|x| x.trim().parse().expect("a number"))
+                .collect();
             (f[0] as usize, f[1] as usize, Vec3::new(f[2], f[3], f[4]))
         })
         .collect();
@@ -66,7 +69,10 @@ fn net_file(path: &str) {
     for (i, j, p) in cells {
         net[i][j] = p;
     }
-    for settings in [SurfaceFairingSettings::zhang_cheng(), SurfaceFairingSettings::kjellander()] {
+    for settings in [
+        SurfaceFairingSettings::zhang_cheng(),
+        SurfaceFairingSettings::kjellander(),
+    ] {
         let result = SurfaceFairing::new(settings).run(&net).expect("the net fairs");
         println!(
             "steps {} moved {} refused {} {} pinned {} refusal {:?} termination {:?}",

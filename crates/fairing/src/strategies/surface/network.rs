@@ -49,7 +49,9 @@
 //!
 //! A run rebuilds its network once per step ([`Network::rebuild`]): into the storage it
 //! already has, so that a step touches no fresh pages (at 400 × 400 a step's arrays were
-//! ~45 MB of new allocations).
+//! ~45 MB of new allocations), and in two passes, one per direction: each line's energy
+//! terms and jumps are taken right after its solve, the z bounds and the largest z with the
+//! v-lines. Until the next move the bounds are the exact z ([`Network::exact_zs`]).
 
 use curve_repr::{HermiteEnds, HermiteSettings, HermiteSpline, Vec3, Vector};
 
@@ -75,7 +77,8 @@ fn add_line_energy(stiffness: &Stiffness, line: &[Vec3], tangents: &[Vec3], ener
 /// Pushes the third-derivative jump C‴(t_k+) − C‴(t_k−) at every node k of one line onto
 /// `out` (0 at an open end). O(line).
 fn push_line_jumps(stiffness: &Stiffness, line: &[Vec3], tangents: &[Vec3], out: &mut Vec<Vec3>) {
-    let third_from = |k: usize, n: usize| third(line[k], line[n], tangents[k], tangents[n], stiffness.step(k));
+    let third_from =
+        |k: usize, n: usize| third(line[k], line[n], tangents[k], tangents[n], stiffness.step(k));
     out.extend((0..line.len()).map(|k| {
         if !stiffness.is_interior(k) {
             return Vec3::zeros();

@@ -1114,7 +1114,10 @@ impl Run<'_> {
 
 /// (|J^u|, |J^v|) at every distinct node.
 fn jump_parts(network: &Network) -> Vec<(f64, f64)> {
-    network.u_jumps_and_v_jumps().map(|(u, v)| (u.norm(), v.norm())).collect()
+    network
+        .u_jumps_and_v_jumps()
+        .map(|(u, v)| (u.norm(), v.norm()))
+        .collect()
 }
 
 #[cfg(test)]

@@ -180,9 +180,20 @@ mod tests {
             ((x - x.floor()) * 4.0).floor()
         };
         let (mut pairs, mut runs, mut tile, mut scratch) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-        for (u, v) in [(13, 13), (TILE, TILE), (TILE + 1, 3), (2 * TILE + 5, TILE + 1), (200, 150)] {
+        for (u, v) in [
+            (13, 13),
+            (TILE, TILE),
+            (TILE + 1, 3),
+            (2 * TILE + 5, TILE + 1),
+            (200, 150),
+        ] {
             let movable = |i: usize, j: usize| {
-                i > 0 && j > 0 && i + 1 < u && j + 1 < v && (i * 31 + j * 17) % 11 != 0 && !(i < TILE && j < TILE && u > 150)
+                i > 0
+                    && j > 0
+                    && i + 1 < u
+                    && j + 1 < v
+                    && !(i * 31 + j * 17).is_multiple_of(11)
+                    && !(i < TILE && j < TILE && u > 150)
             };
             let mut sorted: Vec<(f64, usize)> = (0..u * v)
                 .filter(|&k| movable(k / v, k % v))
@@ -190,12 +201,25 @@ mod tests {
                 .collect();
             sorted.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
             regroup(&mut sorted, u, v);
-            tiled_order(u, v, z_of, movable, &mut pairs, &mut runs, &mut tile, &mut scratch);
-            let tiled: Vec<(f64, usize)> = runs.iter().flat_map(|r| pairs[r.clone()].iter().copied()).collect();
+            tiled_order(
+                u,
+                v,
+                z_of,
+                movable,
+                &mut pairs,
+                &mut runs,
+                &mut tile,
+                &mut scratch,
+            );
+            let tiled: Vec<(f64, usize)> = runs
+                .iter()
+                .flat_map(|r| pairs[r.clone()].iter().copied())
+                .collect();
             assert_eq!(tiled, sorted, "{u} × {v}");
             // One run per tile holding a movable node (the 200 × 150 grid's first tile holds
             // none, 65 × 3's second only the last row).
-            let mut holding: Vec<(usize, usize)> = sorted.iter().map(|p| (p.1 / v / TILE, p.1 % v / TILE)).collect();
+            let mut holding: Vec<(usize, usize)> =
+                sorted.iter().map(|p| (p.1 / v / TILE, p.1 % v / TILE)).collect();
             holding.sort_unstable();
             holding.dedup();
             assert_eq!(runs.len(), holding.len(), "{u} × {v}");
