@@ -7,7 +7,10 @@
 //! `steps` runs without the boundary fairing, as `tiles_steps`; `dump` prints every faired
 //! point's coordinates as bits and the run's counts, to diff between builds). `curve N`
 //! instead fairs a noisy N-point curve with the curve method alone (automatic, one point
-//! and pairs, and interactive) and prints its points as bits, the same way.
+//! and pairs, and interactive) and prints its points as bits, the same way. `net PATH`
+//! fairs the net of a CSV file (`i,j,x,y,z` after a header, as `data/surface_utah_teapot/`)
+//! with Zhang–Cheng and with Kjellander and prints the same, with the pinned nodes: the
+//! teapot's nets take the refusal rules' paths (pins, retries) that the noisy net does not.
 
 use curve_repr::Vec3;
 use fairing::strategies::{Mode, StrainEnergy, StrainEnergySettings, SurfaceFairing, SurfaceFairingSettings};
@@ -45,10 +48,56 @@ fn curves(count: usize) {
     }
 }
 
+/// Zhang–Cheng and Kjellander on the net of the CSV file at `path`, every point as bits.
+fn net_file(path: &str) {
+    let text = std::fs::read_to_string(path).expect("the net's file reads");
+    let cells: Vec<(usize, usize, Vec3)> = text
+        .lines()
+        .skip(1)
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| {
+            let f: Vec<f64> = l
+                .split(',')
+                .map(|x| x.trim().parse().expect("a number"))
+                .collect();
+            (f[0] as usize, f[1] as usize, Vec3::new(f[2], f[3], f[4]))
+        })
+        .collect();
+    let rows = cells.iter().map(|c| c.0).max().expect("a point") + 1;
+    let columns = cells.iter().map(|c| c.1).max().expect("a point") + 1;
+    let mut net = vec![vec![Vec3::zeros(); columns]; rows];
+    for (i, j, p) in cells {
+        net[i][j] = p;
+    }
+    for settings in [
+        SurfaceFairingSettings::zhang_cheng(),
+        SurfaceFairingSettings::kjellander(),
+    ] {
+        let result = SurfaceFairing::new(settings).run(&net).expect("the net fairs");
+        println!(
+            "steps {} moved {} refused {} {} pinned {} refusal {:?} termination {:?}",
+            result.steps,
+            result.moved.len(),
+            result.refused_steps,
+            result.refused_moves,
+            result.pinned.len(),
+            result.refusal,
+            result.termination
+        );
+        for p in result.surface.points() {
+            println!("{:x} {:x} {:x}", p.x.to_bits(), p.y.to_bits(), p.z.to_bits());
+        }
+    }
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     if args.get(1).map(String::as_str) == Some("curve") {
         curves(args.get(2).and_then(|s| s.parse().ok()).unwrap_or(300));
+        return;
+    }
+    if args.get(1).map(String::as_str) == Some("net") {
+        net_file(args.get(2).expect("net PATH"));
         return;
     }
     let size: usize = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(50);

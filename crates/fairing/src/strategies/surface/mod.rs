@@ -90,7 +90,7 @@
 //!   (~45 nodes) set by the decay of the spline's response (0.27 per knot) and its 1e-13
 //!   trim, not by m or n.
 //! - *O(m·n) per step, that is O(1) per point moved:* the order (z of every candidate, read
-//!   in O(1) each, and a radix sort, O(m·n), `radix`; the comparison sort it replaced,
+//!   in O(1) each, and a radix sort of each 64 × 64 tile's, O(m·n), `radix`, `tiles`; the comparison sort it replaced,
 //!   O(m·n log(m·n)), was the only super-linear term, 7 % of the instructions of four steps
 //!   at 400 × 400) and the judgement: chord-length knots from the moved points, the
 //!   network rebuilt over them (one spline solve per grid line, the unit responses of the
@@ -168,6 +168,30 @@
 //!   400² 0.70–0.74 against 0.66, but 100² 0.73–0.85 with the same code, the machine's
 //!   noise as large as the effect; it would change the result on nets of 33–64 nodes a side,
 //!   which now get the paper's order).
+//!
+//!   The round after it cut the step's whole-grid passes, which at 400² stream from memory
+//!   (the same results bit for bit: `surface_cost SIZE dump` with and without `steps` at
+//!   50²–400², its `curve` mode, and its `net` mode on both teapot nets and the PX121 hull,
+//!   whose runs pin lines and retry steps). Each tile's candidates are sorted on their own
+//!   while in cache and the sweep takes the tiles' runs in order (the whole grid's radix
+//!   sort and regrouping were ~10 passes over 16 bytes a node); z for the order and the
+//!   largest z come from the rebuild's exact z bounds (one contiguous array; the largest
+//!   kept until a move, so the step's cap and the measure are O(1)); a rebuild takes each
+//!   line's energy terms and jumps right after its solve (three passes fewer; the energy's
+//!   running sum in its old order) and stores no tangents that the run never reads (limit
+//!   replacement); the accepted state's jump norms are built only when the max-z rule
+//!   pins; the judged and accepted points change hands by exchanging storage, not by
+//!   copies. Cachegrind (`--cache-sim=yes`, D1 48 KB 12-way, LL 2 MB 16-way: this
+//!   machine's L1 and L2; callgrind inside `SurfaceFairing::run`, per point moved, 4 · N²),
+//!   at 50² / 100² / 200² / 400²: instructions 7 309 / 6 962 / 6 674 / 6 617 before,
+//!   7 123 / 6 695 / 6 390 / 6 388 after; D1 misses 71.8 / 94.1 / 110.4 / 127.1 before,
+//!   61.7 / 82.5 / 102.8 / 114.8 after; LL misses 0.0 / 7.2 / 21.3 / 35.3 before,
+//!   0.0 / 4.3 / 11.4 / 18.7 after. Of the 400² LL misses left (12.0 M), the four
+//!   rebuilds are ~3.5 M, the moves 1.6 M, and the rest is once per run: the data's
+//!   precision 1.65 M (it sorts every coordinate), the input's and the result's bicubic
+//!   surfaces ~1 M each, the first network ~1.3 M. Tried, not kept: the precision's sorts
+//!   by the radix sort (231 M instructions at 400² against 202 M: the coordinates' keys
+//!   share few digits, so all eight passes run).
 //! - *What grows with the size:* memory traffic, not work. The moves come in the order of
 //!   z, scattered over the grid; once its data outgrow the processor's caches the cache lines
 //!   a move touches (~50: its point and its two windows of jumps and z bounds) are misses.

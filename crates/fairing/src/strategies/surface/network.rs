@@ -49,7 +49,9 @@
 //!
 //! A run rebuilds its network once per step ([`Network::rebuild`]): into the storage it
 //! already has, so that a step touches no fresh pages (at 400 × 400 a step's arrays were
-//! ~45 MB of new allocations).
+//! ~45 MB of new allocations), and in two passes, one per direction: each line's energy
+//! terms and jumps are taken right after its solve, the z bounds and the largest z with the
+//! v-lines. Until the next move the bounds are the exact z ([`Network::exact_zs`]).
 
 use curve_repr::{HermiteEnds, HermiteSettings, HermiteSpline, Vec3, Vector};
 
@@ -59,6 +61,32 @@ use crate::{Error, Result};
 /// C''' on a Hermite segment: (6(M_0 + M_1) − 12(P_1 − P_0)/h)/h².
 fn third(p0: Vec3, p1: Vec3, m0: Vec3, m1: Vec3, h: f64) -> Vec3 {
     ((m0 + m1) * 6.0 - (p1 - p0) * (12.0 / h)) / (h * h)
+}
+
+/// Adds the strain energy ∫|C''|² of every segment of one line (`line` its points,
+/// `tangents` its tangents, `stiffness` its knots) to `energy`, segment by segment from
+/// node 0 (the closing segment last round a closed line). O(line).
+fn add_line_energy(stiffness: &Stiffness, line: &[Vec3], tangents: &[Vec3], energy: &mut f64) {
+    for i in 0..line.len() {
+        if let Some(n) = stiffness.next(i) {
+            *energy += hermite_energy(line[i], line[n], tangents[i], tangents[n], stiffness.step(i));
+        }
+    }
+}
+
+/// Pushes the third-derivative jump C‴(t_k+) − C‴(t_k−) at every node k of one line onto
+/// `out` (0 at an open end). O(line).
+fn push_line_jumps(stiffness: &Stiffness, line: &[Vec3], tangents: &[Vec3], out: &mut Vec<Vec3>) {
+    let third_from =
+        |k: usize, n: usize| third(line[k], line[n], tangents[k], tangents[n], stiffness.step(k));
+    out.extend((0..line.len()).map(|k| {
+        if !stiffness.is_interior(k) {
+            return Vec3::zeros();
+        }
+        let after = stiffness.next(k).map_or(Vec3::zeros(), |n| third_from(k, n));
+        let before = stiffness.previous(k).map_or(Vec3::zeros(), |b| third_from(b, k));
+        after - before
+    }));
 }
 
 /// The response of one knot vector's splines (natural, or periodic when closed) to unit point
@@ -419,6 +447,10 @@ pub struct Network {
     v_jumps: Vec<Vec3>,
     /// An upper bound of z_ij at i·v_count + j (exact after a rebuild, raised by moves).
     z_bounds: Vec<f64>,
+    /// The largest z over the interior nodes while no move was made since the last
+    /// rebuild (the z bounds are then the exact z), taken as the bounds were filled; `None`
+    /// after a move.
+    fresh_max_z: Option<f64>,
     /// Whether moves update the tangents (only Eq. 20 and the energy sum read them; the
     /// jumps, z and the energy change do not).
     track_tangents: bool,
@@ -442,6 +474,7 @@ impl Network {
             u_jumps: Vec::new(),
             v_jumps: Vec::new(),
             z_bounds: Vec::new(),
+            fresh_max_z: None,
             track_tangents: true,
             energy: 0.0,
             u_stiffness: Stiffness::new(u_knots, closed.0)?,
@@ -454,7 +487,10 @@ impl Network {
     /// The network of other points and knots in this one's storage (the same values as
     /// [`new`](Self::new), without a fresh allocation of its m·n arrays: a run rebuilds once
     /// per step, and fresh arrays of that size are fresh pages, each a fault on first
-    /// touch). Tangents are tracked again. On an error the network is left unusable.
+    /// touch). Tangents are kept or not as before it ([`stop_tracking_tangents`]). On an
+    /// error the network is left unusable.
+    ///
+    /// [`stop_tracking_tangents`]: Self::stop_tracking_tangents
     /// O(m·n + (m + n) · window).
     pub fn rebuild(
         &mut self,
@@ -465,7 +501,6 @@ impl Network {
     ) -> Result<()> {
         self.u_stiffness = Stiffness::new(u_knots, closed.0)?;
         self.v_stiffness = Stiffness::new(v_knots, closed.1)?;
-        self.track_tangents = true;
         self.fill(points, u_knots, v_knots)
     }
 
@@ -497,118 +532,69 @@ impl Network {
         // One spline per direction, built through its first line and refitted through the
         // others in its own storage (the same tangents as a spline built through each: a
         // fresh spline per line was a dozen allocations and a check of the knots per line).
-        let solve_lines = |lines: std::slice::ChunksExact<'_, Vec3>,
-                           settings: &HermiteSettings<3>,
-                           count: usize,
-                           out: &mut Vec<Vec3>|
-         -> Result<()> {
-            out.clear();
-            let mut spline: Option<HermiteSpline<3>> = None;
-            for line in lines {
-                let spline = match &mut spline {
-                    Some(spline) => {
-                        spline.refit(line)?;
-                        spline
-                    }
-                    None => spline.insert(HermiteSpline::new(line, settings)?),
-                };
-                out.extend_from_slice(&spline.tangents()[..count]);
-            }
-            Ok(())
-        };
-        solve_lines(
-            self.columns.chunks_exact(u_count),
-            &u_settings,
-            u_count,
-            &mut self.u_tangents,
-        )?;
-        solve_lines(
-            points.chunks_exact(v_count),
-            &v_settings,
-            v_count,
-            &mut self.v_tangents,
-        )?;
-        self.points.clear();
-        self.points.extend_from_slice(points);
-        self.recompute_energy();
-        self.recompute_jumps();
-        Ok(())
-    }
-
-    /// The jumps and the z bounds from the tangents (`columns`: the points column-major).
-    /// O(m·n).
-    fn recompute_jumps(&mut self) {
-        let (uc, vc) = (self.u_count, self.v_count);
-        // Taken out while they are filled (the jumps are read through `self`), then put back.
-        let (columns, mut u_jumps, mut v_jumps, mut z_bounds) = (
-            std::mem::take(&mut self.columns),
-            std::mem::take(&mut self.u_jumps),
-            std::mem::take(&mut self.v_jumps),
-            std::mem::take(&mut self.z_bounds),
-        );
-        u_jumps.clear();
-        for j in 0..vc {
-            let (line, tangents) = (
-                &columns[j * uc..(j + 1) * uc],
-                &self.u_tangents[j * uc..(j + 1) * uc],
-            );
-            u_jumps.extend((0..uc).map(|i| {
-                if self.u_stiffness.is_interior(i) {
-                    self.u_jump_from_tangents(line, tangents, i)
-                } else {
-                    Vec3::zeros()
-                }
-            }));
-        }
-        v_jumps.clear();
-        for i in 0..uc {
-            v_jumps.extend((0..vc).map(|j| {
-                if self.v_stiffness.is_interior(j) {
-                    self.v_jump_from_tangents(i, j)
-                } else {
-                    Vec3::zeros()
-                }
-            }));
-        }
-        z_bounds.clear();
-        z_bounds.extend((0..uc * vc).map(|k| u_jumps[(k % vc) * uc + k / vc].norm() + v_jumps[k].norm()));
-        (self.columns, self.u_jumps, self.v_jumps, self.z_bounds) = (columns, u_jumps, v_jumps, z_bounds);
-    }
-
-    /// The network energy as the sum of every segment's ∫|C''|² (drops the rounding that the
-    /// O(1) updates gather; read after the points and their column-major copy). O(m·n).
-    fn recompute_energy(&mut self) {
-        let (uc, columns) = (self.u_count, &self.columns);
+        // Each line's energy terms and jumps are taken right after its solve, while its
+        // points and tangents are in cache (they were separate passes over the whole grid,
+        // each from memory on a large one). The energy is one running sum in the order it
+        // always had: the u-lines j by j, node by node, then the v-lines.
         let mut energy = 0.0;
-        for j in 0..self.v_count {
-            for i in 0..uc {
-                if let Some(n) = self.u_stiffness.next(i) {
-                    let (a, b) = (j * uc + i, j * uc + n);
-                    energy += hermite_energy(
-                        columns[a],
-                        columns[b],
-                        self.u_tangents[a],
-                        self.u_tangents[b],
-                        self.u_stiffness.step(i),
-                    );
+        let (u_stiffness, v_stiffness) = (&self.u_stiffness, &self.v_stiffness);
+        self.u_tangents.clear();
+        self.u_jumps.clear();
+        let mut spline: Option<HermiteSpline<3>> = None;
+        for line in self.columns.chunks_exact(u_count) {
+            let spline = match &mut spline {
+                Some(spline) => {
+                    spline.refit(line)?;
+                    spline
                 }
+                None => spline.insert(HermiteSpline::new(line, &u_settings)?),
+            };
+            let tangents = &spline.tangents()[..u_count];
+            if self.track_tangents {
+                self.u_tangents.extend_from_slice(tangents);
             }
+            add_line_energy(u_stiffness, line, tangents, &mut energy);
+            push_line_jumps(u_stiffness, line, tangents, &mut self.u_jumps);
         }
-        for i in 0..self.u_count {
-            for j in 0..self.v_count {
-                if let Some(n) = self.v_stiffness.next(j) {
-                    let (a, b) = (self.index(i, j), self.index(i, n));
-                    energy += hermite_energy(
-                        self.points[a],
-                        self.points[b],
-                        self.v_tangents[a],
-                        self.v_tangents[b],
-                        self.v_stiffness.step(j),
-                    );
+        // The v-lines, and row by row the points' copy and the z bounds (z as
+        // [`z`](Self::z) reads it: the u-jump's norm plus the v-jump's; the u-jumps'
+        // column-major cache lines, one per column, each serve the rows they hold while the
+        // row pass keeps them in cache), the largest z with them.
+        self.v_tangents.clear();
+        self.v_jumps.clear();
+        self.points.clear();
+        self.z_bounds.clear();
+        let mut max = 0.0f64;
+        let mut spline: Option<HermiteSpline<3>> = None;
+        for (i, line) in points.chunks_exact(v_count).enumerate() {
+            let spline = match &mut spline {
+                Some(spline) => {
+                    spline.refit(line)?;
+                    spline
+                }
+                None => spline.insert(HermiteSpline::new(line, &v_settings)?),
+            };
+            let tangents = &spline.tangents()[..v_count];
+            if self.track_tangents {
+                self.v_tangents.extend_from_slice(tangents);
+            }
+            self.points.extend_from_slice(line);
+            add_line_energy(v_stiffness, line, tangents, &mut energy);
+            push_line_jumps(v_stiffness, line, tangents, &mut self.v_jumps);
+            let row = &self.v_jumps[i * v_count..];
+            let interior_row = u_stiffness.is_interior(i);
+            for (j, v_jump) in row.iter().enumerate() {
+                let z = self.u_jumps[j * u_count + i].norm() + v_jump.norm();
+                self.z_bounds.push(z);
+                if interior_row && v_stiffness.is_interior(j) {
+                    max = max.max(z);
                 }
             }
         }
         self.energy = energy;
+        // The bounds are the exact z until a move (the max does not depend on the order).
+        self.fresh_max_z = Some(max);
+        Ok(())
     }
 
     /// Row-major index of node (i, j): points, v-line data, z bounds and the flat indices of
@@ -636,6 +622,14 @@ impl Network {
         &self.points
     }
 
+    /// Exchanges the points' storage with `other`: a caller that rebuilds the network from
+    /// its own points takes them out without a copy. The network is unusable until its
+    /// next [`rebuild`](Self::rebuild). O(1).
+    pub fn swap_points(&mut self, other: &mut Vec<Vec3>) {
+        std::mem::swap(&mut self.points, other);
+        self.fresh_max_z = None;
+    }
+
     /// P_ij (callers keep i, j inside the grid).
     pub fn point(&self, i: usize, j: usize) -> Vec3 {
         self.points[self.index(i, j)]
@@ -651,32 +645,6 @@ impl Network {
         self.v_tangents[self.index(i, j)]
     }
 
-    /// ∂³S/∂u³(u_i+, v_j) − ∂³S/∂u³(u_i−, v_j) from the tangents, at a node interior along u.
-    fn u_jump_from_tangents(&self, line: &[Vec3], tangents: &[Vec3], i: usize) -> Vec3 {
-        let s = &self.u_stiffness;
-        let (p, m) = (|k: usize| line[k], |k: usize| tangents[k]);
-        let after = s
-            .next(i)
-            .map_or(Vec3::zeros(), |n| third(p(i), p(n), m(i), m(n), s.step(i)));
-        let before = s
-            .previous(i)
-            .map_or(Vec3::zeros(), |b| third(p(b), p(i), m(b), m(i), s.step(b)));
-        after - before
-    }
-
-    /// ∂³S/∂v³(u_i, v_j+) − ∂³S/∂v³(u_i, v_j−) from the tangents, at a node interior along v.
-    fn v_jump_from_tangents(&self, i: usize, j: usize) -> Vec3 {
-        let s = &self.v_stiffness;
-        let (p, m) = (|k: usize| self.point(i, k), |k: usize| self.v_tangent(i, k));
-        let after = s
-            .next(j)
-            .map_or(Vec3::zeros(), |n| third(p(j), p(n), m(j), m(n), s.step(j)));
-        let before = s
-            .previous(j)
-            .map_or(Vec3::zeros(), |b| third(p(b), p(j), m(b), m(j), s.step(b)));
-        after - before
-    }
-
     /// ∂³S/∂u³(u_i+, v_j) − ∂³S/∂u³(u_i−, v_j) (0 at an open end along u). O(1).
     pub fn u_jump(&self, i: usize, j: usize) -> Vec3 {
         self.u_jumps[self.column_index(i, j)]
@@ -687,10 +655,12 @@ impl Network {
         self.v_jumps[self.index(i, j)]
     }
 
-    /// Stops keeping the tangents up to date during moves, until the next rebuild: a
-    /// network used with the limit replacement (Eq. 21) reads only jumps, and skipping the
-    /// tangents halves a move's cost. [`u_tangent`](Self::u_tangent) and
-    /// [`v_tangent`](Self::v_tangent) are stale after moves made without them.
+    /// Stops keeping the tangents, in moves and in rebuilds: a network used with the limit
+    /// replacement (Eq. 21) reads only jumps (the energy of a rebuild is summed from the
+    /// solves' own tangents), and skipping the tangents halves a move's cost and spares a
+    /// rebuild two grid-sized writes. [`u_tangent`](Self::u_tangent) and
+    /// [`v_tangent`](Self::v_tangent) are stale after moves made without them and are not
+    /// to be called after a rebuild without them (their arrays are empty then).
     pub fn stop_tracking_tangents(&mut self) {
         self.track_tangents = false;
     }
@@ -706,8 +676,12 @@ impl Network {
         self.u_jump(i, j).norm() + self.v_jump(i, j).norm()
     }
 
-    /// max z_ij over the interior nodes (0 when there are none). O(m·n).
+    /// max z_ij over the interior nodes (0 when there are none). O(1) while no move was
+    /// made since the last rebuild (taken then), else O(m·n).
     pub fn max_z(&self) -> f64 {
+        if let Some(max) = self.fresh_max_z {
+            return max;
+        }
         // In bands of rows, so that both the column-major u-jumps and the row-major v-jumps
         // are read in runs (the largest value does not depend on the order).
         const BAND: usize = 8;
@@ -810,6 +784,15 @@ impl Network {
         self.z_bounds[k]
     }
 
+    /// z_ij of every node (row-major, flat index i·v_count + j; the boundary nodes' values
+    /// are not z) while no move was made since the last rebuild: the z bounds are then
+    /// exact, computed as [`z`](Self::z) computes z, so a whole-grid reader can take them
+    /// from one contiguous array instead of the two jump arrays (one of them column-major).
+    /// `None` after a move. O(1).
+    pub fn exact_zs(&self) -> Option<&[f64]> {
+        self.fresh_max_z.map(|_| &self.z_bounds[..])
+    }
+
     /// The z of the node at flat index k, its bound set to it. O(1).
     pub fn tighten(&mut self, k: usize) -> f64 {
         let z = self.z_at(k);
@@ -863,6 +846,7 @@ impl Network {
     fn shift(&mut self, i: usize, j: usize, delta: Vec3) {
         let (uc, vc) = (self.u_count, self.v_count);
         let size = delta.norm();
+        self.fresh_max_z = None;
         self.points[i * vc + j] += delta;
         if self.track_tangents {
             let (u_lo, u_values) = &self.u_stiffness.response[i];

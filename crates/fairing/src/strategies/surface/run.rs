@@ -165,8 +165,6 @@ struct Run<'a> {
     fixed: Vec<bool>,
     /// Distinct nodes pinned by the max-z rule (see [`Verdict::Pinned`]).
     pinned: Vec<bool>,
-    /// (|J^u|, |J^v|) at every distinct node of the accepted state, over the output's knots.
-    accepted_parts: Vec<(f64, f64)>,
     /// Restraining radii per distinct node (automatic mode).
     radii: Option<Vec<f64>>,
     /// The cap on the radii from the data's quantisation (automatic mode), if any.
@@ -192,6 +190,10 @@ struct Run<'a> {
     order: Vec<(f64, usize)>,
     /// The radix sort's second buffer for `order`.
     order_scratch: Vec<(f64, usize)>,
+    /// The runs of `order` in the sweep's order (one per tile for `tiles`), and one tile's
+    /// pairs while they are sorted.
+    order_runs: Vec<std::ops::Range<usize>>,
+    order_tile: Vec<(f64, usize)>,
 }
 
 /// Runs the fairing (the settings checked by the caller).
@@ -273,11 +275,9 @@ pub(super) fn run(
     let fixed_knots = (!settings.refresh_knots).then(|| (input.u_knots().to_vec(), input.v_knots().to_vec()));
     let state = State::new(settings, &layout, original.clone(), fixed_knots.as_ref())?;
     let start = state.measure;
-    let parts = jump_parts(state.measured());
     let mut run = Run {
         settings,
         pinned: vec![false; layout.nu * layout.nv],
-        accepted_parts: parts,
         layout,
         accepted_points: original.clone(),
         original,
@@ -295,6 +295,8 @@ pub(super) fn run(
         shorter: Vec::new(),
         order: Vec::new(),
         order_scratch: Vec::new(),
+        order_runs: Vec::new(),
+        order_tile: Vec::new(),
     };
     let mut history = Vec::new();
 
@@ -799,23 +801,44 @@ impl Run<'_> {
             SurfaceMode::Automatic => {
                 // Step 2.3: every point once, by z at the step's start, largest first (ties
                 // by index); for `tiles` inside each tile, the tiles by their largest z.
-                // The candidates (the movable nodes, i-major) with their z, in the run's
-                // storage.
+                // The candidates (the movable nodes) with their z, in the run's storage; z
+                // from the exact bounds when the network is fresh (it is, at a step's
+                // start: one contiguous array), else from the jumps (the same values).
                 let mut order = std::mem::take(&mut self.order);
-                order.clear();
+                let mut runs = std::mem::take(&mut self.order_runs);
+                let mut tile = std::mem::take(&mut self.order_tile);
+                let mut scratch = std::mem::take(&mut self.order_scratch);
                 let network = &self.state.network;
-                order.extend(
-                    (0..self.layout.nu)
-                        .flat_map(|i| (0..nv).map(move |j| (i, j)))
-                        .filter(|&(i, j)| self.is_movable(i, j))
-                        .map(|(i, j)| (network.z(i, j), self.layout.index(i, j))),
-                );
-                super::radix::sort_descending(&mut order, &mut self.order_scratch);
+                let exact = network.exact_zs();
+                let z = |k: usize| exact.map_or_else(|| network.z_at(k), |zs| zs[k]);
+                let movable = |i: usize, j: usize| self.is_movable(i, j);
                 if self.settings.order == SweepOrder::Tiles {
-                    super::tiles::regroup(&mut order, &mut self.order_scratch, self.layout.nu, nv);
+                    super::tiles::tiled_order(
+                        self.layout.nu,
+                        nv,
+                        z,
+                        movable,
+                        &mut order,
+                        &mut runs,
+                        &mut tile,
+                        &mut scratch,
+                    );
+                } else {
+                    order.clear();
+                    order.extend(
+                        (0..self.layout.nu)
+                            .flat_map(|i| (0..nv).map(move |j| (i, j)))
+                            .filter(|&(i, j)| movable(i, j))
+                            .map(|(i, j)| (z(self.layout.index(i, j)), self.layout.index(i, j))),
+                    );
+                    super::radix::sort_descending(&mut order, &mut scratch);
+                    runs.clear();
+                    runs.push(0..order.len());
                 }
-                let result = self.sorted_sweep(&order);
+                (self.order_tile, self.order_scratch) = (tile, scratch);
+                let result = self.sorted_sweep(&order, &runs);
                 self.order = order;
+                self.order_runs = runs;
                 moved = result?;
             }
             SurfaceMode::Interactive(_) => {
@@ -839,16 +862,18 @@ impl Run<'_> {
         Ok((moved, 1))
     }
 
-    /// The moves of a sorted step, one per node of `order` (z, flat index) in turn. Returns
-    /// the points moved.
-    fn sorted_sweep(&mut self, order: &[(f64, usize)]) -> Result<usize> {
+    /// The moves of a sorted step, one per node of `order` (z, flat index) in turn, taking
+    /// the runs of `order` in `runs`' order. Returns the points moved.
+    fn sorted_sweep(&mut self, order: &[(f64, usize)], runs: &[std::ops::Range<usize>]) -> Result<usize> {
         let nv = self.layout.nv;
         let node = |k: usize| (k / nv, k % nv);
         let mut moved = 0;
-        for (step, &(_, k)) in order.iter().enumerate() {
+        let sequence = runs.iter().flat_map(|run| &order[run.clone()]);
+        let mut ahead = sequence.clone().skip(PREFETCH_AHEAD);
+        for &(_, k) in sequence {
             // The order is scattered over the grid: the first loads of the move two ahead are
             // started now (no effect on any value).
-            if let Some(&(_, next)) = order.get(step + PREFETCH_AHEAD) {
+            if let Some(&(_, next)) = ahead.next() {
                 let (a, b) = node(next);
                 self.state.network.prefetch(a, b);
                 prefetch(&self.original[next]);
@@ -935,37 +960,40 @@ impl Run<'_> {
     ///
     /// [`pin`]: Self::pin
     fn judge(&mut self) -> Result<Verdict> {
-        // The working state becomes the candidate in place: its points are copied out first
+        // The working state becomes the candidate in place: its points are taken out first
+        // (their storage exchanged with `after`'s, no copy: the rebuild copies them back)
         // and it is rebuilt from the accepted points whenever the step is not accepted.
         let mut after = std::mem::take(&mut self.after);
-        after.clear();
-        after.extend_from_slice(self.state.network.points());
-        let result = self.judge_points(&after);
+        self.state.network.swap_points(&mut after);
+        let result = self.judge_points(&mut after);
         self.after = after;
         result
     }
 
-    /// [`judge`](Self::judge) of the points `after` the step.
-    fn judge_points(&mut self, after: &[Vec3]) -> Result<Verdict> {
+    /// [`judge`](Self::judge) of the points `after` the step (`after`'s storage may be
+    /// exchanged for other points').
+    fn judge_points(&mut self, after: &mut Vec<Vec3>) -> Result<Verdict> {
         self.rebuild_state(after)?;
         let mut rule = if self.settings.guard {
             self.state.measure.worse_than(&self.accepted)
         } else {
             None
         };
-        if rule == Some(Refusal::MaxZ) && self.pin() {
+        if rule == Some(Refusal::MaxZ) && self.pin()? {
             self.refused_steps += 1;
             self.rebuild_accepted()?;
             return Ok(Verdict::Pinned);
         }
         let mut shorter = std::mem::take(&mut self.shorter);
+        let mut retried = false;
         for fraction in RETRIES {
             if rule.is_none() {
                 break;
             }
+            retried = true;
             self.refused_steps += 1;
             shorter.clear();
-            shorter.extend(self.accepted_points.iter().zip(after).map(|(p, q)| {
+            shorter.extend(self.accepted_points.iter().zip(after.iter()).map(|(p, q)| {
                 if p == q {
                     *p
                 } else {
@@ -975,14 +1003,13 @@ impl Run<'_> {
             self.rebuild_state(&shorter)?;
             rule = self.state.measure.worse_than(&self.accepted);
         }
-        self.shorter = shorter;
-        match rule {
+        let verdict = match rule {
             None => {
                 self.accepted = self.state.measure;
-                self.accepted_points.clear();
-                self.accepted_points
-                    .extend_from_slice(self.state.network.points());
-                jump_parts_into(self.state.measured(), &mut self.accepted_parts);
+                // The accepted points are those the state was last rebuilt from (its
+                // network's are a copy): their storage is exchanged, not copied.
+                let built = if retried { &mut shorter } else { after };
+                std::mem::swap(&mut self.accepted_points, built);
                 Ok(Verdict::Accepted)
             }
             Some(rule) => {
@@ -990,7 +1017,9 @@ impl Run<'_> {
                 self.rebuild_accepted()?;
                 Ok(Verdict::Refused(rule))
             }
-        }
+        };
+        self.shorter = shorter;
+        verdict
     }
 
     /// The working state rebuilt in place as the state of distinct `points`.
@@ -1015,7 +1044,8 @@ impl Run<'_> {
     /// within [`PIN_REACH`] of it when its u-jump grew (their chord lengths make its u knot
     /// steps), the lines along v when its v-jump grew. Returns whether anything new was
     /// pinned. O(m·n).
-    fn pin(&mut self) -> bool {
+    fn pin(&mut self) -> Result<bool> {
+        let accepted_parts = self.accepted_parts()?;
         let network = self.state.measured();
         let (nu, nv) = (self.layout.nu, self.layout.nv);
         let limit = self.accepted.max_z + SLACK * self.accepted.max_z.abs();
@@ -1040,7 +1070,7 @@ impl Run<'_> {
                 if !network.is_interior(i, j) || network.z(i, j) <= limit {
                     continue;
                 }
-                let (u_before, v_before) = self.accepted_parts[self.layout.index(i, j)];
+                let (u_before, v_before) = accepted_parts[self.layout.index(i, j)];
                 let (u_after, v_after) = (network.u_jump(i, j).norm(), network.v_jump(i, j).norm());
                 if u_after > u_before {
                     for l in reach(i, nu, closed_u) {
@@ -1064,21 +1094,30 @@ impl Run<'_> {
                 }
             }
         }
-        new
+        Ok(new)
+    }
+
+    /// (|J^u|, |J^v|) at every distinct node of the last accepted state, over the output's
+    /// knots: from the network of its points over those knots, built as the state built it
+    /// (the same values). Only the max-z rule's [`pin`](Self::pin) reads them, so they are
+    /// built when it does instead of kept at every acceptance (a whole-grid pass over both
+    /// jump arrays, one of them column-major, at every step). O(m·n).
+    fn accepted_parts(&self) -> Result<Vec<(f64, f64)>> {
+        let points = &self.accepted_points;
+        let (knots, judged_knots) =
+            State::knots_of(self.settings, &self.layout, points, self.fixed_knots.as_ref())?;
+        let (u, v) = judged_knots.as_ref().unwrap_or(&knots);
+        let closed = (self.layout.topology.closed_u, self.layout.topology.closed_v);
+        Ok(jump_parts(&Network::new(points, u, v, closed)?))
     }
 }
 
 /// (|J^u|, |J^v|) at every distinct node.
 fn jump_parts(network: &Network) -> Vec<(f64, f64)> {
-    let mut parts = Vec::new();
-    jump_parts_into(network, &mut parts);
-    parts
-}
-
-/// [`jump_parts`] into `parts` (its storage reused).
-fn jump_parts_into(network: &Network, parts: &mut Vec<(f64, f64)>) {
-    parts.clear();
-    parts.extend(network.u_jumps_and_v_jumps().map(|(u, v)| (u.norm(), v.norm())));
+    network
+        .u_jumps_and_v_jumps()
+        .map(|(u, v)| (u.norm(), v.norm()))
+        .collect()
 }
 
 #[cfg(test)]

@@ -16,16 +16,62 @@
 /// within the 2–4 MB of second-level cache of current server cores.
 pub const TILE: usize = 64;
 
-/// Regroups `order` (pairs (z, flat index i·`v_count` + j), already sorted by z descending,
-/// ties by index) tile by tile: the tiles in the order of their first pair (their largest
-/// z), each tile's pairs in their order in `order` (a stable counting sort on the tile's
-/// rank). `scratch` is reused storage. O(len + tiles).
-pub(super) fn regroup(
-    order: &mut Vec<(f64, usize)>,
-    scratch: &mut Vec<(f64, usize)>,
+/// The tiled order of one step, tile by tile: each tile's movable nodes (`movable(i, j)`)
+/// with their z (`z(k)`, k = i·`v_count` + j, read at the step's start) sorted by z
+/// descending, ties by index, into `pairs` one run per tile (the tiles row by row); `runs`
+/// then lists those runs in the order of their first pair (their largest z, ties by index).
+/// The runs taken in `runs`' order are the paper's sorted order regrouped tile by tile
+/// ([`regroup`] of the whole grid's sort, bit for bit), without sorting or moving the
+/// whole grid's pairs: each tile's nodes are read in rows of [`TILE`] and sorted while they
+/// are in cache (the whole grid's radix sort and regrouping were some ten passes over an
+/// array of 16 bytes a node, from memory at 400 × 400). `tile` and `scratch` are reused
+/// storage. O(m·n).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn tiled_order(
     u_count: usize,
     v_count: usize,
+    z: impl Fn(usize) -> f64,
+    movable: impl Fn(usize, usize) -> bool,
+    pairs: &mut Vec<(f64, usize)>,
+    runs: &mut Vec<std::ops::Range<usize>>,
+    tile: &mut Vec<(f64, usize)>,
+    scratch: &mut Vec<(f64, usize)>,
 ) {
+    pairs.clear();
+    runs.clear();
+    for i0 in (0..u_count).step_by(TILE) {
+        for j0 in (0..v_count).step_by(TILE) {
+            tile.clear();
+            for i in i0..(i0 + TILE).min(u_count) {
+                let row = i * v_count;
+                tile.extend(
+                    (j0..(j0 + TILE).min(v_count))
+                        .filter(|&j| movable(i, j))
+                        .map(|j| (z(row + j), row + j)),
+                );
+            }
+            if tile.is_empty() {
+                continue;
+            }
+            // Given in ascending index, the stable sort breaks ties by index.
+            super::radix::sort_descending(tile, scratch);
+            runs.push(pairs.len()..pairs.len() + tile.len());
+            pairs.extend_from_slice(tile);
+        }
+    }
+    let first = |run: &std::ops::Range<usize>| pairs[run.start];
+    runs.sort_unstable_by(|a, b| {
+        let (a, b) = (first(a), first(b));
+        b.0.total_cmp(&a.0).then(a.1.cmp(&b.1))
+    });
+}
+
+/// The whole grid's sorted `order` (pairs (z, flat index), z descending, ties by index)
+/// regrouped tile by tile: the tiles in the order of their first pair, each tile's pairs
+/// in their order in `order` (a stable counting sort on the tile's rank). The reference
+/// [`tiled_order`] is tested against (the run's own order until it). O(len + tiles).
+#[cfg(test)]
+fn regroup(order: &mut Vec<(f64, usize)>, u_count: usize, v_count: usize) {
     let tiles_u = u_count.div_ceil(TILE);
     let tiles_v = v_count.div_ceil(TILE);
     if tiles_u * tiles_v < 2 || order.len() < 2 {
@@ -51,14 +97,13 @@ pub(super) fn regroup(
         next.push(sum);
         sum += c;
     }
-    scratch.clear();
-    scratch.resize(order.len(), (0.0, 0));
+    let mut scratch = vec![(0.0, 0); order.len()];
     for &item in order.iter() {
         let r = rank[tile_of(item.1)];
         scratch[next[r]] = item;
         next[r] += 1;
     }
-    std::mem::swap(order, scratch);
+    *order = scratch;
 }
 
 #[cfg(test)]
@@ -82,7 +127,7 @@ mod tests {
         for (u, v) in [(1, 1), (13, 13), (TILE, TILE), (TILE, 3), (2, TILE)] {
             let sorted = sorted_grid(u, v);
             let mut order = sorted.clone();
-            regroup(&mut order, &mut Vec::new(), u, v);
+            regroup(&mut order, u, v);
             assert_eq!(order, sorted, "{u} × {v}");
         }
     }
@@ -92,7 +137,7 @@ mod tests {
         let (u, v) = (2 * TILE + 5, TILE + 1);
         let sorted = sorted_grid(u, v);
         let mut order = sorted.clone();
-        regroup(&mut order, &mut Vec::new(), u, v);
+        regroup(&mut order, u, v);
         // The same pairs.
         let mut a = order.clone();
         let mut b = sorted.clone();
@@ -124,5 +169,61 @@ mod tests {
         }
         // The first pair is still the step's largest z.
         assert_eq!(order[0], sorted[0]);
+    }
+
+    #[test]
+    fn tiled_order_is_the_sorted_grid_regrouped() {
+        // Hashed z with many ties, some nodes not movable (a border and a scatter), grids of
+        // one tile, of partial tiles and of several, and a grid with an empty tile.
+        let z_of = |k: usize| {
+            let x = ((k * 7919 + 13) as f64 * 12.9898).sin() * 43_758.545_3;
+            ((x - x.floor()) * 4.0).floor()
+        };
+        let (mut pairs, mut runs, mut tile, mut scratch) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        for (u, v) in [
+            (13, 13),
+            (TILE, TILE),
+            (TILE + 1, 3),
+            (2 * TILE + 5, TILE + 1),
+            (200, 150),
+        ] {
+            let movable = |i: usize, j: usize| {
+                i > 0
+                    && j > 0
+                    && i + 1 < u
+                    && j + 1 < v
+                    && !(i * 31 + j * 17).is_multiple_of(11)
+                    && !(i < TILE && j < TILE && u > 150)
+            };
+            let mut sorted: Vec<(f64, usize)> = (0..u * v)
+                .filter(|&k| movable(k / v, k % v))
+                .map(|k| (z_of(k), k))
+                .collect();
+            sorted.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+            regroup(&mut sorted, u, v);
+            tiled_order(
+                u,
+                v,
+                z_of,
+                movable,
+                &mut pairs,
+                &mut runs,
+                &mut tile,
+                &mut scratch,
+            );
+            let tiled: Vec<(f64, usize)> = runs
+                .iter()
+                .flat_map(|r| pairs[r.clone()].iter().copied())
+                .collect();
+            assert_eq!(tiled, sorted, "{u} × {v}");
+            // One run per tile holding a movable node (the 200 × 150 grid's first tile holds
+            // none, 65 × 3's second only the last row).
+            let mut holding: Vec<(usize, usize)> =
+                sorted.iter().map(|p| (p.1 / v / TILE, p.1 % v / TILE)).collect();
+            holding.sort_unstable();
+            holding.dedup();
+            assert_eq!(runs.len(), holding.len(), "{u} × {v}");
+            assert!(runs.iter().all(|r| !r.is_empty()));
+        }
     }
 }
