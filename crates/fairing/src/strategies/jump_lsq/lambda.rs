@@ -415,7 +415,7 @@ pub(crate) fn gml_score<const D: usize>(e: &Evaluation<D>, dims: GmlDimensions, 
         return f64::INFINITY;
     };
     let dof = dims.counted as f64 - dims.null as f64;
-    if dof <= 0.0 || !(e.lambda > 0.0) {
+    if dof <= 0.0 || e.lambda.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         return f64::INFINITY;
     }
     let q = e.rss + e.lambda * (penalty - penalty_min).max(0.0);
