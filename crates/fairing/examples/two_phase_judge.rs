@@ -37,7 +37,8 @@
 //! `off`, `foot-point`, `parameter-correction`), `HAN_CURVE_GCV_GAMMA` and `HAN_FUNCTION_GCV_GAMMA`
 //! (`curve-gcv-gamma`, `function-gcv-gamma`), `HAN_CURVE_ENDS` (`curve-ends`: `runout`,
 //! `natural`), `HAN_CURVE_END_RUNS` and `HAN_FUNCTION_END_RUNS` (`true`, `false`),
-//! `HAN_END_RUN_MAX_DEVIANCE` (`end-run-max-deviance`).
+//! `HAN_END_RUN_MAX_DEVIANCE` (`end-run-max-deviance`), `HAN_FUNCTION_PREPASS_RULE` and
+//! `HAN_CURVE_PREPASS_RULE` (`function-prepass-rule`, `curve-prepass-rule`: `gcv`, `gml`).
 
 use std::f64::consts::PI;
 use std::fmt::Write as _;
@@ -275,6 +276,12 @@ fn main() -> Result<(), Error> {
             "HAN_CURVE_END_RUNS" => tuned.curve_end_runs = value.parse()?,
             "HAN_FUNCTION_END_RUNS" => tuned.function_end_runs = value.parse()?,
             "HAN_END_RUN_MAX_DEVIANCE" => tuned.end_run_max_deviance = value.parse()?,
+            "HAN_FUNCTION_PREPASS_RULE" => {
+                tuned.function_prepass_rule = serde_json::from_value(serde_json::Value::String(value))?;
+            }
+            "HAN_CURVE_PREPASS_RULE" => {
+                tuned.curve_prepass_rule = serde_json::from_value(serde_json::Value::String(value))?;
+            }
             "HAN_CURVE_ENDS" => {
                 tuned.curve_ends = serde_json::from_value(serde_json::Value::String(value))?;
             }

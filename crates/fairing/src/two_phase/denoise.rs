@@ -93,6 +93,68 @@ pub enum Denoise {
     JumpLsqGcv,
 }
 
+/// How the `jump-lsq-gcv` pre-pass chooses jump-lsq's λ
+/// ([`TwoPhaseSettings::function_prepass_rule`](super::TwoPhaseSettings::function_prepass_rule),
+/// [`TwoPhaseSettings::curve_prepass_rule`](super::TwoPhaseSettings::curve_prepass_rule)).
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    Hash,
+    serde::Serialize,
+    serde::Deserialize,
+    schemars::JsonSchema,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum PrepassRule {
+    /// Generalised cross-validation, with the setting's factor γ on the trace.
+    #[default]
+    Gcv,
+    /// Generalised maximum likelihood (Wahba 1985; REML), jump-lsq's `gml` rule.
+    Gml,
+}
+
+impl PrepassRule {
+    /// `gcv` or `gml`.
+    pub fn name(self) -> &'static str {
+        match self {
+            PrepassRule::Gcv => "gcv",
+            PrepassRule::Gml => "gml",
+        }
+    }
+}
+
+/// The λ rule of a `jump-lsq-gcv` pre-pass: the rule and GCV's trace factor γ (≥ 1; unused
+/// by GML).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Prepass {
+    /// GCV or GML.
+    pub rule: PrepassRule,
+    /// GCV's factor γ on the trace.
+    pub gcv_gamma: f64,
+}
+
+impl Prepass {
+    /// GCV with the factor `gamma` on the trace.
+    pub fn gcv(gamma: f64) -> Self {
+        Prepass {
+            rule: PrepassRule::Gcv,
+            gcv_gamma: gamma,
+        }
+    }
+
+    /// `rule`, with GCV's factor `gamma` on the trace.
+    pub fn new(rule: PrepassRule, gamma: f64) -> Self {
+        Prepass {
+            rule,
+            gcv_gamma: gamma,
+        }
+    }
+}
+
 impl Denoise {
     /// `off`, `gcv`, `jump-lsq` or `jump-lsq-gcv`.
     pub fn name(self) -> &'static str {
@@ -104,16 +166,17 @@ impl Denoise {
         }
     }
 
-    /// The jump-lsq settings of the jump-lsq variants (`None` for the others), GCV's trace
-    /// factor `gcv_gamma` for `jump-lsq-gcv`.
-    fn jump_lsq(self, gcv_gamma: f64) -> Option<JumpLsqSettings> {
+    /// The jump-lsq settings of the jump-lsq variants (`None` for the others), `prepass`'s
+    /// rule (GCV with its trace factor, or GML) for `jump-lsq-gcv`.
+    fn jump_lsq(self, prepass: Prepass) -> Option<JumpLsqSettings> {
         match self {
             Denoise::JumpLsq => Some(JumpLsqSettings::default()),
-            Denoise::JumpLsqGcv => Some(
-                JumpLsqSettings::default()
+            Denoise::JumpLsqGcv => Some(match prepass.rule {
+                PrepassRule::Gcv => JumpLsqSettings::default()
                     .with_rule(LambdaRule::Gcv)
-                    .with_gcv_gamma(gcv_gamma),
-            ),
+                    .with_gcv_gamma(prepass.gcv_gamma),
+                PrepassRule::Gml => JumpLsqSettings::default().with_rule(LambdaRule::Gml),
+            }),
             Denoise::Off | Denoise::Gcv => None,
         }
     }
@@ -251,7 +314,7 @@ fn jump_fit_on_knots<const D: usize>(
 ///
 /// Errors: x not strictly increasing, non-finite values (the smoothing spline's errors).
 pub fn denoise(mode: Denoise, x: &[f64], y: &[f64], limits: &Limits<'_>) -> Result<Vec<f64>> {
-    denoise_with(mode, 1.0, x, y, limits)
+    denoise_by(mode, Prepass::gcv(1.0), x, y, limits)
 }
 
 /// [`denoise`] with the factor γ on the trace of `jump-lsq-gcv`'s GCV rule
@@ -266,10 +329,24 @@ pub fn denoise_with(
     y: &[f64],
     limits: &Limits<'_>,
 ) -> Result<Vec<f64>> {
+    denoise_by(mode, Prepass::gcv(gcv_gamma), x, y, limits)
+}
+
+/// [`denoise`] with `jump-lsq-gcv`'s λ rule `prepass` (GCV with its factor γ, or GML;
+/// [`TwoPhaseSettings::function_prepass_rule`](super::TwoPhaseSettings::function_prepass_rule)).
+///
+/// Errors: as [`denoise`]; γ below 1.
+pub fn denoise_by(
+    mode: Denoise,
+    prepass: Prepass,
+    x: &[f64],
+    y: &[f64],
+    limits: &Limits<'_>,
+) -> Result<Vec<f64>> {
     if mode == Denoise::Off || x.len() < 4 {
         return Ok(y.to_vec());
     }
-    if let Some(settings) = mode.jump_lsq(gcv_gamma) {
+    if let Some(settings) = mode.jump_lsq(prepass) {
         let data: Vec<Vec2> = x.iter().zip(y).map(|(&x, &y)| Vec2::new(x, y)).collect();
         if let Some(fit) = jump_fit(&data, CurveDomain::Function, false, limits, &settings)? {
             return Ok(fit.iter().map(|p| p.y).collect());
@@ -325,19 +402,52 @@ pub fn denoise_curve(
     closed: bool,
     limits: &Limits<'_>,
 ) -> Result<Vec<Vec2>> {
-    denoise_curve_with(mode, 1.0, CurveEnds::Natural, projection, points, closed, limits)
+    denoise_curve_by(
+        mode,
+        Prepass::gcv(1.0),
+        CurveEnds::Natural,
+        projection,
+        points,
+        closed,
+        limits,
+    )
 }
 
-/// [`denoise_curve`] with the factor γ on the trace of `jump-lsq-gcv`'s GCV rule
-/// ([`TwoPhaseSettings::curve_gcv_gamma`](super::TwoPhaseSettings::curve_gcv_gamma);
-/// [`denoise_curve`] has 1) and the jump-lsq variants' end conditions of an open fit
-/// ([`TwoPhaseSettings::curve_ends`](super::TwoPhaseSettings::curve_ends); [`denoise_curve`]
-/// has natural ends; the cubic smoothing spline always has).
+/// [`denoise_curve_by`] with GCV and the factor γ on its trace
+/// ([`TwoPhaseSettings::curve_gcv_gamma`](super::TwoPhaseSettings::curve_gcv_gamma)).
 ///
 /// Errors: as [`denoise_curve`]; γ below 1.
 pub fn denoise_curve_with(
     mode: Denoise,
     gcv_gamma: f64,
+    curve_ends: CurveEnds,
+    projection: Projection,
+    points: &[Vec2],
+    closed: bool,
+    limits: &Limits<'_>,
+) -> Result<Vec<Vec2>> {
+    denoise_curve_by(
+        mode,
+        Prepass::gcv(gcv_gamma),
+        curve_ends,
+        projection,
+        points,
+        closed,
+        limits,
+    )
+}
+
+/// [`denoise_curve`] with `jump-lsq-gcv`'s λ rule `prepass` (GCV with the factor γ on its
+/// trace, [`TwoPhaseSettings::curve_gcv_gamma`](super::TwoPhaseSettings::curve_gcv_gamma),
+/// or GML, [`TwoPhaseSettings::curve_prepass_rule`](super::TwoPhaseSettings::curve_prepass_rule);
+/// [`denoise_curve`] has GCV with γ = 1) and the jump-lsq variants' end conditions of an open fit
+/// ([`TwoPhaseSettings::curve_ends`](super::TwoPhaseSettings::curve_ends); [`denoise_curve`]
+/// has natural ends; the cubic smoothing spline always has).
+///
+/// Errors: as [`denoise_curve`]; γ below 1.
+pub fn denoise_curve_by(
+    mode: Denoise,
+    prepass: Prepass,
     curve_ends: CurveEnds,
     projection: Projection,
     points: &[Vec2],
@@ -361,13 +471,12 @@ pub fn denoise_curve_with(
                 keep: &keep,
                 allowed: &allowed,
             };
-            let values = match curve_fit(mode, gcv_gamma, curve_ends, projection, &sequence, false, &limits)?
-            {
+            let values = match curve_fit(mode, prepass, curve_ends, projection, &sequence, false, &limits)? {
                 Some(values) => values,
                 // jump-lsq's λ limited: the cubic smoothing spline.
                 None => curve_fit(
                     Denoise::Gcv,
-                    gcv_gamma,
+                    prepass,
                     curve_ends,
                     projection,
                     &sequence,
@@ -417,9 +526,9 @@ pub fn denoise_curve_with(
         cornered[seam] = corner;
         return fit(&cornered, &around(seam), projection, false);
     }
-    if mode.jump_lsq(gcv_gamma).is_some() {
+    if mode.jump_lsq(prepass).is_some() {
         // No corner: jump-lsq's periodic spline has no seam to hide.
-        if let Some(values) = curve_fit(mode, gcv_gamma, curve_ends, projection, points, true, limits)? {
+        if let Some(values) = curve_fit(mode, prepass, curve_ends, projection, points, true, limits)? {
             return Ok(values);
         }
     }
@@ -473,14 +582,14 @@ fn fitted_curve(
 /// asked of `gcv`).
 fn smoother_fit(
     mode: Denoise,
-    gcv_gamma: f64,
+    prepass: Prepass,
     curve_ends: CurveEnds,
     sequence: &[Vec2],
     periodic: bool,
     knots: Option<&[f64]>,
     limits: &Limits<'_>,
 ) -> Result<Option<(Vec<Vec2>, Vec<f64>)>> {
-    if let Some(settings) = mode.jump_lsq(gcv_gamma) {
+    if let Some(settings) = mode.jump_lsq(prepass) {
         return jump_fit_on_knots(
             sequence,
             CurveDomain::Parametric,
@@ -507,7 +616,7 @@ fn smoother_fit(
 /// [`smoother_fit`]. O(n) per solve.
 fn curve_fit(
     mode: Denoise,
-    gcv_gamma: f64,
+    prepass: Prepass,
     curve_ends: CurveEnds,
     projection: Projection,
     sequence: &[Vec2],
@@ -515,8 +624,7 @@ fn curve_fit(
     limits: &Limits<'_>,
 ) -> Result<Option<Vec<Vec2>>> {
     let ends = mode.curve_ends(curve_ends);
-    let Some((mut values, mut knots)) =
-        smoother_fit(mode, gcv_gamma, ends, sequence, periodic, None, limits)?
+    let Some((mut values, mut knots)) = smoother_fit(mode, prepass, ends, sequence, periodic, None, limits)?
     else {
         return Ok(None);
     };
@@ -538,7 +646,7 @@ fn curve_fit(
             let period = knots[knots.len() - 1] - knots[0];
             feet.push(feet[0] + period);
         }
-        match smoother_fit(mode, gcv_gamma, ends, sequence, periodic, Some(&feet), limits)? {
+        match smoother_fit(mode, prepass, ends, sequence, periodic, Some(&feet), limits)? {
             Some(refit) => (values, knots) = refit,
             None => break,
         }

@@ -20,7 +20,8 @@ pub mod phase2;
 mod settings;
 
 pub use denoise::{
-    denoise, denoise_curve, denoise_curve_with, denoise_with, Denoise, Limits, CORRECTION_ROUNDS,
+    denoise, denoise_by, denoise_curve, denoise_curve_by, denoise_curve_with, denoise_with, Denoise, Limits,
+    Prepass, PrepassRule, CORRECTION_ROUNDS,
 };
 pub use foot_point::{foot_points, FootPoint, Projection};
 pub use phase1::{coarse_pass, counts, detect, displacement, e_at, Case, CaseKind, PassReport};
@@ -258,9 +259,12 @@ impl FairingStrategy<2> for TwoPhase {
             keep: &keep,
             allowed: &allowed,
         };
-        let smooth = denoise_with(
+        let smooth = denoise_by(
             self.settings.denoise,
-            self.settings.function_gcv_gamma,
+            Prepass::new(
+                self.settings.function_prepass_rule,
+                self.settings.function_gcv_gamma,
+            ),
             &x,
             &y,
             &limits,
@@ -363,9 +367,9 @@ impl SegmentFairer for TwoPhase {
             keep: &keep,
             allowed: &allowed,
         };
-        denoise_curve_with(
+        denoise_curve_by(
             self.settings.denoise,
-            self.settings.curve_gcv_gamma,
+            Prepass::new(self.settings.curve_prepass_rule, self.settings.curve_gcv_gamma),
             self.settings.curve_ends,
             self.settings.project,
             points,

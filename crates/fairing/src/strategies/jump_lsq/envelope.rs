@@ -328,6 +328,13 @@ impl<'p> Ldlt<'p> {
         z
     }
 
+    /// ln |det A| = Σ_i ln |d_i| (L is unit lower triangular). O(m).
+    pub fn log_abs_det(&self) -> f64 {
+        (0..self.profile.size())
+            .map(|i| self.values[self.profile.start[i + 1] - 1].abs().ln())
+            .sum()
+    }
+
     /// The pivots d_i.
     #[cfg(test)]
     pub fn pivots(&self) -> Vec<f64> {

@@ -1,6 +1,7 @@
-//! Choosing λ: the discrepancy principle and generalised cross-validation.
+//! Choosing λ: the discrepancy principle, generalised cross-validation and generalised
+//! maximum likelihood.
 //!
-//! Both rules evaluate the solution at trial values of λ; each evaluation is one O(n)
+//! The rules evaluate the solution at trial values of λ; each evaluation is one O(n)
 //! factorisation of K(λ) = A + λB and one solve (plus one more solve for the derivative, or
 //! the selected inverse for GCV).
 //!
@@ -20,6 +21,10 @@
 //!   factor ([`super::envelope::Ldlt::selected_inverse`]); γ = `gcv-gamma`, 1 by default
 //!   (above 1 the modified GCV, which smooths more). A grid of half decades, then a
 //!   golden-section search in the best cell.
+//! - **GML** (Wahba 1985; the restricted likelihood, REML): minimise
+//!   ln(RSS + λ(P − P_min)) + [ln det K(λ) − (q − m′) ln λ]/(n_f − m′) over log λ ([`gml`]
+//!   derives it), ln det K from the pivots of the same factorisation (no selected inverse);
+//!   the same search as GCV.
 //!
 //! **The precision limit.** The penalty rows Δ^d J of a smooth curve are tiny differences of
 //! large B-spline coefficients (their symbol grows like ω^(8+2d)), so a heavily smoothing λ
@@ -61,6 +66,9 @@ pub(crate) struct Evaluation<const D: usize> {
     pub rss_slope: Option<f64>,
     /// tr A(λ), when asked for.
     pub trace: Option<f64>,
+    /// The penalty γᵀBγ (summed over the coordinates) and ln |det K(λ)| up to a constant
+    /// ([`System::log_det`]), when asked for (the likelihood rule).
+    pub likelihood: Option<(f64, f64)>,
 }
 
 /// Solves at `lambda`; with `slope`, also dRSS/d ln λ; with `trace`, tr A(λ); and the
@@ -71,7 +79,18 @@ pub(crate) fn evaluate<const D: usize>(
     slope: bool,
     trace: bool,
 ) -> Result<Evaluation<D>, PivotFailure> {
-    let mut evaluation = trial(system, lambda, slope, trace)?;
+    let mut evaluation = trial(system, lambda, slope, trace, false)?;
+    evaluation.values = system.values(&evaluation.gamma);
+    Ok(evaluation)
+}
+
+/// [`evaluate`] with the penalty and ln det K(λ) of the likelihood rule ([`gml`]). O(n).
+#[cfg(test)]
+pub(crate) fn evaluate_likelihood<const D: usize>(
+    system: &System<'_, D>,
+    lambda: f64,
+) -> Result<Evaluation<D>, PivotFailure> {
+    let mut evaluation = trial(system, lambda, false, false, true)?;
     evaluation.values = system.values(&evaluation.gamma);
     Ok(evaluation)
 }
@@ -83,6 +102,7 @@ fn trial<const D: usize>(
     lambda: f64,
     slope: bool,
     trace: bool,
+    likelihood: bool,
 ) -> Result<Evaluation<D>, PivotFailure> {
     let solution = system.solve(lambda)?;
     // The residual of every counted point, its value formed one at a time.
@@ -111,6 +131,12 @@ fn trial<const D: usize>(
     } else {
         None
     };
+    let likelihood = if likelihood {
+        let log_det = system.log_det(&solution, lambda)?;
+        Some((system.space().penalty_of(&solution.gamma), log_det))
+    } else {
+        None
+    };
     Ok(Evaluation {
         lambda,
         gamma: solution.gamma,
@@ -118,6 +144,7 @@ fn trial<const D: usize>(
         rss,
         rss_slope,
         trace,
+        likelihood,
     })
 }
 
@@ -188,7 +215,7 @@ pub(crate) fn discrepancy<const D: usize>(
     // probe needs no slope: Newton's steps start from `start`.
     if rho_max > rho_direct {
         probed = true;
-        let evaluation = trial(system, lambda_max, false, false)?;
+        let evaluation = trial(system, lambda_max, false, false, false)?;
         evaluations += 1;
         let f = evaluation.rss.ln() - goal;
         if f < 0.0 || f.abs() <= TOLERANCE {
@@ -206,7 +233,7 @@ pub(crate) fn discrepancy<const D: usize>(
         }
     }
     loop {
-        let evaluation = trial(system, rho.exp(), true, false)?;
+        let evaluation = trial(system, rho.exp(), true, false, false)?;
         evaluations += 1;
         let f = evaluation.rss.ln() - goal;
         let slope = evaluation.rss_slope.unwrap_or(0.0) / evaluation.rss;
@@ -294,6 +321,125 @@ pub(crate) fn gcv<const D: usize>(
         }
         (e.rss / (free * coordinates.max(1) as f64)) / (denominator * denominator)
     };
+    minimise(system, lambda_max, Asked::Trace, score)
+}
+
+/// The dimensions of the likelihood rule ([`gml`]) for a system: n_f the counted data rows, q
+/// the unknowns left free by the constraints (n − p), m′ the dimension of the penalty's null
+/// space left free by the constraints.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct GmlDimensions {
+    /// n_f.
+    pub counted: usize,
+    /// q = n − p.
+    pub free: usize,
+    /// m′ = m − min(p, m).
+    pub null: usize,
+}
+
+impl GmlDimensions {
+    /// The dimensions of `system` (see [`gml`] for the assumption on the constraints).
+    pub fn of<const D: usize>(system: &System<'_, D>) -> Self {
+        let n = system.space().len();
+        let p = system.constraints().len().min(n);
+        let m = system.space().penalty_nullity();
+        GmlDimensions {
+            counted: system.counted().iter().filter(|c| **c).count(),
+            free: n - p,
+            null: m - p.min(m),
+        }
+    }
+}
+
+/// The generalised maximum likelihood rule (GML, Wahba 1985; the restricted likelihood, REML,
+/// of the Bayesian model of the smoother) over λ ∈ [1e-6, `lambda_max`].
+///
+/// **The model.** The data y_k = s(t_k) + ε_k of the n_f counted points, ε_k independent
+/// N(0, σ²/w_k) in every smoothed coordinate, and the prior on the spline's unknowns
+/// γ ∝ exp(−λ γᵀBγ / (2σ²)) on the constraints' affine set Cγ = d (flat along the penalty's
+/// null space). Parametrise that set as γ = γ₀ + Z u (u ∈ R^q, q = n − p for p independent
+/// constraints); the value of a value-constrained point does not depend on u, so its data row
+/// drops out, and the free points' values are X u + const with X = N_F Z. With S = ZᵀBZ (null
+/// space of dimension m′) the restricted likelihood of σ² and λ, integrated over the null
+/// space and maximised over σ² (σ̂² = Q/(c(n_f − m′)) over the c coordinates), is, up to
+/// constants (Wahba 1985 §2, eq. (2.5), there with W = I, no constraints and q = n_f;
+/// Wahba 1990 §4.8),
+///
+/// ```text
+/// −2 ln L / (c (n_f − m′)) = ln Q(λ) + [ln det(XᵀWX + λS) − (q − m′) ln λ] / (n_f − m′)
+/// ```
+///
+/// (the covariance of the data is σ²(W⁻¹ + X (λS)⁺ Xᵀ) off the null space, whose
+/// determinant is det(W⁻¹) det(XᵀWX + λS) / (λ^(q−m′) det⁺S) over the q − m′ directions the
+/// penalty sees). Q is the quadratic form of the data: Σ_coordinates min_u [Σ_k w_k |s(t_k) −
+/// y_k|² + λ (P(γ) − P_min)] = RSS(λ) + λ (P(γ(λ)) − P_min), P(γ) = γᵀBγ and P_min its
+/// least value on the constraints' set (0 when the constraints fit in the null space,
+/// p ≤ m, else the penalty of the solve at λ_max). Without constraints and with W = I this
+/// is Wahba's V_ML(λ) = yᵀ(I − A)y / det⁺(I − A)^(1/(n−m)): the non-zero eigenvalues of
+/// I − A(λ) are λq_i/(1 + λq_i) over the eigenvalues q_i > 0 of the value-space penalty, so
+/// ln det⁺(I − A) = (n − m) ln λ − ln det(W + λQ) + const, and yᵀW(I − A)y = RSS + λ sᵀQs
+/// (W(y − s) = λQs at the minimum).
+///
+/// **What is computed.** XᵀWX + λS = Zᵀ K(λ) Z on the unknowns (the constrained points'
+/// data rows vanish on Z), and ln |det K(λ)| of the KKT matrix is ln det(ZᵀHZ) plus a
+/// constant ([`System::log_det`]), Σ ln |d_i| of the LDLᵀ the solve made: O(n), no trace.
+/// m is the penalty's null space ([`super::system::Space::penalty_nullity`]); the p constraints are
+/// assumed to be in general position on it (m′ = m − min(p, m): point values at p distinct
+/// knots of the lines, parabolas or constants a penalty leaves free are independent up to
+/// m of them; end slopes add to them), which the dense test of two fixed points checks.
+/// The same grid and golden-section search as GCV.
+///
+/// Wood (2011, JRSS-B 73) argues that REML undersmooths less often than GCV and varies
+/// less from draw to draw.
+pub(crate) fn gml<const D: usize>(
+    system: &System<'_, D>,
+    lambda_max: f64,
+) -> Result<Choice<D>, PivotFailure> {
+    let dims = GmlDimensions::of(system);
+    let p = system.constraints().len();
+    let penalty_min = if p > system.space().penalty_nullity() && lambda_max > 0.0 {
+        let e = trial(system, lambda_max, false, false, true)?;
+        e.likelihood.map_or(0.0, |(penalty, _)| penalty)
+    } else {
+        0.0
+    };
+    let score = |e: &Evaluation<D>| gml_score(e, dims, penalty_min);
+    minimise(system, lambda_max, Asked::Likelihood, score)
+}
+
+/// The likelihood rule's criterion ln Q + [ln det K − (q − m′) ln λ]/(n_f − m′) ([`gml`]) at
+/// an evaluation made with the likelihood asked for (∞ without it, at λ ≤ 0 or with no
+/// degree of freedom left).
+pub(crate) fn gml_score<const D: usize>(e: &Evaluation<D>, dims: GmlDimensions, penalty_min: f64) -> f64 {
+    let Some((penalty, log_det)) = e.likelihood else {
+        return f64::INFINITY;
+    };
+    let dof = dims.counted as f64 - dims.null as f64;
+    if dof <= 0.0 || e.lambda.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+        return f64::INFINITY;
+    }
+    let q = e.rss + e.lambda * (penalty - penalty_min).max(0.0);
+    let q = q.max(f64::MIN_POSITIVE);
+    q.ln() + (log_det - (dims.free as f64 - dims.null as f64) * e.lambda.ln()) / dof
+}
+
+/// What a search's trials compute besides RSS.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Asked {
+    /// tr A(λ) (GCV).
+    Trace,
+    /// The penalty and ln det K (the likelihood rule).
+    Likelihood,
+}
+
+/// Minimises `score` over log λ ∈ [min(−6, log λ_max − 1), log λ_max]: a grid of half decades,
+/// then a golden-section search in the best cell.
+fn minimise<const D: usize>(
+    system: &System<'_, D>,
+    lambda_max: f64,
+    asked: Asked,
+    score: impl Fn(&Evaluation<D>) -> f64,
+) -> Result<Choice<D>, PivotFailure> {
     let top = lambda_max.log10();
     let bottom = (-6.0f64).min(top - 1.0);
     const STEP: f64 = 0.5;
@@ -301,7 +447,13 @@ pub(crate) fn gcv<const D: usize>(
     let mut best: Option<(f64, f64, Evaluation<D>)> = None;
     let mut consider =
         |rho: f64, best: &mut Option<(f64, f64, Evaluation<D>)>| -> Result<f64, PivotFailure> {
-            let e = trial(system, 10f64.powf(rho), false, true)?;
+            let e = trial(
+                system,
+                10f64.powf(rho),
+                false,
+                asked == Asked::Trace,
+                asked == Asked::Likelihood,
+            )?;
             evaluations += 1;
             let v = score(&e);
             if best.as_ref().is_none_or(|(g, _, _)| v < *g) {
@@ -344,7 +496,7 @@ pub(crate) fn gcv<const D: usize>(
     Ok(Choice {
         limited: rho >= top - 0.01,
         evaluation,
-        gcv: Some(value),
+        gcv: (asked == Asked::Trace).then_some(value),
         evaluations,
     })
 }

@@ -123,7 +123,7 @@
 //! See the `lambda` and `noise` modules. By default λ is chosen by the discrepancy principle: the RMS
 //! displacement of the free points equals `noise-factor` · σ̂, σ̂ the noise estimated from the
 //! points' third differences. `lambda` or `target-sd` override it; `rule = gcv` chooses by
-//! generalised cross-validation instead.
+//! generalised cross-validation instead, `rule = gml` by generalised maximum likelihood.
 //!
 //! # Parametric curves
 //!
@@ -173,14 +173,19 @@ pub enum LambdaRule {
     Discrepancy,
     /// Generalised cross-validation.
     Gcv,
+    /// Generalised maximum likelihood (Wahba 1985), the restricted likelihood (REML) of the
+    /// smoother's Bayesian model: minimise ln(RSS + λ(P − P_min)) + [ln det K(λ) −
+    /// (q − m′) ln λ]/(n_f − m′) (the `lambda` module derives it).
+    Gml,
 }
 
 impl LambdaRule {
-    /// `discrepancy` or `gcv`.
+    /// `discrepancy`, `gcv` or `gml`.
     pub fn name(self) -> &'static str {
         match self {
             LambdaRule::Discrepancy => "discrepancy",
             LambdaRule::Gcv => "gcv",
+            LambdaRule::Gml => "gml",
         }
     }
 }
@@ -214,7 +219,7 @@ pub struct JumpLsqSettings {
     #[serde(with = "crate::catalog::value::auto")]
     #[schemars(with = "crate::catalog::value::AutoNumber")]
     pub target_sd: Option<f64>,
-    /// How λ is chosen when not given: discrepancy (RMS displacement = noise-factor × σ̂) or gcv.
+    /// How λ is chosen when not given: discrepancy (RMS displacement = noise-factor × σ̂), gcv or gml (generalised maximum likelihood, REML).
     pub rule: LambdaRule,
     /// GCV rule: the factor γ ≥ 1 on the trace in V(λ) = (RSS/n) / (1 − γ tr A(λ)/n)².
     ///
@@ -407,7 +412,7 @@ impl JumpLsqSettings {
 pub struct JumpLsqReport {
     /// The λ used (of the last solve).
     pub lambda: f64,
-    /// How it was chosen: `given`, `discrepancy`, `target-sd` or `gcv`.
+    /// How it was chosen: `given`, `discrepancy`, `target-sd`, `gcv` or `gml`.
     pub rule: String,
     /// The noise estimate σ̂ of the input points.
     pub sigma_hat: f64,
@@ -746,6 +751,7 @@ fn fair_from<const D: usize>(
         (None, None) => match settings.rule {
             LambdaRule::Discrepancy => ("discrepancy", Some(settings.noise_factor * sigma_hat)),
             LambdaRule::Gcv => ("gcv", None),
+            LambdaRule::Gml => ("gml", None),
         },
     };
     let rounds = if domain == CurveDomain::Parametric && given.is_none() {
@@ -840,6 +846,8 @@ fn fair_from<const D: usize>(
         } else if let Some(t) = target {
             lambda::discrepancy(&system, free as f64 * t * t, lambda_previous, lambda_max)
                 .map_err(pivot_error)?
+        } else if settings.rule == LambdaRule::Gml {
+            lambda::gml(&system, lambda_max).map_err(pivot_error)?
         } else {
             lambda::gcv(&system, coordinates, settings.gcv_gamma, lambda_max).map_err(pivot_error)?
         };

@@ -130,6 +130,14 @@ impl<const D: usize> GivensQr<D> {
         Ok(x)
     }
 
+    /// ln det(RᵀR) = 2 Σ_j ln |R_jj|. O(m). Fails as [`solve`](Self::solve) does.
+    pub fn log_det_normal(&self) -> Result<f64, PivotFailure> {
+        self.check()?;
+        Ok((0..self.last.len())
+            .map(|j| 2.0 * self.r[self.start[j]].abs().ln())
+            .sum())
+    }
+
     fn check(&self) -> Result<(), PivotFailure> {
         for (j, f) in self.filled.iter().enumerate() {
             let d = self.r[self.start[j]];

@@ -412,6 +412,25 @@ impl Space {
         self.difference_rows() + 2 * self.end_rows()
     }
 
+    /// The dimension m of the penalty's null space: the splines of the space with every
+    /// penalty row zero. Open curves: the rows' kernel in the n unknowns, n − rows, where the
+    /// rows are independent (measured against a dense rank in `super::tests`), but never
+    /// below the cubic's (jumps all zero): lines (2) for the natural spline, parabolas (3)
+    /// for the runout spline (s‴ = 0 on the end spans and no jump: one parabola). With d ≥ 1
+    /// and no end rows this is d + 2 for both: jumps that are polynomials of degree < d in the
+    /// knot index (d dimensions; the runout spline's last span asks Σ J_i = 0, one fewer)
+    /// plus the cubic's (natural 2, runout 3). Closed curves: 1 (the constants: a periodic
+    /// spline without jumps is one periodic cubic, and Δ^d J = 0 around the loop with
+    /// Σ J_i = 0 leaves no jump).
+    pub fn penalty_nullity(&self) -> usize {
+        let n = self.len();
+        match self.ends {
+            Ends::Periodic => 1,
+            Ends::Natural => n.saturating_sub(self.penalty_rows()).max(2).min(n),
+            Ends::Runout => n.saturating_sub(self.penalty_rows()).max(3).min(n),
+        }
+    }
+
     /// Penalty row `row` as a form over γ and its weight. In order of their first unknown
     /// (which keeps the QR's rotations within the band, [`System`]): on open curves first the
     /// e start rows J_1 … J_e, then the rows Δ^d J, then the e end rows J_{n−1−e} … J_{n−2}.
@@ -901,14 +920,6 @@ impl<'s, const D: usize> System<'s, D> {
         let m = space.len();
         let closed = space.is_closed();
         let order = |j: usize| Self::order_of(closed, m, j);
-        let diagonal = |j: usize| -> f64 {
-            let kkt = self.kkt();
-            kkt.profile
-                .index(kkt.var_pos[j], kkt.var_pos[j])
-                .map_or(0.0, |index| {
-                    kkt.a[index] + lambda * kkt.b.get(index).unwrap_or(&0.0)
-                })
-        };
         // Rows in the order of their leading column, so that each is deposited in R after at
         // most the band's width of rotations (data rows first would fill R and leave every
         // later row to be rotated down to the last column: O(n²)).
@@ -1032,13 +1043,7 @@ impl<'s, const D: usize> System<'s, D> {
                 Row::Constraint(c) => {
                     let constraint = &self.constraints[c];
                     let form = &constraint.form;
-                    let scale = form
-                        .entries(m)
-                        .map(|(j, _)| diagonal(j))
-                        .fold(0.0, f64::max)
-                        .sqrt();
-                    let norm = form.entries(m).map(|(_, c)| c * c).sum::<f64>().sqrt();
-                    let weight = CONSTRAINT_WEIGHT * scale.max(1.0) / norm;
+                    let weight = self.constraint_weight(c, lambda);
                     qr.add_row(
                         form.entries(m).map(|(j, c)| (order(j), c * weight)),
                         constraint.target * weight,
@@ -1047,6 +1052,57 @@ impl<'s, const D: usize> System<'s, D> {
             }
         }
         qr
+    }
+
+    /// The weight of constraint row `c` in the QR path at λ: [`CONSTRAINT_WEIGHT`] times
+    /// √K_jj(λ) of its largest unknown (at least 1), over the row's norm.
+    fn constraint_weight(&self, c: usize, lambda: f64) -> f64 {
+        let m = self.space.len();
+        let diagonal = |j: usize| -> f64 {
+            let kkt = self.kkt();
+            kkt.profile
+                .index(kkt.var_pos[j], kkt.var_pos[j])
+                .map_or(0.0, |index| {
+                    kkt.a[index] + lambda * kkt.b.get(index).unwrap_or(&0.0)
+                })
+        };
+        let form = &self.constraints[c].form;
+        let scale = form
+            .entries(m)
+            .map(|(j, _)| diagonal(j))
+            .fold(0.0, f64::max)
+            .sqrt();
+        let norm = form.entries(m).map(|(_, c)| c * c).sum::<f64>().sqrt();
+        CONSTRAINT_WEIGHT * scale.max(1.0) / norm
+    }
+
+    /// ln |det K(λ)| up to a constant independent of λ, for the likelihood rule
+    /// ([`super::lambda::gml`]): with Z an orthonormal basis of the constraints' null space,
+    /// |det K| = det(ZᵀHZ) · det(CCᵀ) (H = A + λB, C the constraint rows), so Σ ln |d_i| of
+    /// the LDLᵀ is ln det(ZᵀHZ) plus a constant. In the QR path RᵀR = H + CᵀΩ²C with the
+    /// constraint rows' weights Ω (which depend on λ), whose determinant is
+    /// det(ΩCCᵀΩ) · det(ZᵀHZ) to leading order in the weights (1e8, relative error about
+    /// 1e-16): the weights' 2 Σ ln ω_c are taken off to return the same quantity. O(n).
+    pub fn log_det(&self, solution: &Solution<'_, D>, lambda: f64) -> Result<f64, PivotFailure> {
+        match &solution.factor {
+            Factor::Kkt { ldlt, .. } => Ok(ldlt.log_abs_det()),
+            Factor::Qr(qr) => {
+                let weights: f64 = (0..self.constraints.len())
+                    .map(|c| 2.0 * self.constraint_weight(c, lambda).ln())
+                    .sum();
+                Ok(qr.log_det_normal()? - weights)
+            }
+        }
+    }
+
+    /// The space.
+    pub fn space(&self) -> &Space {
+        self.space
+    }
+
+    /// The equality constraints.
+    pub fn constraints(&self) -> &[Constraint<D>] {
+        &self.constraints
     }
 
     /// Whether `gamma` satisfies `constraints` to 1e-9 of the data's scale (a solve of

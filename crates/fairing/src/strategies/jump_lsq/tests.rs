@@ -1116,3 +1116,209 @@ fn end_settings_out_of_range_are_refused() {
         assert!(matches!(settings.validate(), Err(Error::BadParameter { .. })));
     }
 }
+
+/// The rank of `m` (singular values above 1e-9 of the largest).
+fn dense_rank(m: &DMatrix<f64>) -> usize {
+    let svd = m.clone().svd(false, false);
+    let largest = svd.singular_values.max();
+    svd.singular_values
+        .iter()
+        .filter(|s| **s > 1e-9 * largest)
+        .count()
+}
+
+#[test]
+fn penalty_nullity_is_the_dense_null_space() {
+    // m = n − rank of the value-space penalty rows (N is invertible: the same in γ), for
+    // both open end conditions with and without end rows, and the closed spline.
+    let points = wavy(30);
+    let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
+    let n = x.len();
+    for (ends, dense_ends) in [
+        (Ends::Runout, HermiteEnds::ParabolicRunout),
+        (Ends::Natural, HermiteEnds::Natural),
+    ] {
+        let dense = Dense::new(x.clone(), dense_ends);
+        for order in 0..=3 {
+            for end_jumps in [0, 1, 2] {
+                let mut penalty = dense.penalty(order, 8.0);
+                if end_jumps > 0 {
+                    let rows = dense.end_rows(end_jumps, 8.0, 1.0);
+                    let mut stacked = DMatrix::zeros(penalty.nrows() + rows.nrows(), n);
+                    stacked.view_mut((0, 0), penalty.shape()).copy_from(&penalty);
+                    stacked
+                        .view_mut((penalty.nrows(), 0), rows.shape())
+                        .copy_from(&rows);
+                    penalty = stacked;
+                }
+                let shape = Penalty {
+                    order,
+                    exponent: 8.0,
+                    end_jumps,
+                    end_weight: 1.0,
+                };
+                let space = Space::new(Knots::open(x.clone()), ends, shape).unwrap();
+                assert_eq!(
+                    space.penalty_nullity(),
+                    n - dense_rank(&penalty),
+                    "{ends:?} d {order} end jumps {end_jumps}"
+                );
+            }
+        }
+    }
+    let points = ellipse(30);
+    let t = Parametrization::ChordLength.closed_parameters(&points).unwrap();
+    let dense = Dense::new(t.clone(), HermiteEnds::Closed);
+    for order in 0..=3 {
+        let space = Space::new(
+            Knots::closed(t.clone()),
+            Ends::Periodic,
+            Penalty::differences(order, 8.0),
+        )
+        .unwrap();
+        assert_eq!(
+            space.penalty_nullity(),
+            points.len() - dense_rank(&dense.penalty(order, 8.0)),
+            "closed d {order}"
+        );
+    }
+}
+
+/// The restricted log-likelihood criterion of the model y_F = s_F + ε (ε ~ N(0, σ²I)), s
+/// with the improper prior ∝ exp(−λ |P s|²/(2σ²)) (P the value-space penalty rows)
+/// conditioned on the fixed values s_C = y_C, computed from its definition: the prior of s_F
+/// given s_C has precision λQ_FF/σ² (Q = PᵀP) and mean μ = −Q_FF⁺ Q_FC y_C, flat along
+/// null(Q_FF) (dimension `null`); the contrasts w = Tᵀ(y_F − μ) (T an orthonormal basis of
+/// range(Q_FF)) are N(0, σ² Σ) with Σ = I + Λ⁻¹/λ (Λ the non-zero eigenvalues of Q_FF), and
+/// with σ² profiled out −2 ln L/(n_f − m′) = ln(wᵀΣ⁻¹w) + ln det Σ/(n_f − m′) + const. Q_FF's
+/// eigenvalues are the squared singular values of P_F (not squaring the condition). `null`
+/// is m′, `null_element` an element g of null(Q) with g_C = y_C.
+fn dense_reml(
+    rows: &DMatrix<f64>,
+    y: &DVector<f64>,
+    fixed: &[usize],
+    null: usize,
+    null_element: &DVector<f64>,
+    lambda: f64,
+) -> f64 {
+    let n = rows.ncols();
+    let free: Vec<usize> = (0..n).filter(|i| !fixed.contains(i)).collect();
+    let pf = DMatrix::from_fn(rows.nrows(), free.len(), |r, a| rows[(r, free[a])]);
+    let yf = DVector::from_fn(free.len(), |a, _| y[free[a]]);
+    let svd = pf.clone().svd(false, true);
+    let v_t = svd.v_t.unwrap();
+    let mut order: Vec<usize> = (0..svd.singular_values.len()).collect();
+    order.sort_by(|a, b| svd.singular_values[*b].total_cmp(&svd.singular_values[*a]));
+    let kept = &order[..free.len() - null];
+    let t = DMatrix::from_fn(free.len(), kept.len(), |a, i| v_t[(kept[i], a)]);
+    let eigen: Vec<f64> = kept.iter().map(|&i| svd.singular_values[i].powi(2)).collect();
+    // μ = −Q_FF⁺ Q_FC y_C is the projection on range(Q_FF) of g_F, g any element of
+    // null(Q) with g_C = y_C (then Q_FF g_F = −Q_FC y_C), so w = Tᵀ(y_F − g_F): computed
+    // so, without dividing by Q_FF's small eigenvalues. The caller's g (exact, e.g. the
+    // line through two fixed points when null(Q) holds the parabolas).
+    let g = null_element;
+    let gf = DVector::from_fn(free.len(), |a, _| g[free[a]]);
+    let w = t.transpose() * (yf - gf);
+    let mut quadratic = 0.0;
+    let mut log_det = 0.0;
+    for i in 0..kept.len() {
+        let sigma = 1.0 + 1.0 / (lambda * eigen[i]);
+        quadratic += w[i] * w[i] / sigma;
+        log_det += sigma.ln();
+    }
+    quadratic.ln() + log_det / kept.len() as f64
+}
+
+#[test]
+fn gml_criterion_is_the_restricted_likelihood_and_its_minimum_is_the_grid_minimum() {
+    // The runout function spline (d = 1: parabolas are free, m = 3), without constraints and
+    // with two fixed points (m′ = 1). Our criterion differs from the dense restricted
+    // likelihood by a constant over λ, the Givens QR's range (stiffness 1e11) included, and
+    // the rule's λ is where a fine grid of the dense criterion is least.
+    let points = wavy(30);
+    let n = points.len();
+    let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
+    let dense = Dense::new(x.clone(), HermiteEnds::ParabolicRunout);
+    let rows = dense.penalty(1, 8.0);
+    let y = DVector::from_fn(n, |i, _| points[i][1]);
+    let space = Space::new(Knots::open(x.clone()), Ends::Runout, Penalty::differences(1, 8.0)).unwrap();
+    let data = masked(&points, [false, true]);
+    let weights = vec![1.0; n];
+    for fixed in [vec![], vec![0usize, 17]] {
+        // The line through the fixed points (a parabola: in the penalty's null space).
+        let line = match fixed[..] {
+            [a, b] => DVector::from_fn(n, |i, _| y[a] + (y[b] - y[a]) * (x[i] - x[a]) / (x[b] - x[a])),
+            _ => DVector::zeros(n),
+        };
+        let constraints: Vec<Constraint<2>> = fixed
+            .iter()
+            .map(|&i| Constraint {
+                form: space.value_form(i),
+                target: data[i],
+                point: Some(i),
+            })
+            .collect();
+        let system = System::new(&space, &data, &weights, &constraints);
+        let dims = lambda::GmlDimensions::of(&system);
+        assert_eq!(dims.null, 3 - fixed.len());
+        let heavy = 1e11 / system.stiffness();
+        let mut offsets = Vec::new();
+        for l in [1e-4, 1e-2, 0.3, 10.0, 1e3, heavy] {
+            let e = lambda::evaluate_likelihood(&system, l).unwrap();
+            let ours = lambda::gml_score(&e, dims, 0.0);
+            offsets.push((l, ours - dense_reml(&rows, &y, &fixed, dims.null, &line, l)));
+        }
+        let (l0, first) = offsets[0];
+        for &(l, offset) in &offsets {
+            let tolerance = if l == heavy { 1e-6 } else { 1e-9 };
+            assert!(
+                (offset - first).abs() < tolerance * first.abs().max(1.0),
+                "fixed {fixed:?}: offset {offset} at λ {l} against {first} at λ {l0}"
+            );
+        }
+        let lambda_max = lambda::STIFFNESS_LIMIT / system.stiffness();
+        let chosen = lambda::gml(&system, lambda_max).unwrap().evaluation.lambda;
+        let grid = (-600..=600)
+            .map(|k| 10f64.powf(k as f64 / 100.0))
+            .map(|l| (l, dense_reml(&rows, &y, &fixed, 3 - fixed.len(), &line, l)))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .unwrap()
+            .0;
+        assert!(
+            (chosen.log10() - grid.log10()).abs() < 0.02,
+            "fixed {fixed:?}: GML λ {chosen} against the grid's {grid}"
+        );
+        assert!(grid > 1e-5 && grid < 1e5, "an interior minimum: {grid}");
+    }
+}
+
+#[test]
+fn gml_rule_is_reported_and_a_multi_coordinate_curve_is_smoothed() {
+    // The rule runs through `fair` for the function and parametric kinds and says so.
+    let points = wavy(120);
+    let settings = JumpLsqSettings::default().with_rule(LambdaRule::Gml);
+    let faired = fair(
+        &points,
+        &points,
+        &Constraints::default(),
+        CurveDomain::Function,
+        false,
+        &settings,
+    )
+    .unwrap();
+    assert_eq!(faired.report.rule, "gml");
+    assert!(faired.report.lambda > 0.0 && !faired.report.lambda_limited);
+    assert!(faired.report.penalty_after < faired.report.penalty_before);
+    let helix = helix(60);
+    let faired = fair(
+        &helix,
+        &helix,
+        &Constraints::default(),
+        CurveDomain::Parametric,
+        false,
+        &settings,
+    )
+    .unwrap();
+    assert_eq!(faired.report.rule, "gml");
+    assert!(faired.report.penalty_after < faired.report.penalty_before);
+}
