@@ -251,10 +251,6 @@ fn dense_noisy_data_end_with_the_clean_curves_inflections() {
     for seed in 0..2 {
         // The same draws as before, from the one generator of this data.
         let (noisy, clean) = crate::displacement::noisy_sine(n, sigma, seed);
-        let spline = |p: &[Vec2]| {
-            let (x, y): (Vec<f64>, Vec<f64>) = p.iter().map(|p| (p.x, p.y)).unzip();
-            SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap()
-        };
         let fair = |settings: TwoPhaseSettings| {
             let passes = settings.max_passes;
             Pipeline::new(TwoPhase::new(settings))
@@ -263,10 +259,10 @@ fn dense_noisy_data_end_with_the_clean_curves_inflections() {
                 .unwrap()
                 .points
         };
-        let truth = counts(&spline(&clean)).1;
+        let truth = counts(&runout_spline(&clean)).1;
         assert!((1..=2).contains(&truth), "{truth}");
         let faired = fair(TwoPhaseSettings::default());
-        let inflections = counts(&spline(&faired)).1;
+        let inflections = counts(&runout_spline(&faired)).1;
         assert!(
             inflections as f64 <= 1.5 * truth as f64,
             "seed {seed}: {inflections}"
@@ -281,9 +277,28 @@ fn dense_noisy_data_end_with_the_clean_curves_inflections() {
         assert!(rms < 0.2 * sigma, "seed {seed}: RMS {rms}");
         let unasked = unasked_move_as(&noisy, &faired, None, NoiseModel::Vertical).unwrap();
         assert!(!unasked.largest.exceeds, "seed {seed}: {unasked:?}");
-        let paper = counts(&spline(&fair(TwoPhaseSettings::paper().with_max_passes(5)))).1;
+        let paper = counts(&runout_spline(&fair(
+            TwoPhaseSettings::paper().with_max_passes(5),
+        )))
+        .1;
         assert!(paper > 100, "seed {seed}: the paper's rules left {paper}");
     }
+}
+
+/// The judge's clean sine (`examples/two_phase_judge.rs`): y = sin(x/2), x = 0.1 k, `n` points.
+fn judge_sine(n: usize) -> Vec<Vec2> {
+    (0..n)
+        .map(|k| {
+            let x = 0.1 * k as f64;
+            Vec2::new(x, (x / 2.0).sin())
+        })
+        .collect()
+}
+
+/// The runout spline function through `p` (the kind two-phase fairs a function with).
+fn runout_spline(p: &[Vec2]) -> SplineFunction {
+    let (x, y): (Vec<f64>, Vec<f64>) = p.iter().map(|p| (p.x, p.y)).unzip();
+    SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap()
 }
 
 /// y = sin(x/2), x = 0.1 k, 200 points (the judge's `sine`): its third inflection, at x = 6π,
@@ -294,17 +309,8 @@ fn dense_noisy_data_end_with_the_clean_curves_inflections() {
 fn a_functions_true_end_inflection_stays_with_end_runs_off() {
     use fairing::two_phase::counts;
     let n = 200;
-    let clean: Vec<Vec2> = (0..n)
-        .map(|k| {
-            let x = 0.1 * k as f64;
-            Vec2::new(x, (x / 2.0).sin())
-        })
-        .collect();
-    let spline = |p: &[Vec2]| {
-        let (x, y): (Vec<f64>, Vec<f64>) = p.iter().map(|p| (p.x, p.y)).unzip();
-        SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap()
-    };
-    let truth = counts(&spline(&clean)).1;
+    let clean = judge_sine(n);
+    let truth = counts(&runout_spline(&clean)).1;
     assert_eq!(truth, 3);
     for seed in 1..=4 {
         let e = crate::two_phase_denoise::noise(seed, n, 0.01);
@@ -322,7 +328,7 @@ fn a_functions_true_end_inflection_stays_with_end_runs_off() {
         };
         let off = fair(TwoPhaseSettings::default().with_function_end_runs(false));
         let default = fair(TwoPhaseSettings::default());
-        assert_eq!(counts(&spline(&off)).1, truth, "seed {seed}");
+        assert_eq!(counts(&runout_spline(&off)).1, truth, "seed {seed}");
         assert_ne!(off, default, "seed {seed}: the default takes the end run");
         assert_eq!(
             fair(TwoPhaseSettings::default().with_curve_end_runs(false)),
@@ -366,16 +372,7 @@ fn an_end_run_the_data_hold_is_not_absorbed() {
     use rand::SeedableRng;
     use rand_distr::{Distribution, Normal};
     let n = 200;
-    let clean: Vec<Vec2> = (0..n)
-        .map(|k| {
-            let x = 0.1 * k as f64;
-            Vec2::new(x, (x / 2.0).sin())
-        })
-        .collect();
-    let spline = |p: &[Vec2]| {
-        let (x, y): (Vec<f64>, Vec<f64>) = p.iter().map(|p| (p.x, p.y)).unzip();
-        SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap()
-    };
+    let clean = judge_sine(n);
     let rms = |p: &[Vec2]| {
         (p.iter()
             .zip(&clean)
@@ -384,7 +381,7 @@ fn an_end_run_the_data_hold_is_not_absorbed() {
             / n as f64)
             .sqrt()
     };
-    let truth = counts(&spline(&clean)).1;
+    let truth = counts(&runout_spline(&clean)).1;
     assert_eq!(truth, 3);
     assert_eq!(TwoPhaseSettings::default().end_run_max_deviance, 3.84);
     for seed in 1..=8u64 {
@@ -404,8 +401,8 @@ fn an_end_run_the_data_hold_is_not_absorbed() {
         let default = fair(TwoPhaseSettings::default());
         let untested = fair(TwoPhaseSettings::default().with_end_run_max_deviance(0.0));
         if seed == 4 {
-            assert_eq!(counts(&spline(&default)).1, truth, "seed {seed}");
-            assert_eq!(counts(&spline(&untested)).1, truth - 1, "seed {seed}");
+            assert_eq!(counts(&runout_spline(&default)).1, truth, "seed {seed}");
+            assert_eq!(counts(&runout_spline(&untested)).1, truth - 1, "seed {seed}");
             let (kept, taken) = (rms(&default), rms(&untested));
             assert!(kept < 0.85 * taken, "seed {seed}: RMS {kept} against {taken}");
         } else {
