@@ -317,21 +317,6 @@ pub fn denoise(mode: Denoise, x: &[f64], y: &[f64], limits: &Limits<'_>) -> Resu
     denoise_by(mode, Prepass::gcv(1.0), x, y, limits)
 }
 
-/// [`denoise`] with the factor γ on the trace of `jump-lsq-gcv`'s GCV rule
-/// ([`TwoPhaseSettings::function_gcv_gamma`](super::TwoPhaseSettings::function_gcv_gamma);
-/// [`denoise`] has 1).
-///
-/// Errors: as [`denoise`]; γ below 1.
-pub fn denoise_with(
-    mode: Denoise,
-    gcv_gamma: f64,
-    x: &[f64],
-    y: &[f64],
-    limits: &Limits<'_>,
-) -> Result<Vec<f64>> {
-    denoise_by(mode, Prepass::gcv(gcv_gamma), x, y, limits)
-}
-
 /// [`denoise`] with `jump-lsq-gcv`'s λ rule `prepass` (GCV with its factor γ, or GML;
 /// [`TwoPhaseSettings::function_prepass_rule`](super::TwoPhaseSettings::function_prepass_rule)).
 ///
@@ -406,30 +391,6 @@ pub fn denoise_curve(
         mode,
         Prepass::gcv(1.0),
         CurveEnds::Natural,
-        projection,
-        points,
-        closed,
-        limits,
-    )
-}
-
-/// [`denoise_curve_by`] with GCV and the factor γ on its trace
-/// ([`TwoPhaseSettings::curve_gcv_gamma`](super::TwoPhaseSettings::curve_gcv_gamma)).
-///
-/// Errors: as [`denoise_curve`]; γ below 1.
-pub fn denoise_curve_with(
-    mode: Denoise,
-    gcv_gamma: f64,
-    curve_ends: CurveEnds,
-    projection: Projection,
-    points: &[Vec2],
-    closed: bool,
-    limits: &Limits<'_>,
-) -> Result<Vec<Vec2>> {
-    denoise_curve_by(
-        mode,
-        Prepass::gcv(gcv_gamma),
-        curve_ends,
         projection,
         points,
         closed,

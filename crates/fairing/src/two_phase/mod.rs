@@ -20,8 +20,8 @@ pub mod phase2;
 mod settings;
 
 pub use denoise::{
-    denoise, denoise_by, denoise_curve, denoise_curve_by, denoise_curve_with, denoise_with, Denoise, Limits,
-    Prepass, PrepassRule, CORRECTION_ROUNDS,
+    denoise, denoise_by, denoise_curve, denoise_curve_by, Denoise, Limits, Prepass, PrepassRule,
+    CORRECTION_ROUNDS,
 };
 pub use foot_point::{foot_points, FootPoint, Projection};
 pub use phase1::{coarse_pass, counts, detect, displacement, e_at, Case, CaseKind, PassReport};

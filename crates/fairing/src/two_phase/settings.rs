@@ -248,7 +248,7 @@ pub struct TwoPhaseSettings {
     /// Wahba's GCV, γ > 1 the modified GCV (Cummins, Filloon and Nychka 2001; Kim and Gu 2004
     /// use 1.4), which charges each degree of freedom more and so avoids GCV's occasional
     /// too-small λ. This one is for the pre-pass of an arbitrary curve
-    /// ([`denoise_curve_with`](super::denoise_curve_with)); function segments have
+    /// ([`denoise_curve_by`](super::denoise_curve_by)); function segments have
     /// [`function_gcv_gamma`](Self::function_gcv_gamma). No effect with the other pre-passes
     /// (the cubic fallback keeps its own GCV).
     ///
@@ -264,7 +264,7 @@ pub struct TwoPhaseSettings {
     /// Functions: the factor gamma >= 1 on the trace in the jump-lsq-gcv pre-pass's GCV (1: Craven and Wahba's GCV).
     ///
     /// As [`curve_gcv_gamma`](Self::curve_gcv_gamma), for the pre-pass of a function segment
-    /// y(x) ([`denoise_with`](super::denoise_with)). Default 1 (the GCV as before), measured
+    /// y(x) ([`denoise_by`](super::denoise_by)). Default 1 (the GCV as before), measured
     /// with the judge (the 21 function rows, seeds 1–4): 1.2 and 1.4 turn the sine seed 4
     /// (RMS to the clean curve 0.00428 → 0.00303 / 0.00301, csaps at the new S_d 0.00306) but
     /// lose the Gunnerus waterline 3 (7 inflections at S_d 2.27 / 2.52, where csaps has 5 /
@@ -291,7 +291,7 @@ pub struct TwoPhaseSettings {
     /// Arbitrary open curves: the end conditions of the jump-lsq pre-pass's spline, runout (s''' = 0 on the end spans, the end curvature free) or natural (s'' = 0 at the ends).
     ///
     /// Not in the paper: jump-lsq's `curve-ends` for the pre-pass of an open arbitrary curve
-    /// and of a closed curve cut at its corner ([`denoise_curve_with`](super::denoise_curve_with));
+    /// and of a closed curve cut at its corner ([`denoise_curve_by`](super::denoise_curve_by));
     /// functions always have the runout spline, the cubic fallback the natural one. Natural
     /// ends pull the fit's curvature to zero at each end, a bias wherever the curve is curved
     /// there. Default `runout`, measured against `natural` with the judge

@@ -7,8 +7,8 @@ use std::f64::consts::PI;
 use curve_repr::Vec2;
 use fairing::strategies::CurveEnds;
 use fairing::two_phase::{
-    denoise, denoise_curve, denoise_curve_with, denoise_with, Denoise, Ends, Limits, Projection, TwoPhase,
-    TwoPhaseSettings,
+    denoise, denoise_by, denoise_curve, denoise_curve_by, Denoise, Ends, Limits, Prepass, Projection,
+    TwoPhase, TwoPhaseSettings,
 };
 use fairing::{Constraints, EndClamp, Pipeline};
 
@@ -374,10 +374,10 @@ fn gcv_gamma_of_the_pre_pass() {
     let moved = |a: &[f64]| a.iter().zip(&y).map(|(a, b)| (a - b).abs()).sum::<f64>();
     let plain = denoise(Denoise::JumpLsqGcv, &x, &y, &limits).unwrap();
     assert_eq!(
-        denoise_with(Denoise::JumpLsqGcv, 1.0, &x, &y, &limits).unwrap(),
+        denoise_by(Denoise::JumpLsqGcv, Prepass::gcv(1.0), &x, &y, &limits).unwrap(),
         plain
     );
-    let smoother = denoise_with(Denoise::JumpLsqGcv, gamma, &x, &y, &limits).unwrap();
+    let smoother = denoise_by(Denoise::JumpLsqGcv, Prepass::gcv(gamma), &x, &y, &limits).unwrap();
     assert!(
         moved(&smoother) > moved(&plain),
         "{} against {}",
@@ -386,7 +386,7 @@ fn gcv_gamma_of_the_pre_pass() {
     );
     for mode in [Denoise::Gcv, Denoise::JumpLsq, Denoise::Off] {
         assert_eq!(
-            denoise_with(mode, gamma, &x, &y, &limits).unwrap(),
+            denoise_by(mode, Prepass::gcv(gamma), &x, &y, &limits).unwrap(),
             denoise(mode, &x, &y, &limits).unwrap(),
             "{mode:?}"
         );
@@ -403,9 +403,9 @@ fn gcv_gamma_of_the_pre_pass() {
     let mode = Denoise::JumpLsqGcv;
     let plain = denoise_curve(mode, Projection::Off, &arc, false, &limits).unwrap();
     let with_gamma = |gamma: f64| {
-        denoise_curve_with(
+        denoise_curve_by(
             mode,
-            gamma,
+            Prepass::gcv(gamma),
             CurveEnds::Natural,
             Projection::Off,
             &arc,
@@ -422,7 +422,7 @@ fn gcv_gamma_of_the_pre_pass() {
         shift(&smoother),
         shift(&plain)
     );
-    assert!(denoise_with(mode, 0.5, &x, &y, &limits).is_err());
+    assert!(denoise_by(mode, Prepass::gcv(0.5), &x, &y, &limits).is_err());
     let points: Vec<Vec2> = x.iter().zip(&y).map(|(&x, &y)| Vec2::new(x, y)).collect();
     let refused = Pipeline::new(TwoPhase::new(
         TwoPhaseSettings::default().with_function_gcv_gamma(0.5),
