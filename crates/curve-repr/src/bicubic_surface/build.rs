@@ -240,19 +240,28 @@ impl BicubicSplineSurface {
             v_system,
         };
         let total = u_count * v_count;
+        // Whether every value solved is finite, each line checked as it is solved (three
+        // passes over arrays of the grid's size afterwards were each a miss per cache line
+        // on a large grid); the checks below name the first value that is not, as before.
+        let mut finite = true;
         let mut u_tangents = vec![Vec3::zeros(); total];
         for j in 0..v_count {
             let line = surface.solve_along_u(&surface.points, j)?;
+            finite &= all_finite(&line);
             scatter_u_line(&mut u_tangents, v_count, j, &line);
         }
         let mut v_tangents = Vec::with_capacity(total);
         for i in 0..u_count {
-            v_tangents.extend(surface.solve_along_v(&surface.points, i)?);
+            let line = surface.solve_along_v(&surface.points, i)?;
+            finite &= all_finite(&line);
+            v_tangents.extend(line);
         }
-        let twists = surface.all_twists(&v_tangents)?;
-        check_finite_result("u tangent", &u_tangents)?;
-        check_finite_result("v tangent", &v_tangents)?;
-        check_finite_result("twist", &twists)?;
+        let (twists, finite_twists) = surface.all_twists_checked(&v_tangents)?;
+        if !(finite && finite_twists) {
+            check_finite_result("u tangent", &u_tangents)?;
+            check_finite_result("v tangent", &v_tangents)?;
+            check_finite_result("twist", &twists)?;
+        }
         surface.u_tangents = u_tangents;
         surface.v_tangents = v_tangents;
         surface.twists = twists;
@@ -285,12 +294,19 @@ impl BicubicSplineSurface {
     /// natural cubic spline curves in u direction that interpolate the partial derivative of
     /// S(u,v) with respect to v"). O(m·n).
     pub(super) fn all_twists(&self, v_tangents: &[Vec3]) -> Result<Vec<Vec3>> {
+        Ok(self.all_twists_checked(v_tangents)?.0)
+    }
+
+    /// [`all_twists`](Self::all_twists), and whether every twist is finite. O(m·n).
+    fn all_twists_checked(&self, v_tangents: &[Vec3]) -> Result<(Vec<Vec3>, bool)> {
         let mut twists = vec![Vec3::zeros(); self.u_count * self.v_count];
+        let mut finite = true;
         for j in 0..self.v_count {
             let line = self.solve_along_u(v_tangents, j)?;
+            finite &= all_finite(&line);
             scatter_u_line(&mut twists, self.v_count, j, &line);
         }
-        Ok(twists)
+        Ok((twists, finite))
     }
 }
 
@@ -299,6 +315,11 @@ pub(super) fn scatter_u_line(grid: &mut [Vec3], v_count: usize, j: usize, line: 
     for (slot, value) in grid.iter_mut().skip(j).step_by(v_count).zip(line) {
         *slot = *value;
     }
+}
+
+/// Whether every coordinate of `values` is finite.
+fn all_finite(values: &[Vec3]) -> bool {
+    values.iter().all(|p| p.iter().all(|c| c.is_finite()))
 }
 
 /// Fails with [`Error::NonFinite`] if a computed value overflowed (points so large or knots
@@ -318,7 +339,9 @@ fn close_seams(
     v_count: usize,
     settings: &BicubicSurfaceSettings,
 ) -> Result<()> {
-    let tolerance = 1e-9 * super::topology::diagonal(points);
+    // The seams' tolerance, taken (over the points as given) at the first closed direction:
+    // an open grid needs no pass over its points here.
+    let mut tolerance = None;
     for (closed, direction, count) in [
         (settings.closed_u(), Direction::U, u_count),
         (settings.closed_v(), Direction::V, v_count),
@@ -352,6 +375,7 @@ fn close_seams(
                 (0, 0.0),
                 |best, candidate| if candidate.1 > best.1 { candidate } else { best },
             );
+        let tolerance = *tolerance.get_or_insert_with(|| 1e-9 * super::topology::diagonal(points));
         if distance > tolerance {
             return Err(Error::OpenSeam {
                 direction: name,

@@ -470,6 +470,20 @@ impl Network {
     /// given knots: one per node along an open direction, one per node and the closing one
     /// along a closed direction (`closed` = (u, v)). O(m·n + (m + n) · window).
     pub fn new(points: &[Vec3], u_knots: &[f64], v_knots: &[f64], closed: (bool, bool)) -> Result<Self> {
+        Self::with_tangents(points, u_knots, v_knots, closed, true)
+    }
+
+    /// [`new`](Self::new), keeping the tangents or not (as after
+    /// [`stop_tracking_tangents`](Self::stop_tracking_tangents), without writing them once
+    /// first: two arrays of the grid's size a run never reads). The same points, jumps,
+    /// bounds and energy either way.
+    pub fn with_tangents(
+        points: &[Vec3],
+        u_knots: &[f64],
+        v_knots: &[f64],
+        closed: (bool, bool),
+        track_tangents: bool,
+    ) -> Result<Self> {
         let mut network = Self {
             u_count: 0,
             v_count: 0,
@@ -481,7 +495,7 @@ impl Network {
             v_jumps: Vec::new(),
             z_bounds: Vec::new(),
             fresh_max_z: None,
-            track_tangents: true,
+            track_tangents,
             energy: 0.0,
             u_stiffness: Stiffness::new(u_knots, closed.0)?,
             v_stiffness: Stiffness::new(v_knots, closed.1)?,

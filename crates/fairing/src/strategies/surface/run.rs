@@ -74,6 +74,15 @@ impl Layout {
             .collect()
     }
 
+    /// [`shrink`](Self::shrink), borrowing the values themselves when no direction is closed.
+    fn shrink_ref<'a, T: Copy>(&self, full: &'a [T]) -> std::borrow::Cow<'a, [T]> {
+        if self.nu == self.u_count && self.nv == self.v_count {
+            std::borrow::Cow::Borrowed(full)
+        } else {
+            std::borrow::Cow::Owned(self.shrink(full))
+        }
+    }
+
     /// The grid's layout, from the distinct nodes' values: the values themselves when no
     /// direction is closed, else a copy with the repeats (copied exactly).
     fn expand_ref<'a, T: Copy>(&self, distinct: &'a [T]) -> std::borrow::Cow<'a, [T]> {
@@ -81,6 +90,15 @@ impl Layout {
             std::borrow::Cow::Borrowed(distinct)
         } else {
             std::borrow::Cow::Owned(self.expand(distinct))
+        }
+    }
+
+    /// [`expand`](Self::expand) of owned values: themselves when no direction is closed.
+    fn expand_owned<T: Copy>(&self, distinct: Vec<T>) -> Vec<T> {
+        if self.nu == self.u_count && self.nv == self.v_count {
+            distinct
+        } else {
+            self.expand(&distinct)
         }
     }
 
@@ -273,7 +291,10 @@ pub(super) fn run(
     }
     let original = layout.shrink(&original_full);
     let fixed_knots = (!settings.refresh_knots).then(|| (input.u_knots().to_vec(), input.v_knots().to_vec()));
-    let state = State::new(settings, &layout, original.clone(), fixed_knots.as_ref())?;
+    // The input's knots are those of its points (the same settings and points, seams
+    // closed): the first state takes them rather than averaging the grid again.
+    let input_knots = (input.u_knots().to_vec(), input.v_knots().to_vec());
+    let state = State::new(settings, &layout, &original, fixed_knots.as_ref(), &input_knots)?;
     let start = state.measure;
     let mut run = Run {
         settings,
@@ -325,7 +346,9 @@ pub(super) fn run(
             |i, j| settings.fixed.contains(&(i, j)),
         )?;
         if !moves.is_empty() {
-            run.rebuild_state(&run.layout.shrink(&points))?;
+            // (Boundary curves are faired only on an open grid, whose distinct nodes are
+            // all of its nodes: no copy.)
+            run.rebuild_state(&run.layout.shrink_ref(&points))?;
             boundary_steps = steps;
             boundary_pending = true;
         }
@@ -384,9 +407,18 @@ pub(super) fn run(
         boundary_steps = 0;
     }
 
-    // The result, in the grid's layout.
-    let final_full = run.layout.expand(run.state.network.points());
-    let surface = run.surface_of(run.state.network.points(), &run.state.knots)?;
+    // The result, in the grid's layout: the surface built on the network's own points,
+    // taken out of it (not copied twice: once into the grid's layout, once for the surface).
+    let mut final_points = Vec::new();
+    run.state.network.swap_points(&mut final_points);
+    let surface = surface_through_full(
+        &run.layout,
+        run.layout.expand_owned(final_points),
+        &run.state.knots,
+        settings.parametrization,
+    )?;
+    // The surface keeps its points as given (its seams' repeats are exact copies already).
+    let final_full = surface.points();
     let moved = (0..u_count)
         .flat_map(|i| (0..v_count).map(move |j| (i, j)))
         .filter(|&(i, j)| final_full[i * v_count + j] != original_full[i * v_count + j])
@@ -424,19 +456,27 @@ impl State {
     }
 
     /// The state of distinct `points`: their knots (or the fixed ones), network and measure.
-    /// O(m·n).
+    /// `own_knots` are the knots the settings' parametrization gives `points` (the input
+    /// surface's, for the input's points). O(m·n).
     fn new(
         settings: &SurfaceFairingSettings,
         layout: &Layout,
-        points: Vec<Vec3>,
+        points: &[Vec3],
         fixed_knots: Option<&(Vec<f64>, Vec<f64>)>,
+        own_knots: &(Vec<f64>, Vec<f64>),
     ) -> Result<Self> {
-        let (knots, judged_knots) = Self::knots_of(settings, layout, &points, fixed_knots)?;
+        let (knots, judged_knots) =
+            Self::knots_given(settings, layout, points, fixed_knots, Some(own_knots))?;
         let closed = (layout.topology.closed_u, layout.topology.closed_v);
-        let network = Network::new(&points, &knots.0, &knots.1, closed)?;
+        // The limit replacement of the network objective never reads the tangents
+        // ([`finish`](Self::finish) stops their tracking): the first network is built
+        // without them.
+        let tangents =
+            !(settings.objective == Objective::Network && settings.replacement == Replacement::Limit);
+        let network = Network::with_tangents(points, &knots.0, &knots.1, closed, tangents)?;
         let judged = match &judged_knots {
             None => None,
-            Some(k) => Some(Network::new(&points, &k.0, &k.1, closed)?),
+            Some(k) => Some(Network::new(points, &k.0, &k.1, closed)?),
         };
         let mut state = Self {
             knots,
@@ -484,10 +524,23 @@ impl State {
         points: &[Vec3],
         fixed_knots: Option<&(Vec<f64>, Vec<f64>)>,
     ) -> Result<((Vec<f64>, Vec<f64>), Option<(Vec<f64>, Vec<f64>)>)> {
+        Self::knots_given(settings, layout, points, fixed_knots, None)
+    }
+
+    /// [`knots_of`](Self::knots_of), the knots of the settings' parametrization taken from
+    /// `own_knots` when given (they must be those of `points`).
+    #[allow(clippy::type_complexity)]
+    fn knots_given(
+        settings: &SurfaceFairingSettings,
+        layout: &Layout,
+        points: &[Vec3],
+        fixed_knots: Option<&(Vec<f64>, Vec<f64>)>,
+        own_knots: Option<&(Vec<f64>, Vec<f64>)>,
+    ) -> Result<((Vec<f64>, Vec<f64>), Option<(Vec<f64>, Vec<f64>)>)> {
         let grid = layout.expand_ref(points);
-        let knots = match fixed_knots {
-            Some(knots) => knots.clone(),
-            None => layout.surface_settings(settings.parametrization).knots(
+        let knots = match (fixed_knots, own_knots) {
+            (Some(knots), _) | (None, Some(knots)) => knots.clone(),
+            (None, None) => layout.surface_settings(settings.parametrization).knots(
                 &grid,
                 layout.u_count,
                 layout.v_count,
@@ -551,8 +604,18 @@ fn surface_through(
     knots: &(Vec<f64>, Vec<f64>),
     parametrization: Parametrization,
 ) -> Result<BicubicSplineSurface> {
+    surface_through_full(layout, layout.expand(points), knots, parametrization)
+}
+
+/// [`surface_through`] of the points in the grid's layout (`full`, repeats included).
+fn surface_through_full(
+    layout: &Layout,
+    full: Vec<Vec3>,
+    knots: &(Vec<f64>, Vec<f64>),
+    parametrization: Parametrization,
+) -> Result<BicubicSplineSurface> {
     Ok(BicubicSplineSurface::from_flat(
-        layout.expand(points),
+        full,
         layout.u_count,
         layout.v_count,
         &layout
