@@ -202,16 +202,18 @@ struct Run<'a> {
     refused_moves: usize,
     refused_steps: usize,
     /// Storage kept from step to step (fresh arrays of the grid's size are fresh pages):
-    /// the points after a step, a shorter retry of it, and the sorted sweep's order.
+    /// the points after a step, a shorter retry of it, and the sorted sweep's order: its
+    /// nodes (flat indices) and the runs of them in the sweep's order (one per tile for
+    /// `tiles`).
     after: Vec<Vec3>,
     shorter: Vec<Vec3>,
-    order: Vec<(f64, usize)>,
-    /// The radix sort's second buffer for `order`.
-    order_scratch: Vec<(f64, usize)>,
-    /// The runs of `order` in the sweep's order (one per tile for `tiles`), and one tile's
-    /// pairs while they are sorted.
+    order_nodes: Vec<usize>,
     order_runs: Vec<std::ops::Range<usize>>,
+    /// The (z, flat index) pairs being sorted: the whole grid's (`sorted`) or one tile's
+    /// (`tiles`), and the radix sort's second buffer.
+    order: Vec<(f64, usize)>,
     order_tile: Vec<(f64, usize)>,
+    order_scratch: Vec<(f64, usize)>,
 }
 
 /// Runs the fairing (the settings checked by the caller).
@@ -317,6 +319,7 @@ pub(super) fn run(
         order: Vec::new(),
         order_scratch: Vec::new(),
         order_runs: Vec::new(),
+        order_nodes: Vec::new(),
         order_tile: Vec::new(),
     };
     let mut history = Vec::new();
@@ -868,6 +871,7 @@ impl Run<'_> {
                 // from the exact bounds when the network is fresh (it is, at a step's
                 // start: one contiguous array), else from the jumps (the same values).
                 let mut order = std::mem::take(&mut self.order);
+                let mut nodes = std::mem::take(&mut self.order_nodes);
                 let mut runs = std::mem::take(&mut self.order_runs);
                 let mut tile = std::mem::take(&mut self.order_tile);
                 let mut scratch = std::mem::take(&mut self.order_scratch);
@@ -881,7 +885,7 @@ impl Run<'_> {
                         nv,
                         z,
                         movable,
-                        &mut order,
+                        &mut nodes,
                         &mut runs,
                         &mut tile,
                         &mut scratch,
@@ -895,12 +899,15 @@ impl Run<'_> {
                             .map(|(i, j)| (z(self.layout.index(i, j)), self.layout.index(i, j))),
                     );
                     super::radix::sort_descending(&mut order, &mut scratch);
+                    nodes.clear();
+                    nodes.extend(order.iter().map(|&(_, k)| k));
                     runs.clear();
-                    runs.push(0..order.len());
+                    runs.push(0..nodes.len());
                 }
                 (self.order_tile, self.order_scratch) = (tile, scratch);
-                let result = self.sorted_sweep(&order, &runs);
+                let result = self.sorted_sweep(&nodes, &runs);
                 self.order = order;
+                self.order_nodes = nodes;
                 self.order_runs = runs;
                 moved = result?;
             }
@@ -925,18 +932,18 @@ impl Run<'_> {
         Ok((moved, 1))
     }
 
-    /// The moves of a sorted step, one per node of `order` (z, flat index) in turn, taking
-    /// the runs of `order` in `runs`' order. Returns the points moved.
-    fn sorted_sweep(&mut self, order: &[(f64, usize)], runs: &[std::ops::Range<usize>]) -> Result<usize> {
+    /// The moves of a sorted step, one per node of `nodes` (flat indices) in turn, taking
+    /// the runs of `nodes` in `runs`' order. Returns the points moved.
+    fn sorted_sweep(&mut self, nodes: &[usize], runs: &[std::ops::Range<usize>]) -> Result<usize> {
         let nv = self.layout.nv;
         let node = |k: usize| (k / nv, k % nv);
         let mut moved = 0;
-        let sequence = runs.iter().flat_map(|run| &order[run.clone()]);
+        let sequence = runs.iter().flat_map(|run| &nodes[run.clone()]);
         let mut ahead = sequence.clone().skip(PREFETCH_AHEAD);
-        for &(_, k) in sequence {
+        for &k in sequence {
             // The order is scattered over the grid: the first loads of the move two ahead are
             // started now (no effect on any value).
-            if let Some(&(_, next)) = ahead.next() {
+            if let Some(&next) = ahead.next() {
                 let (a, b) = node(next);
                 self.state.network.prefetch(a, b);
                 prefetch(&self.original[next]);
