@@ -250,7 +250,6 @@ pub(super) fn run(
     } else {
         open
     };
-    let original_full = input.points().to_vec();
     if let Some(&(i, j)) = settings
         .fixed
         .iter()
@@ -291,11 +290,13 @@ pub(super) fn run(
             }
         }
     }
-    let original = layout.shrink(&original_full);
     let fixed_knots = (!settings.refresh_knots).then(|| (input.u_knots().to_vec(), input.v_knots().to_vec()));
     // The input's knots are those of its points (the same settings and points, seams
     // closed): the first state takes them rather than averaging the grid again.
     let input_knots = (input.u_knots().to_vec(), input.v_knots().to_vec());
+    // The input's points, taken out of its surface (no longer needed) rather than copied.
+    let original_full = input.into_points();
+    let original = layout.shrink(&original_full);
     let state = State::new(settings, &layout, &original, fixed_knots.as_ref(), &input_knots)?;
     let start = state.measure;
     let mut run = Run {
