@@ -94,7 +94,8 @@ fn at_most_tenth_of_median(points: &[Vec3], u_count: usize, v_count: usize, axis
     let (mut count, mut failing) = (0usize, 0usize);
     for_each_neighbour_change(points, u_count, v_count, axis, |s| {
         count += 1;
-        failing += usize::from(!(q <= 0.1 * s));
+        let holds = q <= 0.1 * s;
+        failing += usize::from(!holds);
     });
     failing <= count / 2
 }
