@@ -96,6 +96,15 @@ impl BicubicSurfaceSettings {
             });
         }
         let closed = (self.closed_u, self.closed_v);
+        if self.u_knots.is_none() && self.v_knots.is_none() {
+            // Both averaged: their sums in one pass over the points (the same sums, each in
+            // the order of its own pass), then each direction's knots as
+            // [`averaged_knots`] makes them, u first.
+            let (u_sums, v_sums) = chord_sums(points, (u_count, v_count), closed, self.parametrization);
+            let u_knots = knots_from_sums(&u_sums, v_count - usize::from(closed.1), Direction::U)?;
+            let v_knots = knots_from_sums(&v_sums, u_count - usize::from(closed.0), Direction::V)?;
+            return Ok((u_knots, v_knots));
+        }
         let u_knots = match self.u_knots() {
             Some(knots) => checked_knots("u knots", knots, u_count)?,
             None => averaged_knots(
@@ -231,19 +240,28 @@ impl BicubicSplineSurface {
             v_system,
         };
         let total = u_count * v_count;
+        // Whether every value solved is finite, each line checked as it is solved (three
+        // passes over arrays of the grid's size afterwards were each a miss per cache line
+        // on a large grid); the checks below name the first value that is not, as before.
+        let mut finite = true;
         let mut u_tangents = vec![Vec3::zeros(); total];
         for j in 0..v_count {
             let line = surface.solve_along_u(&surface.points, j)?;
+            finite &= all_finite(&line);
             scatter_u_line(&mut u_tangents, v_count, j, &line);
         }
         let mut v_tangents = Vec::with_capacity(total);
         for i in 0..u_count {
-            v_tangents.extend(surface.solve_along_v(&surface.points, i)?);
+            let line = surface.solve_along_v(&surface.points, i)?;
+            finite &= all_finite(&line);
+            v_tangents.extend(line);
         }
-        let twists = surface.all_twists(&v_tangents)?;
-        check_finite_result("u tangent", &u_tangents)?;
-        check_finite_result("v tangent", &v_tangents)?;
-        check_finite_result("twist", &twists)?;
+        let (twists, finite_twists) = surface.all_twists_checked(&v_tangents)?;
+        if !(finite && finite_twists) {
+            check_finite_result("u tangent", &u_tangents)?;
+            check_finite_result("v tangent", &v_tangents)?;
+            check_finite_result("twist", &twists)?;
+        }
         surface.u_tangents = u_tangents;
         surface.v_tangents = v_tangents;
         surface.twists = twists;
@@ -276,12 +294,19 @@ impl BicubicSplineSurface {
     /// natural cubic spline curves in u direction that interpolate the partial derivative of
     /// S(u,v) with respect to v"). O(m·n).
     pub(super) fn all_twists(&self, v_tangents: &[Vec3]) -> Result<Vec<Vec3>> {
+        Ok(self.all_twists_checked(v_tangents)?.0)
+    }
+
+    /// [`all_twists`](Self::all_twists), and whether every twist is finite. O(m·n).
+    fn all_twists_checked(&self, v_tangents: &[Vec3]) -> Result<(Vec<Vec3>, bool)> {
         let mut twists = vec![Vec3::zeros(); self.u_count * self.v_count];
+        let mut finite = true;
         for j in 0..self.v_count {
             let line = self.solve_along_u(v_tangents, j)?;
+            finite &= all_finite(&line);
             scatter_u_line(&mut twists, self.v_count, j, &line);
         }
-        Ok(twists)
+        Ok((twists, finite))
     }
 }
 
@@ -290,6 +315,11 @@ pub(super) fn scatter_u_line(grid: &mut [Vec3], v_count: usize, j: usize, line: 
     for (slot, value) in grid.iter_mut().skip(j).step_by(v_count).zip(line) {
         *slot = *value;
     }
+}
+
+/// Whether every coordinate of `values` is finite.
+fn all_finite(values: &[Vec3]) -> bool {
+    values.iter().all(|p| p.iter().all(|c| c.is_finite()))
 }
 
 /// Fails with [`Error::NonFinite`] if a computed value overflowed (points so large or knots
@@ -309,7 +339,9 @@ fn close_seams(
     v_count: usize,
     settings: &BicubicSurfaceSettings,
 ) -> Result<()> {
-    let tolerance = 1e-9 * super::topology::diagonal(points);
+    // The seams' tolerance, taken (over the points as given) at the first closed direction:
+    // an open grid needs no pass over its points here.
+    let mut tolerance = None;
     for (closed, direction, count) in [
         (settings.closed_u(), Direction::U, u_count),
         (settings.closed_v(), Direction::V, v_count),
@@ -343,6 +375,7 @@ fn close_seams(
                 (0, 0.0),
                 |best, candidate| if candidate.1 > best.1 { candidate } else { best },
             );
+        let tolerance = *tolerance.get_or_insert_with(|| 1e-9 * super::topology::diagonal(points));
         if distance > tolerance {
             return Err(Error::OpenSeam {
                 direction: name,
@@ -411,24 +444,76 @@ fn averaged_knots(
     parametrization: Parametrization,
     direction: Direction,
 ) -> Result<Vec<f64>> {
-    let (count, across, what) = match direction {
-        Direction::U => (u_count, v_count - usize::from(closed_v), "u knot"),
-        Direction::V => (v_count, u_count - usize::from(closed_u), "v knot"),
+    let (count, across) = match direction {
+        Direction::U => (u_count, v_count - usize::from(closed_v)),
+        Direction::V => (v_count, u_count - usize::from(closed_u)),
     };
-    let name = direction.name();
     let at = |k: usize, l: usize| match direction {
         Direction::U => points[k * v_count + l],
         Direction::V => points[l * v_count + k],
     };
-    let step = |a: Vec3, b: Vec3| match parametrization {
+    let step = step_rule(parametrization);
+    let sums: Vec<f64> = (0..count - 1)
+        .map(|k| (0..across).map(|l| step(at(k, l), at(k + 1, l))).sum())
+        .collect();
+    knots_from_sums(&sums, across, direction)
+}
+
+/// The step rule of a parametrization between two grid points.
+fn step_rule(parametrization: Parametrization) -> impl Fn(Vec3, Vec3) -> f64 {
+    move |a: Vec3, b: Vec3| match parametrization {
         Parametrization::Uniform => 1.0,
         Parametrization::ChordLength => (b - a).norm(),
         Parametrization::Centripetal => (b - a).norm().sqrt(),
+    }
+}
+
+/// [`averaged_knots`]' sums of both directions in one row-major pass over the points: the
+/// u sums (between rows k and k + 1, over the columns in order) as that function takes
+/// them, each in one run, and the v sums (between columns k and k + 1, over the rows in
+/// order) one term per row into each, so each sum adds the same terms in the same order
+/// (the terms are never −0, so the start of the sum, +0 here and −0 in `Iterator::sum`, does
+/// not change a bit). The strided pass of the v sums and a second pass over a grid larger
+/// than the cache were each a miss per cache line of the points. O(m·n).
+fn chord_sums(
+    points: &[Vec3],
+    (u_count, v_count): (usize, usize),
+    (closed_u, closed_v): (bool, bool),
+    parametrization: Parametrization,
+) -> (Vec<f64>, Vec<f64>) {
+    let step = step_rule(parametrization);
+    let (across_u, across_v) = (v_count - usize::from(closed_v), u_count - usize::from(closed_u));
+    let mut u_sums = Vec::with_capacity(u_count - 1);
+    let mut v_sums = vec![0.0; v_count - 1];
+    let mut rows = points.chunks_exact(v_count).enumerate().peekable();
+    while let Some((i, row)) = rows.next() {
+        if i < across_v {
+            for (sum, pair) in v_sums.iter_mut().zip(row.windows(2)) {
+                *sum += step(pair[0], pair[1]);
+            }
+        }
+        if let Some(&(_, next)) = rows.peek() {
+            let mut sum = 0.0;
+            for (&a, &b) in row[..across_u].iter().zip(next) {
+                sum += step(a, b);
+            }
+            u_sums.push(sum);
+        }
+    }
+    (u_sums, v_sums)
+}
+
+/// Averaged knots from the sums of the steps between consecutive grid lines over `across`
+/// lines of the other direction (module docs of [`averaged_knots`]). O(count).
+fn knots_from_sums(sums: &[f64], across: usize, direction: Direction) -> Result<Vec<f64>> {
+    let name = direction.name();
+    let what = match direction {
+        Direction::U => "u knot",
+        Direction::V => "v knot",
     };
-    let mut knots = Vec::with_capacity(count);
+    let mut knots = Vec::with_capacity(sums.len() + 1);
     knots.push(0.0);
-    for k in 0..count - 1 {
-        let sum: f64 = (0..across).map(|l| step(at(k, l), at(k + 1, l))).sum();
+    for (k, &sum) in sums.iter().enumerate() {
         let mean = sum / across as f64;
         if mean == 0.0 {
             return Err(Error::RepeatedGridLine {
@@ -444,4 +529,88 @@ fn averaged_knots(
     }
     check_increasing(what, &knots)?;
     Ok(knots)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each direction's knots by its own pass, as [`BicubicSurfaceSettings::knots`] made them
+    /// before both came from one pass.
+    fn separate(
+        points: &[Vec3],
+        counts: (usize, usize),
+        closed: (bool, bool),
+        parametrization: Parametrization,
+    ) -> Result<(Vec<f64>, Vec<f64>)> {
+        let u = averaged_knots(points, counts, closed, parametrization, Direction::U)?;
+        let v = averaged_knots(points, counts, closed, parametrization, Direction::V)?;
+        Ok((u, v))
+    }
+
+    fn bits(result: &Result<(Vec<f64>, Vec<f64>)>) -> std::result::Result<(Vec<u64>, Vec<u64>), Error> {
+        match result {
+            Ok((u, v)) => Ok((
+                u.iter().map(|x| x.to_bits()).collect(),
+                v.iter().map(|x| x.to_bits()).collect(),
+            )),
+            Err(e) => Err(e.clone()),
+        }
+    }
+
+    #[test]
+    fn one_pass_knots_equal_each_direction_s_own() {
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut random = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut errors = 0;
+        for (u_count, v_count) in [(2, 2), (2, 5), (4, 4), (5, 3), (9, 17), (30, 11)] {
+            for parametrization in [
+                Parametrization::ChordLength,
+                Parametrization::Centripetal,
+                Parametrization::Uniform,
+            ] {
+                for closed in [(false, false), (true, false), (false, true), (true, true)] {
+                    if (closed.0 && u_count < 4) || (closed.1 && v_count < 4) {
+                        continue;
+                    }
+                    // Noisy grids, one with a repeated line (an error, the same error),
+                    // one with a point so large that a knot overflows.
+                    for case in 0..3 {
+                        let mut points: Vec<Vec3> = (0..u_count * v_count)
+                            .map(|k| {
+                                let (i, j) = ((k / v_count) as f64, (k % v_count) as f64);
+                                Vec3::new(i + 0.3 * random(), j + 0.3 * random(), random() * 1e-3)
+                            })
+                            .collect();
+                        if case == 1 {
+                            let (a, b) = points.split_at_mut(v_count);
+                            b[..v_count].copy_from_slice(a);
+                        }
+                        if case == 2 {
+                            points[v_count + 1] = Vec3::new(1e308, -1e308, 1e308);
+                        }
+                        let settings = BicubicSurfaceSettings::default()
+                            .with_parametrization(parametrization)
+                            .with_closed_u(closed.0)
+                            .with_closed_v(closed.1);
+                        let fused = settings.knots(&points, u_count, v_count);
+                        let expected = separate(&points, (u_count, v_count), closed, parametrization);
+                        errors += usize::from(expected.is_err());
+                        assert_eq!(
+                            bits(&fused),
+                            bits(&expected),
+                            "{u_count} × {v_count} {parametrization:?} {closed:?} case {case}"
+                        );
+                    }
+                }
+            }
+        }
+        // The error paths were taken too.
+        assert!(errors > 20, "{errors}");
+    }
 }

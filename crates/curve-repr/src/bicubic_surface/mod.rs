@@ -162,6 +162,12 @@ impl BicubicSplineSurface {
         &self.points
     }
 
+    /// All data points, flat (as [`points`](Self::points)), taken out of the surface without
+    /// a copy.
+    pub fn into_points(self) -> Vec<Vec3> {
+        self.points
+    }
+
     /// The data points as a grid `grid[i][j]` = P_ij, the layout the constructor takes.
     pub fn grid(&self) -> Vec<Vec<Vec3>> {
         self.points.chunks(self.v_count).map(<[Vec3]>::to_vec).collect()

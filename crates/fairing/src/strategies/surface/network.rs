@@ -424,6 +424,11 @@ fn band_window(band: &[f64], back: isize, i: usize, count: usize) -> (usize, Vec
     (lo, band[first..=last].to_vec())
 }
 
+/// Columns of the points a rebuild copies out at a time for the u-lines: 16 lines of up to a
+/// few hundred nodes (~150 KB at 400 nodes) stay in the second-level cache while they are
+/// solved, and a row's 16 points are whole cache lines.
+const COLUMN_BLOCK: usize = 16;
+
 /// The iso-parametric spline network of a grid of distinct nodes (see the module docs).
 #[derive(Clone, Debug)]
 pub struct Network {
@@ -433,7 +438,8 @@ pub struct Network {
     v_count: usize,
     /// P_ij at i·v_count + j.
     points: Vec<Vec3>,
-    /// Scratch of a rebuild: the points column-major (kept for the next rebuild's storage).
+    /// Scratch of a rebuild: [`COLUMN_BLOCK`] columns of the points, column-major (kept
+    /// for the next rebuild's storage).
     columns: Vec<Vec3>,
     /// M^u_ij at j·u_count + i (column-major: a u-line is contiguous).
     u_tangents: Vec<Vec3>,
@@ -464,6 +470,20 @@ impl Network {
     /// given knots: one per node along an open direction, one per node and the closing one
     /// along a closed direction (`closed` = (u, v)). O(m·n + (m + n) · window).
     pub fn new(points: &[Vec3], u_knots: &[f64], v_knots: &[f64], closed: (bool, bool)) -> Result<Self> {
+        Self::with_tangents(points, u_knots, v_knots, closed, true)
+    }
+
+    /// [`new`](Self::new), keeping the tangents or not (as after
+    /// [`stop_tracking_tangents`](Self::stop_tracking_tangents), without writing them once
+    /// first: two arrays of the grid's size a run never reads). The same points, jumps,
+    /// bounds and energy either way.
+    pub fn with_tangents(
+        points: &[Vec3],
+        u_knots: &[f64],
+        v_knots: &[f64],
+        closed: (bool, bool),
+        track_tangents: bool,
+    ) -> Result<Self> {
         let mut network = Self {
             u_count: 0,
             v_count: 0,
@@ -475,7 +495,7 @@ impl Network {
             v_jumps: Vec::new(),
             z_bounds: Vec::new(),
             fresh_max_z: None,
-            track_tangents: true,
+            track_tangents,
             energy: 0.0,
             u_stiffness: Stiffness::new(u_knots, closed.0)?,
             v_stiffness: Stiffness::new(v_knots, closed.1)?,
@@ -526,9 +546,7 @@ impl Network {
             }
         };
         let (u_settings, v_settings) = (settings(u_knots, closed.0), settings(v_knots, closed.1));
-        // The u-lines' passes read the points column-major, from one blocked transpose rather
-        // than strided (a miss per point on a grid larger than the cache).
-        transpose_into(points, u_count, v_count, &mut self.columns);
+        let total = u_count * v_count;
         // One spline per direction, built through its first line and refitted through the
         // others in its own storage (the same tangents as a spline built through each: a
         // fresh spline per line was a dozen allocations and a check of the knots per line).
@@ -540,30 +558,62 @@ impl Network {
         let (u_stiffness, v_stiffness) = (&self.u_stiffness, &self.v_stiffness);
         self.u_tangents.clear();
         self.u_jumps.clear();
-        let mut spline: Option<HermiteSpline<3>> = None;
-        for line in self.columns.chunks_exact(u_count) {
-            let spline = match &mut spline {
-                Some(spline) => {
-                    spline.refit(line)?;
-                    spline
-                }
-                None => spline.insert(HermiteSpline::new(line, &u_settings)?),
-            };
-            let tangents = &spline.tangents()[..u_count];
-            if self.track_tangents {
-                self.u_tangents.extend_from_slice(tangents);
-            }
-            add_line_energy(u_stiffness, line, tangents, &mut energy);
-            push_line_jumps(u_stiffness, line, tangents, &mut self.u_jumps);
+        if self.track_tangents {
+            self.u_tangents.reserve(total);
         }
-        // The v-lines, and row by row the points' copy and the z bounds (z as
-        // [`z`](Self::z) reads it: the u-jump's norm plus the v-jump's; the u-jumps'
-        // column-major cache lines, one per column, each serve the rows they hold while the
-        // row pass keeps them in cache), the largest z with them.
+        self.u_jumps.reserve(total);
+        // Every bound is written below (first the u-jump's norm, then z): no clearing pass.
+        self.z_bounds.resize(total, 0.0);
+        // The u-lines read the points column-major: [`COLUMN_BLOCK`] columns at a time are
+        // copied out of the rows into a small column-major block (in cache while its lines
+        // are solved), so the points are read once, in runs (was one transpose of the whole
+        // grid into an array of its size, written and read back from memory on a large one).
+        let block = &mut self.columns;
+        block.clear();
+        block.resize(COLUMN_BLOCK.min(v_count) * u_count, Vec3::zeros());
+        let mut spline: Option<HermiteSpline<3>> = None;
+        for j0 in (0..v_count).step_by(COLUMN_BLOCK) {
+            let width = COLUMN_BLOCK.min(v_count - j0);
+            for (i, row) in points.chunks_exact(v_count).enumerate() {
+                for (c, &p) in row[j0..j0 + width].iter().enumerate() {
+                    block[c * u_count + i] = p;
+                }
+            }
+            for line in block.chunks_exact(u_count).take(width) {
+                let spline = match &mut spline {
+                    Some(spline) => {
+                        spline.refit(line)?;
+                        spline
+                    }
+                    None => spline.insert(HermiteSpline::new(line, &u_settings)?),
+                };
+                let tangents = &spline.tangents()[..u_count];
+                if self.track_tangents {
+                    self.u_tangents.extend_from_slice(tangents);
+                }
+                add_line_energy(u_stiffness, line, tangents, &mut energy);
+                push_line_jumps(u_stiffness, line, tangents, &mut self.u_jumps);
+            }
+            // The block's u-jump norms into the bounds, row-major in runs: the v-lines add
+            // the v-jump norms (z as [`z`](Self::z) reads it, the same sum), reading one
+            // row-major array instead of the column-major u-jumps.
+            let jumps = &self.u_jumps[j0 * u_count..(j0 + width) * u_count];
+            for (i, bounds) in self.z_bounds.chunks_exact_mut(v_count).enumerate() {
+                for (c, bound) in bounds[j0..j0 + width].iter_mut().enumerate() {
+                    *bound = jumps[c * u_count + i].norm();
+                }
+            }
+        }
+        // The v-lines, and row by row the points' copy and the z bounds, the largest z with
+        // them.
         self.v_tangents.clear();
         self.v_jumps.clear();
         self.points.clear();
-        self.z_bounds.clear();
+        if self.track_tangents {
+            self.v_tangents.reserve(total);
+        }
+        self.v_jumps.reserve(total);
+        self.points.reserve(total);
         let mut max = 0.0f64;
         let mut spline: Option<HermiteSpline<3>> = None;
         for (i, line) in points.chunks_exact(v_count).enumerate() {
@@ -582,10 +632,11 @@ impl Network {
             add_line_energy(v_stiffness, line, tangents, &mut energy);
             push_line_jumps(v_stiffness, line, tangents, &mut self.v_jumps);
             let row = &self.v_jumps[i * v_count..];
+            let bounds = &mut self.z_bounds[i * v_count..(i + 1) * v_count];
             let interior_row = u_stiffness.is_interior(i);
-            for (j, v_jump) in row.iter().enumerate() {
-                let z = self.u_jumps[j * u_count + i].norm() + v_jump.norm();
-                self.z_bounds.push(z);
+            for (j, (v_jump, bound)) in row.iter().zip(bounds).enumerate() {
+                let z = *bound + v_jump.norm();
+                *bound = z;
                 if interior_row && v_stiffness.is_interior(j) {
                     max = max.max(z);
                 }
@@ -912,23 +963,6 @@ pub(crate) fn prefetch<T>(value: &T) {
     }
     #[cfg(not(target_arch = "x86_64"))]
     let _ = value;
-}
-
-/// The `rows` × `columns` row-major `values` column-major into `out`, in square blocks (each
-/// read and written in runs). O(rows · columns).
-fn transpose_into(values: &[Vec3], rows: usize, columns: usize, out: &mut Vec<Vec3>) {
-    const BLOCK: usize = 8;
-    out.clear();
-    out.resize(values.len(), Vec3::zeros());
-    for i0 in (0..rows).step_by(BLOCK) {
-        for j0 in (0..columns).step_by(BLOCK) {
-            for i in i0..(i0 + BLOCK).min(rows) {
-                for j in j0..(j0 + BLOCK).min(columns) {
-                    out[j * rows + i] = values[i * columns + j];
-                }
-            }
-        }
-    }
 }
 
 /// A window of `len` entries from node `lo` along a line of `count` nodes (wrapping round a

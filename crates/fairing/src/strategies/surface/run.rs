@@ -74,6 +74,15 @@ impl Layout {
             .collect()
     }
 
+    /// [`shrink`](Self::shrink), borrowing the values themselves when no direction is closed.
+    fn shrink_ref<'a, T: Copy>(&self, full: &'a [T]) -> std::borrow::Cow<'a, [T]> {
+        if self.nu == self.u_count && self.nv == self.v_count {
+            std::borrow::Cow::Borrowed(full)
+        } else {
+            std::borrow::Cow::Owned(self.shrink(full))
+        }
+    }
+
     /// The grid's layout, from the distinct nodes' values: the values themselves when no
     /// direction is closed, else a copy with the repeats (copied exactly).
     fn expand_ref<'a, T: Copy>(&self, distinct: &'a [T]) -> std::borrow::Cow<'a, [T]> {
@@ -81,6 +90,15 @@ impl Layout {
             std::borrow::Cow::Borrowed(distinct)
         } else {
             std::borrow::Cow::Owned(self.expand(distinct))
+        }
+    }
+
+    /// [`expand`](Self::expand) of owned values: themselves when no direction is closed.
+    fn expand_owned<T: Copy>(&self, distinct: Vec<T>) -> Vec<T> {
+        if self.nu == self.u_count && self.nv == self.v_count {
+            distinct
+        } else {
+            self.expand(&distinct)
         }
     }
 
@@ -184,16 +202,18 @@ struct Run<'a> {
     refused_moves: usize,
     refused_steps: usize,
     /// Storage kept from step to step (fresh arrays of the grid's size are fresh pages):
-    /// the points after a step, a shorter retry of it, and the sorted sweep's order.
+    /// the points after a step, a shorter retry of it, and the sorted sweep's order: its
+    /// nodes (flat indices) and the runs of them in the sweep's order (one per tile for
+    /// `tiles`).
     after: Vec<Vec3>,
     shorter: Vec<Vec3>,
-    order: Vec<(f64, usize)>,
-    /// The radix sort's second buffer for `order`.
-    order_scratch: Vec<(f64, usize)>,
-    /// The runs of `order` in the sweep's order (one per tile for `tiles`), and one tile's
-    /// pairs while they are sorted.
+    order_nodes: Vec<usize>,
     order_runs: Vec<std::ops::Range<usize>>,
+    /// The (z, flat index) pairs being sorted: the whole grid's (`sorted`) or one tile's
+    /// (`tiles`), and the radix sort's second buffer.
+    order: Vec<(f64, usize)>,
     order_tile: Vec<(f64, usize)>,
+    order_scratch: Vec<(f64, usize)>,
 }
 
 /// Runs the fairing (the settings checked by the caller).
@@ -230,7 +250,6 @@ pub(super) fn run(
     } else {
         open
     };
-    let original_full = input.points().to_vec();
     if let Some(&(i, j)) = settings
         .fixed
         .iter()
@@ -271,9 +290,14 @@ pub(super) fn run(
             }
         }
     }
-    let original = layout.shrink(&original_full);
     let fixed_knots = (!settings.refresh_knots).then(|| (input.u_knots().to_vec(), input.v_knots().to_vec()));
-    let state = State::new(settings, &layout, original.clone(), fixed_knots.as_ref())?;
+    // The input's knots are those of its points (the same settings and points, seams
+    // closed): the first state takes them rather than averaging the grid again.
+    let input_knots = (input.u_knots().to_vec(), input.v_knots().to_vec());
+    // The input's points, taken out of its surface (no longer needed) rather than copied.
+    let original_full = input.into_points();
+    let original = layout.shrink(&original_full);
+    let state = State::new(settings, &layout, &original, fixed_knots.as_ref(), &input_knots)?;
     let start = state.measure;
     let mut run = Run {
         settings,
@@ -296,6 +320,7 @@ pub(super) fn run(
         order: Vec::new(),
         order_scratch: Vec::new(),
         order_runs: Vec::new(),
+        order_nodes: Vec::new(),
         order_tile: Vec::new(),
     };
     let mut history = Vec::new();
@@ -325,7 +350,9 @@ pub(super) fn run(
             |i, j| settings.fixed.contains(&(i, j)),
         )?;
         if !moves.is_empty() {
-            run.rebuild_state(&run.layout.shrink(&points))?;
+            // (Boundary curves are faired only on an open grid, whose distinct nodes are
+            // all of its nodes: no copy.)
+            run.rebuild_state(&run.layout.shrink_ref(&points))?;
             boundary_steps = steps;
             boundary_pending = true;
         }
@@ -384,9 +411,18 @@ pub(super) fn run(
         boundary_steps = 0;
     }
 
-    // The result, in the grid's layout.
-    let final_full = run.layout.expand(run.state.network.points());
-    let surface = run.surface_of(run.state.network.points(), &run.state.knots)?;
+    // The result, in the grid's layout: the surface built on the network's own points,
+    // taken out of it (not copied twice: once into the grid's layout, once for the surface).
+    let mut final_points = Vec::new();
+    run.state.network.swap_points(&mut final_points);
+    let surface = surface_through_full(
+        &run.layout,
+        run.layout.expand_owned(final_points),
+        &run.state.knots,
+        settings.parametrization,
+    )?;
+    // The surface keeps its points as given (its seams' repeats are exact copies already).
+    let final_full = surface.points();
     let moved = (0..u_count)
         .flat_map(|i| (0..v_count).map(move |j| (i, j)))
         .filter(|&(i, j)| final_full[i * v_count + j] != original_full[i * v_count + j])
@@ -424,19 +460,27 @@ impl State {
     }
 
     /// The state of distinct `points`: their knots (or the fixed ones), network and measure.
-    /// O(m·n).
+    /// `own_knots` are the knots the settings' parametrization gives `points` (the input
+    /// surface's, for the input's points). O(m·n).
     fn new(
         settings: &SurfaceFairingSettings,
         layout: &Layout,
-        points: Vec<Vec3>,
+        points: &[Vec3],
         fixed_knots: Option<&(Vec<f64>, Vec<f64>)>,
+        own_knots: &(Vec<f64>, Vec<f64>),
     ) -> Result<Self> {
-        let (knots, judged_knots) = Self::knots_of(settings, layout, &points, fixed_knots)?;
+        let (knots, judged_knots) =
+            Self::knots_given(settings, layout, points, fixed_knots, Some(own_knots))?;
         let closed = (layout.topology.closed_u, layout.topology.closed_v);
-        let network = Network::new(&points, &knots.0, &knots.1, closed)?;
+        // The limit replacement of the network objective never reads the tangents
+        // ([`finish`](Self::finish) stops their tracking): the first network is built
+        // without them.
+        let tangents =
+            !(settings.objective == Objective::Network && settings.replacement == Replacement::Limit);
+        let network = Network::with_tangents(points, &knots.0, &knots.1, closed, tangents)?;
         let judged = match &judged_knots {
             None => None,
-            Some(k) => Some(Network::new(&points, &k.0, &k.1, closed)?),
+            Some(k) => Some(Network::new(points, &k.0, &k.1, closed)?),
         };
         let mut state = Self {
             knots,
@@ -484,10 +528,23 @@ impl State {
         points: &[Vec3],
         fixed_knots: Option<&(Vec<f64>, Vec<f64>)>,
     ) -> Result<((Vec<f64>, Vec<f64>), Option<(Vec<f64>, Vec<f64>)>)> {
+        Self::knots_given(settings, layout, points, fixed_knots, None)
+    }
+
+    /// [`knots_of`](Self::knots_of), the knots of the settings' parametrization taken from
+    /// `own_knots` when given (they must be those of `points`).
+    #[allow(clippy::type_complexity)]
+    fn knots_given(
+        settings: &SurfaceFairingSettings,
+        layout: &Layout,
+        points: &[Vec3],
+        fixed_knots: Option<&(Vec<f64>, Vec<f64>)>,
+        own_knots: Option<&(Vec<f64>, Vec<f64>)>,
+    ) -> Result<((Vec<f64>, Vec<f64>), Option<(Vec<f64>, Vec<f64>)>)> {
         let grid = layout.expand_ref(points);
-        let knots = match fixed_knots {
-            Some(knots) => knots.clone(),
-            None => layout.surface_settings(settings.parametrization).knots(
+        let knots = match (fixed_knots, own_knots) {
+            (Some(knots), _) | (None, Some(knots)) => knots.clone(),
+            (None, None) => layout.surface_settings(settings.parametrization).knots(
                 &grid,
                 layout.u_count,
                 layout.v_count,
@@ -551,8 +608,18 @@ fn surface_through(
     knots: &(Vec<f64>, Vec<f64>),
     parametrization: Parametrization,
 ) -> Result<BicubicSplineSurface> {
+    surface_through_full(layout, layout.expand(points), knots, parametrization)
+}
+
+/// [`surface_through`] of the points in the grid's layout (`full`, repeats included).
+fn surface_through_full(
+    layout: &Layout,
+    full: Vec<Vec3>,
+    knots: &(Vec<f64>, Vec<f64>),
+    parametrization: Parametrization,
+) -> Result<BicubicSplineSurface> {
     Ok(BicubicSplineSurface::from_flat(
-        layout.expand(points),
+        full,
         layout.u_count,
         layout.v_count,
         &layout
@@ -805,6 +872,7 @@ impl Run<'_> {
                 // from the exact bounds when the network is fresh (it is, at a step's
                 // start: one contiguous array), else from the jumps (the same values).
                 let mut order = std::mem::take(&mut self.order);
+                let mut nodes = std::mem::take(&mut self.order_nodes);
                 let mut runs = std::mem::take(&mut self.order_runs);
                 let mut tile = std::mem::take(&mut self.order_tile);
                 let mut scratch = std::mem::take(&mut self.order_scratch);
@@ -818,7 +886,7 @@ impl Run<'_> {
                         nv,
                         z,
                         movable,
-                        &mut order,
+                        &mut nodes,
                         &mut runs,
                         &mut tile,
                         &mut scratch,
@@ -832,12 +900,15 @@ impl Run<'_> {
                             .map(|(i, j)| (z(self.layout.index(i, j)), self.layout.index(i, j))),
                     );
                     super::radix::sort_descending(&mut order, &mut scratch);
+                    nodes.clear();
+                    nodes.extend(order.iter().map(|&(_, k)| k));
                     runs.clear();
-                    runs.push(0..order.len());
+                    runs.push(0..nodes.len());
                 }
                 (self.order_tile, self.order_scratch) = (tile, scratch);
-                let result = self.sorted_sweep(&order, &runs);
+                let result = self.sorted_sweep(&nodes, &runs);
                 self.order = order;
+                self.order_nodes = nodes;
                 self.order_runs = runs;
                 moved = result?;
             }
@@ -862,18 +933,18 @@ impl Run<'_> {
         Ok((moved, 1))
     }
 
-    /// The moves of a sorted step, one per node of `order` (z, flat index) in turn, taking
-    /// the runs of `order` in `runs`' order. Returns the points moved.
-    fn sorted_sweep(&mut self, order: &[(f64, usize)], runs: &[std::ops::Range<usize>]) -> Result<usize> {
+    /// The moves of a sorted step, one per node of `nodes` (flat indices) in turn, taking
+    /// the runs of `nodes` in `runs`' order. Returns the points moved.
+    fn sorted_sweep(&mut self, nodes: &[usize], runs: &[std::ops::Range<usize>]) -> Result<usize> {
         let nv = self.layout.nv;
         let node = |k: usize| (k / nv, k % nv);
         let mut moved = 0;
-        let sequence = runs.iter().flat_map(|run| &order[run.clone()]);
+        let sequence = runs.iter().flat_map(|run| &nodes[run.clone()]);
         let mut ahead = sequence.clone().skip(PREFETCH_AHEAD);
-        for &(_, k) in sequence {
+        for &k in sequence {
             // The order is scattered over the grid: the first loads of the move two ahead are
             // started now (no effect on any value).
-            if let Some(&(_, next)) = ahead.next() {
+            if let Some(&next) = ahead.next() {
                 let (a, b) = node(next);
                 self.state.network.prefetch(a, b);
                 prefetch(&self.original[next]);

@@ -17,27 +17,28 @@
 pub const TILE: usize = 64;
 
 /// The tiled order of one step, tile by tile: each tile's movable nodes (`movable(i, j)`)
-/// with their z (`z(k)`, k = i·`v_count` + j, read at the step's start) sorted by z
-/// descending, ties by index, into `pairs` one run per tile (the tiles row by row); `runs`
-/// then lists those runs in the order of their first pair (their largest z, ties by index).
-/// The runs taken in `runs`' order are the paper's sorted order regrouped tile by tile
-/// ([`regroup`] of the whole grid's sort, bit for bit), without sorting or moving the
-/// whole grid's pairs: each tile's nodes are read in rows of [`TILE`] and sorted while they
-/// are in cache (the whole grid's radix sort and regrouping were some ten passes over an
-/// array of 16 bytes a node, from memory at 400 × 400). `tile` and `scratch` are reused
-/// storage. O(m·n).
+/// sorted by their z (`z(k)`, k = i·`v_count` + j, read at the step's start) descending,
+/// ties by index, into `nodes` (flat indices) one run per tile (the tiles row by row);
+/// `runs` then lists those runs in the order of their first node (their largest z, ties by
+/// index). The runs taken in `runs`' order are the paper's sorted order regrouped tile by
+/// tile ([`regroup`] of the whole grid's sort, bit for bit), without sorting or moving the
+/// whole grid's pairs: each tile's nodes are read in rows of [`TILE`] and sorted with their
+/// z while they are in cache (the whole grid's radix sort and regrouping were some ten
+/// passes over an array of 16 bytes a node, from memory at 400 × 400), and only the sorted
+/// indices are kept (8 bytes a node, written once and read once by the step). `tile` and
+/// `scratch` are reused storage. O(m·n).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn tiled_order(
     u_count: usize,
     v_count: usize,
     z: impl Fn(usize) -> f64,
     movable: impl Fn(usize, usize) -> bool,
-    pairs: &mut Vec<(f64, usize)>,
+    nodes: &mut Vec<usize>,
     runs: &mut Vec<std::ops::Range<usize>>,
     tile: &mut Vec<(f64, usize)>,
     scratch: &mut Vec<(f64, usize)>,
 ) {
-    pairs.clear();
+    nodes.clear();
     runs.clear();
     for i0 in (0..u_count).step_by(TILE) {
         for j0 in (0..v_count).step_by(TILE) {
@@ -55,11 +56,15 @@ pub(super) fn tiled_order(
             }
             // Given in ascending index, the stable sort breaks ties by index.
             super::radix::sort_descending(tile, scratch);
-            runs.push(pairs.len()..pairs.len() + tile.len());
-            pairs.extend_from_slice(tile);
+            runs.push(nodes.len()..nodes.len() + tile.len());
+            nodes.extend(tile.iter().map(|&(_, k)| k));
         }
     }
-    let first = |run: &std::ops::Range<usize>| pairs[run.start];
+    // A run's first pair, its z read again (the same value).
+    let first = |run: &std::ops::Range<usize>| {
+        let k = nodes[run.start];
+        (z(k), k)
+    };
     runs.sort_unstable_by(|a, b| {
         let (a, b) = (first(a), first(b));
         b.0.total_cmp(&a.0).then(a.1.cmp(&b.1))
@@ -179,7 +184,7 @@ mod tests {
             let x = ((k * 7919 + 13) as f64 * 12.9898).sin() * 43_758.545_3;
             ((x - x.floor()) * 4.0).floor()
         };
-        let (mut pairs, mut runs, mut tile, mut scratch) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let (mut nodes, mut runs, mut tile, mut scratch) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for (u, v) in [
             (13, 13),
             (TILE, TILE),
@@ -206,16 +211,17 @@ mod tests {
                 v,
                 z_of,
                 movable,
-                &mut pairs,
+                &mut nodes,
                 &mut runs,
                 &mut tile,
                 &mut scratch,
             );
-            let tiled: Vec<(f64, usize)> = runs
+            let tiled: Vec<usize> = runs
                 .iter()
-                .flat_map(|r| pairs[r.clone()].iter().copied())
+                .flat_map(|r| nodes[r.clone()].iter().copied())
                 .collect();
-            assert_eq!(tiled, sorted, "{u} × {v}");
+            let expected: Vec<usize> = sorted.iter().map(|p| p.1).collect();
+            assert_eq!(tiled, expected, "{u} × {v}");
             // One run per tile holding a movable node (the 200 × 150 grid's first tile holds
             // none, 65 × 3's second only the last row).
             let mut holding: Vec<(usize, usize)> =
