@@ -46,8 +46,22 @@
 //!
 //! At each step the candidate with the largest jump is faired; the strategy is done when the
 //! largest jump over all interior knots is at most `jump_reduction` × the largest jump of the
-//! initial curve, or when no knot is a candidate. Cost per step: O(n) (the knot operations
-//! copy the control points), the jumps are updated only at the five knots U_{r−2} … U_{r+2}.
+//! initial curve, or when no knot is a candidate.
+//!
+//! Cost: O(n) at `init` (the interpolant, the jumps, and two tournament trees over the knots:
+//! the candidates by jump, ties to the smaller index as a stable sort by decreasing jump
+//! orders them, and all interior knots for the largest jump); then O(window + log n) per knot
+//! tried. The step is done on a window of the curve (u_{r−W} … u_{r+W}, clamped at the cut)
+//! and its control points written into the curve in place (only P_{r−2} changes beyond
+//! round-off); the jumps are updated only at the five knots U_{r−2} … U_{r+2} and the trees
+//! replayed above them. A refused knot leaves the candidates' tree until a step near it
+//! clears its refusal, so a run tries at most n + (4p + 10)·steps knots, each O(window) and
+//! O(log n) in the trees: O(n + (refusals + steps) · log n) in all, O(n log n) at worst when
+//! nearly every knot is refused once (a full sort per step cost that at every step). Another
+//! indicator ([`SapidisFarin::with_indicator`]) is recomputed over the whole curve after
+//! every step and the trees rebuilt: O(n) a step. The same knots, curve and points bit for
+//! bit as the whole-curve step after a full sort of the knots at every step (the unit tests'
+//! reference).
 
 use curve_repr::{Curve, Interpolation, InterpolationSettings, NurbsCurve, Parametrization, Side, Vector};
 use fairness::curvature::{curvature_slope_at, CurvatureForm};
@@ -664,10 +678,9 @@ where
                 self.jumps = self.knot_values(curve)?;
                 self.build_trees();
             } else {
-                let knots = curve.knots();
-                for k in r - 2..=r + 2 {
+                for (k, &u) in curve.knots().iter().enumerate().take(r + 3).skip(r - 2) {
                     if self.interior[k] {
-                        self.jumps[k] = Self::jump_at(curve, knots[k])?;
+                        self.jumps[k] = Self::jump_at(curve, u)?;
                     }
                 }
                 let (first, last) = (from.min(r - 2), (to - 1).max(r + 2));
