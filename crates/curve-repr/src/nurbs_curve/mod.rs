@@ -120,6 +120,36 @@ impl<const D: usize> NurbsCurve<D> {
         Self::from_parts(self.knots.clone(), self.control_points.clone(), weights)
     }
 
+    /// Replaces control point `index` and its weight, the knots kept: the in-place form of a
+    /// knot operation done on a window of the curve (Sapidis–Farin's step changes one
+    /// control point of a long curve). The homogeneous point is w P as [`NurbsCurve::new`]
+    /// computes it, so the curve is bit for bit the one `new` would build from the same
+    /// points and weights.
+    ///
+    /// Fails with [`Error::IndexOutOfRange`], [`Error::NonFinite`] on a non-finite point or
+    /// [`Error::BadWeight`] on a weight that is not finite and positive (the curve is then
+    /// unchanged). O(1).
+    pub fn set_control_point(&mut self, index: usize, point: Vector<D>, weight: f64) -> Result<()> {
+        let len = self.control_points.len();
+        if index >= len {
+            return Err(Error::IndexOutOfRange {
+                what: "control points",
+                index,
+                len,
+            });
+        }
+        if point.iter().any(|c| !c.is_finite()) {
+            return Err(Error::NonFinite { what: "point", index });
+        }
+        if !(weight > 0.0 && weight.is_finite()) {
+            return Err(Error::BadWeight { index, value: weight });
+        }
+        self.control_points[index] = point;
+        self.weights[index] = weight;
+        self.weighted[index] = point * weight;
+        Ok(())
+    }
+
     /// The degree p.
     pub fn degree(&self) -> usize {
         self.knots.degree()

@@ -2,6 +2,7 @@
 //! `cargo bench -p <crate> --bench fairing -- <group name>`.
 
 mod jump_lsq;
+mod sapidis_farin;
 mod smoothing_spline;
 mod step_net;
 mod strain_energy;
@@ -11,6 +12,7 @@ mod two_phase;
 
 criterion::criterion_main!(
     jump_lsq::benches,
+    sapidis_farin::benches,
     smoothing_spline::benches,
     strain_energy::benches,
     surface_fairing::benches,

@@ -19,6 +19,7 @@ pub mod smoothing_spline;
 pub mod strain_energy;
 pub mod surface;
 pub mod surface_smoothing;
+mod tournament;
 
 pub use batten::{Batten, BattenSettings, PositionUpdate, Tangents};
 pub use jump_lsq::{CurveEnds, JumpLsq, JumpLsqReport, JumpLsqSettings, LambdaRule};

@@ -46,12 +46,27 @@
 //!
 //! At each step the candidate with the largest jump is faired; the strategy is done when the
 //! largest jump over all interior knots is at most `jump_reduction` × the largest jump of the
-//! initial curve, or when no knot is a candidate. Cost per step: O(n) (the knot operations
-//! copy the control points), the jumps are updated only at the five knots U_{r−2} … U_{r+2}.
+//! initial curve, or when no knot is a candidate.
+//!
+//! Cost: O(n) at `init` (the interpolant, the jumps, and two tournament trees over the knots:
+//! the candidates by jump, ties to the smaller index as a stable sort by decreasing jump
+//! orders them, and all interior knots for the largest jump); then O(window + log n) per knot
+//! tried. The step is done on a window of the curve (u_{r−W} … u_{r+W}, clamped at the cut)
+//! and its control points written into the curve in place (only P_{r−2} changes beyond
+//! round-off); the jumps are updated only at the five knots U_{r−2} … U_{r+2} and the trees
+//! replayed above them. A refused knot leaves the candidates' tree until a step near it
+//! clears its refusal, so a run tries at most n + (4p + 10)·steps knots, each O(window) and
+//! O(log n) in the trees: O(n + (refusals + steps) · log n) in all, O(n log n) at worst when
+//! nearly every knot is refused once (a full sort per step cost that at every step). Another
+//! indicator ([`SapidisFarin::with_indicator`]) is recomputed over the whole curve after
+//! every step and the trees rebuilt: O(n) a step. The same knots, curve and points bit for
+//! bit as the whole-curve step after a full sort of the knots at every step (the unit tests'
+//! reference).
 
 use curve_repr::{Curve, Interpolation, InterpolationSettings, NurbsCurve, Parametrization, Side, Vector};
 use fairness::curvature::{curvature_slope_at, CurvatureForm};
 
+use super::tournament::Tournament;
 use super::CurveDomain;
 use crate::catalog::SharedIndicator;
 use crate::state::strategy_error;
@@ -233,8 +248,9 @@ pub enum SapidisFarinStop {
     NoCandidate,
 }
 
-/// A faired curve and the data points' new positions (index, position).
-type FairedKnot<const D: usize> = (NurbsCurve<D>, Vec<(usize, Vector<D>)>);
+/// A knot faired on a window of the curve: the faired window, the index of its first control
+/// point in the curve, and the data points' new positions (index, position).
+type FairedKnot<const D: usize> = (NurbsCurve<D>, usize, Vec<(usize, Vector<D>)>);
 
 /// Sapidis–Farin knot removal and reinsertion as a [`FairingStrategy`] (module docs).
 #[derive(Clone, Debug)]
@@ -253,6 +269,20 @@ pub struct SapidisFarin<const D: usize> {
     /// Knots (by index) that the constraints or the move bound refused since their
     /// neighbourhood last changed: not tried again until a step near them.
     refused: Vec<bool>,
+    /// Whether knot index r is a simple interior knot (the knot vector never changes).
+    interior: Vec<bool>,
+    /// Every interior knot by its jump: the largest jump ([`SapidisFarin::max_jump`]).
+    all: Tournament,
+    /// The interior knots not refused by their jump, ties to the smaller index: the order in
+    /// which a stable sort of all knots by decreasing jump would try them.
+    open: Tournament,
+    /// Control points i with fl(fl(w_i P_i) / w_i) ≠ P_i (only where a step left a weight
+    /// off 1 by round-off). A step on the whole curve (removal, then insertion, each
+    /// rebuilding the curve from its homogeneous points) divides w_i P_i by w_i twice at
+    /// every control point it does not change, which moves these points by round-off; the
+    /// step done on a window repeats that here, so the curve stays bit for bit the one the
+    /// whole-curve step gives. A point leaves the list once the division gives it back.
+    drifting: Vec<usize>,
 }
 
 impl<const D: usize> SapidisFarin<D>
@@ -272,6 +302,10 @@ where
             move_bound: f64::INFINITY,
             indicator: None,
             refused: Vec::new(),
+            interior: Vec::new(),
+            all: Tournament::default(),
+            open: Tournament::default(),
+            drifting: Vec::new(),
         }
     }
 
@@ -356,9 +390,29 @@ where
         self.initial_max
     }
 
-    /// The largest current jump over the interior knots.
+    /// The largest current jump over the interior knots. O(1).
     pub fn max_jump(&self) -> f64 {
-        self.jumps.iter().copied().fold(0.0, f64::max)
+        self.all.best().map_or(0.0, |r| self.jumps[r])
+    }
+
+    /// Builds the trees of [`SapidisFarin::all`] and [`SapidisFarin::open`] from the jumps,
+    /// the interior knots and the refusals. O(n).
+    fn build_trees(&mut self) {
+        let blocked: Vec<bool> = self.interior.iter().map(|&interior| !interior).collect();
+        self.all = Tournament::new(&self.jumps, &blocked);
+        let blocked: Vec<bool> = self
+            .interior
+            .iter()
+            .zip(&self.refused)
+            .map(|(&interior, &refused)| !interior || refused)
+            .collect();
+        self.open = Tournament::new(&self.jumps, &blocked);
+    }
+
+    /// Whether dividing w P by w gives P back bit for bit (module docs of
+    /// [`SapidisFarin::drifting`]).
+    fn settled(point: &Vector<D>, weight: f64) -> bool {
+        (point * weight) / weight == *point
     }
 
     /// |dκ/ds(u+) − dκ/ds(u−)| at knot u of `curve`.
@@ -401,15 +455,14 @@ where
         Ok(removed.insert_knot(u, 1)?)
     }
 
-    /// Whether knot r may be faired under `constraints`, and the data points' new positions
-    /// (index, position) if so.
-    fn try_knot(
-        &self,
-        curve: &NurbsCurve<D>,
-        r: usize,
-        state: &FairingState<D>,
-        constraints: &Constraints,
-    ) -> Result<Option<FairedKnot<D>>> {
+    /// Whether knot r of the current curve may be faired under the state's constraints, and
+    /// if so the step done on a window of the curve ([`SapidisFarin::window`]) and the data
+    /// points' new positions. O(window + log n): a refused knot costs no copy of the curve.
+    fn try_knot(&self, r: usize, state: &FairingState<D>) -> Result<Option<FairedKnot<D>>> {
+        let Some(curve) = self.curve.as_ref() else {
+            return Err(strategy_error(NAME, "step before init"));
+        };
+        let constraints = state.constraints();
         let knots = curve.knots();
         let first_interior = curve.degree() + 1;
         let last_interior = knots.len() - curve.degree() - 2;
@@ -422,19 +475,15 @@ where
         if (start..end).any(|i| !state.is_movable(i)) {
             return Ok(None);
         }
-        // The step on a clamped window of the curve first (O(p) knots; the same new control
-        // point and the same points on [u_{r−2}, u_{r+2}]), so that a knot the bounds refuse
-        // costs O(1), not a copy of the whole curve: with a move bound, most of the largest
-        // jumps of noisy data are refused.
-        let local = Self::window(curve, r)?;
-        let (window, r_local) = match &local {
-            Some((window, r_local)) => (window, *r_local),
-            None => (curve, r),
-        };
-        let faired_window = Self::fair_knot(window, r_local)?;
+        // The step on a clamped window of the curve (O(p) knots each side; the same new
+        // control points and the same points on [u_{r−2}, u_{r+2}]): with a move bound, most
+        // of the largest jumps of noisy data are refused, and an accepted step is copied
+        // into the curve in place ([`SapidisFarin::apply`]).
+        let (window, r_local, offset) = Self::window(curve, r)?;
+        let faired = Self::fair_knot(&window, r_local)?;
         let mut moves = Vec::with_capacity(end.saturating_sub(start));
         for i in start..end {
-            let mut to = faired_window.point(self.params[i]);
+            let mut to = faired.point(self.params[i]);
             if self.settings.domain == CurveDomain::Function {
                 to[0] = state.points()[i][0];
             }
@@ -444,11 +493,41 @@ where
             }
             moves.push((i, to));
         }
-        let faired = match local {
-            Some(_) => Self::fair_knot(curve, r)?,
-            None => faired_window,
+        Ok(Some((faired, offset, moves)))
+    }
+
+    /// Writes a step done on a window (its control points from index `offset` of the curve
+    /// on) into the curve, and repeats at the other control points what the step on the
+    /// whole curve does to them ([`SapidisFarin::drifting`]), so that the curve is bit for
+    /// bit [`SapidisFarin::fair_knot`] of the curve before. O(window + drifting points).
+    fn apply(&mut self, faired: &NurbsCurve<D>, offset: usize) -> Result<()> {
+        let Some(curve) = self.curve.as_mut() else {
+            return Err(strategy_error(NAME, "step before init"));
         };
-        Ok(Some((faired, moves)))
+        let count = faired.control_points().len();
+        let window = offset..offset + count;
+        let mut drifting = Vec::with_capacity(self.drifting.len() + 4);
+        for &i in &self.drifting {
+            if window.contains(&i) {
+                continue;
+            }
+            let (point, weight) = (curve.control_points()[i], curve.weights()[i]);
+            // Removal: the point from its homogeneous form; insertion: the same again.
+            let once = (point * weight) / weight;
+            let twice = (once * weight) / weight;
+            curve.set_control_point(i, twice, weight)?;
+            if !Self::settled(&twice, weight) {
+                drifting.push(i);
+            }
+        }
+        for (j, (&point, &weight)) in faired.control_points().iter().zip(faired.weights()).enumerate() {
+            curve.set_control_point(offset + j, point, weight)?;
+            if !Self::settled(&point, weight) {
+                drifting.push(offset + j);
+            }
+        }
+        self.drifting = drifting;
+        Ok(())
     }
 
     /// Knots on each side of r that [`SapidisFarin::window`] keeps: enough for the spans
@@ -457,18 +536,24 @@ where
     const WINDOW: usize = 12;
 
     /// The curve cut to the knots u_{r−W} … u_{r+W} (W = [`SapidisFarin::WINDOW`]), clamped
-    /// at both cut ends, with the control points over them, and r's index in it; `None` when
-    /// the cut would reach the curve's own clamped ends (then the curve itself is that small
-    /// near r). Its B-spline basis equals the curve's on every span whose p + 1 knots on each
-    /// side lie inside the cut, [u_{r−2}, u_{r+2}) among them. O(W).
-    fn window(curve: &NurbsCurve<D>, r: usize) -> Result<Option<(NurbsCurve<D>, usize)>> {
+    /// at both cut ends, with the control points over them; r's index in it; and the index
+    /// of its first control point in the curve. Where the cut would reach the curve's own
+    /// clamped end, the window runs to that end instead (uncut on that side). Its B-spline
+    /// basis equals the curve's on every span whose p + 1 knots on each side lie inside the
+    /// cut, [u_{r−2}, u_{r+2}) among them, and knot removal and insertion at u_r do the same
+    /// arithmetic on its control points as on the curve's. O(W).
+    fn window(curve: &NurbsCurve<D>, r: usize) -> Result<(NurbsCurve<D>, usize, usize)> {
         let knots = curve.knots();
         let p = curve.degree();
         let w = Self::WINDOW.max(2 * p + 6);
-        if r < w + p + 1 || r + w + p + 1 >= knots.len() {
-            return Ok(None);
-        }
-        let (a, b) = (r - w, r + w);
+        // Uncut on a side, the window starts at u_p (ends at u_{m−p}), whose p + 1 copies
+        // are the curve's clamped end.
+        let a = if r < w + p + 1 { p } else { r - w };
+        let b = if r + w + p + 1 >= knots.len() {
+            knots.len() - 1 - p
+        } else {
+            r + w
+        };
         // Clamped: u_a repeated p + 1 times, u_{a+1} … u_{b−1}, u_b repeated p + 1 times.
         let mut cut = vec![knots[a]; p + 1];
         cut.extend_from_slice(&knots[a + 1..b]);
@@ -479,7 +564,7 @@ where
         let count = cut.len() - p - 1;
         let points = curve.control_points()[offset..offset + count].to_vec();
         let weights = curve.weights()[offset..offset + count].to_vec();
-        Ok(Some((NurbsCurve::new(p, cut, points, weights)?, r - offset)))
+        Ok((NurbsCurve::new(p, cut, points, weights)?, r - offset, offset))
     }
 }
 
@@ -524,9 +609,17 @@ where
         };
         let curve = interpolation.nubs()?;
         self.params = interpolation.params().to_vec();
+        self.interior = vec![false; curve.knots().len()];
+        for r in Self::interior(&curve) {
+            self.interior[r] = true;
+        }
         self.jumps = self.knot_values(&curve)?;
-        self.initial_max = self.max_jump();
         self.refused = vec![false; curve.knots().len()];
+        self.build_trees();
+        self.initial_max = self.max_jump();
+        self.drifting = (0..curve.control_points().len())
+            .filter(|&i| !Self::settled(&curve.control_points()[i], curve.weights()[i]))
+            .collect();
         self.curve = Some(curve);
         self.history.clear();
         self.stop = None;
@@ -534,8 +627,13 @@ where
         Ok(())
     }
 
+    /// One knot faired: the knot of the largest jump not refused comes off a tournament tree
+    /// (ties to the smaller index, as a stable sort by decreasing jump orders them), refused
+    /// knots leave the tree until a step near them, the step is done on a window and copied
+    /// into the curve, and the jumps are updated at five knots. O(window + log n) per knot
+    /// tried (O(n) with another indicator, which is recomputed over the whole curve).
     fn step(&mut self, state: &mut FairingState<D>) -> Result<StepOutcome> {
-        let Some(curve) = self.curve.clone() else {
+        let Some(degree) = self.curve.as_ref().map(NurbsCurve::degree) else {
             return Err(strategy_error(NAME, "step before init"));
         };
         let max = self.max_jump();
@@ -547,48 +645,54 @@ where
             self.stop = Some(SapidisFarinStop::MaxIterations);
             return Ok(StepOutcome::done(Some(max)));
         }
-        let constraints = state.constraints().clone();
-        let mut candidates: Vec<usize> = Self::interior(&curve);
-        candidates.sort_by(|a, b| self.jumps[*b].total_cmp(&self.jumps[*a]));
-        for r in candidates {
+        while let Some(r) = self.open.best() {
             if self.jumps[r] == 0.0 {
                 break;
             }
-            if self.refused.get(r).copied().unwrap_or(false) {
-                continue;
-            }
-            let Some((faired, moves)) = self.try_knot(&curve, r, state, &constraints)? else {
+            let Some((faired, offset, moves)) = self.try_knot(r, state)? else {
                 // The refusal depends on the curve near r only (and on the data and bounds,
                 // which do not change): it holds until a step near r.
-                if let Some(flag) = self.refused.get_mut(r) {
-                    *flag = true;
-                }
+                self.refused[r] = true;
+                self.open.set_candidate(&self.jumps, r, false);
                 continue;
             };
             // A step at r changes the curve on [u_{r−p−1}, u_{r+p+1}]: the knots whose
             // windows see that span may be tried again.
-            let reach = 2 * curve.degree() + 4;
+            let reach = 2 * degree + 4;
             let (from, to) = (r.saturating_sub(reach), (r + reach + 1).min(self.refused.len()));
-            self.refused[from..to].iter_mut().for_each(|f| *f = false);
-            let jump_before = self.jumps[r];
-            let knots = faired.knots().to_vec();
-            if self.indicator.is_some() {
-                self.jumps = self.knot_values(&faired)?;
-            } else {
-                let interior = Self::interior(&faired);
-                for (k, &u) in knots.iter().enumerate().take(r + 3).skip(r - 2) {
-                    if interior.binary_search(&k).is_ok() {
-                        self.jumps[k] = Self::jump_at(&faired, u)?;
+            for k in from..to {
+                if self.refused[k] {
+                    self.refused[k] = false;
+                    if self.interior[k] {
+                        self.open.mark(k, true);
                     }
                 }
+            }
+            let jump_before = self.jumps[r];
+            self.apply(&faired, offset)?;
+            let Some(curve) = self.curve.as_ref() else {
+                return Err(strategy_error(NAME, "step before init"));
+            };
+            let knot = curve.knots()[r];
+            if self.indicator.is_some() {
+                self.jumps = self.knot_values(curve)?;
+                self.build_trees();
+            } else {
+                for (k, &u) in curve.knots().iter().enumerate().take(r + 3).skip(r - 2) {
+                    if self.interior[k] {
+                        self.jumps[k] = Self::jump_at(curve, u)?;
+                    }
+                }
+                let (first, last) = (from.min(r - 2), (to - 1).max(r + 2));
+                self.all.replay(&self.jumps, first, last);
+                self.open.replay(&self.jumps, first, last);
             }
             for (i, to) in moves {
                 state.move_point(i, to)?;
             }
-            self.curve = Some(faired);
             let max_jump_after = self.max_jump();
             self.history.push(KnotStep {
-                knot: knots[r],
+                knot,
                 index: r,
                 jump_before,
                 max_jump_after,
