@@ -686,3 +686,46 @@ proptest! {
         }
     }
 }
+
+/// `set_control_point` is the in-place form of building the curve again: after it the curve
+/// equals (field for field, so bit for bit) the one `NurbsCurve::new` builds from the changed
+/// control points and weights, and a bad index, point or weight is an error that leaves the
+/// curve as it was.
+#[test]
+fn set_control_point_equals_a_rebuild_and_refuses_bad_input() {
+    let knots = vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.55, 1.0, 1.0, 1.0, 1.0];
+    let mut points: Vec<Vec2> = (0..6)
+        .map(|i| Vec2::new(i as f64, ((i * i) % 5) as f64 * 0.37))
+        .collect();
+    let mut weights = vec![1.0, 0.7, 1.3, 1.0, 2.1, 1.0];
+    let mut curve = NurbsCurve::new(3, knots.clone(), points.clone(), weights.clone()).unwrap();
+    let before = curve.point(0.42);
+    curve.set_control_point(2, Vec2::new(2.25, -0.8), 0.45).unwrap();
+    points[2] = Vec2::new(2.25, -0.8);
+    weights[2] = 0.45;
+    let rebuilt = NurbsCurve::new(3, knots, points, weights).unwrap();
+    assert_eq!(curve, rebuilt);
+    for k in 0..=20 {
+        let u = k as f64 / 20.0;
+        assert_eq!(curve.point(u), rebuilt.point(u), "u = {u}");
+    }
+    // The change is real: the point at 0.42 (inside the moved control point's support) moved.
+    assert_ne!(curve.point(0.42), before);
+
+    let kept = curve.clone();
+    assert!(matches!(
+        curve.set_control_point(6, Vec2::new(0.0, 0.0), 1.0),
+        Err(Error::IndexOutOfRange { index: 6, len: 6, .. })
+    ));
+    assert!(matches!(
+        curve.set_control_point(1, Vec2::new(f64::NAN, 0.0), 1.0),
+        Err(Error::NonFinite { index: 1, .. })
+    ));
+    for bad in [0.0, -1.0, f64::INFINITY, f64::NAN] {
+        assert!(matches!(
+            curve.set_control_point(1, Vec2::new(0.5, 0.5), bad),
+            Err(Error::BadWeight { index: 1, .. })
+        ));
+    }
+    assert_eq!(curve, kept);
+}
