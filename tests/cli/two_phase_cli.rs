@@ -116,9 +116,12 @@ fn function_input_honours_fixed_points_and_tolerance() {
         .map(|v| v.as_u64().unwrap())
         .collect();
     assert!(!moved.is_empty() && !moved.contains(&50) && !moved.contains(&120));
+    // The band (0.002) is narrower than the noise (σ 0.003): the fairing removes inflections
+    // (236 → 167 on this draw) but may leave the vibration count where it was (248; 246 with
+    // the pre-pass's runout ends, `function-ends` = runout).
     let count = |block: &str, what: &str| r[block][what].as_u64().unwrap();
-    assert!(count("after", "vibrations") < count("before", "vibrations"));
-    assert!(count("after", "inflections") <= count("before", "inflections"));
+    assert!(count("after", "inflections") < count("before", "inflections"));
+    assert!(count("after", "vibrations") <= count("before", "vibrations"));
     assert_eq!(r["curve"]["type"], "spline-function");
 }
 

@@ -36,7 +36,7 @@
 //! the paper variant always runs `off`), `HAN_ENDS` (`keep`, `free`), `HAN_PROJECT` (`project`:
 //! `off`, `foot-point`, `parameter-correction`), `HAN_CURVE_GCV_GAMMA` and `HAN_FUNCTION_GCV_GAMMA`
 //! (`curve-gcv-gamma`, `function-gcv-gamma`), `HAN_CURVE_ENDS` (`curve-ends`: `runout`,
-//! `natural`), `HAN_CURVE_END_RUNS` and `HAN_FUNCTION_END_RUNS` (`true`, `false`),
+//! `natural`), `HAN_FUNCTION_ENDS` (`function-ends`: `auto`, `runout`, `natural`), `HAN_CURVE_END_RUNS` and `HAN_FUNCTION_END_RUNS` (`true`, `false`),
 //! `HAN_END_RUN_MAX_DEVIANCE` (`end-run-max-deviance`), `HAN_FUNCTION_PREPASS_RULE` and
 //! `HAN_CURVE_PREPASS_RULE` (`function-prepass-rule`, `curve-prepass-rule`: `gcv`, `gml`).
 
@@ -284,6 +284,9 @@ fn main() -> Result<(), Error> {
             }
             "HAN_CURVE_ENDS" => {
                 tuned.curve_ends = serde_json::from_value(serde_json::Value::String(value))?;
+            }
+            "HAN_FUNCTION_ENDS" => {
+                tuned.function_ends = serde_json::from_value(serde_json::Value::String(value))?;
             }
             "HAN_ENDS" => {
                 tuned.ends = serde_json::from_value(serde_json::Value::String(value))?;

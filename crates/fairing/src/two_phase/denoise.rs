@@ -58,7 +58,8 @@ use super::foot_point::{foot_points, Projection};
 use crate::state::strategy_error;
 use crate::strategies::jump_lsq;
 use crate::strategies::{
-    CurveDomain, CurveEnds, JumpLsqSettings, LambdaRule, SmoothingRule, SmoothingSettings, SmoothingSpline,
+    CurveDomain, CurveEnds, FunctionEnds, JumpLsqSettings, LambdaRule, SmoothingRule, SmoothingSettings,
+    SmoothingSpline,
 };
 use crate::{Constraints, Result};
 
@@ -135,6 +136,8 @@ pub struct Prepass {
     pub rule: PrepassRule,
     /// GCV's factor γ on the trace.
     pub gcv_gamma: f64,
+    /// A function's spline end conditions (jump-lsq's `function-ends`; unused by curves).
+    pub function_ends: FunctionEnds,
 }
 
 impl Prepass {
@@ -143,6 +146,7 @@ impl Prepass {
         Prepass {
             rule: PrepassRule::Gcv,
             gcv_gamma: gamma,
+            function_ends: FunctionEnds::Runout,
         }
     }
 
@@ -151,7 +155,14 @@ impl Prepass {
         Prepass {
             rule,
             gcv_gamma: gamma,
+            function_ends: FunctionEnds::Runout,
         }
+    }
+
+    /// Sets a function's spline end conditions (`runout` by the constructors).
+    pub fn with_function_ends(mut self, ends: FunctionEnds) -> Self {
+        self.function_ends = ends;
+        self
     }
 }
 
@@ -170,13 +181,16 @@ impl Denoise {
     /// rule (GCV with its trace factor, or GML) for `jump-lsq-gcv`.
     fn jump_lsq(self, prepass: Prepass) -> Option<JumpLsqSettings> {
         match self {
-            Denoise::JumpLsq => Some(JumpLsqSettings::default()),
-            Denoise::JumpLsqGcv => Some(match prepass.rule {
-                PrepassRule::Gcv => JumpLsqSettings::default()
-                    .with_rule(LambdaRule::Gcv)
-                    .with_gcv_gamma(prepass.gcv_gamma),
-                PrepassRule::Gml => JumpLsqSettings::default().with_rule(LambdaRule::Gml),
-            }),
+            Denoise::JumpLsq => Some(JumpLsqSettings::default().with_function_ends(prepass.function_ends)),
+            Denoise::JumpLsqGcv => Some(
+                match prepass.rule {
+                    PrepassRule::Gcv => JumpLsqSettings::default()
+                        .with_rule(LambdaRule::Gcv)
+                        .with_gcv_gamma(prepass.gcv_gamma),
+                    PrepassRule::Gml => JumpLsqSettings::default().with_rule(LambdaRule::Gml),
+                }
+                .with_function_ends(prepass.function_ends),
+            ),
             Denoise::Off | Denoise::Gcv => None,
         }
     }

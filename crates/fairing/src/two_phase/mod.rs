@@ -264,7 +264,8 @@ impl FairingStrategy<2> for TwoPhase {
             Prepass::new(
                 self.settings.function_prepass_rule,
                 self.settings.function_gcv_gamma,
-            ),
+            )
+            .with_function_ends(self.settings.function_ends),
             &x,
             &y,
             &limits,

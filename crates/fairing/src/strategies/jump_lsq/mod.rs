@@ -159,7 +159,7 @@ use crate::{
 };
 use basis::Knots;
 use lambda::{Choice, Evaluation};
-use system::{Constraint, Ends, Penalty, Space, SpaceError, System};
+use system::{Constraint, End, Ends, Penalty, Space, SpaceError, System};
 
 /// The strategy's name, as `fair methods` lists it.
 pub const NAME: &str = "jump-lsq";
@@ -200,6 +200,37 @@ pub enum CurveEnds {
     Natural,
     /// s‴ = 0 on the first and last span (parabolic runout): the end curvature is free.
     Runout,
+}
+
+/// The end conditions of a function's spline y(x) (`function-ends`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum FunctionEnds {
+    /// s‴ = 0 on the first and last span (parabolic runout, the representation's own spline
+    /// function, Han et al.): the end curvature is free.
+    #[default]
+    Runout,
+    /// s″ = 0 at both ends: the natural spline (csaps's convention).
+    Natural,
+    /// Each end natural or runout, chosen from the data by generalised cross-validation: of
+    /// the four pairs (runout–runout, natural–runout, runout–natural, natural–natural), the one
+    /// whose fit has the lowest GCV score min_λ V(λ) (V of the `gcv` rule, with `gcv-gamma`),
+    /// ties to the earlier. The end condition is a model choice like λ, and V compares the
+    /// four spaces on the same data (each is n-dimensional). Four GCV searches instead of
+    /// one, each O(n). With an end clamp beyond G0 (whose targets come from the
+    /// representation's spline) it is `runout`.
+    Auto,
+}
+
+impl FunctionEnds {
+    /// `runout`, `natural` or `auto`.
+    pub fn name(self) -> &'static str {
+        match self {
+            FunctionEnds::Runout => "runout",
+            FunctionEnds::Natural => "natural",
+            FunctionEnds::Auto => "auto",
+        }
+    }
 }
 
 /// Settings of `jump-lsq` (module docs). The defaults are those the issue asks for and the
@@ -266,6 +297,16 @@ pub struct JumpLsqSettings {
     /// ([`TwoPhaseSettings::curve_ends`](crate::two_phase::TwoPhaseSettings::curve_ends),
     /// runout by default, measured there). No effect on functions or closed curves.
     pub curve_ends: CurveEnds,
+    /// Functions y(x): the spline's end conditions, runout (s''' = 0 on the end spans), natural (s'' = 0 at the ends) or auto (each end chosen from the data by GCV).
+    ///
+    /// Default `runout`, the representation's own spline function (Han et al.). `auto` picks
+    /// natural at an end where the data's curve has no curvature there (a sine starting at an
+    /// inflection, a waterline's straight end) and runout where it has (an airfoil's leading
+    /// edge); measured as two-phase's function pre-pass, which sets its own
+    /// ([`TwoPhaseSettings::function_ends`](crate::two_phase::TwoPhaseSettings::function_ends),
+    /// `auto` by default; `docs/two_phase_judge.md`). The output is the faired ordinates; the
+    /// representation through them stays the runout spline. No effect on parametric curves.
+    pub function_ends: FunctionEnds,
 }
 
 impl Default for JumpLsqSettings {
@@ -276,6 +317,7 @@ impl Default for JumpLsqSettings {
             rule: LambdaRule::Discrepancy,
             gcv_gamma: 1.0,
             curve_ends: CurveEnds::Natural,
+            function_ends: FunctionEnds::Runout,
             noise_factor: 1.0,
             exponent: 8.0,
             difference_order: 1,
@@ -404,6 +446,12 @@ impl JumpLsqSettings {
         self.curve_ends = ends;
         self
     }
+
+    /// Sets a function's end conditions.
+    pub fn with_function_ends(mut self, ends: FunctionEnds) -> Self {
+        self.function_ends = ends;
+        self
+    }
 }
 
 /// What one run chose and measured (the report's extras).
@@ -422,6 +470,9 @@ pub struct JumpLsqReport {
     pub rms_displacement: f64,
     /// GCV's value at λ (GCV rule).
     pub gcv: Option<f64>,
+    /// The open spline's end conditions used, at the start and the end: `runout` or
+    /// `natural` each (`auto` reports its choice); `periodic` for a closed curve.
+    pub ends: [String; 2],
     /// λ stopped at the precision limit before the rule was satisfied.
     pub lambda_limited: bool,
     /// Solves made (all trial λ of all rounds).
@@ -526,13 +577,33 @@ fn knots_of<const D: usize>(points: &[Vector<D>], domain: CurveDomain, closed: b
     }
 }
 
-fn ends_of(domain: CurveDomain, closed: bool, curve_ends: CurveEnds) -> Ends {
+/// The spline's end conditions for `domain`: a closed curve's periodic; an open parametric
+/// curve's `curve_ends`; a function's `function_ends`, where `auto` (chosen by the data, see
+/// [`choose_function_ends`]) stands for the representation's own runout.
+fn ends_of(domain: CurveDomain, closed: bool, curve_ends: CurveEnds, function_ends: FunctionEnds) -> Ends {
     if closed {
         Ends::Periodic
-    } else if domain == CurveDomain::Function || curve_ends == CurveEnds::Runout {
-        Ends::Runout
+    } else if domain == CurveDomain::Function {
+        match function_ends {
+            FunctionEnds::Natural => Ends::NATURAL,
+            FunctionEnds::Runout | FunctionEnds::Auto => Ends::RUNOUT,
+        }
+    } else if curve_ends == CurveEnds::Runout {
+        Ends::RUNOUT
     } else {
-        Ends::Natural
+        Ends::NATURAL
+    }
+}
+
+/// The report's names of `ends`' conditions (start, end).
+fn ends_names(ends: Ends) -> [String; 2] {
+    let name = |end: End| match end {
+        End::Runout => "runout",
+        End::Natural => "natural",
+    };
+    match ends {
+        Ends::Open(start, end) => [name(start).into(), name(end).into()],
+        Ends::Periodic => ["periodic".into(), "periodic".into()],
     }
 }
 
@@ -558,7 +629,7 @@ pub fn jumps<const D: usize>(
         points,
         domain,
         closed,
-        CurveEnds::Natural,
+        ends_of(domain, closed, CurveEnds::Natural, FunctionEnds::Runout),
         Penalty::differences(0, 0.0),
     )?;
     Ok(space
@@ -575,7 +646,8 @@ pub fn jump_penalty<const D: usize>(
     closed: bool,
     settings: &JumpLsqSettings,
 ) -> Result<f64> {
-    let (space, gamma) = interpolant(points, domain, closed, settings.curve_ends, penalty_of(settings))?;
+    let ends = ends_of(domain, closed, settings.curve_ends, settings.function_ends);
+    let (space, gamma) = interpolant(points, domain, closed, ends, penalty_of(settings))?;
     Ok(space.penalty_of(&gamma))
 }
 
@@ -583,14 +655,13 @@ fn interpolant<const D: usize>(
     points: &[Vector<D>],
     domain: CurveDomain,
     closed: bool,
-    curve_ends: CurveEnds,
+    ends: Ends,
     penalty: Penalty,
 ) -> Result<(Space, Vec<Vector<D>>)> {
     check_kind::<D>(domain, closed)?;
     let knots = knots_of(points, domain, closed)?;
     let n = points.len();
-    let space = Space::new(knots, ends_of(domain, closed, curve_ends), penalty)
-        .map_err(|e| space_error(e, n, closed))?;
+    let space = Space::new(knots, ends, penalty).map_err(|e| space_error(e, n, closed))?;
     let data = masked(points, smoothed(domain));
     let gamma = space.interpolate(&data).map_err(pivot_error)?;
     Ok((space, gamma))
@@ -707,7 +778,7 @@ fn fair_from<const D: usize>(
         });
     }
     let mask = smoothed::<D>(domain);
-    let ends = ends_of(domain, closed, settings.curve_ends);
+    let mut ends = ends_of(domain, closed, settings.curve_ends, settings.function_ends);
     let penalty = penalty_of(settings);
     let data = masked(points, mask);
     let frozen: Vec<bool> = (0..n).map(|i| !constraints.is_movable(i, n)).collect();
@@ -718,10 +789,14 @@ fn fair_from<const D: usize>(
     let mut held: Vec<(usize, Vector<D>)> = Vec::new();
     let clamp_targets: Vec<(usize, bool, Vector<D>)> = match clamp.order() {
         Some(order) if order >= 1 => {
-            let (space, gamma) = interpolant(original, domain, closed, settings.curve_ends, penalty)?;
-            if order >= 2 && ends == Ends::Runout {
-                for i in [1, n - 2] {
-                    if !frozen[i] {
+            let (space, gamma) = interpolant(original, domain, closed, ends, penalty)?;
+            let runout_at = |at_end: bool| match ends {
+                Ends::Open(start, end) => (if at_end { end } else { start }) == End::Runout,
+                Ends::Periodic => false,
+            };
+            if order >= 2 {
+                for (i, at_end) in [(1, false), (n - 2, true)] {
+                    if !frozen[i] && runout_at(at_end) {
                         let mut p = original[i];
                         for (c, keep) in mask.iter().enumerate() {
                             if !keep {
@@ -754,6 +829,75 @@ fn fair_from<const D: usize>(
             LambdaRule::Gml => ("gml", None),
         },
     };
+    let base_of = |space: &Space| {
+        let mut base: Vec<Constraint<D>> = Vec::new();
+        for (i, _) in frozen.iter().enumerate().filter(|(_, f)| **f) {
+            base.push(Constraint {
+                form: space.value_form(i),
+                target: data[i],
+                point: Some(i),
+            });
+        }
+        for (i, p) in &held {
+            base.push(Constraint {
+                form: space.value_form(*i),
+                target: masked(std::slice::from_ref(p), mask)[0],
+                point: Some(*i),
+            });
+        }
+        for &(order, at_end, target) in &clamp_targets {
+            base.push(Constraint {
+                form: space.end_derivative_form(order, at_end),
+                target,
+                point: None,
+            });
+        }
+        base
+    };
+    // `auto` ends of a function: of the four pairs, the one whose GCV search ends lowest, on
+    // the input's knots (a function's knots are its x, the same in every round). The
+    // winner's search is the round's own when the rule is GCV (same space, data and
+    // constraints), so it is kept for round 0.
+    let mut chosen: Option<Choice<D>> = None;
+    let mut selection_solves = 0;
+    if domain == CurveDomain::Function
+        && !closed
+        && settings.function_ends == FunctionEnds::Auto
+        && clamp_targets.is_empty()
+    {
+        let knots = knots_of(points, domain, closed)?;
+        let ones = vec![1.0; n];
+        let mut best: Option<(f64, Ends, Choice<D>)> = None;
+        for candidate in [
+            Ends::RUNOUT,
+            Ends::Open(End::Natural, End::Runout),
+            Ends::Open(End::Runout, End::Natural),
+            Ends::NATURAL,
+        ] {
+            let Ok(space) = Space::new(knots.clone(), candidate, penalty) else {
+                continue;
+            };
+            if space.penalty_rows() == 0 {
+                break;
+            }
+            let base = base_of(&space);
+            let system = System::new(&space, &data, &ones, &base);
+            let lambda_max = lambda::STIFFNESS_LIMIT / system.stiffness().max(f64::MIN_POSITIVE);
+            let Ok(mut choice) = lambda::gcv(&system, coordinates, settings.gcv_gamma, lambda_max) else {
+                continue;
+            };
+            selection_solves += choice.evaluations;
+            choice.evaluations = 0;
+            let score = choice.gcv.unwrap_or(f64::INFINITY);
+            if best.as_ref().is_none_or(|b| score < b.0) {
+                best = Some((score, candidate, choice));
+            }
+        }
+        if let Some((_, candidate, choice)) = best {
+            ends = candidate;
+            chosen = Some(choice);
+        }
+    }
     let rounds = if domain == CurveDomain::Parametric && given.is_none() {
         settings.refits + 1
     } else {
@@ -768,8 +912,9 @@ fn fair_from<const D: usize>(
         target_sd: target,
         rms_displacement: 0.0,
         gcv: None,
+        ends: ends_names(ends),
         lambda_limited: false,
-        solves: 0,
+        solves: selection_solves,
         refits: rounds - 1,
         pinned: 0,
         reweighted: 0,
@@ -789,31 +934,6 @@ fn fair_from<const D: usize>(
         let mut space = Space::new(knots, ends, penalty).map_err(|e| space_error(e, n, closed))?;
         last_knots = space.knots().values().to_vec();
         last_period = space.knots().period();
-        let base_of = |space: &Space| {
-            let mut base: Vec<Constraint<D>> = Vec::new();
-            for (i, _) in frozen.iter().enumerate().filter(|(_, f)| **f) {
-                base.push(Constraint {
-                    form: space.value_form(i),
-                    target: data[i],
-                    point: Some(i),
-                });
-            }
-            for (i, p) in &held {
-                base.push(Constraint {
-                    form: space.value_form(*i),
-                    target: masked(std::slice::from_ref(p), mask)[0],
-                    point: Some(*i),
-                });
-            }
-            for &(order, at_end, target) in &clamp_targets {
-                base.push(Constraint {
-                    form: space.end_derivative_form(order, at_end),
-                    target,
-                    point: None,
-                });
-            }
-            base
-        };
         let mut base = base_of(&space);
         let mut weights: Vec<f64> = vec![1.0; n];
         if round == 0 && given.is_some() {
@@ -827,7 +947,11 @@ fn fair_from<const D: usize>(
         }
         let system = System::new(&space, &data, &weights, &base);
         let lambda_max = lambda::STIFFNESS_LIMIT / system.stiffness().max(f64::MIN_POSITIVE);
-        let choice: Choice<D> = if space.penalty_rows() == 0 {
+        let reuse = settings.lambda.is_none() && target.is_none() && settings.rule == LambdaRule::Gcv;
+        let cached = chosen.take().filter(|_| reuse && round == 0);
+        let choice: Choice<D> = if let Some(choice) = cached {
+            choice
+        } else if space.penalty_rows() == 0 {
             let evaluation = lambda::evaluate(&system, 0.0, false, false).map_err(pivot_error)?;
             Choice {
                 evaluation,

@@ -28,16 +28,30 @@ const CONSTRAINT_WEIGHT: f64 = 1e8;
 /// end substitution has 9).
 const MAX_FORM: usize = 12;
 
-/// The end condition of the interpolating spline, which is the representation the method
+/// The condition at one end of an open interpolating spline.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum End {
+    /// Parabolic runout: s‴ = 0 on the end span (the end curvature is free).
+    Runout,
+    /// Natural: s″ = 0 at the end.
+    Natural,
+}
+
+/// The end conditions of the interpolating spline, which is the representation the method
 /// fairs (and the judge measures).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Ends {
-    /// Parabolic runout (Han et al.'s spline function): s‴ = 0 on the first and last spans.
-    Runout,
-    /// Natural: s″ = 0 at both ends (the parametric kind's spline).
-    Natural,
+    /// An open curve: the conditions at its start and at its end.
+    Open(End, End),
     /// Closed curve: a periodic spline.
     Periodic,
+}
+
+impl Ends {
+    /// Parabolic runout at both ends (Han et al.'s spline function).
+    pub const RUNOUT: Ends = Ends::Open(End::Runout, End::Runout);
+    /// Natural at both ends (the parametric kind's spline).
+    pub const NATURAL: Ends = Ends::Open(End::Natural, End::Natural);
 }
 
 /// A linear form Σ_r c_r γ_{(start + r) mod m} over the unknowns γ (indices wrap only for
@@ -197,10 +211,16 @@ impl Space {
         let mid = spacing.len() / 2;
         let (_, &mut h_median, _) = spacing.select_nth_unstable_by(mid, f64::total_cmp);
         let (mut start_subst, mut end_subst) = ([0.0; 4], [0.0; 4]);
-        if !closed {
-            let (start_form, end_form) = match ends {
-                Ends::Runout => (third[0], third[spans - 1]),
-                _ => (ders_start[2], ders_end[2]),
+        if let Ends::Open(start, end) = ends {
+            // The open ends' condition rows: s‴ on the end span (runout) or s″ at the end
+            // (natural), each on its own end's four coefficients.
+            let start_form = match start {
+                End::Runout => third[0],
+                End::Natural => ders_start[2],
+            };
+            let end_form = match end {
+                End::Runout => third[spans - 1],
+                End::Natural => ders_end[2],
             };
             let pivot = start_form[1];
             let last = end_form[2];
@@ -416,7 +436,8 @@ impl Space {
     /// penalty row zero. Open curves: the rows' kernel in the n unknowns, n − rows, where the
     /// rows are independent (measured against a dense rank in `super::tests`), but never
     /// below the cubic's (jumps all zero): lines (2) for the natural spline, parabolas (3)
-    /// for the runout spline (s‴ = 0 on the end spans and no jump: one parabola). With d ≥ 1
+    /// for the runout spline (s‴ = 0 on the end spans and no jump: one parabola), lines (2)
+    /// for mixed ends (one parabola with s″ = 0 at an end). With d ≥ 1
     /// and no end rows this is d + 2 for both: jumps that are polynomials of degree < d in the
     /// knot index (d dimensions; the runout spline's last span asks Σ J_i = 0, one fewer)
     /// plus the cubic's (natural 2, runout 3). Closed curves: 1 (the constants: a periodic
@@ -426,8 +447,8 @@ impl Space {
         let n = self.len();
         match self.ends {
             Ends::Periodic => 1,
-            Ends::Natural => n.saturating_sub(self.penalty_rows()).max(2).min(n),
-            Ends::Runout => n.saturating_sub(self.penalty_rows()).max(3).min(n),
+            Ends::Open(End::Runout, End::Runout) => n.saturating_sub(self.penalty_rows()).max(3).min(n),
+            Ends::Open(..) => n.saturating_sub(self.penalty_rows()).max(2).min(n),
         }
     }
 

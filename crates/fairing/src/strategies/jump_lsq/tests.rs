@@ -413,7 +413,7 @@ fn constrained_solves_equal_the_dense_kkt_solve() {
     // the dense KKT solve at that stiffness.
     let space = Space::new(
         Knots::open(Parametrization::ChordLength.parameters(&points).unwrap()),
-        Ends::Natural,
+        Ends::NATURAL,
         penalty_of(&settings),
     )
     .unwrap();
@@ -463,7 +463,7 @@ fn influence_trace_equals_the_dense_trace() {
         unit[(k, 0)] = 1.0;
         trace += dense_solve(&penalty, lambda, &free, &unit, &rows)[(k, 0)];
     }
-    let space = Space::new(Knots::open(x), Ends::Runout, Penalty::differences(2, 8.0)).unwrap();
+    let space = Space::new(Knots::open(x), Ends::RUNOUT, Penalty::differences(2, 8.0)).unwrap();
     let data = masked(&points, [false, true]);
     let weights = vec![1.0; n];
     let constraints: Vec<Constraint<2>> = fixed
@@ -571,7 +571,7 @@ fn lambda_zero_returns_the_input_and_lambda_large_leaves_linear_jumps() {
     let settings = JumpLsqSettings::default()
         .with_difference_order(2)
         .with_exponent(0.0);
-    let space = Space::new(Knots::open(x), Ends::Runout, penalty_of(&settings)).unwrap();
+    let space = Space::new(Knots::open(x), Ends::RUNOUT, penalty_of(&settings)).unwrap();
     let data = masked(&points, [false, true]);
     let weights = vec![1.0; n];
     let system = System::new(&space, &data, &weights, &[]);
@@ -665,7 +665,7 @@ fn parametric_refits_report_the_penalty_on_the_outputs_own_knots() {
         // closes as the refits converge.
         let space = Space::new(
             Knots::open(faired.knots.clone()),
-            Ends::Natural,
+            Ends::NATURAL,
             penalty_of(&settings),
         )
         .unwrap();
@@ -732,7 +732,7 @@ fn discrepancy_rule_reaches_its_target_and_gcv_minimises() {
         let faired = run(&settings);
         let chosen = faired.report.lambda;
         let g = faired.report.gcv.unwrap();
-        let space = Space::new(Knots::open(x.clone()), Ends::Runout, penalty_of(&settings)).unwrap();
+        let space = Space::new(Knots::open(x.clone()), Ends::RUNOUT, penalty_of(&settings)).unwrap();
         let system = System::new(&space, &data, &weights, &[]);
         let score = |factor: f64| {
             let e = lambda::evaluate(&system, chosen * factor, false, true).unwrap();
@@ -766,7 +766,7 @@ fn the_solves_stay_accurate_up_to_the_precision_limit() {
         let settings = JumpLsqSettings::default()
             .with_difference_order(2)
             .with_exponent(exponent);
-        let space = Space::new(Knots::open(x), Ends::Runout, penalty_of(&settings)).unwrap();
+        let space = Space::new(Knots::open(x), Ends::RUNOUT, penalty_of(&settings)).unwrap();
         let data = masked(&points, [false, true]);
         let weights = vec![1.0; points.len()];
         let system = System::new(&space, &data, &weights, &[]);
@@ -857,7 +857,7 @@ fn dense_noise_beyond_the_precision_limit_takes_one_qr_trial_and_a_target_below_
     // A target reached inside the QR range (at λ_max/1e4, stiffness 1e14): λ_max brackets it
     // and the search still meets it.
     let xs: Vec<f64> = points.iter().map(|p| p[0]).collect();
-    let space = Space::new(Knots::open(xs), Ends::Runout, penalty_of(&settings)).unwrap();
+    let space = Space::new(Knots::open(xs), Ends::RUNOUT, penalty_of(&settings)).unwrap();
     let data = masked(&points, [false, true]);
     let weights = vec![1.0; n];
     let lambda_max = lambda::STIFFNESS_LIMIT / System::new(&space, &data, &weights, &[]).stiffness();
@@ -899,7 +899,7 @@ fn extents_are_those_of_the_forms() {
             end_weight: 1.0,
             ..Penalty::differences(order, 8.0)
         };
-        for ends in [Ends::Runout, Ends::Natural] {
+        for ends in [Ends::RUNOUT, Ends::NATURAL] {
             let space = Space::new(Knots::open(xs.clone()), ends, penalty).unwrap();
             let m = space.len();
             let extent = |form: &system::Form| {
@@ -944,7 +944,7 @@ fn given_knots_are_the_solves_knots_and_bad_ones_are_refused() {
     assert_eq!(faired.report.refits, 0);
     // The output is the spline on those knots: its interpolant there has the solve's penalty,
     // smaller than on the output's own chord lengths.
-    let space = Space::new(Knots::open(knots.clone()), Ends::Natural, penalty_of(&settings)).unwrap();
+    let space = Space::new(Knots::open(knots.clone()), Ends::NATURAL, penalty_of(&settings)).unwrap();
     let on_given = space.penalty_of(&space.interpolate(&faired.points).unwrap());
     assert!(
         on_given < faired.report.penalty_after,
@@ -1135,8 +1135,8 @@ fn penalty_nullity_is_the_dense_null_space() {
     let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
     let n = x.len();
     for (ends, dense_ends) in [
-        (Ends::Runout, HermiteEnds::ParabolicRunout),
-        (Ends::Natural, HermiteEnds::Natural),
+        (Ends::RUNOUT, HermiteEnds::ParabolicRunout),
+        (Ends::NATURAL, HermiteEnds::Natural),
     ] {
         let dense = Dense::new(x.clone(), dense_ends);
         for order in 0..=3 {
@@ -1241,7 +1241,7 @@ fn gml_criterion_is_the_restricted_likelihood_and_its_minimum_is_the_grid_minimu
     let dense = Dense::new(x.clone(), HermiteEnds::ParabolicRunout);
     let rows = dense.penalty(1, 8.0);
     let y = DVector::from_fn(n, |i, _| points[i][1]);
-    let space = Space::new(Knots::open(x.clone()), Ends::Runout, Penalty::differences(1, 8.0)).unwrap();
+    let space = Space::new(Knots::open(x.clone()), Ends::RUNOUT, Penalty::differences(1, 8.0)).unwrap();
     let data = masked(&points, [false, true]);
     let weights = vec![1.0; n];
     for fixed in [vec![], vec![0usize, 17]] {
@@ -1321,4 +1321,208 @@ fn gml_rule_is_reported_and_a_multi_coordinate_curve_is_smoothed() {
     .unwrap();
     assert_eq!(faired.report.rule, "gml");
     assert!(faired.report.penalty_after < faired.report.penalty_before);
+}
+
+/// The dense matrix of `forms` over m unknowns (one row per form).
+fn dense_rows(forms: &[system::Form], m: usize) -> DMatrix<f64> {
+    let mut rows = DMatrix::zeros(forms.len(), m);
+    for (r, form) in forms.iter().enumerate() {
+        for (j, c) in form.entries(m) {
+            rows[(r, j)] += c;
+        }
+    }
+    rows
+}
+
+#[test]
+fn mixed_ends_hold_their_conditions_and_their_null_space() {
+    // Natural at one end and runout at the other: the interpolant through any data passes
+    // through it, has s″ = 0 at the natural end and s‴ = 0 on the runout end's span (the
+    // defining conditions, read off the spline's own end derivatives), and the penalty's null
+    // space is n − rank of its rows (a dense rank), never below 2 (a line: one parabola with
+    // s″ = 0 at an end).
+    let points = wavy(30);
+    let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
+    let y: Vec<Vector<1>> = points.iter().map(|p| Vector::<1>::new(p[1])).collect();
+    for (ends, natural_at_end) in [
+        (Ends::Open(End::Natural, End::Runout), false),
+        (Ends::Open(End::Runout, End::Natural), true),
+    ] {
+        for order in 0..=3 {
+            let space = Space::new(Knots::open(x.clone()), ends, Penalty::differences(order, 8.0)).unwrap();
+            let gamma = space.interpolate(&y).unwrap();
+            for (k, yk) in y.iter().enumerate() {
+                assert!(
+                    (space.value_of(k, &gamma) - yk).norm() < 1e-10,
+                    "{ends:?} value {k}"
+                );
+            }
+            let second = space.end_derivative_form(2, natural_at_end).apply(&gamma)[0];
+            let third = space.end_derivative_form(3, !natural_at_end).apply(&gamma)[0];
+            // Against the scale of the other end's (free) derivatives.
+            let scale = space.end_derivative_form(2, !natural_at_end).apply(&gamma)[0].abs()
+                + space.end_derivative_form(3, natural_at_end).apply(&gamma)[0].abs();
+            assert!(scale > 1e-3, "{ends:?}: the free end's derivatives vanish too");
+            assert!(
+                second.abs() < 1e-9 * scale,
+                "{ends:?}: s″ = {second} at the natural end"
+            );
+            assert!(
+                third.abs() < 1e-9 * scale,
+                "{ends:?}: s‴ = {third} on the runout span"
+            );
+            let m = space.len();
+            let rows: Vec<system::Form> = (0..space.penalty_rows())
+                .map(|r| space.penalty_row(r).0)
+                .collect();
+            let rank = dense_rank(&dense_rows(&rows, m));
+            assert_eq!(space.penalty_nullity(), (m - rank).max(2), "{ends:?} d {order}");
+        }
+    }
+}
+
+/// GCV's minimum over λ of the function fit on `space` to `y`, by dense linear algebra:
+/// V(λ) = (RSS/n) / (1 − tr A(λ)/n)², A(λ) = X (XᵀX + λ PᵀWP)⁻¹ Xᵀ with X the values at the
+/// knots and P the penalty rows of weights W; a grid of quarter decades over λ ∈ [1e-2, 1e14],
+/// then golden sections.
+fn dense_gcv_minimum(space: &Space, y: &[Vector<1>]) -> f64 {
+    let m = space.len();
+    let x = dense_rows(&(0..m).map(|k| space.value_form(k)).collect::<Vec<_>>(), m);
+    let mut p = dense_rows(
+        &(0..space.penalty_rows())
+            .map(|r| space.penalty_row(r).0)
+            .collect::<Vec<_>>(),
+        m,
+    );
+    for r in 0..space.penalty_rows() {
+        let w = space.penalty_row(r).1.sqrt();
+        p.row_mut(r).scale_mut(w);
+    }
+    let data = DVector::from_iterator(m, y.iter().map(|v| v[0]));
+    let (xtx, ptp) = (x.transpose() * &x, p.transpose() * &p);
+    let n = m as f64;
+    let v = |rho: f64| -> f64 {
+        let k = &xtx + &ptp * 10f64.powf(rho);
+        let inverse = k.try_inverse().expect("K(λ) is invertible");
+        let hat = &x * inverse * x.transpose();
+        let rss = (&hat * &data - &data).norm_squared();
+        let denominator = 1.0 - hat.trace() / n;
+        (rss / n) / (denominator * denominator)
+    };
+    let mut best = (f64::INFINITY, 0.0);
+    let mut rho = -2.0;
+    while rho <= 14.0 {
+        best = best.min_by_first(v(rho), rho);
+        rho += 0.25;
+    }
+    let (mut a, mut b) = (best.1 - 0.25, best.1 + 0.25);
+    let ratio = (5f64.sqrt() - 1.0) / 2.0;
+    while b - a > 1e-3 {
+        let (c, d) = (b - ratio * (b - a), a + ratio * (b - a));
+        if v(c) < v(d) {
+            b = d;
+        } else {
+            a = c;
+        }
+    }
+    best.0.min(v(0.5 * (a + b)))
+}
+
+trait MinByFirst {
+    fn min_by_first(self, value: f64, at: f64) -> Self;
+}
+
+impl MinByFirst for (f64, f64) {
+    fn min_by_first(self, value: f64, at: f64) -> Self {
+        if value < self.0 {
+            (value, at)
+        } else {
+            self
+        }
+    }
+}
+
+#[test]
+fn auto_function_ends_are_the_pair_of_least_gcv() {
+    // `function-ends` = auto keeps, of the four pairs of end conditions, the one whose GCV
+    // minimum is lowest: checked against GCV minimised by dense linear algebra on each pair's
+    // space. The data: y = sin x on [0, 7.5] with noise of ±0.001, which starts at an
+    // inflection and ends curved (s″ = −0.94, where natural ends would be a bias), and its
+    // mirror image: the curved end is runout on every draw. (At the inflection either
+    // condition fits; with noise ten times larger the four minima lie within 2 % and the
+    // choice is the draw's.)
+    let pairs = [
+        Ends::RUNOUT,
+        Ends::Open(End::Natural, End::Runout),
+        Ends::Open(End::Runout, End::Natural),
+        Ends::NATURAL,
+    ];
+    let settings = JumpLsqSettings::default()
+        .with_rule(LambdaRule::Gcv)
+        .with_function_ends(FunctionEnds::Auto);
+    for seed in 0..2 {
+        for mirrored in [false, true] {
+            let n = 40;
+            let points: Vec<Vector<2>> = (0..n)
+                .map(|i| {
+                    let x = 7.5 * i as f64 / (n - 1) as f64;
+                    let noise =
+                        0.002 * (((i + 97 * seed) as f64 * 12.9898).sin() * 43758.5453).fract() - 0.001;
+                    let t = if mirrored { 7.5 - x } else { x };
+                    Vector::<2>::new(x, t.sin() + noise)
+                })
+                .collect();
+            let faired = fair(
+                &points,
+                &points,
+                &Constraints::default(),
+                CurveDomain::Function,
+                false,
+                &settings,
+            )
+            .unwrap();
+            let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
+            let y: Vec<Vector<1>> = points.iter().map(|p| Vector::<1>::new(p[1])).collect();
+            let scores: Vec<f64> = pairs
+                .iter()
+                .map(|&ends| {
+                    let space = Space::new(Knots::open(x.clone()), ends, penalty_of(&settings)).unwrap();
+                    dense_gcv_minimum(&space, &y)
+                })
+                .collect();
+            let least = (0..4).min_by(|&a, &b| scores[a].total_cmp(&scores[b])).unwrap();
+            assert_eq!(
+                faired.report.ends,
+                ends_names(pairs[least]),
+                "seed {seed} mirrored {mirrored}: dense GCV minima {scores:?}"
+            );
+            let gcv = faired.report.gcv.unwrap();
+            assert!(
+                (gcv - scores[least]).abs() <= 1e-4 * scores[least],
+                "seed {seed}: reported GCV {gcv} against the dense minimum {}",
+                scores[least]
+            );
+            // The curved end keeps its curvature: runout there.
+            let curved = usize::from(!mirrored);
+            assert_eq!(faired.report.ends[curved], "runout", "seed {seed}: {scores:?}");
+        }
+    }
+    // The default stays the representation's runout spline, and a fixed choice is reported.
+    let points = wavy(40);
+    for (ends, names) in [
+        (FunctionEnds::Runout, ["runout", "runout"]),
+        (FunctionEnds::Natural, ["natural", "natural"]),
+    ] {
+        let faired = fair(
+            &points,
+            &points,
+            &Constraints::default(),
+            CurveDomain::Function,
+            false,
+            &JumpLsqSettings::default().with_function_ends(ends),
+        )
+        .unwrap();
+        assert_eq!(faired.report.ends, names.map(String::from));
+    }
+    assert_eq!(JumpLsqSettings::default().function_ends, FunctionEnds::Runout);
 }
