@@ -132,6 +132,19 @@ fn set_overrides_the_rule_and_bad_values_exit_2() {
     assert_ok(&out);
     assert_eq!(report["rule"], "gcv");
     assert!(report["gcv"].as_f64().unwrap() > 0.0);
+    assert_eq!(report["ends"], serde_json::json!(["runout", "runout"]));
+    // `function-ends` = auto reports the pair it chose, whose GCV score is no higher than
+    // the default runout pair's (runout is one of the four it compares).
+    let (out, _, auto) = fair(
+        &input,
+        &["--set", "rule=gcv", "--set", "function-ends=auto"],
+        "auto",
+    );
+    assert_ok(&out);
+    let ends = auto["ends"].as_array().unwrap();
+    assert_eq!(ends.len(), 2);
+    assert!(ends.iter().all(|e| e == "runout" || e == "natural"), "{ends:?}");
+    assert!(auto["gcv"].as_f64().unwrap() <= report["gcv"].as_f64().unwrap());
     let (out, _, report) = fair(&input, &["--set", "target-sd=0.005"], "target");
     assert_ok(&out);
     assert_eq!(report["rule"], "target-sd");
@@ -152,6 +165,7 @@ fn set_overrides_the_rule_and_bad_values_exit_2() {
         "difference-order=7",
         "end-jumps=4",
         "end-weight=-1",
+        "function-ends=maybe",
     ] {
         let (out, _, _) = fair(&input, &["--set", bad], "bad");
         assert_eq!(out.status.code(), Some(2), "{bad}");

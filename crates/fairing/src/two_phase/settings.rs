@@ -308,8 +308,23 @@ pub struct TwoPhaseSettings {
     ///
     /// Not in the paper: jump-lsq's `function-ends` for the pre-pass of a function segment
     /// ([`denoise_by`](super::denoise_by)); the faired function's spline stays the runout
-    /// one. `auto` fits the four pairs of end conditions and keeps the one with the lowest GCV
-    /// score (four GCV searches instead of one). MEASURED
+    /// one. `auto` keeps the pair of end conditions (natural or runout at each end) whose fit
+    /// has the lowest GCV score (jump-lsq's `function-ends`, module `ends`: four GCV searches
+    /// up to 2000 points, end windows of 1000 points beyond).
+    ///
+    /// Default `auto`, measured against `runout` (the pre-pass before) with the judge
+    /// (`docs/two_phase_judge.md`, the 33 function rows, seeds 1–8): two-phase beats csaps at
+    /// equal S_d on 32 against 31 (the held-out sine seed 6 turns: RMS to the clean curve
+    /// 0.00304 → 0.00286, csaps 0.00288), none lost. The judge's sine starts at an
+    /// inflection; `auto` takes it natural there on 7 of 8 draws (natural at both ends on one)
+    /// and the sines come nearer their clean curve on 6 of 8 (0.00317 / 0.00266 → 0.00287 /
+    /// 0.00232 on seeds 1 and 3; seed 8 0.00283 → 0.00288, seed 5 unchanged); the dense sine
+    /// (2000 points) nearer on 6 of 8. The real airfoils take runout at the leading edge
+    /// (natural there scores 7–100 % worse) and natural at the trailing edge, the hull lines
+    /// natural at both ends; their counts stay or fall (UA(2)-180 upper 1/9 → 1/5, Block
+    /// Island WL 36 0/7 → 0/6). The NACA upper surface's pre-passes are within 1e-5 of the
+    /// runout ones, but the later passes of seeds 2 and 7 end farther (2.5e-4 → 3.4e-4,
+    /// 4.8e-4 → 5.7e-4, csaps 7.2e-4 and 1.0e-3). No measurable time at 10^5 points.
     pub function_ends: FunctionEnds,
     /// Arbitrary curves: the pre-pass's points become the foot points of the data on its fitted curve (foot-point), after refits on those parameters (parameter-correction), or stay its values at the data's chord-length parameters (off).
     ///

@@ -7,7 +7,8 @@
 //! The report's extras: `lambda`, `sigma` (the noise estimate σ̂), `rule` (`discrepancy`,
 //! `gcv`, `target-sd` or `given`), `target_sd`, `rms_displacement`, `lambda_limited`, `gcv`,
 //! `solves`, `refits`, `pinned`, `reweighted`, `band_rounds`, `clipped`, `penalty_before`,
-//! `penalty_after`, `closed`.
+//! `penalty_after`, `closed`, `ends` (the spline's end conditions at the start and the end:
+//! `runout`, `natural` or `periodic`; `function-ends` = `auto` reports its choice).
 
 use curve_repr::Vector;
 use fairness::curvature::CurvatureForm;
@@ -178,6 +179,7 @@ where
         ("penalty_before", json!(report.penalty_before)),
         ("penalty_after", json!(report.penalty_after)),
         ("closed", json!(closed)),
+        ("ends", json!(report.ends)),
     ];
     for (name, value) in extras {
         run.extras.insert(name.into(), value);

@@ -305,10 +305,11 @@ pub struct JumpLsqSettings {
     pub curve_ends: CurveEnds,
     /// Functions y(x): the spline's end conditions, runout (s''' = 0 on the end spans), natural (s'' = 0 at the ends) or auto (each end chosen from the data by GCV).
     ///
-    /// Default `runout`, the representation's own spline function (Han et al.). `auto` picks
-    /// natural at an end where the data's curve has no curvature there (a sine starting at an
-    /// inflection, a waterline's straight end) and runout where it has (an airfoil's leading
-    /// edge); measured as two-phase's function pre-pass, which sets its own
+    /// Default `runout`, the representation's own spline function (Han et al.). `auto` lets
+    /// GCV choose each end; on the judge's data it took natural where the curve has no
+    /// curvature at its end (a sine starting at an inflection) and runout at an airfoil's
+    /// leading edge, and where the pairs score alike the choice is the draw's. Measured as
+    /// two-phase's function pre-pass, which sets its own
     /// ([`TwoPhaseSettings::function_ends`](crate::two_phase::TwoPhaseSettings::function_ends),
     /// `auto` by default; `docs/two_phase_judge.md`). The output is the faired ordinates; the
     /// representation through them stays the runout spline. No effect on parametric curves.
@@ -584,8 +585,8 @@ fn knots_of<const D: usize>(points: &[Vector<D>], domain: CurveDomain, closed: b
 }
 
 /// The spline's end conditions for `domain`: a closed curve's periodic; an open parametric
-/// curve's `curve_ends`; a function's `function_ends`, where `auto` (chosen by the data, see
-/// [`choose_function_ends`]) stands for the representation's own runout.
+/// curve's `curve_ends`; a function's `function_ends`, where `auto` (chosen by the data in
+/// `ends::choose`) stands for the representation's own runout.
 fn ends_of(domain: CurveDomain, closed: bool, curve_ends: CurveEnds, function_ends: FunctionEnds) -> Ends {
     if closed {
         Ends::Periodic
