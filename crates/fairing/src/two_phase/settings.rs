@@ -310,7 +310,7 @@ pub struct TwoPhaseSettings {
     /// ([`denoise_by`](super::denoise_by)); the faired function's spline stays the runout
     /// one. `auto` keeps the pair of end conditions (natural or runout at each end) whose fit
     /// has the lowest GCV score (jump-lsq's `function-ends`, module `ends`: four GCV searches
-    /// up to 2000 points, end windows of 1000 points beyond).
+    /// up to 2000 points; beyond, runout).
     ///
     /// Default `auto`, measured against `runout` (the pre-pass before) with the judge
     /// (`docs/two_phase_judge.md`, the 33 function rows, seeds 1–8): two-phase beats csaps at

@@ -217,14 +217,13 @@ pub enum FunctionEnds {
     /// the four pairs (runout–runout, natural–runout, runout–natural, natural–natural), the one
     /// whose fit has the lowest GCV score min_λ V(λ) (V of the `gcv` rule, with `gcv-gamma`),
     /// ties to the earlier. The end condition is a model choice like λ, and V compares the
-    /// four spaces on the same data (each is n-dimensional). Up to 2000 points, four GCV
-    /// searches instead of one, each O(n); beyond, each end is chosen on its own end window
-    /// of 1000 points (a condition changes the fit only near its end), O(1) besides the fit
-    /// (`ends` module). Where the pairs' minima lie within GCV's noise (dense points, or
-    /// noise large against the end's curvature) the choice is the draw's, at no cost in fit;
-    /// at a strongly curved end (an airfoil's leading edge) natural is not chosen. With an
-    /// end clamp beyond G0 (whose targets come from the representation's spline) it is
-    /// `runout`.
+    /// four spaces on the same data (each is n-dimensional): four GCV searches instead of
+    /// one, each O(n). Where the pairs' minima lie within GCV's noise (noise large against
+    /// the end's curvature) the choice is the draw's; at a strongly curved end (an
+    /// airfoil's leading edge) natural is not chosen. Beyond 2000 points, and with an end
+    /// clamp beyond G0 (whose targets come from the representation's spline), it is
+    /// `runout`: on dense data a natural end at an inflection let noise turn the fit's
+    /// curvature near the end (the `ends` module says what was measured).
     Auto,
 }
 

@@ -1528,24 +1528,18 @@ fn auto_function_ends_are_the_pair_of_least_gcv() {
 }
 
 #[test]
-fn auto_function_ends_of_a_long_function_are_chosen_on_its_end_windows() {
-    // Beyond 2 · END_WINDOW points each end is chosen on its own end window: data changed
-    // only between the windows leave the choice as it was, while the fit changes; the
-    // windows' searches are counted with the fit's own. (The choice itself is not asserted
-    // here: on points this dense a natural end bends the fit within a few of its 0.003-long
-    // spans, and the two pairs' GCV minima lie within the noise.)
-    let n = 2 * ends::END_WINDOW + 600;
+fn auto_function_ends_beyond_their_limit_are_runout_without_a_search() {
+    // Beyond AUTO_MAX points `auto` keeps the runout pair and searches nothing: the same
+    // points and solves as `runout`, where AUTO_MAX points of the same curve are searched.
     let settings = JumpLsqSettings::default()
         .with_rule(LambdaRule::Gcv)
         .with_function_ends(FunctionEnds::Auto);
-    let make = |bump: f64| -> Vec<Vector<2>> {
+    let make = |n: usize| -> Vec<Vector<2>> {
         (0..n)
             .map(|i| {
                 let x = 7.5 * i as f64 / (n - 1) as f64;
-                let noise = 0.002 * ((i as f64 * 12.9898).sin() * 43758.5453).fract() - 0.001;
-                let middle = i >= ends::END_WINDOW && i < n - ends::END_WINDOW;
-                let extra = if middle { bump * (3.0 * x).sin() } else { 0.0 };
-                Vector::<2>::new(x, x.sin() + noise + extra)
+                let noise = 0.02 * ((i as f64 * 12.9898).sin() * 43758.5453).fract() - 0.01;
+                Vector::<2>::new(x, x.sin() + noise)
             })
             .collect()
     };
@@ -1560,12 +1554,12 @@ fn auto_function_ends_of_a_long_function_are_chosen_on_its_end_windows() {
         )
         .unwrap()
     };
-    let (plain, bumped) = (run(&make(0.0), &settings), run(&make(0.05), &settings));
-    assert_eq!(plain.report.ends, bumped.report.ends);
-    assert_ne!(plain.points, bumped.points);
-    let fixed = run(
-        &make(0.0),
-        &settings.clone().with_function_ends(FunctionEnds::Runout),
-    );
-    assert!(plain.report.solves > fixed.report.solves);
+    let runout = settings.clone().with_function_ends(FunctionEnds::Runout);
+    let long = make(ends::AUTO_MAX + 1);
+    let (auto, fixed) = (run(&long, &settings), run(&long, &runout));
+    assert_eq!(auto.report.ends, ["runout", "runout"].map(String::from));
+    assert_eq!(auto.points, fixed.points);
+    assert_eq!(auto.report.solves, fixed.report.solves);
+    let short = make(ends::AUTO_MAX);
+    assert!(run(&short, &settings).report.solves > run(&short, &runout).report.solves);
 }
