@@ -324,7 +324,8 @@ pub struct TwoPhaseSettings {
     /// natural at both ends; their counts stay or fall (UA(2)-180 upper 1/9 → 1/5, Block
     /// Island WL 36 0/7 → 0/6). The NACA upper surface's pre-passes are within 1e-5 of the
     /// runout ones, but the later passes of seeds 2 and 7 end farther (2.5e-4 → 3.4e-4,
-    /// 4.8e-4 → 5.7e-4, csaps 7.2e-4 and 1.0e-3). No measurable time at 10^5 points.
+    /// 4.8e-4 → 5.7e-4, csaps 7.2e-4 and 1.0e-3). Beyond 2000 points `auto` is the runout
+    /// pair without a search, bit for bit the pre-pass before.
     pub function_ends: FunctionEnds,
     /// Arbitrary curves: the pre-pass's points become the foot points of the data on its fitted curve (foot-point), after refits on those parameters (parameter-correction), or stay its values at the data's chord-length parameters (off).
     ///
