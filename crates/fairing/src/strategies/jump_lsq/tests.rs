@@ -18,6 +18,19 @@ fn wavy(n: usize) -> Vec<Vector<2>> {
         .collect()
 }
 
+/// jump-lsq on a function y(x) without constraints, its input its own original.
+fn fair_function(points: &[Vector<2>], settings: &JumpLsqSettings) -> Faired<2> {
+    fair(
+        points,
+        points,
+        &Constraints::default(),
+        CurveDomain::Function,
+        false,
+        settings,
+    )
+    .unwrap()
+}
+
 /// A 3D space curve with noise.
 fn helix(n: usize) -> Vec<Vector<3>> {
     (0..n)
@@ -225,15 +238,7 @@ fn function_kind_equals_the_dense_solve() {
                     .with_lambda(lambda)
                     .with_difference_order(order)
                     .with_exponent(exponent);
-                let faired = fair(
-                    &points,
-                    &points,
-                    &Constraints::default(),
-                    CurveDomain::Function,
-                    false,
-                    &settings,
-                )
-                .unwrap();
+                let faired = fair_function(&points, &settings);
                 let expected = dense_solve(&penalty, lambda, &free, &y0, &[]);
                 assert_close(
                     &as_matrix(&faired.points, 1..2),
@@ -578,15 +583,7 @@ fn lambda_zero_returns_the_input_and_lambda_large_leaves_linear_jumps() {
     let lambda_max = lambda::STIFFNESS_LIMIT / system.stiffness();
     let distance = |lambda: f64| {
         let settings = settings.clone().with_lambda(lambda);
-        let faired = fair(
-            &points,
-            &points,
-            &Constraints::default(),
-            CurveDomain::Function,
-            false,
-            &settings,
-        )
-        .unwrap();
+        let faired = fair_function(&points, &settings);
         (as_matrix(&faired.points, 1..2) - &limit).amax()
     };
     // The 1/λ law: each decade of λ divides the distance by 10 (across the change from the
@@ -697,17 +694,7 @@ fn parametric_refits_report_the_penalty_on_the_outputs_own_knots() {
 #[test]
 fn discrepancy_rule_reaches_its_target_and_gcv_minimises() {
     let points = wavy(200);
-    let run = |settings: &JumpLsqSettings| {
-        fair(
-            &points,
-            &points,
-            &Constraints::default(),
-            CurveDomain::Function,
-            false,
-            settings,
-        )
-        .unwrap()
-    };
+    let run = |settings: &JumpLsqSettings| fair_function(&points, settings);
     let target = 0.004;
     let settings = JumpLsqSettings::default()
         .with_difference_order(2)
@@ -775,15 +762,7 @@ fn the_solves_stay_accurate_up_to_the_precision_limit() {
             let lambda = stiffness / system.stiffness();
             let reference = dense_solve(&penalty, lambda, &free, &as_matrix(&points, 1..2), &[]);
             let settings = settings.clone().with_lambda(lambda);
-            let faired = fair(
-                &points,
-                &points,
-                &Constraints::default(),
-                CurveDomain::Function,
-                false,
-                &settings,
-            )
-            .unwrap();
+            let faired = fair_function(&points, &settings);
             let error = (as_matrix(&faired.points, 1..2) - &reference).amax() / reference.amax();
             assert!(
                 error < 1e-6,
@@ -1297,15 +1276,7 @@ fn gml_rule_is_reported_and_a_multi_coordinate_curve_is_smoothed() {
     // The rule runs through `fair` for the function and parametric kinds and says so.
     let points = wavy(120);
     let settings = JumpLsqSettings::default().with_rule(LambdaRule::Gml);
-    let faired = fair(
-        &points,
-        &points,
-        &Constraints::default(),
-        CurveDomain::Function,
-        false,
-        &settings,
-    )
-    .unwrap();
+    let faired = fair_function(&points, &settings);
     assert_eq!(faired.report.rule, "gml");
     assert!(faired.report.lambda > 0.0 && !faired.report.lambda_limited);
     assert!(faired.report.penalty_after < faired.report.penalty_before);
@@ -1472,15 +1443,7 @@ fn auto_function_ends_are_the_pair_of_least_gcv() {
                     Vector::<2>::new(x, t.sin() + noise)
                 })
                 .collect();
-            let faired = fair(
-                &points,
-                &points,
-                &Constraints::default(),
-                CurveDomain::Function,
-                false,
-                &settings,
-            )
-            .unwrap();
+            let faired = fair_function(&points, &settings);
             let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
             let y: Vec<Vector<1>> = points.iter().map(|p| Vector::<1>::new(p[1])).collect();
             let scores: Vec<f64> = pairs
@@ -1513,15 +1476,7 @@ fn auto_function_ends_are_the_pair_of_least_gcv() {
         (FunctionEnds::Runout, ["runout", "runout"]),
         (FunctionEnds::Natural, ["natural", "natural"]),
     ] {
-        let faired = fair(
-            &points,
-            &points,
-            &Constraints::default(),
-            CurveDomain::Function,
-            false,
-            &JumpLsqSettings::default().with_function_ends(ends),
-        )
-        .unwrap();
+        let faired = fair_function(&points, &JumpLsqSettings::default().with_function_ends(ends));
         assert_eq!(faired.report.ends, names.map(String::from));
     }
     assert_eq!(JumpLsqSettings::default().function_ends, FunctionEnds::Runout);
@@ -1543,23 +1498,12 @@ fn auto_function_ends_beyond_their_limit_are_runout_without_a_search() {
             })
             .collect()
     };
-    let run = |points: &[Vector<2>], settings: &JumpLsqSettings| {
-        fair(
-            points,
-            points,
-            &Constraints::default(),
-            CurveDomain::Function,
-            false,
-            settings,
-        )
-        .unwrap()
-    };
     let runout = settings.clone().with_function_ends(FunctionEnds::Runout);
     let long = make(ends::AUTO_MAX + 1);
-    let (auto, fixed) = (run(&long, &settings), run(&long, &runout));
+    let (auto, fixed) = (fair_function(&long, &settings), fair_function(&long, &runout));
     assert_eq!(auto.report.ends, ["runout", "runout"].map(String::from));
     assert_eq!(auto.points, fixed.points);
     assert_eq!(auto.report.solves, fixed.report.solves);
     let short = make(ends::AUTO_MAX);
-    assert!(run(&short, &settings).report.solves > run(&short, &runout).report.solves);
+    assert!(fair_function(&short, &settings).report.solves > fair_function(&short, &runout).report.solves);
 }
