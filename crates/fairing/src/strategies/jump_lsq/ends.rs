@@ -56,47 +56,16 @@ pub(crate) fn choose<const D: usize>(
             solves: 0,
         });
     }
+    let ones = vec![1.0; data.len()];
     let mut solves = 0;
-    let pairs = [
+    let mut best: Option<(f64, Ends, Choice<D>)> = None;
+    for pair in [
         Ends::RUNOUT,
         Ends::Open(End::Natural, End::Runout),
         Ends::Open(End::Runout, End::Natural),
         Ends::NATURAL,
-    ];
-    let (ends, choice) = least_gcv(
-        knots.values(),
-        data,
-        frozen,
-        &pairs,
-        penalty,
-        coordinates,
-        gamma,
-        &mut solves,
-    )?;
-    Some(EndChoice {
-        ends,
-        choice: Some(choice),
-        solves,
-    })
-}
-
-/// Of `pairs`, the one whose GCV search on `data` over the knots `t` ends lowest, with its
-/// search (its `evaluations` zeroed: they are counted in `solves`). O(n) per pair.
-#[allow(clippy::too_many_arguments)]
-fn least_gcv<const D: usize>(
-    t: &[f64],
-    data: &[Vector<D>],
-    frozen: &[bool],
-    pairs: &[Ends],
-    penalty: Penalty,
-    coordinates: usize,
-    gamma: f64,
-    solves: &mut usize,
-) -> Option<(Ends, Choice<D>)> {
-    let ones = vec![1.0; data.len()];
-    let mut best: Option<(f64, Ends, Choice<D>)> = None;
-    for &pair in pairs {
-        let Ok(space) = Space::new(Knots::open(t.to_vec()), pair, penalty) else {
+    ] {
+        let Ok(space) = Space::new(knots.clone(), pair, penalty) else {
             continue;
         };
         if space.penalty_rows() == 0 {
@@ -115,12 +84,17 @@ fn least_gcv<const D: usize>(
         let Ok(mut choice) = lambda::gcv(&system, coordinates, gamma, lambda_max) else {
             continue;
         };
-        *solves += choice.evaluations;
+        // Counted here; the fit that reuses the winner's search adds none.
+        solves += choice.evaluations;
         choice.evaluations = 0;
         let score = choice.gcv.unwrap_or(f64::INFINITY);
         if best.as_ref().is_none_or(|b| score < b.0) {
             best = Some((score, pair, choice));
         }
     }
-    best.map(|(_, pair, choice)| (pair, choice))
+    best.map(|(_, ends, choice)| EndChoice {
+        ends,
+        choice: Some(choice),
+        solves,
+    })
 }
