@@ -286,19 +286,9 @@ fn usage_mistakes_are_named() {
 fn a_noisy_segment_fairs_with_every_function_method_and_reports_its_accuracy() {
     let dir = temp_dir("big");
     let (n, sigma) = (20_000, 1.0);
-    let mut state: u64 = 20_261_122;
-    let mut uniform = move || {
-        state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        ((state >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-    };
     let mut text = String::from("x,y\n");
-    let mut x = 0.0;
-    for _ in 0..n {
-        x += (0.5 + uniform()) * 4.0 * std::f64::consts::PI / n as f64;
-        let gauss = (-2.0 * uniform().ln()).sqrt() * (2.0 * std::f64::consts::PI * uniform()).cos();
-        text.push_str(&format!("{x:?},{:?}\n", (x / 2.0).sin() + sigma * gauss));
+    for [x, y] in crate::noisy_segment::noisy_segment(n, sigma, 20_261_122) {
+        text.push_str(&format!("{x:?},{y:?}\n"));
     }
     let input = dir.join("big.csv");
     std::fs::write(&input, &text).unwrap();

@@ -9,6 +9,8 @@ mod formats_cli;
 mod inspect;
 mod jump_lsq_cli;
 mod largest_move_cli;
+#[path = "../../crates/fairing/benches/fairing/noisy_segment.rs"]
+mod noisy_segment;
 mod nurbs_weights_cli;
 mod nurbs_weights_solver_cli;
 mod pipeline_batch_cli;

@@ -2,6 +2,7 @@
 //! `cargo bench -p <crate> --bench fairing -- <group name>`.
 
 mod jump_lsq;
+mod noisy_segment;
 mod sapidis_farin;
 mod smoothing_spline;
 mod step_net;

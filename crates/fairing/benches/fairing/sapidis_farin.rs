@@ -23,20 +23,9 @@ fn sizes<T: Copy>(all: &[T]) -> Vec<T> {
 
 /// The CLI test's noisy segment: x in random steps, sin(x/2) plus Gaussian noise (σ = 1).
 fn data(n: usize) -> Vec<Vec2> {
-    let mut state: u64 = 20_261_122;
-    let mut uniform = move || {
-        state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        ((state >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-    };
-    let mut x = 0.0;
-    (0..n)
-        .map(|_| {
-            x += (0.5 + uniform()) * 4.0 * std::f64::consts::PI / n as f64;
-            let gauss = (-2.0 * uniform().ln()).sqrt() * (2.0 * std::f64::consts::PI * uniform()).cos();
-            Vec2::new(x, (x / 2.0).sin() + gauss)
-        })
+    crate::noisy_segment::noisy_segment(n, 1.0, 20_261_122)
+        .into_iter()
+        .map(|[x, y]| Vec2::new(x, y))
         .collect()
 }
 

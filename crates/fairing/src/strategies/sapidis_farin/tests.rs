@@ -379,13 +379,9 @@ fn strategy_run(points: Vec<Vec2>, constraints: Constraints, settings: SapidisFa
 
 /// Random noisy data: a function y(x) (x with random steps) or a parametric arc.
 fn random_points(seed: u64, n: usize, noise: f64, function: bool) -> Vec<Vec2> {
-    let mut state = seed;
-    let mut uniform = move || {
-        state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        ((state >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-    };
+    use rand::{RngExt, SeedableRng};
+    let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
+    let mut uniform = move || rng.random::<f64>();
     let mut x = 0.0;
     (0..n)
         .map(|k| {
