@@ -227,17 +227,6 @@ pub enum FunctionEnds {
     Auto,
 }
 
-impl FunctionEnds {
-    /// `runout`, `natural` or `auto`.
-    pub fn name(self) -> &'static str {
-        match self {
-            FunctionEnds::Runout => "runout",
-            FunctionEnds::Natural => "natural",
-            FunctionEnds::Auto => "auto",
-        }
-    }
-}
-
 /// Settings of `jump-lsq` (module docs). The defaults are those the issue asks for and the
 /// measurements in the README's table confirmed.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
