@@ -440,3 +440,68 @@ fn gcv_gamma_of_the_pre_pass() {
         refused.err()
     );
 }
+
+/// The function pre-pass when jump-lsq's λ stops at its precision limit under GCV: it keeps
+/// the fit (jump-lsq's at the limit or the cubic smoothing spline's, p by GCV) whose GCV score
+/// V = (RSS/n) / (1 − tr A/n)² is the lower. Evenly spaced y = sin(x/2) over [0, 20] with
+/// noise: on both data sets jump-lsq's GCV still falls at λ_max; at 1 000 points and σ = 0.1
+/// its fit at the limit scores lower, at 2 000 points and σ = 0.05 the cubic's does.
+#[test]
+fn a_limited_jump_fit_gives_way_to_the_cubic_where_gcv_scores_the_cubic_lower() {
+    use fairing::strategies::jump_lsq;
+    use fairing::strategies::{
+        CurveDomain, JumpLsqSettings, LambdaRule, SmoothingRule, SmoothingSettings, SmoothingSpline,
+    };
+    let none = |_: usize| false;
+    let free = |_: usize| f64::INFINITY;
+    let limits = Limits {
+        keep: &none,
+        allowed: &free,
+    };
+    let mut winners = Vec::new();
+    for (n, sigma, seed) in [(1_000, 0.1, 3), (2_000, 0.05, 3)] {
+        let x: Vec<f64> = (0..n).map(|k| 20.0 * k as f64 / (n - 1) as f64).collect();
+        let y: Vec<f64> = x
+            .iter()
+            .zip(noise(seed, n, sigma))
+            .map(|(x, e)| (x / 2.0).sin() + e)
+            .collect();
+        let points: Vec<curve_repr::Vector<2>> = x
+            .iter()
+            .zip(&y)
+            .map(|(&x, &y)| curve_repr::Vector::<2>::new(x, y))
+            .collect();
+        let jump = jump_lsq::fair(
+            &points,
+            &points,
+            &Constraints::default(),
+            CurveDomain::Function,
+            false,
+            &JumpLsqSettings::default().with_rule(LambdaRule::Gcv),
+        )
+        .unwrap();
+        assert!(jump.report.lambda_limited, "n {n}: {:?}", jump.report);
+        let column: Vec<curve_repr::Vector<1>> = y.iter().map(|&v| curve_repr::Vector::<1>::new(v)).collect();
+        let cubic = SmoothingSpline::fit(
+            &x,
+            &column,
+            &SmoothingSettings::default().with_rule(SmoothingRule::Gcv),
+        )
+        .unwrap();
+        let (v_jump, v_cubic) = (jump.report.gcv.unwrap(), cubic.gcv().unwrap());
+        let prepass = denoise_by(Denoise::JumpLsqGcv, Prepass::gcv(1.0), &x, &y, &limits).unwrap();
+        let expected: Vec<f64> = if v_jump <= v_cubic {
+            winners.push("jump");
+            jump.points.iter().map(|p| p[1]).collect()
+        } else {
+            winners.push("cubic");
+            cubic.values().iter().map(|v| v[0]).collect()
+        };
+        assert_eq!(
+            prepass, expected,
+            "n {n}: V {v_jump:e} (jump) against {v_cubic:e} (cubic)"
+        );
+    }
+    // Both branches are taken.
+    assert_eq!(winners, ["jump", "cubic"]);
+}

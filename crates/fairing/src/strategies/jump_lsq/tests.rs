@@ -1507,3 +1507,55 @@ fn auto_function_ends_beyond_their_limit_are_runout_without_a_search() {
     let short = make(ends::AUTO_MAX);
     assert!(fair_function(&short, &settings).report.solves > fair_function(&short, &runout).report.solves);
 }
+
+/// `n` evenly spaced points of y = sin(x/2) over [0, 20] with noise of standard deviation
+/// 0.01 (spacing 20/(n − 1)): at 2 000 points and more the data want more smoothing than
+/// λ_max allows.
+fn dense_even_sine(n: usize) -> Vec<Vector<2>> {
+    let uniform = |k: usize| ((k as f64 * 12.9898).sin() * 43758.5453).rem_euclid(1.0);
+    (0..n)
+        .map(|k| {
+            let x = 20.0 * k as f64 / (n - 1) as f64;
+            let noise = ((0..4).map(|j| uniform(4 * k + j + 7)).sum::<f64>() - 2.0) * 3f64.sqrt();
+            Vector::<2>::new(x, (x / 2.0).sin() + 0.01 * noise)
+        })
+        .collect()
+}
+
+#[test]
+fn gcv_falling_up_to_its_last_grid_point_is_limited_and_an_interior_minimum_is_not() {
+    // The defining condition of `limited` under GCV: the minimum is not bracketed from above
+    // by a grid point. On the dense sine V(λ) falls at every grid point up to the last one
+    // below λ_max; the search's minimum then lies in the cell against λ_max (the golden
+    // section stopped 0.03 decades below it on 10^5 such points, at a spurious minimum of
+    // the trials' rounding), and the rule must say it is limited (it did not: the choice
+    // was taken as GCV's, and on 10^5 such points two-phase's pre-pass kept it, 802
+    // inflections, where the cubic smoothing spline leaves 4).
+    let points = dense_even_sine(2_000);
+    let settings = JumpLsqSettings::default().with_rule(LambdaRule::Gcv);
+    let faired = fair_function(&points, &settings);
+    let report = &faired.report;
+    let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
+    let data = masked(&points, [false, true]);
+    let weights = vec![1.0; points.len()];
+    let space = Space::new(Knots::open(x), Ends::RUNOUT, penalty_of(&settings)).unwrap();
+    let system = System::new(&space, &data, &weights, &[]);
+    let lambda_max = lambda::STIFFNESS_LIMIT / system.stiffness();
+    let n = points.len() as f64;
+    let score = |log_lambda: f64| {
+        let e = lambda::evaluate(&system, 10f64.powf(log_lambda), false, true).unwrap();
+        (e.rss / n) / (1.0 - e.trace.unwrap() / n).powi(2)
+    };
+    // The grid's last point (half decades from 10^−6) and the one before: V still falls.
+    let last = -6.0 + ((lambda_max.log10() + 6.0) / 0.5).floor() * 0.5;
+    assert!(
+        score(last) < score(last - 0.5),
+        "V rises before the last grid point 10^{last}"
+    );
+    assert!(report.lambda > 10f64.powf(last), "{report:?}");
+    assert!(report.lambda_limited, "{report:?}");
+    // An interior minimum (the wavy curve, 200 points): bracketed, not limited.
+    let faired = fair_function(&wavy(200), &settings);
+    assert!(!faired.report.lambda_limited, "{:?}", faired.report);
+    assert!(faired.report.lambda < 1e-3 * lambda_max, "{:?}", faired.report);
+}
