@@ -35,10 +35,19 @@
 //! against the cubic pre-pass's 22 177–22 692, both with the clean curve's 1591 inflections,
 //! seeds 1–4). When λ is limited the jump-lsq variants therefore fall
 //! back to the cubic smoothing spline of `gcv` (for that fit; a closed curve's periodic fit
-//! falls back to `gcv`'s seam blend). A function's `jump-lsq-gcv` pre-pass under the GCV rule
-//! instead keeps whichever of the two fits, jump-lsq's at the limit or the cubic's, has the
-//! lower score V_γ = (RSS/n) / (1 − γ tr A/n)² (both are linear smoothers of the same data,
-//! so GCV compares them as it compares values of λ). Measured on evenly spaced y = sin(x/2)
+//! falls back to `gcv`'s seam blend). The `jump-lsq-gcv` pre-pass under the GCV rule instead
+//! keeps whichever of the two fits, jump-lsq's at the limit or the cubic's, has the lower
+//! score V_γ = (RSS/(n D)) / (1 − γ tr A/n)², D the coordinates (both are linear smoothers
+//! of the same data, so GCV compares them as it compares values of λ). A curve's cubic is
+//! fitted over uniform parameters there, not over the noisy points' chord lengths
+//! (`weigh_limited` says why); a periodic fit still falls back to the seam blend, whose
+//! open fits are weighed in turn. Over the chord lengths the cubic had all but interpolated
+//! a noisy arc as dense as its noise (radius 2 over 270°, σ = 0.01 in each coordinate: p >
+//! 0.999 by GCV), and two-phase, falling back to it, had left the arc as noisy as it came
+//! (500 points: 175 inflections, RMS 0.0096 to the clean arc). Now (inflections /
+//! vibrations / RMS): 500 points keep jump-lsq's fit, 0 / 266 / 0.00069; 2 000 points take
+//! the cubic, 0 / 551 / 0.0012 (jump-lsq's fit 0 / 504 / 0.0014), 5 000 0 / 1 334 / 0.00092
+//! (125 / 2 095 / 0.0017), 2·10^4 0 / 4 878 / 0.00048 (645 / 9 387 / 0.0018). Measured on evenly spaced y = sin(x/2)
 //! over [0, 20] with σ = 0.01, where jump-lsq's GCV still falls at λ_max from 2 000 points
 //! on: jump-lsq's fit scores lower up to 3 000 points (2 000: RMS to the clean curve 0.00109
 //! against the cubic's 0.00127), the cubic's from 5 000 on (10^5: 0.00023 against 0.00092;
@@ -244,10 +253,11 @@ fn bounded_fit<const D: usize>(t: &[f64], data: &[Vector<D>], limits: &Limits<'_
     Ok(bounded_fit_scored(t, data, limits, 1.0)?.0)
 }
 
-/// [`bounded_fit`] with the score V_γ(p) = (RSS/n) / (1 − γ tr A(p)/n)² of its free fit at
-/// the chosen p (γ = 1: the GCV score p minimises; tr A read back from it and the RSS, tr A
-/// = n − √(n RSS / V₁)), the same score as jump-lsq's GCV rule, so that the two smoothers'
-/// fits of one function can be compared. O(n) per evaluation.
+/// [`bounded_fit`] with the score V_γ(p) = (RSS/(n D)) / (1 − γ tr A(p)/n)² of its free fit
+/// at the chosen p, RSS summed over the D coordinates (γ = 1: the GCV score p minimises, up
+/// to the factor D; tr A read back from it and the RSS, tr A = n − √(n RSS / V₁)), the same
+/// score as jump-lsq's GCV rule, so that the two smoothers' fits of one curve can be
+/// compared. O(n) per evaluation.
 fn bounded_fit_scored<const D: usize>(
     t: &[f64],
     data: &[Vector<D>],
@@ -272,7 +282,7 @@ fn bounded_fit_scored<const D: usize>(
         let trace = m - (m * rss / v1).sqrt();
         let denominator = 1.0 - gamma * trace / m;
         if denominator > 0.0 {
-            (rss / m) / (denominator * denominator)
+            (rss / (m * D as f64)) / (denominator * denominator)
         } else {
             f64::INFINITY
         }
@@ -308,25 +318,6 @@ fn bounded_fit_scored<const D: usize>(
     Ok((values, score))
 }
 
-/// The jump-lsq fit of `data` (`domain`: y over x, or a planar curve over chord lengths,
-/// `closed` periodic) with `settings`: the kept points fixed (bit for bit), the allowed
-/// distances as restraining radii (honoured by jump-lsq's pins); with the knots of its last
-/// solve, the fitted spline's (closed: with the closing knot, one more than the points); on
-/// `given` knots (a planar curve only, [`jump_lsq::fair_on_knots`]) when they are given.
-/// `None` when λ stopped at jump-lsq's precision limit before its rule was met (module doc:
-/// the caller then fits the cubic smoothing spline). O(n) per solve.
-fn jump_fit_on_knots<const D: usize>(
-    data: &[Vector<D>],
-    domain: CurveDomain,
-    closed: bool,
-    limits: &Limits<'_>,
-    settings: &JumpLsqSettings,
-    given: Option<&[f64]>,
-) -> Result<Option<(Vec<Vector<D>>, Vec<f64>)>> {
-    let fit = jump_fit_scored(data, domain, closed, limits, settings, given)?;
-    Ok((!fit.limited).then_some((fit.values, fit.knots)))
-}
-
 /// A jump-lsq fit of the pre-pass, whether or not its λ met its rule.
 struct JumpFit<const D: usize> {
     /// The fitted values, the kept points bit for bit.
@@ -339,7 +330,14 @@ struct JumpFit<const D: usize> {
     gcv: Option<f64>,
 }
 
-/// [`jump_fit_on_knots`] with its λ's status and score. O(n) per solve.
+/// The jump-lsq fit of `data` (`domain`: y over x, or a planar curve over chord lengths,
+/// `closed` periodic) with `settings`: the kept points fixed (bit for bit), the allowed
+/// distances as restraining radii (honoured by jump-lsq's pins); with the knots of its last
+/// solve, the fitted spline's (closed: with the closing knot, one more than the points); on
+/// `given` knots (a planar curve only, [`jump_lsq::fair_on_knots`]) when they are given;
+/// whether λ stopped at jump-lsq's precision limit before its rule was met (module doc: the
+/// caller then weighs it against the cubic smoothing spline or fits that) and its GCV
+/// score. O(n) per solve.
 fn jump_fit_scored<const D: usize>(
     data: &[Vector<D>],
     domain: CurveDomain,
@@ -619,10 +617,22 @@ fn fitted_curve(
     Ok(HermiteSpline::new(values, &settings)?)
 }
 
+/// One smoother's fit of a curve ([`smoother_fit`]).
+struct SmootherFit {
+    /// The fitted points.
+    values: Vec<Vec2>,
+    /// The knots of the fit (closed: with the closing knot).
+    knots: Vec<f64>,
+    /// jump-lsq's λ stopped at its precision limit before its rule was met.
+    limited: bool,
+    /// The GCV score V_γ of the fit (jump-lsq under its GCV rule, or the cubic smoothing
+    /// spline's at its p, both with the pre-pass's γ), `None` under the other rules.
+    score: Option<f64>,
+}
+
 /// One smoother's fit of `sequence` (an open curve, or `periodic`: jump-lsq only) on `knots`
-/// (`None`: chord lengths; jump-lsq then refits on the chord lengths of its results) with its
-/// knots, or `None` when jump-lsq's λ stopped at its precision limit (or a periodic fit was
-/// asked of `gcv`).
+/// (`None`: chord lengths; jump-lsq then refits on the chord lengths of its results), or
+/// `None` when a periodic fit was asked of `gcv`.
 fn smoother_fit(
     mode: Denoise,
     prepass: Prepass,
@@ -631,16 +641,22 @@ fn smoother_fit(
     periodic: bool,
     knots: Option<&[f64]>,
     limits: &Limits<'_>,
-) -> Result<Option<(Vec<Vec2>, Vec<f64>)>> {
+) -> Result<Option<SmootherFit>> {
     if let Some(settings) = mode.jump_lsq(prepass) {
-        return jump_fit_on_knots(
+        let fit = jump_fit_scored(
             sequence,
             CurveDomain::Parametric,
             periodic,
             limits,
             &settings.with_curve_ends(curve_ends),
             knots,
-        );
+        )?;
+        return Ok(Some(SmootherFit {
+            values: fit.values,
+            knots: fit.knots,
+            limited: fit.limited,
+            score: fit.gcv,
+        }));
     }
     if periodic {
         return Ok(None);
@@ -649,7 +665,64 @@ fn smoother_fit(
         Some(knots) => knots.to_vec(),
         None => Parametrization::ChordLength.parameters(sequence)?,
     };
-    Ok(Some((bounded_fit(&t, sequence, limits)?, t)))
+    let (values, score) = bounded_fit_scored(&t, sequence, limits, prepass.gcv_gamma)?;
+    Ok(Some(SmootherFit {
+        values,
+        knots: t,
+        limited: false,
+        score: Some(score),
+    }))
+}
+
+/// `knots.len()` evenly spaced parameters over the span of `knots` (the points' indices,
+/// scaled).
+fn uniform_knots(knots: &[f64]) -> Vec<f64> {
+    let n = knots.len();
+    let (Some(&a), Some(&b)) = (knots.first(), knots.last()) else {
+        return Vec::new();
+    };
+    if n < 2 {
+        return vec![a; n];
+    }
+    (0..n).map(|i| a + (b - a) * i as f64 / (n - 1) as f64).collect()
+}
+
+/// What replaces a jump-lsq fit of an open `sequence` whose λ stopped at its precision limit:
+/// under the GCV rule, the fit itself or the cubic smoothing spline over uniform parameters
+/// spanning the fit's knots ([`uniform_knots`]), whichever GCV scores lower (module doc),
+/// with its spline's end conditions; `None` (the caller falls back to the cubic over the
+/// points' chord lengths) under the other rules and for a periodic fit. O(n).
+///
+/// Not chord lengths for the cubic: on data as dense as their noise the noisy points' chord
+/// lengths are mostly noise (each step is the length of a noisy jump), the coordinates are
+/// then 1-Lipschitz in them and GCV takes the cubic to interpolation (p > 0.999 on 500
+/// points of a noisy arc), and jump-lsq's own knots, the chord lengths of its undersmoothed
+/// fit, did the same at 5 000 points. The index parameters carry no noise; on unevenly
+/// sampled data they bend the fit where the sampling changes, and GCV then scores it worse.
+fn weigh_limited(
+    fit: SmootherFit,
+    ends: CurveEnds,
+    prepass: Prepass,
+    sequence: &[Vec2],
+    periodic: bool,
+    limits: &Limits<'_>,
+) -> Result<Option<(SmootherFit, CurveEnds)>> {
+    let (PrepassRule::Gcv, Some(score), false) = (prepass.rule, fit.score, periodic) else {
+        return Ok(None);
+    };
+    let cubic = smoother_fit(
+        Denoise::Gcv,
+        prepass,
+        CurveEnds::Natural,
+        sequence,
+        false,
+        Some(&uniform_knots(&fit.knots)),
+        limits,
+    )?;
+    Ok(Some(match cubic {
+        Some(cubic) if cubic.score.is_some_and(|c| c < score) => (cubic, CurveEnds::Natural),
+        _ => (fit, ends),
+    }))
 }
 
 /// The pre-pass's fit of `sequence` by `mode`'s smoother, its values replaced as `projection`
@@ -667,10 +740,18 @@ fn curve_fit(
     limits: &Limits<'_>,
 ) -> Result<Option<Vec<Vec2>>> {
     let ends = mode.curve_ends(curve_ends);
-    let Some((mut values, mut knots)) = smoother_fit(mode, prepass, ends, sequence, periodic, None, limits)?
-    else {
+    let Some(first) = smoother_fit(mode, prepass, ends, sequence, periodic, None, limits)? else {
         return Ok(None);
     };
+    let (first, ends) = if first.limited {
+        match weigh_limited(first, ends, prepass, sequence, periodic, limits)? {
+            Some(weighed) => weighed,
+            None => return Ok(None),
+        }
+    } else {
+        (first, ends)
+    };
+    let (mut values, mut knots) = (first.values, first.knots);
     if projection == Projection::Off {
         return Ok(Some(values));
     }
@@ -690,8 +771,8 @@ fn curve_fit(
             feet.push(feet[0] + period);
         }
         match smoother_fit(mode, prepass, ends, sequence, periodic, Some(&feet), limits)? {
-            Some(refit) => (values, knots) = refit,
-            None => break,
+            Some(refit) if !refit.limited => (values, knots) = (refit.values, refit.knots),
+            _ => break,
         }
     }
     let curve = fitted_curve(&values, knots, periodic, ends)?;
