@@ -697,8 +697,9 @@ fn uniform_knots(knots: &[f64]) -> Vec<f64> {
 /// lengths are mostly noise (each step is the length of a noisy jump), the coordinates are
 /// then 1-Lipschitz in them and GCV takes the cubic to interpolation (p > 0.999 on 500
 /// points of a noisy arc), and jump-lsq's own knots, the chord lengths of its undersmoothed
-/// fit, did the same at 5 000 points. The index parameters carry no noise; on unevenly
-/// sampled data they bend the fit where the sampling changes, and GCV then scores it worse.
+/// fit, did the same at 5 000 points. The index parameters carry no noise, but they are not
+/// the curve's own: on unevenly sampled data they bend the fit where the sampling changes,
+/// and only GCV's residuals judge it then (not measured on such data).
 fn weigh_limited(
     fit: SmootherFit,
     ends: CurveEnds,

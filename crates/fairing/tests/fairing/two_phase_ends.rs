@@ -267,13 +267,7 @@ fn dense_noisy_data_end_with_the_clean_curves_inflections() {
             inflections as f64 <= 1.5 * truth as f64,
             "seed {seed}: {inflections}"
         );
-        let rms = (faired
-            .iter()
-            .zip(&clean)
-            .map(|(a, b)| (a.y - b.y).powi(2))
-            .sum::<f64>()
-            / n as f64)
-            .sqrt();
+        let rms = vertical_rms(&faired, &clean);
         assert!(rms < 0.2 * sigma, "seed {seed}: RMS {rms}");
         let unasked = unasked_move_as(&noisy, &faired, None, NoiseModel::Vertical).unwrap();
         assert!(!unasked.largest.exceeds, "seed {seed}: {unasked:?}");
@@ -319,14 +313,13 @@ fn dense_evenly_spaced_data_end_with_the_clean_curves_inflections() {
         .points;
     let inflections = counts(&runout_spline(&faired)).1;
     assert!(inflections as f64 <= 1.5 * truth as f64, "{inflections}");
-    let rms = (faired
-        .iter()
-        .zip(&clean)
-        .map(|(a, b)| (a.y - b.y).powi(2))
-        .sum::<f64>()
-        / n as f64)
-        .sqrt();
+    let rms = vertical_rms(&faired, &clean);
     assert!(rms < 0.1 * sigma, "RMS {rms}");
+}
+
+/// The RMS of the y differences of two point sets of a function.
+fn vertical_rms(a: &[Vec2], b: &[Vec2]) -> f64 {
+    (a.iter().zip(b).map(|(a, b)| (a.y - b.y).powi(2)).sum::<f64>() / a.len() as f64).sqrt()
 }
 
 /// The judge's clean sine (`examples/two_phase_judge.rs`): y = sin(x/2), x = 0.1 k, `n` points.
