@@ -40,14 +40,17 @@
 //! score V_γ = (RSS/(n D)) / (1 − γ tr A/n)², D the coordinates (both are linear smoothers
 //! of the same data, so GCV compares them as it compares values of λ). A curve's cubic is
 //! fitted over uniform parameters there, not over the noisy points' chord lengths
-//! (`weigh_limited` says why); a periodic fit still falls back to the seam blend, whose
-//! open fits are weighed in turn. Over the chord lengths the cubic had all but interpolated
+//! (`weigh_limited` says why); a periodic fit gives way to the seam blend where the open
+//! cubic of its points scores lower, and the blend's open fits are weighed in turn. Over the chord lengths the cubic had all but interpolated
 //! a noisy arc as dense as its noise (radius 2 over 270°, σ = 0.01 in each coordinate: p >
 //! 0.999 by GCV), and two-phase, falling back to it, had left the arc as noisy as it came
 //! (500 points: 175 inflections, RMS 0.0096 to the clean arc). Now (inflections /
 //! vibrations / RMS): 500 points keep jump-lsq's fit, 0 / 266 / 0.00069; 2 000 points take
 //! the cubic, 0 / 551 / 0.0012 (jump-lsq's fit 0 / 504 / 0.0014), 5 000 0 / 1 334 / 0.00092
-//! (125 / 2 095 / 0.0017), 2·10^4 0 / 4 878 / 0.00048 (645 / 9 387 / 0.0018). Measured on evenly spaced y = sin(x/2)
+//! (125 / 2 095 / 0.0017), 2·10^4 0 / 4 878 / 0.00048 (645 / 9 387 / 0.0018); a noisy
+//! closed circle as dense (radius 2, [`corner_reaches`] on why it is no longer taken for a
+//! cornered curve) 0 / 580 / 0.00097 at 2 000 points and 0 / 5 020 / 0.00043 at 2·10^4,
+//! where two-phase ended with 800 / 1 446 / 0.0099 and 6 538 / 14 702 / 0.010. Measured on evenly spaced y = sin(x/2)
 //! over [0, 20] with σ = 0.01, where jump-lsq's GCV still falls at λ_max from 2 000 points
 //! on: jump-lsq's fit scores lower up to 3 000 points (2 000: RMS to the clean curve 0.00109
 //! against the cubic's 0.00127), the cubic's from 5 000 on (10^5: 0.00023 against 0.00092;
@@ -433,6 +436,51 @@ pub const CORNER_TURN: f64 = PI / 4.0;
 /// P_{i−3}P_i and P_iP_{i+3}).
 pub const CORNER_REACH: usize = 3;
 
+/// The reaches over which [`denoise_curve`] measures the turns of a closed curve of `n`
+/// points, a corner's turn being the least of them ([`largest_turn`]): `CORNER_REACH`, then
+/// doubled while it stays within 2 % of the points (only `CORNER_REACH` below 300 points;
+/// 3, 6, 12, 24 at 2 000; 3, …, 384 at 2·10^4). On data as dense as their noise the turn
+/// between chords of a few points is the noise's: on 2 000 points of a noisy circle (radius
+/// 2, σ = 0.01 per coordinate, spacing 6.3e-3) a point 3σ off turned by 2.3 rad over 3
+/// points, 1.4 over 12 and 0.73 over 24, against the corner threshold π/4; fitted as a
+/// corner, it left two-phase a cluster of 10–16 inflections there (2 000–2·10^4 points),
+/// where the clean circle has none.
+fn corner_reaches(n: usize) -> Vec<usize> {
+    let first = CORNER_REACH.min(n.saturating_sub(1) / 2).max(1);
+    let mut reaches = vec![first];
+    let mut reach = first * 2;
+    while reach <= n / 50 && reach <= n.saturating_sub(1) / 2 {
+        reaches.push(reach);
+        reach *= 2;
+    }
+    reaches
+}
+
+/// The point of a closed curve (`points`, the last joined to the first; at least 3) that
+/// turns most, and its turn (radians): the turn between the chords to the points `reach`
+/// away, the least over the reaches of [`corner_reaches`]. Over one step the turn of a
+/// dense, noisy nose can exceed that of a real corner; a corner turns at every reach, a
+/// noisy point only over chords as short as its noise. O(n log n) (O(n) up to 300 points).
+fn largest_turn(points: &[Vec2]) -> (usize, f64) {
+    let n = points.len();
+    let reaches = corner_reaches(n);
+    let turn_over = |i: usize, reach: usize| {
+        let (p, q, r) = (points[(i + n - reach) % n], points[i], points[(i + reach) % n]);
+        let (e, f) = (q - p, r - q);
+        (e.x * f.y - e.y * f.x).atan2(e.dot(&f)).abs()
+    };
+    let turn = |i: usize| {
+        reaches
+            .iter()
+            .map(|&reach| turn_over(i, reach))
+            .fold(f64::INFINITY, f64::min)
+    };
+    (0..n).map(|i| (i, turn(i))).fold(
+        (0, f64::NEG_INFINITY),
+        |best, c| if c.1 > best.1 { c } else { best },
+    )
+}
+
 /// The pre-pass on a planar curve (arbitrary curves, Han §4.2): both coordinates smoothed over
 /// the chord-length parameters, one p (or λ) for the curve, the limits honoured (module doc).
 /// O(n) per GCV evaluation.
@@ -544,19 +592,7 @@ pub fn denoise_curve_by(
         let order: Vec<usize> = (0..n).collect();
         return fit(points, &order, projection, false);
     }
-    // The turn between the chords to the points CORNER_REACH away: at a dense, noisy nose
-    // the turn from one point to the next can exceed that of a real corner.
-    let reach = CORNER_REACH.min((n - 1) / 2).max(1);
-    let turn = |i: usize| {
-        let (p, q, r) = (points[(i + n - reach) % n], points[i], points[(i + reach) % n]);
-        let (e, f) = (q - p, r - q);
-        (e.x * f.y - e.y * f.x).atan2(e.dot(&f)).abs()
-    };
-    let (seam, largest) =
-        (0..n).map(|i| (i, turn(i))).fold(
-            (0, f64::NEG_INFINITY),
-            |best, c| if c.1 > best.1 { c } else { best },
-        );
+    let (seam, largest) = largest_turn(points);
     let around = |start: usize| -> Vec<usize> { (0..=n).map(|k| (start + k) % n).collect() };
     if largest >= CORNER_TURN {
         // The corner from both branches (free ends), then the fit with it kept there: a
@@ -687,11 +723,13 @@ fn uniform_knots(knots: &[f64]) -> Vec<f64> {
     (0..n).map(|i| a + (b - a) * i as f64 / (n - 1) as f64).collect()
 }
 
-/// What replaces a jump-lsq fit of an open `sequence` whose λ stopped at its precision limit:
-/// under the GCV rule, the fit itself or the cubic smoothing spline over uniform parameters
+/// What replaces a jump-lsq fit of `sequence` whose λ stopped at its precision limit: under
+/// the GCV rule, the fit itself or the cubic smoothing spline over uniform parameters
 /// spanning the fit's knots ([`uniform_knots`]), whichever GCV scores lower (module doc),
-/// with its spline's end conditions; `None` (the caller falls back to the cubic over the
-/// points' chord lengths) under the other rules and for a periodic fit. O(n).
+/// with its spline's end conditions. A `periodic` fit is weighed against the open cubic of
+/// the same points and, where that scores lower, gives way to the seam blend of
+/// [`denoise_curve`] (`None`), whose open fits are weighed in turn. `None` (the caller falls
+/// back to the cubic) under the other rules. O(n).
 ///
 /// Not chord lengths for the cubic: on data as dense as their noise the noisy points' chord
 /// lengths are mostly noise (each step is the length of a noisy jump), the coordinates are
@@ -708,22 +746,26 @@ fn weigh_limited(
     periodic: bool,
     limits: &Limits<'_>,
 ) -> Result<Option<(SmootherFit, CurveEnds)>> {
-    let (PrepassRule::Gcv, Some(score), false) = (prepass.rule, fit.score, periodic) else {
+    let (PrepassRule::Gcv, Some(score)) = (prepass.rule, fit.score) else {
         return Ok(None);
     };
+    // A periodic fit's knots end with the closing knot; the cubic is open, over the n points.
+    let knots = &fit.knots[..fit.knots.len().min(sequence.len())];
     let cubic = smoother_fit(
         Denoise::Gcv,
         prepass,
         CurveEnds::Natural,
         sequence,
         false,
-        Some(&uniform_knots(&fit.knots)),
+        Some(&uniform_knots(knots)),
         limits,
     )?;
-    Ok(Some(match cubic {
-        Some(cubic) if cubic.score.is_some_and(|c| c < score) => (cubic, CurveEnds::Natural),
-        _ => (fit, ends),
-    }))
+    Ok(match cubic {
+        Some(cubic) if cubic.score.is_some_and(|c| c < score) => {
+            (!periodic).then_some((cubic, CurveEnds::Natural))
+        }
+        _ => Some((fit, ends)),
+    })
 }
 
 /// The pre-pass's fit of `sequence` by `mode`'s smoother, its values replaced as `projection`
@@ -783,4 +825,80 @@ fn curve_fit(
             .map(|f| f.point)
             .collect(),
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::SeedableRng;
+    use rand_distr::{Distribution, Normal};
+
+    /// `n` points of a circle of radius 2 with Gaussian noise `sigma` per coordinate.
+    fn noisy_circle(n: usize, sigma: f64, seed: u64) -> Vec<Vec2> {
+        let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
+        let normal = Normal::new(0.0, sigma).unwrap();
+        (0..n)
+            .map(|k| {
+                let t = 2.0 * PI * k as f64 / n as f64;
+                Vec2::new(
+                    2.0 * t.cos() + normal.sample(&mut rng),
+                    2.0 * t.sin() + normal.sample(&mut rng),
+                )
+            })
+            .collect()
+    }
+
+    #[test]
+    fn corner_reaches_double_up_to_two_percent_of_the_points() {
+        assert_eq!(corner_reaches(4), [1]);
+        assert_eq!(corner_reaches(299), [CORNER_REACH]);
+        assert_eq!(corner_reaches(300), [3, 6]);
+        assert_eq!(corner_reaches(2_000), [3, 6, 12, 24]);
+        assert_eq!(corner_reaches(20_000), [3, 6, 12, 24, 48, 96, 192, 384]);
+    }
+
+    #[test]
+    fn a_dense_noisy_circle_has_no_corner_and_a_dense_noisy_corner_is_found() {
+        let (n, sigma) = (2_000, 0.01);
+        for seed in 1..=4 {
+            let circle = noisy_circle(n, sigma, seed);
+            // Over 3 points alone a noisy point turns by more than the corner threshold ...
+            let one_reach = (0..n)
+                .map(|i| {
+                    let (p, q, r) = (circle[(i + n - 3) % n], circle[i], circle[(i + 3) % n]);
+                    let (e, f) = (q - p, r - q);
+                    (e.x * f.y - e.y * f.x).atan2(e.dot(&f)).abs()
+                })
+                .fold(0.0, f64::max);
+            assert!(one_reach > CORNER_TURN, "seed {seed}: {one_reach}");
+            // ... but not at every reach.
+            let (_, largest) = largest_turn(&circle);
+            assert!(largest < CORNER_TURN, "seed {seed}: {largest}");
+        }
+        // A teardrop, the circle with its point at angle 0 pulled out to (3, 0) along two
+        // straight edges to the points at ±30° (a corner turning by about 1.8 rad), with the
+        // same noise: found, at the tip.
+        let mut teardrop = noisy_circle(n, sigma, 5);
+        let tip = Vec2::new(3.0, 0.0);
+        let reach = n / 12;
+        for k in 0..=reach {
+            let w = 1.0 - k as f64 / reach as f64;
+            for i in [k, (n - k) % n] {
+                let on_circle = Vec2::new(
+                    2.0 * (2.0 * PI * i as f64 / n as f64).cos(),
+                    2.0 * (2.0 * PI * i as f64 / n as f64).sin(),
+                );
+                let noise = teardrop[i] - on_circle;
+                let tangent = if i <= n / 2 { reach } else { n - reach };
+                let base = Vec2::new(
+                    2.0 * (2.0 * PI * tangent as f64 / n as f64).cos(),
+                    2.0 * (2.0 * PI * tangent as f64 / n as f64).sin(),
+                );
+                teardrop[i] = tip * w + base * (1.0 - w) + noise;
+            }
+        }
+        let (seam, largest) = largest_turn(&teardrop);
+        assert!(largest > CORNER_TURN, "{largest}");
+        assert!(seam.min(n - seam) <= 3, "the corner at {seam}");
+    }
 }
