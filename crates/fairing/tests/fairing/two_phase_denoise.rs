@@ -506,6 +506,80 @@ fn a_limited_jump_fit_gives_way_to_the_cubic_where_gcv_scores_the_cubic_lower() 
     assert_eq!(winners, ["jump", "cubic"]);
 }
 
+/// A curve whose jump-lsq fit stops at the precision limit, as the pre-pass sees it.
+struct LimitedCurve {
+    /// The pre-pass's points (`jump-lsq-gcv`, runout ends, no projection, no limits).
+    prepass: Vec<Vec2>,
+    /// jump-lsq's own fit with the pre-pass's settings.
+    jump: fairing::strategies::jump_lsq::Faired<2>,
+    /// The cubic smoothing spline (p by GCV) over uniform parameters spanning the fit's knots.
+    cubic: fairing::strategies::SmoothingSpline<2>,
+    /// The cubic's score V_γ = (RSS/(2n)) / (1 − γ tr A/n)² (tr A read back from GCV's V₁ =
+    /// n RSS / (n − tr A)²).
+    v_cubic: f64,
+}
+
+/// [`LimitedCurve`] of `noisy` (`closed`: periodic) with GCV's factor `gamma`.
+fn limited_curve(noisy: &[Vec2], closed: bool, gamma: f64) -> LimitedCurve {
+    use fairing::strategies::jump_lsq;
+    use fairing::strategies::{
+        CurveDomain, JumpLsqSettings, LambdaRule, SmoothingRule, SmoothingSettings, SmoothingSpline,
+    };
+    let none = |_: usize| false;
+    let free = |_: usize| f64::INFINITY;
+    let limits = Limits {
+        keep: &none,
+        allowed: &free,
+    };
+    let prepass = denoise_curve_by(
+        Denoise::JumpLsqGcv,
+        Prepass::gcv(gamma),
+        CurveEnds::Runout,
+        Projection::Off,
+        noisy,
+        closed,
+        &limits,
+    )
+    .unwrap();
+    let jump = jump_lsq::fair(
+        noisy,
+        noisy,
+        &Constraints::default(),
+        CurveDomain::Parametric,
+        closed,
+        &JumpLsqSettings::default()
+            .with_rule(LambdaRule::Gcv)
+            .with_gcv_gamma(gamma)
+            .with_curve_ends(CurveEnds::Runout)
+            .with_closed(closed),
+    )
+    .unwrap();
+    let n = noisy.len();
+    let (a, b) = (jump.knots[0], jump.knots[n - 1]);
+    let t: Vec<f64> = (0..n).map(|i| a + (b - a) * i as f64 / (n - 1) as f64).collect();
+    let cubic = SmoothingSpline::fit(
+        &t,
+        noisy,
+        &SmoothingSettings::default().with_rule(SmoothingRule::Gcv),
+    )
+    .unwrap();
+    let m = n as f64;
+    let rss: f64 = cubic
+        .values()
+        .iter()
+        .zip(noisy)
+        .map(|(f, d)| (f - d).norm_squared())
+        .sum();
+    let trace = m - (m * rss / cubic.gcv().unwrap()).sqrt();
+    let v_cubic = (rss / (2.0 * m)) / (1.0 - gamma * trace / m).powi(2);
+    LimitedCurve {
+        prepass,
+        jump,
+        cubic,
+        v_cubic,
+    }
+}
+
 /// The curve pre-pass when jump-lsq's λ stops at its precision limit under GCV: noisy arcs
 /// as dense as their noise (radius 2 over 270°, σ = 0.01 in each coordinate; spacing 0.0094
 /// at 500 points). The pre-pass keeps jump-lsq's fit at the limit or the cubic smoothing
@@ -517,20 +591,10 @@ fn a_limited_jump_fit_gives_way_to_the_cubic_where_gcv_scores_the_cubic_lower() 
 /// clean arc, on a Gaussian draw of 500 points).
 #[test]
 fn a_limited_curve_fit_is_weighed_against_the_cubic_over_uniform_parameters() {
-    use fairing::strategies::jump_lsq;
     use fairing::strategies::smoothing_spline::fit_parametric;
-    use fairing::strategies::{
-        CurveDomain, JumpLsqSettings, LambdaRule, SmoothingRule, SmoothingSettings, SmoothingSpline,
-    };
+    use fairing::strategies::{SmoothingRule, SmoothingSettings};
     let (sigma, radius) = (0.01, 2.0);
     let gamma = TwoPhaseSettings::default().curve_gcv_gamma;
-    let none = |_: usize| false;
-    let free = |_: usize| f64::INFINITY;
-    let limits = Limits {
-        keep: &none,
-        allowed: &free,
-    };
-    let gcv = SmoothingSettings::default().with_rule(SmoothingRule::Gcv);
     let mut winners = Vec::new();
     for n in [500, 2_000] {
         let e = noise(13, 2 * n, sigma);
@@ -540,66 +604,35 @@ fn a_limited_curve_fit_is_weighed_against_the_cubic_over_uniform_parameters() {
                 Vec2::new(radius * t.cos() + e[2 * k], radius * t.sin() + e[2 * k + 1])
             })
             .collect();
-        let prepass = denoise_curve_by(
-            Denoise::JumpLsqGcv,
-            Prepass::gcv(gamma),
-            CurveEnds::Runout,
-            Projection::Off,
-            &noisy,
-            false,
-            &limits,
-        )
-        .unwrap();
-        // jump-lsq's own fit with the pre-pass's settings: limited.
-        let jump = jump_lsq::fair(
-            &noisy,
-            &noisy,
-            &Constraints::default(),
-            CurveDomain::Parametric,
-            false,
-            &JumpLsqSettings::default()
-                .with_rule(LambdaRule::Gcv)
-                .with_gcv_gamma(gamma)
-                .with_curve_ends(CurveEnds::Runout),
-        )
-        .unwrap();
-        assert!(jump.report.lambda_limited, "n {n}: {:?}", jump.report);
-        // The cubic over uniform parameters on the span of jump-lsq's knots, and its V_γ
-        // (tr A read back from GCV's V₁ = n RSS / (n − tr A)²).
-        let (a, b) = (jump.knots[0], jump.knots[n - 1]);
-        let t: Vec<f64> = (0..n).map(|i| a + (b - a) * i as f64 / (n - 1) as f64).collect();
-        let cubic = SmoothingSpline::fit(&t, &noisy, &gcv).unwrap();
-        let m = n as f64;
-        let rss: f64 = cubic
-            .values()
-            .iter()
-            .zip(&noisy)
-            .map(|(f, d)| (f - d).norm_squared())
-            .sum();
-        let trace = m - (m * rss / cubic.gcv().unwrap()).sqrt();
-        let v_cubic = (rss / (2.0 * m)) / (1.0 - gamma * trace / m).powi(2);
-        let v_jump = jump.report.gcv.unwrap();
+        let case = limited_curve(&noisy, false, gamma);
+        assert!(case.jump.report.lambda_limited, "n {n}: {:?}", case.jump.report);
+        let (v_jump, v_cubic) = (case.jump.report.gcv.unwrap(), case.v_cubic);
         let expected = if v_jump <= v_cubic {
             winners.push("jump");
-            jump.points
+            case.jump.points
         } else {
             winners.push("cubic");
-            cubic.values().to_vec()
+            case.cubic.values().to_vec()
         };
         assert!(
-            prepass == expected,
+            case.prepass == expected,
             "n {n}: the pre-pass is not the fit of least GCV (jump {v_jump:e}, cubic {v_cubic:e})"
         );
+        let m = n as f64;
         let rms =
             |points: &[Vec2]| (points.iter().map(|p| (p.norm() - radius).powi(2)).sum::<f64>() / m).sqrt();
         assert!(
-            rms(&prepass) < 0.2 * sigma,
+            rms(&case.prepass) < 0.2 * sigma,
             "n {n}: RMS {} (noisy {})",
-            rms(&prepass),
+            rms(&case.prepass),
             rms(&noisy)
         );
         // Over the noisy chord lengths the cubic all but interpolates.
-        let chordal = fit_parametric(&noisy, &gcv).unwrap();
+        let chordal = fit_parametric(
+            &noisy,
+            &SmoothingSettings::default().with_rule(SmoothingRule::Gcv),
+        )
+        .unwrap();
         assert!(chordal.p() > 0.999, "n {n}: p {}", chordal.p());
         assert!(
             rms(chordal.values()) > 0.5 * sigma,
@@ -618,10 +651,6 @@ fn a_limited_curve_fit_is_weighed_against_the_cubic_over_uniform_parameters() {
 #[test]
 fn a_limited_periodic_fit_is_kept_where_gcv_scores_it_lower() {
     use fairing::curve_counts;
-    use fairing::strategies::jump_lsq;
-    use fairing::strategies::{
-        CurveDomain, JumpLsqSettings, LambdaRule, SmoothingRule, SmoothingSettings, SmoothingSpline,
-    };
     let (n, sigma, radius) = (500, 0.01, 2.0);
     let e = noise(17, 2 * n, sigma);
     let noisy: Vec<Vec2> = (0..n)
@@ -630,64 +659,18 @@ fn a_limited_periodic_fit_is_kept_where_gcv_scores_it_lower() {
             Vec2::new(radius * t.cos() + e[2 * k], radius * t.sin() + e[2 * k + 1])
         })
         .collect();
-    let settings = TwoPhaseSettings::default();
-    let gamma = settings.curve_gcv_gamma;
-    let none = |_: usize| false;
-    let free = |_: usize| f64::INFINITY;
-    let limits = Limits {
-        keep: &none,
-        allowed: &free,
-    };
-    let prepass = denoise_curve_by(
-        Denoise::JumpLsqGcv,
-        Prepass::gcv(gamma),
-        settings.curve_ends,
-        Projection::Off,
-        &noisy,
-        true,
-        &limits,
-    )
-    .unwrap();
-    let jump = jump_lsq::fair(
-        &noisy,
-        &noisy,
-        &Constraints::default(),
-        CurveDomain::Parametric,
-        true,
-        &JumpLsqSettings::default()
-            .with_rule(LambdaRule::Gcv)
-            .with_gcv_gamma(gamma)
-            .with_closed(true),
-    )
-    .unwrap();
-    assert!(jump.report.lambda_limited, "{:?}", jump.report);
-    let (a, b) = (jump.knots[0], jump.knots[n - 1]);
-    let t: Vec<f64> = (0..n).map(|i| a + (b - a) * i as f64 / (n - 1) as f64).collect();
-    let cubic = SmoothingSpline::fit(
-        &t,
-        &noisy,
-        &SmoothingSettings::default().with_rule(SmoothingRule::Gcv),
-    )
-    .unwrap();
-    let m = n as f64;
-    let rss: f64 = cubic
-        .values()
-        .iter()
-        .zip(&noisy)
-        .map(|(f, d)| (f - d).norm_squared())
-        .sum();
-    let trace = m - (m * rss / cubic.gcv().unwrap()).sqrt();
-    let v_cubic = (rss / (2.0 * m)) / (1.0 - gamma * trace / m).powi(2);
-    let v_jump = jump.report.gcv.unwrap();
+    let case = limited_curve(&noisy, true, TwoPhaseSettings::default().curve_gcv_gamma);
+    assert!(case.jump.report.lambda_limited, "{:?}", case.jump.report);
+    let (v_jump, v_cubic) = (case.jump.report.gcv.unwrap(), case.v_cubic);
     assert!(v_jump <= v_cubic, "jump {v_jump:e}, cubic {v_cubic:e}");
     assert!(
-        prepass == jump.points,
+        case.prepass == case.jump.points,
         "the pre-pass is not jump-lsq's periodic fit"
     );
     // The clean circle's 0 inflections, counted on the closed sequence opened at two points
     // half a circle apart.
     for start in [0, n / 2] {
-        let open: Vec<Vec2> = (0..=n).map(|k| prepass[(start + k) % n]).collect();
+        let open: Vec<Vec2> = (0..=n).map(|k| case.prepass[(start + k) % n]).collect();
         assert_eq!(curve_counts(&open).unwrap().0, 0, "opened at {start}");
     }
 }
