@@ -57,9 +57,10 @@
 //! jump-lsq's fit left 802 inflections, the cubic's 4), the scores ordering the two fits as
 //! their distances to the clean curve do at every size tried (10^3–10^5). Two-phase then
 //! ends with the clean curve's 3 inflections at every size, where with jump-lsq's fit kept
-//! it ended with 5 at 2·10^4 points and 24 at 10^5. At 10^6 points the cubic's own GCV is
-//! unreliable (its score jumps by 1e-3 between neighbouring p) and two-phase ends with
-//! hundreds.
+//! it ended with 5 at 2·10^4 points and 24 at 10^5. At 10^6 points the cubic's own GCV was
+//! unreliable (its score jumps by 1e-3 between neighbouring p) and two-phase ended with
+//! hundreds: beyond [`MAX_PREPASS_POINTS`] points the pre-pass fits bin means instead
+//! ([`bins`](super::bins): 3 inflections there).
 //!
 //! `gcv` replaces the data by the cubic smoothing spline's values ([`SmoothingSpline`], csaps's
 //! convention) with p chosen by generalised cross-validation of the free fit (every weight
@@ -75,8 +76,11 @@
 
 use std::f64::consts::PI;
 
-use curve_repr::{HermiteEnds, HermiteSettings, HermiteSpline, Parametrization, Vec2, Vector};
+use curve_repr::{
+    EndCondition, HermiteEnds, HermiteSettings, HermiteSpline, Parametrization, SplineFunction, Vec2, Vector,
+};
 
+use super::bins::{Bins, BINS_PER_DOF, FIRST_BINS, MAX_PREPASS_POINTS};
 use super::foot_point::{foot_points, Projection};
 
 use crate::state::strategy_error;
@@ -162,6 +166,9 @@ pub struct Prepass {
     pub gcv_gamma: f64,
     /// A function's spline end conditions (jump-lsq's `function-ends`; unused by curves).
     pub function_ends: FunctionEnds,
+    /// The most points a function's pre-pass fits with one knot per point, and the most bins
+    /// it fits beyond ([`MAX_PREPASS_POINTS`] by the constructors; unused by curves).
+    pub max_points: usize,
 }
 
 impl Prepass {
@@ -171,6 +178,7 @@ impl Prepass {
             rule: PrepassRule::Gcv,
             gcv_gamma: gamma,
             function_ends: FunctionEnds::Runout,
+            max_points: MAX_PREPASS_POINTS,
         }
     }
 
@@ -180,12 +188,20 @@ impl Prepass {
             rule,
             gcv_gamma: gamma,
             function_ends: FunctionEnds::Runout,
+            max_points: MAX_PREPASS_POINTS,
         }
     }
 
     /// Sets a function's spline end conditions (`runout` by the constructors).
     pub fn with_function_ends(mut self, ends: FunctionEnds) -> Self {
         self.function_ends = ends;
+        self
+    }
+
+    /// Sets the most points a function's pre-pass fits with one knot per point (and the most
+    /// bins beyond).
+    pub fn with_max_points(mut self, max_points: usize) -> Self {
+        self.max_points = max_points;
         self
     }
 }
@@ -250,13 +266,19 @@ impl Limits<'_> {
     }
 }
 
-/// The smoothing spline's values at `t` for `data`, p by GCV, the limits honoured by
-/// reweighting (module doc); kept points returned bit for bit. O(n) per evaluation.
-fn bounded_fit<const D: usize>(t: &[f64], data: &[Vector<D>], limits: &Limits<'_>) -> Result<Vec<Vector<D>>> {
-    Ok(bounded_fit_scored(t, data, limits, 1.0)?.0)
+/// A pre-pass fit with its GCV score V_γ and its equivalent degrees of freedom tr A (where
+/// GCV chose its smoothing).
+struct Scored<T> {
+    /// The fitted values, the kept points bit for bit.
+    values: Vec<T>,
+    /// V_γ at the chosen smoothing (+∞ where not computed).
+    score: f64,
+    /// tr A at the chosen smoothing.
+    dof: Option<f64>,
 }
 
-/// [`bounded_fit`] with the score V_γ(p) = (RSS/(n D)) / (1 − γ tr A(p)/n)² of its free fit
+/// The smoothing spline's values at `t` for `data`, p by GCV, the limits honoured by
+/// reweighting (module doc), kept points returned bit for bit; with the score V_γ(p) = (RSS/(n D)) / (1 − γ tr A(p)/n)² of its free fit
 /// at the chosen p, RSS summed over the D coordinates (γ = 1: the GCV score p minimises, up
 /// to the factor D; tr A read back from it and the RSS, tr A = n − √(n RSS / V₁)), the same
 /// score as jump-lsq's GCV rule, so that the two smoothers' fits of one curve can be
@@ -266,7 +288,7 @@ fn bounded_fit_scored<const D: usize>(
     data: &[Vector<D>],
     limits: &Limits<'_>,
     gamma: f64,
-) -> Result<(Vec<Vector<D>>, f64)> {
+) -> Result<Scored<Vector<D>>> {
     let n = data.len();
     let mut weights = limits.weights(n);
     let settings = SmoothingSettings::default().with_rule(SmoothingRule::Gcv);
@@ -274,15 +296,15 @@ fn bounded_fit_scored<const D: usize>(
     // smoothing (p = 0.9991 against 0.737 on 10^5 points of a noisy sine, 363 inflections
     // left against 7).
     let free = SmoothingSpline::fit(t, data, &settings)?;
-    let score = free.gcv().map_or(f64::INFINITY, |v1| {
-        let rss: f64 = free
-            .values()
-            .iter()
-            .zip(data)
-            .map(|(f, d)| (f - d).norm_squared())
-            .sum();
-        let m = n as f64;
-        let trace = m - (m * rss / v1).sqrt();
+    let m = n as f64;
+    let rss: f64 = free
+        .values()
+        .iter()
+        .zip(data)
+        .map(|(f, d)| (f - d).norm_squared())
+        .sum();
+    let trace = free.gcv().map(|v1| m - (m * rss / v1).sqrt());
+    let score = trace.map_or(f64::INFINITY, |trace| {
         let denominator = 1.0 - gamma * trace / m;
         if denominator > 0.0 {
             (rss / (m * D as f64)) / (denominator * denominator)
@@ -318,7 +340,11 @@ fn bounded_fit_scored<const D: usize>(
         .enumerate()
         .map(|(i, (v, old))| if (limits.keep)(i) { *old } else { *v })
         .collect();
-    Ok((values, score))
+    Ok(Scored {
+        values,
+        score,
+        dof: trace,
+    })
 }
 
 /// A jump-lsq fit of the pre-pass, whether or not its λ met its rule.
@@ -331,6 +357,8 @@ struct JumpFit<const D: usize> {
     limited: bool,
     /// The GCV rule's score V_γ at the chosen λ (`None` under the other rules).
     gcv: Option<f64>,
+    /// tr A at the chosen λ (GCV rule).
+    dof: Option<f64>,
 }
 
 /// The jump-lsq fit of `data` (`domain`: y over x, or a planar curve over chord lengths,
@@ -360,7 +388,11 @@ fn jump_fit_scored<const D: usize>(
         Some(knots) => jump_lsq::fair_on_knots(data, data, &constraints, knots, closed, &settings)?,
         None => jump_lsq::fair(data, data, &constraints, domain, closed, &settings)?,
     };
-    let (limited, gcv) = (faired.report.lambda_limited, faired.report.gcv);
+    let (limited, gcv, dof) = (
+        faired.report.lambda_limited,
+        faired.report.gcv,
+        faired.report.trace,
+    );
     let mut knots = faired.knots;
     if let (Some(period), Some(&first)) = (faired.period, knots.first()) {
         knots.push(first + period);
@@ -376,6 +408,7 @@ fn jump_fit_scored<const D: usize>(
         knots,
         limited,
         gcv,
+        dof,
     })
 }
 
@@ -402,26 +435,103 @@ pub fn denoise_by(
     if mode == Denoise::Off || x.len() < 4 {
         return Ok(y.to_vec());
     }
+    if x.len() <= prepass.max_points.max(4) {
+        return Ok(denoise_points(mode, prepass, x, y, limits)?.values);
+    }
+    denoise_binned(mode, prepass, x, y, limits)
+}
+
+/// The pre-pass on bin means ([`bins`](super::bins)): the fit of the means, read back at
+/// every x from the natural cubic spline through it; the kept points (bins of their own)
+/// bit for bit. A bin may move as far as its nearest-bound point may. [`FIRST_BINS`] bins
+/// first, four times as many while the fit's degrees of freedom exceed one per
+/// [`BINS_PER_DOF`] bins, up to `prepass.max_points` ([`MAX_PREPASS_POINTS`] by default).
+/// O(n log n_bins) beyond the fits.
+fn denoise_binned(
+    mode: Denoise,
+    prepass: Prepass,
+    x: &[f64],
+    y: &[f64],
+    limits: &Limits<'_>,
+) -> Result<Vec<f64>> {
+    let n = x.len();
+    let most = prepass.max_points.max(4);
+    let mut count = FIRST_BINS.min(most);
+    let (knots, fitted) = loop {
+        let bins = Bins::new(n, n.div_ceil(count), limits.keep);
+        let (bx, by) = (bins.means(x), bins.means(y));
+        let bin_keep = |b: usize| bins.range(b).any(|i| (limits.keep)(i));
+        let bin_allowed = |b: usize| {
+            bins.range(b)
+                .map(|i| (limits.allowed)(i))
+                .fold(f64::INFINITY, f64::min)
+        };
+        let bin_limits = Limits {
+            keep: &bin_keep,
+            allowed: &bin_allowed,
+        };
+        let fit = denoise_points(mode, prepass, &bx, &by, &bin_limits)?;
+        let fine = fit
+            .dof
+            .is_some_and(|dof| dof * BINS_PER_DOF as f64 <= bins.len() as f64);
+        if fine || count >= most {
+            break (bx, fit.values);
+        }
+        // Without a trace (rules other than GCV) the finest bins are taken at once.
+        count = match fit.dof {
+            Some(_) => (count * 4).min(most),
+            None => most,
+        };
+    };
+    let spline = SplineFunction::new(&knots, &fitted, EndCondition::Natural)?;
+    let values: Vec<f64> = x
+        .iter()
+        .zip(y)
+        .enumerate()
+        .map(|(i, (&x, &old))| if (limits.keep)(i) { old } else { spline.value(x) })
+        .collect();
+    if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+        return Err(strategy_error(
+            "two-phase",
+            format!("the binned pre-pass gave a non-finite value at point {i}"),
+        ));
+    }
+    Ok(values)
+}
+
+/// The pre-pass with one knot per point, with the kept fit's degrees of freedom.
+fn denoise_points(
+    mode: Denoise,
+    prepass: Prepass,
+    x: &[f64],
+    y: &[f64],
+    limits: &Limits<'_>,
+) -> Result<Scored<f64>> {
     let data: Vec<Vector<1>> = y.iter().map(|&v| Vector::<1>::new(v)).collect();
+    let scalar = |fit: Scored<Vector<1>>| Scored {
+        values: fit.values.iter().map(|v| v[0]).collect(),
+        score: fit.score,
+        dof: fit.dof,
+    };
     if let Some(settings) = mode.jump_lsq(prepass) {
         let points: Vec<Vec2> = x.iter().zip(y).map(|(&x, &y)| Vec2::new(x, y)).collect();
         let fit = jump_fit_scored(&points, CurveDomain::Function, false, limits, &settings, None)?;
-        let jump = || fit.values.iter().map(|p| p.y).collect();
+        let jump = Scored {
+            values: fit.values.iter().map(|p| p.y).collect(),
+            score: fit.gcv.unwrap_or(f64::INFINITY),
+            dof: fit.dof,
+        };
         if !fit.limited {
-            return Ok(jump());
+            return Ok(jump);
         }
         // λ limited under GCV: the jump fit at the limit or the cubic smoothing spline,
         // whichever GCV scores lower (module doc).
         if let (PrepassRule::Gcv, Some(v)) = (prepass.rule, fit.gcv) {
-            let (cubic, score) = bounded_fit_scored(x, &data, limits, prepass.gcv_gamma)?;
-            return Ok(if v <= score {
-                jump()
-            } else {
-                cubic.iter().map(|v| v[0]).collect()
-            });
+            let cubic = bounded_fit_scored(x, &data, limits, prepass.gcv_gamma)?;
+            return Ok(if v <= cubic.score { jump } else { scalar(cubic) });
         }
     }
-    Ok(bounded_fit(x, &data, limits)?.iter().map(|v| v[0]).collect())
+    Ok(scalar(bounded_fit_scored(x, &data, limits, 1.0)?))
 }
 
 /// Refits on the foot-point parameters of the previous fit that
@@ -701,7 +811,7 @@ fn smoother_fit(
         Some(knots) => knots.to_vec(),
         None => Parametrization::ChordLength.parameters(sequence)?,
     };
-    let (values, score) = bounded_fit_scored(&t, sequence, limits, prepass.gcv_gamma)?;
+    let Scored { values, score, .. } = bounded_fit_scored(&t, sequence, limits, prepass.gcv_gamma)?;
     Ok(Some(SmootherFit {
         values,
         knots: t,

@@ -13,12 +13,14 @@
 //!   [`SegmentedFairing`](crate::SegmentedFairing)`::new(TwoPhase::default())` fairs arbitrary
 //!   open or closed planar curves (Han §4.2).
 
+mod bins;
 mod denoise;
 pub mod foot_point;
 pub mod phase1;
 pub mod phase2;
 mod settings;
 
+pub use bins::{BINS_PER_DOF, FIRST_BINS, MAX_PREPASS_POINTS};
 pub use denoise::{
     denoise, denoise_by, denoise_curve, denoise_curve_by, Denoise, Limits, Prepass, PrepassRule,
     CORRECTION_ROUNDS,
@@ -265,7 +267,8 @@ impl FairingStrategy<2> for TwoPhase {
                 self.settings.function_prepass_rule,
                 self.settings.function_gcv_gamma,
             )
-            .with_function_ends(self.settings.function_ends),
+            .with_function_ends(self.settings.function_ends)
+            .with_max_points(self.settings.function_prepass_points),
             &x,
             &y,
             &limits,

@@ -465,6 +465,59 @@ fn a_larger_gcv_gamma_smooths_more() {
     );
 }
 
+/// The report's `trace` under the GCV rule is tr A(λ) = Σ_k ∂ŷ_k/∂y_k at the chosen λ
+/// (checked by central differences of the fit at that λ, which is linear in the data), and
+/// with the RMS displacement it gives GCV's score V = (RSS/n) / (1 − tr A/n)².
+#[test]
+fn the_reported_trace_is_the_influence_matrixs_and_gives_gcvs_score() {
+    let noisy: Vec<Vec2> = (0..40)
+        .map(|i| {
+            let x = i as f64 * 0.2;
+            Vec2::new(x, x.sin() + 0.05 * (((i * 7919) % 101) as f64 / 50.0 - 1.0))
+        })
+        .collect();
+    let fit = |points: &[Vec2], settings: &JumpLsqSettings| {
+        fair(
+            points,
+            points,
+            &Constraints::default(),
+            CurveDomain::Function,
+            false,
+            settings,
+        )
+        .unwrap()
+    };
+    let gcv = JumpLsqSettings::default().with_rule(LambdaRule::Gcv);
+    let chosen = fit(&noisy, &gcv);
+    let r = &chosen.report;
+    let trace = r.trace.expect("GCV reports its trace");
+    let at_lambda = gcv.clone().with_lambda(r.lambda);
+    let h = 1e-4;
+    let differences: f64 = (0..noisy.len())
+        .map(|k| {
+            let mut up = noisy.clone();
+            let mut down = noisy.clone();
+            up[k].y += h;
+            down[k].y -= h;
+            (fit(&up, &at_lambda).points[k].y - fit(&down, &at_lambda).points[k].y) / (2.0 * h)
+        })
+        .sum();
+    assert!(trace > 2.0 && trace < 38.0, "tr A = {trace}");
+    assert!(
+        (differences - trace).abs() < 1e-6 * trace,
+        "tr A {trace}, differences {differences}"
+    );
+    let n = noisy.len() as f64;
+    let score = r.rms_displacement.powi(2) / (1.0 - trace / n).powi(2);
+    let reported = r.gcv.expect("GCV reports its score");
+    assert!(
+        (score - reported).abs() < 1e-9 * reported,
+        "V {score} against {reported}"
+    );
+    let given = fit(&noisy, &at_lambda);
+    assert_eq!(given.report.trace, None, "a given λ computes no trace");
+}
+
 #[test]
 fn runout_ends_leave_an_arcs_end_curvature_free() {
     // Exact points of a circle of radius 2 over 270° (the judge's arc), each fit moving them

@@ -6,7 +6,7 @@
 //!
 //! The report's extras: `lambda`, `sigma` (the noise estimate σ̂), `rule` (`discrepancy`,
 //! `gcv`, `target-sd` or `given`), `target_sd`, `rms_displacement`, `lambda_limited`, `gcv`,
-//! `solves`, `refits`, `pinned`, `reweighted`, `band_rounds`, `clipped`, `penalty_before`,
+//! `trace` (tr A(λ), the fit's degrees of freedom, under the GCV rule), `solves`, `refits`, `pinned`, `reweighted`, `band_rounds`, `clipped`, `penalty_before`,
 //! `penalty_after`, `closed`, `ends` (the spline's end conditions at the start and the end:
 //! `runout`, `natural` or `periodic`; `function-ends` = `auto` reports its choice).
 
@@ -170,6 +170,7 @@ where
         ("rms_displacement", json!(report.rms_displacement)),
         ("lambda_limited", json!(report.lambda_limited)),
         ("gcv", json!(report.gcv)),
+        ("trace", json!(report.trace)),
         ("solves", json!(report.solves)),
         ("refits", json!(report.refits)),
         ("pinned", json!(report.pinned)),

@@ -465,6 +465,9 @@ pub struct JumpLsqReport {
     pub rms_displacement: f64,
     /// GCV's value at λ (GCV rule).
     pub gcv: Option<f64>,
+    /// tr A(λ), the fit's equivalent degrees of freedom (Σ over the counted points of
+    /// ∂ŷ_k/∂y_k), where the rule computed it (GCV rule).
+    pub trace: Option<f64>,
     /// The open spline's end conditions used, at the start and the end: `runout` or
     /// `natural` each (`auto` reports its choice); `periodic` for a closed curve.
     pub ends: [String; 2],
@@ -880,6 +883,7 @@ fn fair_from<const D: usize>(
         target_sd: target,
         rms_displacement: 0.0,
         gcv: None,
+        trace: None,
         ends: ends_names(ends),
         lambda_limited: false,
         solves: selection_solves,
@@ -954,6 +958,7 @@ fn fair_from<const D: usize>(
         report.lambda = choice.evaluation.lambda;
         report.lambda_limited = choice.limited;
         report.gcv = choice.gcv;
+        report.trace = choice.evaluation.trace;
         lambda_previous = choice.evaluation.lambda.max(1e-12);
         let mut evaluation: Evaluation<D> = choice.evaluation;
         drop(system);
