@@ -1,6 +1,7 @@
-//! Consecutive points averaged in bins, so that the noise pre-pass of a function segment
-//! with more points than its limit (`function-prepass-points`, [`MAX_PREPASS_POINTS`] by
-//! default) is fitted where double precision can fit it ([`super::denoise_by`]).
+//! Consecutive points averaged in bins, so that the noise pre-pass of a function segment or
+//! an arbitrary curve with more points than its limit (`function-prepass-points`,
+//! `curve-prepass-points`, [`MAX_PREPASS_POINTS`] by default) is fitted where double
+//! precision can fit it ([`super::denoise_by`], [`super::denoise_curve_by`]).
 //!
 //! **Why.** Both pre-pass smoothers solve a banded system with one knot per point. The cubic
 //! smoothing spline's is M = R + λ QᵀΣQ (`smoothing_spline`'s module docs): on a Fourier mode
@@ -18,7 +19,8 @@
 //! Smoothing*, 1995, on binned estimators; Eilers & Marx's P-splines, 1996, likewise fit n
 //! points on far fewer knots): each run of m consecutive points is replaced by its mean
 //! (x̄, ȳ), the pre-pass is fitted to the means, and its fit is read back at every x_i from
-//! the natural cubic spline through it. Where m h ≪ b this changes the fit little (a mean
+//! the natural cubic spline through it (a curve's at a parameter interpolated between the
+//! bins' centres, `denoise_curve_binned`, so that the points keep their order). Where m h ≪ b this changes the fit little (a mean
 //! differs from the curve's value at x̄ by about f″ (m h)²/24), while the condition number
 //! falls by m⁴, and the means carry σ/√m of noise. Points the pre-pass must keep (the ends,
 //! fixed points) are bins of their own, so they are still interpolated and are returned bit
@@ -53,6 +55,13 @@
 //! the clean sine itself has 81 630 at 10^5 points, 249 890 at 3·10^5 and 832 098 at 10^6
 //! (two-phase 239 732 and 799 670 at the last two, csaps at the same S_d 239 098 and
 //! 827 769).
+//!
+//! Arbitrary curves (the bins chosen by the largest tr A of the fits a curve's pre-pass
+//! makes): a noisy arc (radius 2 over 270°, σ = 0.01 per coordinate) ends two-phase with 0
+//! inflections at RMS 8.2e-5 from the circle at 3·10^5 points in 6.6 s (one knot per point:
+//! 12 inflections, 1.9e-4, 71 s; 10^5 bins of 3 points without the degrees-of-freedom rule:
+//! 12, 1.5e-4, 20 s) and 0 at 5.8e-5 at 10^6 in 26 s (one knot per point: 1 109 in 209 s);
+//! a closed noisy circle of 3·10^5 points 0 at 8.2e-5 in 6.6 s (10^5 bins: 0, 1.4e-4, 60 s).
 //!
 //! Bins are equal in size to within one point in each run between kept points (a run of L
 //! points makes ⌈L/m⌉ bins), so the smoothers' unit weights stand (the means' variances

@@ -77,7 +77,8 @@
 use std::f64::consts::PI;
 
 use curve_repr::{
-    EndCondition, HermiteEnds, HermiteSettings, HermiteSpline, Parametrization, SplineFunction, Vec2, Vector,
+    Curve, EndCondition, HermiteEnds, HermiteSettings, HermiteSpline, Parametrization, SplineFunction, Vec2,
+    Vector,
 };
 
 use super::bins::{Bins, BINS_PER_DOF, FIRST_BINS, MAX_PREPASS_POINTS};
@@ -166,8 +167,8 @@ pub struct Prepass {
     pub gcv_gamma: f64,
     /// A function's spline end conditions (jump-lsq's `function-ends`; unused by curves).
     pub function_ends: FunctionEnds,
-    /// The most points a function's pre-pass fits with one knot per point, and the most bins
-    /// it fits beyond ([`MAX_PREPASS_POINTS`] by the constructors; unused by curves).
+    /// The most points the pre-pass fits with one knot per point, and the most bins it fits
+    /// beyond ([`MAX_PREPASS_POINTS`] by the constructors).
     pub max_points: usize,
 }
 
@@ -198,8 +199,8 @@ impl Prepass {
         self
     }
 
-    /// Sets the most points a function's pre-pass fits with one knot per point (and the most
-    /// bins beyond).
+    /// Sets the most points the pre-pass fits with one knot per point (and the most bins
+    /// beyond).
     pub fn with_max_points(mut self, max_points: usize) -> Self {
         self.max_points = max_points;
         self
@@ -423,6 +424,9 @@ pub fn denoise(mode: Denoise, x: &[f64], y: &[f64], limits: &Limits<'_>) -> Resu
 
 /// [`denoise`] with `jump-lsq-gcv`'s λ rule `prepass` (GCV with its factor γ, or GML;
 /// [`TwoPhaseSettings::function_prepass_rule`](super::TwoPhaseSettings::function_prepass_rule)).
+/// Beyond `prepass.max_points` points
+/// ([`TwoPhaseSettings::function_prepass_points`](super::TwoPhaseSettings::function_prepass_points))
+/// it fits bin means ([`bins`](super::bins)).
 ///
 /// Errors: as [`denoise`]; γ below 1.
 pub fn denoise_by(
@@ -641,7 +645,9 @@ pub fn denoise_curve(
 /// or GML, [`TwoPhaseSettings::curve_prepass_rule`](super::TwoPhaseSettings::curve_prepass_rule);
 /// [`denoise_curve`] has GCV with γ = 1) and the jump-lsq variants' end conditions of an open fit
 /// ([`TwoPhaseSettings::curve_ends`](super::TwoPhaseSettings::curve_ends); [`denoise_curve`]
-/// has natural ends; the cubic smoothing spline always has).
+/// has natural ends; the cubic smoothing spline always has). Beyond `prepass.max_points`
+/// points ([`TwoPhaseSettings::curve_prepass_points`](super::TwoPhaseSettings::curve_prepass_points))
+/// it fits bin means ([`bins`](super::bins)).
 ///
 /// Errors: as [`denoise_curve`]; γ below 1.
 pub fn denoise_curve_by(
@@ -657,6 +663,131 @@ pub fn denoise_curve_by(
     if mode == Denoise::Off || n < 4 {
         return Ok(points.to_vec());
     }
+    if n > prepass.max_points.max(4) {
+        return denoise_curve_binned(mode, prepass, curve_ends, projection, points, closed, limits);
+    }
+    Ok(denoise_curve_points(mode, prepass, curve_ends, projection, points, closed, limits)?.0)
+}
+
+/// The curve pre-pass on bin means ([`bins`](super::bins)), the bins chosen as
+/// [`denoise_binned`] chooses them (the largest tr A of the fits made, a closed curve's two
+/// blended or cornered fits included), read back at each point's parameter: the bin means' fitted
+/// values carry chord-length knots T_b (closed: with the closing knot), bin b's centre
+/// index c_b = (first + last)/2 maps to T_b, and point i to the parameter interpolated
+/// linearly between the centres around it (extrapolated on the end pieces of an open curve,
+/// across the closing piece of a closed one), where it takes the value of the spline through
+/// the fitted values (runout ends when open, periodic when closed). So the points keep their
+/// order and are spread along the fitted curve as evenly as the data were, where their foot
+/// points on it would not: on data as dense as their noise the noise scrambles the order of
+/// the foot points. Kept points (bins of their own) bit for bit. O(n) beyond the fit.
+fn denoise_curve_binned(
+    mode: Denoise,
+    prepass: Prepass,
+    curve_ends: CurveEnds,
+    projection: Projection,
+    points: &[Vec2],
+    closed: bool,
+    limits: &Limits<'_>,
+) -> Result<Vec<Vec2>> {
+    let n = points.len();
+    let (xs, ys): (Vec<f64>, Vec<f64>) = points.iter().map(|p| (p.x, p.y)).unzip();
+    let most = prepass.max_points.max(4);
+    let mut count = FIRST_BINS.min(most);
+    let (bins, fitted) = loop {
+        let bins = Bins::new(n, n.div_ceil(count), limits.keep);
+        let means: Vec<Vec2> = bins
+            .means(&xs)
+            .into_iter()
+            .zip(bins.means(&ys))
+            .map(|(x, y)| Vec2::new(x, y))
+            .collect();
+        let bin_keep = |b: usize| bins.range(b).any(|i| (limits.keep)(i));
+        let bin_allowed = |b: usize| {
+            bins.range(b)
+                .map(|i| (limits.allowed)(i))
+                .fold(f64::INFINITY, f64::min)
+        };
+        let bin_limits = Limits {
+            keep: &bin_keep,
+            allowed: &bin_allowed,
+        };
+        let (fitted, dof) =
+            denoise_curve_points(mode, prepass, curve_ends, projection, &means, closed, &bin_limits)?;
+        let fine = dof.is_some_and(|dof| dof * BINS_PER_DOF as f64 <= bins.len() as f64);
+        if fine || count >= most {
+            break (bins, fitted);
+        }
+        count = match dof {
+            Some(_) => (count * 4).min(most),
+            None => most,
+        };
+    };
+    let count = fitted.len();
+    let knots = if closed {
+        Parametrization::ChordLength.closed_parameters(&fitted)?
+    } else {
+        Parametrization::ChordLength.parameters(&fitted)?
+    };
+    let curve = fitted_curve(&fitted, knots.clone(), closed, CurveEnds::Runout)?;
+    let centre = |b: usize| {
+        let range = bins.range(b);
+        (range.start + range.end - 1) as f64 / 2.0
+    };
+    // (centre index, parameter) of each bin; a closed curve's first bin again after a period.
+    let mut marks: Vec<(f64, f64)> = (0..count).map(|b| (centre(b), knots[b])).collect();
+    if closed {
+        marks.push((centre(0) + n as f64, knots[count]));
+    }
+    let mut out = Vec::with_capacity(n);
+    let mut piece = 0;
+    for (i, &point) in points.iter().enumerate() {
+        if (limits.keep)(i) {
+            out.push(point);
+            continue;
+        }
+        let mut index = i as f64;
+        if closed && index < marks[0].0 {
+            index += n as f64;
+            piece = marks.len() - 2;
+        }
+        while piece + 2 < marks.len() && marks[piece + 1].0 <= index {
+            piece += 1;
+        }
+        let ((c0, t0), (c1, t1)) = (marks[piece], marks[piece + 1]);
+        let t = t0 + (index - c0) / (c1 - c0) * (t1 - t0);
+        let value = curve.eval(t);
+        if !(value.x.is_finite() && value.y.is_finite()) {
+            return Err(strategy_error(
+                "two-phase",
+                format!("the binned pre-pass gave a non-finite point at {i}"),
+            ));
+        }
+        out.push(value);
+        if closed && i as f64 + n as f64 == index {
+            piece = 0;
+        }
+    }
+    Ok(out)
+}
+
+/// The curve pre-pass with one knot per point ([`denoise_curve_by`]).
+fn denoise_curve_points(
+    mode: Denoise,
+    prepass: Prepass,
+    curve_ends: CurveEnds,
+    projection: Projection,
+    points: &[Vec2],
+    closed: bool,
+    limits: &Limits<'_>,
+) -> Result<(Vec<Vec2>, Option<f64>)> {
+    let n = points.len();
+    // The largest tr A of the fits made.
+    let dof = std::cell::Cell::new(None::<f64>);
+    let record = |fit: Option<f64>| {
+        if let Some(d) = fit {
+            dof.set(Some(dof.get().map_or(d, |old: f64| old.max(d))));
+        }
+    };
     // One open fit of the points in `order` (a closed walk repeats its first point last). A
     // closed walk's seam is kept (`free_seam` false), or fitted from both sides with free
     // ends and set to the mean of the two ends' values (`free_seam`: a corner).
@@ -670,20 +801,22 @@ pub fn denoise_curve_by(
                 keep: &keep,
                 allowed: &allowed,
             };
-            let values = match curve_fit(mode, prepass, curve_ends, projection, &sequence, false, &limits)? {
-                Some(values) => values,
-                // jump-lsq's λ limited: the cubic smoothing spline.
-                None => curve_fit(
-                    Denoise::Gcv,
-                    prepass,
-                    curve_ends,
-                    projection,
-                    &sequence,
-                    false,
-                    &limits,
-                )?
-                .ok_or_else(|| strategy_error("two-phase", "the cubic pre-pass gave no fit"))?,
-            };
+            let (values, fit_dof) =
+                match curve_fit(mode, prepass, curve_ends, projection, &sequence, false, &limits)? {
+                    Some(fitted) => fitted,
+                    // jump-lsq's λ limited: the cubic smoothing spline.
+                    None => curve_fit(
+                        Denoise::Gcv,
+                        prepass,
+                        curve_ends,
+                        projection,
+                        &sequence,
+                        false,
+                        &limits,
+                    )?
+                    .ok_or_else(|| strategy_error("two-phase", "the cubic pre-pass gave no fit"))?,
+                };
+            record(fit_dof);
             let mut out = points.to_vec();
             for (k, &i) in order
                 .iter()
@@ -700,7 +833,7 @@ pub fn denoise_curve_by(
         };
     if !closed {
         let order: Vec<usize> = (0..n).collect();
-        return fit(points, &order, projection, false);
+        return Ok((fit(points, &order, projection, false)?, dof.get()));
     }
     let (seam, largest) = largest_turn(points);
     let around = |start: usize| -> Vec<usize> { (0..=n).map(|k| (start + k) % n).collect() };
@@ -711,12 +844,15 @@ pub fn denoise_curve_by(
         let corner = fit(points, &around(seam), Projection::Off, true)?[seam];
         let mut cornered = points.to_vec();
         cornered[seam] = corner;
-        return fit(&cornered, &around(seam), projection, false);
+        return Ok((fit(&cornered, &around(seam), projection, false)?, dof.get()));
     }
     if mode.jump_lsq(prepass).is_some() {
         // No corner: jump-lsq's periodic spline has no seam to hide.
-        if let Some(values) = curve_fit(mode, prepass, curve_ends, projection, points, true, limits)? {
-            return Ok(values);
+        if let Some((values, fit_dof)) =
+            curve_fit(mode, prepass, curve_ends, projection, points, true, limits)?
+        {
+            record(fit_dof);
+            return Ok((values, dof.get()));
         }
     }
     let first = fit(points, &around(seam), Projection::Off, false)?;
@@ -732,16 +868,17 @@ pub fn denoise_curve_by(
         })
         .collect();
     if projection == Projection::Off {
-        return Ok(blended);
+        return Ok((blended, dof.get()));
     }
     // The blend is no single fit: its points are projected onto the periodic spline through
     // them on their own chord lengths (no parameter correction).
     let knots = Parametrization::ChordLength.closed_parameters(&blended)?;
     let curve = fitted_curve(&blended, knots, true, CurveEnds::Natural)?;
-    Ok(foot_points(&curve, points, limits.keep)
+    let projected = foot_points(&curve, points, limits.keep)
         .into_iter()
         .map(|f| f.point)
-        .collect())
+        .collect();
+    Ok((projected, dof.get()))
 }
 
 /// The spline through a fit's `values` at its `knots` (closed: with the closing knot): the
@@ -774,6 +911,8 @@ struct SmootherFit {
     /// The GCV score V_γ of the fit (jump-lsq under its GCV rule, or the cubic smoothing
     /// spline's at its p, both with the pre-pass's γ), `None` under the other rules.
     score: Option<f64>,
+    /// tr A of the fit (GCV rule).
+    dof: Option<f64>,
 }
 
 /// One smoother's fit of `sequence` (an open curve, or `periodic`: jump-lsq only) on `knots`
@@ -802,6 +941,7 @@ fn smoother_fit(
             knots: fit.knots,
             limited: fit.limited,
             score: fit.gcv,
+            dof: fit.dof,
         }));
     }
     if periodic {
@@ -811,12 +951,13 @@ fn smoother_fit(
         Some(knots) => knots.to_vec(),
         None => Parametrization::ChordLength.parameters(sequence)?,
     };
-    let Scored { values, score, .. } = bounded_fit_scored(&t, sequence, limits, prepass.gcv_gamma)?;
+    let Scored { values, score, dof } = bounded_fit_scored(&t, sequence, limits, prepass.gcv_gamma)?;
     Ok(Some(SmootherFit {
         values,
         knots: t,
         limited: false,
         score: Some(score),
+        dof,
     }))
 }
 
@@ -891,7 +1032,7 @@ fn curve_fit(
     sequence: &[Vec2],
     periodic: bool,
     limits: &Limits<'_>,
-) -> Result<Option<Vec<Vec2>>> {
+) -> Result<Option<(Vec<Vec2>, Option<f64>)>> {
     let ends = mode.curve_ends(curve_ends);
     let Some(first) = smoother_fit(mode, prepass, ends, sequence, periodic, None, limits)? else {
         return Ok(None);
@@ -904,9 +1045,10 @@ fn curve_fit(
     } else {
         (first, ends)
     };
+    let dof = first.dof;
     let (mut values, mut knots) = (first.values, first.knots);
     if projection == Projection::Off {
-        return Ok(Some(values));
+        return Ok(Some((values, dof)));
     }
     let rounds = match projection {
         Projection::ParameterCorrection => CORRECTION_ROUNDS,
@@ -929,12 +1071,13 @@ fn curve_fit(
         }
     }
     let curve = fitted_curve(&values, knots, periodic, ends)?;
-    Ok(Some(
+    Ok(Some((
         foot_points(&curve, sequence, limits.keep)
             .into_iter()
             .map(|f| f.point)
             .collect(),
-    ))
+        dof,
+    )))
 }
 
 #[cfg(test)]

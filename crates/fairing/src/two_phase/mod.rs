@@ -12,8 +12,10 @@
 //!   and a [`SegmentFairer`] so that
 //!   [`SegmentedFairing`](crate::SegmentedFairing)`::new(TwoPhase::default())` fairs arbitrary
 //!   open or closed planar curves (Han §4.2).
+//! - [`bins`]: the noise pre-pass of dense data (beyond 10^5 points) on the means of bins of
+//!   consecutive points (not in the paper).
 
-mod bins;
+pub mod bins;
 mod denoise;
 pub mod foot_point;
 pub mod phase1;
@@ -373,7 +375,8 @@ impl SegmentFairer for TwoPhase {
         };
         denoise_curve_by(
             self.settings.denoise,
-            Prepass::new(self.settings.curve_prepass_rule, self.settings.curve_gcv_gamma),
+            Prepass::new(self.settings.curve_prepass_rule, self.settings.curve_gcv_gamma)
+                .with_max_points(self.settings.curve_prepass_points),
             self.settings.curve_ends,
             self.settings.project,
             points,

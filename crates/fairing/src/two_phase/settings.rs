@@ -342,6 +342,17 @@ pub struct TwoPhaseSettings {
     /// inflections at RMS 4.7e-5 to it, where one knot per point left 124 at 1.5e-4; on 3·10^5
     /// points of sin(kx), k = 0.5–60, 30–45 % nearer the clean curve, with its inflections.
     pub function_prepass_points: usize,
+    /// Arbitrary curves: the most points the noise pre-pass fits with one knot per point; beyond, it fits the means of bins of consecutive points, at most this many (at least 4).
+    ///
+    /// As [`function_prepass_points`](Self::function_prepass_points), for the pre-pass of an
+    /// arbitrary curve ([`denoise_curve_by`](super::denoise_curve_by)); each point is read
+    /// back at a parameter interpolated between its bin's centre and the next, so the points
+    /// keep their order. Default 10^5: on a noisy arc (radius 2 over 270°, σ = 0.01 per
+    /// coordinate) two-phase ends with 0 inflections at RMS 8.2e-5 from the circle at 3·10^5
+    /// points in 6.6 s, where one knot per point left 12 at 1.9e-4 in 71 s, and at 10^6 with
+    /// 0 at 5.8e-5 in 26 s, where it left 1 109 in 209 s; a closed noisy circle of 3·10^5
+    /// points 0 at 8.2e-5 in 6.6 s.
+    pub curve_prepass_points: usize,
     /// Arbitrary curves: the pre-pass's points become the foot points of the data on its fitted curve (foot-point), after refits on those parameters (parameter-correction), or stay its values at the data's chord-length parameters (off).
     ///
     /// Not in the paper: after the noise pre-pass of an arbitrary curve
@@ -453,6 +464,7 @@ impl Default for TwoPhaseSettings {
             curve_ends: CurveEnds::Runout,
             function_ends: FunctionEnds::Auto,
             function_prepass_points: super::MAX_PREPASS_POINTS,
+            curve_prepass_points: super::MAX_PREPASS_POINTS,
             ends: Ends::Free,
             project: Projection::FootPoint,
         }
@@ -576,6 +588,13 @@ impl TwoPhaseSettings {
         self
     }
 
+    /// Sets the most points an arbitrary curve's pre-pass fits with one knot per point (≥ 4;
+    /// beyond, bin means).
+    pub fn with_curve_prepass_points(mut self, points: usize) -> Self {
+        self.curve_prepass_points = points;
+        self
+    }
+
     /// Sets how a function segment's `jump-lsq-gcv` pre-pass chooses λ.
     pub fn with_function_prepass_rule(mut self, rule: PrepassRule) -> Self {
         self.function_prepass_rule = rule;
@@ -682,12 +701,13 @@ impl TwoPhaseSettings {
                 "must be finite and at least 0",
             ));
         }
-        if self.function_prepass_points < 4 {
-            return Err(bad(
-                "function_prepass_points",
-                self.function_prepass_points as f64,
-                "must be at least 4",
-            ));
+        for (name, value) in [
+            ("function_prepass_points", self.function_prepass_points),
+            ("curve_prepass_points", self.curve_prepass_points),
+        ] {
+            if value < 4 {
+                return Err(bad(name, value as f64, "must be at least 4"));
+            }
         }
         for (name, value) in [
             ("curve_gcv_gamma", self.curve_gcv_gamma),
