@@ -39,8 +39,9 @@
 //! keeps whichever of the two fits, jump-lsq's at the limit or the cubic's, has the lower
 //! score V_γ = (RSS/(n D)) / (1 − γ tr A/n)², D the coordinates (both are linear smoothers
 //! of the same data, so GCV compares them as it compares values of λ). A curve's cubic is
-//! fitted over uniform parameters there, not over the noisy points' chord lengths
-//! (`weigh_limited` says why); a periodic fit gives way to the seam blend where the open
+//! fitted over chords of windows wide enough to see past the noise there
+//! ([`windowed_chord_knots`]), not over the noisy points' chord lengths (`weigh_limited`
+//! says why); a periodic fit gives way to the seam blend where the open
 //! cubic of its points scores lower, and the blend's open fits are weighed in turn. Over the chord lengths the cubic had all but interpolated
 //! a noisy arc as dense as its noise (radius 2 over 270°, σ = 0.01 in each coordinate: p >
 //! 0.999 by GCV), and two-phase, falling back to it, had left the arc as noisy as it came
@@ -974,9 +975,64 @@ fn uniform_knots(knots: &[f64]) -> Vec<f64> {
     (0..n).map(|i| a + (b - a) * i as f64 / (n - 1) as f64).collect()
 }
 
+/// The noise a windowed chord must exceed, in noise estimates σ̂ ([`windowed_chord_knots`]).
+pub const CHORD_NOISE_RATIO: f64 = 20.0;
+
+/// Parameters for the points of `sequence` from chords over windows wide enough to see past
+/// their noise, spanning `knots` (the limited fit's). Point i's step is |P_hi − P_lo| / (hi −
+/// lo), lo = i − w and hi = i + w cut at the ends, and the knot steps average the steps of
+/// their two points. w is the least power of 2 for which 90 % of the windowed chords exceed
+/// [`CHORD_NOISE_RATIO`] σ̂ (their relative noise then below about 7 %; at most n/8), σ̂ the
+/// RMS residual per coordinate of `fitted`, the limited fit. Uniform parameters if the
+/// steps degenerate. O(n log n).
+fn windowed_chord_knots(sequence: &[Vec2], fitted: &[Vec2], knots: &[f64]) -> Vec<f64> {
+    let n = sequence.len().min(knots.len());
+    let uniform = uniform_knots(&knots[..n]);
+    if n < 4 {
+        return uniform;
+    }
+    let residual: f64 = sequence
+        .iter()
+        .zip(fitted)
+        .map(|(p, f)| (p - f).norm_squared())
+        .sum();
+    let sigma = (residual / (2.0 * n as f64)).sqrt();
+    let chord = |i: usize, w: usize| {
+        let (lo, hi) = (i.saturating_sub(w), (i + w).min(n - 1));
+        ((sequence[hi] - sequence[lo]).norm(), hi - lo)
+    };
+    let mut w = 1;
+    while w < n / 8 {
+        let mut lengths: Vec<f64> = (0..n).map(|i| chord(i, w).0).collect();
+        let tenth = n / 10;
+        let (_, quantile, _) = lengths.select_nth_unstable_by(tenth, f64::total_cmp);
+        if *quantile >= CHORD_NOISE_RATIO * sigma {
+            break;
+        }
+        w *= 2;
+    }
+    let steps: Vec<f64> = (0..n)
+        .map(|i| {
+            let (length, count) = chord(i, w);
+            length / count as f64
+        })
+        .collect();
+    let mut t = Vec::with_capacity(n);
+    t.push(0.0);
+    for pair in steps.windows(2) {
+        let step = 0.5 * (pair[0] + pair[1]);
+        if !(step.is_finite() && step > 0.0) {
+            return uniform;
+        }
+        t.push(t[t.len() - 1] + step);
+    }
+    let (a, b, total) = (knots[0], knots[n - 1], t[n - 1]);
+    t.iter().map(|v| a + (b - a) * v / total).collect()
+}
+
 /// What replaces a jump-lsq fit of `sequence` whose λ stopped at its precision limit: under
-/// the GCV rule, the fit itself or the cubic smoothing spline over uniform parameters
-/// spanning the fit's knots ([`uniform_knots`]), whichever GCV scores lower (module doc),
+/// the GCV rule, the fit itself or the cubic smoothing spline over windowed chord lengths
+/// spanning the fit's knots ([`windowed_chord_knots`]), whichever GCV scores lower (module doc),
 /// with its spline's end conditions. A `periodic` fit is weighed against the open cubic of
 /// the same points and, where that scores lower, gives way to the seam blend of
 /// [`denoise_curve`] (`None`), whose open fits are weighed in turn. `None` (the caller falls
@@ -986,9 +1042,13 @@ fn uniform_knots(knots: &[f64]) -> Vec<f64> {
 /// lengths are mostly noise (each step is the length of a noisy jump), the coordinates are
 /// then 1-Lipschitz in them and GCV takes the cubic to interpolation (p > 0.999 on 500
 /// points of a noisy arc), and jump-lsq's own knots, the chord lengths of its undersmoothed
-/// fit, did the same at 5 000 points. The index parameters carry no noise, but they are not
-/// the curve's own: on unevenly sampled data they bend the fit where the sampling changes,
-/// and only GCV's residuals judge it then (not measured on such data).
+/// fit, did the same at 5 000 points. Not the index parameters either (the choice before):
+/// they carry no noise, but on unevenly sampled data they smooth the dense parts less in arc
+/// length. On a noisy arc (radius 2 over 270°, σ = 0.01) sampled with spacings in a ratio of
+/// 4.3, two-phase over uniform parameters ended with 10–12 inflections at 2 000–2·10^4
+/// points (five draws), over windowed chords with 0, 8–24 % nearer the clean arc (2·10^4:
+/// RMS 4.9e-4 → 4.1e-4); on evenly sampled arcs and circles of 1 000–2·10^4 points the two
+/// are within 4 % of each other, with 0 inflections both.
 fn weigh_limited(
     fit: SmootherFit,
     ends: CurveEnds,
@@ -1008,7 +1068,7 @@ fn weigh_limited(
         CurveEnds::Natural,
         sequence,
         false,
-        Some(&uniform_knots(knots)),
+        Some(&windowed_chord_knots(sequence, &fit.values, knots)),
         limits,
     )?;
     Ok(match cubic {
