@@ -448,10 +448,7 @@ pub fn denoise_by(
 
 /// The pre-pass on bin means ([`bins`](super::bins)): the fit of the means, read back at
 /// every x from the natural cubic spline through it; the kept points (bins of their own)
-/// bit for bit. A bin may move as far as its nearest-bound point may. [`FIRST_BINS`] bins
-/// first, four times as many while the fit's degrees of freedom exceed one per
-/// [`BINS_PER_DOF`] bins, up to `prepass.max_points` ([`MAX_PREPASS_POINTS`] by default).
-/// O(n log n_bins) beyond the fits.
+/// bit for bit. The bins as [`on_bins`] chooses them. O(n log n_bins) beyond the fits.
 fn denoise_binned(
     mode: Denoise,
     prepass: Prepass,
@@ -459,35 +456,11 @@ fn denoise_binned(
     y: &[f64],
     limits: &Limits<'_>,
 ) -> Result<Vec<f64>> {
-    let n = x.len();
-    let most = prepass.max_points.max(4);
-    let mut count = FIRST_BINS.min(most);
-    let (knots, fitted) = loop {
-        let bins = Bins::new(n, n.div_ceil(count), limits.keep);
+    let (_, (knots, fitted)) = on_bins(x.len(), prepass, limits, |bins, bin_limits| {
         let (bx, by) = (bins.means(x), bins.means(y));
-        let bin_keep = |b: usize| bins.range(b).any(|i| (limits.keep)(i));
-        let bin_allowed = |b: usize| {
-            bins.range(b)
-                .map(|i| (limits.allowed)(i))
-                .fold(f64::INFINITY, f64::min)
-        };
-        let bin_limits = Limits {
-            keep: &bin_keep,
-            allowed: &bin_allowed,
-        };
-        let fit = denoise_points(mode, prepass, &bx, &by, &bin_limits)?;
-        let fine = fit
-            .dof
-            .is_some_and(|dof| dof * BINS_PER_DOF as f64 <= bins.len() as f64);
-        if fine || count >= most {
-            break (bx, fit.values);
-        }
-        // Without a trace (rules other than GCV) the finest bins are taken at once.
-        count = match fit.dof {
-            Some(_) => (count * 4).min(most),
-            None => most,
-        };
-    };
+        let fit = denoise_points(mode, prepass, &bx, &by, bin_limits)?;
+        Ok(((bx, fit.values), fit.dof))
+    })?;
     let spline = SplineFunction::new(&knots, &fitted, EndCondition::Natural)?;
     let values: Vec<f64> = x
         .iter()
@@ -502,6 +475,44 @@ fn denoise_binned(
         ));
     }
     Ok(values)
+}
+
+/// Runs `fit` on bins of the n points (module [`bins`](super::bins)): [`FIRST_BINS`] bins
+/// first (at most `prepass.max_points`), four times as many while `fit` reports more than
+/// one degree of freedom per [`BINS_PER_DOF`] bins, up to `prepass.max_points`; without a
+/// reported trace (rules other than GCV) the finest bins at once. Each bin keeps its points'
+/// kept flag and may move as far as its most bound point. Returns the last bins and `fit`'s
+/// result on them.
+fn on_bins<T>(
+    n: usize,
+    prepass: Prepass,
+    limits: &Limits<'_>,
+    mut fit: impl FnMut(&Bins, &Limits<'_>) -> Result<(T, Option<f64>)>,
+) -> Result<(Bins, T)> {
+    let most = prepass.max_points.max(4);
+    let mut count = FIRST_BINS.min(most);
+    loop {
+        let bins = Bins::new(n, n.div_ceil(count), limits.keep);
+        let bin_keep = |b: usize| bins.range(b).any(|i| (limits.keep)(i));
+        let bin_allowed = |b: usize| {
+            bins.range(b)
+                .map(|i| (limits.allowed)(i))
+                .fold(f64::INFINITY, f64::min)
+        };
+        let bin_limits = Limits {
+            keep: &bin_keep,
+            allowed: &bin_allowed,
+        };
+        let (out, dof) = fit(&bins, &bin_limits)?;
+        let fine = dof.is_some_and(|dof| dof * BINS_PER_DOF as f64 <= bins.len() as f64);
+        if fine || count >= most {
+            return Ok((bins, out));
+        }
+        count = match dof {
+            Some(_) => (count * 4).min(most),
+            None => most,
+        };
+    }
 }
 
 /// The pre-pass with one knot per point, with the kept fit's degrees of freedom.
@@ -670,9 +681,9 @@ pub fn denoise_curve_by(
     Ok(denoise_curve_points(mode, prepass, curve_ends, projection, points, closed, limits)?.0)
 }
 
-/// The curve pre-pass on bin means ([`bins`](super::bins)), the bins chosen as
-/// [`denoise_binned`] chooses them (the largest tr A of the fits made, a closed curve's two
-/// blended or cornered fits included), read back at each point's parameter: the bin means' fitted
+/// The curve pre-pass on bin means ([`bins`](super::bins)), the bins chosen by [`on_bins`]
+/// (on the largest tr A of the fits made, a closed curve's two blended or cornered fits
+/// included), read back at each point's parameter: the bin means' fitted
 /// values carry chord-length knots T_b (closed: with the closing knot), bin b's centre
 /// index c_b = (first + last)/2 maps to T_b, and point i to the parameter interpolated
 /// linearly between the centres around it (extrapolated on the end pieces of an open curve,
@@ -692,37 +703,15 @@ fn denoise_curve_binned(
 ) -> Result<Vec<Vec2>> {
     let n = points.len();
     let (xs, ys): (Vec<f64>, Vec<f64>) = points.iter().map(|p| (p.x, p.y)).unzip();
-    let most = prepass.max_points.max(4);
-    let mut count = FIRST_BINS.min(most);
-    let (bins, fitted) = loop {
-        let bins = Bins::new(n, n.div_ceil(count), limits.keep);
+    let (bins, fitted) = on_bins(n, prepass, limits, |bins, bin_limits| {
         let means: Vec<Vec2> = bins
             .means(&xs)
             .into_iter()
             .zip(bins.means(&ys))
             .map(|(x, y)| Vec2::new(x, y))
             .collect();
-        let bin_keep = |b: usize| bins.range(b).any(|i| (limits.keep)(i));
-        let bin_allowed = |b: usize| {
-            bins.range(b)
-                .map(|i| (limits.allowed)(i))
-                .fold(f64::INFINITY, f64::min)
-        };
-        let bin_limits = Limits {
-            keep: &bin_keep,
-            allowed: &bin_allowed,
-        };
-        let (fitted, dof) =
-            denoise_curve_points(mode, prepass, curve_ends, projection, &means, closed, &bin_limits)?;
-        let fine = dof.is_some_and(|dof| dof * BINS_PER_DOF as f64 <= bins.len() as f64);
-        if fine || count >= most {
-            break (bins, fitted);
-        }
-        count = match dof {
-            Some(_) => (count * 4).min(most),
-            None => most,
-        };
-    };
+        denoise_curve_points(mode, prepass, curve_ends, projection, &means, closed, bin_limits)
+    })?;
     let count = fitted.len();
     let knots = if closed {
         Parametrization::ChordLength.closed_parameters(&fitted)?
