@@ -735,15 +735,21 @@ fn denoise_curve_binned(
             out.push(point);
             continue;
         }
-        let mut index = i as f64;
-        if closed && index < marks[0].0 {
-            index += n as f64;
-            piece = marks.len() - 2;
+        // A closed curve's points before the first centre lie on the closing piece; the
+        // others are met in order, so the piece only moves forward.
+        let wrapped = closed && (i as f64) < marks[0].0;
+        let (index, mut k) = if wrapped {
+            (i as f64 + n as f64, marks.len() - 2)
+        } else {
+            (i as f64, piece)
+        };
+        while k + 2 < marks.len() && marks[k + 1].0 <= index {
+            k += 1;
         }
-        while piece + 2 < marks.len() && marks[piece + 1].0 <= index {
-            piece += 1;
+        if !wrapped {
+            piece = k;
         }
-        let ((c0, t0), (c1, t1)) = (marks[piece], marks[piece + 1]);
+        let ((c0, t0), (c1, t1)) = (marks[k], marks[k + 1]);
         let t = t0 + (index - c0) / (c1 - c0) * (t1 - t0);
         let value = curve.eval(t);
         if !(value.x.is_finite() && value.y.is_finite()) {
@@ -753,9 +759,6 @@ fn denoise_curve_binned(
             ));
         }
         out.push(value);
-        if closed && i as f64 + n as f64 == index {
-            piece = 0;
-        }
     }
     Ok(out)
 }
