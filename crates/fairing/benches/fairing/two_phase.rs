@@ -7,11 +7,15 @@
 //! - `two_phase_full_fairing_min_gain`: the same with `min_gain` = 0.005 (stop after a pass
 //!   that removes less than 0.5 % of the sign changes), n = 10^3 … 10^6;
 //! - `two_phase_one_full_pass`: one coarse and one fine pass on the raw noisy data (the
-//!   busiest pass), n = 10^3 … 10^6.
+//!   busiest pass), n = 10^3 … 10^6;
+//! - `two_phase_binned_prepass`: the noise pre-pass of a function with two-phase's default
+//!   settings beyond its limit of 10^5 points (bin means, module `two_phase::bins`), on
+//!   y = sin(x/2) + N(0, 0.01²) over [0, 20], n = 1.25·10^5 … 10^6: O(n) for the bins and
+//!   the read-back, the fits on 2 000 bins at every size.
 
 use criterion::{criterion_group, BatchSize, BenchmarkId, Criterion, SamplingMode, Throughput};
 use curve_repr::{EndCondition, SplineFunction};
-use fairing::two_phase::{fair_function, full_pass, TwoPhaseSettings};
+use fairing::two_phase::{denoise_by, fair_function, full_pass, Limits, Prepass, TwoPhaseSettings};
 use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
 
@@ -75,4 +79,41 @@ fn bench(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, bench);
+/// y = sin(x/2) + N(0, 0.01²) at n evenly spaced x over [0, 20] (denser with n, the same
+/// curve).
+fn dense_segment(n: usize) -> (Vec<f64>, Vec<f64>) {
+    let mut rng = rand::rngs::StdRng::seed_from_u64(12);
+    let normal = Normal::new(0.0, 0.01).expect("valid normal");
+    let x: Vec<f64> = (0..n).map(|k| 20.0 * k as f64 / (n - 1) as f64).collect();
+    let y = x
+        .iter()
+        .map(|t| (t / 2.0).sin() + normal.sample(&mut rng))
+        .collect();
+    (x, y)
+}
+
+fn bench_prepass(c: &mut Criterion) {
+    let settings = TwoPhaseSettings::default();
+    let prepass = Prepass::new(settings.function_prepass_rule, settings.function_gcv_gamma)
+        .with_function_ends(settings.function_ends)
+        .with_max_points(settings.function_prepass_points);
+    let none = |_: usize| false;
+    let free = |_: usize| f64::INFINITY;
+    let limits = Limits {
+        keep: &none,
+        allowed: &free,
+    };
+    let mut group = c.benchmark_group("two_phase_binned_prepass");
+    group.sample_size(10);
+    group.sampling_mode(SamplingMode::Flat);
+    for n in sizes(&[125_000usize, 250_000, 500_000, 1_000_000]) {
+        let (x, y) = dense_segment(n);
+        group.throughput(Throughput::Elements(n as u64));
+        group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
+            b.iter(|| denoise_by(settings.denoise, prepass, &x, &y, &limits).expect("pre-pass"))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench, bench_prepass);
