@@ -167,17 +167,19 @@ fn main() -> std::process::ExitCode {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::path::{Path, PathBuf};
+    use std::path::Path;
     use std::process::ExitCode;
 
     fn data(path: &str) -> String {
         format!("{}/data/{path}", env!("CARGO_MANIFEST_DIR"))
     }
 
-    fn temp(name: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!("fair-custom-method-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        dir.join(name)
+    /// A fresh directory for a test's files, removed when the returned guard is dropped.
+    fn scratch_dir() -> tempfile::TempDir {
+        tempfile::Builder::new()
+            .prefix("fair-custom-method-")
+            .tempdir()
+            .unwrap()
     }
 
     /// Runs the command line with the example's catalogue.
@@ -215,7 +217,8 @@ mod tests {
 
     #[test]
     fn laplacian_fairs_a_waterline_and_the_report_has_the_new_criterion() {
-        let out = temp("laplacian.json");
+        let scratch = scratch_dir();
+        let out = scratch.path().join("laplacian.json");
         let code = fair(&[
             "curve",
             &data("hull_gunnerus/waterlines/wl_03.csv"),
@@ -238,7 +241,8 @@ mod tests {
 
     #[test]
     fn nurbs_weights_lowers_the_new_criterion() {
-        let out = temp("weights.json");
+        let scratch = scratch_dir();
+        let out = scratch.path().join("weights.json");
         let code = fair(&[
             "curve",
             &data("airfoil_ua2-180/ua2-180_upper.csv"),
@@ -260,7 +264,8 @@ mod tests {
 
     #[test]
     fn a_laplacian_then_two_phase_pipeline_holds_the_band() {
-        let config = temp("pipeline.toml");
+        let scratch = scratch_dir();
+        let config = scratch.path().join("pipeline.toml");
         std::fs::write(
             &config,
             "[[stage]]\nmethod = \"laplacian\"\npasses = 5\n\n[[stage]]\nmethod = \"two-phase\"\n",
@@ -268,7 +273,10 @@ mod tests {
         .unwrap();
         let input = data("airfoil_ua2-180/ua2-180_upper.csv");
         for kind in ["parametric", "function"] {
-            let (out, points) = (temp(&format!("{kind}.json")), temp(&format!("{kind}.csv")));
+            let (out, points) = (
+                scratch.path().join(format!("{kind}.json")),
+                scratch.path().join(format!("{kind}.csv")),
+            );
             let code = fair(&[
                 "curve",
                 &input,

@@ -18,16 +18,11 @@ fn read_rows(path: &Path) -> Vec<Vec<f64>> {
         .collect()
 }
 
-fn out_dir() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("fair-baselines-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
 /// Runs `fair curve INPUT --method M ARGS -o OUT --report REPORT`; returns the output, the
 /// faired rows and the report (when it succeeded).
 fn fair(input: &Path, method: &str, args: &[&str], tag: &str) -> (Output, Vec<Vec<f64>>, serde_json::Value) {
-    let dir = out_dir();
+    let scratch = crate::scratch_dir("fair-baselines-");
+    let dir = scratch.path();
     let output = dir.join(format!("{tag}.csv"));
     let report = dir.join(format!("{tag}.json"));
     let result = Command::new(env!("CARGO_BIN_EXE_fair"))
@@ -61,9 +56,9 @@ fn assert_ok(output: &Output) {
     );
 }
 
-/// A noisy helix written as x,y,z CSV (one file per test: tests run in parallel).
-fn helix(tag: &str) -> PathBuf {
-    let path = out_dir().join(format!("helix-{tag}.csv"));
+/// A noisy helix written as x,y,z CSV in `dir`.
+fn helix(dir: &Path, tag: &str) -> PathBuf {
+    let path = dir.join(format!("helix-{tag}.csv"));
     let mut text = String::from("x,y,z\n");
     for k in 0..60 {
         let s = k as f64 * 0.2;
@@ -144,7 +139,8 @@ fn smoothing_spline_p_one_interpolates_and_bad_p_exits_2() {
 
 #[test]
 fn smoothing_spline_parametric_3d_with_tolerance() {
-    let input = helix("tolerance");
+    let scratch = crate::scratch_dir("fair-baselines-");
+    let input = helix(scratch.path(), "tolerance");
     let tolerance = 0.004;
     let (out, rows, report) = fair(
         &input,
@@ -174,7 +170,8 @@ fn smoothing_spline_parametric_3d_with_tolerance() {
 
 #[test]
 fn sapidis_farin_keeps_fixed_points_and_lowers_the_largest_jump() {
-    let input = helix("fixed");
+    let scratch = crate::scratch_dir("fair-baselines-");
+    let input = helix(scratch.path(), "fixed");
     let (out, rows, report) = fair(
         &input,
         "sapidis-farin",
@@ -203,15 +200,16 @@ fn sapidis_farin_keeps_fixed_points_and_lowers_the_largest_jump() {
 
 #[test]
 fn sapidis_farin_bad_parameter_exits_2() {
+    let scratch = crate::scratch_dir("fair-baselines-");
     let (out, _, _) = fair(
-        &helix("bad"),
+        &helix(scratch.path(), "bad"),
         "sapidis-farin",
         &["--set", "jump-reduction=-1"],
         "sf-bad",
     );
     assert_eq!(out.status.code(), Some(2));
     let (out, _, _) = fair(
-        &helix("bad2"),
+        &helix(scratch.path(), "bad2"),
         "sapidis-farin",
         &["--set", "max-iterations=many"],
         "sf-bad2",
@@ -250,7 +248,8 @@ fn end_clamps_the_methods_cannot_honour_exit_2_and_those_they_can_are_kept() {
         "{stderr}"
     );
     // Sapidis-Farin keeps G2 ends: end points unchanged, first and last knots never faired.
-    let spiral = helix("g2");
+    let scratch = crate::scratch_dir("fair-baselines-");
+    let spiral = helix(scratch.path(), "g2");
     let (out, rows, report) = fair(
         &spiral,
         "sapidis-farin",
@@ -278,7 +277,8 @@ fn end_clamps_the_methods_cannot_honour_exit_2_and_those_they_can_are_kept() {
 /// smoothing spline (not periodic) would move the two copies apart, so it keeps both.
 #[test]
 fn smoothing_spline_keeps_a_repeated_end_point_closed() {
-    let path = out_dir().join("closed-input.csv");
+    let scratch = crate::scratch_dir("fair-baselines-");
+    let path = scratch.path().join("closed-input.csv");
     let mut rows: Vec<String> = (0..24)
         .map(|k| {
             let t = k as f64 * std::f64::consts::TAU / 24.0;

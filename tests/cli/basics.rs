@@ -1,20 +1,30 @@
 //! The `fair` binary on bad input: exit status 2, one line on standard error naming the file
 //! (and the line where there is one), never a panic or a backtrace.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use std::sync::atomic::{AtomicUsize, Ordering};
 
-static COUNTER: AtomicUsize = AtomicUsize::new(0);
+/// A file named `name` in a fresh scratch directory; reads as its path (`Deref<Target = Path>`),
+/// and the directory goes with everything in it when this is dropped.
+struct TempFile {
+    path: PathBuf,
+    _dir: tempfile::TempDir,
+}
+
+impl std::ops::Deref for TempFile {
+    type Target = Path;
+
+    fn deref(&self) -> &Path {
+        &self.path
+    }
+}
 
 /// A fresh file under the system temp directory holding `text`.
-fn temp_file(name: &str, text: &str) -> PathBuf {
-    let unique = COUNTER.fetch_add(1, Ordering::Relaxed);
-    let dir = std::env::temp_dir().join(format!("fair-cli-test-{}-{unique}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    let path = dir.join(name);
+fn temp_file(name: &str, text: &str) -> TempFile {
+    let dir = crate::scratch_dir("fair-cli-test-");
+    let path = dir.path().join(name);
     std::fs::write(&path, text).expect("temp file");
-    path
+    TempFile { path, _dir: dir }
 }
 
 fn fair(args: &[&str]) -> Output {
@@ -113,7 +123,8 @@ fn bad_surface_grid() {
 
 #[test]
 fn missing_file() {
-    let path = std::env::temp_dir().join(format!("fair-cli-test-{}-does-not-exist.csv", std::process::id()));
+    let dir = crate::scratch_dir("fair-cli-test-");
+    let path = dir.path().join("does-not-exist.csv");
     let p = path.to_str().unwrap();
     assert_bad_input(&fair(&["curve", p]), &[p, "cannot read"]);
     assert_bad_input(&fair(&["inspect", p]), &[p, "cannot read"]);

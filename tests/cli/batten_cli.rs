@@ -1,11 +1,7 @@
 //! `fair curve --method batten` end to end through the binary, on Okada's Table 1 data
 //! (11 points in 3D, points 3, 6 and 8 of the paper fixed, i.e. indices 2, 5 and 7).
 
-use std::path::PathBuf;
 use std::process::{Command, Output};
-use std::sync::atomic::{AtomicUsize, Ordering};
-
-static COUNTER: AtomicUsize = AtomicUsize::new(0);
 
 /// Okada (1969) Table 1, DATA-X, DATA-Y, DATA-Z.
 const OKADA: [[f64; 3]; 11] = [
@@ -23,9 +19,8 @@ const OKADA: [[f64; 3]; 11] = [
 ];
 
 fn run(args: &[&str]) -> (Output, Vec<Vec<f64>>, serde_json::Value) {
-    let unique = COUNTER.fetch_add(1, Ordering::Relaxed);
-    let dir: PathBuf = std::env::temp_dir().join(format!("fair-batten-{}-{unique}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let scratch = crate::scratch_dir("fair-batten-");
+    let dir = scratch.path();
     let input = dir.join("okada.csv");
     let text: String = std::iter::once("x,y,z\n".to_string())
         .chain(OKADA.iter().map(|r| format!("{},{},{}\n", r[0], r[1], r[2])))

@@ -17,12 +17,6 @@ fn data(relative: &str) -> String {
     format!("{}/data/{relative}", env!("CARGO_MANIFEST_DIR"))
 }
 
-fn out_dir() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("fair-cad-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
 fn fair(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_fair"))
         .args(args)
@@ -102,7 +96,8 @@ fn faired_and_file(
     extra: &[&str],
     cad_extra: &[&str],
 ) -> (Vec<Vec3>, cad::CadModel, serde_json::Value) {
-    let dir = out_dir();
+    let scratch = crate::scratch_dir("fair-cad-cli-");
+    let dir = scratch.path();
     let stem = file.replace('.', "-");
     let csv = dir.join(format!("{stem}.csv"));
     let target = dir.join(file);
@@ -261,8 +256,9 @@ fn grid(dir: &Path) -> PathBuf {
 
 #[test]
 fn a_surface_is_written_as_its_bicubic_b_spline_surface() {
-    let dir = out_dir();
-    let input = grid(&dir);
+    let scratch = crate::scratch_dir("fair-cad-cli-");
+    let dir = scratch.path();
+    let input = grid(dir);
     let input = input.to_str().unwrap();
     let csv = dir.join("panel-faired.csv");
     ok(&fair(&["surface", input, "-q", "-o", csv.to_str().unwrap()]));
@@ -310,9 +306,10 @@ fn a_surface_is_written_as_its_bicubic_b_spline_surface() {
 
 #[test]
 fn bad_combinations_exit_2_naming_the_option_and_write_nothing() {
-    let dir = out_dir();
+    let scratch = crate::scratch_dir("fair-cad-cli-");
+    let dir = scratch.path();
     let input = data("airfoil_r140/r140_upper.csv");
-    let panel = grid(&dir);
+    let panel = grid(dir);
     let igs = dir.join("never.igs");
     let igs = igs.to_str().unwrap();
     let dxf = dir.join("never.dxf");

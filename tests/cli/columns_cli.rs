@@ -7,11 +7,9 @@
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("fair-columns-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh scratch directory for a test's files, removed when the returned guard is dropped.
+fn temp_dir(name: &str) -> tempfile::TempDir {
+    crate::scratch_dir(&format!("fair-columns-{name}-"))
 }
 
 fn fair(args: &[&str]) -> Output {
@@ -66,7 +64,8 @@ fn header_order_and_label_columns_round_trip_untouched() {
         ("Y,X", |_, p| format!("{},{}", p[1], p[0])),
     ];
     for (index, (header, row)) in layouts.iter().enumerate() {
-        let dir = temp_dir(&format!("layout{index}"));
+        let scratch = temp_dir(&format!("layout{index}"));
+        let dir = scratch.path();
         let text: String = std::iter::once(header.to_string())
             .chain(points.iter().enumerate().map(|(i, p)| row(i, *p)))
             .map(|l| l + "\n")
@@ -94,7 +93,8 @@ fn header_order_and_label_columns_round_trip_untouched() {
 
 #[test]
 fn a_header_without_coordinates_or_with_a_twice_named_column_is_refused() {
-    let dir = temp_dir("badheader");
+    let scratch = temp_dir("badheader");
+    let dir = scratch.path();
     for (name, text, needle) in [
         ("a.csv", "a,b\n1,2\n3,4\n5,6\n", "no `x` column"),
         ("b.csv", "x,y,x\n1,2,3\n3,4,5\n5,6,7\n", "twice"),
@@ -113,7 +113,8 @@ fn a_header_without_coordinates_or_with_a_twice_named_column_is_refused() {
 /// x (a label now) and z come back untouched, in place.
 #[test]
 fn columns_choose_the_coordinates_and_write_back_in_place() {
-    let dir = temp_dir("columns");
+    let scratch = temp_dir("columns");
+    let dir = scratch.path();
     let mut text = String::from("x,y,z,source\n");
     for i in 0..40 {
         let z = i as f64 * 0.125;
@@ -167,7 +168,8 @@ fn columns_choose_the_coordinates_and_write_back_in_place() {
 
 #[test]
 fn a_headerless_file_is_read_by_position_and_says_so() {
-    let dir = temp_dir("headerless");
+    let scratch = temp_dir("headerless");
+    let dir = scratch.path();
     let input = dir.join("plain.csv");
     let text: String = function_points(8)
         .iter()
@@ -197,7 +199,8 @@ fn a_headerless_file_is_read_by_position_and_says_so() {
 
 #[test]
 fn the_output_format_follows_the_extension() {
-    let dir = temp_dir("extension");
+    let scratch = temp_dir("extension");
+    let dir = scratch.path();
     let input = dir.join("in.csv");
     let points = function_points(10);
     let text: String = std::iter::once("x,y,source\n".to_string())
@@ -246,7 +249,8 @@ fn the_output_format_follows_the_extension() {
 
 #[test]
 fn a_folder_batch_takes_curve_files_and_lists_the_rest() {
-    let dir = temp_dir("folder");
+    let scratch = temp_dir("folder");
+    let dir = scratch.path();
     let text: String = std::iter::once("x,y\n".to_string())
         .chain(function_points(10).iter().map(|p| format!("{},{}\n", p[0], p[1])))
         .collect();
@@ -284,7 +288,8 @@ fn usage_mistakes_are_named() {
 /// `cargo bench -p fair-cli --bench cli`, at 10⁴ … 10⁶ points.)
 #[test]
 fn a_noisy_segment_fairs_with_every_function_method_and_reports_its_accuracy() {
-    let dir = temp_dir("big");
+    let scratch = temp_dir("big");
+    let dir = scratch.path();
     let (n, sigma) = (20_000, 1.0);
     let mut text = String::from("x,y\n");
     for [x, y] in crate::noisy_segment::noisy_segment(n, sigma, 20_261_122) {

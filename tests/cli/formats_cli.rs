@@ -3,14 +3,11 @@
 //! count and order of points, and the report is valid JSON.
 
 use std::io::Write;
-use std::path::PathBuf;
 use std::process::{Command, Output, Stdio};
 
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("fair-formats-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh scratch directory for a test's files, removed when the returned guard is dropped.
+fn temp_dir(name: &str) -> tempfile::TempDir {
+    crate::scratch_dir(&format!("fair-formats-{name}-"))
 }
 
 /// A method wired in every build of the command, kept quick.
@@ -60,7 +57,8 @@ fn numbers(line: &str) -> Vec<f64> {
 /// Writes `text` to a fresh file called `file_name`, runs `fair curve FILE -o OUT -q`, asserts
 /// success and returns what was written to OUT.
 fn round_trip(file_name: &str, text: &str) -> String {
-    let dir = temp_dir(file_name);
+    let scratch = temp_dir(file_name);
+    let dir = scratch.path();
     let input = dir.join(file_name);
     std::fs::write(&input, text).unwrap();
     let output = dir.join(format!("out-{file_name}"));
@@ -99,7 +97,8 @@ fn csv_with_header_file_and_stdin() {
         .chain(pts.iter().map(|p| format!("{},{}", p[0], p[1])))
         .collect::<Vec<_>>()
         .join("\n");
-    let dir = temp_dir("csv");
+    let scratch = temp_dir("csv");
+    let dir = scratch.path();
     let input = dir.join("in.csv");
     std::fs::write(&input, &text).unwrap();
     let output = dir.join("out.csv");

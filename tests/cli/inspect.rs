@@ -9,11 +9,9 @@ fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("fair-inspect-test-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
+/// A fresh scratch directory for a test's files, removed when the returned guard is dropped.
+fn temp_dir(name: &str) -> tempfile::TempDir {
+    crate::scratch_dir(&format!("fair-inspect-test-{name}-"))
 }
 
 fn fair(args: &[&str]) -> Output {
@@ -223,7 +221,8 @@ fn close(got: f64, want: f64) -> bool {
 /// Runs `fair inspect` with --report and --plot; checks the report against `expected` and
 /// the SVG's structure.
 fn check_inspect(relative: &str, kind: &str, expected: Expected) {
-    let dir = temp_dir(&relative.replace('/', "_"));
+    let scratch = temp_dir(&relative.replace('/', "_"));
+    let dir = scratch.path();
     let (report, plot) = (dir.join("report.json"), dir.join("plot.svg"));
     let input = root().join(relative);
     let output = fair(&[
@@ -303,7 +302,8 @@ fn inspect_parametric_kind_matches_the_definitions() {
 
 #[test]
 fn inspect_surface_reports_null_counts() {
-    let dir = temp_dir("surface");
+    let scratch = temp_dir("surface");
+    let dir = scratch.path();
     let report = dir.join("report.json");
     let input = root().join("data/surface_utah_teapot/teapot_body_control_net.csv");
     let output = fair(&[
@@ -326,7 +326,8 @@ fn inspect_surface_reports_null_counts() {
 
 #[test]
 fn inspect_repeated_points_exit_2_naming_the_file() {
-    let dir = temp_dir("repeated");
+    let scratch = temp_dir("repeated");
+    let dir = scratch.path();
     let input = dir.join("repeated.csv");
     std::fs::write(&input, "x,y\n0,0\n1,1\n1,1\n0,2\n").unwrap();
     let output = fair(&["inspect", input.to_str().unwrap(), "--kind", "parametric"]);
@@ -341,7 +342,8 @@ fn inspect_repeated_points_exit_2_naming_the_file() {
 
 #[test]
 fn demo_exits_0_and_writes_plots() {
-    let dir = temp_dir("demo");
+    let scratch = temp_dir("demo");
+    let dir = scratch.path();
     let output = fair(&["demo", "--out", dir.to_str().unwrap()]);
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(
@@ -353,7 +355,7 @@ fn demo_exits_0_and_writes_plots() {
         stdout.contains("ua2-180-upper") && stdout.contains("teapot-body"),
         "{stdout}"
     );
-    let svgs: Vec<_> = std::fs::read_dir(&dir)
+    let svgs: Vec<_> = std::fs::read_dir(dir)
         .unwrap()
         .filter_map(|e| e.ok())
         .filter(|e| e.path().extension().is_some_and(|x| x == "svg"))

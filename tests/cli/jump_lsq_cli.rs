@@ -14,15 +14,10 @@ fn read_rows(path: &Path) -> Vec<Vec<f64>> {
         .collect()
 }
 
-fn out_dir() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("fair-jump-lsq-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
 /// Runs `fair curve INPUT --method jump-lsq ARGS -o OUT --report REPORT`.
 fn fair(input: &Path, args: &[&str], tag: &str) -> (Output, Vec<Vec<f64>>, serde_json::Value) {
-    let dir = out_dir();
+    let scratch = crate::scratch_dir("fair-jump-lsq-");
+    let dir = scratch.path();
     let output = dir.join(format!("{tag}.csv"));
     let report = dir.join(format!("{tag}.json"));
     let result = Command::new(env!("CARGO_BIN_EXE_fair"))
@@ -60,17 +55,18 @@ fn noise(k: usize) -> f64 {
 
 const SIGMA: f64 = 0.01;
 
-/// y = sin 3x over [0, 6] at 300 points, clean and with noise of standard deviation 0.01.
+/// y = sin 3x over [0, 6] at 300 points, clean and with noise of standard deviation 0.01 (the
+/// noisy one written in `dir`).
 /// (Not sin x: over [0, 6] that is so close to a spline with jumps linear in the knot index,
 /// the method's null space, that even λ → ∞ moves the points by less than the noise.)
-fn sine() -> (PathBuf, Vec<[f64; 2]>) {
+fn sine(dir: &Path) -> (PathBuf, Vec<[f64; 2]>) {
     let clean: Vec<[f64; 2]> = (0..300)
         .map(|k| {
             let x = 6.0 * k as f64 / 299.0;
             [x, (3.0 * x).sin()]
         })
         .collect();
-    let path = out_dir().join("sine.csv");
+    let path = dir.join("sine.csv");
     let mut text = String::from("x,y\n");
     for (k, p) in clean.iter().enumerate() {
         text.push_str(&format!("{},{}\n", p[0], p[1] + SIGMA * noise(k)));
@@ -91,7 +87,8 @@ fn rms_to(rows: &[Vec<f64>], clean: &[[f64; 2]]) -> f64 {
 
 #[test]
 fn a_noisy_function_is_faired_closer_to_its_clean_twin() {
-    let (input, clean) = sine();
+    let scratch = crate::scratch_dir("fair-jump-lsq-");
+    let (input, clean) = sine(scratch.path());
     let original = read_rows(&input);
     let (out, rows, report) = fair(&input, &[], "sine");
     assert_ok(&out);
@@ -121,7 +118,8 @@ fn a_noisy_function_is_faired_closer_to_its_clean_twin() {
 
 #[test]
 fn set_overrides_the_rule_and_bad_values_exit_2() {
-    let (input, _) = sine();
+    let scratch = crate::scratch_dir("fair-jump-lsq-");
+    let (input, _) = sine(scratch.path());
     let original = read_rows(&input);
     let (out, rows, report) = fair(&input, &["--set", "lambda=0"], "given");
     assert_ok(&out);
@@ -174,7 +172,8 @@ fn set_overrides_the_rule_and_bad_values_exit_2() {
 
 #[test]
 fn a_3d_curve_keeps_fixed_points_and_the_band_and_a_closed_polygon_stays_closed() {
-    let path = out_dir().join("helix.csv");
+    let scratch = crate::scratch_dir("fair-jump-lsq-");
+    let path = scratch.path().join("helix.csv");
     let mut text = String::from("x,y,z\n");
     for k in 0..80 {
         let s = k as f64 * 0.15;
@@ -212,7 +211,7 @@ fn a_3d_curve_keeps_fixed_points_and_the_band_and_a_closed_polygon_stays_closed(
     assert!(report["pinned"].as_u64().unwrap() + report["reweighted"].as_u64().unwrap() > 0);
 
     // A noisy circle given with its first point repeated: periodic, and closed afterwards.
-    let path = out_dir().join("circle.csv");
+    let path = scratch.path().join("circle.csv");
     let mut text = String::from("x,y\n");
     let n = 60;
     for k in 0..=n {

@@ -2,35 +2,31 @@
 //! the bound the user did not ask to exceed (the data's noise and decimal step, or a wider
 //! `--tolerance`), with a warning on standard error unless `-q` (issue 18).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-fn dir() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("fair-largest-move-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
 /// A straight line typed with one decimal (y = k/2) and one point pushed 3 units off it:
-/// no noise, a decimal step of 0.1, so the data's bound is 0.1.
-fn bumped_line() -> PathBuf {
+/// no noise, a decimal step of 0.1, so the data's bound is 0.1; written in `dir`.
+fn bumped_line(dir: &Path) -> PathBuf {
     let mut text = String::from("x,y\n");
     for k in 0..41 {
         let y = 0.5 * k as f64 + if k == 20 { 3.0 } else { 0.0 };
         text.push_str(&format!("{k},{y}\n"));
     }
-    let path = dir().join("bumped.csv");
+    let path = dir.join("bumped.csv");
     std::fs::write(&path, text).unwrap();
     path
 }
 
 fn fair(method: &str, args: &[&str], tag: &str) -> (Output, serde_json::Value) {
-    let report = dir().join(format!("{tag}.json"));
+    let scratch = crate::scratch_dir("fair-largest-move-");
+    let dir = scratch.path();
+    let report = dir.join(format!("{tag}.json"));
     let output = Command::new(env!("CARGO_BIN_EXE_fair"))
         .arg("curve")
-        .arg(bumped_line())
+        .arg(bumped_line(dir))
         .args(["--method", method, "-o"])
-        .arg(dir().join(format!("{tag}.csv")))
+        .arg(dir.join(format!("{tag}.csv")))
         .arg("--report")
         .arg(&report)
         .args(args)

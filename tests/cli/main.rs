@@ -18,3 +18,13 @@ mod serve;
 mod strain_energy_cli;
 mod surface_cli;
 mod two_phase_cli;
+
+/// A fresh directory `$TMPDIR/<prefix>XXXXXX` for a test's files, removed with everything in it
+/// when the returned guard is dropped: keep it in a variable for as long as the test uses the
+/// directory, and it goes when the test ends, passed or failed (a panic unwinds through it).
+fn scratch_dir(prefix: &str) -> tempfile::TempDir {
+    tempfile::Builder::new()
+        .prefix(prefix)
+        .tempdir()
+        .expect("scratch directory")
+}

@@ -1,7 +1,6 @@
 //! `fair curve --method nurbs-weights` end to end: the points come back unchanged, the report's
 //! curve is a NURBS with positive weights, and the optimised criterion does not rise.
 
-use std::path::PathBuf;
 use std::process::Command;
 
 fn data(relative: &str) -> String {
@@ -18,15 +17,10 @@ fn read_rows(path: &str) -> Vec<Vec<f64>> {
         .collect()
 }
 
-fn out_dir() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("fair-nurbs-weights-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
 fn run(criterion: &str, law: &str) {
     let input = data("airfoil_naca2412/naca2412_upper.csv");
-    let dir = out_dir();
+    let scratch = crate::scratch_dir("fair-nurbs-weights-");
+    let dir = scratch.path();
     let output = dir.join(format!("{criterion}-{law}.csv"));
     let report = dir.join(format!("{criterion}-{law}.json"));
     let status = Command::new(env!("CARGO_BIN_EXE_fair"))
@@ -108,7 +102,8 @@ fn unknown_criterion_exits_2() {
 
 #[test]
 fn repeated_point_exits_2_naming_the_file() {
-    let dir = out_dir();
+    let scratch = crate::scratch_dir("fair-nurbs-weights-");
+    let dir = scratch.path();
     let path = dir.join("repeated.csv");
     std::fs::write(&path, "x,y\n0,0\n1,1\n1,1\n2,0\n3,1\n").unwrap();
     let status = Command::new(env!("CARGO_BIN_EXE_fair"))
@@ -128,7 +123,8 @@ fn repeated_point_exits_2_naming_the_file() {
 /// energies are all finite and whose weights stay within the law's bound.
 #[test]
 fn straight_runs_end_with_finite_energies() {
-    let dir = out_dir();
+    let scratch = crate::scratch_dir("fair-nurbs-weights-");
+    let dir = scratch.path();
     let line = dir.join("line.csv");
     let rows: String = (0..7).map(|k| format!("{k},{k}\n")).collect();
     std::fs::write(&line, format!("x,y\n{rows}")).unwrap();

@@ -11,8 +11,8 @@ fn data(relative: &str) -> String {
 /// Runs per-point Ek with `solver` and returns the report.
 fn run(solver: &str) -> serde_json::Value {
     let input = data("airfoil_naca2412/naca2412_upper.csv");
-    let dir = std::env::temp_dir().join(format!("fair-nurbs-solver-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let scratch = crate::scratch_dir("fair-nurbs-solver-");
+    let dir = scratch.path();
     let report = dir.join(format!("{solver}.json"));
     let output = Command::new(env!("CARGO_BIN_EXE_fair"))
         .args(["curve", &input, "--method", "nurbs-weights", "--quiet"])

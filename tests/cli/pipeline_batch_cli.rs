@@ -3,18 +3,16 @@
 //! malformed file, a JSON-lines stream on standard input).
 
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output, Stdio};
 
 fn data(relative: &str) -> String {
     format!("{}/data/{relative}", env!("CARGO_MANIFEST_DIR"))
 }
 
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("fair-pipeline-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh scratch directory for a test's files, removed when the returned guard is dropped.
+fn temp_dir(name: &str) -> tempfile::TempDir {
+    crate::scratch_dir(&format!("fair-pipeline-{name}-"))
 }
 
 fn fair(args: &[&str]) -> Output {
@@ -47,7 +45,8 @@ const QUICK: &str = "max-iterations = 30\n";
 
 #[test]
 fn a_toml_pipeline_runs_its_stages_in_order_and_reports_each() {
-    let dir = temp_dir("toml");
+    let scratch = temp_dir("toml");
+    let dir = scratch.path();
     let config = dir.join("pipeline.toml");
     std::fs::write(
         &config,
@@ -83,7 +82,8 @@ fn a_toml_pipeline_runs_its_stages_in_order_and_reports_each() {
 
 #[test]
 fn a_json_config_is_read_like_toml_and_print_config_round_trips() {
-    let dir = temp_dir("json");
+    let scratch = temp_dir("json");
+    let dir = scratch.path();
     let config = dir.join("pipeline.json");
     std::fs::write(
         &config,
@@ -166,7 +166,8 @@ fn print_config_of_a_plain_command_line() {
 
 #[test]
 fn config_mistakes_exit_two_naming_the_file_and_line() {
-    let dir = temp_dir("bad");
+    let scratch = temp_dir("bad");
+    let dir = scratch.path();
     let input = data("airfoil_naca2412/naca2412_upper.csv");
     let cases: [(&str, &str, &str); 4] = [
         (
@@ -208,7 +209,8 @@ fn config_mistakes_exit_two_naming_the_file_and_line() {
 
 #[test]
 fn a_directory_batch_reports_every_curve_and_the_bad_one_without_stopping() {
-    let dir = temp_dir("batch");
+    let scratch = temp_dir("batch");
+    let dir = scratch.path();
     let inputs = dir.join("in");
     std::fs::create_dir_all(&inputs).unwrap();
     std::fs::copy(data("airfoil_naca2412/naca2412_upper.csv"), inputs.join("a.csv")).unwrap();
@@ -306,7 +308,8 @@ fn a_json_lines_stream_on_standard_input_gives_one_line_per_curve() {
 
 #[test]
 fn a_pipeline_that_moves_points_keeps_fixed_points_and_the_tolerance_band_over_all_stages() {
-    let dir = temp_dir("moving");
+    let scratch = temp_dir("moving");
+    let dir = scratch.path();
     let config = dir.join("pipeline.toml");
     let band = 0.05;
     std::fs::write(

@@ -4,15 +4,10 @@
 
 use std::path::PathBuf;
 use std::process::{Command, Output};
-use std::sync::atomic::{AtomicUsize, Ordering};
 
-static COUNTER: AtomicUsize = AtomicUsize::new(0);
-
-fn temp_dir() -> PathBuf {
-    let unique = COUNTER.fetch_add(1, Ordering::Relaxed);
-    let dir = std::env::temp_dir().join(format!("fair-strain-energy-{}-{unique}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh scratch directory for a test's files, removed when the returned guard is dropped.
+fn temp_dir() -> tempfile::TempDir {
+    crate::scratch_dir("fair-strain-energy-")
 }
 
 /// A noisy arc of `n` points (radius 10, pseudo-random noise 0.05), planar or lifted in z.
@@ -59,8 +54,9 @@ struct Run {
 }
 
 fn run(rows: &[Vec<f64>], args: &[&str]) -> Run {
-    let dir = temp_dir();
-    let input = write_csv(&dir, rows);
+    let scratch = temp_dir();
+    let dir = scratch.path();
+    let input = write_csv(dir, rows);
     let out = dir.join("out.csv");
     let report = dir.join("report.json");
     let output = Command::new(env!("CARGO_BIN_EXE_fair"))
@@ -236,8 +232,8 @@ fn clamp_ends() {
 #[test]
 fn config_file_parameters() {
     let rows = noisy_arc(40, false);
-    let dir = temp_dir();
-    let config = dir.join("se.toml");
+    let scratch = temp_dir();
+    let config = scratch.path().join("se.toml");
     std::fs::write(
         &config,
         "max-iterations = 100000\n[strain-energy]\nenergy-tolerance = 0.5\n",

@@ -5,10 +5,9 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-fn out_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("fair-surface-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh scratch directory for a test's files, removed when the returned guard is dropped.
+fn out_dir(name: &str) -> tempfile::TempDir {
+    crate::scratch_dir(&format!("fair-surface-{name}-"))
 }
 
 /// A 9 × 8 height field with two bumps, as `i,j,x,y,z`.
@@ -56,9 +55,11 @@ struct Run {
     report: serde_json::Value,
 }
 
-fn fair_surface(name: &str, extra: &[&str]) -> (Run, Vec<[f64; 5]>, PathBuf) {
-    let dir = out_dir(name);
-    let input = write_grid(&dir);
+/// Fairs the grid with `extra` options; returns the run, the input grid and the plot's SVG text.
+fn fair_surface(name: &str, extra: &[&str]) -> (Run, Vec<[f64; 5]>, String) {
+    let scratch = out_dir(name);
+    let dir = scratch.path();
+    let input = write_grid(dir);
     let (out, report, plot) = (dir.join("out.csv"), dir.join("report.json"), dir.join("plot.svg"));
     let mut args = vec!["surface", input.to_str().unwrap(), "--quiet"];
     args.extend_from_slice(extra);
@@ -83,7 +84,7 @@ fn fair_surface(name: &str, extra: &[&str]) -> (Run, Vec<[f64; 5]>, PathBuf) {
             report,
         },
         read_grid(&input),
-        plot,
+        std::fs::read_to_string(plot).unwrap(),
     )
 }
 
@@ -93,7 +94,7 @@ fn distance(a: &[f64; 5], b: &[f64; 5]) -> f64 {
 
 #[test]
 fn zhang_cheng_automatic_fairs_the_grid_and_draws_highlight_lines() {
-    let (run, input, plot) = fair_surface("automatic", &["--method", "zhang-cheng"]);
+    let (run, input, svg) = fair_surface("automatic", &["--method", "zhang-cheng"]);
     assert_eq!(run.output.len(), input.len());
     for (a, b) in run.output.iter().zip(&input) {
         assert_eq!((a[0], a[1]), (b[0], b[1]), "same order");
@@ -146,7 +147,6 @@ fn zhang_cheng_automatic_fairs_the_grid_and_draws_highlight_lines() {
     assert_eq!(r["curve"]["rows"], 9);
     assert_eq!(r["curve"]["columns"], 8);
     // The plot: highlight lines before and after, and both z_ij maps.
-    let svg = std::fs::read_to_string(plot).unwrap();
     let doc = roxmltree::Document::parse(&svg).unwrap();
     let text: String = doc
         .descendants()
@@ -223,8 +223,8 @@ fn constraints_hold() {
 
 #[test]
 fn bad_options_exit_2_with_one_line() {
-    let dir = out_dir("bad");
-    let input = write_grid(&dir);
+    let scratch = out_dir("bad");
+    let input = write_grid(scratch.path());
     let input = input.to_str().unwrap();
     for args in [
         vec!["surface", input, "--method", "zhang-cheng", "--points", "0"],
@@ -285,8 +285,9 @@ fn the_smoothing_baseline_matches_a_displacement_and_is_listed() {
     let p_u = r["p_u"].as_f64().unwrap();
     assert!(p_u > 0.0 && p_u < 1.0);
     // p and displacement together are refused: exit 2, one line naming the parameter.
-    let dir = out_dir("smoothing-spline-bad");
-    let grid = write_grid(&dir);
+    let scratch = out_dir("smoothing-spline-bad");
+    let dir = scratch.path();
+    let grid = write_grid(dir);
     let bad = fair(&[
         "surface",
         grid.to_str().unwrap(),

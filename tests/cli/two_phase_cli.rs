@@ -8,10 +8,9 @@ use std::process::{Command, Output};
 use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
 
-fn out_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("fair-two-phase-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh scratch directory for a test's files, removed when the returned guard is dropped.
+fn out_dir(name: &str) -> tempfile::TempDir {
+    crate::scratch_dir(&format!("fair-two-phase-{name}-"))
 }
 
 fn write_csv(path: &Path, rows: &[[f64; 2]]) {
@@ -66,8 +65,9 @@ fn noisy_function(dir: &Path) -> (PathBuf, Vec<[f64; 2]>) {
 
 #[test]
 fn function_input_honours_fixed_points_and_tolerance() {
-    let dir = out_dir("function");
-    let (input, rows) = noisy_function(&dir);
+    let scratch = out_dir("function");
+    let dir = scratch.path();
+    let (input, rows) = noisy_function(dir);
     let (output, report) = (dir.join("out.csv"), dir.join("report.json"));
     let tolerance = 0.002;
     let result = fair(&[
@@ -127,7 +127,8 @@ fn function_input_honours_fixed_points_and_tolerance() {
 
 #[test]
 fn closed_parametric_input_is_faired() {
-    let dir = out_dir("closed");
+    let scratch = out_dir("closed");
+    let dir = scratch.path();
     let n = 160;
     let e = noise(8, n, 0.006);
     let rows: Vec<[f64; 2]> = (0..n)
@@ -178,8 +179,9 @@ fn closed_parametric_input_is_faired() {
 
 #[test]
 fn unsupported_clamps_and_bad_parameters_exit_2() {
-    let dir = out_dir("errors");
-    let (input, _) = noisy_function(&dir);
+    let scratch = out_dir("errors");
+    let dir = scratch.path();
+    let (input, _) = noisy_function(dir);
     let input = input.to_str().unwrap();
     for clamp in ["g1", "g2"] {
         let result = fair(&["curve", input, "--method", "two-phase", "--clamp-ends", clamp]);

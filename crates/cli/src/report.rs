@@ -274,8 +274,8 @@ mod tests {
 
     #[test]
     fn written_json_is_the_json_text() {
-        let dir = std::env::temp_dir().join(format!("fair-report-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let scratch = tempfile::Builder::new().prefix("fair-report-").tempdir().unwrap();
+        let dir = scratch.path();
         let path = dir.join("report.json");
         let report = sample();
         report.write_json(path.to_str().unwrap()).unwrap();
@@ -284,7 +284,6 @@ mod tests {
         let e = report.write_json(missing.to_str().unwrap()).unwrap_err();
         assert_eq!(e.exit_code(), 2);
         assert!(e.one_line().contains("report.json"), "{}", e.one_line());
-        let _ = std::fs::remove_dir_all(&dir);
     }
 
     fn sample() -> Report {

@@ -91,7 +91,8 @@ fn methods_are_the_catalogue_with_defaults() {
 
 #[test]
 fn datasets_are_listed_and_read_as_the_command_reads_them() {
-    let dir = scratch("datasets");
+    let dir_guard = scratch("datasets");
+    let dir = dir_guard.path();
     std::fs::create_dir_all(dir.join("lines")).unwrap();
     std::fs::copy(root().join(WL03), dir.join("lines/wl_03.csv")).unwrap();
     std::fs::write(dir.join("lines/readme.md"), "not data").unwrap();
@@ -142,13 +143,13 @@ fn datasets_are_listed_and_read_as_the_command_reads_them() {
         .as_array()
         .unwrap()
         .is_empty());
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]
 fn inspect_takes_a_file_text_points_or_a_grid() {
     let server = Served::start(&[]);
-    let dir = scratch("inspect");
+    let dir_guard = scratch("inspect");
+    let dir = dir_guard.path();
     let text = std::fs::read_to_string(root().join(WL03)).unwrap();
     let expected = command_report(&["inspect", &file(WL03)], &dir.join("r.json"));
     let by_text = post(
@@ -187,7 +188,6 @@ fn inspect_takes_a_file_text_points_or_a_grid() {
     );
     assert_eq!(grid.status, 200);
     assert_eq!(grid.json()["report"], teapot["report"]);
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// A fairing request and the command line it stands for.
@@ -252,7 +252,8 @@ fn curve_cases() -> Vec<Case> {
 #[test]
 fn curve_fairing_answers_the_command_report_and_points() {
     let server = Served::start(&[]);
-    let dir = scratch("curve");
+    let dir_guard = scratch("curve");
+    let dir = dir_guard.path();
     for (k, case) in curve_cases().into_iter().enumerate() {
         let loaded = get(&server.address, &format!("/api/datasets/{}", case.dataset)).json();
         let mut body = case.body.clone();
@@ -284,13 +285,13 @@ fn curve_fairing_answers_the_command_report_and_points() {
             case.dataset
         );
     }
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]
 fn surface_fairing_answers_the_command_report_and_grid() {
     let server = Served::start(&[]);
-    let dir = scratch("surface");
+    let dir_guard = scratch("surface");
+    let dir = dir_guard.path();
     let teapot = get(&server.address, "/api/datasets/teapot-body").json();
     for (k, (body, args)) in [
         (json!({ "constraints": { "points": [20, 21, 33, 34] } }), vec!["--points", "20,21,33,34"]),
@@ -326,7 +327,6 @@ fn surface_fairing_answers_the_command_report_and_grid() {
         assert_eq!(answer["drawing"]["before"], teapot["drawing"]);
         assert!(!answer["drawing"]["after"]["highlights"]["lines"].as_array().unwrap().is_empty());
     }
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]
@@ -687,7 +687,8 @@ fn points_keep_their_bits_through_the_api() {
 #[test]
 fn cad_download_is_the_command_s_cad_file() {
     let server = Served::start(&[]);
-    let dir = scratch("cad");
+    let dir_guard = scratch("cad");
+    let dir = dir_guard.path();
     let loaded = get(&server.address, "/api/datasets/gunnerus-wl03").json();
     let body = json!({
         "name": "wl_03.csv",

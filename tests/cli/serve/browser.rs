@@ -198,7 +198,8 @@ fn the_page_fairs_a_clicked_point_and_undoes_it() {
     };
     let shots = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("serve-browser");
     std::fs::create_dir_all(&shots).unwrap();
-    let profile = scratch("chromium-profile");
+    let profile_guard = scratch("chromium-profile");
+    let profile = profile_guard.path();
     let server = Served::start(&[]);
     let driver = Driver::start(&chromedriver);
     let created = driver.call(
@@ -251,7 +252,8 @@ fn the_page_fairs_a_clicked_point_and_undoes_it() {
     assert_eq!(comb_after.matches('M').count() as u64, teeth.as_u64().unwrap());
 
     // The numbers shown are the command's report for the same point.
-    let dir = scratch("browser-command");
+    let dir_guard = scratch("browser-command");
+    let dir = dir_guard.path();
     let out = dir.join("faired.csv");
     let path = root().join(WL03).display().to_string();
     let point = POINT.to_string();
@@ -330,6 +332,4 @@ fn the_page_fairs_a_clicked_point_and_undoes_it() {
 
     driver.call("DELETE", &format!("/session/{}", session.id), None);
     assert_eq!(get(&server.address, "/api/methods").status, 200);
-    std::fs::remove_dir_all(&dir).ok();
-    std::fs::remove_dir_all(&profile).ok();
 }

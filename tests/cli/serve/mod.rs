@@ -61,12 +61,9 @@ pub fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// A fresh directory for a test's files.
-pub fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("fair-serve-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("scratch dir");
-    dir
+/// A fresh directory for a test's files, removed when the returned guard is dropped.
+pub fn scratch(name: &str) -> tempfile::TempDir {
+    crate::scratch_dir(&format!("fair-serve-{name}-"))
 }
 
 /// Runs `fair ARGS` and returns the report it wrote with `--report`, checking success.

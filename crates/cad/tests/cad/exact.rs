@@ -104,8 +104,11 @@ fn a_surface_is_written_exactly_through_its_grid() {
 
 #[test]
 fn files_are_named_by_extension_and_read_back_from_disk() {
-    let directory = std::env::temp_dir().join(format!("fair-cad-test-{}", std::process::id()));
-    std::fs::create_dir_all(&directory).unwrap();
+    let scratch = tempfile::Builder::new()
+        .prefix("fair-cad-test-")
+        .tempdir()
+        .unwrap();
+    let directory = scratch.path();
     let spline = HermiteSpline::natural(&planar_points(10)).unwrap();
     let shape = Shape::Curve(CadCurve::from_hermite(&spline).unwrap().with_name("wl"));
     for name in ["a.igs", "b.IGES", "c.stp", "d.step", "e.dxf"] {
@@ -121,5 +124,4 @@ fn files_are_named_by_extension_and_read_back_from_disk() {
     let forced = directory.join("f.txt");
     let file = cad::export_to_path(&shape, &forced, Some(Format::Step), &CadSettings::default()).unwrap();
     assert!(file.text.starts_with("ISO-10303-21;"));
-    std::fs::remove_dir_all(&directory).unwrap();
 }

@@ -11,7 +11,6 @@ use fair_cli::args::KindArg;
 use fair_cli::commands::inspect;
 use fair_cli::input::Source;
 use std::hint::black_box;
-use std::path::PathBuf;
 
 fn sizes() -> Vec<usize> {
     let all = [10_000, 100_000, 1_000_000];
@@ -61,8 +60,9 @@ fn inspect_path(c: &mut Criterion) {
 fn curve_end_to_end(c: &mut Criterion) {
     let mut group = c.benchmark_group("curve");
     group.sample_size(10);
-    let dir: PathBuf = std::env::temp_dir().join(format!("fair-bench-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    // Removed when dropped, at the end of this function or on a panic.
+    let scratch = tempfile::Builder::new().prefix("fair-bench-").tempdir().unwrap();
+    let dir = scratch.path();
     for n in sizes() {
         let input = dir.join(format!("noisy{n}.csv"));
         std::fs::write(&input, noisy_segment(n)).unwrap();
@@ -100,7 +100,6 @@ fn curve_end_to_end(c: &mut Criterion) {
         }
     }
     group.finish();
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 criterion_group!(benches, inspect_path, curve_end_to_end);

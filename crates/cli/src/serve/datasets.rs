@@ -269,7 +269,11 @@ mod tests {
 
     #[test]
     fn folders_and_files_are_listed_and_read_within_limits() {
-        let dir = std::env::temp_dir().join(format!("fair-serve-datasets-{}", std::process::id()));
+        let scratch = tempfile::Builder::new()
+            .prefix("fair-serve-datasets-")
+            .tempdir()
+            .unwrap();
+        let dir = scratch.path();
         let sub = dir.join("curves");
         std::fs::create_dir_all(sub.join("deep")).unwrap();
         std::fs::write(sub.join("a.csv"), "0,0\n1,1\n2,0\n").unwrap();
@@ -308,6 +312,5 @@ mod tests {
         assert_eq!(embedded.origin_name(), "embedded");
         assert_eq!(source.text, DATASETS[0].text);
         assert!(Datasets::new(&[dir.join("missing.csv")]).is_err());
-        std::fs::remove_dir_all(&dir).ok();
     }
 }

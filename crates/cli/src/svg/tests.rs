@@ -165,11 +165,14 @@ fn empty_and_degenerate_panels_still_render() {
 
 #[test]
 fn write_saves_the_document() {
-    let path = std::env::temp_dir().join(format!("fair-cli-svg-{}.svg", std::process::id()));
+    let scratch = tempfile::Builder::new()
+        .prefix("fair-cli-svg-")
+        .tempdir()
+        .unwrap();
+    let path = scratch.path().join("plot.svg");
     all_series_figure().write(&path).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
     parse(&text);
-    std::fs::remove_file(&path).ok();
     let e = all_series_figure()
         .write(std::path::Path::new("/nonexistent/dir/p.svg"))
         .unwrap_err();
