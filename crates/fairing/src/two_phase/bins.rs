@@ -1,7 +1,7 @@
 //! Consecutive points averaged in bins, so that the noise pre-pass of a function segment or
 //! an arbitrary curve with more points than its limit (`function-prepass-points`,
-//! `curve-prepass-points`, [`MAX_PREPASS_POINTS`] by default) is fitted where double
-//! precision can fit it ([`super::denoise_by`], [`super::denoise_curve_by`]).
+//! [`MAX_PREPASS_POINTS`] by default, and `curve-prepass-points`,
+//! [`MAX_CURVE_PREPASS_POINTS`]) is fitted where double precision can fit it ([`super::denoise_by`], [`super::denoise_curve_by`]).
 //!
 //! **Why.** Both pre-pass smoothers solve a banded system with one knot per point. The cubic
 //! smoothing spline's is M = R + λ QᵀΣQ (`smoothing_spline`'s module docs): on a Fourier mode
@@ -63,6 +63,36 @@
 //! 12, 1.5e-4, 20 s) and 0 at 5.8e-5 at 10^6 in 26 s (one knot per point: 1 109 in 209 s);
 //! a closed noisy circle of 3·10^5 points 0 at 8.2e-5 in 6.6 s (10^5 bins: 0, 1.4e-4, 60 s).
 //!
+//! An arbitrary curve's pre-pass loses its footing with one knot per point well before a
+//! function's, so its limit is lower ([`MAX_CURVE_PREPASS_POINTS`]). Two-phase with one knot
+//! per point → bins (limit 2.5·10^4), inflections on seeds 1–2 (1–3 for 3·10^4), mean RMS to
+//! the clean curve, time each; σ = 0.01 per coordinate (clothoid 0.005), open arc and circle
+//! of radius 2, the arc over 270° (`uneven`: spacings in a ratio of 2), clothoid
+//! 5·(C(s), S(s)), s ∈ [0.2, 2.2]:
+//!
+//! | curve | points | one knot per point | bins |
+//! |---|---|---|---|
+//! | arc | 3·10^4 | 2, 2, 1; 3.7e-4; 3.6 s | 0, 0, 0; 3.9e-4; 0.9 s |
+//! | arc | 5·10^4 | 2, 3; 3.3e-4; 6.0 s | 0, 0; 2.6e-4; 1.2 s |
+//! | arc | 10^5 | 5, 3; 2.5e-4; 11 s | 0, 0; 2.2e-4; 2.9 s |
+//! | arc, uneven | 3·10^4 | 2, 0, 3; 3.8e-4; 3.2 s | 0, 0, 0; 3.7e-4; 0.8 s |
+//! | arc, uneven | 10^5 | 6, 2; 2.6e-4; 12 s | 0, 0; 2.0e-4; 2.7 s |
+//! | clothoid | 3·10^4 | 3, 2, 1; 1.9e-4; 3.4 s | 0, 0, 2; 1.8e-4; 0.8 s |
+//! | clothoid | 10^5 | 3, 3; 1.4e-4; 10 s | 2, 2; 1.2e-4; 2.7 s |
+//! | closed circle | 5·10^4 | 0, 0; 3.0e-4; 20 s | 0, 0; 2.6e-4; 1.8 s |
+//! | closed circle | 10^5 | 0, 0; 2.4e-4; 40 s | 0, 0; 1.6e-4; 2.6 s |
+//!
+//! The arc at σ = 0.05 and 0.002 (3·10^4 points): 3, 4 → 0, 1 inflections at the same
+//! distance, and 2, 0 → 0, 0 at 45 % of the distance. At 2·10^4 points bins are not better:
+//! 2 000 means of 10 points each are about as dense as their noise (σ/√10 against a spacing of
+//! 4.7e-3 on the arc), where the curve pre-pass is at its weakest, and one uneven arc kept 12
+//! inflections there (one knot per point: 0 on all draws), a closed circle of 5 000 points
+//! came 20 % farther. Vibration counts are not compared: at these densities they are
+//! round-off's (the clean circle itself has 16 656 at 2·10^4 points and 41 514 at 5·10^4),
+//! and bins raise them (the read-back spline's third derivative jumps at the bins' centres),
+//! which below 10^5 points is measurable on functions (a noisy sin(8x) of 10^4 points: 52
+//! vibrations with one knot per point, 3 045 on bins), so a function's limit stays 10^5.
+//!
 //! Cost (criterion, `two_phase_binned_prepass`, release, 2 cores): the function pre-pass on
 //! 1.25·10^5 / 2.5·10^5 / 5·10^5 / 10^6 points of the sine takes 151 / 151 / 155 / 176 ms,
 //! the fits on 2 000 bins about 150 ms of it at every size; csaps smooths the speed peer's
@@ -79,6 +109,12 @@ use std::ops::Range;
 /// fit well without bins (two-phase there: the clean curve's 3 inflections, RMS to the clean
 /// curve 2.5e-4 at σ = 0.01).
 pub const MAX_PREPASS_POINTS: usize = 100_000;
+
+/// The most points an arbitrary curve's pre-pass fits with one knot per point, and the most
+/// bins it fits beyond (module doc): from 3·10^4 noisy points of an arc or a clothoid on, one
+/// knot per point left two-phase 1–7 inflections where bins leave 0–2, in a quarter of the
+/// time; at 2·10^4 bins are no better.
+pub const MAX_CURVE_PREPASS_POINTS: usize = 25_000;
 
 /// The bins a binned pre-pass starts with.
 pub const FIRST_BINS: usize = 2_000;

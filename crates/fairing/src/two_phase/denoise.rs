@@ -82,7 +82,7 @@ use curve_repr::{
     Vector,
 };
 
-use super::bins::{Bins, BINS_PER_DOF, FIRST_BINS, MAX_PREPASS_POINTS};
+use super::bins::{Bins, BINS_PER_DOF, FIRST_BINS, MAX_CURVE_PREPASS_POINTS, MAX_PREPASS_POINTS};
 use super::foot_point::{foot_points, Projection};
 
 use crate::state::strategy_error;
@@ -643,7 +643,7 @@ pub fn denoise_curve(
 ) -> Result<Vec<Vec2>> {
     denoise_curve_by(
         mode,
-        Prepass::gcv(1.0),
+        Prepass::gcv(1.0).with_max_points(MAX_CURVE_PREPASS_POINTS),
         CurveEnds::Natural,
         projection,
         points,

@@ -22,7 +22,7 @@ pub mod phase1;
 pub mod phase2;
 mod settings;
 
-pub use bins::{BINS_PER_DOF, FIRST_BINS, MAX_PREPASS_POINTS};
+pub use bins::{BINS_PER_DOF, FIRST_BINS, MAX_CURVE_PREPASS_POINTS, MAX_PREPASS_POINTS};
 pub use denoise::{
     denoise, denoise_by, denoise_curve, denoise_curve_by, Denoise, Limits, Prepass, PrepassRule,
     CORRECTION_ROUNDS,
