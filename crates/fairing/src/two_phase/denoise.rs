@@ -60,8 +60,11 @@
 //! ends with the clean curve's 3 inflections at every size, where with jump-lsq's fit kept
 //! it ended with 5 at 2·10^4 points and 24 at 10^5. At 10^6 points the cubic's own GCV was
 //! unreliable (its score jumps by 1e-3 between neighbouring p) and two-phase ended with
-//! hundreds: beyond [`MAX_PREPASS_POINTS`] points the pre-pass fits bin means instead
-//! ([`bins`](super::bins): 3 inflections there).
+//! hundreds: beyond a limit the pre-pass fits bin means instead ([`bins`](super::bins): 3
+//! inflections there). A function's limit is now [`MAX_PREPASS_POINTS`] = 2 000 points, so
+//! these one-knot-per-point measurements of functions beyond it hold with
+//! `function-prepass-points` raised; the binned fits come nearer the clean curve (`bins`'
+//! table).
 //!
 //! `gcv` replaces the data by the cubic smoothing spline's values ([`SmoothingSpline`], csaps's
 //! convention) with p chosen by generalised cross-validation of the free fit (every weight
@@ -77,13 +80,11 @@
 
 use std::f64::consts::PI;
 
-use curve_repr::{
-    Curve, EndCondition, HermiteEnds, HermiteSettings, HermiteSpline, Parametrization, SplineFunction, Vec2,
-    Vector,
-};
+use curve_repr::{Curve, HermiteEnds, HermiteSettings, HermiteSpline, Parametrization, Vec2, Vector};
 
-use super::bins::{Bins, BINS_PER_DOF, FIRST_BINS, MAX_CURVE_PREPASS_POINTS, MAX_PREPASS_POINTS};
+use super::bins::{Bins, BINS_PER_DOF, FIRST_BINS, MAX_BINS, MAX_CURVE_PREPASS_POINTS, MAX_PREPASS_POINTS};
 use super::foot_point::{foot_points, Projection};
+use super::quintic::Quintic;
 
 use crate::state::strategy_error;
 use crate::strategies::jump_lsq;
@@ -168,8 +169,9 @@ pub struct Prepass {
     pub gcv_gamma: f64,
     /// A function's spline end conditions (jump-lsq's `function-ends`; unused by curves).
     pub function_ends: FunctionEnds,
-    /// The most points the pre-pass fits with one knot per point, and the most bins it fits
-    /// beyond ([`MAX_PREPASS_POINTS`] by the constructors).
+    /// The most points the pre-pass fits with one knot per point; beyond, it fits bin means,
+    /// at most [`MAX_BINS`] bins or this many if more ([`MAX_PREPASS_POINTS`] by the
+    /// constructors, a function's limit).
     pub max_points: usize,
 }
 
@@ -447,8 +449,8 @@ pub fn denoise_by(
 }
 
 /// The pre-pass on bin means ([`bins`](super::bins)): the fit of the means, read back at
-/// every x from the natural cubic spline through it; the kept points (bins of their own)
-/// bit for bit. The bins as [`on_bins`] chooses them. O(n log n_bins) beyond the fits.
+/// every x from the natural quintic spline through it (`quintic`: C⁴, so that the points of
+/// a bin do not lie on one cubic); the kept points (bins of their own) bit for bit. The bins as [`on_bins`] chooses them. O(n log n_bins) beyond the fits.
 fn denoise_binned(
     mode: Denoise,
     prepass: Prepass,
@@ -461,12 +463,13 @@ fn denoise_binned(
         let fit = denoise_points(mode, prepass, &bx, &by, bin_limits)?;
         Ok(((bx, fit.values), fit.dof))
     })?;
-    let spline = SplineFunction::new(&knots, &fitted, EndCondition::Natural)?;
-    let values: Vec<f64> = x
-        .iter()
+    let spline = Quintic::new(&knots, &fitted)?;
+    let values: Vec<f64> = spline
+        .values(x)
+        .into_iter()
         .zip(y)
         .enumerate()
-        .map(|(i, (&x, &old))| if (limits.keep)(i) { old } else { spline.value(x) })
+        .map(|(i, (v, &old))| if (limits.keep)(i) { old } else { v })
         .collect();
     if let Some(i) = values.iter().position(|v| !v.is_finite()) {
         return Err(strategy_error(
@@ -479,18 +482,19 @@ fn denoise_binned(
 
 /// Runs `fit` on bins of the n points (module [`bins`](super::bins)): [`FIRST_BINS`] bins
 /// first (at most `prepass.max_points`), four times as many while `fit` reports more than
-/// one degree of freedom per [`BINS_PER_DOF`] bins, up to `prepass.max_points`; without a
-/// reported trace (rules other than GCV) the finest bins at once. Each bin keeps its points'
-/// kept flag and may move as far as its most bound point. Returns the last bins and `fit`'s
-/// result on them.
+/// one degree of freedom per [`BINS_PER_DOF`] bins, up to [`MAX_BINS`] (or
+/// `prepass.max_points` if larger; never more than one bin per point); without a reported
+/// trace (rules other than GCV) the finest bins at once. Each bin keeps its points' kept flag
+/// and may move as far as its most bound point. Returns the last bins and `fit`'s result on
+/// them.
 fn on_bins<T>(
     n: usize,
     prepass: Prepass,
     limits: &Limits<'_>,
     mut fit: impl FnMut(&Bins, &Limits<'_>) -> Result<(T, Option<f64>)>,
 ) -> Result<(Bins, T)> {
-    let most = prepass.max_points.max(4);
-    let mut count = FIRST_BINS.min(most);
+    let most = MAX_BINS.max(prepass.max_points).min(n).max(4);
+    let mut count = FIRST_BINS.min(prepass.max_points.max(4)).min(most);
     loop {
         let bins = Bins::new(n, n.div_ceil(count), limits.keep);
         let bin_keep = |b: usize| bins.range(b).any(|i| (limits.keep)(i));
@@ -505,7 +509,7 @@ fn on_bins<T>(
         };
         let (out, dof) = fit(&bins, &bin_limits)?;
         let fine = dof.is_some_and(|dof| dof * BINS_PER_DOF as f64 <= bins.len() as f64);
-        if fine || count >= most {
+        if fine || count >= most || bins.len() >= n {
             return Ok((bins, out));
         }
         count = match dof {

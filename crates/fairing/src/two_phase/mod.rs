@@ -20,9 +20,10 @@ mod denoise;
 pub mod foot_point;
 pub mod phase1;
 pub mod phase2;
+mod quintic;
 mod settings;
 
-pub use bins::{BINS_PER_DOF, FIRST_BINS, MAX_CURVE_PREPASS_POINTS, MAX_PREPASS_POINTS};
+pub use bins::{BINS_PER_DOF, FIRST_BINS, MAX_BINS, MAX_CURVE_PREPASS_POINTS, MAX_PREPASS_POINTS};
 pub use denoise::{
     denoise, denoise_by, denoise_curve, denoise_curve_by, Denoise, Limits, Prepass, PrepassRule,
     CORRECTION_ROUNDS,
