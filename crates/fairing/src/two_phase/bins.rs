@@ -87,12 +87,13 @@
 //! 12, 1.5e-4, 20 s) and 0 at 5.8e-5 at 10^6 in 26 s (one knot per point: 1 109 in 209 s);
 //! a closed noisy circle of 3·10^5 points 0 at 8.2e-5 in 6.6 s (10^5 bins: 0, 1.4e-4, 60 s).
 //!
-//! An arbitrary curve's pre-pass loses its footing with one knot per point well before a
-//! function's, so its limit is lower ([`MAX_CURVE_PREPASS_POINTS`]). Two-phase with one knot
+//! An arbitrary curve's pre-pass is binned from [`MAX_CURVE_PREPASS_POINTS`] points on, later
+//! than a function's: from 3·10^4 points on one knot per point already failed, and below
+//! 2.5·10^4 bins were no better (below). Two-phase with one knot
 //! per point → bins (limit 2.5·10^4), inflections on seeds 1–2 (1–3 for 3·10^4), mean RMS to
 //! the clean curve, time each; σ = 0.01 per coordinate (clothoid 0.005), open arc and circle
 //! of radius 2, the arc over 270° (`uneven`: spacings in a ratio of 2), clothoid
-//! 5·(C(s), S(s)), s ∈ [0.2, 2.2]:
+//! (C(s), S(s)) (Fresnel integrals), s ∈ [0.2, 2.2]:
 //!
 //! | curve | points | one knot per point | bins |
 //! |---|---|---|---|
@@ -107,7 +108,7 @@
 //! | closed circle | 10^5 | 0, 0; 2.4e-4; 40 s | 0, 0; 1.6e-4; 2.6 s |
 //!
 //! The arc at σ = 0.05 and 0.002 (3·10^4 points): 3, 4 → 0, 1 inflections at the same
-//! distance, and 2, 0 → 0, 0 at 45 % of the distance. At 2·10^4 points bins are not better:
+//! distance, and 2, 0 → 0, 0 at 55 % of the distance. At 2·10^4 points bins are not better:
 //! 2 000 means of 10 points each are about as dense as their noise (σ/√10 against a spacing of
 //! 4.7e-3 on the arc), where the curve pre-pass is at its weakest, and one uneven arc kept 12
 //! inflections there (one knot per point: 0 on all draws), a closed circle of 5 000 points
@@ -118,8 +119,9 @@
 //! vibrations with one knot per point, 3 045 on bins), so a function's limit stays 10^5.
 //!
 //! Cost (criterion, `two_phase_binned_prepass`, release, 2 cores): the function pre-pass on
-//! 1.25·10^5 / 2.5·10^5 / 5·10^5 / 10^6 points of the sine takes 151 / 151 / 155 / 176 ms,
-//! the fits on 2 000 bins about 150 ms of it at every size; csaps smooths the speed peer's
+//! 1.25·10^5 / 2.5·10^5 / 5·10^5 / 10^6 points of the sine takes 140 / 146 / 156 / 176 ms
+//! with the quintic read-back (151 / 151 / 155 / 176 with the cubic's), the fits on 2 000
+//! bins most of it at every size; csaps smooths the speed peer's
 //! 10^6 points (`speed.py`) in 0.98 s.
 //!
 //! Bins are equal in size to within one point in each run between kept points (a run of L

@@ -343,12 +343,12 @@ pub struct TwoPhaseSettings {
     /// judge changes: on 2 500–3·10^4 noisy points of sin(kx) over [0, 20] (k = 0.5, 2, 8;
     /// σ = 0.01 and 0.05) two-phase then ends with the clean curve's inflections, nearer it on
     /// 17 of 18 size and noise pairs (up to 30 % at 3·10^4 points, 4 % farther on one) and with
-    /// the clean curve's vibrations or a few more where one knot per point left hundreds to
-    /// thousands at 4 000 points and beyond; on 10^6 points of sin(x/2) (σ = 0.01) the clean
-    /// curve's 3 inflections at RMS 5.0e-5, where one knot per point left 124 at 1.5e-4.
-    /// 10^5, the limit before the quintic read-back, is one `--set` away.
+    /// the clean curve's vibrations or a few more, where one knot per point left 689–7 516 on 9
+    /// of the 18 pairs; on 10^6 points of sin(x/2) (σ = 0.01) the clean curve's 3 inflections
+    /// at RMS 5.0e-5, where one knot per point left 124 at 1.5e-4. 10^5, the limit before, is
+    /// one `--set` away (beyond it the read-back is now the quintic's).
     pub function_prepass_points: usize,
-    /// Arbitrary curves: the most points the noise pre-pass fits with one knot per point; beyond, it fits the means of bins of consecutive points, at most this many (at least 4).
+    /// Arbitrary curves: the most points the noise pre-pass fits with one knot per point; beyond, it fits the means of bins of consecutive points (at least 4).
     ///
     /// As [`function_prepass_points`](Self::function_prepass_points), for the pre-pass of an
     /// arbitrary curve ([`denoise_curve_by`](super::denoise_curve_by)); each point is read
