@@ -81,7 +81,7 @@ pub(crate) fn choose<const D: usize>(
             .collect();
         let system = System::new(&space, data, &ones, &base);
         let lambda_max = lambda::STIFFNESS_LIMIT / system.stiffness().max(f64::MIN_POSITIVE);
-        let Ok(mut choice) = lambda::gcv(&system, coordinates, gamma, lambda_max) else {
+        let Ok(mut choice) = lambda::gcv(&system, coordinates, gamma, lambda_max, None) else {
             continue;
         };
         // Counted here; the fit that reuses the winner's search adds none.

@@ -138,8 +138,9 @@
 //! O(n) time and memory per solve (end rows add 2e rows of five unknowns): assembly O(n·(4 + d)²), factorisation O(n·(5 + d)²) (four
 //! times that for closed curves), a discrepancy search one QR solve when λ stops at the
 //! precision limit (dense noisy data; the normal equations are then never assembled), else
-//! 3–9 solves, GCV about 60 solves with selected inverses; the parametric kind multiplies
-//! this by 1 + `refits`.
+//! 3–9 solves, GCV about 60 solves with selected inverses; the parametric kind repeats the
+//! search for each of its `refits`, GCV's within two decades of the previous round's λ (about
+//! 20 solves; the `lambda` module).
 
 mod basis;
 mod ends;
@@ -945,7 +946,8 @@ fn fair_from<const D: usize>(
         } else if settings.rule == LambdaRule::Gml {
             lambda::gml(&system, lambda_max).map_err(pivot_error)?
         } else {
-            lambda::gcv(&system, coordinates, settings.gcv_gamma, lambda_max).map_err(pivot_error)?
+            let near = (round > 0).then(|| lambda_previous.log10());
+            lambda::gcv(&system, coordinates, settings.gcv_gamma, lambda_max, near).map_err(pivot_error)?
         };
         if !system.holds(&choice.evaluation.gamma, &base) {
             return Err(crate::state::strategy_error(

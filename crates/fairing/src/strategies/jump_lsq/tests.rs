@@ -1559,3 +1559,40 @@ fn gcv_falling_up_to_its_last_grid_point_is_limited_and_an_interior_minimum_is_n
     assert!(!faired.report.lambda_limited, "{:?}", faired.report);
     assert!(faired.report.lambda < 1e-3 * lambda_max, "{:?}", faired.report);
 }
+
+#[test]
+fn a_refits_gcv_search_near_the_previous_lambda_finds_the_full_searchs_choice() {
+    // A parametric refit searches λ only within two decades of the previous round's, then on
+    // outwards while V still falls at the window's edge. Its choice must be the full grid
+    // search's wherever it starts nearby, on an interior minimum (the wavy curve) and on a
+    // limited one (the dense sine, whose V falls up to λ_max), with fewer solves.
+    let settings = JumpLsqSettings::default().with_rule(LambdaRule::Gcv);
+    for points in [wavy(200), dense_even_sine(2_000)] {
+        let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
+        let data = masked(&points, [false, true]);
+        let weights = vec![1.0; points.len()];
+        let space = Space::new(Knots::open(x), Ends::RUNOUT, penalty_of(&settings)).unwrap();
+        let system = System::new(&space, &data, &weights, &[]);
+        let lambda_max = lambda::STIFFNESS_LIMIT / system.stiffness();
+        let full = lambda::gcv(&system, 1, 1.0, lambda_max, None).unwrap();
+        let rho = full.evaluation.lambda.log10();
+        for offset in [-3.3, -1.2, 0.4, 1.7, 3.1] {
+            let near = lambda::gcv(&system, 1, 1.0, lambda_max, Some(rho + offset)).unwrap();
+            assert_eq!(
+                near.evaluation.lambda.to_bits(),
+                full.evaluation.lambda.to_bits(),
+                "{} points, started {offset} decades off: λ {} against {}",
+                points.len(),
+                near.evaluation.lambda,
+                full.evaluation.lambda
+            );
+            assert_eq!(near.limited, full.limited);
+            assert!(
+                near.evaluations < full.evaluations,
+                "{} solves against the full search's {}",
+                near.evaluations,
+                full.evaluations
+            );
+        }
+    }
+}
