@@ -611,6 +611,59 @@ fn largest_turn(points: &[Vec2]) -> (usize, f64) {
     )
 }
 
+/// How an arbitrary curve's pre-pass fits ([`denoise_curve_by`]): the smoother, its λ rule
+/// and limit of points, the jump-lsq variants' end conditions of an open fit, and what
+/// becomes of the fit's points.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CurvePrepass {
+    /// The smoother (`denoise`).
+    pub mode: Denoise,
+    /// `jump-lsq-gcv`'s λ rule and the most points fitted with one knot per point
+    /// ([`TwoPhaseSettings::curve_prepass_points`](super::TwoPhaseSettings::curve_prepass_points)).
+    pub prepass: Prepass,
+    /// The jump-lsq variants' end conditions of an open fit
+    /// ([`TwoPhaseSettings::curve_ends`](super::TwoPhaseSettings::curve_ends); the cubic
+    /// smoothing spline always has natural ends).
+    pub ends: CurveEnds,
+    /// What becomes of the fit's points ([`TwoPhaseSettings::project`](super::TwoPhaseSettings::project)).
+    pub projection: Projection,
+}
+
+impl CurvePrepass {
+    /// [`denoise_curve`]'s: `mode` and `projection` with GCV (γ = 1) for jump-lsq's λ,
+    /// natural ends and the curve limit [`MAX_CURVE_PREPASS_POINTS`].
+    pub fn new(mode: Denoise, projection: Projection) -> Self {
+        CurvePrepass {
+            mode,
+            prepass: Prepass::gcv(1.0).with_max_points(MAX_CURVE_PREPASS_POINTS),
+            ends: CurveEnds::Natural,
+            projection,
+        }
+    }
+
+    /// Sets the λ rule and the limit of points.
+    pub fn with_prepass(mut self, prepass: Prepass) -> Self {
+        self.prepass = prepass;
+        self
+    }
+
+    /// Sets the jump-lsq variants' end conditions of an open fit.
+    pub fn with_ends(mut self, ends: CurveEnds) -> Self {
+        self.ends = ends;
+        self
+    }
+
+    /// The same with another smoother.
+    fn with_mode(self, mode: Denoise) -> Self {
+        CurvePrepass { mode, ..self }
+    }
+
+    /// The same with another projection.
+    fn with_projection(self, projection: Projection) -> Self {
+        CurvePrepass { projection, ..self }
+    }
+}
+
 /// The pre-pass on a planar curve (arbitrary curves, Han §4.2): both coordinates smoothed over
 /// the chord-length parameters, one p (or λ) for the curve, the limits honoured (module doc).
 /// O(n) per GCV evaluation.
@@ -645,44 +698,35 @@ pub fn denoise_curve(
     closed: bool,
     limits: &Limits<'_>,
 ) -> Result<Vec<Vec2>> {
-    denoise_curve_by(
-        mode,
-        Prepass::gcv(1.0).with_max_points(MAX_CURVE_PREPASS_POINTS),
-        CurveEnds::Natural,
-        projection,
-        points,
-        closed,
-        limits,
-    )
+    denoise_curve_by(&CurvePrepass::new(mode, projection), points, closed, limits)
 }
 
-/// [`denoise_curve`] with `jump-lsq-gcv`'s λ rule `prepass` (GCV with the factor γ on its
-/// trace, [`TwoPhaseSettings::curve_gcv_gamma`](super::TwoPhaseSettings::curve_gcv_gamma),
-/// or GML, [`TwoPhaseSettings::curve_prepass_rule`](super::TwoPhaseSettings::curve_prepass_rule);
-/// [`denoise_curve`] has GCV with γ = 1) and the jump-lsq variants' end conditions of an open fit
-/// ([`TwoPhaseSettings::curve_ends`](super::TwoPhaseSettings::curve_ends); [`denoise_curve`]
-/// has natural ends; the cubic smoothing spline always has). Beyond `prepass.max_points`
-/// points ([`TwoPhaseSettings::curve_prepass_points`](super::TwoPhaseSettings::curve_prepass_points))
+/// [`denoise_curve`] with the fit's `rules` ([`CurvePrepass`]): `jump-lsq-gcv`'s λ rule
+/// `rules.prepass` (GCV with the factor γ on its trace,
+/// [`TwoPhaseSettings::curve_gcv_gamma`](super::TwoPhaseSettings::curve_gcv_gamma), or GML,
+/// [`TwoPhaseSettings::curve_prepass_rule`](super::TwoPhaseSettings::curve_prepass_rule);
+/// [`denoise_curve`] has GCV with γ = 1) and the jump-lsq variants' end conditions of an open
+/// fit `rules.ends` ([`TwoPhaseSettings::curve_ends`](super::TwoPhaseSettings::curve_ends);
+/// [`denoise_curve`] has natural ends; the cubic smoothing spline always has). Beyond
+/// `rules.prepass.max_points` points
+/// ([`TwoPhaseSettings::curve_prepass_points`](super::TwoPhaseSettings::curve_prepass_points))
 /// it fits bin means ([`bins`](super::bins)).
 ///
 /// Errors: as [`denoise_curve`]; γ below 1.
 pub fn denoise_curve_by(
-    mode: Denoise,
-    prepass: Prepass,
-    curve_ends: CurveEnds,
-    projection: Projection,
+    rules: &CurvePrepass,
     points: &[Vec2],
     closed: bool,
     limits: &Limits<'_>,
 ) -> Result<Vec<Vec2>> {
     let n = points.len();
-    if mode == Denoise::Off || n < 4 {
+    if rules.mode == Denoise::Off || n < 4 {
         return Ok(points.to_vec());
     }
-    if n > prepass.max_points.max(4) {
-        return denoise_curve_binned(mode, prepass, curve_ends, projection, points, closed, limits);
+    if n > rules.prepass.max_points.max(4) {
+        return denoise_curve_binned(rules, points, closed, limits);
     }
-    Ok(denoise_curve_points(mode, prepass, curve_ends, projection, points, closed, limits)?.0)
+    Ok(denoise_curve_points(rules, points, closed, limits)?.0)
 }
 
 /// The curve pre-pass on bin means ([`bins`](super::bins)), the bins chosen by [`on_bins`]
@@ -697,24 +741,21 @@ pub fn denoise_curve_by(
 /// points on it would not: on data as dense as their noise the noise scrambles the order of
 /// the foot points. Kept points (bins of their own) bit for bit. O(n) beyond the fit.
 fn denoise_curve_binned(
-    mode: Denoise,
-    prepass: Prepass,
-    curve_ends: CurveEnds,
-    projection: Projection,
+    rules: &CurvePrepass,
     points: &[Vec2],
     closed: bool,
     limits: &Limits<'_>,
 ) -> Result<Vec<Vec2>> {
     let n = points.len();
     let (xs, ys): (Vec<f64>, Vec<f64>) = points.iter().map(|p| (p.x, p.y)).unzip();
-    let (bins, fitted) = on_bins(n, prepass, limits, |bins, bin_limits| {
+    let (bins, fitted) = on_bins(n, rules.prepass, limits, |bins, bin_limits| {
         let means: Vec<Vec2> = bins
             .means(&xs)
             .into_iter()
             .zip(bins.means(&ys))
             .map(|(x, y)| Vec2::new(x, y))
             .collect();
-        denoise_curve_points(mode, prepass, curve_ends, projection, &means, closed, bin_limits)
+        denoise_curve_points(rules, &means, closed, bin_limits)
     })?;
     let count = fitted.len();
     let knots = if closed {
@@ -769,10 +810,7 @@ fn denoise_curve_binned(
 
 /// The curve pre-pass with one knot per point ([`denoise_curve_by`]).
 fn denoise_curve_points(
-    mode: Denoise,
-    prepass: Prepass,
-    curve_ends: CurveEnds,
-    projection: Projection,
+    rules: &CurvePrepass,
     points: &[Vec2],
     closed: bool,
     limits: &Limits<'_>,
@@ -798,21 +836,13 @@ fn denoise_curve_points(
                 keep: &keep,
                 allowed: &allowed,
             };
-            let (values, fit_dof) =
-                match curve_fit(mode, prepass, curve_ends, projection, &sequence, false, &limits)? {
-                    Some(fitted) => fitted,
-                    // jump-lsq's λ limited: the cubic smoothing spline.
-                    None => curve_fit(
-                        Denoise::Gcv,
-                        prepass,
-                        curve_ends,
-                        projection,
-                        &sequence,
-                        false,
-                        &limits,
-                    )?
+            let rules = rules.with_projection(projection);
+            let (values, fit_dof) = match curve_fit(&rules, &sequence, false, &limits)? {
+                Some(fitted) => fitted,
+                // jump-lsq's λ limited: the cubic smoothing spline.
+                None => curve_fit(&rules.with_mode(Denoise::Gcv), &sequence, false, &limits)?
                     .ok_or_else(|| strategy_error("two-phase", "the cubic pre-pass gave no fit"))?,
-                };
+            };
             record(fit_dof);
             let mut out = points.to_vec();
             for (k, &i) in order
@@ -830,7 +860,7 @@ fn denoise_curve_points(
         };
     if !closed {
         let order: Vec<usize> = (0..n).collect();
-        return Ok((fit(points, &order, projection, false)?, dof.get()));
+        return Ok((fit(points, &order, rules.projection, false)?, dof.get()));
     }
     let (seam, largest) = largest_turn(points);
     let around = |start: usize| -> Vec<usize> { (0..=n).map(|k| (start + k) % n).collect() };
@@ -841,13 +871,11 @@ fn denoise_curve_points(
         let corner = fit(points, &around(seam), Projection::Off, true)?[seam];
         let mut cornered = points.to_vec();
         cornered[seam] = corner;
-        return Ok((fit(&cornered, &around(seam), projection, false)?, dof.get()));
+        return Ok((fit(&cornered, &around(seam), rules.projection, false)?, dof.get()));
     }
-    if mode.jump_lsq(prepass).is_some() {
+    if rules.mode.jump_lsq(rules.prepass).is_some() {
         // No corner: jump-lsq's periodic spline has no seam to hide.
-        if let Some((values, fit_dof)) =
-            curve_fit(mode, prepass, curve_ends, projection, points, true, limits)?
-        {
+        if let Some((values, fit_dof)) = curve_fit(rules, points, true, limits)? {
             record(fit_dof);
             return Ok((values, dof.get()));
         }
@@ -864,7 +892,7 @@ fn denoise_curve_points(
             first[i] * w + second[i] * (1.0 - w)
         })
         .collect();
-    if projection == Projection::Off {
+    if rules.projection == Projection::Off {
         return Ok((blended, dof.get()));
     }
     // The blend is no single fit: its points are projected onto the periodic spline through
@@ -1081,15 +1109,18 @@ fn weigh_limited(
 /// `parameter-correction` (a refit whose λ is limited ends the rounds). `None` as
 /// [`smoother_fit`]. O(n) per solve.
 fn curve_fit(
-    mode: Denoise,
-    prepass: Prepass,
-    curve_ends: CurveEnds,
-    projection: Projection,
+    rules: &CurvePrepass,
     sequence: &[Vec2],
     periodic: bool,
     limits: &Limits<'_>,
 ) -> Result<Option<(Vec<Vec2>, Option<f64>)>> {
-    let ends = mode.curve_ends(curve_ends);
+    let CurvePrepass {
+        mode,
+        prepass,
+        ends,
+        projection,
+    } = *rules;
+    let ends = mode.curve_ends(ends);
     let Some(first) = smoother_fit(mode, prepass, ends, sequence, periodic, None, limits)? else {
         return Ok(None);
     };

@@ -25,8 +25,8 @@ mod settings;
 
 pub use bins::{BINS_PER_DOF, FIRST_BINS, MAX_BINS, MAX_CURVE_PREPASS_POINTS, MAX_PREPASS_POINTS};
 pub use denoise::{
-    denoise, denoise_by, denoise_curve, denoise_curve_by, Denoise, Limits, Prepass, PrepassRule,
-    CORRECTION_ROUNDS,
+    denoise, denoise_by, denoise_curve, denoise_curve_by, CurvePrepass, Denoise, Limits, Prepass,
+    PrepassRule, CORRECTION_ROUNDS,
 };
 pub use foot_point::{foot_points, FootPoint, Projection};
 pub use phase1::{coarse_pass, counts, detect, displacement, e_at, Case, CaseKind, PassReport};
@@ -374,17 +374,13 @@ impl SegmentFairer for TwoPhase {
             keep: &keep,
             allowed: &allowed,
         };
-        denoise_curve_by(
-            self.settings.denoise,
-            Prepass::new(self.settings.curve_prepass_rule, self.settings.curve_gcv_gamma)
-                .with_max_points(self.settings.curve_prepass_points),
-            self.settings.curve_ends,
-            self.settings.project,
-            points,
-            closed,
-            &limits,
-        )
-        .map(Some)
+        let rules = CurvePrepass::new(self.settings.denoise, self.settings.project)
+            .with_prepass(
+                Prepass::new(self.settings.curve_prepass_rule, self.settings.curve_gcv_gamma)
+                    .with_max_points(self.settings.curve_prepass_points),
+            )
+            .with_ends(self.settings.curve_ends);
+        denoise_curve_by(&rules, points, closed, &limits).map(Some)
     }
 
     /// Runs Han's passes on the segment as [`fair_function`] does, with the arbitrary curve's

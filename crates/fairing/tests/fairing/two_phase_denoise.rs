@@ -7,8 +7,8 @@ use std::f64::consts::PI;
 use curve_repr::Vec2;
 use fairing::strategies::CurveEnds;
 use fairing::two_phase::{
-    denoise, denoise_by, denoise_curve, denoise_curve_by, Denoise, Ends, Limits, Prepass, Projection,
-    TwoPhase, TwoPhaseSettings,
+    denoise, denoise_by, denoise_curve, denoise_curve_by, CurvePrepass, Denoise, Ends, Limits, Prepass,
+    Projection, TwoPhase, TwoPhaseSettings,
 };
 use fairing::{Constraints, EndClamp, Pipeline};
 use fairness::XcPolyline;
@@ -194,16 +194,10 @@ fn a_curve_beyond_the_prepass_limit_is_fitted_on_bins_and_keeps_its_order() {
                 }
             })
             .collect();
-        let faired = denoise_curve_by(
-            Denoise::JumpLsqGcv,
-            prepass,
-            CurveEnds::Runout,
-            Projection::FootPoint,
-            &points,
-            closed,
-            &limits,
-        )
-        .unwrap();
+        let rules = CurvePrepass::new(Denoise::JumpLsqGcv, Projection::FootPoint)
+            .with_prepass(prepass)
+            .with_ends(CurveEnds::Runout);
+        let faired = denoise_curve_by(&rules, &points, closed, &limits).unwrap();
         for k in (0..n).filter(|&k| keep(k)) {
             assert_eq!(faired[k], points[k], "closed {closed}: kept point {k} moved");
         }
@@ -247,16 +241,12 @@ fn a_dense_noisy_arc_is_binned_by_default_and_its_fit_has_no_inflection() {
         keep: &keep,
         allowed: &free,
     };
-    let faired = denoise_curve_by(
-        settings.denoise,
-        Prepass::new(settings.curve_prepass_rule, settings.curve_gcv_gamma).with_max_points(limit),
-        settings.curve_ends,
-        settings.project,
-        &points,
-        false,
-        &limits,
-    )
-    .unwrap();
+    let rules = CurvePrepass::new(settings.denoise, settings.project)
+        .with_prepass(
+            Prepass::new(settings.curve_prepass_rule, settings.curve_gcv_gamma).with_max_points(limit),
+        )
+        .with_ends(settings.curve_ends);
+    let faired = denoise_curve_by(&rules, &points, false, &limits).unwrap();
     let turns: Vec<f64> = faired
         .windows(3)
         .map(|w| {
@@ -618,16 +608,8 @@ fn gcv_gamma_of_the_pre_pass() {
     let mode = Denoise::JumpLsqGcv;
     let plain = denoise_curve(mode, Projection::Off, &arc, false, &limits).unwrap();
     let with_gamma = |gamma: f64| {
-        denoise_curve_by(
-            mode,
-            Prepass::gcv(gamma),
-            CurveEnds::Natural,
-            Projection::Off,
-            &arc,
-            false,
-            &limits,
-        )
-        .unwrap()
+        let rules = CurvePrepass::new(mode, Projection::Off).with_prepass(Prepass::gcv(gamma));
+        denoise_curve_by(&rules, &arc, false, &limits).unwrap()
     };
     assert_eq!(with_gamma(1.0), plain);
     let smoother = with_gamma(gamma);
@@ -782,16 +764,10 @@ fn limited_curve(noisy: &[Vec2], closed: bool, gamma: f64) -> LimitedCurve {
         keep: &none,
         allowed: &free,
     };
-    let prepass = denoise_curve_by(
-        Denoise::JumpLsqGcv,
-        Prepass::gcv(gamma),
-        CurveEnds::Runout,
-        Projection::Off,
-        noisy,
-        closed,
-        &limits,
-    )
-    .unwrap();
+    let rules = CurvePrepass::new(Denoise::JumpLsqGcv, Projection::Off)
+        .with_prepass(Prepass::gcv(gamma))
+        .with_ends(CurveEnds::Runout);
+    let prepass = denoise_curve_by(&rules, noisy, closed, &limits).unwrap();
     let jump = jump_lsq::fair(
         noisy,
         noisy,
