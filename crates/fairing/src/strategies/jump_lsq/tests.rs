@@ -1522,6 +1522,14 @@ fn dense_even_sine(n: usize) -> Vec<Vector<2>> {
         .collect()
 }
 
+/// The runout space of the function `points` (y over x) with `settings`' penalty, its
+/// smoothed data (x masked out) and unit weights: what a `System` of its fit is built from.
+fn runout_function(points: &[Vector<2>], settings: &JumpLsqSettings) -> (Space, Vec<Vector<2>>, Vec<f64>) {
+    let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
+    let space = Space::new(Knots::open(x), Ends::RUNOUT, penalty_of(settings)).unwrap();
+    (space, masked(points, [false, true]), vec![1.0; points.len()])
+}
+
 #[test]
 fn gcv_falling_up_to_its_last_grid_point_is_limited_and_an_interior_minimum_is_not() {
     // The defining condition of `limited` under GCV: the minimum is not bracketed from above
@@ -1535,10 +1543,7 @@ fn gcv_falling_up_to_its_last_grid_point_is_limited_and_an_interior_minimum_is_n
     let settings = JumpLsqSettings::default().with_rule(LambdaRule::Gcv);
     let faired = fair_function(&points, &settings);
     let report = &faired.report;
-    let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
-    let data = masked(&points, [false, true]);
-    let weights = vec![1.0; points.len()];
-    let space = Space::new(Knots::open(x), Ends::RUNOUT, penalty_of(&settings)).unwrap();
+    let (space, data, weights) = runout_function(&points, &settings);
     let system = System::new(&space, &data, &weights, &[]);
     let lambda_max = lambda::STIFFNESS_LIMIT / system.stiffness();
     let n = points.len() as f64;
@@ -1568,10 +1573,7 @@ fn a_refits_gcv_search_near_the_previous_lambda_finds_the_full_searchs_choice() 
     // limited one (the dense sine, whose V falls up to λ_max), with fewer solves.
     let settings = JumpLsqSettings::default().with_rule(LambdaRule::Gcv);
     for points in [wavy(200), dense_even_sine(2_000)] {
-        let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
-        let data = masked(&points, [false, true]);
-        let weights = vec![1.0; points.len()];
-        let space = Space::new(Knots::open(x), Ends::RUNOUT, penalty_of(&settings)).unwrap();
+        let (space, data, weights) = runout_function(&points, &settings);
         let system = System::new(&space, &data, &weights, &[]);
         let lambda_max = lambda::STIFFNESS_LIMIT / system.stiffness();
         let full = lambda::gcv(&system, 1, 1.0, lambda_max, None).unwrap();
