@@ -481,31 +481,29 @@ fn minimise<const D: usize>(
         rho += STEP;
     }
     let last_grid = *grid.last().unwrap_or(&bottom);
-    match near.filter(|r| r.is_finite()) {
+    // A refit's window: the grid points within NEAR decades of the previous λ, brought into
+    // the grid's range (the whole grid when fewer than two lie there).
+    let window = near.filter(|r| r.is_finite()).and_then(|centre| {
+        let centre = centre.clamp(bottom, top);
+        let inside: Vec<usize> = (0..grid.len())
+            .filter(|&k| (grid[k] - centre).abs() <= NEAR + 1e-9)
+            .collect();
+        (inside.len() >= 2).then(|| (inside[0], inside[inside.len() - 1]))
+    });
+    match window {
         None => {
             for &rho in &grid {
                 consider(rho, &mut best)?;
             }
         }
-        Some(centre) => {
-            // A refit's search: the grid points within NEAR decades of the previous λ, then
-            // on outwards while the score still falls at the window's edge.
-            let inside: Vec<usize> = (0..grid.len())
-                .filter(|&k| (grid[k] - centre).abs() <= NEAR + 1e-9)
-                .collect();
-            let (first, last) = match (inside.first(), inside.last()) {
-                (Some(&a), Some(&b)) => (a, b),
-                _ => {
-                    let k = grid.partition_point(|&g| g < centre).min(grid.len() - 1);
-                    (k, k)
-                }
-            };
+        Some((first, last)) => {
+            // The window, then on outwards while the score still falls at its edge.
             let mut values = vec![f64::NAN; grid.len()];
             for k in first..=last {
                 values[k] = consider(grid[k], &mut best)?;
             }
             let mut low = first;
-            while low > 0 && values[low] <= values.get(low + 1).copied().unwrap_or(f64::INFINITY) {
+            while low > 0 && values[low] <= values[low + 1] {
                 low -= 1;
                 values[low] = consider(grid[low], &mut best)?;
                 if values[low] >= values[low + 1] {
@@ -513,7 +511,7 @@ fn minimise<const D: usize>(
                 }
             }
             let mut high = last;
-            while high + 1 < grid.len() && (high == 0 || values[high] <= values[high - 1]) {
+            while high + 1 < grid.len() && values[high] <= values[high - 1] {
                 high += 1;
                 values[high] = consider(grid[high], &mut best)?;
                 if values[high] >= values[high - 1] {
