@@ -126,7 +126,8 @@
 //!
 //! Bins are equal in size to within one point in each run between kept points (a run of L
 //! points makes ⌈L/m⌉ bins), so the smoothers' unit weights stand (the means' variances
-//! differ by at most a factor (m+1)/m). Building them is O(n), reading back O(n log n_bins).
+//! differ by at most a factor (m+1)/m). Building them is O(n), reading back O(n + n_bins) for a
+//! function (one sorted sweep of the quintic) and O(n log n_bins) for a curve.
 
 use std::ops::Range;
 

@@ -450,7 +450,8 @@ pub fn denoise_by(
 
 /// The pre-pass on bin means ([`bins`](super::bins)): the fit of the means, read back at
 /// every x from the natural quintic spline through it (`quintic`: C⁴, so that the points of
-/// a bin do not lie on one cubic); the kept points (bins of their own) bit for bit. The bins as [`on_bins`] chooses them. O(n log n_bins) beyond the fits.
+/// a bin do not lie on one cubic); the kept points (bins of their own) bit for bit. The bins
+/// as [`on_bins`] chooses them. O(n + n_bins) beyond the fits (one sorted sweep).
 fn denoise_binned(
     mode: Denoise,
     prepass: Prepass,

@@ -6,10 +6,24 @@
 use curve_repr::{
     Curve, EndCondition, HermiteEnds, HermiteSettings, HermiteSpline, Side, SplineFunction, Vec2, Vec3,
 };
-use fairing::strategies::jump_lsq::{fair, jump_penalty, jumps, JumpLsq, JumpLsqSettings, LambdaRule};
+use fairing::strategies::jump_lsq::{
+    fair, jump_penalty, jumps, Faired, JumpLsq, JumpLsqSettings, LambdaRule,
+};
 use fairing::strategies::{CurveDomain, CurveEnds, StrainEnergy, StrainEnergySettings};
 use fairing::{Constraints, EndClamp, Error, Pipeline};
 use proptest::prelude::*;
+
+/// jump-lsq on a function y(x) without constraints, its input its own original.
+fn fair_function(points: &[Vec2], settings: &JumpLsqSettings) -> Result<Faired<2>, Error> {
+    fair(
+        points,
+        points,
+        &Constraints::default(),
+        CurveDomain::Function,
+        false,
+        settings,
+    )
+}
 
 /// A function y(x) with uneven spacing and noise.
 fn function_points(spacing: &[f64], noise: &[f64]) -> Vec<Vec2> {
@@ -381,15 +395,7 @@ fn noise_free_points_barely_move_and_noisy_ones_move_by_the_target() {
             Vec2::new(x, 0.1 * x * x * x - x)
         })
         .collect();
-    let faired = fair(
-        &cubic,
-        &cubic,
-        &Constraints::default(),
-        CurveDomain::Function,
-        false,
-        &JumpLsqSettings::default(),
-    )
-    .unwrap();
+    let faired = fair_function(&cubic, &JumpLsqSettings::default()).unwrap();
     assert!(
         faired.report.sigma_hat < 1e-12 && faired.report.rms_displacement < 1e-12,
         "{:?}",
@@ -402,15 +408,7 @@ fn noise_free_points_barely_move_and_noisy_ones_move_by_the_target() {
             Vec2::new(x, x.sin() + 0.01 * (((i * 7919) % 101) as f64 / 50.0 - 1.0) * 1.7)
         })
         .collect();
-    let faired = fair(
-        &noisy,
-        &noisy,
-        &Constraints::default(),
-        CurveDomain::Function,
-        false,
-        &JumpLsqSettings::default(),
-    )
-    .unwrap();
+    let faired = fair_function(&noisy, &JumpLsqSettings::default()).unwrap();
     let r = &faired.report;
     let target = r.target_sd.unwrap();
     assert!((r.rms_displacement / target - 1.0).abs() < 1e-3, "{r:?}");
@@ -428,16 +426,7 @@ fn a_larger_gcv_gamma_smooths_more() {
             Vec2::new(x, x.sin() + 0.01 * (((i * 7919) % 101) as f64 / 50.0 - 1.0) * 1.7)
         })
         .collect();
-    let run = |settings: &JumpLsqSettings| {
-        fair(
-            &noisy,
-            &noisy,
-            &Constraints::default(),
-            CurveDomain::Function,
-            false,
-            settings,
-        )
-    };
+    let run = |settings: &JumpLsqSettings| fair_function(&noisy, settings);
     let gcv = JumpLsqSettings::default().with_rule(LambdaRule::Gcv);
     assert_eq!(gcv.gcv_gamma, 1.0);
     let plain = run(&gcv).unwrap();
@@ -476,17 +465,7 @@ fn the_reported_trace_is_the_influence_matrixs_and_gives_gcvs_score() {
             Vec2::new(x, x.sin() + 0.05 * (((i * 7919) % 101) as f64 / 50.0 - 1.0))
         })
         .collect();
-    let fit = |points: &[Vec2], settings: &JumpLsqSettings| {
-        fair(
-            points,
-            points,
-            &Constraints::default(),
-            CurveDomain::Function,
-            false,
-            settings,
-        )
-        .unwrap()
-    };
+    let fit = |points: &[Vec2], settings: &JumpLsqSettings| fair_function(points, settings).unwrap();
     let gcv = JumpLsqSettings::default().with_rule(LambdaRule::Gcv);
     let chosen = fit(&noisy, &gcv);
     let r = &chosen.report;
