@@ -38,7 +38,7 @@
 //! (`curve-gcv-gamma`, `function-gcv-gamma`), `HAN_CURVE_ENDS` (`curve-ends`: `runout`,
 //! `natural`), `HAN_FUNCTION_ENDS` (`function-ends`: `auto`, `runout`, `natural`), `HAN_CURVE_END_RUNS` and `HAN_FUNCTION_END_RUNS` (`true`, `false`),
 //! `HAN_END_RUN_MAX_DEVIANCE` (`end-run-max-deviance`), `HAN_FUNCTION_PREPASS_RULE` and
-//! `HAN_CURVE_PREPASS_RULE` (`function-prepass-rule`, `curve-prepass-rule`: `gcv`, `gml`).
+//! `HAN_CURVE_PREPASS_RULE` (`function-prepass-rule`, `curve-prepass-rule`: `gcv`, `gml`, `auto`).
 
 use std::f64::consts::PI;
 use std::fmt::Write as _;
