@@ -22,7 +22,9 @@ pub mod surface_smoothing;
 mod tournament;
 
 pub use batten::{Batten, BattenSettings, PositionUpdate, Tangents};
-pub use jump_lsq::{CurveEnds, FunctionEnds, JumpLsq, JumpLsqReport, JumpLsqSettings, LambdaRule};
+pub use jump_lsq::{
+    CurveEnds, FunctionEnds, JumpLsq, JumpLsqReport, JumpLsqSettings, LambdaRule, AUTO_NOISE_FACTOR,
+};
 pub use sapidis_farin::{
     KnotStep, MoveBound, MoveRule, SapidisFarin, SapidisFarinSettings, SapidisFarinStop,
 };

@@ -147,28 +147,12 @@ pub enum PrepassRule {
     Gcv,
     /// Generalised maximum likelihood (Wahba 1985; REML), jump-lsq's `gml` rule.
     Gml,
-    /// GML where the data fit its model, else GCV: the GML fit is kept when λ is not
-    /// limited and its RMS displacement of the free points is at most [`AUTO_NOISE_FACTOR`]
-    /// times the noise estimate σ̂ of the data (jump-lsq's third-difference estimate,
-    /// [`JumpLsqReport::sigma_hat`]); otherwise the GCV fit (with its factor γ and its
-    /// limited-λ fallback) is made and kept.
-    ///
-    /// GCV's score is flat over decades of λ on a few hundred noisy points, and its minimum
-    /// then falls anywhere in them: on 200 points of a noisy sine (the judge's `sine`, σ = 0.01)
-    /// GCV took λ = 6.9·10^4 on seed 4, where 10^7–10^8 comes nearer the clean curve by a
-    /// third, and GML took 4.9·10^7. GML assumes a smooth curve plus white noise. Where the
-    /// data are that, its fit moves them by about σ: GML's RMS displacement over σ̂ was
-    /// 0.78–1.17 on 32 draws of 200 noisy points of sin(x/2) (σ̂, a median of third
-    /// differences, varies from draw to draw), so the factor 1.2 kept GML on all 32 (1 kept
-    /// it on 26). Where the model fails, it smooths far beyond the noise: tabulated airfoil
-    /// ordinates, whose "noise" is rounding and shape, 1.26–25 σ̂ (the SC(2)-0714 upper
-    /// surface 25 σ̂, where its 2 inflections lose to csaps), a hull waterline 90 σ̂; GCV's
-    /// fit is kept there. At 1.5 the UA(2)-180 upper surface (1.31 σ̂) would take GML's fit,
-    /// 3.3 times GCV's S_d. A
+    /// GML where the data fit its model, else GCV: jump-lsq's `auto` rule
+    /// ([`LambdaRule::Auto`]: GML's fit where its RMS displacement is at most
+    /// [`AUTO_NOISE_FACTOR`](crate::strategies::AUTO_NOISE_FACTOR) times the data's noise
+    /// estimate σ̂, else GCV's, with this pre-pass's factor γ and its limited-λ fallback). A
     /// pre-pass on bin means ([`bins`](super::bins)) uses GCV: its bins are chosen by GCV's
-    /// trace. One GML search, and one GCV search where GML's fit is refused; O(n) each.
-    ///
-    /// [`JumpLsqReport::sigma_hat`]: crate::strategies::jump_lsq::JumpLsqReport::sigma_hat
+    /// trace.
     Auto,
 }
 
@@ -263,9 +247,11 @@ impl Denoise {
             Denoise::JumpLsq => Some(JumpLsqSettings::default().with_function_ends(prepass.function_ends)),
             Denoise::JumpLsqGcv => Some(
                 match prepass.rule {
-                    // `auto` tries GML first (`jump_fit_by`); these are its GCV settings.
-                    PrepassRule::Gcv | PrepassRule::Auto => JumpLsqSettings::default()
+                    PrepassRule::Gcv => JumpLsqSettings::default()
                         .with_rule(LambdaRule::Gcv)
+                        .with_gcv_gamma(prepass.gcv_gamma),
+                    PrepassRule::Auto => JumpLsqSettings::default()
+                        .with_rule(LambdaRule::Auto)
                         .with_gcv_gamma(prepass.gcv_gamma),
                     PrepassRule::Gml => JumpLsqSettings::default().with_rule(LambdaRule::Gml),
                 }
@@ -273,11 +259,6 @@ impl Denoise {
             ),
             Denoise::Off | Denoise::Gcv => None,
         }
-    }
-
-    /// Whether the pre-pass tries GML before GCV: `jump-lsq-gcv` under [`PrepassRule::Auto`].
-    fn auto_rule(self, prepass: Prepass) -> bool {
-        self == Denoise::JumpLsqGcv && prepass.rule == PrepassRule::Auto
     }
 
     /// The end conditions of this smoother's open curve spline: `curve_ends` for the
@@ -404,36 +385,6 @@ struct JumpFit<const D: usize> {
     gcv: Option<f64>,
     /// tr A at the chosen λ (GCV rule).
     dof: Option<f64>,
-    /// The RMS displacement of the free points over the data's noise estimate σ̂ (+∞ for
-    /// σ̂ = 0 and a displacement).
-    noise_ratio: f64,
-}
-
-/// How far GML's fit may move the free points under [`PrepassRule::Auto`], RMS, in units
-/// of the data's noise estimate σ̂ (the rule's doc says why 1.2).
-pub const AUTO_NOISE_FACTOR: f64 = 1.2;
-
-/// The jump-lsq fit of [`jump_fit_scored`]; with `auto` ([`PrepassRule::Auto`] of the
-/// `jump-lsq-gcv` pre-pass, [`Denoise::auto_rule`]) the GML fit when it is within the noise
-/// and its λ not limited, else the fit with `settings` (GCV's for `auto`,
-/// [`Denoise::jump_lsq`]). O(n) per solve.
-fn jump_fit_by<const D: usize>(
-    auto: bool,
-    data: &[Vector<D>],
-    domain: CurveDomain,
-    closed: bool,
-    limits: &Limits<'_>,
-    settings: &JumpLsqSettings,
-    given: Option<&[f64]>,
-) -> Result<JumpFit<D>> {
-    if auto {
-        let gml = settings.clone().with_rule(LambdaRule::Gml);
-        let fit = jump_fit_scored(data, domain, closed, limits, &gml, given)?;
-        if fit.noise_ratio <= AUTO_NOISE_FACTOR && !fit.limited {
-            return Ok(fit);
-        }
-    }
-    jump_fit_scored(data, domain, closed, limits, settings, given)
 }
 
 /// The jump-lsq fit of `data` (`domain`: y over x, or a planar curve over chord lengths,
@@ -468,14 +419,6 @@ fn jump_fit_scored<const D: usize>(
         faired.report.gcv,
         faired.report.trace,
     );
-    let (moved, sigma) = (faired.report.rms_displacement, faired.report.sigma_hat);
-    let noise_ratio = if moved == 0.0 {
-        0.0
-    } else if sigma > 0.0 {
-        moved / sigma
-    } else {
-        f64::INFINITY
-    };
     let mut knots = faired.knots;
     if let (Some(period), Some(&first)) = (faired.period, knots.first()) {
         knots.push(first + period);
@@ -492,7 +435,6 @@ fn jump_fit_scored<const D: usize>(
         limited,
         gcv,
         dof,
-        noise_ratio,
     })
 }
 
@@ -617,15 +559,7 @@ fn denoise_points(
     };
     if let Some(settings) = mode.jump_lsq(prepass) {
         let points: Vec<Vec2> = x.iter().zip(y).map(|(&x, &y)| Vec2::new(x, y)).collect();
-        let fit = jump_fit_by(
-            mode.auto_rule(prepass),
-            &points,
-            CurveDomain::Function,
-            false,
-            limits,
-            &settings,
-            None,
-        )?;
+        let fit = jump_fit_scored(&points, CurveDomain::Function, false, limits, &settings, None)?;
         let jump = Scored {
             values: fit.values.iter().map(|p| p.y).collect(),
             score: fit.gcv.unwrap_or(f64::INFINITY),
@@ -1044,8 +978,7 @@ fn smoother_fit(
     limits: &Limits<'_>,
 ) -> Result<Option<SmootherFit>> {
     if let Some(settings) = mode.jump_lsq(prepass) {
-        let fit = jump_fit_by(
-            mode.auto_rule(prepass),
+        let fit = jump_fit_scored(
             sequence,
             CurveDomain::Parametric,
             periodic,

@@ -26,7 +26,7 @@ mod settings;
 pub use bins::{BINS_PER_DOF, FIRST_BINS, MAX_BINS, MAX_CURVE_PREPASS_POINTS, MAX_PREPASS_POINTS};
 pub use denoise::{
     denoise, denoise_by, denoise_curve, denoise_curve_by, CurvePrepass, Denoise, Limits, Prepass,
-    PrepassRule, AUTO_NOISE_FACTOR, CORRECTION_ROUNDS,
+    PrepassRule, CORRECTION_ROUNDS,
 };
 pub use foot_point::{foot_points, FootPoint, Projection};
 pub use phase1::{coarse_pass, counts, detect, displacement, e_at, Case, CaseKind, PassReport};

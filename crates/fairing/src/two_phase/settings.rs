@@ -271,7 +271,7 @@ pub struct TwoPhaseSettings {
     /// 4); 1.1 and 1.15 keep Gunnerus (7 against csaps's 7) and turn no row (sine seed 4
     /// 0.00348 and 0.00341 against 0.00306 and 0.00307).
     pub function_gcv_gamma: f64,
-    /// Functions: how the jump-lsq-gcv pre-pass chooses λ, auto (gml where its RMS displacement is within the noise estimate, else gcv), gcv (with function-gcv-gamma) or gml (generalised maximum likelihood, REML).
+    /// Functions: how the jump-lsq-gcv pre-pass chooses λ, auto (gml where its RMS displacement is within 1.2 σ̂, the noise estimate, else gcv), gcv (with function-gcv-gamma) or gml (generalised maximum likelihood, REML).
     ///
     /// Not in the paper: `gml` is jump-lsq's likelihood rule (Wahba 1985; the restricted
     /// likelihood of the smoother's Bayesian model, which Wood 2011 finds less prone than

@@ -561,3 +561,54 @@ fn runout_ends_leave_an_arcs_end_curvature_free() {
     };
     assert_eq!(function(CurveEnds::Natural), function(CurveEnds::Runout));
 }
+
+/// `rule = auto` against its definition: GML's fit where its RMS displacement is at most
+/// `AUTO_NOISE_FACTOR` σ̂ and its λ not limited, reported as `gml`; else GCV's fit, reported
+/// as `gcv`, with both searches' solves counted. A noisy sine (200 points, σ = 0.01) takes
+/// GML's; the SC(2)-0714 upper surface of `data/` (tabulated ordinates, where GML's fit
+/// moves the points by some 25 σ̂) takes GCV's.
+#[test]
+fn the_auto_rule_is_gml_within_the_noise_and_gcv_beyond() {
+    use fairing::strategies::AUTO_NOISE_FACTOR;
+    let by =
+        |rule, points: &[Vec2]| fair_function(points, &JumpLsqSettings::default().with_rule(rule)).unwrap();
+    let sine: Vec<Vec2> = crate::two_phase_denoise::noise(3, 200, 0.01)
+        .into_iter()
+        .enumerate()
+        .map(|(k, e)| {
+            let x = 0.1 * k as f64;
+            Vec2::new(x, (x / 2.0).sin() + e)
+        })
+        .collect();
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../data/airfoil_sc20714/sc20714_upper.csv"
+    );
+    let airfoil: Vec<Vec2> = std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|line| {
+            let v: Vec<f64> = line.split(',').map(|v| v.trim().parse().unwrap()).collect();
+            Vec2::new(v[0], v[1])
+        })
+        .collect();
+    for (name, points, expect_gml) in [("sine", &sine, true), ("SC(2)-0714 upper", &airfoil, false)] {
+        let (gml, gcv, auto) = (
+            by(LambdaRule::Gml, points),
+            by(LambdaRule::Gcv, points),
+            by(LambdaRule::Auto, points),
+        );
+        let within = gml.report.rms_displacement <= AUTO_NOISE_FACTOR * gml.report.sigma_hat;
+        assert_eq!(within && !gml.report.lambda_limited, expect_gml, "{name}");
+        let kept = if expect_gml { &gml } else { &gcv };
+        assert_eq!(auto.points, kept.points, "{name}");
+        assert_eq!(auto.report.rule, kept.report.rule, "{name}");
+        let solves = if expect_gml {
+            gml.report.solves
+        } else {
+            gml.report.solves + gcv.report.solves
+        };
+        assert_eq!(auto.report.solves, solves, "{name}");
+    }
+}

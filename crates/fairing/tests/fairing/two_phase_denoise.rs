@@ -971,7 +971,8 @@ fn read_xy(path: &str) -> (Vec<f64>, Vec<f64>) {
 #[test]
 fn the_auto_rule_keeps_gmls_fit_within_the_noise_and_gcvs_beyond() {
     use fairing::strategies::FunctionEnds;
-    use fairing::two_phase::{PrepassRule, AUTO_NOISE_FACTOR};
+    use fairing::strategies::AUTO_NOISE_FACTOR;
+    use fairing::two_phase::PrepassRule;
     assert_eq!(
         TwoPhaseSettings::default().function_prepass_rule,
         PrepassRule::Auto
