@@ -5,7 +5,7 @@
 //! copy is written back equal to the faired first point, so the polygon stays closed.
 //!
 //! The report's extras: `lambda`, `sigma` (the noise estimate σ̂), `rule` (`discrepancy`,
-//! `gcv`, `target-sd` or `given`), `target_sd`, `rms_displacement`, `lambda_limited`, `gcv`,
+//! `gcv`, `gml`, `target-sd` or `given`; under `rule = auto` the rule whose fit was kept), `target_sd`, `rms_displacement`, `lambda_limited`, `gcv`,
 //! `trace` (tr A(λ), the fit's degrees of freedom, under the GCV rule), `solves`, `refits`, `pinned`, `reweighted`, `band_rounds`, `clipped`, `penalty_before`,
 //! `penalty_after`, `closed`, `ends` (the spline's end conditions at the start and the end:
 //! `runout`, `natural` or `periodic`; `function-ends` = `auto` reports its choice).
