@@ -584,15 +584,7 @@ fn the_auto_rule_is_gml_within_the_noise_and_gcv_beyond() {
         env!("CARGO_MANIFEST_DIR"),
         "/../../data/airfoil_sc20714/sc20714_upper.csv"
     );
-    let airfoil: Vec<Vec2> = std::fs::read_to_string(path)
-        .unwrap()
-        .lines()
-        .skip(1)
-        .map(|line| {
-            let v: Vec<f64> = line.split(',').map(|v| v.trim().parse().unwrap()).collect();
-            Vec2::new(v[0], v[1])
-        })
-        .collect();
+    let airfoil = crate::sapidis_farin_data::read(std::path::Path::new(path));
     for (name, points, expect_gml) in [("sine", &sine, true), ("SC(2)-0714 upper", &airfoil, false)] {
         let (gml, gcv, auto) = (
             by(LambdaRule::Gml, points),

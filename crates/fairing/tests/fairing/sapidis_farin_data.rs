@@ -8,7 +8,8 @@ use curve_repr::Vec2;
 use fairing::strategies::{CurveDomain, SapidisFarin, SapidisFarinSettings};
 use fairing::Pipeline;
 
-fn read(path: &Path) -> Vec<Vec2> {
+/// The x, y columns of a CSV file of `data/` (one header line).
+pub(super) fn read(path: &Path) -> Vec<Vec2> {
     std::fs::read_to_string(path)
         .unwrap()
         .lines()

@@ -946,32 +946,20 @@ fn third_difference_sigma(values: &[f64]) -> f64 {
     1.4826 * median(&mut spread) / 20f64.sqrt()
 }
 
-fn read_xy(path: &str) -> (Vec<f64>, Vec<f64>) {
-    std::fs::read_to_string(path)
-        .unwrap()
-        .lines()
-        .skip(1)
-        .map(|line| {
-            let mut f = line.split(',').map(|v| v.trim().parse::<f64>().unwrap());
-            (f.next().unwrap(), f.next().unwrap())
-        })
-        .unzip()
-}
-
 /// `function-prepass-rule` = `auto` (`PrepassRule::Auto`, the default) against its defining
 /// condition: the GML fit, bit for bit, where that fit moves the points by at most
 /// `AUTO_NOISE_FACTOR` σ̂ (RMS; σ̂ recomputed here from the third differences), else the GCV
 /// fit, bit for bit. Both branches are taken: 200 points of a noisy sin(x/2) (32 draws, all
 /// GML: its displacement is the noise's) and the SC(2)-0714 upper surface of `data/`
 /// (tabulated ordinates, where GML smooths many times beyond σ̂ and GCV's fit is kept). The
-/// discrepancy pre-pass (`denoise` = `jump-lsq`) ignores the rule. And what it is for: where GCV's score is flat and its minimum falls at far too little
-/// smoothing, GML's fit comes nearer the clean curve. Over the 32 draws the mean RMS to the
+/// discrepancy pre-pass (`denoise` = `jump-lsq`) ignores the rule. And what it is for: where
+/// GCV's score is flat and its minimum falls at far too little smoothing, GML's fit comes
+/// nearer the clean curve. Over the 32 draws the mean RMS to the
 /// clean curve is lower than GCV's, and on the draw where GCV is farthest (seed 23) by more
 /// than 15 % (measured: means 0.00277 → 0.00269; seed 23 0.00394 → 0.00320).
 #[test]
 fn the_auto_rule_keeps_gmls_fit_within_the_noise_and_gcvs_beyond() {
-    use fairing::strategies::FunctionEnds;
-    use fairing::strategies::AUTO_NOISE_FACTOR;
+    use fairing::strategies::{FunctionEnds, AUTO_NOISE_FACTOR};
     use fairing::two_phase::PrepassRule;
     assert_eq!(
         TwoPhaseSettings::default().function_prepass_rule,
@@ -1050,7 +1038,10 @@ fn the_auto_rule_keeps_gmls_fit_within_the_noise_and_gcvs_beyond() {
         env!("CARGO_MANIFEST_DIR"),
         "/../../data/airfoil_sc20714/sc20714_upper.csv"
     );
-    let (x, y) = read_xy(path);
+    let (x, y): (Vec<f64>, Vec<f64>) = crate::sapidis_farin_data::read(std::path::Path::new(path))
+        .iter()
+        .map(|p| (p.x, p.y))
+        .unzip();
     let (within, ratio, _, _) = branch(&x, &y);
     println!("SC(2)-0714 upper: GML's displacement {ratio:.3} σ̂");
     assert!(!within, "GML kept on tabulated ordinates ({ratio} σ̂)");
