@@ -143,6 +143,19 @@ fn set_overrides_the_rule_and_bad_values_exit_2() {
     assert_eq!(ends.len(), 2);
     assert!(ends.iter().all(|e| e == "runout" || e == "natural"), "{ends:?}");
     assert!(auto["gcv"].as_f64().unwrap() <= report["gcv"].as_f64().unwrap());
+    // `difference-order` = auto reports the order it chose, whose GCV score is no higher
+    // than d = 1's (one of the three it compares); the default is 1.
+    assert_eq!(report["difference_order"], 1);
+    let (out, _, order) = fair(
+        &input,
+        &["--set", "rule=gcv", "--set", "difference-order=auto"],
+        "order",
+    );
+    assert_ok(&out);
+    assert_eq!(order["params"]["difference-order"], "auto");
+    let d = order["difference_order"].as_u64().unwrap();
+    assert!((1..=3).contains(&d), "{d}");
+    assert!(order["gcv"].as_f64().unwrap() <= report["gcv"].as_f64().unwrap());
     let (out, _, report) = fair(&input, &["--set", "target-sd=0.005"], "target");
     assert_ok(&out);
     assert_eq!(report["rule"], "target-sd");
@@ -161,6 +174,8 @@ fn set_overrides_the_rule_and_bad_values_exit_2() {
         "exponent=20",
         "rule=oracle",
         "difference-order=7",
+        "difference-order=1.5",
+        "difference-order=some",
         "end-jumps=4",
         "end-weight=-1",
         "function-ends=maybe",

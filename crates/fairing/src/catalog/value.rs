@@ -41,6 +41,21 @@ impl JsonSchema for AutoNumber {
     }
 }
 
+/// The schema of "an integer ≥ 0 or `auto`" (for `#[schemars(with = ...)]`).
+pub struct AutoCount;
+
+impl JsonSchema for AutoCount {
+    fn schema_name() -> Cow<'static, str> {
+        "AutoCount".into()
+    }
+    fn inline_schema() -> bool {
+        true
+    }
+    fn json_schema(_: &mut SchemaGenerator) -> Schema {
+        json_schema!({ "anyOf": [ { "type": "string", "enum": ["auto"] }, { "type": "integer", "minimum": 0 } ] })
+    }
+}
+
 /// The schema of "a number or `inf`" (for `#[schemars(with = ...)]`).
 pub struct BoundNumber;
 
@@ -102,6 +117,30 @@ pub mod auto {
     /// Reads a number or `"auto"`.
     pub fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<Option<f64>, D::Error> {
         deserializer.deserialize_any(NumberOr { word: "auto" })
+    }
+}
+
+/// Serde for `Option<usize>` written as the integer or `auto` (`None`).
+pub mod auto_count {
+    use super::*;
+
+    /// Writes `None` as `"auto"`.
+    pub fn serialize<S: Serializer>(value: &Option<usize>, serializer: S) -> Result<S::Ok, S::Error> {
+        match value {
+            Some(v) => serializer.serialize_u64(*v as u64),
+            None => serializer.serialize_str("auto"),
+        }
+    }
+
+    /// Reads an integer ≥ 0 or `"auto"`.
+    pub fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<Option<usize>, D::Error> {
+        match deserializer.deserialize_any(NumberOr { word: "auto" })? {
+            None => Ok(None),
+            Some(x) if x >= 0.0 && x.fract() == 0.0 && x <= usize::MAX as f64 => Ok(Some(x as usize)),
+            Some(x) => Err(de::Error::custom(format!(
+                "`{x}` is not an integer ≥ 0 or `auto`"
+            ))),
+        }
     }
 }
 

@@ -8,7 +8,8 @@
 //! `gcv`, `gml`, `target-sd` or `given`; under `rule = auto` the rule whose fit was kept), `target_sd`, `rms_displacement`, `lambda_limited`, `gcv`,
 //! `trace` (tr A(λ), the fit's degrees of freedom, under the GCV rule), `solves`, `refits`, `pinned`, `reweighted`, `band_rounds`, `clipped`, `penalty_before`,
 //! `penalty_after`, `closed`, `ends` (the spline's end conditions at the start and the end:
-//! `runout`, `natural` or `periodic`; `function-ends` = `auto` reports its choice).
+//! `runout`, `natural` or `periodic`; `function-ends` = `auto` reports its choice),
+//! `difference_order` (the penalty's d; `difference-order` = `auto` reports its choice).
 
 use curve_repr::Vector;
 use fairness::curvature::CurvatureForm;
@@ -181,6 +182,7 @@ where
         ("penalty_after", json!(report.penalty_after)),
         ("closed", json!(closed)),
         ("ends", json!(report.ends)),
+        ("difference_order", json!(report.difference_order)),
     ];
     for (name, value) in extras {
         run.extras.insert(name.into(), value);
