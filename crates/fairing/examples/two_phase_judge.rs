@@ -38,7 +38,8 @@
 //! (`curve-gcv-gamma`, `function-gcv-gamma`), `HAN_CURVE_ENDS` (`curve-ends`: `runout`,
 //! `natural`), `HAN_FUNCTION_ENDS` (`function-ends`: `auto`, `runout`, `natural`), `HAN_CURVE_END_RUNS` and `HAN_FUNCTION_END_RUNS` (`true`, `false`),
 //! `HAN_END_RUN_MAX_DEVIANCE` (`end-run-max-deviance`), `HAN_FUNCTION_PREPASS_RULE` and
-//! `HAN_CURVE_PREPASS_RULE` (`function-prepass-rule`, `curve-prepass-rule`: `gcv`, `gml`, `auto`).
+//! `HAN_CURVE_PREPASS_RULE` (`function-prepass-rule`, `curve-prepass-rule`: `gcv`, `gml`, `auto`),
+//! `HAN_FUNCTION_DIFFERENCE_ORDER` (`function-difference-order`: `0` to `3`, `auto`).
 
 use std::f64::consts::PI;
 use std::fmt::Write as _;
@@ -281,6 +282,12 @@ fn main() -> Result<(), Error> {
             }
             "HAN_CURVE_PREPASS_RULE" => {
                 tuned.curve_prepass_rule = serde_json::from_value(serde_json::Value::String(value))?;
+            }
+            "HAN_FUNCTION_DIFFERENCE_ORDER" => {
+                tuned.function_difference_order = match value.as_str() {
+                    "auto" => None,
+                    order => Some(order.parse()?),
+                };
             }
             "HAN_CURVE_ENDS" => {
                 tuned.curve_ends = serde_json::from_value(serde_json::Value::String(value))?;

@@ -177,6 +177,9 @@ pub struct Prepass {
     pub gcv_gamma: f64,
     /// A function's spline end conditions (jump-lsq's `function-ends`; unused by curves).
     pub function_ends: FunctionEnds,
+    /// A function's difference order, `None` for GCV's choice (jump-lsq's
+    /// `difference-order`; curves take 1).
+    pub difference_order: Option<usize>,
     /// The most points the pre-pass fits with one knot per point; beyond, it fits bin means,
     /// at most [`MAX_BINS`] bins or this many if more ([`MAX_PREPASS_POINTS`] by the
     /// constructors, a function's limit).
@@ -190,6 +193,7 @@ impl Prepass {
             rule: PrepassRule::Gcv,
             gcv_gamma: gamma,
             function_ends: FunctionEnds::Runout,
+            difference_order: Some(1),
             max_points: MAX_PREPASS_POINTS,
         }
     }
@@ -200,6 +204,7 @@ impl Prepass {
             rule,
             gcv_gamma: gamma,
             function_ends: FunctionEnds::Runout,
+            difference_order: Some(1),
             max_points: MAX_PREPASS_POINTS,
         }
     }
@@ -210,14 +215,26 @@ impl Prepass {
         self
     }
 
-    /// This rule on bin means: `auto` becomes `gcv` (the bins are chosen by GCV's trace).
+    /// Sets a function's difference order (`None`: GCV's choice; 1 by the constructors).
+    pub fn with_difference_order(mut self, order: Option<usize>) -> Self {
+        self.difference_order = order;
+        self
+    }
+
+    /// This rule on bin means: `auto` becomes `gcv` (the bins are chosen by GCV's trace),
+    /// and an `auto` difference order 1.
     fn on_bins(self) -> Self {
+        let difference_order = Some(self.difference_order.unwrap_or(1));
         match self.rule {
             PrepassRule::Auto => Prepass {
                 rule: PrepassRule::Gcv,
+                difference_order,
                 ..self
             },
-            PrepassRule::Gcv | PrepassRule::Gml => self,
+            PrepassRule::Gcv | PrepassRule::Gml => Prepass {
+                difference_order,
+                ..self
+            },
         }
     }
 
@@ -241,24 +258,26 @@ impl Denoise {
     }
 
     /// The jump-lsq settings of the jump-lsq variants (`None` for the others), `prepass`'s
-    /// rule (GCV with its trace factor, or GML) for `jump-lsq-gcv`.
+    /// rule (GCV with its trace factor, or GML) for `jump-lsq-gcv`, and its function ends and
+    /// difference order.
     fn jump_lsq(self, prepass: Prepass) -> Option<JumpLsqSettings> {
-        match self {
-            Denoise::JumpLsq => Some(JumpLsqSettings::default().with_function_ends(prepass.function_ends)),
-            Denoise::JumpLsqGcv => Some(
-                match prepass.rule {
-                    PrepassRule::Gcv => JumpLsqSettings::default()
-                        .with_rule(LambdaRule::Gcv)
-                        .with_gcv_gamma(prepass.gcv_gamma),
-                    PrepassRule::Auto => JumpLsqSettings::default()
-                        .with_rule(LambdaRule::Auto)
-                        .with_gcv_gamma(prepass.gcv_gamma),
-                    PrepassRule::Gml => JumpLsqSettings::default().with_rule(LambdaRule::Gml),
-                }
-                .with_function_ends(prepass.function_ends),
-            ),
-            Denoise::Off | Denoise::Gcv => None,
-        }
+        let settings = match self {
+            Denoise::JumpLsq => JumpLsqSettings::default(),
+            Denoise::JumpLsqGcv => match prepass.rule {
+                PrepassRule::Gcv => JumpLsqSettings::default()
+                    .with_rule(LambdaRule::Gcv)
+                    .with_gcv_gamma(prepass.gcv_gamma),
+                PrepassRule::Auto => JumpLsqSettings::default()
+                    .with_rule(LambdaRule::Auto)
+                    .with_gcv_gamma(prepass.gcv_gamma),
+                PrepassRule::Gml => JumpLsqSettings::default().with_rule(LambdaRule::Gml),
+            },
+            Denoise::Off | Denoise::Gcv => return None,
+        };
+        Some(JumpLsqSettings {
+            difference_order: prepass.difference_order,
+            ..settings.with_function_ends(prepass.function_ends)
+        })
     }
 
     /// The end conditions of this smoother's open curve spline: `curve_ends` for the

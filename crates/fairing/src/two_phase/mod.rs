@@ -271,6 +271,7 @@ impl FairingStrategy<2> for TwoPhase {
                 self.settings.function_gcv_gamma,
             )
             .with_function_ends(self.settings.function_ends)
+            .with_difference_order(self.settings.function_difference_order)
             .with_max_points(self.settings.function_prepass_points),
             &x,
             &y,
