@@ -3,12 +3,14 @@
 //! Data as the speed peer's (`speed.py`): a noisy function segment, x with uniform random
 //! steps in [0.5, 1.5]·4π/n, y = sin(x/2) + noise of standard deviation 0.01. Cases: one
 //! solve at a given λ; λ by the discrepancy rule (the default); by GCV (to 10^5); and a 3D
-//! parametric curve with the default rule and refits.
+//! parametric curve with the default rule and refits. At 10^3 points also two-phase's
+//! function pre-pass settings (`rule = auto`, `function-ends = auto`), with d = 1 and with
+//! `difference-order = auto` (the order chosen by GCV, up to 2000 points only).
 
 use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
 use curve_repr::{Vec2, Vec3};
-use fairing::strategies::jump_lsq::{fair, JumpLsqSettings, LambdaRule};
-use fairing::strategies::CurveDomain;
+use fairing::strategies::jump_lsq::{fair, JumpLsqSettings, LambdaRule, ORDER_AUTO_MAX};
+use fairing::strategies::{CurveDomain, FunctionEnds};
 use fairing::Constraints;
 
 /// Under `cargo test` (no `--bench` flag) only the smallest size runs: the bench code is
@@ -61,6 +63,20 @@ fn bench(c: &mut Criterion) {
             group.bench_with_input(BenchmarkId::new(label, n), &(), |b, _| {
                 b.iter(|| fair(&points, &points, &none, CurveDomain::Function, false, &settings).unwrap())
             });
+        }
+        if n <= ORDER_AUTO_MAX {
+            let prepass = JumpLsqSettings::default()
+                .with_rule(LambdaRule::Auto)
+                .with_function_ends(FunctionEnds::Auto);
+            let cases = [
+                ("prepass_order_1", prepass.clone()),
+                ("prepass_order_auto", prepass.with_auto_difference_order()),
+            ];
+            for (label, settings) in cases {
+                group.bench_with_input(BenchmarkId::new(label, n), &(), |b, _| {
+                    b.iter(|| fair(&points, &points, &none, CurveDomain::Function, false, &settings).unwrap())
+                });
+            }
         }
         let space: Vec<Vec3> = points
             .iter()
