@@ -39,7 +39,8 @@
 //! `natural`), `HAN_FUNCTION_ENDS` (`function-ends`: `auto`, `runout`, `natural`), `HAN_CURVE_END_RUNS` and `HAN_FUNCTION_END_RUNS` (`true`, `false`),
 //! `HAN_END_RUN_MAX_DEVIANCE` (`end-run-max-deviance`), `HAN_FUNCTION_PREPASS_RULE` and
 //! `HAN_CURVE_PREPASS_RULE` (`function-prepass-rule`, `curve-prepass-rule`: `gcv`, `gml`, `auto`),
-//! `HAN_FUNCTION_DIFFERENCE_ORDER` (`function-difference-order`: `0` to `3`, `auto`).
+//! `HAN_FUNCTION_DIFFERENCE_ORDER` and `HAN_CURVE_DIFFERENCE_ORDER` (`function-difference-order`,
+//! `curve-difference-order`: `0` to `3`, `auto`).
 
 use std::f64::consts::PI;
 use std::fmt::Write as _;
@@ -285,6 +286,12 @@ fn main() -> Result<(), Error> {
             }
             "HAN_FUNCTION_DIFFERENCE_ORDER" => {
                 tuned.function_difference_order = match value.as_str() {
+                    "auto" => None,
+                    order => Some(order.parse()?),
+                };
+            }
+            "HAN_CURVE_DIFFERENCE_ORDER" => {
+                tuned.curve_difference_order = match value.as_str() {
                     "auto" => None,
                     order => Some(order.parse()?),
                 };

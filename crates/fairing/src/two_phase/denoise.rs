@@ -177,8 +177,8 @@ pub struct Prepass {
     pub gcv_gamma: f64,
     /// A function's spline end conditions (jump-lsq's `function-ends`; unused by curves).
     pub function_ends: FunctionEnds,
-    /// A function's difference order, `None` for GCV's choice (jump-lsq's
-    /// `difference-order`; curves take 1).
+    /// The penalty's difference order, `None` for GCV's choice (jump-lsq's
+    /// `difference-order`).
     pub difference_order: Option<usize>,
     /// The most points the pre-pass fits with one knot per point; beyond, it fits bin means,
     /// at most [`MAX_BINS`] bins or this many if more ([`MAX_PREPASS_POINTS`] by the
@@ -215,7 +215,7 @@ impl Prepass {
         self
     }
 
-    /// Sets a function's difference order (`None`: GCV's choice; 1 by the constructors).
+    /// Sets the penalty's difference order (`None`: GCV's choice; 1 by the constructors).
     pub fn with_difference_order(mut self, order: Option<usize>) -> Self {
         self.difference_order = order;
         self

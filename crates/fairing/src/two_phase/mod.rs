@@ -378,7 +378,8 @@ impl SegmentFairer for TwoPhase {
         let rules = CurvePrepass::new(self.settings.denoise, self.settings.project)
             .with_prepass(
                 Prepass::new(self.settings.curve_prepass_rule, self.settings.curve_gcv_gamma)
-                    .with_max_points(self.settings.curve_prepass_points),
+                    .with_max_points(self.settings.curve_prepass_points)
+                    .with_difference_order(self.settings.curve_difference_order),
             )
             .with_ends(self.settings.curve_ends);
         denoise_curve_by(&rules, points, closed, &limits).map(Some)

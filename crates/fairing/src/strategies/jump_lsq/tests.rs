@@ -1674,9 +1674,9 @@ fn auto_difference_order_brings_noisy_sines_nearer_their_clean_curve() {
 }
 
 #[test]
-fn auto_difference_order_of_curves_and_long_functions_is_one_without_a_search() {
-    // Parametric curves and functions beyond ORDER_AUTO_MAX points take d = 1 and search
-    // nothing: the same points and solves as `difference-order = 1`.
+fn auto_difference_order_of_long_functions_is_one_without_a_search() {
+    // Beyond ORDER_AUTO_MAX points `auto` takes d = 1 and searches nothing: the same points
+    // and solves as `difference-order = 1`.
     let auto = JumpLsqSettings::default()
         .with_rule(LambdaRule::Gcv)
         .with_auto_difference_order();
@@ -1686,22 +1686,51 @@ fn auto_difference_order_of_curves_and_long_functions_is_one_without_a_search() 
     assert_eq!(a.report.difference_order, 1);
     assert_eq!(a.points, b.points);
     assert_eq!(a.report.solves, b.report.solves);
-    let curve = ellipse(40);
-    let fit = |settings: &JumpLsqSettings| {
-        fair(
-            &curve,
-            &curve,
-            &Constraints::default(),
-            CurveDomain::Parametric,
-            true,
-            settings,
-        )
-        .unwrap()
-    };
-    let (a, b) = (fit(&auto), fit(&one));
-    assert_eq!(a.report.difference_order, 1);
-    assert_eq!(a.points, b.points);
-    assert_eq!(a.report.solves, b.report.solves);
+}
+
+#[test]
+fn auto_difference_order_of_curves_is_the_order_of_least_gcv() {
+    // On open and closed parametric curves (with their refits) `auto` keeps the order whose
+    // GCV fit scores least, and the fit is then the fixed order's, bit for bit.
+    let auto = JumpLsqSettings::default()
+        .with_rule(LambdaRule::Gcv)
+        .with_auto_difference_order();
+    let open: Vec<Vector<2>> = (0..60)
+        .map(|i| {
+            let t = 1.5 * std::f64::consts::PI * i as f64 / 59.0;
+            Vector::<2>::new(
+                2.0 * t.cos() + 0.01 * unit_noise(2 * i, 1),
+                2.0 * t.sin() + 0.01 * unit_noise(2 * i + 1, 1),
+            )
+        })
+        .collect();
+    for (name, curve, closed) in [("arc", open, false), ("ellipse", ellipse(40), true)] {
+        let fit = |settings: &JumpLsqSettings| {
+            fair(
+                &curve,
+                &curve,
+                &Constraints::default(),
+                CurveDomain::Parametric,
+                closed,
+                settings,
+            )
+            .unwrap()
+        };
+        let faired = fit(&auto);
+        let scores: Vec<f64> = [1, 2, 3]
+            .iter()
+            .map(|&d| fit(&auto.clone().with_difference_order(d)).report.gcv.unwrap())
+            .collect();
+        let least = (0..3).min_by(|&a, &b| scores[a].total_cmp(&scores[b])).unwrap();
+        assert_eq!(
+            faired.report.difference_order,
+            least + 1,
+            "{name}: GCV scores {scores:?}"
+        );
+        let fixed = fit(&auto.clone().with_difference_order(least + 1));
+        assert_eq!(faired.points, fixed.points, "{name}");
+        assert!(faired.report.solves > fixed.report.solves, "{name}");
+    }
 }
 
 /// `n` evenly spaced points of y = sin(x/2) over [0, 20] with noise of standard deviation
