@@ -109,8 +109,11 @@ pub struct TwoPhaseSettings {
     /// surface seeds 1 and 4 gain an end inflection (0 → 1; their clean twin has 6) and come
     /// nearer, UA(2)-180 upper and R140 upper 0 → 1. Turn it off for data with a real
     /// inflection near an end and few points; no size of the run tells the true run from a
-    /// noisy one (measured, in the doc). A run the data hold clearly is refused by
-    /// [`end_run_max_deviance`](Self::end_run_max_deviance) (the sine seed 4's).
+    /// noisy one (measured, in the doc). A run whose absorption would fit the data worse is
+    /// refused by [`end_run_max_deviance`](Self::end_run_max_deviance): by default, which
+    /// keeps the true end runs of 7 of those 8 sines (all their runs cost more than half a
+    /// noise variance to absorb but seed 7's), so the cost above is paid on the sine seed 7
+    /// alone; the dense data's runs cost about nothing to absorb and are still taken.
     pub function_end_runs: bool,
     /// Functions: refuse an end-run move that raises the residual sum of squares against the data by more than this many noise variances (0: off).
     ///
@@ -127,20 +130,26 @@ pub struct TwoPhaseSettings {
     /// with σ̂ = 0 (a direct [`fair_function`](super::fair_function)); 0 is the earlier
     /// behaviour, as is [`TwoPhaseSettings::paper`] (which has no end-run case).
     ///
-    /// Default 3.84 (not chosen by the judge), measured with the judge
-    /// (`docs/two_phase_judge.md`, all rows, seeds 1–8, against 0): three rows change, none
-    /// turns and none is lost. The sine seed 4, whose true end run (after its third
-    /// inflection, x = 6π) the end-run case would absorb at a cost of 17.5 σ̂², keeps the
-    /// clean curve's 3 inflections and comes nearer it (inflections / vibrations / RMS to the
-    /// clean curve 2/24/0.00428 → 3/20/0.00337; csaps at the new S_d 0.00293: still a miss,
-    /// the pre-pass's own distance); the NACA upper surface seed 4 (8.7 σ̂²) 0/13/0.000458 →
-    /// 1/13/0.000455 (its clean twin has 6); UA(2)-180 upper (23.6 σ̂²) 0/8 → 1/9 (csaps
-    /// 12/23). The other sines' true end runs cost 1.1–3.6 σ̂² (seed 7 −0.4) and are still
-    /// absorbed: within the noise, the data cannot tell them from noise (seed 6, 3.55 σ̂²,
-    /// would turn with the case off). The dense sine's end runs (`two_phase_ends.rs`, 2·10^4
-    /// points) move by under 0.001 σ̂ and pass. Applied to every case of Phases 1 and 2 (a
-    /// measurement, not an option) the test turned no row either and left more inflections on
-    /// the real airfoils (FX 63-137 upper 0 → 2, UA(2)-180 lower 2 → 4).
+    /// Default 0.5 (since 2026-12-05; 3.84 before, the 95 % quantile of χ² with one degree of
+    /// freedom): an end run is absorbed only where absorbing it fits the data about as well
+    /// as keeping it. Under 3.84 the test let through the true end runs of six of the
+    /// judge's eight sines (y = sin(x/2), whose third inflection, x = 6π, is eleven points
+    /// from the end; each run costs 1.9–3.7 σ̂² to absorb) and with them the clean curve's
+    /// third inflection, lifting the tail by up to 1.7 σ̂: at 3.84 the data cannot tell such
+    /// a run from noise, so the question is which mistake costs less, and measured, erasing
+    /// a true inflection does. Measured with the judge (`docs/two_phase_judge.md`, section
+    /// `end-run-max-deviance = 0.5`): the same 80 of 81 rows beat csaps; every sine of seeds
+    /// 1–8 but seed 7 (whose run costs −0.9 σ̂²: absorbing it fits the data better) keeps the
+    /// clean curve's 3 inflections and comes nearer it (seed 6 0.00289 → 0.00213), the NACA
+    /// upper surface seeds 1 and 8 keep an end inflection and come nearer (0.000457 →
+    /// 0.000387), R140 upper 0 → 1 (csaps 20) and nearer the UIUC smoothed twin (RMS 8.53e-5 →
+    /// 7.55e-5, `examples/han_tables.rs`). On 40 draws of the sine the clean curve's
+    /// inflection count is kept on 37 (was 23), geometric mean of our RMS to the clean curve
+    /// over csaps's at equal S_d 0.720 → 0.701, vibrations summed 316 → 251; the NACA upper
+    /// surface unchanged (0.548 → 0.547). Any bound from 0.01 to 0.5 gives those 40 sines
+    /// bit for bit; 1 leaves one more sine without its true inflection, 2 four more. The
+    /// dense sine's end runs (2·10^4 points, `two_phase_ends.rs`) cost about 0 and pass. 3.84
+    /// is one `--set` away.
     pub end_run_max_deviance: f64,
     /// The data values y of the current run before the pre-pass (set by the strategy for a
     /// function; empty when unknown). Not a parameter.
@@ -502,7 +511,7 @@ impl Default for TwoPhaseSettings {
             max_run: 1_000_000,
             curve_end_runs: true,
             function_end_runs: true,
-            end_run_max_deviance: 3.84,
+            end_run_max_deviance: 0.5,
             end_runs: true,
             stall_passes: 0,
             min_gain: 0.0,

