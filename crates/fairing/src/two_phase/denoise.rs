@@ -320,6 +320,37 @@ struct Scored<T> {
     score: f64,
     /// tr A at the chosen smoothing.
     dof: Option<f64>,
+    /// jump-lsq's report where the fit is jump-lsq's (`None`: the cubic smoothing spline).
+    jump: Option<jump_lsq::JumpLsqReport>,
+}
+
+/// What a function's pre-pass did ([`denoise_reported`]): which smoother's fit it kept, with
+/// jump-lsq's own report where that is jump-lsq's (its rule, λ, difference order and end
+/// conditions as chosen from the data, [`jump_lsq::JumpLsqReport`]), and the bins it fitted
+/// beyond [`Prepass::max_points`] points. Two-phase's `prepass` report field.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PrepassReport {
+    /// `jump-lsq`, or `smoothing-spline` (the cubic smoothing spline, p by GCV: `denoise =
+    /// gcv`, or jump-lsq's λ at its precision limit where the cubic scores lower).
+    pub smoother: &'static str,
+    /// jump-lsq's report of the kept fit (`None` for the cubic smoothing spline).
+    pub jump_lsq: Option<jump_lsq::JumpLsqReport>,
+    /// The bins whose means were fitted (`None`: one knot per point).
+    pub bins: Option<usize>,
+}
+
+impl PrepassReport {
+    fn of<T>(fit: &Scored<T>, bins: Option<usize>) -> Self {
+        PrepassReport {
+            smoother: if fit.jump.is_some() {
+                "jump-lsq"
+            } else {
+                "smoothing-spline"
+            },
+            jump_lsq: fit.jump.clone(),
+            bins,
+        }
+    }
 }
 
 /// The smoothing spline's values at `t` for `data`, p by GCV, the limits honoured by
@@ -389,6 +420,7 @@ fn bounded_fit_scored<const D: usize>(
         values,
         score,
         dof: trace,
+        jump: None,
     })
 }
 
@@ -404,6 +436,8 @@ struct JumpFit<const D: usize> {
     gcv: Option<f64>,
     /// tr A at the chosen λ (GCV rule).
     dof: Option<f64>,
+    /// jump-lsq's report of the fit.
+    report: jump_lsq::JumpLsqReport,
 }
 
 /// The jump-lsq fit of `data` (`domain`: y over x, or a planar curve over chord lengths,
@@ -454,6 +488,7 @@ fn jump_fit_scored<const D: usize>(
         limited,
         gcv,
         dof,
+        report: faired.report,
     })
 }
 
@@ -480,13 +515,30 @@ pub fn denoise_by(
     y: &[f64],
     limits: &Limits<'_>,
 ) -> Result<Vec<f64>> {
+    Ok(denoise_reported(mode, prepass, x, y, limits)?.0)
+}
+
+/// [`denoise_by`] with what the pre-pass did ([`PrepassReport`]; `None` where it did
+/// nothing: `Denoise::Off` or fewer than 4 points). The same values bit for bit.
+///
+/// Errors: as [`denoise_by`].
+pub fn denoise_reported(
+    mode: Denoise,
+    prepass: Prepass,
+    x: &[f64],
+    y: &[f64],
+    limits: &Limits<'_>,
+) -> Result<(Vec<f64>, Option<PrepassReport>)> {
     if mode == Denoise::Off || x.len() < 4 {
-        return Ok(y.to_vec());
+        return Ok((y.to_vec(), None));
     }
     if x.len() <= prepass.max_points.max(4) {
-        return Ok(denoise_points(mode, prepass, x, y, limits)?.values);
+        let fit = denoise_points(mode, prepass, x, y, limits)?;
+        let report = PrepassReport::of(&fit, None);
+        return Ok((fit.values, Some(report)));
     }
-    denoise_binned(mode, prepass, x, y, limits)
+    let (values, report) = denoise_binned(mode, prepass, x, y, limits)?;
+    Ok((values, Some(report)))
 }
 
 /// The pre-pass on bin means ([`bins`](super::bins)): the fit of the means, read back at
@@ -499,13 +551,15 @@ fn denoise_binned(
     x: &[f64],
     y: &[f64],
     limits: &Limits<'_>,
-) -> Result<Vec<f64>> {
+) -> Result<(Vec<f64>, PrepassReport)> {
     let prepass = prepass.on_bins();
-    let (_, (knots, fitted)) = on_bins(x.len(), prepass, limits, |bins, bin_limits| {
+    let (bins, (knots, fitted, report)) = on_bins(x.len(), prepass, limits, |bins, bin_limits| {
         let (bx, by) = (bins.means(x), bins.means(y));
         let fit = denoise_points(mode, prepass, &bx, &by, bin_limits)?;
-        Ok(((bx, fit.values), fit.dof))
+        let report = PrepassReport::of(&fit, Some(bins.len()));
+        Ok(((bx, fit.values, report), fit.dof))
     })?;
+    debug_assert_eq!(report.bins, Some(bins.len()));
     let spline = Quintic::new(&knots, &fitted)?;
     let values: Vec<f64> = spline
         .values(x)
@@ -520,7 +574,7 @@ fn denoise_binned(
             format!("the binned pre-pass gave a non-finite value at point {i}"),
         ));
     }
-    Ok(values)
+    Ok((values, report))
 }
 
 /// Runs `fit` on bins of the n points (module [`bins`](super::bins)): [`FIRST_BINS`] bins
@@ -575,6 +629,7 @@ fn denoise_points(
         values: fit.values.iter().map(|v| v[0]).collect(),
         score: fit.score,
         dof: fit.dof,
+        jump: fit.jump,
     };
     if let Some(settings) = mode.jump_lsq(prepass) {
         let points: Vec<Vec2> = x.iter().zip(y).map(|(&x, &y)| Vec2::new(x, y)).collect();
@@ -583,6 +638,7 @@ fn denoise_points(
             values: fit.values.iter().map(|p| p.y).collect(),
             score: fit.gcv.unwrap_or(f64::INFINITY),
             dof: fit.dof,
+            jump: Some(fit.report),
         };
         if !fit.limited {
             return Ok(jump);
@@ -1020,7 +1076,9 @@ fn smoother_fit(
         Some(knots) => knots.to_vec(),
         None => Parametrization::ChordLength.parameters(sequence)?,
     };
-    let Scored { values, score, dof } = bounded_fit_scored(&t, sequence, limits, prepass.gcv_gamma)?;
+    let Scored {
+        values, score, dof, ..
+    } = bounded_fit_scored(&t, sequence, limits, prepass.gcv_gamma)?;
     Ok(Some(SmootherFit {
         values,
         knots: t,

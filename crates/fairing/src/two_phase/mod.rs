@@ -25,8 +25,8 @@ mod settings;
 
 pub use bins::{BINS_PER_DOF, FIRST_BINS, MAX_BINS, MAX_CURVE_PREPASS_POINTS, MAX_PREPASS_POINTS};
 pub use denoise::{
-    denoise, denoise_by, denoise_curve, denoise_curve_by, CurvePrepass, Denoise, Limits, Prepass,
-    PrepassRule, CORRECTION_ROUNDS,
+    denoise, denoise_by, denoise_curve, denoise_curve_by, denoise_reported, CurvePrepass, Denoise, Limits,
+    Prepass, PrepassReport, PrepassRule, CORRECTION_ROUNDS,
 };
 pub use foot_point::{foot_points, FootPoint, Projection};
 pub use phase1::{coarse_pass, counts, detect, displacement, e_at, Case, CaseKind, PassReport};
@@ -208,6 +208,8 @@ pub struct TwoPhase {
     stall: Stall,
     /// The spline's (vibrations, inflections) after the last pass.
     counts: Option<(usize, usize)>,
+    /// What the noise pre-pass of the last function run did.
+    prepass: Option<PrepassReport>,
 }
 
 impl TwoPhase {
@@ -219,7 +221,16 @@ impl TwoPhase {
             passes: 0,
             stall: Stall::default(),
             counts: None,
+            prepass: None,
         }
+    }
+
+    /// What the noise pre-pass of the last run on a function did ([`PrepassReport`]: the
+    /// smoother kept, jump-lsq's rule, λ, difference order and ends as chosen from the data,
+    /// the bins); `None` before a run, with `denoise = off` and on an arbitrary curve's
+    /// segments (whose pre-pass runs on the whole curve).
+    pub fn prepass(&self) -> Option<&PrepassReport> {
+        self.prepass.as_ref()
     }
 
     /// The settings.
@@ -264,7 +275,7 @@ impl FairingStrategy<2> for TwoPhase {
             keep: &keep,
             allowed: &allowed,
         };
-        let smooth = denoise_by(
+        let (smooth, prepass) = denoise_reported(
             self.settings.denoise,
             Prepass::new(
                 self.settings.function_prepass_rule,
@@ -277,6 +288,7 @@ impl FairingStrategy<2> for TwoPhase {
             &y,
             &limits,
         )?;
+        self.prepass = prepass;
         for (k, (&new, &old)) in smooth.iter().zip(&y).enumerate() {
             if new != old {
                 state.move_point(k, Vec2::new(x[k], new))?;

@@ -528,3 +528,80 @@ fn a_surface_plan_prints_as_its_method_table_and_reads_back() {
     assert_eq!(again.stages[0].settings["max-steps"], 50);
     assert_eq!(again.stages[0].settings["boundary"], true);
 }
+
+/// Two-phase's `prepass` report field says what a function's noise pre-pass chose. On a
+/// noisy sine (200 points, σ = 0.01) it reports jump-lsq's fit with the rule, λ, difference
+/// order, end conditions and noise estimate of jump-lsq run alone with the pre-pass's own
+/// choices (`rule = auto`, `difference-order = auto`, `function-ends = auto`) on the same
+/// points. With `denoise = gcv` it names the cubic smoothing spline and has no jump-lsq
+/// report. Beyond `function-prepass-points` it gives the bins fitted, and their fit's order
+/// is 1, as the binned pre-pass fixes it. With `denoise = off` it is null. An arbitrary
+/// curve's report has no such field.
+#[test]
+fn two_phases_report_says_what_its_pre_pass_chose() {
+    use rand::SeedableRng;
+    use rand_distr::{Distribution, Normal};
+    let mut rng = rand::rngs::StdRng::seed_from_u64(18);
+    let normal = Normal::new(0.0, 0.01).unwrap();
+    let points: Vec<Vec2> = (0..200)
+        .map(|k| {
+            let x = 0.1 * k as f64;
+            Vec2::new(x, (x / 2.0).sin() + normal.sample(&mut rng))
+        })
+        .collect();
+    let catalog = Catalog::builtin();
+    let run = |method: &str, pairs: &[(&str, &str)], kind: CurveKind| {
+        let plan = catalog
+            .plan(MethodKind::Curve, Some(method), method, None, &sets(pairs))
+            .unwrap();
+        catalog
+            .run_curve_plan(
+                &plan,
+                &CurvePoints::Planar(points.clone()),
+                kind,
+                &PlanConstraints::default(),
+            )
+            .unwrap()
+    };
+    let two_phase = run("two-phase", &[], CurveKind::Function);
+    let prepass = &two_phase.extras["prepass"];
+    assert_eq!(prepass["smoother"], "jump-lsq", "{prepass}");
+    assert!(prepass["bins"].is_null(), "{prepass}");
+    let alone = run(
+        "jump-lsq",
+        &[
+            ("rule", "auto"),
+            ("difference-order", "auto"),
+            ("function-ends", "auto"),
+        ],
+        CurveKind::Function,
+    );
+    for field in [
+        "rule",
+        "lambda",
+        "difference_order",
+        "ends",
+        "sigma",
+        "rms_displacement",
+    ] {
+        assert_eq!(
+            prepass["jump_lsq"][field], alone.extras[field],
+            "{field}: {prepass}"
+        );
+    }
+    let cubic = run("two-phase", &[("denoise", "gcv")], CurveKind::Function);
+    assert_eq!(cubic.extras["prepass"]["smoother"], "smoothing-spline");
+    assert!(cubic.extras["prepass"]["jump_lsq"].is_null());
+    let binned = run(
+        "two-phase",
+        &[("function-prepass-points", "50")],
+        CurveKind::Function,
+    );
+    let bins = binned.extras["prepass"]["bins"].as_u64().unwrap();
+    assert!((50..=200).contains(&bins), "{bins} bins");
+    assert_eq!(binned.extras["prepass"]["jump_lsq"]["difference_order"], 1);
+    let off = run("two-phase", &[("denoise", "off")], CurveKind::Function);
+    assert!(off.extras["prepass"].is_null());
+    let curve = run("two-phase", &[], CurveKind::Parametric);
+    assert!(!curve.extras.contains_key("prepass"));
+}

@@ -17,7 +17,7 @@ use serde_json::json;
 
 use super::smoothing_spline::domain;
 use crate::catalog::{run_strategy, CurveJob, CurveKind, CurveMethod, CurvePoints, CurveRun, Settings};
-use crate::strategies::jump_lsq::{JumpLsq, JumpLsqSettings};
+use crate::strategies::jump_lsq::{JumpLsq, JumpLsqReport, JumpLsqSettings};
 use crate::strategies::CurveDomain;
 use crate::{Constraints, EndClamp, Error, Refusal, Result};
 
@@ -163,7 +163,17 @@ where
         },
         "closed": closed,
     });
-    let extras = [
+    for (name, value) in report_fields(&report) {
+        run.extras.insert(name.into(), value);
+    }
+    run.extras.insert("closed".into(), json!(closed));
+    Ok(run)
+}
+
+/// jump-lsq's report as the catalogue spells it (the extras of its runs but `closed`, in the
+/// module doc's order); two-phase's `prepass` report field reuses it.
+pub(super) fn report_fields(report: &JumpLsqReport) -> Vec<(&'static str, serde_json::Value)> {
+    vec![
         ("lambda", json!(report.lambda)),
         ("sigma", json!(report.sigma_hat)),
         ("rule", json!(report.rule)),
@@ -180,12 +190,7 @@ where
         ("clipped", json!(report.clipped)),
         ("penalty_before", json!(report.penalty_before)),
         ("penalty_after", json!(report.penalty_after)),
-        ("closed", json!(closed)),
         ("ends", json!(report.ends)),
         ("difference_order", json!(report.difference_order)),
-    ];
-    for (name, value) in extras {
-        run.extras.insert(name.into(), value);
-    }
-    Ok(run)
+    ]
 }

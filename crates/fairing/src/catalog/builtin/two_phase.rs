@@ -1,6 +1,13 @@
 //! `two-phase`: Han et al.'s coarse-to-fine fairing (§4.1) of a function y(x), and for
 //! parametric planar input the arbitrary-curve pipeline of §4.2 around it
 //! ([`SegmentedFairing`]), open or closed.
+//!
+//! The report's extras: `stages`, `closed`, and for a function `prepass`, what the noise
+//! pre-pass did ([`PrepassReport`]: `smoother`, `jump-lsq` or `smoothing-spline`; `jump_lsq`,
+//! jump-lsq's report spelt as `jump-lsq`'s extras (without `closed`), with the `rule`,
+//! `lambda`, `difference_order` and `ends` it chose from the data; `bins`, the bins fitted
+//! beyond `function-prepass-points`, else null; the whole field null with `denoise = off`).
+//! An arbitrary curve's report has no `prepass` yet.
 
 use std::f64::consts::PI;
 
@@ -8,7 +15,7 @@ use curve_repr::{EndCondition, SplineFunction, Vec2};
 use serde::{Deserialize, Serialize};
 
 use crate::catalog::{CurveJob, CurveKind, CurveMethod, CurvePoints, CurveRun, Settings};
-use crate::two_phase::{TwoPhase, TwoPhaseSettings};
+use crate::two_phase::{PrepassReport, TwoPhase, TwoPhaseSettings};
 use crate::{CurveGuard, EndClamp, Error, PartitionSettings, Pipeline, Refusal, Result, SegmentedFairing};
 
 /// The parameters of `two-phase`: Han's phases ([`TwoPhaseSettings`]) and the options of the
@@ -146,8 +153,9 @@ impl CurveMethod for TwoPhaseMethod {
             });
         };
         let phases = settings.phases.clone();
+        let mut function = TwoPhase::new(phases.clone());
         let result = match job.kind {
-            CurveKind::Function => Pipeline::new(TwoPhase::new(phases.clone()))
+            CurveKind::Function => Pipeline::new(&mut function)
                 .with_constraints(job.constraints.clone())
                 .with_max_iterations(phases.max_passes.max(1))
                 .with_trace(false)
@@ -169,8 +177,30 @@ impl CurveMethod for TwoPhaseMethod {
         run.curve = describe(&run.points, job.kind, settings.closed);
         run.extras.insert("stages".into(), stages);
         run.extras.insert("closed".into(), settings.closed.into());
+        if job.kind == CurveKind::Function {
+            run.extras
+                .insert("prepass".into(), prepass_json(function.prepass()));
+        }
         Ok(run)
     }
+}
+
+/// The report's `prepass` (module doc): null where the pre-pass did nothing.
+fn prepass_json(prepass: Option<&PrepassReport>) -> serde_json::Value {
+    let Some(prepass) = prepass else {
+        return serde_json::Value::Null;
+    };
+    let jump_lsq = prepass.jump_lsq.as_ref().map(|report| {
+        super::jump_lsq::report_fields(report)
+            .into_iter()
+            .map(|(name, value)| (name.to_owned(), value))
+            .collect::<serde_json::Map<_, _>>()
+    });
+    serde_json::json!({
+        "smoother": prepass.smoother,
+        "jump_lsq": jump_lsq,
+        "bins": prepass.bins,
+    })
 }
 
 /// The report's `curve`: the spline function with its c_i (function), or the interpolating
