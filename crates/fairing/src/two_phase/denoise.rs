@@ -324,31 +324,46 @@ struct Scored<T> {
     jump: Option<jump_lsq::JumpLsqReport>,
 }
 
-/// What a function's pre-pass did ([`denoise_reported`]): which smoother's fit it kept, with
-/// jump-lsq's own report where that is jump-lsq's (its rule, λ, difference order and end
-/// conditions as chosen from the data, [`jump_lsq::JumpLsqReport`]), and the bins it fitted
-/// beyond [`Prepass::max_points`] points. Two-phase's `prepass` report field.
+/// What a pre-pass did ([`denoise_reported`], [`denoise_curve_reported`]): the fits whose
+/// results it used, and the bins it fitted beyond [`Prepass::max_points`] points.
+/// Two-phase's `prepass` report field.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PrepassReport {
-    /// `jump-lsq`, or `smoothing-spline` (the cubic smoothing spline, p by GCV: `denoise =
-    /// gcv`, or jump-lsq's λ at its precision limit where the cubic scores lower).
-    pub smoother: &'static str,
-    /// jump-lsq's report of the kept fit (`None` for the cubic smoothing spline).
-    pub jump_lsq: Option<jump_lsq::JumpLsqReport>,
+    /// The fits used, in order: a function's or an open curve's one fit; a closed curve's
+    /// periodic fit, or its corner fitted from both branches and then the fit through that
+    /// corner, or the two open fits from opposite seams that are blended.
+    pub fits: Vec<PrepassFit>,
     /// The bins whose means were fitted (`None`: one knot per point).
     pub bins: Option<usize>,
 }
 
-impl PrepassReport {
-    fn of<T>(fit: &Scored<T>, bins: Option<usize>) -> Self {
-        PrepassReport {
-            smoother: if fit.jump.is_some() {
+/// One fit of a pre-pass ([`PrepassReport`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PrepassFit {
+    /// What the fit was for: `function`, `open`, `periodic`, `corner` (a closed curve's
+    /// corner from both branches), `through-corner` (the fit with that corner kept),
+    /// `first-seam` or `second-seam` (the two blended fits of a closed curve without a
+    /// corner where no periodic fit was made).
+    pub role: &'static str,
+    /// `jump-lsq`, or `smoothing-spline` (the cubic smoothing spline, p by GCV: `denoise =
+    /// gcv`, or jump-lsq's λ at its precision limit where the cubic scores lower).
+    pub smoother: &'static str,
+    /// jump-lsq's report of the fit (its rule, λ, difference order and end conditions as
+    /// chosen from the data; after parameter-correction refits, the last refit's); `None`
+    /// for the cubic smoothing spline.
+    pub jump_lsq: Option<jump_lsq::JumpLsqReport>,
+}
+
+impl PrepassFit {
+    fn new(role: &'static str, jump_lsq: Option<jump_lsq::JumpLsqReport>) -> Self {
+        PrepassFit {
+            role,
+            smoother: if jump_lsq.is_some() {
                 "jump-lsq"
             } else {
                 "smoothing-spline"
             },
-            jump_lsq: fit.jump.clone(),
-            bins,
+            jump_lsq,
         }
     }
 }
@@ -534,7 +549,10 @@ pub fn denoise_reported(
     }
     if x.len() <= prepass.max_points.max(4) {
         let fit = denoise_points(mode, prepass, x, y, limits)?;
-        let report = PrepassReport::of(&fit, None);
+        let report = PrepassReport {
+            fits: vec![PrepassFit::new("function", fit.jump)],
+            bins: None,
+        };
         return Ok((fit.values, Some(report)));
     }
     let (values, report) = denoise_binned(mode, prepass, x, y, limits)?;
@@ -556,7 +574,10 @@ fn denoise_binned(
     let (bins, (knots, fitted, report)) = on_bins(x.len(), prepass, limits, |bins, bin_limits| {
         let (bx, by) = (bins.means(x), bins.means(y));
         let fit = denoise_points(mode, prepass, &bx, &by, bin_limits)?;
-        let report = PrepassReport::of(&fit, Some(bins.len()));
+        let report = PrepassReport {
+            fits: vec![PrepassFit::new("function", fit.jump)],
+            bins: Some(bins.len()),
+        };
         Ok(((bx, fit.values, report), fit.dof))
     })?;
     debug_assert_eq!(report.bins, Some(bins.len()));
@@ -818,14 +839,29 @@ pub fn denoise_curve_by(
     closed: bool,
     limits: &Limits<'_>,
 ) -> Result<Vec<Vec2>> {
+    Ok(denoise_curve_reported(rules, points, closed, limits)?.0)
+}
+
+/// [`denoise_curve_by`] with what the pre-pass did ([`PrepassReport`]; `None` where it did
+/// nothing: `Denoise::Off` or fewer than 4 points). The same points bit for bit.
+///
+/// Errors: as [`denoise_curve_by`].
+pub fn denoise_curve_reported(
+    rules: &CurvePrepass,
+    points: &[Vec2],
+    closed: bool,
+    limits: &Limits<'_>,
+) -> Result<(Vec<Vec2>, Option<PrepassReport>)> {
     let n = points.len();
     if rules.mode == Denoise::Off || n < 4 {
-        return Ok(points.to_vec());
+        return Ok((points.to_vec(), None));
     }
     if n > rules.prepass.max_points.max(4) {
-        return denoise_curve_binned(rules, points, closed, limits);
+        let (values, report) = denoise_curve_binned(rules, points, closed, limits)?;
+        return Ok((values, Some(report)));
     }
-    Ok(denoise_curve_points(rules, points, closed, limits)?.0)
+    let (values, _, fits) = denoise_curve_points(rules, points, closed, limits)?;
+    Ok((values, Some(PrepassReport { fits, bins: None })))
 }
 
 /// The curve pre-pass on bin means ([`bins`](super::bins)), the bins chosen by [`on_bins`]
@@ -844,19 +880,24 @@ fn denoise_curve_binned(
     points: &[Vec2],
     closed: bool,
     limits: &Limits<'_>,
-) -> Result<Vec<Vec2>> {
+) -> Result<(Vec<Vec2>, PrepassReport)> {
     let rules = &rules.with_prepass(rules.prepass.on_bins());
     let n = points.len();
     let (xs, ys): (Vec<f64>, Vec<f64>) = points.iter().map(|p| (p.x, p.y)).unzip();
-    let (bins, fitted) = on_bins(n, rules.prepass, limits, |bins, bin_limits| {
+    let (bins, (fitted, fits)) = on_bins(n, rules.prepass, limits, |bins, bin_limits| {
         let means: Vec<Vec2> = bins
             .means(&xs)
             .into_iter()
             .zip(bins.means(&ys))
             .map(|(x, y)| Vec2::new(x, y))
             .collect();
-        denoise_curve_points(rules, &means, closed, bin_limits)
+        let (values, dof, fits) = denoise_curve_points(rules, &means, closed, bin_limits)?;
+        Ok(((values, fits), dof))
     })?;
+    let report = PrepassReport {
+        fits,
+        bins: Some(bins.len()),
+    };
     let count = fitted.len();
     let knots = if closed {
         Parametrization::ChordLength.closed_parameters(&fitted)?
@@ -905,7 +946,7 @@ fn denoise_curve_binned(
         }
         out.push(value);
     }
-    Ok(out)
+    Ok((out, report))
 }
 
 /// The curve pre-pass with one knot per point ([`denoise_curve_by`]).
@@ -914,53 +955,64 @@ fn denoise_curve_points(
     points: &[Vec2],
     closed: bool,
     limits: &Limits<'_>,
-) -> Result<(Vec<Vec2>, Option<f64>)> {
+) -> Result<(Vec<Vec2>, Option<f64>, Vec<PrepassFit>)> {
     let n = points.len();
-    // The largest tr A of the fits made.
+    // The largest tr A of the fits made, and the fits used.
     let dof = std::cell::Cell::new(None::<f64>);
-    let record = |fit: Option<f64>| {
+    let fits = std::cell::RefCell::new(Vec::new());
+    let record = |role: &'static str, fit: Option<f64>, jump: Option<jump_lsq::JumpLsqReport>| {
         if let Some(d) = fit {
             dof.set(Some(dof.get().map_or(d, |old: f64| old.max(d))));
         }
+        fits.borrow_mut().push(PrepassFit::new(role, jump));
     };
     // One open fit of the points in `order` (a closed walk repeats its first point last). A
     // closed walk's seam is kept (`free_seam` false), or fitted from both sides with free
     // ends and set to the mean of the two ends' values (`free_seam`: a corner).
-    let fit =
-        |points: &[Vec2], order: &[usize], projection: Projection, free_seam: bool| -> Result<Vec<Vec2>> {
-            let sequence: Vec<Vec2> = order.iter().map(|&i| points[i]).collect();
-            let last = order.len() - 1;
-            let keep = |k: usize| (limits.keep)(order[k]) || (closed && !free_seam && (k == 0 || k == last));
-            let allowed = |k: usize| (limits.allowed)(order[k]);
-            let limits = Limits {
-                keep: &keep,
-                allowed: &allowed,
-            };
-            let rules = rules.with_projection(projection);
-            let (values, fit_dof) = match curve_fit(&rules, &sequence, false, &limits)? {
-                Some(fitted) => fitted,
-                // jump-lsq's λ limited: the cubic smoothing spline.
-                None => curve_fit(&rules.with_mode(Denoise::Gcv), &sequence, false, &limits)?
-                    .ok_or_else(|| strategy_error("two-phase", "the cubic pre-pass gave no fit"))?,
-            };
-            record(fit_dof);
-            let mut out = points.to_vec();
-            for (k, &i) in order
-                .iter()
-                .enumerate()
-                .take(if closed { last } else { last + 1 })
-            {
-                out[i] = values[k];
-            }
-            if closed && free_seam {
-                // A kept seam has both ends equal to its point: the mean is that point bit for bit.
-                out[order[0]] = (values[0] + values[last]) * 0.5;
-            }
-            Ok(out)
+    let fit = |role: &'static str,
+               points: &[Vec2],
+               order: &[usize],
+               projection: Projection,
+               free_seam: bool|
+     -> Result<Vec<Vec2>> {
+        let sequence: Vec<Vec2> = order.iter().map(|&i| points[i]).collect();
+        let last = order.len() - 1;
+        let keep = |k: usize| (limits.keep)(order[k]) || (closed && !free_seam && (k == 0 || k == last));
+        let allowed = |k: usize| (limits.allowed)(order[k]);
+        let limits = Limits {
+            keep: &keep,
+            allowed: &allowed,
         };
+        let rules = rules.with_projection(projection);
+        let CurveFit {
+            values,
+            dof: fit_dof,
+            jump,
+        } = match curve_fit(&rules, &sequence, false, &limits)? {
+            Some(fitted) => fitted,
+            // jump-lsq's λ limited: the cubic smoothing spline.
+            None => curve_fit(&rules.with_mode(Denoise::Gcv), &sequence, false, &limits)?
+                .ok_or_else(|| strategy_error("two-phase", "the cubic pre-pass gave no fit"))?,
+        };
+        record(role, fit_dof, jump);
+        let mut out = points.to_vec();
+        for (k, &i) in order
+            .iter()
+            .enumerate()
+            .take(if closed { last } else { last + 1 })
+        {
+            out[i] = values[k];
+        }
+        if closed && free_seam {
+            // A kept seam has both ends equal to its point: the mean is that point bit for bit.
+            out[order[0]] = (values[0] + values[last]) * 0.5;
+        }
+        Ok(out)
+    };
     if !closed {
         let order: Vec<usize> = (0..n).collect();
-        return Ok((fit(points, &order, rules.projection, false)?, dof.get()));
+        let values = fit("open", points, &order, rules.projection, false)?;
+        return Ok((values, dof.get(), fits.into_inner()));
     }
     let (seam, largest) = largest_turn(points);
     let around = |start: usize| -> Vec<usize> { (0..=n).map(|k| (start + k) % n).collect() };
@@ -968,20 +1020,33 @@ fn denoise_curve_points(
         // The corner from both branches (free ends), then the fit with it kept there: a
         // kept data point at the corner carried its noise into both branches (measured in
         // `docs/two_phase_judge.md`, the strophoid loop).
-        let corner = fit(points, &around(seam), Projection::Off, true)?[seam];
+        let corner = fit("corner", points, &around(seam), Projection::Off, true)?[seam];
         let mut cornered = points.to_vec();
         cornered[seam] = corner;
-        return Ok((fit(&cornered, &around(seam), rules.projection, false)?, dof.get()));
+        let values = fit(
+            "through-corner",
+            &cornered,
+            &around(seam),
+            rules.projection,
+            false,
+        )?;
+        return Ok((values, dof.get(), fits.into_inner()));
     }
     if rules.mode.jump_lsq(rules.prepass).is_some() {
         // No corner: jump-lsq's periodic spline has no seam to hide.
-        if let Some((values, fit_dof)) = curve_fit(rules, points, true, limits)? {
-            record(fit_dof);
-            return Ok((values, dof.get()));
+        if let Some(fit) = curve_fit(rules, points, true, limits)? {
+            record("periodic", fit.dof, fit.jump);
+            return Ok((fit.values, dof.get(), fits.into_inner()));
         }
     }
-    let first = fit(points, &around(seam), Projection::Off, false)?;
-    let second = fit(points, &around((seam + n / 2) % n), Projection::Off, false)?;
+    let first = fit("first-seam", points, &around(seam), Projection::Off, false)?;
+    let second = fit(
+        "second-seam",
+        points,
+        &around((seam + n / 2) % n),
+        Projection::Off,
+        false,
+    )?;
     let blended: Vec<Vec2> = (0..n)
         .map(|i| {
             if (limits.keep)(i) {
@@ -993,7 +1058,7 @@ fn denoise_curve_points(
         })
         .collect();
     if rules.projection == Projection::Off {
-        return Ok((blended, dof.get()));
+        return Ok((blended, dof.get(), fits.into_inner()));
     }
     // The blend is no single fit: its points are projected onto the periodic spline through
     // them on their own chord lengths (no parameter correction).
@@ -1003,7 +1068,7 @@ fn denoise_curve_points(
         .into_iter()
         .map(|f| f.point)
         .collect();
-    Ok((projected, dof.get()))
+    Ok((projected, dof.get(), fits.into_inner()))
 }
 
 /// The spline through a fit's `values` at its `knots` (closed: with the closing knot): the
@@ -1038,6 +1103,8 @@ struct SmootherFit {
     score: Option<f64>,
     /// tr A of the fit (GCV rule).
     dof: Option<f64>,
+    /// jump-lsq's report of the fit (`None`: the cubic smoothing spline).
+    jump: Option<jump_lsq::JumpLsqReport>,
 }
 
 /// One smoother's fit of `sequence` (an open curve, or `periodic`: jump-lsq only) on `knots`
@@ -1067,6 +1134,7 @@ fn smoother_fit(
             limited: fit.limited,
             score: fit.gcv,
             dof: fit.dof,
+            jump: Some(fit.report),
         }));
     }
     if periodic {
@@ -1085,6 +1153,7 @@ fn smoother_fit(
         limited: false,
         score: Some(score),
         dof,
+        jump: None,
     }))
 }
 
@@ -1205,6 +1274,14 @@ fn weigh_limited(
     })
 }
 
+/// One fit of [`curve_fit`]: its points, tr A (GCV rule) and jump-lsq's report (`None`: the
+/// cubic smoothing spline).
+struct CurveFit {
+    values: Vec<Vec2>,
+    dof: Option<f64>,
+    jump: Option<jump_lsq::JumpLsqReport>,
+}
+
 /// The pre-pass's fit of `sequence` by `mode`'s smoother, its values replaced as `projection`
 /// says ([`Projection`]): the foot points of `sequence` on the fit, after
 /// [`CORRECTION_ROUNDS`] refits on the previous fit's foot-point parameters for
@@ -1215,7 +1292,7 @@ fn curve_fit(
     sequence: &[Vec2],
     periodic: bool,
     limits: &Limits<'_>,
-) -> Result<Option<(Vec<Vec2>, Option<f64>)>> {
+) -> Result<Option<CurveFit>> {
     let CurvePrepass {
         mode,
         prepass,
@@ -1235,9 +1312,9 @@ fn curve_fit(
         (first, ends)
     };
     let dof = first.dof;
-    let (mut values, mut knots) = (first.values, first.knots);
+    let (mut values, mut knots, mut jump) = (first.values, first.knots, first.jump);
     if projection == Projection::Off {
-        return Ok(Some((values, dof)));
+        return Ok(Some(CurveFit { values, dof, jump }));
     }
     let rounds = match projection {
         Projection::ParameterCorrection => CORRECTION_ROUNDS,
@@ -1255,18 +1332,19 @@ fn curve_fit(
             feet.push(feet[0] + period);
         }
         match smoother_fit(mode, prepass, ends, sequence, periodic, Some(&feet), limits)? {
-            Some(refit) if !refit.limited => (values, knots) = (refit.values, refit.knots),
+            Some(refit) if !refit.limited => (values, knots, jump) = (refit.values, refit.knots, refit.jump),
             _ => break,
         }
     }
     let curve = fitted_curve(&values, knots, periodic, ends)?;
-    Ok(Some((
-        foot_points(&curve, sequence, limits.keep)
+    Ok(Some(CurveFit {
+        values: foot_points(&curve, sequence, limits.keep)
             .into_iter()
             .map(|f| f.point)
             .collect(),
         dof,
-    )))
+        jump,
+    }))
 }
 
 #[cfg(test)]

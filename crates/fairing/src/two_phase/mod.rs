@@ -25,8 +25,8 @@ mod settings;
 
 pub use bins::{BINS_PER_DOF, FIRST_BINS, MAX_BINS, MAX_CURVE_PREPASS_POINTS, MAX_PREPASS_POINTS};
 pub use denoise::{
-    denoise, denoise_by, denoise_curve, denoise_curve_by, denoise_reported, CurvePrepass, Denoise, Limits,
-    Prepass, PrepassReport, PrepassRule, CORRECTION_ROUNDS,
+    denoise, denoise_by, denoise_curve, denoise_curve_by, denoise_curve_reported, denoise_reported,
+    CurvePrepass, Denoise, Limits, Prepass, PrepassFit, PrepassReport, PrepassRule, CORRECTION_ROUNDS,
 };
 pub use foot_point::{foot_points, FootPoint, Projection};
 pub use phase1::{coarse_pass, counts, detect, displacement, e_at, Case, CaseKind, PassReport};
@@ -208,7 +208,7 @@ pub struct TwoPhase {
     stall: Stall,
     /// The spline's (vibrations, inflections) after the last pass.
     counts: Option<(usize, usize)>,
-    /// What the noise pre-pass of the last function run did.
+    /// What the noise pre-pass of the last run did (a function's, or the whole curve's).
     prepass: Option<PrepassReport>,
 }
 
@@ -225,10 +225,11 @@ impl TwoPhase {
         }
     }
 
-    /// What the noise pre-pass of the last run on a function did ([`PrepassReport`]: the
-    /// smoother kept, jump-lsq's rule, λ, difference order and ends as chosen from the data,
-    /// the bins); `None` before a run, with `denoise = off` and on an arbitrary curve's
-    /// segments (whose pre-pass runs on the whole curve).
+    /// What the noise pre-pass of the last run did ([`PrepassReport`]: the fits used, each
+    /// with its smoother and jump-lsq's rule, λ, difference order and ends as chosen from the
+    /// data, and the bins): of a function run, or of the whole curve where the strategy fairs
+    /// an arbitrary curve's segments ([`SegmentedFairing`](crate::SegmentedFairing), through
+    /// its `fairer`); `None` before a run and with `denoise = off`.
     pub fn prepass(&self) -> Option<&PrepassReport> {
         self.prepass.as_ref()
     }
@@ -378,6 +379,7 @@ impl SegmentFairer for TwoPhase {
         let bound = crate::displacement::data_bound(points);
         self.settings.noise = bound.noise;
         self.settings.noise_bound = bound.bound;
+        self.prepass = None;
         if self.settings.denoise == Denoise::Off {
             return Ok(None);
         }
@@ -394,7 +396,9 @@ impl SegmentFairer for TwoPhase {
                     .with_difference_order(self.settings.curve_difference_order),
             )
             .with_ends(self.settings.curve_ends);
-        denoise_curve_by(&rules, points, closed, &limits).map(Some)
+        let (values, prepass) = denoise_curve_reported(&rules, points, closed, &limits)?;
+        self.prepass = prepass;
+        Ok(Some(values))
     }
 
     /// Runs Han's passes on the segment as [`fair_function`] does, with the arbitrary curve's

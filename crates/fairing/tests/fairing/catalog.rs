@@ -529,43 +529,88 @@ fn a_surface_plan_prints_as_its_method_table_and_reads_back() {
     assert_eq!(again.stages[0].settings["boundary"], true);
 }
 
-/// Two-phase's `prepass` report field says what a function's noise pre-pass chose. On a
-/// noisy sine (200 points, σ = 0.01) it reports jump-lsq's fit with the rule, λ, difference
-/// order, end conditions and noise estimate of jump-lsq run alone with the pre-pass's own
-/// choices (`rule = auto`, `difference-order = auto`, `function-ends = auto`) on the same
-/// points. With `denoise = gcv` it names the cubic smoothing spline and has no jump-lsq
-/// report. Beyond `function-prepass-points` it gives the bins fitted, and their fit's order
-/// is 1, as the binned pre-pass fixes it. With `denoise = off` it is null. An arbitrary
-/// curve's report has no such field.
+/// Two-phase's `prepass` report field says what its noise pre-pass chose. On a noisy sine as
+/// a function (200 points, σ = 0.01) it reports one `function` fit with the rule, λ,
+/// difference order, end conditions and noise estimate of jump-lsq run alone with the
+/// pre-pass's own choices (`rule`, `difference-order`, `function-ends` all `auto`) on the same
+/// points; on a noisy open arc one `open` fit equal in the same way to jump-lsq run alone
+/// with the curve pre-pass's choices (`rule = gcv`, `gcv-gamma` 1.4, `curve-ends = runout`,
+/// `difference-order = auto`); on a noisy closed ellipse one `periodic` fit; on the same
+/// ellipse with a corner, the `corner` and `through-corner` fits. With `denoise = gcv` it names
+/// the cubic smoothing spline and has no jump-lsq report. Beyond `function-prepass-points` it
+/// gives the bins fitted, and their fit's order is 1, as the binned pre-pass fixes it. With
+/// `denoise = off` it is null.
 #[test]
 fn two_phases_report_says_what_its_pre_pass_chose() {
     use rand::SeedableRng;
     use rand_distr::{Distribution, Normal};
     let mut rng = rand::rngs::StdRng::seed_from_u64(18);
     let normal = Normal::new(0.0, 0.01).unwrap();
-    let points: Vec<Vec2> = (0..200)
+    let mut noisy = |p: Vec2| Vec2::new(p.x + normal.sample(&mut rng), p.y + normal.sample(&mut rng));
+    let sine: Vec<Vec2> = (0..200)
         .map(|k| {
             let x = 0.1 * k as f64;
-            Vec2::new(x, (x / 2.0).sin() + normal.sample(&mut rng))
+            let p = noisy(Vec2::new(x, (x / 2.0).sin()));
+            Vec2::new(x, p.y)
         })
         .collect();
+    let arc: Vec<Vec2> = (0..100)
+        .map(|k| {
+            let t = 1.5 * std::f64::consts::PI * k as f64 / 99.0;
+            noisy(Vec2::new(2.0 * t.cos(), 2.0 * t.sin()))
+        })
+        .collect();
+    let ellipse: Vec<Vec2> = (0..120)
+        .map(|k| {
+            let t = 2.0 * std::f64::consts::PI * k as f64 / 120.0;
+            noisy(Vec2::new(3.0 * t.cos(), 2.0 * t.sin()))
+        })
+        .collect();
+    // The same ellipse with its first point pulled out to a corner.
+    let mut cornered = ellipse.clone();
+    cornered[0] = Vec2::new(4.0, 0.0);
     let catalog = Catalog::builtin();
-    let run = |method: &str, pairs: &[(&str, &str)], kind: CurveKind| {
+    let run = |method: &str, pairs: &[(&str, &str)], points: &[Vec2], kind: CurveKind| {
         let plan = catalog
             .plan(MethodKind::Curve, Some(method), method, None, &sets(pairs))
             .unwrap();
         catalog
             .run_curve_plan(
                 &plan,
-                &CurvePoints::Planar(points.clone()),
+                &CurvePoints::Planar(points.to_vec()),
                 kind,
                 &PlanConstraints::default(),
             )
             .unwrap()
     };
-    let two_phase = run("two-phase", &[], CurveKind::Function);
-    let prepass = &two_phase.extras["prepass"];
-    assert_eq!(prepass["smoother"], "jump-lsq", "{prepass}");
+    let same = |prepass: &serde_json::Value, alone: &fairing::catalog::CurveRun| {
+        for field in [
+            "rule",
+            "lambda",
+            "difference_order",
+            "ends",
+            "sigma",
+            "rms_displacement",
+        ] {
+            assert_eq!(
+                prepass["jump_lsq"][field], alone.extras[field],
+                "{field}: {prepass}"
+            );
+        }
+    };
+    let roles = |run: &fairing::catalog::CurveRun| -> Vec<String> {
+        run.extras["prepass"]["fits"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|fit| fit["role"].as_str().unwrap().to_owned())
+            .collect()
+    };
+
+    let function = run("two-phase", &[], &sine, CurveKind::Function);
+    let prepass = &function.extras["prepass"];
+    assert_eq!(roles(&function), ["function"], "{prepass}");
+    assert_eq!(prepass["fits"][0]["smoother"], "jump-lsq", "{prepass}");
     assert!(prepass["bins"].is_null(), "{prepass}");
     let alone = run(
         "jump-lsq",
@@ -574,34 +619,44 @@ fn two_phases_report_says_what_its_pre_pass_chose() {
             ("difference-order", "auto"),
             ("function-ends", "auto"),
         ],
+        &sine,
         CurveKind::Function,
     );
-    for field in [
-        "rule",
-        "lambda",
-        "difference_order",
-        "ends",
-        "sigma",
-        "rms_displacement",
-    ] {
-        assert_eq!(
-            prepass["jump_lsq"][field], alone.extras[field],
-            "{field}: {prepass}"
-        );
-    }
-    let cubic = run("two-phase", &[("denoise", "gcv")], CurveKind::Function);
-    assert_eq!(cubic.extras["prepass"]["smoother"], "smoothing-spline");
-    assert!(cubic.extras["prepass"]["jump_lsq"].is_null());
+    same(&prepass["fits"][0], &alone);
+
+    let open = run("two-phase", &[], &arc, CurveKind::Parametric);
+    assert_eq!(roles(&open), ["open"], "{}", open.extras["prepass"]);
+    let alone = run(
+        "jump-lsq",
+        &[
+            ("rule", "gcv"),
+            ("gcv-gamma", "1.4"),
+            ("curve-ends", "runout"),
+            ("difference-order", "auto"),
+        ],
+        &arc,
+        CurveKind::Parametric,
+    );
+    same(&open.extras["prepass"]["fits"][0], &alone);
+    let closed = |points: &[Vec2]| run("two-phase", &[("closed", "true")], points, CurveKind::Parametric);
+    assert_eq!(roles(&closed(&ellipse)), ["periodic"]);
+    assert_eq!(roles(&closed(&cornered)), ["corner", "through-corner"]);
+
+    let cubic = run("two-phase", &[("denoise", "gcv")], &sine, CurveKind::Function);
+    assert_eq!(cubic.extras["prepass"]["fits"][0]["smoother"], "smoothing-spline");
+    assert!(cubic.extras["prepass"]["fits"][0]["jump_lsq"].is_null());
     let binned = run(
         "two-phase",
         &[("function-prepass-points", "50")],
+        &sine,
         CurveKind::Function,
     );
     let bins = binned.extras["prepass"]["bins"].as_u64().unwrap();
     assert!((50..=200).contains(&bins), "{bins} bins");
-    assert_eq!(binned.extras["prepass"]["jump_lsq"]["difference_order"], 1);
-    let off = run("two-phase", &[("denoise", "off")], CurveKind::Function);
+    assert_eq!(
+        binned.extras["prepass"]["fits"][0]["jump_lsq"]["difference_order"],
+        1
+    );
+    let off = run("two-phase", &[("denoise", "off")], &sine, CurveKind::Function);
     assert!(off.extras["prepass"].is_null());
-    let curve = run("two-phase", &[], CurveKind::Parametric);
-    assert!(!curve.extras.contains_key("prepass"));
 }

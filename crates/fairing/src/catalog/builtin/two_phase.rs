@@ -2,12 +2,14 @@
 //! parametric planar input the arbitrary-curve pipeline of §4.2 around it
 //! ([`SegmentedFairing`]), open or closed.
 //!
-//! The report's extras: `stages`, `closed`, and for a function `prepass`, what the noise
-//! pre-pass did ([`PrepassReport`]: `smoother`, `jump-lsq` or `smoothing-spline`; `jump_lsq`,
-//! jump-lsq's report spelt as `jump-lsq`'s extras (without `closed`), with the `rule`,
-//! `lambda`, `difference_order` and `ends` it chose from the data; `bins`, the bins fitted
-//! beyond `function-prepass-points`, else null; the whole field null with `denoise = off`).
-//! An arbitrary curve's report has no `prepass` yet.
+//! The report's extras: `stages`, `closed`, and `prepass`, what the noise pre-pass did
+//! ([`PrepassReport`]; null with `denoise = off`): `fits`, the fits whose results it used,
+//! each with its `role` ([`PrepassFit::role`](crate::two_phase::PrepassFit::role):
+//! `function`, `open`, `periodic`, `corner` and `through-corner`, or `first-seam` and
+//! `second-seam`), `smoother` (`jump-lsq` or `smoothing-spline`) and `jump_lsq`, jump-lsq's
+//! report spelt as `jump-lsq`'s extras (without `closed`), with the `rule`, `lambda`,
+//! `difference_order` and `ends` it chose from the data; and `bins`, the bins fitted beyond
+//! `function-prepass-points` (`curve-prepass-points`), else null.
 
 use std::f64::consts::PI;
 
@@ -153,34 +155,36 @@ impl CurveMethod for TwoPhaseMethod {
             });
         };
         let phases = settings.phases.clone();
-        let mut function = TwoPhase::new(phases.clone());
-        let result = match job.kind {
-            CurveKind::Function => Pipeline::new(&mut function)
-                .with_constraints(job.constraints.clone())
-                .with_max_iterations(phases.max_passes.max(1))
-                .with_trace(false)
-                .run(points.to_vec())?,
-            CurveKind::Parametric => Pipeline::new(
-                SegmentedFairing::new(TwoPhase::new(phases))
+        let (result, prepass) = match job.kind {
+            CurveKind::Function => {
+                let mut function = TwoPhase::new(phases.clone());
+                let result = Pipeline::new(&mut function)
+                    .with_constraints(job.constraints.clone())
+                    .with_max_iterations(phases.max_passes.max(1))
+                    .with_trace(false)
+                    .run(points.to_vec())?;
+                (result, prepass_json(function.prepass()))
+            }
+            CurveKind::Parametric => {
+                let mut curve = SegmentedFairing::new(TwoPhase::new(phases))
                     .with_partition(settings.partition())
                     .with_passes(settings.segment_passes)
-                    .with_curve_guard(settings.curve_guard),
-            )
-            .with_closed(settings.closed)
-            .with_constraints(job.constraints.clone())
-            .with_max_iterations(settings.segment_passes)
-            .with_trace(false)
-            .run(points.to_vec())?,
+                    .with_curve_guard(settings.curve_guard);
+                let result = Pipeline::new(&mut curve)
+                    .with_closed(settings.closed)
+                    .with_constraints(job.constraints.clone())
+                    .with_max_iterations(settings.segment_passes)
+                    .with_trace(false)
+                    .run(points.to_vec())?;
+                (result, prepass_json(curve.fairer().prepass()))
+            }
         };
         let stages = serde_json::to_value(&result.stages).unwrap_or_default();
         let mut run = CurveRun::from_result(result);
         run.curve = describe(&run.points, job.kind, settings.closed);
         run.extras.insert("stages".into(), stages);
         run.extras.insert("closed".into(), settings.closed.into());
-        if job.kind == CurveKind::Function {
-            run.extras
-                .insert("prepass".into(), prepass_json(function.prepass()));
-        }
+        run.extras.insert("prepass".into(), prepass);
         Ok(run)
     }
 }
@@ -190,17 +194,24 @@ fn prepass_json(prepass: Option<&PrepassReport>) -> serde_json::Value {
     let Some(prepass) = prepass else {
         return serde_json::Value::Null;
     };
-    let jump_lsq = prepass.jump_lsq.as_ref().map(|report| {
-        super::jump_lsq::report_fields(report)
-            .into_iter()
-            .map(|(name, value)| (name.to_owned(), value))
-            .collect::<serde_json::Map<_, _>>()
-    });
-    serde_json::json!({
-        "smoother": prepass.smoother,
-        "jump_lsq": jump_lsq,
-        "bins": prepass.bins,
-    })
+    let fits: Vec<serde_json::Value> = prepass
+        .fits
+        .iter()
+        .map(|fit| {
+            let jump_lsq = fit.jump_lsq.as_ref().map(|report| {
+                super::jump_lsq::report_fields(report)
+                    .into_iter()
+                    .map(|(name, value)| (name.to_owned(), value))
+                    .collect::<serde_json::Map<_, _>>()
+            });
+            serde_json::json!({
+                "role": fit.role,
+                "smoother": fit.smoother,
+                "jump_lsq": jump_lsq,
+            })
+        })
+        .collect();
+    serde_json::json!({ "fits": fits, "bins": prepass.bins })
 }
 
 /// The report's `curve`: the spline function with its c_i (function), or the interpolating
