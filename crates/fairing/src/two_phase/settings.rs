@@ -148,8 +148,10 @@ pub struct TwoPhaseSettings {
     /// over csaps's at equal S_d 0.720 → 0.701, vibrations summed 316 → 251; the NACA upper
     /// surface unchanged (0.548 → 0.547). Any bound from 0.01 to 0.5 gives those 40 sines
     /// bit for bit; 1 leaves one more sine without its true inflection, 2 four more. The
-    /// dense sine's end runs (2·10^4 points, `two_phase_ends.rs`) cost about 0 and pass. 3.84
-    /// is one `--set` away.
+    /// dense sine's end runs (2·10^4 points, `two_phase_ends.rs`) cost about 0 and pass. The
+    /// cost, on the 70 planar lines of `data/` as functions: 5 change, and Block Island
+    /// waterline 27 in (18 sparse offsets) keeps two end inflections that csaps at the same
+    /// S_d does not have (0/2 → 2/2, csaps 0/2). 3.84 is one `--set` away.
     pub end_run_max_deviance: f64,
     /// The data values y of the current run before the pre-pass (set by the strategy for a
     /// function; empty when unknown). Not a parameter.
