@@ -307,7 +307,8 @@ pub struct JumpLsqSettings {
     /// `function-ends = auto` choosing its pair for each d, and a curve's refits: the score of
     /// the last round) are compared by their GCV score min_λ V(λ), the lowest kept (ties to
     /// the lower d); the fit itself is then made with that d under the settings' own rule.
-    /// Three GCV fits more, each O(n) per round. A higher d leaves the jumps free to vary as a
+    /// Three GCV fits more, each O(n) per round (two where the settings' rule is GCV: the
+    /// chosen order's scored fit is the run's own). A higher d leaves the jumps free to vary as a
     /// polynomial of higher degree along the knots, which suits a smooth analytic curve (a
     /// sine, an arc) and not an airfoil's nose: measured on 40 noisy draws of the judge's sine
     /// and 20 of its NACA upper surface (`docs/two_phase_judge.md`), GCV kept d = 3 on 32
@@ -814,7 +815,9 @@ const ORDER_CHOICES: [usize; 3] = [1, 2, 3];
 /// [`ORDER_CHOICES`] whose fit under the `gcv` rule (with the settings' `gcv-gamma`, ends,
 /// refits and constraints, on `given` knots if given) has the lowest GCV score (of its last
 /// round), ties to the lower; d = 1 beyond, and where no order could be scored (the fit then
-/// reports why). Returns d and the solves made. O(n) per order and round.
+/// reports why). Returns d, the solves made and the chosen order's GCV fit (`None` beyond
+/// [`ORDER_AUTO_MAX`] or where no order was scored), which is the run's own fit where the
+/// settings' rule is GCV too. O(n) per order and round.
 fn choose_order<const D: usize>(
     points: &[Vector<D>],
     original: &[Vector<D>],
@@ -823,12 +826,12 @@ fn choose_order<const D: usize>(
     closed: bool,
     settings: &JumpLsqSettings,
     given: Option<&Knots>,
-) -> Result<(usize, usize)> {
+) -> Result<(usize, usize, Option<Faired<D>>)> {
     if points.len() > ORDER_AUTO_MAX {
-        return Ok((1, 0));
+        return Ok((1, 0, None));
     }
     let mut solves = 0;
-    let mut best: Option<(f64, usize)> = None;
+    let mut best: Option<(f64, usize, Faired<D>)> = None;
     for order in ORDER_CHOICES {
         let mut scored = settings
             .clone()
@@ -851,11 +854,14 @@ fn choose_order<const D: usize>(
         let Some(score) = fit.report.gcv.filter(|v| v.is_finite()) else {
             continue;
         };
-        if best.is_none_or(|(b, _)| score < b) {
-            best = Some((score, order));
+        if best.as_ref().is_none_or(|(b, _, _)| score < *b) {
+            best = Some((score, order, fit));
         }
     }
-    Ok((best.map_or(1, |(_, order)| order), solves))
+    Ok(match best {
+        Some((_, order, fit)) => (order, solves, Some(fit)),
+        None => (1, solves, None),
+    })
 }
 
 /// [`fair`], on `given` knots in one round when they are given ([`fair_on_knots`]).
@@ -871,7 +877,7 @@ fn fair_from<const D: usize>(
     settings.validate()?;
     if settings.difference_order.is_none() {
         // The order of least GCV score (`difference-order = auto`), then the fit with it.
-        let (order, solves) = choose_order(
+        let (order, solves, scored) = choose_order(
             points,
             original,
             constraints,
@@ -880,6 +886,14 @@ fn fair_from<const D: usize>(
             settings,
             given.as_ref(),
         )?;
+        // Under the GCV rule (λ not given) the run's fit is the chosen order's scored fit:
+        // kept, not made again. Its solves are among `solves`.
+        let gcv_run =
+            settings.rule == LambdaRule::Gcv && settings.lambda.is_none() && settings.target_sd.is_none();
+        if let (true, Some(mut fit)) = (gcv_run, scored) {
+            fit.report.solves = solves;
+            return Ok(fit);
+        }
         let fixed = settings.clone().with_difference_order(order);
         let mut fit = fair_from(points, original, constraints, domain, closed, &fixed, given)?;
         fit.report.solves += solves;
