@@ -253,6 +253,14 @@ fn fair(
     Ok(result.points)
 }
 
+/// A difference order as the environment gives it: `0` to `3`, or `auto` (`None`).
+fn difference_order(value: &str) -> Result<Option<usize>, std::num::ParseIntError> {
+    match value {
+        "auto" => Ok(None),
+        order => order.parse().map(Some),
+    }
+}
+
 fn main() -> Result<(), Error> {
     let mut args = std::env::args().skip(1);
     let out = PathBuf::from(args.next().unwrap_or_else(|| "out/two_phase_judge".into()));
@@ -284,18 +292,8 @@ fn main() -> Result<(), Error> {
             "HAN_CURVE_PREPASS_RULE" => {
                 tuned.curve_prepass_rule = serde_json::from_value(serde_json::Value::String(value))?;
             }
-            "HAN_FUNCTION_DIFFERENCE_ORDER" => {
-                tuned.function_difference_order = match value.as_str() {
-                    "auto" => None,
-                    order => Some(order.parse()?),
-                };
-            }
-            "HAN_CURVE_DIFFERENCE_ORDER" => {
-                tuned.curve_difference_order = match value.as_str() {
-                    "auto" => None,
-                    order => Some(order.parse()?),
-                };
-            }
+            "HAN_FUNCTION_DIFFERENCE_ORDER" => tuned.function_difference_order = difference_order(&value)?,
+            "HAN_CURVE_DIFFERENCE_ORDER" => tuned.curve_difference_order = difference_order(&value)?,
             "HAN_CURVE_ENDS" => {
                 tuned.curve_ends = serde_json::from_value(serde_json::Value::String(value))?;
             }

@@ -224,17 +224,14 @@ impl Prepass {
     /// This rule on bin means: `auto` becomes `gcv` (the bins are chosen by GCV's trace),
     /// and an `auto` difference order 1.
     fn on_bins(self) -> Self {
-        let difference_order = Some(self.difference_order.unwrap_or(1));
-        match self.rule {
-            PrepassRule::Auto => Prepass {
-                rule: PrepassRule::Gcv,
-                difference_order,
-                ..self
-            },
-            PrepassRule::Gcv | PrepassRule::Gml => Prepass {
-                difference_order,
-                ..self
-            },
+        let rule = match self.rule {
+            PrepassRule::Auto => PrepassRule::Gcv,
+            rule => rule,
+        };
+        Prepass {
+            rule,
+            difference_order: Some(self.difference_order.unwrap_or(1)),
+            ..self
         }
     }
 
