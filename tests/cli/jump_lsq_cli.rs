@@ -156,6 +156,18 @@ fn set_overrides_the_rule_and_bad_values_exit_2() {
     let d = order["difference_order"].as_u64().unwrap();
     assert!((1..=3).contains(&d), "{d}");
     assert!(order["gcv"].as_f64().unwrap() <= report["gcv"].as_f64().unwrap());
+    // `exponent` = auto reports the exponent it used: on these evenly spaced x, 8 (the
+    // default) without a search, the same fit.
+    assert_eq!(report["exponent"], 8.0);
+    let (out, _, spaced) = fair(
+        &input,
+        &["--set", "rule=gcv", "--set", "exponent=auto"],
+        "exponent",
+    );
+    assert_ok(&out);
+    assert_eq!(spaced["params"]["exponent"], "auto");
+    assert_eq!(spaced["exponent"], 8.0);
+    assert_eq!(spaced["gcv"], report["gcv"]);
     let (out, _, report) = fair(&input, &["--set", "target-sd=0.005"], "target");
     assert_ok(&out);
     assert_eq!(report["rule"], "target-sd");
@@ -172,6 +184,8 @@ fn set_overrides_the_rule_and_bad_values_exit_2() {
     for bad in [
         "lambda=-1",
         "exponent=20",
+        "exponent=-1",
+        "exponent=some",
         "rule=oracle",
         "difference-order=7",
         "difference-order=1.5",

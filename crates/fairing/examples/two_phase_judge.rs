@@ -40,7 +40,8 @@
 //! `HAN_END_RUN_MAX_DEVIANCE` (`end-run-max-deviance`), `HAN_FUNCTION_PREPASS_RULE` and
 //! `HAN_CURVE_PREPASS_RULE` (`function-prepass-rule`, `curve-prepass-rule`: `gcv`, `gml`, `auto`),
 //! `HAN_FUNCTION_DIFFERENCE_ORDER` and `HAN_CURVE_DIFFERENCE_ORDER` (`function-difference-order`,
-//! `curve-difference-order`: `0` to `3`, `auto`).
+//! `curve-difference-order`: `0` to `3`, `auto`), `HAN_FUNCTION_EXPONENT` (`function-exponent`: a
+//! number in [0, 16], `auto`).
 
 use std::f64::consts::PI;
 use std::fmt::Write as _;
@@ -294,6 +295,9 @@ fn main() -> Result<(), Error> {
             }
             "HAN_FUNCTION_DIFFERENCE_ORDER" => tuned.function_difference_order = difference_order(&value)?,
             "HAN_CURVE_DIFFERENCE_ORDER" => tuned.curve_difference_order = difference_order(&value)?,
+            "HAN_FUNCTION_EXPONENT" => {
+                tuned.function_exponent = (value != "auto").then(|| value.parse()).transpose()?;
+            }
             "HAN_CURVE_ENDS" => {
                 tuned.curve_ends = serde_json::from_value(serde_json::Value::String(value))?;
             }

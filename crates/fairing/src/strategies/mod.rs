@@ -24,7 +24,7 @@ mod tournament;
 pub use batten::{Batten, BattenSettings, PositionUpdate, Tangents};
 pub use jump_lsq::{
     CurveEnds, FunctionEnds, JumpLsq, JumpLsqReport, JumpLsqSettings, LambdaRule, AUTO_NOISE_FACTOR,
-    ORDER_AUTO_MAX,
+    EXPONENT_DEFAULT, ORDER_AUTO_MAX,
 };
 pub use sapidis_farin::{
     KnotStep, MoveBound, MoveRule, SapidisFarin, SapidisFarinSettings, SapidisFarinStop,

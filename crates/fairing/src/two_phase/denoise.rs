@@ -87,7 +87,7 @@ use super::foot_point::{foot_points, Projection};
 use super::quintic::Quintic;
 
 use crate::state::strategy_error;
-use crate::strategies::jump_lsq;
+use crate::strategies::jump_lsq::{self, EXPONENT_DEFAULT};
 use crate::strategies::{
     CurveDomain, CurveEnds, FunctionEnds, JumpLsqSettings, LambdaRule, SmoothingRule, SmoothingSettings,
     SmoothingSpline,
@@ -180,6 +180,8 @@ pub struct Prepass {
     /// The penalty's difference order, `None` for GCV's choice (jump-lsq's
     /// `difference-order`).
     pub difference_order: Option<usize>,
+    /// The penalty's spacing exponent, `None` for GCV's choice (jump-lsq's `exponent`).
+    pub exponent: Option<f64>,
     /// The most points the pre-pass fits with one knot per point; beyond, it fits bin means,
     /// at most [`MAX_BINS`] bins or this many if more ([`MAX_PREPASS_POINTS`] by the
     /// constructors, a function's limit).
@@ -194,6 +196,7 @@ impl Prepass {
             gcv_gamma: gamma,
             function_ends: FunctionEnds::Runout,
             difference_order: Some(1),
+            exponent: Some(EXPONENT_DEFAULT),
             max_points: MAX_PREPASS_POINTS,
         }
     }
@@ -205,6 +208,7 @@ impl Prepass {
             gcv_gamma: gamma,
             function_ends: FunctionEnds::Runout,
             difference_order: Some(1),
+            exponent: Some(EXPONENT_DEFAULT),
             max_points: MAX_PREPASS_POINTS,
         }
     }
@@ -221,8 +225,14 @@ impl Prepass {
         self
     }
 
+    /// Sets the penalty's spacing exponent (`None`: GCV's choice; 8 by the constructors).
+    pub fn with_exponent(mut self, exponent: Option<f64>) -> Self {
+        self.exponent = exponent;
+        self
+    }
+
     /// This rule on bin means: `auto` becomes `gcv` (the bins are chosen by GCV's trace),
-    /// and an `auto` difference order 1.
+    /// an `auto` difference order 1 and an `auto` exponent 8.
     fn on_bins(self) -> Self {
         let rule = match self.rule {
             PrepassRule::Auto => PrepassRule::Gcv,
@@ -231,6 +241,7 @@ impl Prepass {
         Prepass {
             rule,
             difference_order: Some(self.difference_order.unwrap_or(1)),
+            exponent: Some(self.exponent.unwrap_or(EXPONENT_DEFAULT)),
             ..self
         }
     }
@@ -273,6 +284,7 @@ impl Denoise {
         };
         Some(JumpLsqSettings {
             difference_order: prepass.difference_order,
+            exponent: prepass.exponent,
             ..settings.with_function_ends(prepass.function_ends)
         })
     }

@@ -284,6 +284,7 @@ impl FairingStrategy<2> for TwoPhase {
             )
             .with_function_ends(self.settings.function_ends)
             .with_difference_order(self.settings.function_difference_order)
+            .with_exponent(self.settings.function_exponent)
             .with_max_points(self.settings.function_prepass_points),
             &x,
             &y,

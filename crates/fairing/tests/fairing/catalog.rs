@@ -533,7 +533,8 @@ fn a_surface_plan_prints_as_its_method_table_and_reads_back() {
 /// a function (200 points, σ = 0.01) it reports one `function` fit with the rule, λ,
 /// difference order, end conditions and noise estimate of jump-lsq run alone with the
 /// pre-pass's own choices (`rule`, `difference-order`, `function-ends` all `auto`) on the same
-/// points; on a noisy open arc one `open` fit equal in the same way to jump-lsq run alone
+/// points, and with `function-exponent = auto` on unevenly spaced x the same with jump-lsq's
+/// `exponent = auto`; on a noisy open arc one `open` fit equal in the same way to jump-lsq run alone
 /// with the curve pre-pass's choices (`rule = gcv`, `gcv-gamma` 1.4, `curve-ends = runout`,
 /// `difference-order = auto`); on a noisy closed ellipse one `periodic` fit; on the same
 /// ellipse with a corner, the `corner` and `through-corner` fits. With `denoise = gcv` it names
@@ -588,6 +589,7 @@ fn two_phases_report_says_what_its_pre_pass_chose() {
             "rule",
             "lambda",
             "difference_order",
+            "exponent",
             "ends",
             "sigma",
             "rms_displacement",
@@ -623,6 +625,35 @@ fn two_phases_report_says_what_its_pre_pass_chose() {
         CurveKind::Function,
     );
     same(&prepass["fits"][0], &alone);
+    assert_eq!(prepass["fits"][0]["jump_lsq"]["exponent"], 8.0);
+    // `function-exponent = auto` on x spaced in a ratio of 2: jump-lsq's `exponent = auto`.
+    let warped: Vec<Vec2> = sine
+        .iter()
+        .map(|p| {
+            let tau = 2.0 * std::f64::consts::PI;
+            let u = p.x / 19.9;
+            let x = 19.9 * (u + (tau * u).sin() / (3.0 * tau));
+            Vec2::new(x, p.y - (p.x / 2.0).sin() + (x / 2.0).sin())
+        })
+        .collect();
+    let function = run(
+        "two-phase",
+        &[("function-exponent", "auto")],
+        &warped,
+        CurveKind::Function,
+    );
+    let alone = run(
+        "jump-lsq",
+        &[
+            ("rule", "auto"),
+            ("difference-order", "auto"),
+            ("function-ends", "auto"),
+            ("exponent", "auto"),
+        ],
+        &warped,
+        CurveKind::Function,
+    );
+    same(&function.extras["prepass"]["fits"][0], &alone);
 
     let open = run("two-phase", &[], &arc, CurveKind::Parametric);
     assert_eq!(roles(&open), ["open"], "{}", open.extras["prepass"]);

@@ -9,7 +9,8 @@
 //! `trace` (tr A(λ), the fit's degrees of freedom, under the GCV rule), `solves`, `refits`, `pinned`, `reweighted`, `band_rounds`, `clipped`, `penalty_before`,
 //! `penalty_after`, `closed`, `ends` (the spline's end conditions at the start and the end:
 //! `runout`, `natural` or `periodic`; `function-ends` = `auto` reports its choice),
-//! `difference_order` (the penalty's d; `difference-order` = `auto` reports its choice).
+//! `difference_order` (the penalty's d; `difference-order` = `auto` reports its choice),
+//! `exponent` (the penalty's spacing exponent a; `exponent` = `auto` reports its choice).
 
 use curve_repr::Vector;
 use fairness::curvature::CurvatureForm;
@@ -192,5 +193,6 @@ pub(super) fn report_fields(report: &JumpLsqReport) -> Vec<(&'static str, serde_
         ("penalty_after", json!(report.penalty_after)),
         ("ends", json!(report.ends)),
         ("difference_order", json!(report.difference_order)),
+        ("exponent", json!(report.exponent)),
     ]
 }

@@ -295,8 +295,30 @@ pub struct JumpLsqSettings {
     /// the judge (README), 1.5 met the goal on as many curves but moved every curve farther
     /// from its clean twin than the noisy input was.
     pub noise_factor: f64,
-    /// Spacing exponent a: the weight of a row is h̄^a, h̄ its mean spacing over the median.
-    pub exponent: f64,
+    /// Spacing exponent a ∈ [0, 16]: the weight of a row is h̄^a, h̄ its mean spacing over the median; or auto (8 or 0, whichever fits with the lowest GCV score; up to 2000 unevenly spaced points).
+    ///
+    /// Default 8: Δ^d J then measures the jumps in the units of the local spacing, so a
+    /// densely sampled stretch (an airfoil's nose) is smoothed less per unit length than a
+    /// sparse one, as if its density said where the detail is. 0 weighs every row alike,
+    /// whatever its spacing. On evenly spaced points the two are the same fit.
+    ///
+    /// `auto` treats a as a model choice like d and the ends: for at most [`ORDER_AUTO_MAX`]
+    /// points whose spacings differ (by more than 1e-6 of the largest), the fits with a = 8
+    /// and a = 0 (each with its own d where `difference-order` is `auto` too) are compared by
+    /// their GCV score under the `gcv` rule, the lowest kept (ties to 8), and the fit is then
+    /// made with it under the settings' own rule; on evenly spaced points, and beyond, 8
+    /// without a search. Twice the fits of the order's search where both are `auto`.
+    /// Measured as two-phase's function pre-pass (`function-exponent`,
+    /// `docs/two_phase_judge.md`): where the sampling density follows the detail GCV keeps
+    /// 8, on all 40 noisy draws of the judge's NACA upper surface (cosine spacing; with a = 0
+    /// two-phase ends 25 % farther from the clean curve) and on 36 with other spacings; on
+    /// noisy sines sampled with spacings in a ratio of 2 it took 0 on 21 of 24 draws, which
+    /// came about 10 % nearer their clean curve. On R140 upper it took 0 by a 4 % lower score
+    /// and ended farther from the database's smoothed twin, so 8 stays the default. The
+    /// report's `exponent` says which was used.
+    #[serde(with = "crate::catalog::value::auto")]
+    #[schemars(with = "crate::catalog::value::AutoNumber")]
+    pub exponent: Option<f64>,
     /// Difference order d of the jumps penalised (0 to 3), or auto (1, 2 or 3, whichever fits with the lowest GCV score; up to 2000 points).
     ///
     /// Default 1 (jumps that vary alike are fair). The issue proposed 2; measured with the
@@ -366,7 +388,7 @@ impl Default for JumpLsqSettings {
             curve_ends: CurveEnds::Natural,
             function_ends: FunctionEnds::Runout,
             noise_factor: 1.0,
-            exponent: 8.0,
+            exponent: Some(EXPONENT_DEFAULT),
             difference_order: Some(1),
             end_jumps: 0,
             end_weight: 1.0,
@@ -400,8 +422,11 @@ impl JumpLsqSettings {
                 "a finite number > 0",
             );
         }
-        if !(self.exponent.is_finite() && (0.0..=16.0).contains(&self.exponent)) {
-            return bad("exponent", self.exponent.to_string(), "a number in [0, 16]");
+        if let Some(exponent) = self
+            .exponent
+            .filter(|a| !(a.is_finite() && (0.0..=16.0).contains(a)))
+        {
+            return bad("exponent", exponent.to_string(), "a number in [0, 16] or auto");
         }
         if let Some(order) = self.difference_order.filter(|&d| d > 3) {
             return bad("difference-order", order.to_string(), "0, 1, 2, 3 or auto");
@@ -450,7 +475,13 @@ impl JumpLsqSettings {
 
     /// Sets the spacing exponent a.
     pub fn with_exponent(mut self, exponent: f64) -> Self {
-        self.exponent = exponent;
+        self.exponent = Some(exponent);
+        self
+    }
+
+    /// Lets GCV choose the spacing exponent (`exponent = auto`).
+    pub fn with_exponent_auto(mut self) -> Self {
+        self.exponent = None;
         self
     }
 
@@ -544,6 +575,8 @@ pub struct JumpLsqReport {
     pub clipped: usize,
     /// The difference order d of the penalty (`difference-order = auto` reports its choice).
     pub difference_order: usize,
+    /// The spacing exponent a of the penalty (`exponent = auto` reports its choice).
+    pub exponent: f64,
     /// The penalty Σ (h̄^(a/2) h_med³ Δ^d J)² of the input, on its own knots.
     pub penalty_before: f64,
     /// The same of the output, on its own knots.
@@ -663,12 +696,12 @@ fn ends_names(ends: Ends) -> [String; 2] {
     }
 }
 
-/// The penalty of `settings`; an unresolved `auto` order (resolved at the head of
-/// `fair_from`) stands for d = 1.
+/// The penalty of `settings`; an unresolved `auto` order or exponent (resolved at the head
+/// of `fair_from`) stands for d = 1 and a = [`EXPONENT_DEFAULT`].
 fn penalty_of(settings: &JumpLsqSettings) -> Penalty {
     Penalty {
         order: settings.difference_order.unwrap_or(1),
-        exponent: settings.exponent,
+        exponent: settings.exponent.unwrap_or(EXPONENT_DEFAULT),
         end_jumps: settings.end_jumps,
         end_weight: settings.end_weight,
     }
@@ -811,14 +844,50 @@ pub const ORDER_AUTO_MAX: usize = ends::AUTO_MAX;
 /// The orders `difference-order = auto` compares, in order of preference on a tie.
 const ORDER_CHOICES: [usize; 3] = [1, 2, 3];
 
-/// `difference-order = auto`: for at most [`ORDER_AUTO_MAX`] points, the order d of
-/// [`ORDER_CHOICES`] whose fit under the `gcv` rule (with the settings' `gcv-gamma`, ends,
-/// refits and constraints, on `given` knots if given) has the lowest GCV score (of its last
-/// round), ties to the lower; d = 1 beyond, and where no order could be scored (the fit then
-/// reports why). Returns d, the solves made and the chosen order's GCV fit (`None` beyond
-/// [`ORDER_AUTO_MAX`] or where no order was scored), which is the run's own fit where the
-/// settings' rule is GCV too. O(n) per order and round.
-fn choose_order<const D: usize>(
+/// The spacing exponent a by default (`exponent`).
+pub const EXPONENT_DEFAULT: f64 = 8.0;
+
+/// The exponents `exponent = auto` compares, in order of preference on a tie.
+const EXPONENT_CHOICES: [f64; 2] = [EXPONENT_DEFAULT, 0.0];
+
+/// Knots whose spacings differ by at most this fraction of the largest are evenly spaced:
+/// there h̄ = 1 on every row up to round-off, and the exponent changes no fit.
+const EVEN_SPACING: f64 = 1e-6;
+
+/// Whether the knots of `points` (or `given`) are evenly spaced ([`EVEN_SPACING`]). O(n).
+fn evenly_spaced<const D: usize>(
+    points: &[Vector<D>],
+    domain: CurveDomain,
+    closed: bool,
+    given: Option<&Knots>,
+) -> Result<bool> {
+    let own;
+    let knots = match given {
+        Some(knots) => knots,
+        None => {
+            own = knots_of(points, domain, closed)?;
+            &own
+        }
+    };
+    let (low, high) = (0..knots.spans())
+        .map(|k| knots.spacing(k))
+        .fold((f64::INFINITY, 0.0_f64), |(low, high), h| {
+            (low.min(h), high.max(h))
+        });
+    Ok(high - low <= EVEN_SPACING * high)
+}
+
+/// The penalty's model where `difference-order` or `exponent` is `auto`: for at most
+/// [`ORDER_AUTO_MAX`] points, the pair (d, a) of [`ORDER_CHOICES`] × [`EXPONENT_CHOICES`]
+/// (a given one standing alone; the exponent alone at [`EXPONENT_DEFAULT`] on evenly spaced
+/// knots) whose fit under the `gcv` rule (with the settings' `gcv-gamma`, ends, refits and
+/// constraints, on `given` knots if given) has the lowest GCV score (of its last round),
+/// ties to the earlier pair (a = 8 before 0, then the lower d). Beyond [`ORDER_AUTO_MAX`]
+/// points, where one pair is left, and where none could be scored (the fit then reports
+/// why): d = 1 and a = 8 for an `auto`. Returns d, a, the solves made and the chosen pair's
+/// GCV fit (`None` where there was no search or no pair was scored), which is the run's own
+/// fit where the settings' rule is GCV too. O(n) per pair and round.
+fn choose_model<const D: usize>(
     points: &[Vector<D>],
     original: &[Vector<D>],
     constraints: &Constraints,
@@ -826,41 +895,60 @@ fn choose_order<const D: usize>(
     closed: bool,
     settings: &JumpLsqSettings,
     given: Option<&Knots>,
-) -> Result<(usize, usize, Option<Faired<D>>)> {
-    if points.len() > ORDER_AUTO_MAX {
-        return Ok((1, 0, None));
+) -> Result<(usize, f64, usize, Option<Faired<D>>)> {
+    let searched = points.len() <= ORDER_AUTO_MAX;
+    let orders: Vec<usize> = match settings.difference_order {
+        Some(order) => vec![order],
+        None if searched => ORDER_CHOICES.to_vec(),
+        None => vec![1],
+    };
+    let exponents: Vec<f64> = match settings.exponent {
+        Some(exponent) => vec![exponent],
+        None if searched && !evenly_spaced(points, domain, closed, given)? => EXPONENT_CHOICES.to_vec(),
+        None => vec![EXPONENT_DEFAULT],
+    };
+    if orders.len() * exponents.len() == 1 {
+        return Ok((orders[0], exponents[0], 0, None));
     }
     let mut solves = 0;
-    let mut best: Option<(f64, usize, Faired<D>)> = None;
-    for order in ORDER_CHOICES {
-        let mut scored = settings
-            .clone()
-            .with_difference_order(order)
-            .with_rule(LambdaRule::Gcv);
-        scored.lambda = None;
-        scored.target_sd = None;
-        let Ok(fit) = fair_from(
-            points,
-            original,
-            constraints,
-            domain,
-            closed,
-            &scored,
-            given.cloned(),
-        ) else {
-            continue;
-        };
-        solves += fit.report.solves;
-        let Some(score) = fit.report.gcv.filter(|v| v.is_finite()) else {
-            continue;
-        };
-        if best.as_ref().is_none_or(|(b, _, _)| score < *b) {
-            best = Some((score, order, fit));
+    let mut best: Option<(f64, usize, f64, Faired<D>)> = None;
+    for &exponent in &exponents {
+        for &order in &orders {
+            let mut scored = settings
+                .clone()
+                .with_difference_order(order)
+                .with_exponent(exponent)
+                .with_rule(LambdaRule::Gcv);
+            scored.lambda = None;
+            scored.target_sd = None;
+            let Ok(fit) = fair_from(
+                points,
+                original,
+                constraints,
+                domain,
+                closed,
+                &scored,
+                given.cloned(),
+            ) else {
+                continue;
+            };
+            solves += fit.report.solves;
+            let Some(score) = fit.report.gcv.filter(|v| v.is_finite()) else {
+                continue;
+            };
+            if best.as_ref().is_none_or(|(b, ..)| score < *b) {
+                best = Some((score, order, exponent, fit));
+            }
         }
     }
     Ok(match best {
-        Some((_, order, fit)) => (order, solves, Some(fit)),
-        None => (1, solves, None),
+        Some((_, order, exponent, fit)) => (order, exponent, solves, Some(fit)),
+        None => (
+            settings.difference_order.unwrap_or(1),
+            settings.exponent.unwrap_or(EXPONENT_DEFAULT),
+            solves,
+            None,
+        ),
     })
 }
 
@@ -875,9 +963,9 @@ fn fair_from<const D: usize>(
     given: Option<Knots>,
 ) -> Result<Faired<D>> {
     settings.validate()?;
-    if settings.difference_order.is_none() {
-        // The order of least GCV score (`difference-order = auto`), then the fit with it.
-        let (order, solves, scored) = choose_order(
+    if settings.difference_order.is_none() || settings.exponent.is_none() {
+        // The order and exponent of least GCV score (`auto`), then the fit with them.
+        let (order, exponent, solves, scored) = choose_model(
             points,
             original,
             constraints,
@@ -886,7 +974,7 @@ fn fair_from<const D: usize>(
             settings,
             given.as_ref(),
         )?;
-        // Under the GCV rule (λ not given) the run's fit is the chosen order's scored fit:
+        // Under the GCV rule (λ not given) the run's fit is the chosen pair's scored fit:
         // kept, not made again. Its solves are among `solves`.
         let gcv_run =
             settings.rule == LambdaRule::Gcv && settings.lambda.is_none() && settings.target_sd.is_none();
@@ -894,7 +982,10 @@ fn fair_from<const D: usize>(
             fit.report.solves = solves;
             return Ok(fit);
         }
-        let fixed = settings.clone().with_difference_order(order);
+        let fixed = settings
+            .clone()
+            .with_difference_order(order)
+            .with_exponent(exponent);
         let mut fit = fair_from(points, original, constraints, domain, closed, &fixed, given)?;
         fit.report.solves += solves;
         return Ok(fit);
@@ -1051,6 +1142,7 @@ fn fair_from<const D: usize>(
         band_rounds: 0,
         clipped: 0,
         difference_order: penalty.order,
+        exponent: penalty.exponent,
         penalty_before: f64::NAN,
         penalty_after: 0.0,
     };

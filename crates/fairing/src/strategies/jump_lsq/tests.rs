@@ -1733,6 +1733,116 @@ fn auto_difference_order_of_curves_is_the_order_of_least_gcv() {
     }
 }
 
+/// `n` points of y = sin(x/2) over [0, 20] with noise of standard deviation 0.01 (draw
+/// `seed`), at x warped so that the spacings vary smoothly in a ratio of 2 (the densest in
+/// the middle): a spacing that says nothing about the detail. Returns the clean y too.
+fn warped_sine(n: usize, seed: usize) -> (Vec<Vector<2>>, Vec<f64>) {
+    let tau = 2.0 * std::f64::consts::PI;
+    let x: Vec<f64> = (0..n)
+        .map(|k| {
+            let u = k as f64 / (n - 1) as f64;
+            20.0 * (u + (tau * u).sin() / (3.0 * tau))
+        })
+        .collect();
+    let clean: Vec<f64> = x.iter().map(|x| (x / 2.0).sin()).collect();
+    let points = (0..n)
+        .map(|k| Vector::<2>::new(x[k], clean[k] + 0.01 * unit_noise(k, seed)))
+        .collect();
+    (points, clean)
+}
+
+#[test]
+fn auto_exponent_is_the_exponent_of_least_gcv() {
+    // `exponent` = auto keeps, of a = 8 and a = 0, the exponent whose GCV minimum is lowest:
+    // each exponent's score by dense linear algebra on its space, and the fit is then the
+    // fixed exponent's, bit for bit. On unevenly spaced points the two are different models
+    // (their scores differ); the cosine-spaced airfoil, whose density follows its nose, keeps
+    // a = 8. With the order `auto` too, the pair of the six with the lowest score is kept.
+    let settings = JumpLsqSettings::default()
+        .with_rule(LambdaRule::Gcv)
+        .with_exponent_auto();
+    let score = |points: &[Vector<2>], order: usize, exponent: f64| {
+        let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
+        let y: Vec<Vector<1>> = points.iter().map(|p| Vector::<1>::new(p[1])).collect();
+        let fixed = settings
+            .clone()
+            .with_difference_order(order)
+            .with_exponent(exponent);
+        let space = Space::new(Knots::open(x), Ends::RUNOUT, penalty_of(&fixed)).unwrap();
+        dense_gcv_minimum(&space, &y)
+    };
+    for seed in 0..3 {
+        for (name, points) in [
+            ("warped sine", warped_sine(80, seed).0),
+            ("naca", noisy_naca_upper(60, seed).0),
+        ] {
+            let faired = fair_function(&points, &settings);
+            let scores = [score(&points, 1, 8.0), score(&points, 1, 0.0)];
+            assert!(
+                (scores[0] - scores[1]).abs() > 1e-6 * scores[0],
+                "{name} seed {seed}: the exponents score alike {scores:?}"
+            );
+            let least = if scores[1] < scores[0] { 0.0 } else { 8.0 };
+            assert_eq!(faired.report.exponent, least, "{name} seed {seed}: {scores:?}");
+            assert_eq!(faired.report.difference_order, 1);
+            if name == "naca" {
+                assert_eq!(least, 8.0, "seed {seed}: the airfoil ({scores:?})");
+            }
+            let fixed = fair_function(&points, &settings.clone().with_exponent(least));
+            assert_eq!(faired.points, fixed.points, "{name} seed {seed}");
+            assert!(faired.report.solves > fixed.report.solves);
+        }
+        // Both `auto`: the least of the six pairs.
+        let (points, _) = warped_sine(80, seed);
+        let both = fair_function(&points, &settings.clone().with_auto_difference_order());
+        let pairs: Vec<(usize, f64)> = [8.0, 0.0]
+            .iter()
+            .flat_map(|&a| [1, 2, 3].map(|d| (d, a)))
+            .collect();
+        let scores: Vec<f64> = pairs.iter().map(|&(d, a)| score(&points, d, a)).collect();
+        let least = (0..6).min_by(|&i, &j| scores[i].total_cmp(&scores[j])).unwrap();
+        // A sine's d = 3 score can fall up to λ → ∞, where the dense grid stops: compare
+        // the chosen pair's dense score with the least to 1 % (the order test's precision).
+        let chosen = pairs
+            .iter()
+            .position(|&p| p == (both.report.difference_order, both.report.exponent))
+            .unwrap();
+        assert!(
+            scores[chosen] <= scores[least] * (1.0 + 1e-2),
+            "seed {seed}: chose {:?}, dense GCV minima {scores:?} over {pairs:?}",
+            pairs[chosen]
+        );
+        let fixed = settings
+            .clone()
+            .with_difference_order(pairs[chosen].0)
+            .with_exponent(pairs[chosen].1);
+        assert_eq!(both.points, fair_function(&points, &fixed).points, "seed {seed}");
+    }
+    // Evenly spaced points: 8 without a search, bit for bit the default's fit and solves.
+    let (points, _) = noisy_sine(60, 0);
+    let (auto, eight) = (
+        fair_function(&points, &settings),
+        fair_function(&points, &settings.clone().with_exponent(8.0)),
+    );
+    assert_eq!(auto.report.exponent, 8.0);
+    assert_eq!(auto.points, eight.points);
+    assert_eq!(auto.report.solves, eight.report.solves);
+    // The default stays 8, reported; out of range is refused.
+    assert_eq!(JumpLsqSettings::default().exponent, Some(8.0));
+    assert_eq!(
+        fair_function(&points, &JumpLsqSettings::default())
+            .report
+            .exponent,
+        8.0
+    );
+    for bad in [-1.0, 16.5, f64::NAN] {
+        assert!(
+            JumpLsqSettings::default().with_exponent(bad).validate().is_err(),
+            "{bad}"
+        );
+    }
+}
+
 /// `n` evenly spaced points of y = sin(x/2) over [0, 20] with noise of standard deviation
 /// 0.01 (spacing 20/(n − 1)): at 2 000 points and more the data want more smoothing than
 /// λ_max allows.
