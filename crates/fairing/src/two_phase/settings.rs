@@ -395,7 +395,8 @@ pub struct TwoPhaseSettings {
     /// unit length, right where the sampling follows the detail (an airfoil's nose) and wrong
     /// where it does not; 0 is blind to the spacing. `auto` fits both (each with its own
     /// order where `function-difference-order` is `auto`) and keeps the lower GCV score; on
-    /// evenly spaced x it is 8 without a search.
+    /// evenly spaced x it is 8 without a search. Its cost where it searches: two-phase on 200
+    /// unevenly spaced points 0.07 → 0.11 s, on 2000 0.88 → 1.40 s (release).
     ///
     /// Default 8 (the pre-pass before), measured against `auto`
     /// (`docs/two_phase_judge.md`): `auto` changes no synthetic row of the judge (the sines
