@@ -533,8 +533,8 @@ fn a_surface_plan_prints_as_its_method_table_and_reads_back() {
 /// a function (200 points, σ = 0.01) it reports one `function` fit with the rule, λ,
 /// difference order, end conditions and noise estimate of jump-lsq run alone with the
 /// pre-pass's own choices (`rule`, `difference-order`, `function-ends` all `auto`) on the same
-/// points, and with `function-exponent = auto` on unevenly spaced x the same with jump-lsq's
-/// `exponent = auto`; on a noisy open arc one `open` fit equal in the same way to jump-lsq run alone
+/// points, and with `function-exponent = auto` on unevenly spaced x (where GCV takes a = 0) the
+/// same with jump-lsq's `exponent = auto`; on a noisy open arc one `open` fit equal in the same way to jump-lsq run alone
 /// with the curve pre-pass's choices (`rule = gcv`, `gcv-gamma` 1.4, `curve-ends = runout`,
 /// `difference-order = auto`); on a noisy closed ellipse one `periodic` fit; on the same
 /// ellipse with a corner, the `corner` and `through-corner` fits. With `denoise = gcv` it names
@@ -654,6 +654,8 @@ fn two_phases_report_says_what_its_pre_pass_chose() {
         CurveKind::Function,
     );
     same(&function.extras["prepass"]["fits"][0], &alone);
+    // There GCV took a = 0, so the pre-pass did not fall back to the default 8 unasked.
+    assert_eq!(alone.extras["exponent"], 0.0, "{}", alone.extras["exponent"]);
 
     let open = run("two-phase", &[], &arc, CurveKind::Parametric);
     assert_eq!(roles(&open), ["open"], "{}", open.extras["prepass"]);
