@@ -5,7 +5,8 @@
 //! solve at a given λ; λ by the discrepancy rule (the default); by GCV (to 10^5); and a 3D
 //! parametric curve with the default rule and refits. At 10^3 points also two-phase's
 //! function pre-pass settings (`rule = auto`, `function-ends = auto`), with d = 1 and with
-//! `difference-order = auto` (the order chosen by GCV, up to 2000 points only).
+//! `difference-order = auto` (the order chosen by GCV, up to 2000 points only), and with
+//! `exponent = auto` too (the six pairs (d, a) of the joint search: these steps are uneven).
 
 use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
 use curve_repr::{Vec2, Vec3};
@@ -70,7 +71,11 @@ fn bench(c: &mut Criterion) {
                 .with_function_ends(FunctionEnds::Auto);
             let cases = [
                 ("prepass_order_1", prepass.clone()),
-                ("prepass_order_auto", prepass.with_auto_difference_order()),
+                ("prepass_order_auto", prepass.clone().with_auto_difference_order()),
+                (
+                    "prepass_order_exponent_auto",
+                    prepass.with_auto_difference_order().with_exponent_auto(),
+                ),
             ];
             for (label, settings) in cases {
                 group.bench_with_input(BenchmarkId::new(label, n), &(), |b, _| {
