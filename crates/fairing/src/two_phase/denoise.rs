@@ -580,16 +580,15 @@ fn denoise_binned(
     limits: &Limits<'_>,
 ) -> Result<(Vec<f64>, PrepassReport)> {
     let prepass = prepass.on_bins();
-    let (bins, (knots, fitted, report)) = on_bins(x.len(), prepass, limits, |bins, bin_limits| {
+    let (bins, (knots, fitted, jump)) = on_bins(x.len(), prepass, limits, |bins, bin_limits| {
         let (bx, by) = (bins.means(x), bins.means(y));
         let fit = denoise_points(mode, prepass, &bx, &by, bin_limits)?;
-        let report = PrepassReport {
-            fits: vec![PrepassFit::new("function", fit.jump)],
-            bins: Some(bins.len()),
-        };
-        Ok(((bx, fit.values, report), fit.dof))
+        Ok(((bx, fit.values, fit.jump), fit.dof))
     })?;
-    debug_assert_eq!(report.bins, Some(bins.len()));
+    let report = PrepassReport {
+        fits: vec![PrepassFit::new("function", jump)],
+        bins: Some(bins.len()),
+    };
     let spline = Quintic::new(&knots, &fitted)?;
     let values: Vec<f64> = spline
         .values(x)
