@@ -9,7 +9,7 @@ use super::Segment;
 /// Which moves of [`SegmentedFairing`](super::SegmentedFairing)'s passes are checked against
 /// the whole curve's counts (not in the paper).
 ///
-/// The counts are DESIGN.md's parametric-kind measures (the judge's too): curvature sign
+/// The counts are docs/CONTRACT.md's parametric-kind measures (the judge's too): curvature sign
 /// changes and sign changes of the second differences of κ over t, both of the natural cubic
 /// spline through the points with chord-length parameters ([`curve_counts`]). The phases lower
 /// the counts of each segment's own x–c polyline, which are not these. A move is kept when it
@@ -60,7 +60,7 @@ pub const CURVE_GUARD_CHUNK: usize = 16;
 
 /// (inflections, vibrations) of the natural cubic spline through `points` with chord-length
 /// parameters: sign changes of the signed curvature κ at the knots, and of Han's e built from
-/// (t, κ), both under DESIGN.md's sign rule ([`parametric_counts`], the report's counts). `None` when the spline
+/// (t, κ), both under docs/CONTRACT.md's sign rule ([`parametric_counts`], the report's counts). `None` when the spline
 /// or its curvature cannot be built (fewer than 3 points, coincident consecutive points, a
 /// vanishing tangent). O(n).
 pub fn curve_counts(points: &[Vec2]) -> Option<(usize, usize)> {

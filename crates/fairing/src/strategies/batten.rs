@@ -636,7 +636,7 @@ pub fn eq13_sweep<const D: usize>(
 /// every point (Okada Step 4): one plane (x, y) in 2D, then (x, y), (y, z), (z, x) in 3D, laid
 /// out plane by plane (index plane·n + i). The curvature at point i is taken on segment i at
 /// t = 0 (segment n−2 at t = 1 for the last point): (ẋẏ̈ − ẏẍ)/(ẋ² + ẏ²)^{3/2} in the plane;
-/// values with |κ| ≤ 1e-12 · max |κ| over the plane count as 0 (DESIGN.md's sign rule). O(n).
+/// values with |κ| ≤ 1e-12 · max |κ| over the plane count as 0 (docs/CONTRACT.md's sign rule). O(n).
 pub fn curvature_signs<const D: usize>(points: &[Vector<D>], tangents: &Tangents<D>) -> Vec<i8> {
     let planes: &[(usize, usize)] = match D {
         2 => &[(0, 1)],

@@ -99,7 +99,7 @@
 //! guards the option ends 3–10× farther from the truth with about as many inflections.
 //!
 //! Detection: a run is recognised at its first point, values with |c| ≤ 1e-12 · max|c| count
-//! as zero (DESIGN.md) and end a run without starting a case. The sweep visits i = 0 … n − 1
+//! as zero (docs/CONTRACT.md) and end a run without starting a case. The sweep visits i = 0 … n − 1
 //! once and continues after a case's run. Guards as in Phase 1 ([`TwoPhaseSettings`]): size of
 //! every move (including the neighbours' −λσ), local and pass count guards.
 
@@ -109,7 +109,7 @@ use super::phase1::{guarded_pass, Case, CaseKind, PassReport, Proposal};
 use super::TwoPhaseSettings;
 use crate::Result;
 
-/// The level below which a c value counts as zero: 1e-12 · max |c| (DESIGN.md). O(n).
+/// The level below which a c value counts as zero: 1e-12 · max |c| (docs/CONTRACT.md). O(n).
 pub fn zero_level(spline: &SplineFunction) -> f64 {
     1e-12 * spline.c().iter().fold(0.0f64, |m, v| m.max(v.abs()))
 }

@@ -234,7 +234,7 @@ pub struct TwoPhaseSettings {
     /// Not in the paper: within a pass, case detection reads |e_i| ≤ `detection_floor` ·
     /// max|e| (Phase 1) and |c_i| ≤ max(`detection_floor`, 1e-12) · max|c| (Phase 2) as zero:
     /// such a value starts and joins no case. 0 is the paper (Phase 1 reads only exact zeros
-    /// as zero; Phase 2 the DESIGN.md level 1e-12). The counts (DESIGN.md) are unchanged.
+    /// as zero; Phase 2 the docs/CONTRACT.md level 1e-12). The counts (docs/CONTRACT.md) are unchanged.
     ///
     /// With a floor the small cases that λ < 1 only shrinks stop being found, so a fairing of
     /// noise ends by "no case applies" instead of running `max_passes`; but it ends with more
