@@ -48,8 +48,8 @@ use crate::{reject_derivative_clamps, Constraints, FairingState, FairingStrategy
 /// with, it is undone and redone with the coarse moves guarded (the coarse report is then
 /// marked `reverted`), so a full pass never raises Infl_num. On noise, Phase 1 turns short
 /// wrong-sign runs of c into runs that the absorption can take, adding inflections on the way
-/// that Phase 2 then removes; guarding every coarse move stops that (measured in [`phase2`]'s
-/// table). O(n · guard_window), twice for a redone pass.
+/// that Phase 2 then removes; guarding every coarse move stops that (see
+/// [`phase2`]). O(n · guard_window), twice for a redone pass.
 pub fn full_pass(
     spline: &mut SplineFunction,
     settings: &TwoPhaseSettings,

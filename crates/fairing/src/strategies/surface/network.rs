@@ -122,8 +122,7 @@ impl Stiffness {
     /// whole line. The move is not made: the spline's
     /// [`unit_move_tangents`](HermiteSpline::unit_move_tangents) gives the re-solved rows
     /// and the line stays zero (moving it back, or copying the zero line, cost as much as
-    /// the move again: 12 % of the instructions of a 50 × 50 run went to the responses).
-    /// Was O(N²): quadratic on a long strip.
+    /// the move again).
     pub fn new(knots: &[f64], closed: bool) -> Result<Self> {
         let count = knots.len() - usize::from(closed);
         let mut settings = HermiteSettings::<1>::new().with_parameters(knots.to_vec());
