@@ -277,7 +277,7 @@ impl Denoise {
 }
 
 /// Rounds of reweighting for points that must stay within a bound, at most.
-pub const MAX_REWEIGHTS: usize = 60;
+pub(super) const MAX_REWEIGHTS: usize = 60;
 
 /// Where a point may go: `keep(i)` (interpolated exactly) and the distance `allowed(i)` it
 /// may move (+∞ for none).
@@ -665,11 +665,11 @@ pub const CORRECTION_ROUNDS: usize = 3;
 
 /// A turn (radians) from which the point of a closed curve where the direction turns most is
 /// a corner (an airfoil's trailing edge) that [`denoise_curve`] keeps as the seam of its fit.
-pub const CORNER_TURN: f64 = PI / 4.0;
+pub(super) const CORNER_TURN: f64 = PI / 4.0;
 
 /// How many points away [`denoise_curve`] measures a closed curve's turns (between the chords
 /// P_{i−3}P_i and P_iP_{i+3}).
-pub const CORNER_REACH: usize = 3;
+pub(super) const CORNER_REACH: usize = 3;
 
 /// The reaches over which [`denoise_curve`] measures the turns of a closed curve of `n`
 /// points, a corner's turn being the least of them ([`largest_turn`]): `CORNER_REACH`, then
@@ -1156,7 +1156,7 @@ fn uniform_knots(knots: &[f64]) -> Vec<f64> {
 }
 
 /// The noise a windowed chord must exceed, in noise estimates σ̂ ([`windowed_chord_knots`]).
-pub const CHORD_NOISE_RATIO: f64 = 20.0;
+pub(super) const CHORD_NOISE_RATIO: f64 = 20.0;
 
 /// Parameters for the points of `sequence` from chords over windows wide enough to see past
 /// their noise, spanning `knots` (the limited fit's). Point i's step is |P_hi − P_lo| / (hi −
