@@ -87,7 +87,7 @@ impl MethodEntry {
         let mut doc = doc_text(property, root);
         let choices = choice_docs(property, root);
         if !choices.is_empty() {
-            doc.push_str(&format!(" Values: {}.", choices.join("; ")));
+            doc.push_str(&format!(" Values: {}.", strip_doc_links(&choices.join("; "))));
         }
         format!(
             "| `{}` | {} | `{}` | {} | {} |\n",
