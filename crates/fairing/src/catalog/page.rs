@@ -89,11 +89,16 @@ impl MethodEntry {
         if !choices.is_empty() {
             doc.push_str(&format!(" Values: {}.", strip_doc_links(&choices.join("; "))));
         }
+        let default = if parameter.default.is_empty() {
+            "(empty)".to_owned()
+        } else {
+            format!("`{}`", parameter.default.replace('|', "\\|"))
+        };
         format!(
-            "| `{}` | {} | `{}` | {} | {} |\n",
+            "| `{}` | {} | {} | {} | {} |\n",
             parameter.name,
             kind,
-            parameter.default.replace('|', "\\|"),
+            default,
             range,
             cell(&doc)
         )
