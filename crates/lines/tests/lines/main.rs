@@ -1,0 +1,3 @@
+//! The fair-lines integration tests.
+
+mod read;
