@@ -2,6 +2,8 @@
 //! (an edge line alone) or a tensor product of two (the hull), with the smoothing chosen by the
 //! discrepancy principle: the smoothest spline whose robust RMS move equals the tolerance.
 
+#![allow(clippy::needless_range_loop)] // index loops over fixed-size basis arrays read as the book writes them
+
 use crate::spline::{Band, Knots};
 
 /// One observation: the spline at `at` should equal `target`; `free` says how a move of the

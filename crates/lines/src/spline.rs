@@ -2,6 +2,8 @@
 //! derivative at interior knots (the fairness measure of jump-lsq), and a banded Cholesky solver
 //! for penalised least squares.
 
+#![allow(clippy::needless_range_loop)] // index loops over fixed-size basis arrays read as the book writes them
+
 /// A clamped cubic knot vector on [a, b] with uniform interior knots.
 #[derive(Clone, Debug)]
 pub(crate) struct Knots {
@@ -30,7 +32,7 @@ impl Knots {
     pub fn span(&self, u: f64, left: bool) -> usize {
         let n = self.count();
         let (lo, hi) = (3, n - 1);
-        if u <= self.t[lo + 1] && !(left && u == self.t[lo + 1] && lo + 1 <= hi) {
+        if u <= self.t[lo + 1] && !(left && u == self.t[lo + 1] && lo < hi) {
             return lo;
         }
         if u >= self.t[hi] {

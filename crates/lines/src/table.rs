@@ -94,6 +94,11 @@ impl Cell {
         [self.x, self.y, self.z][k]
     }
 
+    /// The coordinate of index k: 0 = x, 1 = y, 2 = z (panics for another k).
+    pub fn get_coord(&self, k: usize) -> f64 {
+        self.get_index(k)
+    }
+
     /// The coordinate `c`.
     pub fn get(&self, c: Coord) -> f64 {
         match c {
@@ -713,7 +718,8 @@ fn read_block(t: &mut Table, rows: &Rows, lower: &[String]) -> Result<()> {
 fn read_grid(t: &mut Table, rows: &Rows, lower: &[String]) -> Result<()> {
     let cx = Ctx { path: &rows.path };
     let [ci_, cj, cxx, cy, cz] = ["i", "j", "x", "y", "z"].map(|n| col(lower, n).unwrap_or(0));
-    let mut per_i: BTreeMap<i64, Vec<(i64, f64, f64, f64, usize, usize)>> = BTreeMap::new();
+    type GridRow = (i64, f64, f64, f64, usize, usize);
+    let mut per_i: BTreeMap<i64, Vec<GridRow>> = BTreeMap::new();
     for (ri, (ln, row)) in rows.rows.iter().enumerate() {
         let i = cx.index(*ln, cx.field(*ln, row, ci_, "i")?)?;
         let j = cx.index(*ln, cx.field(*ln, row, cj, "j")?)?;

@@ -1,0 +1,88 @@
+use fair_lines::{fair, generate, read_table, Kind, Settings};
+
+fn table(g: &generate::Generated) -> (tempfile::TempDir, fair_lines::Table) {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("wigley.csv");
+    std::fs::write(&p, &g.table).unwrap();
+    let t = read_table(&p).unwrap();
+    (dir, t)
+}
+
+fn truth(t: &fair_lines::Table, i: usize) -> [f64; 3] {
+    let c = &t.cells[i];
+    match t.lines[c.line].kind {
+        Kind::Waterline => [c.x, generate::wigley_y(c.x, c.z), c.z],
+        _ => [c.x, c.y, generate::wigley_z(c.x, c.y).unwrap()],
+    }
+}
+
+#[test]
+fn every_view_is_cut_from_one_hull() {
+    let (_d, t) = table(&generate::wigley(0.0, 0, 7));
+    let f = fair(&t, &Settings::default()).unwrap();
+    let h = f.hull.as_ref().unwrap();
+    for (i, c) in t.cells.iter().enumerate() {
+        if c.y == 0.0 {
+            continue;
+        }
+        let v = f.values[i];
+        // a waterline's and a buttock's faired offset both lie on the hull: the views agree
+        assert!((h.eval(v[0], v[2]).0 - v[1]).abs() < 1e-9, "{c:?} {v:?}");
+    }
+    // the rounded table moves by about the rounding, not more
+    assert!(f.report.moves.rms < 1.0, "{:?}", f.report.moves);
+}
+
+#[test]
+fn planted_errors_are_flagged_and_pulled_toward_the_truth() {
+    let g = generate::wigley(0.0, 3, 11);
+    let (_d, t) = table(&g);
+    let f = fair(&t, &Settings::default()).unwrap();
+    let planted: serde_json::Value = serde_json::from_str(&g.planted).unwrap();
+    for e in planted["errors"].as_array().unwrap() {
+        let cell = &e["cells"][0];
+        let i = t
+            .cells
+            .iter()
+            .position(|c| {
+                t.lines[c.line].label == cell["line"].as_str().unwrap()
+                    && c.station_index == cell["station_index"].as_i64().unwrap()
+            })
+            .unwrap();
+        assert!(f.flagged[i], "planted error {e} not flagged");
+        let tr = truth(&t, i);
+        let before = (0..3)
+            .map(|k| (t.cells[i].get_coord(k) - tr[k]).abs())
+            .fold(0.0, f64::max);
+        let after = (0..3).map(|k| (f.values[i][k] - tr[k]).abs()).fold(0.0, f64::max);
+        assert!(after < 0.5 * before, "{e}: {before} -> {after}");
+    }
+    // and no clean offset is flagged with them
+    assert_eq!(f.report.flagged, 3);
+}
+
+#[test]
+fn a_table_without_redundant_views_says_so() {
+    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../data/hull_chesapeake_bay_sharpie/offsets_table.csv");
+    let f = fair(&read_table(p).unwrap(), &Settings::default()).unwrap();
+    assert!(!f.report.consistency_measurable);
+    assert!(f.hull.is_none());
+    assert!(f.report.note.contains("cannot be measured"));
+}
+
+#[test]
+fn a_bad_setting_is_refused() {
+    let (_d, t) = table(&generate::wigley(0.0, 0, 7));
+    let s = Settings {
+        tolerance: Some(-1.0),
+        ..Settings::default()
+    };
+    assert!(matches!(
+        fair(&t, &s),
+        Err(fair_lines::Error::Setting {
+            name: "tolerance",
+            ..
+        })
+    ));
+}
