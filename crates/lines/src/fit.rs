@@ -1,6 +1,9 @@
 //! Penalised, robustly weighted least squares of a cubic B-spline function of one variable
 //! (an edge line alone) or a tensor product of two (the hull), with the smoothing chosen by the
-//! discrepancy principle: the smoothest spline whose robust RMS move equals the tolerance.
+//! discrepancy principle: the smoothest spline whose robust RMS move equals tol/√3, the RMS of
+//! an error spread evenly over ±tol (rounding). On Block Island no λ reaches it (its offsets
+//! disagree by more than the rounding), and the smallest λ tried (10⁻⁸) is taken: the knot
+//! grid, one span per station interval and per waterline, is then the smoother.
 
 #![allow(clippy::needless_range_loop)] // index loops over fixed-size basis arrays read as the book writes them
 
@@ -162,6 +165,7 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64) -> Option
     let mut lambda = 1.0;
     let mut moves = vec![0.0; obs.len()];
     let mut it = 0;
+    let target = tol / 3f64.sqrt();
     for outer in 0..OUTER {
         it = outer + 1;
         let mut ata = Band::zeros(n, bw);
@@ -195,11 +199,12 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64) -> Option
             }
             (num / den.max(1e-300)).sqrt()
         };
-        // the discrepancy principle: the largest λ whose robust RMS move is at most tol
+        // the discrepancy principle: the largest λ whose robust RMS move is at most the RMS of
+        // an error spread evenly over ±tol (rounding to the nearest step): tol/√3
         let (mut lo, mut hi) = (-8.0f64, 8.0f64);
         let mut best: Option<(f64, Vec<f64>)> = None;
         if let Some(c) = solve(10f64.powf(lo)) {
-            if rms_move(&c) > tol {
+            if rms_move(&c) > target {
                 best = Some((lo, c));
                 hi = lo;
             }
@@ -208,7 +213,7 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64) -> Option
             for _ in 0..24 {
                 let mid = 0.5 * (lo + hi);
                 let c = solve(10f64.powf(mid))?;
-                if rms_move(&c) <= tol {
+                if rms_move(&c) <= target {
                     lo = mid;
                     best = Some((mid, c));
                 } else {

@@ -15,8 +15,11 @@ use crate::table::{Kind, Table};
 pub struct Settings {
     /// The table's rounding step; default: inferred from its values ([`Table::step`]).
     pub step: Option<f64>,
-    /// The tolerance per offset: the hull is the smoothest whose robust RMS move equals it.
-    /// Default: half the rounding step (rounding to the nearest step errs by at most that).
+    /// The tolerance per offset: the bound of its error. The hull is the smoothest whose robust
+    /// RMS move is tol/√3, the RMS of an error spread evenly over ±tol; moves beyond six
+    /// tolerances are rejected (flagged, and no longer pull the hull). Default: half the
+    /// rounding step (rounding to the nearest step errs by at most that). Raise it for a table
+    /// noisier than its rounding.
     pub tolerance: Option<f64>,
     /// Labels of the knuckle edges (G0 breaks: chine, knuckle); default: edge lines whose label
     /// contains "chine" or "knuckle". An empty list declares none.
@@ -226,6 +229,9 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
             .collect();
         planes.sort_by(f64::total_cmp);
         planes.dedup();
+        // knots: one span per station interval and per waterline (tried on Block Island and
+        // the Wigley tuning tables: twice as many in either direction follow the disagreeing
+        // offsets of Block Island instead of agreeing them)
         let zs = planes.len().clamp(3, 40);
         let kx = Knots::uniform(x0, x1, xs.min(80));
         let kz = Knots::uniform(z0, z1, zs);
