@@ -83,7 +83,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             std::fs::write(dir.join("table.csv"), &g.table)?;
             std::fs::write(dir.join("truth.csv"), &g.truth)?;
             std::fs::write(dir.join("planted.json"), &g.planted)?;
-            let faired = fair(&read_table(dir.join("table.csv"))?, &Settings::default())?;
+            // a noisy table is faired at its noise: the error bound whose even spread has the
+            // noise's RMS (1.5 steps × √3), as a user who knows the noise would set it
+            let tolerance = (noise > 0.0).then(|| noise * generate::STEP * 3f64.sqrt());
+            let faired = fair(
+                &read_table(dir.join("table.csv"))?,
+                &Settings {
+                    tolerance,
+                    ..Settings::default()
+                },
+            )?;
             write::write_table(&faired, dir.join("faired.csv"))?;
             std::fs::write(dir.join("report.json"), write::report_json(&faired))?;
             let r = &faired.report;

@@ -123,12 +123,14 @@ pub(crate) struct Fit {
 /// parallel to the measured direction the gain is small and the move ill-defined, so it is held
 /// at this floor.
 const MIN_GAIN: f64 = 0.1;
-/// Huber's threshold, in tolerances (one rounding step).
+/// Huber's threshold, in robust scales (one rounding step on a table whose error is its rounding).
 const HUBER: f64 = 2.0;
-/// A move beyond this many tolerances (three rounding steps) rejects the offset (weight 0):
-/// a wrong offset does not bend the hull.
+/// A move beyond this many robust scales (three rounding steps on a table whose error is its
+/// rounding) rejects the offset (weight 0): a wrong offset does not bend the hull.
 pub(crate) const REJECT: f64 = 6.0;
 const OUTER: usize = 8;
+/// Outer iterations fitted stiffer, the last of them deciding the first rejections.
+const STIFF: usize = 2;
 
 impl Fit {
     /// |∇F| over the measured coordinates of `o` on spline `s`.
@@ -201,10 +203,14 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64) -> Option
         };
         // the discrepancy principle: the largest λ whose robust RMS move is at most the RMS of
         // an error spread evenly over ±tol (rounding to the nearest step): tol/√3
+        // the first two fits are stiffer (four times the move): an offset in conflict with a
+        // neighbour at the same point then stands out against the fair trend of all the others
+        // instead of sharing the conflict with it
+        let goal = if outer < STIFF { 4.0 * target } else { target };
         let (mut lo, mut hi) = (-8.0f64, 8.0f64);
         let mut best: Option<(f64, Vec<f64>)> = None;
         if let Some(c) = solve(10f64.powf(lo)) {
-            if rms_move(&c) > target {
+            if rms_move(&c) > goal {
                 best = Some((lo, c));
                 hi = lo;
             }
@@ -213,7 +219,7 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64) -> Option
             for _ in 0..24 {
                 let mid = 0.5 * (lo + hi);
                 let c = solve(10f64.powf(mid))?;
-                if rms_move(&c) <= target {
+                if rms_move(&c) <= goal {
                     lo = mid;
                     best = Some((mid, c));
                 } else {
@@ -230,15 +236,21 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64) -> Option
         };
         lambda = 10f64.powf(l);
         s.c = c;
-        // new gains and robust weights
-        let mut changed = false;
+        // new gains and moves; the robust scale: the tolerance, or the moves' own spread
+        // (1.4826 × their median absolute value) where that is larger (a table noisier than
+        // its rounding), so that noise is not mistaken for wrong offsets
         for (k, (r, o)) in rows.iter().zip(obs).enumerate() {
             gain[k] = Fit::gain(&s, o);
             let v: f64 = r.iter().map(|&(i, w)| s.c[i] * w).sum();
-            let m = (v - o.target) / gain[k];
-            moves[k] = m;
-            let a = m.abs() / tol;
-            let w = if outer >= 2 && a > REJECT {
+            moves[k] = (v - o.target) / gain[k];
+        }
+        let mut abs: Vec<f64> = moves.iter().map(|m| m.abs()).collect();
+        abs.sort_by(f64::total_cmp);
+        let scale = tol.max(1.4826 * abs[abs.len() / 2]);
+        let mut changed = false;
+        for k in 0..obs.len() {
+            let a = moves[k].abs() / scale;
+            let w = if outer + 1 >= STIFF && a > REJECT {
                 0.0
             } else if a > HUBER {
                 HUBER / a
@@ -250,7 +262,7 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64) -> Option
             }
             robust[k] = w;
         }
-        if !changed && outer >= 3 {
+        if !changed && outer > STIFF {
             break;
         }
     }
