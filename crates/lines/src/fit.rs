@@ -164,7 +164,7 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64) -> Option
     let pen = s.penalty(bw);
     let mut gain = vec![1.0; obs.len()];
     let mut robust = vec![1.0; obs.len()];
-    let mut lambda = 1.0;
+    let mut lambda: f64 = 1.0;
     let mut moves = vec![0.0; obs.len()];
     let mut it = 0;
     let target = tol / 3f64.sqrt();
@@ -207,7 +207,12 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64) -> Option
         // neighbour at the same point then stands out against the fair trend of all the others
         // instead of sharing the conflict with it
         let goal = if outer < STIFF { 4.0 * target } else { target };
-        let (mut lo, mut hi) = (-8.0f64, 8.0f64);
+        // after the first fit, λ is searched near the previous one (the weights change little)
+        let (mut lo, mut hi) = if outer == 0 {
+            (-8.0f64, 8.0f64)
+        } else {
+            ((lambda.log10() - 3.0).max(-8.0), (lambda.log10() + 3.0).min(8.0))
+        };
         let mut best: Option<(f64, Vec<f64>)> = None;
         if let Some(c) = solve(10f64.powf(lo)) {
             if rms_move(&c) > goal {
@@ -225,7 +230,7 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64) -> Option
                 } else {
                     hi = mid;
                 }
-                if hi - lo < 0.02 {
+                if hi - lo < 0.05 {
                     break;
                 }
             }

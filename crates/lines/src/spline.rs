@@ -187,21 +187,30 @@ impl Band {
             .fold(0.0, f64::max)
             .max(f64::MIN_POSITIVE);
         for i in 0..n {
+            let (done, rest) = l.split_at_mut(i);
+            let li = &mut rest[0];
             for k in (0..=bw.min(i)).rev() {
                 let j = i - k;
-                let mut s = l[i][k];
-                for m in 1..=bw.min(j) {
-                    if k + m <= bw {
-                        s -= l[i][k + m] * l[j][m];
-                    }
-                }
+                let mmax = j.min(bw - k);
+                // L(i, j) = (A(i, j) − Σ_m L(i, j − m) L(j, j − m)) / L(j, j)
+                let s = if k == 0 {
+                    li[0] - li[1..=mmax].iter().map(|v| v * v).sum::<f64>()
+                } else {
+                    let lj = &done[j];
+                    li[k]
+                        - li[k + 1..=k + mmax]
+                            .iter()
+                            .zip(&lj[1..=mmax])
+                            .map(|(a, b)| a * b)
+                            .sum::<f64>()
+                };
                 if k == 0 {
                     if s <= 1e-14 * scale {
                         return None;
                     }
-                    l[i][0] = s.sqrt();
+                    li[0] = s.sqrt();
                 } else {
-                    l[i][k] = s / l[j][0];
+                    li[k] = s / done[j][0];
                 }
             }
         }
