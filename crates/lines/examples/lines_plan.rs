@@ -51,7 +51,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         write::write_lines(&faired, dir.join("lines"))?;
         std::fs::write(dir.join("report.json"), write::report_json(&faired))?;
         std::fs::write(dir.join("views.svg"), write::svg(&faired))?;
-        if faired.hull.is_some() {
+        if !faired.hulls.is_empty() {
             write::write_hull(&faired, dir.join("hull.igs"))?;
             write::write_hull(&faired, dir.join("hull.stp"))?;
         }
@@ -76,9 +76,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ("noisy", 1.5, 0, [2, 102]),
         ("planted", 0.0, 3, [3, 103]),
     ] {
-        for seed in seeds {
-            let g = generate::wigley(noise, planted, seed);
-            let dir = out.join(format!("wigley_{tag}_{seed}"));
+        for (form, seed) in seeds.iter().flat_map(|&s| [("wigley", s), ("chine", s)]) {
+            let g = if form == "wigley" {
+                generate::wigley(noise, planted, seed)
+            } else {
+                generate::hard_chine(noise, planted, seed)
+            };
+            let dir = out.join(format!("{form}_{tag}_{seed}"));
             std::fs::create_dir_all(&dir)?;
             std::fs::write(dir.join("table.csv"), &g.table)?;
             std::fs::write(dir.join("truth.csv"), &g.truth)?;

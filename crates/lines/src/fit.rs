@@ -19,7 +19,24 @@ pub(crate) struct Obs {
     /// Which coordinates of the offset were measured: the value v, the argument u.
     pub free_v: bool,
     pub free_u: bool,
+    /// Held: weighted heavily and never rejected (a knuckle's faired point shared by regions).
+    pub held: bool,
 }
+
+impl Obs {
+    pub fn new(at: (f64, f64), target: f64, free_v: bool, free_u: bool) -> Self {
+        Self {
+            at,
+            target,
+            free_v,
+            free_u,
+            held: false,
+        }
+    }
+}
+
+/// Weight of a held observation relative to an offset.
+const HELD: f64 = 1e4;
 
 /// A spline of one (`ku` None) or two variables, v = S(x, u).
 #[derive(Clone, Debug)]
@@ -173,7 +190,7 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64) -> Option
         let mut ata = Band::zeros(n, bw);
         let mut atb = vec![0.0; n];
         for (k, (r, o)) in rows.iter().zip(obs).enumerate() {
-            let w = robust[k] / (gain[k] * gain[k]);
+            let w = robust[k] / (gain[k] * gain[k]) * if o.held { HELD } else { 1.0 };
             if w == 0.0 {
                 continue;
             }
@@ -194,6 +211,9 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64) -> Option
         let rms_move = |c: &[f64]| -> f64 {
             let (mut num, mut den) = (0.0, 0.0);
             for (k, r) in rows.iter().enumerate() {
+                if obs[k].held {
+                    continue;
+                }
                 let v: f64 = r.iter().map(|&(i, w)| c[i] * w).sum();
                 let m = (v - obs[k].target) / gain[k];
                 num += robust[k] * m * m;
@@ -255,7 +275,9 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64) -> Option
         let mut changed = false;
         for k in 0..obs.len() {
             let a = moves[k].abs() / scale;
-            let w = if outer + 1 >= STIFF && a > REJECT {
+            let w = if obs[k].held {
+                1.0
+            } else if outer + 1 >= STIFF && a > REJECT {
                 0.0
             } else if a > HUBER {
                 HUBER / a

@@ -68,7 +68,7 @@ impl Rng {
 pub fn wigley(noise_steps: f64, planted: usize, seed: u64) -> Generated {
     let mut rng = Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
     // (label, kind, si, x, y, z)
-    let mut cells: Vec<(String, &str, usize, f64, f64, f64)> = Vec::new();
+    let mut cells: Vec<GenCell> = Vec::new();
     let stations: Vec<f64> = (0..=20).map(|k| L * k as f64 / 20.0).collect();
     for k in 1..=8 {
         let z = D * k as f64 / 8.0;
@@ -84,6 +84,13 @@ pub fn wigley(noise_steps: f64, planted: usize, seed: u64) -> Generated {
             }
         }
     }
+    finish(cells, noise_steps, planted, &mut rng)
+}
+
+type GenCell = (String, &'static str, usize, f64, f64, f64);
+
+/// Noise, rounding, planted errors and the CSV texts of exact cells (label, kind, station, x, y, z).
+fn finish(cells: Vec<GenCell>, noise_steps: f64, planted: usize, rng: &mut Rng) -> Generated {
     let round = |v: f64| (v / STEP).round() * STEP;
     let mut given: Vec<[f64; 2]> = cells
         .iter()
@@ -95,7 +102,8 @@ pub fn wigley(noise_steps: f64, planted: usize, seed: u64) -> Generated {
             };
             match c.1 {
                 "waterline" => [round(c.4 + e).max(0.0), c.5],
-                _ => [c.4, round(c.5 + e)],
+                "buttock" => [c.4, round(c.5 + e)],
+                _ => [round(c.4 + e), round(c.5 + noise_steps * STEP * rng.normal())],
             }
         })
         .collect();
@@ -105,7 +113,8 @@ pub fn wigley(noise_steps: f64, planted: usize, seed: u64) -> Generated {
         let i = (rng.unit() * cells.len() as f64) as usize % cells.len();
         let c = &cells[i];
         if c.2 < 3
-            || c.2 > 17
+            || c.2 > 12
+            || c.1 == "edge"
             || c.4 == 0.0
             || !used.insert((c.0.clone(), c.2))
             || used.iter().any(|u| u.1 == c.2 && u.0 != c.0)
@@ -134,4 +143,76 @@ pub fn wigley(noise_steps: f64, planted: usize, seed: u64) -> Generated {
         truth,
         planted: format!("{{\"errors\": [{}]}}\n", errors.join(", ")),
     }
+}
+
+/// The hard-chine form's chine (y, z) and keel height at x ∈ (0, CL] (bow at 0).
+fn chine(x: f64) -> (f64, f64, f64) {
+    let t = x / CL;
+    let yc = 0.5 * CB * 0.8 * (1.0 - (1.0 - t).powi(3)) + 0.5 * CB * 0.2 * t;
+    let zc = CD * (0.25 + 0.35 * (1.0 - t) * (1.0 - t));
+    let zk = CD * 0.3 * (1.0 - t).powi(3);
+    (yc, zc, zk)
+}
+
+/// Length of the hard-chine form (inches).
+pub const CL: f64 = 240.0;
+/// Its beam.
+pub const CB: f64 = 80.0;
+/// Its depth (the sheer's height).
+pub const CD: f64 = 40.0;
+/// Flare of its topsides (dy/dz).
+pub const FLARE: f64 = 0.15;
+
+/// The hard-chine form at station x: half-breadth at height z (None outside the hull).
+pub fn chine_form_y(x: f64, z: f64) -> Option<f64> {
+    let (yc, zc, zk) = chine(x);
+    if z < zk || z > CD {
+        None
+    } else if z <= zc {
+        Some(yc * (z - zk) / (zc - zk))
+    } else {
+        Some(yc + (z - zc) * FLARE)
+    }
+}
+
+/// The hard-chine form at station x: height at half-breadth b (None outside the hull).
+pub fn chine_form_z(x: f64, b: f64) -> Option<f64> {
+    let (yc, zc, zk) = chine(x);
+    if b <= yc {
+        Some(zk + (zc - zk) * b / yc)
+    } else {
+        let z = zc + (b - yc) / FLARE;
+        (z <= CD).then_some(z)
+    }
+}
+
+/// A hard-chine planing form (straight sections: a V bottom from the keel to the chine, flared
+/// straight topsides above it), 16 stations, waterlines every 5 in, buttocks every 8 in, the
+/// chine and the keel (y = 0) as edge lines; noise, rounding and planted errors as [`wigley`].
+pub fn hard_chine(noise_steps: f64, planted: usize, seed: u64) -> Generated {
+    let mut rng = Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
+    let mut cells: Vec<GenCell> = Vec::new();
+    let stations: Vec<f64> = (1..=16).map(|k| CL * k as f64 / 16.0).collect();
+    for k in 1..=7 {
+        let z = 5.0 * k as f64;
+        for (si, &x) in stations.iter().enumerate() {
+            if let Some(y) = chine_form_y(x, z) {
+                cells.push((format!("WL{k}"), "waterline", si, x, y, z));
+            }
+        }
+    }
+    for k in 1..=4 {
+        let b = 8.0 * k as f64;
+        for (si, &x) in stations.iter().enumerate() {
+            if let Some(z) = chine_form_z(x, b) {
+                cells.push((format!("BT{k}"), "buttock", si, x, b, z));
+            }
+        }
+    }
+    for (si, &x) in stations.iter().enumerate() {
+        let (yc, zc, zk) = chine(x);
+        cells.push(("chine".into(), "edge", si, x, yc, zc));
+        cells.push(("keel".into(), "edge", si, x, 0.0, zk));
+    }
+    finish(cells, noise_steps, planted, &mut rng)
 }

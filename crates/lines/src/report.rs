@@ -94,8 +94,9 @@ pub struct Report {
     pub consistency_measurable: bool,
     /// A sentence on the above.
     pub note: String,
-    /// The hull's smoothing weight (dimensionless), outer iterations and rejected offsets.
-    pub hull_fit: Option<HullFit>,
+    /// Per hull region: its smoothing weight (dimensionless), outer iterations and rejected
+    /// offsets.
+    pub hull_fit: Vec<HullFit>,
     /// Station leave-one-out (each interior station offset against the cubic through its two
     /// neighbours on each side, in y at its height), in steps, before and after.
     pub consistency_before: Stats,
@@ -120,6 +121,8 @@ pub struct Report {
 /// The hull fit's summary.
 #[derive(Clone, Debug, Serialize)]
 pub struct HullFit {
+    /// The region ("hull", "above chine", "below chine").
+    pub region: String,
     /// Smoothing weight chosen by the discrepancy principle.
     pub lambda: f64,
     /// Outer (reweighting) iterations.
@@ -214,7 +217,7 @@ pub(crate) fn build_report(
     flagged: &[bool],
     step: f64,
     tol: f64,
-    hull: Option<&Fit>,
+    hulls: &[(String, Fit)],
     use_hull: bool,
 ) -> Report {
     let old: Vec<[f64; 3]> = t.cells.iter().map(|c| [c.x, c.y, c.z]).collect();
@@ -278,14 +281,18 @@ pub(crate) fn build_report(
         method: if use_hull { "hull" } else { "lines alone" },
         consistency_measurable: use_hull,
         note,
-        hull_fit: hull.map(|f| {
-            let (lambda, iterations, rejected) = fit_summary(f);
-            HullFit {
-                lambda,
-                iterations,
-                rejected,
-            }
-        }),
+        hull_fit: hulls
+            .iter()
+            .map(|(region, f)| {
+                let (lambda, iterations, rejected) = fit_summary(f);
+                HullFit {
+                    region: region.clone(),
+                    lambda,
+                    iterations,
+                    rejected,
+                }
+            })
+            .collect(),
         consistency_before: Stats::of(&station_loo(t, &old, step)),
         consistency_after: Stats::of(&station_loo(t, vals, step)),
         moves: Stats::of(&moves),

@@ -154,51 +154,62 @@ fn units(u: Option<&str>) -> Units {
     }
 }
 
-/// The hull surface as a CAD model: the bicubic B-spline y = S(x, z) written exactly as a
-/// B-spline surface with control points (x̄ᵢ, cᵢⱼ, z̄ⱼ) at the Greville abscissae x̄, z̄ (a
-/// polynomial function surface is its own control net at them). It spans the bounding box of
-/// the offsets, so it runs past the stem, keel and sheer where the hull has no offsets. The
-/// unit is the table's (millimetres when unknown).
+/// The hull's surfaces as a CAD model: each bicubic B-spline v = S(x, u) written exactly as a
+/// B-spline surface with control points at the Greville abscissae (x̄ᵢ, ūⱼ) and value cᵢⱼ (a
+/// polynomial function surface is its own control net there). Each spans the bounding box of
+/// its offsets, so it runs past the stem, keel, sheer or knuckle where the hull has no offsets.
+/// The unit is the table's (millimetres when unknown).
 pub fn hull_model(f: &Faired) -> Result<CadModel> {
-    let h = f
-        .hull
-        .as_ref()
-        .ok_or_else(|| Error::Fit("no hull surface: the table has no waterlines or buttocks".into()))?;
-    let s = h.spline();
-    let kz =
-        s.ku.as_ref()
-            .ok_or_else(|| Error::Fit("no hull surface".into()))?;
-    let gx: Vec<f64> = (0..s.kx.count())
-        .map(|i| (s.kx.t[i + 1] + s.kx.t[i + 2] + s.kx.t[i + 3]) / 3.0)
-        .collect();
-    let gz: Vec<f64> = (0..kz.count())
-        .map(|j| (kz.t[j + 1] + kz.t[j + 2] + kz.t[j + 3]) / 3.0)
-        .collect();
-    let nu = kz.count();
-    let net: Vec<Vec<Vec3>> = gx
-        .iter()
-        .enumerate()
-        .map(|(i, &x)| {
-            gz.iter()
-                .enumerate()
-                .map(|(j, &z)| Vec3::new(x, s.c[i * nu + j], z))
-                .collect()
-        })
-        .collect();
-    let weights = vec![vec![1.0; nu]; gx.len()];
-    let surface = NurbsSurface::new(3, 3, s.kx.t.clone(), kz.t.clone(), net, weights)
-        .map_err(|e| Error::Fit(format!("hull as a B-spline surface: {e}")))?;
+    if f.hulls.is_empty() {
+        return Err(Error::Fit(
+            "no hull surface: the table has no waterlines or buttocks".into(),
+        ));
+    }
     let name = Path::new(&f.table.path)
         .file_stem()
         .and_then(|s| s.to_str())
         .unwrap_or("hull")
         .to_string();
-    let surf = CadSurface::new(surface).with_name(format!("{name} hull"));
-    Ok(CadModel::of(
-        Shape::Surface(surf),
-        units(f.table.units.as_deref()),
-        0.5 * f.step,
-    ))
+    let mut model: Option<CadModel> = None;
+    for h in &f.hulls {
+        let s = h.spline();
+        let ku =
+            s.ku.as_ref()
+                .ok_or_else(|| Error::Fit("no hull surface".into()))?;
+        let gx: Vec<f64> = (0..s.kx.count())
+            .map(|i| (s.kx.t[i + 1] + s.kx.t[i + 2] + s.kx.t[i + 3]) / 3.0)
+            .collect();
+        let gu: Vec<f64> = (0..ku.count())
+            .map(|j| (ku.t[j + 1] + ku.t[j + 2] + ku.t[j + 3]) / 3.0)
+            .collect();
+        let nu = ku.count();
+        let net: Vec<Vec<Vec3>> = gx
+            .iter()
+            .enumerate()
+            .map(|(i, &x)| {
+                gu.iter()
+                    .enumerate()
+                    .map(|(j, &u)| {
+                        let v = s.c[i * nu + j];
+                        if h.value() == Coord::Z {
+                            Vec3::new(x, u, v)
+                        } else {
+                            Vec3::new(x, v, u)
+                        }
+                    })
+                    .collect()
+            })
+            .collect();
+        let weights = vec![vec![1.0; nu]; gx.len()];
+        let surface = NurbsSurface::new(3, 3, s.kx.t.clone(), ku.t.clone(), net, weights)
+            .map_err(|e| Error::Fit(format!("hull as a B-spline surface: {e}")))?;
+        let shape = Shape::Surface(CadSurface::new(surface).with_name(format!("{name} {}", h.region())));
+        match &mut model {
+            None => model = Some(CadModel::of(shape, units(f.table.units.as_deref()), 0.5 * f.step)),
+            Some(m) => m.push(shape),
+        }
+    }
+    model.ok_or_else(|| Error::Fit("no hull surface".into()))
 }
 
 /// Writes the hull as IGES or STEP (from the extension: .igs/.iges, .stp/.step).

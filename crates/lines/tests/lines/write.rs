@@ -41,7 +41,7 @@ fn the_hull_goes_to_cad_and_reads_back() {
         write::write_hull(&f, &p).unwrap();
         let m = cad::read_path(&p, None).unwrap();
         assert_eq!(m.surfaces.len(), 1);
-        let h = f.hull.as_ref().unwrap();
+        let h = f.hulls.first().unwrap();
         let ((x0, x1), (z0, z1)) = h.domain();
         let (x, z) = (0.3 * x0 + 0.7 * x1, 0.6 * z0 + 0.4 * z1);
         let p3 = m.surfaces[0].point_at(x, z);
