@@ -101,7 +101,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             std::fs::write(dir.join("report.json"), write::report_json(&faired))?;
             let r = &faired.report;
             println!(
-                "wigley {tag:8} seed {seed:3}: moves rms {:.2} max {:.2} steps, flagged {}",
+                "{form:6} {tag:8} seed {seed:3}: moves rms {:.2} max {:.2} steps, flagged {}",
                 r.moves.rms, r.moves.max, r.flagged
             );
         }
