@@ -232,3 +232,93 @@ impl Band {
         Some(y)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn knots() -> Knots {
+        Knots {
+            t: vec![0.0, 0.0, 0.0, 0.0, 1.0, 2.5, 3.0, 4.5, 4.5, 4.5, 4.5],
+        }
+    }
+
+    #[test]
+    fn bases_sum_to_one_and_derivatives_match_differences() {
+        let k = knots();
+        for &u in &[0.0, 0.3, 1.0, 1.7, 2.9, 3.6, 4.5] {
+            let s = k.span(u, false);
+            let d = k.ders(s, u, 3);
+            assert!(
+                (d[0].iter().sum::<f64>() - 1.0).abs() < 1e-12,
+                "partition of unity at {u}"
+            );
+            assert!(d[1].iter().sum::<f64>().abs() < 1e-12);
+            let h = 1e-6;
+            let (dp, dm) = (k.ders(s, u + h, 0), k.ders(s, u - h, 0));
+            for r in 0..4 {
+                let fd = (dp[0][r] - dm[0][r]) / (2.0 * h);
+                assert!((fd - d[1][r]).abs() < 1e-6, "N' at {u}, {r}: {fd} vs {}", d[1][r]);
+            }
+        }
+    }
+
+    #[test]
+    fn the_jumps_vanish_on_a_cubic_and_not_on_a_kink_of_the_third_derivative() {
+        let k = knots();
+        // the coefficients of x³ on this knot vector, by least squares through 7 points
+        let n = k.count();
+        let xs: Vec<f64> = (0..=20).map(|i| 4.5 * i as f64 / 20.0).collect();
+        let mut a = Band::zeros(n, 3);
+        let mut b = vec![0.0; n];
+        for &x in &xs {
+            let s = k.span(x, false);
+            let row: Vec<(usize, f64)> = (0..4).map(|r| (s - 3 + r, k.ders(s, x, 0)[0][r])).collect();
+            a.add_outer(&row, 1.0);
+            for &(i, v) in &row {
+                b[i] += v * x * x * x;
+            }
+        }
+        let c = a.solve(&b).unwrap();
+        for row in k.jumps() {
+            let j: f64 = row.iter().map(|&(i, w)| w * c[i]).sum();
+            assert!(j.abs() < 1e-8, "a cubic has no third-derivative jump: {j}");
+        }
+        // one coefficient bumped: some jump is nonzero
+        let mut c2 = c.clone();
+        c2[3] += 1.0;
+        assert!(k
+            .jumps()
+            .iter()
+            .any(|row| row.iter().map(|&(i, w)| w * c2[i]).sum::<f64>().abs() > 1e-3));
+    }
+
+    #[test]
+    fn the_banded_solver_solves() {
+        // a tridiagonal SPD system with a known solution
+        let n = 6;
+        let mut a = Band::zeros(n, 2);
+        for i in 0..n {
+            a.a[i][0] = 4.0;
+            if i >= 1 {
+                a.a[i][1] = -1.0;
+            }
+            if i >= 2 {
+                a.a[i][2] = 0.5;
+            }
+        }
+        let x: Vec<f64> = (0..n).map(|i| i as f64 - 2.0).collect();
+        let mut b = vec![0.0; n];
+        for i in 0..n {
+            for j in 0..n {
+                let d = i.abs_diff(j);
+                let v = if d <= 2 { a.a[i.max(j)][d] } else { 0.0 };
+                b[i] += v * x[j];
+            }
+        }
+        let got = a.solve(&b).unwrap();
+        for (g, w) in got.iter().zip(&x) {
+            assert!((g - w).abs() < 1e-12);
+        }
+    }
+}
