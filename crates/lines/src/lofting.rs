@@ -10,7 +10,7 @@ use crate::spline::Knots;
 use crate::table::{Coord, Kind, Table};
 
 /// How a table is faired.
-#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct Settings {
     /// The table's rounding step; default: inferred from its values ([`Table::step`]).
