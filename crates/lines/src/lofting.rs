@@ -202,11 +202,14 @@ pub struct Faired {
 }
 
 /// Fairs a table: the hull is fitted to every waterline, buttock and (non-knuckle) edge offset
-/// at once, and every such offset is cut back from it; knuckle edges, profile-only and
-/// plan-only lines, and every line of a table without waterlines or buttocks are faired alone
-/// (y(x) and z(x), the same penalty and tolerance). Offsets on the centreline (y = 0 of a
-/// waterline) are held. O(cells·nu² + n·bw²) per solve, with n the surface's coefficients and bw
-/// its band (4·nu + 4).
+/// at once, and every such offset is cut back from it. A knuckle edge (the first, when there are
+/// several) is faired alone first and splits the hull into two regions holding its faired
+/// points: y(x, z) above it, z(x, y) below it. Knuckle edges, profile-only and plan-only lines,
+/// and every line of a table without waterlines or buttocks are faired alone (y(x) and z(x),
+/// the same penalty and tolerance). Offsets on the centreline (y = 0 of a waterline) are held.
+/// Fails with [`Error::Setting`] for a non-positive step or tolerance and [`Error::Fit`] when
+/// fewer than 8 offsets lie on the hull. O(n·bw²) per solve, with n the surface's coefficients
+/// and bw its band (4·nu + 4); about 100 solves.
 pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
     settings.validate()?;
     let step = settings.step.unwrap_or(table.step);
