@@ -11,7 +11,7 @@
 //! crossing to round-off, offsets move by about the rounding, and an offset that cannot be made
 //! to agree is flagged with the value the hull suggests instead of bending the hull.
 //!
-//! The front ends are thin: [`read_table`], [`fair`], then the writers of [`write`].
+//! The front ends are thin: [`read_table`], [`fair`], then the writers of [`mod@write`].
 
 pub mod error;
 pub mod table;

@@ -58,7 +58,7 @@ impl Hull {
         self.value
     }
 
-    /// The region's name: "hull", "above <knuckle>" or "below <knuckle>".
+    /// The region's name: "hull", or "above " / "below " and the knuckle's label.
     pub fn region(&self) -> &str {
         &self.region
     }
