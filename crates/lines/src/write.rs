@@ -236,11 +236,57 @@ pub fn write_hull(f: &Faired, path: impl AsRef<Path>) -> Result<()> {
     std::fs::write(p, text).map_err(|e| io(p, e))
 }
 
+/// Signed curvature of the circle through three points (Menger): 4·area / (|ab|·|bc|·|ca|).
+fn menger(a: (f64, f64), b: (f64, f64), c: (f64, f64)) -> f64 {
+    let cross = (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0);
+    let d = |p: (f64, f64), q: (f64, f64)| ((p.0 - q.0).powi(2) + (p.1 - q.1).powi(2)).sqrt();
+    let den = d(a, b) * d(b, c) * d(c, a);
+    if den > 0.0 {
+        2.0 * cross / den
+    } else {
+        0.0
+    }
+}
+
+/// A curvature comb on a drawn polyline: at each interior point a tooth along the normal, of
+/// length curvature × `scale`, the teeth's ends joined.
+fn comb(s: &mut String, pts: &[(f64, f64)], scale: f64) {
+    if pts.len() < 3 || scale == 0.0 {
+        return;
+    }
+    let mut ends = Vec::new();
+    for w in pts.windows(3) {
+        let k = menger(w[0], w[1], w[2]);
+        let (tx, ty) = (w[2].0 - w[0].0, w[2].1 - w[0].1);
+        let n = (tx * tx + ty * ty).sqrt();
+        if n == 0.0 {
+            continue;
+        }
+        let (nx, ny) = (-ty / n, tx / n);
+        let e = (w[1].0 - nx * k * scale, w[1].1 - ny * k * scale);
+        let _ = writeln!(
+            s,
+            r##"<line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="#c9a" stroke-width="0.3"/>"##,
+            w[1].0, w[1].1, e.0, e.1
+        );
+        ends.push(e);
+    }
+    if ends.len() > 1 {
+        let d: Vec<String> = ends.iter().map(|(a, b)| format!("{a:.1},{b:.1}")).collect();
+        let _ = writeln!(
+            s,
+            r##"<polyline fill="none" stroke="#c9a" stroke-width="0.3" points="{}"/>"##,
+            d.join(" ")
+        );
+    }
+}
+
 /// An SVG of the three views: profile (x, z) and half-breadth plan (x, y) one above the other,
 /// body plan (y, z) beside them (stations aft of the middle to the right of the centreline,
-/// forward ones mirrored to the left). Lines drawn through the faired offsets; the hull's
-/// waterlines and buttocks cut densely where there is a hull; each flagged offset marked by a
-/// red circle at its input position and a red stroke to its faired one.
+/// forward ones mirrored to the left). Lines drawn through the faired offsets, each with a
+/// curvature comb (the curvature of the circle through each offset and its neighbours, one scale
+/// for the drawing); each flagged offset marked by a red circle at its input position and a red
+/// stroke to its faired one.
 pub fn svg(f: &Faired) -> String {
     let t = &f.table;
     let vals = &f.values;
@@ -279,6 +325,31 @@ pub fn svg(f: &Faired) -> String {
     let prof = |x: f64, z: f64| (pad + (x - x0) * sc, pad + (z1 - z) * sc);
     let plan = |x: f64, y: f64| (pad + (x - x0) * sc, 2.0 * pad + hp + hb - y * sc);
     let xm = 0.5 * (x0 + x1);
+    // comb teeth: curvature × this many drawing units (the largest tooth 15 units)
+    let comb_scale = {
+        let mut kmax: f64 = 0.0;
+        for (li, l) in t.lines.iter().enumerate() {
+            let k = if matches!(l.kind, Kind::Buttock | Kind::Profile) {
+                2
+            } else {
+                1
+            };
+            let pts: Vec<(f64, f64)> = t
+                .line_cells(li)
+                .iter()
+                .filter(|&&i| fin(vals[i][k]))
+                .map(|&i| (vals[i][0] * sc, vals[i][k] * sc))
+                .collect();
+            for w in pts.windows(3) {
+                kmax = kmax.max(menger(w[0], w[1], w[2]).abs());
+            }
+        }
+        if kmax > 0.0 {
+            15.0 / kmax
+        } else {
+            0.0
+        }
+    };
     let body = |x: f64, y: f64, z: f64| {
         let sgn = if x >= xm { 1.0 } else { -1.0 };
         (2.0 * pad + w + 0.5 * bw + sgn * y * sc, pad + (z1 - z) * sc)
@@ -287,6 +358,7 @@ pub fn svg(f: &Faired) -> String {
         if pts.len() < 2 {
             return;
         }
+        comb(s, pts, comb_scale);
         let d: Vec<String> = pts.iter().map(|(a, b)| format!("{a:.1},{b:.1}")).collect();
         let _ = writeln!(
             s,
