@@ -87,7 +87,7 @@ pub struct TwoPhaseSettings {
     /// for noise and absorbs it. This one is for the segments of an arbitrary curve;
     /// functions have [`function_end_runs`](Self::function_end_runs). Default on: the curves'
     /// noisy ends leave such runs where the clean curve has none (the clothoid's start, whose
-    /// clean curvature is zero; measured with the judge, `docs/two_phase_judge.md`, seeds
+    /// clean curvature is zero; measured with the judge, `docs/experiments/two_phase_judge.md`, seeds
     /// 1–4, before the runout ends: off, an end inflection the clean curve does not have
     /// stays on the four clothoids, the strophoid seed 3, the loop seed 1 and the closed
     /// airfoil seed 1).
@@ -121,7 +121,7 @@ pub struct TwoPhaseSettings {
     /// Default 0.5 (3.84 is one `--set` away): an end run is absorbed only where absorbing it
     /// fits the data about as well as keeping it. At 3.84 the data cannot tell a true end run
     /// from noise, so the question is which mistake costs less, and with the judge
-    /// (`docs/two_phase_judge.md`, section `end-run-max-deviance = 0.5`) erasing a true
+    /// (`docs/experiments/two_phase_judge.md`, section `end-run-max-deviance = 0.5`) erasing a true
     /// inflection does: at 0.5 the same rows beat csaps and more sines keep the clean curve's
     /// inflections and come nearer it.
     pub end_run_max_deviance: f64,
@@ -173,7 +173,7 @@ pub struct TwoPhaseSettings {
     /// earlier rule (no cap), as is [`TwoPhaseSettings::paper`]; the cap is off when B is 0
     /// (a direct call of [`fair_function`](super::fair_function), which sees no raw data).
     ///
-    /// Default 1, chosen over 0 with the judge (`docs/two_phase_judge.md`): one more row beats
+    /// Default 1, chosen over 0 with the judge (`docs/experiments/two_phase_judge.md`): one more row beats
     /// csaps at equal S_d, none is lost, and the leading edge above moves half as far; the
     /// cost is a real hull line whose ripple takes larger moves and keeps more inflections.
     pub max_move_bound: f64,
@@ -221,7 +221,7 @@ pub struct TwoPhaseSettings {
     /// [`function_gcv_gamma`](Self::function_gcv_gamma). No effect with the other pre-passes
     /// (the cubic fallback keeps its own GCV).
     ///
-    /// Default 1.4 (Kim and Gu's value): with the judge (`docs/two_phase_judge.md`) two-phase
+    /// Default 1.4 (Kim and Gu's value): with the judge (`docs/experiments/two_phase_judge.md`) two-phase
     /// then beats csaps at equal S_d on every parametric row, with fewer inflections and
     /// vibrations than at 1.
     pub curve_gcv_gamma: f64,
@@ -239,14 +239,14 @@ pub struct TwoPhaseSettings {
     /// GML's fit where it moves the points by at most 1.2 times the data's noise estimate σ̂
     /// (RMS), and GCV's elsewhere, since GML assumes white noise on a smooth curve and
     /// tabulated data break that model. Default `auto`: with the judge
-    /// (`docs/two_phase_judge.md`) it beats csaps on more function rows than `gcv` and keeps
+    /// (`docs/experiments/two_phase_judge.md`) it beats csaps on more function rows than `gcv` and keeps
     /// the real row that `gml` alone loses. No effect with the other pre-passes, nor on bin
     /// means (beyond `function-prepass-points`: GCV).
     pub function_prepass_rule: PrepassRule,
     /// Arbitrary curves: how the jump-lsq-gcv pre-pass chooses λ, gcv (with curve-gcv-gamma), gml (generalised maximum likelihood, REML) or auto (gml where its RMS displacement is within 1.2 σ̂, else gcv).
     ///
     /// As [`function_prepass_rule`](Self::function_prepass_rule), for the pre-pass of an
-    /// arbitrary curve. Default `gcv`: with the judge (`docs/two_phase_judge.md`) `gml` and
+    /// arbitrary curve. Default `gcv`: with the judge (`docs/experiments/two_phase_judge.md`) `gml` and
     /// `auto` beat csaps on the same parametric rows, `auto` a little nearer the clean curves,
     /// but it leaves the closed airfoil more inflections.
     pub curve_prepass_rule: PrepassRule,
@@ -256,7 +256,7 @@ pub struct TwoPhaseSettings {
     /// and of a closed curve cut at its corner ([`denoise_curve_by`](super::denoise_curve_by));
     /// functions always have the runout spline, the cubic fallback the natural one. Natural
     /// ends pull the fit's curvature to zero at each end, a bias wherever the curve is curved
-    /// there. Default `runout`: with the judge (`docs/two_phase_judge.md`) it beats csaps on
+    /// there. Default `runout`: with the judge (`docs/experiments/two_phase_judge.md`) it beats csaps on
     /// one more row than `natural` and comes nearer the clean curve on the arcs, clothoids and
     /// loops, at more vibrations (still a third to a half of csaps's).
     pub curve_ends: CurveEnds,
@@ -265,7 +265,7 @@ pub struct TwoPhaseSettings {
     /// Not in the paper: jump-lsq's `difference-order` for the pre-pass of an arbitrary curve
     /// (open, closed, or closed cut at its corner) of at most 2000 points (beyond, and on bin
     /// means, 1), as `function-difference-order` for a function. Default `auto`: with the
-    /// judge (`docs/two_phase_judge.md`) every parametric row still beats csaps, GCV keeps
+    /// judge (`docs/experiments/two_phase_judge.md`) every parametric row still beats csaps, GCV keeps
     /// d = 1 on most shapes and takes a higher order on the arcs and clothoids, which come
     /// nearer their clean curve at more vibrations. It costs 2–3× two-phase's time up to 2000
     /// points, nothing beyond.
@@ -280,7 +280,7 @@ pub struct TwoPhaseSettings {
     /// has the lowest GCV score (jump-lsq's `function-ends`, module `ends`: four GCV searches
     /// up to 2000 points; beyond, runout).
     ///
-    /// Default `auto`: with the judge (`docs/two_phase_judge.md`) it beats csaps on one more
+    /// Default `auto`: with the judge (`docs/experiments/two_phase_judge.md`) it beats csaps on one more
     /// function row than `runout`, none lost, and the sines come nearer their clean curve; the
     /// real airfoils take runout at the leading edge and natural at the trailing edge. Beyond
     /// 2000 points `auto` is the runout pair without a search.
@@ -291,7 +291,7 @@ pub struct TwoPhaseSettings {
     /// of at most 2000 points (beyond, and on bin means, 1). `auto` fits d = 1, 2 and 3 by
     /// GCV and keeps the order of least score, then fits it with `function-prepass-rule`:
     /// about 3.5× the pre-pass's time up to 2000 points, nothing beyond. Default `auto`: with
-    /// the judge (`docs/two_phase_judge.md`) the same rows beat csaps as with 1, GCV takes
+    /// the judge (`docs/experiments/two_phase_judge.md`) the same rows beat csaps as with 1, GCV takes
     /// d = 1 on the airfoils and real rows (which are therefore unchanged) and a higher order
     /// on the sines, which come nearer their clean curve.
     #[serde(with = "crate::catalog::value::auto_count")]
@@ -307,7 +307,7 @@ pub struct TwoPhaseSettings {
     /// evenly spaced x it is 8 without a search; where it searches it costs about 1.6×
     /// two-phase's time.
     ///
-    /// Default 8: with the judge (`docs/two_phase_judge.md`) `auto` changes no synthetic row
+    /// Default 8: with the judge (`docs/experiments/two_phase_judge.md`) `auto` changes no synthetic row
     /// and brings unevenly spaced noisy sines nearer their clean curve, but of the real rows
     /// it changes only R140 upper, for the worse.
     #[serde(with = "crate::catalog::value::auto")]
@@ -347,7 +347,7 @@ pub struct TwoPhaseSettings {
     /// move is lost displacement). Never farther from the data than the fit's value, so the
     /// allowed distances hold; kept points bit for bit. No effect on functions (y over fixed
     /// x) or with `denoise` = `off`. Default `foot-point`: with the judge
-    /// (`docs/two_phase_judge.md`) it lowers S_d on every parametric row at about the same RMS
+    /// (`docs/experiments/two_phase_judge.md`) it lowers S_d on every parametric row at about the same RMS
     /// to the clean curve (the points stay on the same curve), and beats csaps on one row more
     /// than `off` or `parameter-correction`.
     pub project: Projection,
@@ -361,7 +361,7 @@ pub struct TwoPhaseSettings {
     /// points, `--clamp-ends g0`) stay bit for bit either way. Without a pre-pass (`denoise` =
     /// `off`) the ends never move. A closed curve has no ends.
     ///
-    /// With the judge (`docs/two_phase_judge.md`) `free` comes nearer the clean curve on most
+    /// With the judge (`docs/experiments/two_phase_judge.md`) `free` comes nearer the clean curve on most
     /// open parametric and synthetic function rows (kept noisy end points drag their
     /// neighbours) and beats csaps on as many rows as `keep`. Its cost is an end point where a
     /// spline in x cannot follow the curve (an airfoil's square-root nose at x = 0), and real
