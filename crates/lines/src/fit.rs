@@ -24,7 +24,7 @@ pub(crate) struct Obs {
 }
 
 impl Obs {
-    pub fn new(at: (f64, f64), target: f64, free_v: bool, free_u: bool) -> Self {
+    pub(crate) fn new(at: (f64, f64), target: f64, free_v: bool, free_u: bool) -> Self {
         Self {
             at,
             target,
@@ -48,12 +48,12 @@ pub(crate) struct Spline {
 }
 
 impl Spline {
-    pub fn nu(&self) -> usize {
+    pub(crate) fn nu(&self) -> usize {
         self.ku.as_ref().map_or(1, Knots::count)
     }
 
     /// Coefficient indices and weights of S (d = 0), ∂S/∂x (1) or ∂S/∂u (2) at (x, u).
-    pub fn row(&self, x: f64, u: f64, which: usize) -> Vec<(usize, f64)> {
+    pub(crate) fn row(&self, x: f64, u: f64, which: usize) -> Vec<(usize, f64)> {
         let sx = self.kx.span(x, false);
         let bx = self.kx.ders(sx, x, 1);
         let nu = self.nu();
@@ -85,7 +85,7 @@ impl Spline {
     }
 
     /// (S, ∂S/∂x, ∂S/∂u) at (x, u).
-    pub fn eval(&self, x: f64, u: f64) -> (f64, f64, f64) {
+    pub(crate) fn eval(&self, x: f64, u: f64) -> (f64, f64, f64) {
         let v = self.dot(&self.row(x, u, 0));
         let vx = self.dot(&self.row(x, u, 1));
         let vu = if self.ku.is_some() {
@@ -151,7 +151,7 @@ const STIFF: usize = 2;
 
 impl Fit {
     /// |∇F| over the measured coordinates of `o` on spline `s`.
-    pub fn gain(s: &Spline, o: &Obs) -> f64 {
+    pub(crate) fn gain(s: &Spline, o: &Obs) -> f64 {
         let (_, _, vu) = s.eval(o.at.0, o.at.1);
         let mut g2 = 0.0;
         if o.free_v {

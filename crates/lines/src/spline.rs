@@ -12,7 +12,7 @@ pub(crate) struct Knots {
 
 impl Knots {
     /// `spans` uniform spans on [a, b] (a < b), knots of multiplicity 4 at the ends.
-    pub fn uniform(a: f64, b: f64, spans: usize) -> Self {
+    pub(crate) fn uniform(a: f64, b: f64, spans: usize) -> Self {
         let spans = spans.max(1);
         let mut t = vec![a; 4];
         for k in 1..spans {
@@ -23,13 +23,13 @@ impl Knots {
     }
 
     /// Number of basis functions.
-    pub fn count(&self) -> usize {
+    pub(crate) fn count(&self) -> usize {
         self.t.len() - 4
     }
 
     /// The span s (t\[s\] ≤ u < t\[s+1\], 3 ≤ s < count) whose polynomial is used at u; outside
     /// [a, b] the end span's polynomial (its extension). `left`: at a knot, the span below.
-    pub fn span(&self, u: f64, left: bool) -> usize {
+    pub(crate) fn span(&self, u: f64, left: bool) -> usize {
         let n = self.count();
         let (lo, hi) = (3, n - 1);
         if u <= self.t[lo + 1] && !(left && u == self.t[lo + 1] && lo < hi) {
@@ -47,7 +47,7 @@ impl Knots {
 
     /// Basis functions and their first `d` ≤ 3 derivatives at u on span s (The NURBS Book
     /// A2.3): out\[k\]\[r\] is the k-th derivative of N_{s−3+r}.
-    pub fn ders(&self, s: usize, u: f64, d: usize) -> [[f64; 4]; 4] {
+    pub(crate) fn ders(&self, s: usize, u: f64, d: usize) -> [[f64; 4]; 4] {
         const P: usize = 3;
         let t = &self.t;
         let mut ndu = [[0.0; 4]; 4];
@@ -114,7 +114,7 @@ impl Knots {
     /// Per interior knot ξ: the coefficients of the jump S'''(ξ⁺) − S'''(ξ⁻) (a linear functional
     /// of the spline's coefficients, over at most 5 of them), times h³ with h the mean of the two
     /// adjacent spans, so that the jump is measured in the spline's value units.
-    pub fn jumps(&self) -> Vec<Vec<(usize, f64)>> {
+    pub(crate) fn jumps(&self) -> Vec<Vec<(usize, f64)>> {
         let n = self.count();
         let mut out = Vec::new();
         for s in 4..n {
@@ -151,7 +151,7 @@ pub(crate) struct Band {
 }
 
 impl Band {
-    pub fn zeros(n: usize, bw: usize) -> Self {
+    pub(crate) fn zeros(n: usize, bw: usize) -> Self {
         Self {
             n,
             bw,
@@ -160,7 +160,7 @@ impl Band {
     }
 
     /// A += w · r rᵀ for a sparse row r.
-    pub fn add_outer(&mut self, row: &[(usize, f64)], w: f64) {
+    pub(crate) fn add_outer(&mut self, row: &[(usize, f64)], w: f64) {
         for &(i, vi) in row {
             for &(j, vj) in row {
                 if j <= i && i - j <= self.bw {
@@ -170,7 +170,7 @@ impl Band {
         }
     }
 
-    pub fn add_scaled(&mut self, other: &Band, s: f64) {
+    pub(crate) fn add_scaled(&mut self, other: &Band, s: f64) {
         for (r, o) in self.a.iter_mut().zip(&other.a) {
             for (v, w) in r.iter_mut().zip(o) {
                 *v += s * w;
@@ -179,7 +179,7 @@ impl Band {
     }
 
     /// Solves A x = b by banded Cholesky; None when A is not positive definite.
-    pub fn solve(&self, b: &[f64]) -> Option<Vec<f64>> {
+    pub(crate) fn solve(&self, b: &[f64]) -> Option<Vec<f64>> {
         let (n, bw) = (self.n, self.bw);
         let mut l = self.a.clone();
         let scale = (0..n)
