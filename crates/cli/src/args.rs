@@ -71,6 +71,32 @@ impl ClampEnds {
     }
 }
 
+impl From<KindArg> for fair_door::KindChoice {
+    fn from(kind: KindArg) -> Self {
+        match kind {
+            KindArg::Auto => fair_door::KindChoice::Auto,
+            KindArg::Function => fair_door::KindChoice::Function,
+            KindArg::Parametric => fair_door::KindChoice::Parametric,
+        }
+    }
+}
+
+impl From<ClampEnds> for fairing::EndClamp {
+    fn from(clamp: ClampEnds) -> Self {
+        match clamp {
+            ClampEnds::G0 => fairing::EndClamp::G0,
+            ClampEnds::G1 => fairing::EndClamp::G1,
+            ClampEnds::G2 => fairing::EndClamp::G2,
+        }
+    }
+}
+
+/// Whether a path names a JSON-lines stream (`.jsonl`, `.ndjson`).
+pub(crate) fn is_stream_name(path: &str) -> bool {
+    let lower = path.to_ascii_lowercase();
+    lower.ends_with(".jsonl") || lower.ends_with(".ndjson")
+}
+
 /// Options of `fair curve` and `fair surface`.
 #[derive(Debug, Clone, Args)]
 pub struct FairArgs {
@@ -166,6 +192,40 @@ pub fn parse_cad_format(text: &str) -> Result<cad::Format, String> {
 }
 
 impl FairArgs {
+    /// Whether the input is a batch: `--batch`, a directory, or a JSON-lines stream
+    /// (`.jsonl`, `.ndjson`).
+    pub(crate) fn is_batch(&self) -> bool {
+        self.batch || std::path::Path::new(&self.input).is_dir() || is_stream_name(&self.input)
+    }
+
+    /// The `--set`s as the catalogue's parameter map.
+    pub(crate) fn parameters(&self) -> fairing::catalog::ParameterMap {
+        fairing::catalog::ParameterMap::from_sets(
+            self.settings.iter().map(|s| (s.name.as_str(), s.value.as_str())),
+        )
+    }
+
+    /// `--fixed`, `--points`, `--tolerance`, `--clamp-ends` as the door takes them.
+    pub(crate) fn constraints(&self) -> fair_door::ConstraintRequest {
+        fair_door::ConstraintRequest {
+            fixed: self.fixed.as_ref().map(|l| l.0.clone()),
+            bad_points: self.points.as_ref().map(|l| l.0.clone()),
+            tolerance: self.tolerance,
+            clamp_ends: self.clamp_ends.map(Into::into),
+        }
+    }
+
+    /// `-o`, `--cad`, `--control-points`, `--fit-tolerance` as the door's CAD request.
+    pub(crate) fn cad_request(&self) -> fair_door::cad::CadRequest {
+        fair_door::cad::CadRequest {
+            output: self.output.clone(),
+            format: self.cad.cad,
+            control_points: self.cad.control_points,
+            fit_tolerance: self.cad.fit_tolerance,
+            batch: self.is_batch(),
+        }
+    }
+
     /// How to read the input: `--columns`.
     pub fn read_options(&self) -> crate::input::ReadOptions {
         crate::input::ReadOptions::with_columns(self.columns.clone())

@@ -32,20 +32,15 @@
 //! makes the command panic, and a panic in a library would still end as one line and exit 1.
 
 pub mod args;
-pub mod cad_file;
 pub mod commands;
-pub mod constraints;
-pub mod error;
 pub mod input;
-pub mod kind;
 pub mod output;
 pub mod plots;
 pub mod progress;
-pub mod report;
 pub mod serve;
 pub mod svg;
 
-pub use error::{Error, Result};
+pub use fair_door::{Error, Result};
 
 use clap::Parser;
 use fairing::catalog::Catalog;

@@ -5,14 +5,14 @@
 
 use curve_repr::number::Compact;
 
-use crate::error::{Error, Result};
-use crate::input::{io_reason, CurveInput, Delimiter, Grid, InputFormat, Layout, Points, SurfaceInput};
+use crate::input::{io_reason, CurveInput, CurvePoints, Delimiter, Grid, InputFormat, Layout, SurfaceInput};
+use fair_door::error::{Error, Result};
 use std::io::Write;
 
 /// Formats `points` in the format of `input` (header, JSON document, airfoil name).
 ///
 /// `points` must have the dimension of the input; a Lednicer input needs the same count.
-pub fn format_curve(input: &CurveInput, points: &Points) -> Result<String> {
+pub fn format_curve(input: &CurveInput, points: &CurvePoints) -> Result<String> {
     if let Some(index) = points.first_non_finite() {
         return Err(Error::NonFiniteOutput {
             what: "output point".into(),
@@ -231,7 +231,7 @@ impl OutputFormat {
 /// with a header of the coordinates' names (label columns kept), a JSON object with the
 /// points (and the label columns as `labels`), a Selig file named after the input. A 3D curve
 /// cannot be an airfoil `.dat`. O(n).
-pub fn format_curve_as(input: &CurveInput, points: &Points, format: OutputFormat) -> Result<String> {
+pub fn format_curve_as(input: &CurveInput, points: &CurvePoints, format: OutputFormat) -> Result<String> {
     let same = matches!(
         (format, &input.format),
         (OutputFormat::SameAsInput, _)
@@ -407,14 +407,14 @@ mod tests {
     #[test]
     fn moved_points_are_written() {
         let input = parse_curve(&Source::from_text("a.csv", "x,y\n0,0\n1,1\n")).unwrap();
-        let moved = Points::Planar(vec![Vec2::new(0., 0.5), Vec2::new(1., 1.)]);
+        let moved = CurvePoints::Planar(vec![Vec2::new(0., 0.5), Vec2::new(1., 1.)]);
         assert_eq!(format_curve(&input, &moved).unwrap(), "x,y\n0,0.5\n1,1\n");
     }
 
     #[test]
     fn never_writes_nan() {
         let input = parse_curve(&Source::from_text("a.csv", "0,0\n1,1\n")).unwrap();
-        let bad = Points::Planar(vec![Vec2::new(0., f64::NAN), Vec2::new(1., 1.)]);
+        let bad = CurvePoints::Planar(vec![Vec2::new(0., f64::NAN), Vec2::new(1., 1.)]);
         let e = format_curve(&input, &bad).unwrap_err();
         assert!(matches!(e, Error::NonFiniteOutput { index: 0, .. }), "{e}");
     }

@@ -16,11 +16,11 @@
 use fairing::catalog::{Catalog, MethodKind};
 
 use crate::args::{DemoArgs, FairArgs, KindArg};
-use crate::cad_file::CadTarget;
 use crate::commands::{curve, inspect, surface, write_results};
-use crate::error::{Error, Result};
 use crate::input::Source;
-use crate::report::Report;
+use fair_door::cad::CadTarget;
+use fair_door::error::{Error, Result};
+use fair_door::report::Report;
 
 /// One embedded data set.
 #[derive(Debug, Clone, Copy)]
@@ -150,7 +150,7 @@ fn fair_curve(catalog: &Catalog, args: &FairArgs, cad: Option<&CadTarget>, name:
     let mut faired = curve::process(catalog, &input, args, None)?;
     if let Some(target) = cad {
         let made =
-            crate::cad_file::export_curve(target, &faired.report.curve, &faired.points, faired.kind, name)?;
+            fair_door::cad::export_curve(target, &faired.report.curve, &faired.points, faired.kind, name)?;
         faired.report.extras.insert("cad".into(), made.summary);
         crate::output::write_text(&target.path, &made.text)?;
     }
@@ -164,7 +164,7 @@ fn fair_surface(catalog: &Catalog, args: &FairArgs, cad: Option<&CadTarget>, nam
     let input = crate::input::read_surface(&args.input)?;
     let mut faired = surface::process(catalog, &input, args, None)?;
     if let Some(target) = cad {
-        let made = crate::cad_file::export_surface(target, &faired.report.curve, &faired.grid, name)?;
+        let made = fair_door::cad::export_surface(target, &faired.report.curve, &faired.grid, name)?;
         faired.report.extras.insert("cad".into(), made.summary);
         crate::output::write_text(&target.path, &made.text)?;
     }
@@ -218,7 +218,7 @@ pub fn run(catalog: &Catalog, args: &DemoArgs) -> Result<()> {
     let data_dir = args.out.join("data");
     std::fs::create_dir_all(&data_dir).map_err(|e| Error::Write {
         path: data_dir.display().to_string(),
-        reason: crate::input::io_reason(&e),
+        reason: fair_door::error::io_reason(&e),
     })?;
     let mut measures = vec![format!(
         "{:20} {:10} {:>4} {:>5} {:>5} {:>12} {:>12}",

@@ -3,7 +3,7 @@
 
 use fairing::catalog::Catalog;
 
-use crate::error::Result;
+use fair_door::error::Result;
 
 /// Prints [`Catalog::table`] to standard output.
 pub fn run(catalog: &Catalog) -> Result<()> {

@@ -6,7 +6,7 @@
 //! whose label columns are text, have their own reader: [`super::columns`].)
 
 use super::Source;
-use crate::error::{Error, Result};
+use fair_door::error::{Error, Result};
 
 /// How fields are separated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -11,8 +11,8 @@
 use std::path::{Component, Path, PathBuf};
 
 use crate::commands::demo::DATASETS;
-use crate::error::{Error, Result};
 use crate::input::Source;
+use fair_door::error::{Error, Result};
 
 /// File extensions offered from a folder.
 pub const EXTENSIONS: [&str; 4] = ["csv", "json", "dat", "txt"];
@@ -105,7 +105,7 @@ impl Datasets {
             } else if path.is_dir() {
                 let root = path.canonicalize().map_err(|e| Error::Read {
                     path: shown.clone(),
-                    reason: crate::input::io_reason(&e),
+                    reason: fair_door::error::io_reason(&e),
                 })?;
                 let label = root
                     .file_name()
@@ -161,7 +161,7 @@ impl Datasets {
                 let real = path.canonicalize().map_err(|e| {
                     Refusal::Unreadable(Error::Read {
                         path: entry.name.clone(),
-                        reason: crate::input::io_reason(&e),
+                        reason: fair_door::error::io_reason(&e),
                     })
                 })?;
                 if !real.starts_with(root) {

@@ -32,7 +32,7 @@ use std::io::Write;
 use std::net::IpAddr;
 use std::path::PathBuf;
 
-use crate::error::{Error, Result};
+use fair_door::error::{Error, Result};
 
 /// The default port of `fair serve`.
 pub const DEFAULT_PORT: u16 = 8765;

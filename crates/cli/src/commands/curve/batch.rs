@@ -23,9 +23,9 @@ use fairing::catalog::{Catalog, ConfigFile};
 use super::{process, Faired};
 use crate::args::FairArgs;
 use crate::commands::say;
-use crate::error::{Error, Result};
 use crate::input::{self, CurveInput, Source};
 use crate::progress;
+use fair_door::error::{Error, Result};
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 
@@ -39,13 +39,8 @@ fn is_curve_file(path: &Path) -> bool {
 }
 
 /// Whether `fair curve` should treat its INPUT as a batch.
-pub fn is_batch(args: &FairArgs) -> bool {
-    args.batch || Path::new(&args.input).is_dir() || is_stream_name(&args.input)
-}
-
-fn is_stream_name(path: &str) -> bool {
-    let lower = path.to_ascii_lowercase();
-    lower.ends_with(".jsonl") || lower.ends_with(".ndjson")
+pub(crate) fn is_batch(args: &FairArgs) -> bool {
+    args.is_batch()
 }
 
 /// One curve of a batch, read when it is faired (in parallel).
