@@ -17,6 +17,7 @@
 
 mod airfoil;
 pub mod columns;
+pub mod embedded;
 pub mod grid;
 mod json;
 mod table;
@@ -317,6 +318,7 @@ pub fn read_surface(path: &str) -> Result<SurfaceInput> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use curve_repr::{Vec2, Vec3};
 
     fn parse(name: &str, text: &str) -> Result<CurveInput> {
         parse_curve(&Source::from_text(name, text))

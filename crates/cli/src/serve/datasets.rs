@@ -10,7 +10,7 @@
 
 use std::path::{Component, Path, PathBuf};
 
-use crate::commands::demo::DATASETS;
+use crate::input::embedded::DATASETS;
 use crate::input::Source;
 use fair_door::error::{Error, Result};
 
