@@ -31,13 +31,13 @@
 //! error is one line on standard error, `fair: <file>:<line>: <what is wrong>`. No input
 //! makes the command panic, and a panic in a library would still end as one line and exit 1.
 
-pub mod args;
-pub mod commands;
+pub(crate) mod args;
+pub(crate) mod commands;
 pub mod input;
-pub mod output;
+pub(crate) mod output;
 pub mod plots;
-pub mod progress;
-pub mod serve;
+pub(crate) mod progress;
+pub(crate) mod serve;
 pub mod svg;
 
 pub use fair_door::{Error, Result};

@@ -102,16 +102,6 @@ pub fn planar_view(points: &CurvePoints) -> Vec<[f64; 2]> {
 }
 
 impl CurvePlot {
-    /// A plot of the input points only.
-    pub fn of_input(title: impl Into<String>, points: &CurvePoints, function: bool) -> CurvePlot {
-        CurvePlot {
-            title: title.into(),
-            input: planar_view(points),
-            function,
-            ..CurvePlot::default()
-        }
-    }
-
     /// The figure: the curve panel, then a z_i panel when z values are given.
     pub fn figure(&self) -> Figure {
         let [x_label, y_label] = self

@@ -22,7 +22,7 @@ use fair_door::cad::CadTarget;
 use fair_door::error::{Error, Result};
 use fair_door::report::Report;
 
-pub use crate::input::embedded::{Dataset, DATASETS};
+pub(crate) use crate::input::embedded::DATASETS;
 
 fn run_args(input: String, method: &str, out: &std::path::Path, stem: &str) -> FairArgs {
     FairArgs {

@@ -67,18 +67,6 @@ pub enum InputFormat {
     },
 }
 
-impl InputFormat {
-    /// A short name: `csv`, `json`, `selig`, `lednicer`.
-    pub fn name(&self) -> &'static str {
-        match self {
-            InputFormat::Csv { .. } => "csv",
-            InputFormat::Json { .. } => "json",
-            InputFormat::Selig { .. } => "selig",
-            InputFormat::Lednicer { .. } => "lednicer",
-        }
-    }
-}
-
 /// A curve read from a file: its points, the format to write results in, and where it came from.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CurveInput {
@@ -115,12 +103,6 @@ impl CurveInput {
         }
     }
 
-    /// Fails with [`Error::TooFewPoints`] when there are fewer than `needed` points; `what`
-    /// names who needs them (`"a curve"`, a method name).
-    pub fn require_at_least(&self, needed: usize, what: &str) -> Result<()> {
-        self.data().require_at_least(needed, what)
-    }
-
     /// The names of the coordinates, abscissa first: the header's names of the columns read
     /// (`z`, `y` for `--columns z,y`), else `x`, `y`[, `z`].
     pub fn coordinate_names(&self) -> Vec<String> {
@@ -142,11 +124,6 @@ impl CurveInput {
         for note in &self.notes {
             eprintln!("fair: note: {note}");
         }
-    }
-
-    /// An error about point `index`, naming its line when known.
-    pub fn point_error(&self, index: usize, message: impl Into<String>) -> Error {
-        self.data().point_error(index, message)
     }
 }
 
