@@ -21,6 +21,9 @@
 //! - or, for full control of the run and its report, a [`CurveMethod`] (or
 //!   [`SurfaceMethod`]) — as every built-in in [`builtin`] is.
 //!
+//! Each method's page of the user guide (`docs/methods/`) is rendered from its entry
+//! ([`MethodEntry::page`]), settings table included.
+//!
 //! Criteria ([`CriterionEntry`]) and indicators ([`IndicatorEntry`]) are registered the same
 //! way; a report's `criteria` lists every registered criterion that applies.
 
@@ -29,6 +32,7 @@ mod config;
 mod criteria;
 mod job;
 mod method;
+mod page;
 mod parameters;
 mod plan;
 mod schema;
@@ -50,6 +54,7 @@ pub use method::{
     run_strategy, CurveMethod, MethodEntry, MethodInfo, MethodKind, Settings, Strategy, StrategySettings,
     SurfaceMethod,
 };
+pub use page::GENERATED_MARKER;
 pub use parameters::{Given, GivenValue, ParameterMap};
 pub use plan::{Plan, PlanConstraints, Stage};
 pub use schema::ParameterInfo;

@@ -21,7 +21,7 @@
 //! on any cubic and small where the third derivative varies slowly, so at the same residual it
 //! bends a smooth curve less than the cubic smoothing spline, whose penalty ∫s″² flattens
 //! every curved part; the cubic spline leaves the phases the noise's vibrations to remove by
-//! their own moves. Measured with the judge (`docs/two_phase_judge.md`, seeds 1–4, 45 rows):
+//! their own moves. Measured with the judge (`docs/experiments/two_phase_judge.md`, seeds 1–4, 45 rows):
 //! two-phase beats csaps at equal S_d on 37 rows with this pre-pass, on 26 with `gcv`, on 32
 //! with `jump-lsq` (λ by the discrepancy rule, which moves the points by the whole noise
 //! vector σ̂ and over-smooths curves: ellipse RMS to the clean curve 0.0083 against 0.0024,
@@ -804,7 +804,7 @@ impl CurvePrepass {
 /// values (each branch's
 /// estimate of it), then again with the corner kept there. (Keeping the corner's data point
 /// instead put its noise into both branches: on the judge's strophoid loop, RMS to the clean
-/// curve 0.0126 → 0.0101 at seed 1, 0.0137 → 0.0113 at seed 7; `docs/two_phase_judge.md`.)
+/// curve 0.0126 → 0.0101 at seed 1, 0.0137 → 0.0113 at seed 7; `docs/experiments/two_phase_judge.md`.)
 /// A point the caller keeps stays bit for bit, the corner too.
 /// With the jump-lsq variants, a closed curve without a corner is fitted as a closed one, by
 /// jump-lsq's periodic spline. With `gcv` it is fitted as an open one that starts and ends
@@ -1027,7 +1027,7 @@ fn denoise_curve_points(
     if largest >= CORNER_TURN {
         // The corner from both branches (free ends), then the fit with it kept there: a
         // kept data point at the corner carried its noise into both branches (measured in
-        // `docs/two_phase_judge.md`, the strophoid loop).
+        // `docs/experiments/two_phase_judge.md`, the strophoid loop).
         let corner = fit("corner", points, &around(seam), Projection::Off, true)?[seam];
         let mut cornered = points.to_vec();
         cornered[seam] = corner;

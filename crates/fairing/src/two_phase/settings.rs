@@ -89,7 +89,7 @@ pub struct TwoPhaseSettings {
     /// for noise and absorbs it. This one is for the segments of an arbitrary curve;
     /// functions have [`function_end_runs`](Self::function_end_runs). Default on: the curves'
     /// noisy ends leave such runs where the clean curve has none (the clothoid's start, whose
-    /// clean curvature is zero; measured with the judge, `docs/two_phase_judge.md`, seeds
+    /// clean curvature is zero; measured with the judge, `docs/experiments/two_phase_judge.md`, seeds
     /// 1–4, before the runout ends: off, an end inflection the clean curve does not have
     /// stays on the four clothoids, the strophoid seed 3, the loop seed 1 and the closed
     /// airfoil seed 1).
@@ -99,7 +99,7 @@ pub struct TwoPhaseSettings {
     /// As [`curve_end_runs`](Self::curve_end_runs), for a function y(x). Default on: dense
     /// noisy data need it (2·10^4 points of a noisy sine: the pre-pass leaves end runs of
     /// 500–650 points, and off, two-phase ends with 2 inflections where the clean curve has
-    /// 1; `two_phase_ends.rs`). Its cost, measured with the judge (`docs/two_phase_judge.md`,
+    /// 1; `two_phase_ends.rs`). Its cost, measured with the judge (`docs/experiments/two_phase_judge.md`,
     /// the 18 function rows, seeds 1–8): it takes the true end run of every sine (y =
     /// sin(x/2), its inflection at x = 6π eleven points from the end) for noise, leaving 2
     /// inflections where the clean curve has 3 and lifting the tail by up to 0.017 (σ =
@@ -137,7 +137,7 @@ pub struct TwoPhaseSettings {
     /// from the end; each run costs 1.9–3.7 σ̂² to absorb) and with them the clean curve's
     /// third inflection, lifting the tail by up to 1.7 σ̂: at 3.84 the data cannot tell such
     /// a run from noise, so the question is which mistake costs less, and measured, erasing
-    /// a true inflection does. Measured with the judge (`docs/two_phase_judge.md`, section
+    /// a true inflection does. Measured with the judge (`docs/experiments/two_phase_judge.md`, section
     /// `end-run-max-deviance = 0.5`): the same 80 of 81 rows beat csaps; every sine of seeds
     /// 1–8 but seed 7 (whose run costs −0.9 σ̂²: absorbing it fits the data better) keeps the
     /// clean curve's 3 inflections and comes nearer it (seed 6 0.00289 → 0.00213), the NACA
@@ -201,7 +201,7 @@ pub struct TwoPhaseSettings {
     /// earlier rule (no cap), as is [`TwoPhaseSettings::paper`]; the cap is off when B is 0
     /// (a direct call of [`fair_function`](super::fair_function), which sees no raw data).
     ///
-    /// Default 1, measured against 0 (the judge `docs/two_phase_judge.md`, seeds 1–4, and
+    /// Default 1, measured against 0 (the judge `docs/experiments/two_phase_judge.md`, seeds 1–4, and
     /// the default rows of `examples/han_tables.rs`): two-phase beats csaps at equal S_d on
     /// 40 of the judge's 45 rows against 39, no row lost; the NACA upper surface seed 2 turns
     /// (2/16 inflections/vibrations, RMS to the clean curve 1.14e-3 at S_d 0.045 → 6/22,
@@ -263,7 +263,7 @@ pub struct TwoPhaseSettings {
     /// [`function_gcv_gamma`](Self::function_gcv_gamma). No effect with the other pre-passes
     /// (the cubic fallback keeps its own GCV).
     ///
-    /// Default 1.4, measured against 1 with the judge (`docs/two_phase_judge.md`, the 24
+    /// Default 1.4, measured against 1 with the judge (`docs/experiments/two_phase_judge.md`, the 24
     /// parametric rows, seeds 1–4): two-phase beats csaps at equal S_d on all 24 against 20
     /// (the arc seeds 1 and 2, the strophoid seed 2 and the strophoid loop seed 1 turn: RMS
     /// to the clean curve 0.00594 / 0.00448 / 0.0192 / 0.0151 → 0.00506 / 0.00283 / 0.0156 /
@@ -290,7 +290,7 @@ pub struct TwoPhaseSettings {
     /// GML's fit where it moves the points by at most 1.2 times the data's noise estimate σ̂
     /// (RMS), and GCV's elsewhere, since GML assumes white noise on a smooth curve and
     /// tabulated data break that model. Default `auto`, measured with the judge
-    /// (`docs/two_phase_judge.md`, the 33 function rows, seeds 1–8): `gcv` 31 beat csaps (the
+    /// (`docs/experiments/two_phase_judge.md`, the 33 function rows, seeds 1–8): `gcv` 31 beat csaps (the
     /// sine seeds 4 and 8 miss on distance); `gml` turns the sine seed 4 but loses the real
     /// SC(2)-0714 upper surface (2 inflections at 8× the S_d, where csaps has 0), smoothing the
     /// real rows 2–8 times more; `auto` 32 (the sine seed 4 turns, 0.00334 → 0.00227 against
@@ -306,7 +306,7 @@ pub struct TwoPhaseSettings {
     /// As [`function_prepass_rule`](Self::function_prepass_rule), for the pre-pass of an
     /// arbitrary curve. Default `gcv`: with `gml` all 48 parametric rows
     /// (seeds 1–8) still beat csaps, none turned (they all pass with `gcv`), RMS to the clean
-    /// curve about the same (`docs/two_phase_judge.md`, `prepass-gml`); with `auto` too, 1–5 %
+    /// curve about the same (`docs/experiments/two_phase_judge.md`, `prepass-gml`); with `auto` too, 1–5 %
     /// nearer the clean curves on most shapes (clothoid: our RMS over csaps's, geometric mean
     /// over 8 seeds, 0.737 → 0.699), but the closed airfoil's inflections summed over the 8
     /// seeds 20 → 28 (`function-prepass-rule = auto` in the doc).
@@ -318,7 +318,7 @@ pub struct TwoPhaseSettings {
     /// functions always have the runout spline, the cubic fallback the natural one. Natural
     /// ends pull the fit's curvature to zero at each end, a bias wherever the curve is curved
     /// there. Default `runout`, measured against `natural` with the judge
-    /// (`docs/two_phase_judge.md`, the 40 open and cornered closed parametric rows, seeds
+    /// (`docs/experiments/two_phase_judge.md`, the 40 open and cornered closed parametric rows, seeds
     /// 1–8): two-phase beats csaps at equal S_d on all 40 against 39 (the strophoid loop seed
     /// 7 turns, 0.0113 → 0.00955 against csaps's 0.00956); nearer the clean curve on all 8
     /// arcs (geometric mean of our RMS over csaps's 0.80 → 0.65), all 8 clothoids (0.82 →
@@ -332,7 +332,7 @@ pub struct TwoPhaseSettings {
     /// Not in the paper: jump-lsq's `difference-order` for the pre-pass of an arbitrary curve
     /// (open, closed, or closed cut at its corner) of at most 2000 points (beyond, and on bin
     /// means, 1), as `function-difference-order` for a function. Default `auto`, measured
-    /// against 1 with the judge (`docs/two_phase_judge.md`, the 48 parametric rows, seeds
+    /// against 1 with the judge (`docs/experiments/two_phase_judge.md`, the 48 parametric rows, seeds
     /// 1–8): all 48 still beat csaps at equal S_d, inflections 0 on every open row and the
     /// closed airfoil's the same; GCV kept d = 1 on the strophoid, the ellipse, the closed
     /// airfoil and 7 of 8 loops (byte for byte the same) and a higher order on the arcs and
@@ -356,7 +356,7 @@ pub struct TwoPhaseSettings {
     /// up to 2000 points; beyond, runout).
     ///
     /// Default `auto`, measured against `runout` (the pre-pass before) with the judge
-    /// (`docs/two_phase_judge.md`, the 33 function rows, seeds 1–8): two-phase beats csaps at
+    /// (`docs/experiments/two_phase_judge.md`, the 33 function rows, seeds 1–8): two-phase beats csaps at
     /// equal S_d on 32 against 31 (the held-out sine seed 6 turns: RMS to the clean curve
     /// 0.00304 → 0.00286, csaps 0.00288), none lost. The judge's sine starts at an
     /// inflection; `auto` takes it natural there on 7 of 8 draws (natural at both ends on one)
@@ -377,7 +377,7 @@ pub struct TwoPhaseSettings {
     /// GCV and keeps the order of least score, then fits it with `function-prepass-rule`:
     /// about 3.5× the pre-pass's time up to 2000 points (200 points 23 → 72 ms, 2000 points
     /// 0.20 → 0.80 s, release), nothing beyond. Default `auto`, measured against 1 (the
-    /// pre-pass before) with the judge (`docs/two_phase_judge.md`, the 33 function rows, seeds
+    /// pre-pass before) with the judge (`docs/experiments/two_phase_judge.md`, the 33 function rows, seeds
     /// 1–8): the same 32 beat csaps at equal S_d and the same inflections; GCV took d = 3 on
     /// 7 of the 8 sines (2 on seed 1) and on all 8 dense sines, and d = 1 on the 8 NACA upper
     /// surfaces and 8 of the 9 real rows (2 on UA(2)-180 lower, whose counts stay 2/8), which
@@ -399,7 +399,7 @@ pub struct TwoPhaseSettings {
     /// unevenly spaced points 0.07 → 0.11 s, on 2000 0.88 → 1.40 s (release).
     ///
     /// Default 8 (the pre-pass before), measured against `auto`
-    /// (`docs/two_phase_judge.md`): `auto` changes no synthetic row of the judge (the sines
+    /// (`docs/experiments/two_phase_judge.md`): `auto` changes no synthetic row of the judge (the sines
     /// are evenly spaced; GCV keeps 8 on every NACA upper surface, also on 36 draws with
     /// other spacings) and brings 24 noisy sines sampled with spacings in a ratio of 2 nearer
     /// their clean curve (geometric mean of our RMS over csaps's 0.698 → 0.637 at 200 points,
@@ -453,7 +453,7 @@ pub struct TwoPhaseSettings {
     /// move is lost displacement). Never farther from the data than the fit's value, so the
     /// allowed distances hold; kept points bit for bit. No effect on functions (y over fixed
     /// x) or with `denoise` = `off`. Default `foot-point`: on the judge
-    /// (`docs/two_phase_judge.md`, seeds 1–4) it lowers S_d on all 24 parametric rows by
+    /// (`docs/experiments/two_phase_judge.md`, seeds 1–4) it lowers S_d on all 24 parametric rows by
     /// 1.0–6.0 % at about the same RMS to the clean curve (3.6 % lower to 0.7 % higher: the
     /// points stay on the same curve), and two-phase beats csaps at equal S_d on 39 of 45
     /// rows, against 38 with `off`
@@ -481,7 +481,7 @@ pub struct TwoPhaseSettings {
     /// csaps's 0.0188); with both kinds free, 39 of the 45 rows are beaten, as with both kept.
     ///
     /// Functions:
-    /// measured with the judge (`docs/two_phase_judge.md`, the 21 function rows, seeds 1–4),
+    /// measured with the judge (`docs/experiments/two_phase_judge.md`, the 21 function rows, seeds 1–4),
     /// `free` beats csaps at equal S_d on 19 rows as `keep` does, but not the same ones (the
     /// Gunnerus waterline 3 turns, 5 → 4 inflections against csaps's 4; the NACA upper surface
     /// seed 2 is lost, S_d 0.029 → 0.045 and 2 inflections against csaps's 0 there); it is

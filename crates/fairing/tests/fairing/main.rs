@@ -7,6 +7,7 @@ mod contract;
 mod curve_guard;
 mod displacement;
 mod jump_lsq;
+mod pages;
 mod sapidis_farin_data;
 mod strain_energy;
 mod surface;

@@ -112,7 +112,7 @@ pub fn register(catalog: &mut Catalog) {
             "least squares on the points with a penalty on their spline's third-derivative jump \
              differences, O(n), the weight chosen from the data's own noise",
         )
-        .with_paper("Zhang & Cheng Eq. 17 / Han et al.'s e_i as a global objective (issue 17)"),
+        .with_paper("Zhang & Cheng Eq. 17 / Han et al.'s e_i as a global objective (this project)"),
         JumpLsqMethod,
     );
     catalog.register_curve(

@@ -113,7 +113,7 @@
 //! their first unknown (the e start rows, the rows Δ^d J, the e end rows), which keeps the
 //! QR's rotations within the band. Closed curves have no ends and no end rows.
 //!
-//! Measured (`docs/two_phase_judge.md`, end treatment): as two-phase's pre-pass they leave
+//! Measured (`docs/experiments/two_phase_judge.md`, end treatment): as two-phase's pre-pass they leave
 //! the judge's count where it was or lower it, and they do not bring the misses' rows nearer
 //! their clean curves at csaps's S_d, so they are off by default (`end-jumps` = 0, the
 //! penalty of Δ^d J alone).
@@ -309,7 +309,7 @@ pub struct JumpLsqSettings {
     /// made with it under the settings' own rule; on evenly spaced points, and beyond, 8
     /// without a search. Twice the fits of the order's search where both are `auto`.
     /// Measured as two-phase's function pre-pass (`function-exponent`,
-    /// `docs/two_phase_judge.md`): where the sampling density follows the detail GCV keeps
+    /// `docs/experiments/two_phase_judge.md`): where the sampling density follows the detail GCV keeps
     /// 8, on all 40 noisy draws of the judge's NACA upper surface (cosine spacing; with a = 0
     /// two-phase ends 25 % farther from the clean curve) and on 36 with other spacings; on
     /// noisy sines sampled with spacings in a ratio of 2 it took 0 on 21 of 24 draws, which
@@ -333,7 +333,7 @@ pub struct JumpLsqSettings {
     /// chosen order's scored fit is the run's own). A higher d leaves the jumps free to vary as a
     /// polynomial of higher degree along the knots, which suits a smooth analytic curve (a
     /// sine, an arc) and not an airfoil's nose: measured on 40 noisy draws of the judge's sine
-    /// and 20 of its NACA upper surface (`docs/two_phase_judge.md`), GCV kept d = 3 on 32
+    /// and 20 of its NACA upper surface (`docs/experiments/two_phase_judge.md`), GCV kept d = 3 on 32
     /// sines, 2 on 3, 1 on 5, and d = 1 on every airfoil and on 8 of the 9 real function
     /// rows; with `rule = auto` the sines' fits came nearer their clean curve (geometric mean
     /// of the RMS over csaps's at the same S_d 0.771 → 0.694). Beyond 2000 points d = 1. The
@@ -346,7 +346,7 @@ pub struct JumpLsqSettings {
     ///
     /// Each end row adds ω_e · λ (h̄^(a/2) h_med³ J_i)² to the penalty, h̄ the mean of the two
     /// spans beside knot i (module docs, "End rows"). Default 0, the penalty of Δ^d J alone:
-    /// measured as two-phase's pre-pass (`docs/two_phase_judge.md`), 2 beat csaps on 40 of
+    /// measured as two-phase's pre-pass (`docs/experiments/two_phase_judge.md`), 2 beat csaps on 40 of
     /// the 45 rows against 39 by one row turned on csaps's side, while 17 of the 24
     /// synthetic open rows ended farther from their clean curves; 2 with `end-weight` 100 on
     /// 37.
@@ -373,7 +373,7 @@ pub struct JumpLsqSettings {
     /// leading edge, and where the pairs score alike the choice is the draw's. Measured as
     /// two-phase's function pre-pass, which sets its own
     /// ([`TwoPhaseSettings::function_ends`](crate::two_phase::TwoPhaseSettings::function_ends),
-    /// `auto` by default; `docs/two_phase_judge.md`). The output is the faired ordinates; the
+    /// `auto` by default; `docs/experiments/two_phase_judge.md`). The output is the faired ordinates; the
     /// representation through them stays the runout spline. No effect on parametric curves.
     pub function_ends: FunctionEnds,
 }
