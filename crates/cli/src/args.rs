@@ -14,7 +14,7 @@ use std::path::PathBuf;
     about = "Fair measured curves and surfaces: splines, fairness indicators, fairing strategies",
     propagate_version = true
 )]
-pub struct Cli {
+pub(crate) struct Cli {
     /// What to do.
     #[command(subcommand)]
     pub command: Command,
@@ -22,7 +22,7 @@ pub struct Cli {
 
 /// The subcommands.
 #[derive(Debug, Clone, Subcommand)]
-pub enum Command {
+pub(crate) enum Command {
     /// Fair a curve (CSV x,y or x,y,z; JSON {"points": ...}; Selig .dat; - for stdin).
     Curve(FairArgs),
     /// Fair a surface grid (CSV i,j,x,y,z).
@@ -99,7 +99,7 @@ pub(crate) fn is_stream_name(path: &str) -> bool {
 
 /// Options of `fair curve` and `fair surface`.
 #[derive(Debug, Clone, Args)]
-pub struct FairArgs {
+pub(crate) struct FairArgs {
     /// Input file, or - for standard input.
     #[arg(value_name = "INPUT")]
     pub input: String,
@@ -168,7 +168,7 @@ pub struct FairArgs {
 /// Options that write the faired result as an exact B-spline into a CAD file (IGES, STEP,
 /// DXF). The settings themselves are `fair-cad`'s [`cad::CadSettings`].
 #[derive(Debug, Clone, Default, PartialEq, Args)]
-pub struct CadArgs {
+pub(crate) struct CadArgs {
     /// Write the faired curve or surface as an exact B-spline in this CAD format (iges, step,
     /// dxf) to the file -o names, instead of the points. Without it, -o's extension chooses
     /// (.igs/.iges, .step/.stp, .dxf). DXF holds curves only.
@@ -186,7 +186,7 @@ pub struct CadArgs {
 }
 
 /// Parses `--cad`: iges/igs, step/stp or dxf, any case.
-pub fn parse_cad_format(text: &str) -> Result<cad::Format, String> {
+pub(crate) fn parse_cad_format(text: &str) -> Result<cad::Format, String> {
     text.parse::<cad::Format>()
         .map_err(|_| format!("`{text}` is not a CAD format (iges, step or dxf)"))
 }
@@ -227,14 +227,14 @@ impl FairArgs {
     }
 
     /// How to read the input: `--columns`.
-    pub fn read_options(&self) -> crate::input::ReadOptions {
+    pub(crate) fn read_options(&self) -> crate::input::ReadOptions {
         crate::input::ReadOptions::with_columns(self.columns.clone())
     }
 }
 
 /// Options of `fair inspect`.
 #[derive(Debug, Clone, Args)]
-pub struct InspectArgs {
+pub(crate) struct InspectArgs {
     /// Input file, or - for standard input.
     #[arg(value_name = "INPUT")]
     pub input: String,
@@ -260,14 +260,14 @@ pub struct InspectArgs {
 
 impl InspectArgs {
     /// How to read the input: `--columns`.
-    pub fn read_options(&self) -> crate::input::ReadOptions {
+    pub(crate) fn read_options(&self) -> crate::input::ReadOptions {
         crate::input::ReadOptions::with_columns(self.columns.clone())
     }
 }
 
 /// Options of `fair demo`.
 #[derive(Debug, Clone, Args)]
-pub struct DemoArgs {
+pub(crate) struct DemoArgs {
     /// Directory for the outputs, reports and plots (created if missing).
     #[arg(long, value_name = "DIR", default_value = "out/demo")]
     pub out: PathBuf,
@@ -278,7 +278,7 @@ pub struct DemoArgs {
 
 /// One `--set NAME=VALUE`.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Setting {
+pub(crate) struct Setting {
     /// The parameter name.
     pub name: String,
     /// Its value, as text (the method parses it).
@@ -287,10 +287,10 @@ pub struct Setting {
 
 /// A comma-separated list of point indices, in the order given, without duplicates.
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
-pub struct IndexList(pub Vec<usize>);
+pub(crate) struct IndexList(pub Vec<usize>);
 
 /// Parses `NAME=VALUE`: a name of letters, digits, `_` or `-`, and a non-empty value.
-pub fn parse_setting(text: &str) -> Result<Setting, String> {
+pub(crate) fn parse_setting(text: &str) -> Result<Setting, String> {
     let Some((name, value)) = text.split_once('=') else {
         return Err(format!("expected NAME=VALUE, got `{text}`"));
     };
@@ -314,7 +314,7 @@ pub fn parse_setting(text: &str) -> Result<Setting, String> {
 }
 
 /// Parses `2,5,7` (spaces allowed) into point indices counted from 0.
-pub fn parse_index_list(text: &str) -> Result<IndexList, String> {
+pub(crate) fn parse_index_list(text: &str) -> Result<IndexList, String> {
     let mut indices = Vec::new();
     for field in text.split(',') {
         let field = field.trim();
@@ -330,7 +330,7 @@ pub fn parse_index_list(text: &str) -> Result<IndexList, String> {
 }
 
 /// Parses a tolerance: a finite number greater than 0.
-pub fn parse_tolerance(text: &str) -> Result<f64, String> {
+pub(crate) fn parse_tolerance(text: &str) -> Result<f64, String> {
     match text.trim().parse::<f64>() {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
         Ok(_) => Err(format!("`{text}` must be a finite number greater than 0")),
@@ -339,14 +339,14 @@ pub fn parse_tolerance(text: &str) -> Result<f64, String> {
 }
 
 /// The default port of `fair serve`.
-pub const DEFAULT_PORT: u16 = 8765;
+pub(crate) const DEFAULT_PORT: u16 = 8765;
 
 /// The default largest request body, in bytes (16 MiB: a scan of about 400 000 points as JSON).
-pub const DEFAULT_MAX_UPLOAD: usize = 16 << 20;
+pub(crate) const DEFAULT_MAX_UPLOAD: usize = 16 << 20;
 
 /// Options of `fair serve`.
 #[derive(Debug, Clone, clap::Args)]
-pub struct ServeArgs {
+pub(crate) struct ServeArgs {
     /// Curve or surface files to offer on the page, or folders of them (every .csv, .json,
     /// .dat and .txt file inside); nothing outside them is ever read.
     #[arg(value_name = "FILE")]

@@ -53,7 +53,7 @@ fn count(value: Option<usize>) -> String {
 /// The runs whose faired result the demo also writes as a CAD file `<data set>-<method>.<ext>`:
 /// a hand-digitised airfoil faired by two-phase (IGES), the teapot body by Zhang–Cheng
 /// (STEP, a bicubic B-spline surface) and a ship's waterline by strain-energy (DXF).
-pub const CAD_FILES: [(&str, &str, cad::Format); 3] = [
+pub(crate) const CAD_FILES: [(&str, &str, cad::Format); 3] = [
     ("r140-upper", "two-phase", cad::Format::Iges),
     ("teapot-body", "zhang-cheng", cad::Format::Step),
     ("gunnerus-wl03", "strain-energy", cad::Format::Dxf),
@@ -145,7 +145,7 @@ fn row(report: &Report) -> String {
 /// `<name>-inspect.svg`) and a table of the measures in the papers' style; then every method
 /// of the data set's kind. A method that is not available yet is listed as such and is not
 /// a failure; any other error of a run makes the command fail (after every run was tried).
-pub fn run(catalog: &Catalog, args: &DemoArgs) -> Result<()> {
+pub(crate) fn run(catalog: &Catalog, args: &DemoArgs) -> Result<()> {
     let data_dir = args.out.join("data");
     std::fs::create_dir_all(&data_dir).map_err(|e| Error::Write {
         path: data_dir.display().to_string(),

@@ -4,11 +4,11 @@
 //! report's `before`/`after`) and the catalogue (methods and criteria), which every handler
 //! is given.
 
-pub mod curve;
-pub mod demo;
-pub mod inspect;
-pub mod methods;
-pub mod surface;
+pub(crate) mod curve;
+pub(crate) mod demo;
+pub(crate) mod inspect;
+pub(crate) mod methods;
+pub(crate) mod surface;
 
 use fairing::catalog::Catalog;
 
@@ -16,7 +16,7 @@ use crate::args::{Cli, Command};
 use fair_door::error::{Error, Result};
 
 /// Runs the parsed command with the methods of `catalog`.
-pub fn dispatch(catalog: &Catalog, cli: Cli) -> Result<()> {
+pub(crate) fn dispatch(catalog: &Catalog, cli: Cli) -> Result<()> {
     match cli.command {
         Command::Curve(args) => curve::run(catalog, &args),
         Command::Surface(args) => surface::run(catalog, &args),

@@ -40,7 +40,7 @@ use fairing::EndClamp;
 
 /// What every request may use: the methods, the data sets and the body limit.
 #[derive(Debug, Clone)]
-pub struct Context {
+pub(crate) struct Context {
     /// The methods, criteria and indicators (the command's own catalogue).
     pub catalog: fairing::catalog::Catalog,
     /// The data sets offered.
@@ -61,7 +61,7 @@ impl Default for Context {
 }
 
 /// Answers one request. Never panics on any input (the server catches a panic anyway).
-pub fn handle(request: &Request, context: &Context) -> Response {
+pub(crate) fn handle(request: &Request, context: &Context) -> Response {
     let path = request.path.as_str();
     let get = |answer: fn(&Context) -> Response| match request.method.as_str() {
         "GET" | "HEAD" => answer(context),
@@ -339,7 +339,7 @@ fn datasets(context: &Context) -> Response {
 }
 
 /// Percent-decodes a path segment; `None` for a broken escape or bytes that are not UTF-8.
-pub fn percent_decode(text: &str) -> Option<String> {
+pub(crate) fn percent_decode(text: &str) -> Option<String> {
     let bytes = text.as_bytes();
     let mut out = Vec::with_capacity(bytes.len());
     let mut i = 0;

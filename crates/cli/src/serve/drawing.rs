@@ -32,7 +32,7 @@ use fair_door::measure::{self, CurveMeasurement, SurfaceMeasurement};
 use fairness::highlight::{HighlightSettings, LightSetup};
 
 /// The drawing of a curve from its measurement. O(samples).
-pub fn curve(points: &CurvePoints, kind: CurveKind, measured: &CurveMeasurement) -> Value {
+pub(crate) fn curve(points: &CurvePoints, kind: CurveKind, measured: &CurveMeasurement) -> Value {
     let comb = measured.comb.as_ref().map(|c| {
         json!({
             "points": c.points,
@@ -61,7 +61,7 @@ pub fn curve(points: &CurvePoints, kind: CurveKind, measured: &CurveMeasurement)
 }
 
 /// Measures a curve and draws it. O(n).
-pub fn measure_curve(points: &CurvePoints, kind: CurveKind) -> Result<Value> {
+pub(crate) fn measure_curve(points: &CurvePoints, kind: CurveKind) -> Result<Value> {
     let measured = measure::curve(kind, points)?;
     Ok(curve(points, kind, &measured))
 }
@@ -77,13 +77,13 @@ fn bicubic(grid: &Grid) -> Option<BicubicSplineSurface> {
 }
 
 /// The light every drawing of a surface and its faired twin shares: set up on `grid`.
-pub fn light_for(grid: &Grid) -> Option<LightSetup> {
+pub(crate) fn light_for(grid: &Grid) -> Option<LightSetup> {
     LightSetup::for_surface(&bicubic(grid)?, &HighlightSettings::default())
 }
 
 /// The drawing of a surface grid from its measurement, its highlight lines under `light`
 /// (none without a light). O(m·n + highlight samples).
-pub fn surface(grid: &Grid, measured: &SurfaceMeasurement, light: Option<&LightSetup>) -> Value {
+pub(crate) fn surface(grid: &Grid, measured: &SurfaceMeasurement, light: Option<&LightSetup>) -> Value {
     let view: Vec<[f64; 2]> = grid.points.iter().map(|p| [p.x, p.y]).collect();
     let highlights = light.zip(bicubic(grid)).map(|(light, surface)| {
         let points: Vec<[f64; 2]> = grid.points.iter().map(|p| light.project(p)).collect();
@@ -102,7 +102,7 @@ pub fn surface(grid: &Grid, measured: &SurfaceMeasurement, light: Option<&LightS
 }
 
 /// Measures a surface grid and draws it under `light`. O(m·n + highlight samples).
-pub fn measure_surface(grid: &Grid, light: Option<&LightSetup>) -> Result<Value> {
+pub(crate) fn measure_surface(grid: &Grid, light: Option<&LightSetup>) -> Result<Value> {
     let measured = measure::surface(grid)?;
     Ok(surface(grid, &measured, light))
 }

@@ -21,23 +21,23 @@
 //! and keeps no state between requests (the page keeps its history), so two tabs or users never
 //! see each other's data.
 
-pub mod api;
-pub mod datasets;
-pub mod drawing;
-pub mod engine;
-pub mod http;
-pub mod page;
+pub(crate) mod api;
+pub(crate) mod datasets;
+pub(crate) mod drawing;
+pub(crate) mod engine;
+pub(crate) mod http;
+pub(crate) mod page;
 
 use std::io::Write;
 
 use fair_door::error::{Error, Result};
 
-pub use crate::args::{ServeArgs, DEFAULT_MAX_UPLOAD, DEFAULT_PORT};
+pub(crate) use crate::args::{ServeArgs, DEFAULT_MAX_UPLOAD, DEFAULT_PORT};
 
 /// Runs `fair serve`: binds, prints `fair serve: http://ADDR:PORT/` on standard output, and
 /// serves until the process is stopped. Fails (exit status 2) when a FILE does not exist or
 /// the address cannot be bound.
-pub fn run(catalog: &fairing::catalog::Catalog, args: &ServeArgs) -> Result<()> {
+pub(crate) fn run(catalog: &fairing::catalog::Catalog, args: &ServeArgs) -> Result<()> {
     let datasets = datasets::Datasets::new(&args.files)?;
     let context = api::Context {
         catalog: catalog.clone(),
