@@ -1,7 +1,7 @@
 //! Han et al. Tables 1–2, on real data: Han's two-phase fairing against the smoothing spline
 //! (the papers' MST baseline) at three smoothing values, on airfoil surfaces and hull lines.
 //!
-//! Columns as in the paper's tables: inflections and vibrations (DESIGN.md's function-kind
+//! Columns as in the paper's tables: inflections and vibrations (docs/CONTRACT.md's function-kind
 //! counts, zeros dropped first, so driving e_i to zero hides nothing), S_d and M_d (the
 //! displacement of the data points), E_s = ∫ y''² dx of the runout spline through the result.
 //! For the UIUC airfoils that ship a smoothed twin (UA(2)-180, R140, FX 63-137: the database's

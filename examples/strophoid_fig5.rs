@@ -4,7 +4,7 @@
 //! faired by the arbitrary-curve pipeline (§4.2: partition by turning angle, overlap 5,
 //! bisector frames, two-phase fairing per segment, blending; 3 passes).
 //!
-//! Prints the vibration and inflection counts (parametric kind of DESIGN.md: natural
+//! Prints the vibration and inflection counts (parametric kind of docs/CONTRACT.md: natural
 //! chord-length spline, zeros dropped) and the RMS distance of the data points to the clean
 //! strophoid, before and after: with the paper's settings (turning limit π, the paper's
 //! rules: [`TwoPhaseSettings::paper`], [`PartitionSettings::paper`]), the paper's rules with the

@@ -1,6 +1,6 @@
 //! Han's two-phase fairing on a dense noisy function segment: the default settings (the noise
 //! pre-pass, then the phases) against the paper's rules and the long-run option (wrong-sign
-//! runs of more than two points, `max_run`), counted as DESIGN.md defines, with the RMS
+//! runs of more than two points, `max_run`), counted as docs/CONTRACT.md defines, with the RMS
 //! distance to the clean curve. y = sin(x/2) + N(0, σ²) at x = 0.1 k, k < n. Each variant runs
 //! as `fair curve` runs it: the [`TwoPhase`] strategy in a [`Pipeline`].
 //!
@@ -32,7 +32,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let clean: Vec<f64> = x.iter().map(|t| (t / 2.0).sin()).collect();
     let y: Vec<f64> = clean.iter().map(|v| v + normal.sample(&mut rng)).collect();
     let count = |y: &[f64]| XcPolyline::of_points(&x, y).map(|p| (p.inflections(), p.vibrations()));
-    // Vibrations with a drop level of 1e-6 · max|e| instead of DESIGN.md's 1e-12: how many of
+    // Vibrations with a drop level of 1e-6 · max|e| instead of docs/CONTRACT.md's 1e-12: how many of
     // the counted sign changes stand on e values that the passes merely shrank.
     let coarse_vibrations = |y: &[f64]| {
         XcPolyline::of_points(&x, y).map(|p| {

@@ -1,5 +1,5 @@
 //! `fair inspect` and `fair demo` end to end: the report's numbers against an independent
-//! computation of DESIGN.md's definitions written here from scratch (dense Gaussian
+//! computation of docs/CONTRACT.md's definitions written here from scratch (dense Gaussian
 //! elimination, no code of the workspace), and the plot is well-formed SVG.
 
 use std::path::{Path, PathBuf};
@@ -47,7 +47,7 @@ fn dense_solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
     x
 }
 
-/// DESIGN.md's count: drop |v| ≤ 1e-12 max |v|, then count w_k w_{k+1} < 0.
+/// docs/CONTRACT.md's count: drop |v| ≤ 1e-12 max |v|, then count w_k w_{k+1} < 0.
 fn sign_changes(values: &[f64]) -> usize {
     let max = values.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     let kept: Vec<f64> = values.iter().copied().filter(|v| v.abs() > 1e-12 * max).collect();

@@ -58,7 +58,7 @@ pub fn first_too_close(points: &CurvePoints) -> Option<usize> {
 /// Refuses a function whose abscissae are closer than round-off can tell apart
 /// ([`first_too_close`]), naming both lines.
 fn check_spacing(input: &CurveData<'_>) -> Result<()> {
-    let (Some(i), CurvePoints::Planar(p)) = (first_too_close(&input.points), &input.points) else {
+    let (Some(i), CurvePoints::Planar(p)) = (first_too_close(input.points), input.points) else {
         return Ok(());
     };
     let line = |k: usize| {
@@ -93,9 +93,9 @@ pub fn resolve(argument: KindChoice, input: &CurveData<'_>) -> Result<CurveKind>
 
 fn resolve_unchecked(argument: KindChoice, input: &CurveData<'_>) -> Result<CurveKind> {
     match argument {
-        KindChoice::Auto => Ok(detect(&input.points)),
+        KindChoice::Auto => Ok(detect(input.points)),
         KindChoice::Parametric => Ok(CurveKind::Parametric),
-        KindChoice::Function => match (&input.points, first_non_increasing(&input.points)) {
+        KindChoice::Function => match (input.points, first_non_increasing(input.points)) {
             (CurvePoints::Spatial(_), _) => {
                 Err(input.point_error(0, "--kind function needs planar points x,y"))
             }

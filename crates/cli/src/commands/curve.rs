@@ -141,7 +141,7 @@ pub(crate) fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
         args.quiet,
         args.output.as_deref() == Some("-"),
         &format!(
-            "{}: {} ({} points, {}): {} iterations, {} moved, S_d = {:.6e}, M_d = {:.6e}",
+            "{}: {} ({} points, {}): {} iterations, {} moved, S_d = {:.6e}, M_d = {:.6e}, inflections {}, vibrations {}",
             input.source,
             report.method,
             input.len(),
@@ -149,7 +149,9 @@ pub(crate) fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
             report.iterations,
             report.moved.len(),
             report.s_d,
-            report.m_d
+            report.m_d,
+            change(report.before.inflections, report.after.inflections),
+            change(report.before.vibrations, report.after.vibrations)
         ),
     );
     Ok(())
@@ -186,4 +188,10 @@ pub(crate) fn read_config(args: &FairArgs) -> Result<Option<ConfigFile>> {
         .map(ConfigFile::read)
         .transpose()
         .map_err(|e| Error::from_fairing(e, "--config"))
+}
+
+/// A count before → after (`-` where it does not apply: inflections of a 3D curve).
+fn change(before: Option<usize>, after: Option<usize>) -> String {
+    let count = |c: Option<usize>| c.map_or("-".to_string(), |c| c.to_string());
+    format!("{} → {}", count(before), count(after))
 }

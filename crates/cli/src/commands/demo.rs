@@ -111,7 +111,8 @@ fn change(before: Option<usize>, after: Option<usize>) -> String {
 /// The comparison columns of one run, in the style of Han et al.'s Tables 1–2. The energy is
 /// E_s of the spline through the points, except for methods that report the criterion they
 /// optimise on their own representation (nurbs-weights: the points, hence E_s, do not change),
-/// whose criterion is shown, named.
+/// whose criterion is shown; the row names which (`(e_s)`, `(ek)`, ...), since the column
+/// holds either.
 fn row(report: &Report) -> String {
     let (b, a) = (&report.before, &report.after);
     let number = |key: &str| report.extras.get(key).and_then(serde_json::Value::as_f64);
@@ -124,7 +125,7 @@ fn row(report: &Report) -> String {
                 .unwrap_or("criterion");
             (before, after, format!(" ({name})"))
         }
-        _ => (b.e_s, a.e_s, String::new()),
+        _ => (b.e_s, a.e_s, " (e_s)".to_string()),
     };
     format!(
         "{:>9} {:>9} {:>10.3e} {:>10.3e} {:>11.4e}→{:<11.4e} {:>10.3e} {:>9.1}{label}",
@@ -157,7 +158,7 @@ pub(crate) fn run(catalog: &Catalog, args: &DemoArgs) -> Result<()> {
     )];
     let mut lines = vec![format!(
         "{:20} {:18} {:>9} {:>9} {:>10} {:>10} {:>23} {:>10} {:>9}",
-        "data set", "method", "infl", "vib", "S_d", "M_d", "E_s before -> after", "max_z", "ms"
+        "data set", "method", "infl", "vib", "S_d", "M_d", "energy before -> after", "max_z", "ms"
     )];
     let mut first_error: Option<Error> = None;
     let (mut failures, mut unavailable, mut runs) = (0, 0, 0);

@@ -1,6 +1,6 @@
 //! Reading curves and surfaces from files or standard input.
 //!
-//! Formats (DESIGN.md, "The `fair` command"):
+//! Formats (docs/CONTRACT.md, "Commands"):
 //! - CSV `x,y` or `x,y,z`, header optional (a first row that is not all numbers is a header),
 //!   blank lines and `#` comments skipped, spaces around fields allowed; a file without any
 //!   comma is read as whitespace-separated columns;
@@ -472,7 +472,7 @@ mod tests {
     fn one_point_is_returned_and_caller_decides() {
         let c = parse("one.csv", "x,y\n1,2\n").unwrap();
         assert_eq!(c.len(), 1);
-        let e = c.require_at_least(3, "a curve").unwrap_err();
+        let e = c.data().require_at_least(3, "a curve").unwrap_err();
         assert_eq!(e.to_string(), "one.csv: 1 point, a curve needs at least 3");
         assert_eq!(e.exit_code(), 2);
     }
