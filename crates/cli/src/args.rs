@@ -183,6 +183,31 @@ pub(crate) struct CadArgs {
     /// points as points does.
     #[arg(long, value_name = "D", value_parser = parse_tolerance, allow_negative_numbers = true)]
     pub fit_tolerance: Option<f64>,
+    /// The length unit the CAD file declares: mm (default), cm, m, um, in or ft. The
+    /// coordinates are written as they are: give the unit the points are in (a ship's lines
+    /// in metres: m).
+    #[arg(long, value_name = "UNIT", value_parser = parse_units)]
+    pub cad_units: Option<cad::Units>,
+    /// The STEP application protocol: ap214 (default, read by every importer) or ap242.
+    #[arg(long, value_name = "SCHEMA", value_parser = parse_step_schema)]
+    pub step_schema: Option<cad::StepSchema>,
+}
+
+/// Parses `--cad-units`: a unit's short name.
+fn parse_units(text: &str) -> Result<cad::Units, String> {
+    cad::Units::ALL
+        .into_iter()
+        .find(|u| u.name().eq_ignore_ascii_case(text.trim()))
+        .ok_or_else(|| format!("`{text}` is not a length unit (mm, cm, m, um, in or ft)"))
+}
+
+/// Parses `--step-schema`: ap214 or ap242.
+fn parse_step_schema(text: &str) -> Result<cad::StepSchema, String> {
+    match text.trim().to_ascii_lowercase().as_str() {
+        "ap214" => Ok(cad::StepSchema::Ap214),
+        "ap242" => Ok(cad::StepSchema::Ap242),
+        _ => Err(format!("`{text}` is not a STEP schema (ap214 or ap242)")),
+    }
 }
 
 /// Parses `--cad`: iges/igs, step/stp or dxf, any case.
@@ -222,6 +247,8 @@ impl FairArgs {
             format: self.cad.cad,
             control_points: self.cad.control_points,
             fit_tolerance: self.cad.fit_tolerance,
+            units: self.cad.cad_units,
+            step_schema: self.cad.step_schema,
             batch: self.is_batch(),
         }
     }

@@ -48,6 +48,11 @@ pub struct CadRequest {
     pub control_points: Option<usize>,
     /// Rebuild to this largest deviation.
     pub fit_tolerance: Option<f64>,
+    /// The length unit the file declares (`--cad-units`; the coordinates are written as
+    /// they are, in this unit); `None`: millimetres.
+    pub units: Option<cad::Units>,
+    /// The STEP application protocol (`--step-schema`); `None`: AP214.
+    pub step_schema: Option<cad::StepSchema>,
     /// The run is a batch of curves (which writes points, never CAD).
     pub batch: bool,
 }
@@ -78,9 +83,23 @@ pub fn target(request: &CadRequest, surface: bool) -> Result<Option<CadTarget>> 
                 option,
                 message: "rebuilds the curve written to a CAD file: give -o FILE.igs|.step|.dxf or --cad FORMAT with -o".into(),
             }),
+            None if request.units.is_some() => Err(Error::Argument {
+                option: "--cad-units",
+                message: "is the unit a CAD file declares: give -o FILE.igs|.step|.dxf or --cad FORMAT with -o".into(),
+            }),
+            None if request.step_schema.is_some() => Err(Error::Argument {
+                option: "--step-schema",
+                message: "applies to a STEP file: give -o FILE.step".into(),
+            }),
             None => Ok(None),
         };
     };
+    if request.step_schema.is_some() && format != Format::Step {
+        return Err(Error::Argument {
+            option: "--step-schema",
+            message: format!("applies to STEP files; this writes {format}"),
+        });
+    }
     let option = if request.format.is_some() { "--cad" } else { "-o" };
     let Some(path) = request.output.clone() else {
         return Err(Error::Argument {
@@ -120,10 +139,13 @@ pub fn target(request: &CadRequest, surface: bool) -> Result<Option<CadTarget>> 
             });
         }
     }
+    let defaults = CadSettings::default();
     let settings = CadSettings {
         control_points: request.control_points,
         fit_tolerance: request.fit_tolerance,
-        ..CadSettings::default()
+        units: request.units.unwrap_or(defaults.units),
+        step_schema: request.step_schema.unwrap_or(defaults.step_schema),
+        ..defaults
     };
     settings
         .validate()
@@ -387,8 +409,9 @@ pub fn faired_surface(record: &Value, grid: &Grid) -> Result<(CadSurface, String
     }
 }
 
-/// The header options for a file at `path` (its name recorded inside).
-fn options(path: &str) -> WriteOptions {
+/// The header options for `target`'s file (its name recorded inside, its STEP schema).
+fn options(target: &CadTarget) -> WriteOptions {
+    let path = target.path.as_str();
     let file_name = if path == "-" {
         String::new()
     } else {
@@ -400,6 +423,7 @@ fn options(path: &str) -> WriteOptions {
     };
     WriteOptions {
         file_name,
+        step_schema: target.settings.step_schema,
         ..WriteOptions::default()
     }
 }
@@ -428,7 +452,7 @@ pub fn export_curve(
     };
     let (curve, representation) = faired_curve(record, faired, kind)?;
     let curve = curve.with_name(name);
-    let options = options(&target.path);
+    let options = options(target);
     let export = cad::export(
         &Shape::Curve(curve.clone()),
         target.format,
@@ -496,7 +520,7 @@ pub fn export_surface(target: &CadTarget, record: &Value, grid: &Grid, name: &st
             })
         })
         .fold(0.0, f64::max);
-    let options = options(&target.path);
+    let options = options(target);
     let export = cad::export(
         &Shape::Surface(surface),
         target.format,

@@ -562,6 +562,8 @@ impl CadRequest {
             format,
             control_points: self.control_points,
             fit_tolerance: self.fit_tolerance,
+            units: None,
+            step_schema: None,
             batch: false,
         };
         fair_door::cad::target(&request, surface)?.ok_or_else(|| {

@@ -588,6 +588,8 @@ fn cad_file(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
         format: None,
         control_points: cad_body.control_points,
         fit_tolerance: cad_body.fit_tolerance,
+        units: None,
+        step_schema: None,
         batch: false,
     };
     let mut target = fair_door::cad::target(&request, surface)
