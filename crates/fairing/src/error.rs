@@ -139,6 +139,18 @@ pub enum Error {
     },
 }
 
+impl Error {
+    /// `method` refuses `what`, the rest of the sentence after its name being `reason`
+    /// ([`Error::Refused`]): the typed form of a refusal, which a caller matches on `what`.
+    pub fn refused(method: &str, what: Refusal, reason: impl Into<String>) -> Self {
+        Error::Refused {
+            method: method.to_owned(),
+            what,
+            reason: reason.into(),
+        }
+    }
+}
+
 /// What a method refuses ([`Error::Refused`]); the command names the option from it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[non_exhaustive]

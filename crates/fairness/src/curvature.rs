@@ -1,7 +1,7 @@
 //! Curvature κ and its arc-length derivative dκ/ds from a curve's jet.
 //!
 //! Planar curves get the signed curvature (counter-clockwise positive), spatial curves the
-//! unsigned one, as DESIGN.md's parametric report and `parametric_metrics.json` define:
+//! unsigned one, as docs/CONTRACT.md's parametric report and `parametric_metrics.json` define:
 //!
 //! - 2D: κ = (x′y″ − y′x″) / |C′|³,
 //!   dκ/dt = [(x′y‴ − y′x‴)|C′|² − 3(x′y″ − y′x″)(C′·C″)] / |C′|⁵;

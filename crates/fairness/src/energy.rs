@@ -2,14 +2,14 @@
 //!
 //! - E1 = ∫ |C′(t)|² dt, the first-order parametric criterion;
 //! - E2 = ∫ |C″(t)|² dt, the second-order parametric criterion (the strain energy, Han's E_s
-//!   for a spline function, DESIGN.md's `e_s` for the parametric kind);
+//!   for a spline function, docs/CONTRACT.md's `e_s` for the parametric kind);
 //! - E3 = ∫ |C‴(t)|² dt, the third-order parametric criterion;
 //! - Ek = ∫ κ² ds = ∫ κ(t)² |C′(t)| dt, the curvature criterion;
 //! - Ek′ = ∫ (dκ/ds)² ds = ∫ (dκ/ds)² |C′(t)| dt, the change-of-curvature criterion.
 //!
 //! The paper numbers no equations; these five are the list of its §2. It writes every
 //! integral over [0, 1]. We integrate E1–E3 over the curve's own parameter domain and Ek, Ek′
-//! over the true arc length (DESIGN.md: "energies over the curve as represented"): for a
+//! over the true arc length (docs/CONTRACT.md: "energies over the curve as represented"): for a
 //! curve parametrised on [0, 1], as Nowacki's NURBS are, E1–E3 are the paper's; Ek and Ek′
 //! are geometric and do not depend on the parametrisation at all.
 //!

@@ -4,7 +4,7 @@
 //!   interior break; z_i = 0 exactly when the point is where Eq. (11) would put it.
 //! - Zhang–Cheng Eq. (16) (after Sapidis–Farin, Poliakoff): |dκ/ds(t_i+) − dκ/ds(t_i−)|, the
 //!   jump of the curvature slope.
-//! - Han §3.2's e_i built from (s_i, κ_i) in place of (x_i, c_i): DESIGN.md's curvature
+//! - Han §3.2's e_i built from (s_i, κ_i) in place of (x_i, c_i): docs/CONTRACT.md's curvature
 //!   vibrations of the parametric kind, e_i = (κ_{i+1} − κ_i)/(s_{i+1} − s_i)
 //!   − (κ_i − κ_{i−1})/(s_i − s_{i−1}) for the interior points, and the number of sign
 //!   changes of e.
@@ -73,7 +73,7 @@ where
 /// Han's e built from (s, κ): e_i = (κ_{i+1} − κ_i)/(s_{i+1} − s_i) − (κ_i − κ_{i−1})/(s_i − s_{i−1})
 /// for i = 1 … n − 2 (0-based; length n − 2, empty when n < 3). O(n).
 ///
-/// With s the chord-length parameters and κ the curvature at the knots this is DESIGN.md's
+/// With s the chord-length parameters and κ the curvature at the knots this is docs/CONTRACT.md's
 /// parametric-kind vibration sequence (and `parametric_metrics.json`'s f_i); with (x, c) it
 /// is Han's own e. Fails on lengths that differ, non-finite values, or s not strictly
 /// increasing.
@@ -115,7 +115,7 @@ pub fn curvature_vibrations(s: &[f64], kappa: &[f64]) -> Result<Vec<f64>> {
 }
 
 /// The number of curvature vibrations, #{i : e_i e_{i+1} < 0} over
-/// [`curvature_vibrations`] with DESIGN.md's drop rule. O(n).
+/// [`curvature_vibrations`] with docs/CONTRACT.md's drop rule. O(n).
 pub fn vibration_count(s: &[f64], kappa: &[f64]) -> Result<usize> {
     Ok(sign_changes(&curvature_vibrations(s, kappa)?))
 }
@@ -165,7 +165,7 @@ where
 
 /// [`LocalIndicator`]: [`curvature_vibrations`] of the curve's own break parameters and its
 /// curvature there (one value per interior break). For the natural chord-length spline of
-/// DESIGN.md's parametric kind this is the report's vibration sequence.
+/// docs/CONTRACT.md's parametric kind this is the report's vibration sequence.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct CurvatureVibration<const D: usize = 2>(PhantomData<[(); D]>);
 

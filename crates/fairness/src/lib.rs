@@ -7,7 +7,7 @@
 //!
 //! - [`indicator`]: the traits [`LocalIndicator`] (a value per point) and [`Criterion`] (one
 //!   number), object safe, so that strategies and optimisers take any of them.
-//! - [`sign`]: sign-change counting with DESIGN.md's drop rule (inflections, vibrations).
+//! - [`sign`]: sign-change counting with docs/CONTRACT.md's drop rule (inflections, vibrations).
 //! - [`curvature`]: κ and dκ/ds, signed in 2D and unsigned in 3D.
 //! - [`quadrature`]: Gauss–Legendre and adaptive Gauss–Kronrod integration.
 //! - [`energy`]: Nowacki's E1, E2, E3, Ek, Ek′.
@@ -20,7 +20,7 @@
 //! - [`displacement`]: Han's S_d and M_d.
 //! - [`report`]: the serde blocks of the `fair` command's report.
 //! - [`xc`]: Han's x–c polyline of a spline function (c_i, e_i, inflections, vibrations, Eq. 18).
-//! - [`summary`]: the report's block of each kind (function, parametric, surface), per DESIGN.md.
+//! - [`summary`]: the report's block of each kind (function, parametric, surface), per docs/CONTRACT.md.
 //!
 //! No input makes this crate panic or return NaN: failures are [`Error`]s.
 

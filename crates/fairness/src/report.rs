@@ -1,6 +1,6 @@
 //! The fairness summary of the `fair` command's report: its `before` and `after` blocks.
 //!
-//! DESIGN.md defines each field per kind (function, parametric, surface).
+//! docs/CONTRACT.md defines each field per kind (function, parametric, surface).
 //! [`FairnessSummary::of_parametric_curve`] fills the parametric kind from any curve; the
 //! function kind (Han's x–c polyline of the parabolic-runout spline function) and the
 //! surface kind are filled by their representations' code.
@@ -33,7 +33,7 @@ pub struct FairnessSummary {
 }
 
 impl FairnessSummary {
-    /// The parametric-kind summary of DESIGN.md, measured on `curve` (there, the natural cubic
+    /// The parametric-kind summary of docs/CONTRACT.md, measured on `curve` (there, the natural cubic
     /// spline through the points with chord-length parameters, whose breaks are the knots t_i):
     ///
     /// - κ_i at the breaks (signed in 2D, unsigned in 3D);
@@ -75,7 +75,7 @@ impl FairnessSummary {
     }
 }
 
-/// DESIGN.md's parametric-kind counts of `curve` (the `inflections` and `vibrations` of
+/// docs/CONTRACT.md's parametric-kind counts of `curve` (the `inflections` and `vibrations` of
 /// [`FairnessSummary::of_parametric_curve`]): sign changes of the signed curvature κ at the
 /// breaks (`None` in 3D, where κ has no sign) and of e_i built from (t_i, κ_i)
 /// ([`curvature_vibrations`]). For code that needs the counts without the energies (a

@@ -1,6 +1,6 @@
 //! Sign-change counting: inflections and vibrations.
 //!
-//! Every count follows DESIGN.md's definition, so that our numbers agree with any
+//! Every count follows docs/CONTRACT.md's definition, so that our numbers agree with any
 //! independent implementation: the values with |v_i| ≤ 10⁻¹² · max_j |v_j| (over the same
 //! sequence) are dropped first, then the sign changes #{k : w_k w_{k+1} < 0} are counted along
 //! the remaining values w. So `a, 0, −a` is one change, round-off (a natural spline's end

@@ -1,4 +1,4 @@
-//! The report's `before`/`after` block of each kind, exactly as DESIGN.md "Definitions" says:
+//! The report's `before`/`after` block of each kind, exactly as docs/CONTRACT.md "Definitions" says:
 //! [`function`] (Han's x–c polyline of the parabolic-runout spline function), [`parametric`]
 //! (the natural chord-length Hermite spline, 2D or 3D) and [`surface`] (the bicubic spline
 //! surface of Zhang–Cheng §4 with chord-length averaged knots).
@@ -8,7 +8,7 @@
 //! for surfaces).
 //!
 //! What each number's accuracy is:
-//! - `inflections`, `vibrations`: exact counts under DESIGN.md's sign rule (integers, from the
+//! - `inflections`, `vibrations`: exact counts under docs/CONTRACT.md's sign rule (integers, from the
 //!   values at the knots; no integration);
 //! - `e_s`: closed form, exact up to round-off; `max_z`: exact differences at the knots;
 //! - `energies`: E1–E3 exactly (Gauss–Legendre rules exact for the cubic pieces, round-off
@@ -52,11 +52,11 @@ where
     }
 }
 
-/// The function-kind summary of the spline function `spline` (DESIGN.md builds it with the
+/// The function-kind summary of the spline function `spline` (docs/CONTRACT.md builds it with the
 /// parabolic-runout end condition, see [`function`]):
 ///
 /// - `inflections`, `vibrations`: Han's Infl_num and Vib_num of the x–c polyline
-///   ([`XcPolyline`], sign-change rule of DESIGN.md);
+///   ([`XcPolyline`], sign-change rule of docs/CONTRACT.md);
 /// - `e_s` = ∫ y″(x)² dx, exact ([`SplineFunction::second_derivative_energy`]);
 /// - `max_z` = max_i |y‴(x_i+) − y‴(x_i−)| = 6 max |e_i|;
 /// - `energies` of the graph (x, y(x)) over its parameter x (E1–E3 exact for cubic pieces,
@@ -83,14 +83,14 @@ pub fn function_of(spline: &SplineFunction) -> Result<FairnessSummary> {
     })
 }
 
-/// DESIGN.md's function-kind summary of the points (x_i, y_i), x strictly increasing: the
+/// docs/CONTRACT.md's function-kind summary of the points (x_i, y_i), x strictly increasing: the
 /// spline function with the parabolic-runout end condition (c_1 = c_2, c_{n−1} = c_n), then
 /// [`function_of`]. O(n).
 pub fn function(x: &[f64], y: &[f64]) -> Result<FairnessSummary> {
     function_of(&SplineFunction::new(x, y, EndCondition::ParabolicRunout)?)
 }
 
-/// DESIGN.md's parametric-kind summary of a Hermite spline (there the natural spline with
+/// docs/CONTRACT.md's parametric-kind summary of a Hermite spline (there the natural spline with
 /// chord-length parameters, see [`parametric`]): κ_i at the knots (signed in 2D, unsigned in
 /// 3D), e from (t, κ), inflections (2D only, else `None`), vibrations, `e_s` = ∫ |C″|² dt
 /// (exact, [`HermiteSpline::strain_energy`]), `max_z` = max_i |C‴(t_i+) − C‴(t_i−)|, and the
@@ -110,7 +110,7 @@ where
     Ok(summary)
 }
 
-/// DESIGN.md's parametric-kind summary of the points: the natural cubic spline with
+/// docs/CONTRACT.md's parametric-kind summary of the points: the natural cubic spline with
 /// chord-length parameters ([`HermiteSpline::natural`]), then [`parametric_of`]. O(n).
 /// Fails on repeated consecutive points (a zero chord) and non-finite coordinates.
 pub fn parametric<const D: usize>(points: &[Vector<D>]) -> Result<FairnessSummary>
@@ -120,7 +120,7 @@ where
     parametric_of(&HermiteSpline::natural(points)?)
 }
 
-/// DESIGN.md's surface-kind summary of a bicubic spline surface: `max_z` = max z_ij (Eq. 26)
+/// docs/CONTRACT.md's surface-kind summary of a bicubic spline surface: `max_z` = max z_ij (Eq. 26)
 /// over the interior nodes, `e_s` = the network strain energy; `inflections` and
 /// `vibrations` are `None`, and `energies` (curve criteria, undefined for a surface) are
 /// zero — the `fair` report writes them as null. O(m·n).
@@ -142,7 +142,7 @@ pub fn surface_of(surface: &BicubicSplineSurface) -> Result<FairnessSummary> {
     })
 }
 
-/// DESIGN.md's surface-kind summary of the grid `grid[i][j]` = P_ij: the bicubic spline
+/// docs/CONTRACT.md's surface-kind summary of the grid `grid[i][j]` = P_ij: the bicubic spline
 /// surface with chord-length averaged knots ([`BicubicSplineSurface::new`]), then
 /// [`surface_of`]. O(m·n).
 pub fn surface(grid: &[Vec<Vec3>]) -> Result<FairnessSummary> {

@@ -7,7 +7,7 @@
 //!   4 × 4 points are exact for bicubic polynomial patches (each term has degree ≤ 6 in u and
 //!   in v); rational surfaces need more points.
 //! - The network strain energy Σ_j ∫ |S_uu(u, v_j)|² du + Σ_i ∫ |S_vv(u_i, v)|² dv over every
-//!   knot line (DESIGN.md's `e_s` of the surface kind), Gauss–Legendre per knot interval.
+//!   knot line (docs/CONTRACT.md's `e_s` of the surface kind), Gauss–Legendre per knot interval.
 //!
 //! The [`Surface`] trait does not expose knots, so every function and type here takes the
 //! knot vectors u_0 < … < u_m and v_0 < … < v_n (the data parameters of an interpolating

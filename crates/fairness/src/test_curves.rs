@@ -4,7 +4,7 @@ use curve_repr::{Curve, Side, Surface, Vec2, Vec3, Vector};
 
 /// C(t) = a₀ + a₁t + a₂t² + a₃t³ (a cubic Bézier segment in power form) on `domain`.
 #[derive(Clone, Debug)]
-pub struct PowerCubic<const D: usize> {
+pub(crate) struct PowerCubic<const D: usize> {
     pub coefficients: [Vector<D>; 4],
     pub domain: (f64, f64),
 }
@@ -12,7 +12,7 @@ pub struct PowerCubic<const D: usize> {
 impl<const D: usize> PowerCubic<D> {
     /// The Bézier segment with control points `b` on [0, 1]:
     /// a₀ = B₀, a₁ = 3(B₁ − B₀), a₂ = 3(B₂ − 2B₁ + B₀), a₃ = B₃ − 3B₂ + 3B₁ − B₀.
-    pub fn bezier(b: [Vector<D>; 4]) -> Self {
+    pub(crate) fn bezier(b: [Vector<D>; 4]) -> Self {
         PowerCubic {
             coefficients: [
                 b[0],
@@ -48,7 +48,7 @@ impl<const D: usize> Curve<D> for PowerCubic<D> {
 
 /// C(θ) = centre + r (cos θ, sin θ), θ in `angles`.
 #[derive(Clone, Debug)]
-pub struct CircleArc {
+pub(crate) struct CircleArc {
     pub centre: Vec2,
     pub radius: f64,
     pub angles: (f64, f64),
@@ -75,7 +75,7 @@ impl Curve<2> for CircleArc {
 
 /// The graph (x, a x²).
 #[derive(Clone, Debug)]
-pub struct Parabola {
+pub(crate) struct Parabola {
     pub a: f64,
     pub domain: (f64, f64),
 }
@@ -99,7 +99,7 @@ impl Curve<2> for Parabola {
 
 /// (r cos t, r sin t, p t): κ = r / (r² + p²), dκ/ds = 0.
 #[derive(Clone, Debug)]
-pub struct Helix {
+pub(crate) struct Helix {
     pub radius: f64,
     pub pitch: f64,
     pub domain: (f64, f64),
@@ -126,7 +126,7 @@ impl Curve<3> for Helix {
 
 /// The twisted cubic (t, t², t³) on [−1, 2].
 #[derive(Clone, Debug)]
-pub struct TwistedCubic;
+pub(crate) struct TwistedCubic;
 
 impl Curve<3> for TwistedCubic {
     fn domain(&self) -> (f64, f64) {
@@ -147,7 +147,7 @@ impl Curve<3> for TwistedCubic {
 
 /// A piecewise cubic: on [t_i, t_{i+1}], C(t) = Σ_k a_{i,k} (t − t_i)^k.
 #[derive(Clone, Debug)]
-pub struct PiecewiseCubic<const D: usize> {
+pub(crate) struct PiecewiseCubic<const D: usize> {
     pub breaks: Vec<f64>,
     pub pieces: Vec<[Vector<D>; 4]>,
 }
@@ -156,7 +156,11 @@ impl<const D: usize> PiecewiseCubic<D> {
     /// The C2 piecewise cubic starting with value, C′, C″ = `start` at `breaks[0]` whose
     /// constant third derivative on piece i is `third[i]`: value, C′ and C″ carry over each
     /// break, so C‴ jumps by exactly `third[i] − third[i−1]` at `breaks[i]`.
-    pub fn c2_from_third_derivatives(breaks: Vec<f64>, start: [Vector<D>; 3], third: &[Vector<D>]) -> Self {
+    pub(crate) fn c2_from_third_derivatives(
+        breaks: Vec<f64>,
+        start: [Vector<D>; 3],
+        third: &[Vector<D>],
+    ) -> Self {
         let mut pieces = Vec::with_capacity(third.len());
         let [mut p, mut d1, mut d2] = start;
         for (i, d3) in third.iter().enumerate() {
@@ -198,7 +202,7 @@ impl<const D: usize> Curve<D> for PiecewiseCubic<D> {
 /// A scalar C2 piecewise cubic with one third-derivative jump:
 /// f(u) = α u³/6 + (β − α)(u − k)₊³/6, so f‴ = α before k and β after.
 #[derive(Clone, Copy, Debug)]
-pub struct Kinked {
+pub(crate) struct Kinked {
     pub alpha: f64,
     pub beta: f64,
     pub knot: f64,
@@ -206,7 +210,7 @@ pub struct Kinked {
 
 impl Kinked {
     /// f^(order)(u) from `side` (orders 0–3).
-    pub fn derivative(&self, u: f64, order: usize, side: Side) -> f64 {
+    pub(crate) fn derivative(&self, u: f64, order: usize, side: Side) -> f64 {
         let after = u > self.knot || (u == self.knot && side == Side::Right);
         let d = if after { u - self.knot } else { 0.0 };
         let jump = self.beta - self.alpha;
@@ -228,7 +232,7 @@ impl Kinked {
 
 /// The height surface S(u, v) = (u, v, f(u) + g(v) + c u² v).
 #[derive(Clone, Copy, Debug)]
-pub struct HeightSurface {
+pub(crate) struct HeightSurface {
     pub f: Kinked,
     pub g: Kinked,
     pub c: f64,

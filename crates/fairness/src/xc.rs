@@ -3,7 +3,7 @@
 //! differences e_i, which locate inflections (c_i c_{i+1} < 0) and curvature vibrations
 //! (e_i e_{i+1} < 0).
 //!
-//! Counts follow DESIGN.md's sign-change rule ([`sign_changes`]). The sensitivity of e_i to a
+//! Counts follow docs/CONTRACT.md's sign-change rule ([`sign_changes`]). The sensitivity of e_i to a
 //! move of y_j (Han Eq. 18) is built from [`SplineFunction::sensitivity`] in O(1).
 
 use curve_repr::SplineFunction;
@@ -42,7 +42,7 @@ fn second_differences(x: &[f64], c: &[f64]) -> Result<Vec<f64>> {
 }
 
 impl XcPolyline {
-    /// The polyline of `spline` (whatever its end condition; DESIGN.md's function kind uses
+    /// The polyline of `spline` (whatever its end condition; docs/CONTRACT.md's function kind uses
     /// the parabolic runout, see [`XcPolyline::of_points`]). O(n).
     pub fn of_spline(spline: &SplineFunction) -> Result<Self> {
         let x = spline.x().to_vec();
@@ -58,19 +58,19 @@ impl XcPolyline {
     }
 
     /// The polyline of the spline function through (x_i, y_i) with the parabolic-runout end
-    /// condition (Han's choice; DESIGN.md's function kind). O(n). Fails as
+    /// condition (Han's choice; docs/CONTRACT.md's function kind). O(n). Fails as
     /// [`SplineFunction::new`] does (x not increasing, lengths, non-finite values).
     pub fn of_points(x: &[f64], y: &[f64]) -> Result<Self> {
         let spline = SplineFunction::new(x, y, curve_repr::EndCondition::ParabolicRunout)?;
         Self::of_spline(&spline)
     }
 
-    /// Han's Infl_num = #{i : c_i c_{i+1} < 0} with DESIGN.md's drop rule. O(n).
+    /// Han's Infl_num = #{i : c_i c_{i+1} < 0} with docs/CONTRACT.md's drop rule. O(n).
     pub fn inflections(&self) -> usize {
         sign_changes(&self.c)
     }
 
-    /// Han's Vib_num = #{i : e_i e_{i+1} < 0} with DESIGN.md's drop rule. O(n).
+    /// Han's Vib_num = #{i : e_i e_{i+1} < 0} with docs/CONTRACT.md's drop rule. O(n).
     pub fn vibrations(&self) -> usize {
         sign_changes(&self.e)
     }

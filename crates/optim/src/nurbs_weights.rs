@@ -207,12 +207,9 @@ pub struct NurbsWeightSettings {
     ///
     /// `auto` (the default) is Nelder–Mead for the paper's 4-parameter bernstein law (as in
     /// the paper) and L-BFGS for the per-point law when the criterion is ek or e2, because it
-    /// ends lower: per-point Ek of the Gunnerus waterline wl_03 (62 weights) 5.546 → 4.910 by
-    /// L-BFGS (converged, 48 iterations, 102 gradients, 18 s on a loaded machine) against
-    /// 4.945 by Nelder–Mead (cut at 1000 iterations, 3.5 s); NACA 2412 upper (18 weights)
-    /// 23.686 → 16.681 (1.3 s) against 16.686 (1.2 s). L-BFGS is slower per iteration (one
-    /// dual evaluation per weight for each gradient). L-BFGS follows the exact
-    /// gradient of the fixed-rule criterion (20-point Gauss–Legendre per knot span) with
+    /// ends lower on the per-point law (the Gunnerus waterline wl_03, NACA 2412 upper), though
+    /// it is slower per iteration (one dual evaluation per weight for each gradient). L-BFGS
+    /// follows the exact gradient of the fixed-rule criterion (20-point Gauss–Legendre per knot span) with
     /// respect to the log-weights, which keeps the weights positive and within the law's
     /// bounds. The reported criterion is always the catalogue's (adaptive) one.
     pub solver: SolverName,

@@ -7,11 +7,11 @@ use curve_repr::{
 };
 
 /// A path under the repository's `data/`.
-pub fn data(path: &str) -> String {
+pub(crate) fn data(path: &str) -> String {
     format!("{}/../../data/{path}", env!("CARGO_MANIFEST_DIR"))
 }
 
-pub fn function(n: usize) -> SplineFunction {
+pub(crate) fn function(n: usize) -> SplineFunction {
     let x: Vec<f64> = (0..n)
         .map(|i| -1.5 + i as f64 * 0.13 + 0.02 * (i as f64).cos())
         .collect();
@@ -22,7 +22,7 @@ pub fn function(n: usize) -> SplineFunction {
     SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap()
 }
 
-pub fn planar_points(n: usize) -> Vec<Vec2> {
+pub(crate) fn planar_points(n: usize) -> Vec<Vec2> {
     (0..n)
         .map(|i| {
             let a = i as f64 * 0.1;
@@ -31,7 +31,7 @@ pub fn planar_points(n: usize) -> Vec<Vec2> {
         .collect()
 }
 
-pub fn curves() -> Vec<CadCurve> {
+pub(crate) fn curves() -> Vec<CadCurve> {
     let closed = HermiteSpline::new(
         &planar_points(30)[..28],
         &HermiteSettings::default().with_ends(HermiteEnds::Closed),
@@ -71,7 +71,7 @@ pub fn curves() -> Vec<CadCurve> {
     ]
 }
 
-pub fn grid(rows: usize, columns: usize) -> Vec<Vec<Vec3>> {
+pub(crate) fn grid(rows: usize, columns: usize) -> Vec<Vec<Vec3>> {
     (0..rows)
         .map(|i| {
             (0..columns)
@@ -84,7 +84,7 @@ pub fn grid(rows: usize, columns: usize) -> Vec<Vec<Vec3>> {
         .collect()
 }
 
-pub fn surfaces() -> Vec<CadSurface> {
+pub(crate) fn surfaces() -> Vec<CadSurface> {
     let bicubic = BicubicSplineSurface::new(&grid(6, 5)).unwrap();
     let mut weights = vec![vec![1.0; 4]; 4];
     weights[1][2] = 2.0 / 3.0;

@@ -8,7 +8,7 @@ use crate::{Error, Parametrization, Result, Vec3};
 /// How a [`BicubicSplineSurface`] is built: its knots, and which directions close up.
 ///
 /// By default the knots are chord-length *averaged*, the definition the `fair` report uses
-/// (DESIGN.md, "surface kind"): u_0 = 0 and u_{i+1} − u_i = (1/(n+1)) Σ_j |P_{i+1,j} − P_{i,j}|,
+/// (docs/CONTRACT.md, "surface kind"): u_0 = 0 and u_{i+1} − u_i = (1/(n+1)) Σ_j |P_{i+1,j} − P_{i,j}|,
 /// the mean over the n + 1 u-lines of their chord lengths; v_j likewise over the m + 1
 /// v-lines. [`with_parametrization`](Self::with_parametrization) swaps the chord length for
 /// another step rule (uniform steps of 1 give Kjellander's surfaces), averaged the same way;
@@ -435,7 +435,7 @@ fn check_increasing(what: &'static str, knots: &[f64]) -> Result<()> {
 }
 
 /// Averaged knots: t_0 = 0, t_{k+1} − t_k = the mean over the lines of the other direction of
-/// the step between grid lines k and k + 1 (DESIGN.md "surface kind"); when the other
+/// the step between grid lines k and k + 1 (docs/CONTRACT.md "surface kind"); when the other
 /// direction is closed its repeated line is left out of the mean. O(m·n).
 fn averaged_knots(
     points: &[Vec3],

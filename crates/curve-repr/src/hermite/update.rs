@@ -19,7 +19,7 @@ use super::{solve, HermiteSpline};
 use crate::{Error, Result, Vector};
 
 /// Relative size of tangent change below which the window stops.
-pub const WINDOW_TOLERANCE: f64 = 1e-17;
+pub(super) const WINDOW_TOLERANCE: f64 = 1e-17;
 
 /// Bound on |δM_k/δM_{k∓1}| at interior row k, going right (`forward`) or left.
 fn decay<const D: usize>(spline: &HermiteSpline<D>, k: usize, forward: bool) -> f64 {

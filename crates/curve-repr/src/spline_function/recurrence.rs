@@ -153,7 +153,7 @@ fn check_pivot(pivot: f64, scale: f64) -> Result<()> {
 impl Elimination {
     /// Computes every factor and pivot. O(n). Callers keep n ≥ 2 and pass the
     /// [`effective_end`].
-    pub fn new(x: &[f64], end: EndCondition) -> Result<Self> {
+    pub(super) fn new(x: &[f64], end: EndCondition) -> Result<Self> {
         let n = x.len();
         let mut forward_factor = Vec::with_capacity(n);
         let mut forward_pivot = Vec::with_capacity(n);
@@ -203,7 +203,7 @@ impl Elimination {
     /// which with Eq. 9 at the last row is the same solution). O(n).
     ///
     /// Fails with [`Error::Singular`] if a value overflows.
-    pub fn solve(&self, x: &[f64], y: &[f64], end: EndCondition) -> Result<Vec<f64>> {
+    pub(super) fn solve(&self, x: &[f64], y: &[f64], end: EndCondition) -> Result<Vec<f64>> {
         let n = x.len();
         let mut c = Vec::with_capacity(n);
         let mut previous = 0.0;

@@ -75,7 +75,7 @@ fn two_sum(a: f64, b: f64) -> (f64, f64) {
 
 impl LogProducts {
     /// Prefix sums over `factors`, O(n).
-    pub fn new(factors: &[f64]) -> Self {
+    pub(super) fn new(factors: &[f64]) -> Self {
         let n = factors.len();
         let mut high = Vec::with_capacity(n + 1);
         let mut low = Vec::with_capacity(n + 1);
@@ -111,7 +111,7 @@ impl LogProducts {
     }
 
     /// Π f_k over k in [start, end); 1 for an empty range. Callers keep start ≤ end ≤ n.
-    pub fn product(&self, start: usize, end: usize) -> f64 {
+    pub(super) fn product(&self, start: usize, end: usize) -> f64 {
         if start >= end {
             return 1.0;
         }
@@ -128,7 +128,7 @@ impl LogProducts {
     }
 
     /// Π (−f_k) over k in [start, end).
-    pub fn alternating_product(&self, start: usize, end: usize) -> f64 {
+    pub(super) fn alternating_product(&self, start: usize, end: usize) -> f64 {
         let p = self.product(start, end);
         if end.saturating_sub(start) % 2 == 1 {
             -p

@@ -4,7 +4,7 @@
 /// n points of y = sin(x/2) + σ·N(0, 1), x in random steps of (0.5 + u)·4π/n, u uniform in
 /// (0, 1) from a 64-bit LCG seeded with `seed`, the normal by Box–Muller (two uniforms per
 /// point after the step's). O(n).
-pub fn noisy_segment(n: usize, sigma: f64, seed: u64) -> Vec<[f64; 2]> {
+pub(crate) fn noisy_segment(n: usize, sigma: f64, seed: u64) -> Vec<[f64; 2]> {
     let mut state = seed;
     let mut uniform = move || {
         state = state

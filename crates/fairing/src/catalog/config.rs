@@ -365,7 +365,7 @@ fn json_to_toml(value: &Value) -> Option<toml::Value> {
 
 /// A JSON value as TOML text (for `--print-config`): numbers with a decimal point or
 /// exponent stay floats, strings quoted.
-pub fn toml_text(value: &Value) -> String {
+pub(super) fn toml_text(value: &Value) -> String {
     match value {
         Value::Number(n) if n.is_f64() => {
             let v = n.as_f64().unwrap_or(0.0);

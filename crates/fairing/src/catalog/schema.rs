@@ -30,7 +30,7 @@ pub struct ParameterInfo {
 
 /// The top-level keys of a serialised value, in the order they were written (struct fields
 /// in declaration order, flattened fields in place).
-pub fn key_order<T: Serialize>(value: &T) -> Vec<String> {
+pub(super) fn key_order<T: Serialize>(value: &T) -> Vec<String> {
     struct Keys(Vec<String>);
     impl<'de> Deserialize<'de> for Keys {
         fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
@@ -60,7 +60,7 @@ pub fn key_order<T: Serialize>(value: &T) -> Vec<String> {
 }
 
 /// The property schemas of a settings schema, by name.
-pub fn properties(schema: &Value) -> serde_json::Map<String, Value> {
+pub(super) fn properties(schema: &Value) -> serde_json::Map<String, Value> {
     schema
         .get("properties")
         .and_then(Value::as_object)
@@ -90,7 +90,7 @@ fn resolve<'a>(schema: &'a Value, root: &'a Value) -> &'a Value {
 
 /// The JSON types a property schema accepts: `integer`, `number`, `boolean`, `string`,
 /// `array`, `object`, `null`.
-pub fn accepted_types(schema: &Value, root: &Value) -> BTreeSet<&'static str> {
+pub(super) fn accepted_types(schema: &Value, root: &Value) -> BTreeSet<&'static str> {
     let mut out = BTreeSet::new();
     collect_types(schema, root, &mut out, 0);
     out
@@ -145,7 +145,7 @@ fn collect_types(schema: &Value, root: &Value, out: &mut BTreeSet<&'static str>,
 /// (`true`/`on`/`yes`, `false`/`off`/`no`), a JSON array, or else the text as a string;
 /// tried in that order among the types the schema accepts. The settings' deserialisation
 /// then says whether the value fits.
-pub fn text_to_value(text: &str, schema: &Value, root: &Value) -> Value {
+pub(super) fn text_to_value(text: &str, schema: &Value, root: &Value) -> Value {
     let types = accepted_types(schema, root);
     let trimmed = text.trim();
     if types.contains("integer") {
@@ -180,7 +180,7 @@ pub fn text_to_value(text: &str, schema: &Value, root: &Value) -> Value {
 
 /// A value as `--set` text: strings bare, numbers in their shortest form, arrays and
 /// objects as JSON.
-pub fn value_to_text(value: &Value) -> String {
+pub(super) fn value_to_text(value: &Value) -> String {
     match value {
         Value::String(s) => s.clone(),
         Value::Null => "none".into(),
@@ -194,7 +194,7 @@ pub fn value_to_text(value: &Value) -> String {
 }
 
 /// The one-line meaning of a property: its title, or the first line of its description.
-pub fn meaning(schema: &Value, root: &Value) -> String {
+pub(super) fn meaning(schema: &Value, root: &Value) -> String {
     let direct = |s: &Value| {
         s.get("title")
             .and_then(Value::as_str)

@@ -9,27 +9,21 @@ use super::Segment;
 /// Which moves of [`SegmentedFairing`](super::SegmentedFairing)'s passes are checked against
 /// the whole curve's counts (not in the paper).
 ///
-/// The counts are DESIGN.md's parametric-kind measures (the judge's too): curvature sign
+/// The counts are docs/CONTRACT.md's parametric-kind measures (the judge's too): curvature sign
 /// changes and sign changes of the second differences of κ over t, both of the natural cubic
 /// spline through the points with chord-length parameters ([`curve_counts`]). The phases lower
 /// the counts of each segment's own x–c polyline, which are not these. A move is kept when it
 /// lowers the inflections, or keeps them and does not raise the vibrations (inflections
 /// first: removing the last inflection of a curve may cost a few vibrations).
 ///
-/// Measured on the judge's synthetic curves (seeds 1–4, `examples/two_phase_judge.rs`, after
-/// the `jump-lsq-gcv` pre-pass; inflections / vibrations of the judge): `off` raised the
-/// vibrations the pre-pass left from 9–16 to 40–50 (strophoid), 12–16 to 44–56 (ellipse),
-/// 19–27 to 60–64 (clothoid); `local` keeps them at 9–16, 12–16 and 24–30, and still removes
-/// the inflection the pre-pass left on the clothoid (all seeds), the strophoid seed 3, the
-/// strophoid loop seed 1 and the closed airfoil seed 1 (10 → 0). The chunk of
-/// [`CURVE_GUARD_CHUNK`] points was chosen there: whole segments (vibrations 32–38 on the
-/// clothoid) and 24 or 32 points let more vibrations through, 8 or fewer points keep
-/// inflections that 16 removes (each chunk alone cannot remove them). `pass` alone keeps
-/// the whole passes that remove the last inflection with all their vibrations (clothoid
-/// 52–60, strophoid seed 3 48) and undoes all others (the pre-pass's points). The cost: the
-/// closed airfoil keeps the pre-pass's 8 / 5 / 5 inflections on seeds 2–4 (`off`: 0 / 2 / 6,
-/// with 40 / 32 / 36 vibrations against 26 / 19 / 19), and a dent the pre-pass only smoothed
-/// stays where the phases would have spread it (`tests/fairing/two_phase_ends.rs`).
+/// On the judge's synthetic curves (`examples/two_phase_judge.rs`, after the `jump-lsq-gcv`
+/// pre-pass) `off` lets the phases raise the vibrations the pre-pass left several times over;
+/// `local` keeps them near the pre-pass's and still removes most inflections the pre-pass
+/// left. The chunk of [`CURVE_GUARD_CHUNK`] points was chosen there (larger chunks let more
+/// vibrations through, smaller ones keep inflections that it removes); `pass` alone undoes
+/// nearly every pass. The cost: a closed airfoil keeps some of the pre-pass's inflections,
+/// and a dent the pre-pass only smoothed stays where the phases would have spread it
+/// (`tests/fairing/two_phase_ends.rs`).
 #[derive(
     Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
 )]
@@ -60,7 +54,7 @@ pub const CURVE_GUARD_CHUNK: usize = 16;
 
 /// (inflections, vibrations) of the natural cubic spline through `points` with chord-length
 /// parameters: sign changes of the signed curvature κ at the knots, and of Han's e built from
-/// (t, κ), both under DESIGN.md's sign rule ([`parametric_counts`], the report's counts). `None` when the spline
+/// (t, κ), both under docs/CONTRACT.md's sign rule ([`parametric_counts`], the report's counts). `None` when the spline
 /// or its curvature cannot be built (fewer than 3 points, coincident consecutive points, a
 /// vanishing tangent). O(n).
 pub fn curve_counts(points: &[Vec2]) -> Option<(usize, usize)> {

@@ -38,7 +38,7 @@
 use curve_repr::{tridiagonal, Vector};
 
 use crate::state::strategy_error;
-use crate::{project_into_ball, Error, FairingState, FairingStrategy, Result, StepOutcome};
+use crate::{project_into_ball, Error, FairingState, FairingStrategy, Refusal, Result, StepOutcome};
 
 /// How Step 5 applies Eq. (13) to the positions in one iteration. Okada says only that the
 /// positions are adjusted "using the Eq. (13)" and that Eq. (12) and (13) are easy to solve
@@ -452,10 +452,10 @@ pub fn okada_tangents<const D: usize>(
         if let Some(u) = direction(i) {
             let len = u.norm();
             if !(len > 0.0 && len.is_finite()) {
-                return Err(strategy_error(
-                    "batten",
-                    format!("prescribed tangent at point {i} has no direction"),
-                ));
+                return Err(Error::BadValue {
+                    name: "tangent-directions".into(),
+                    message: format!("prescribed tangent at point {i} has no direction"),
+                });
             }
             let u = u / len;
             let speed = prescribed_speed(points[i - 1], points[i], points[i + 1], u);
@@ -636,7 +636,7 @@ pub fn eq13_sweep<const D: usize>(
 /// every point (Okada Step 4): one plane (x, y) in 2D, then (x, y), (y, z), (z, x) in 3D, laid
 /// out plane by plane (index plane·n + i). The curvature at point i is taken on segment i at
 /// t = 0 (segment n−2 at t = 1 for the last point): (ẋẏ̈ − ẏẍ)/(ẋ² + ẏ²)^{3/2} in the plane;
-/// values with |κ| ≤ 1e-12 · max |κ| over the plane count as 0 (DESIGN.md's sign rule). O(n).
+/// values with |κ| ≤ 1e-12 · max |κ| over the plane count as 0 (docs/CONTRACT.md's sign rule). O(n).
 pub fn curvature_signs<const D: usize>(points: &[Vector<D>], tangents: &Tangents<D>) -> Vec<i8> {
     let planes: &[(usize, usize)] = match D {
         2 => &[(0, 1)],
@@ -727,7 +727,11 @@ impl<const D: usize> FairingStrategy<D> for Batten<D> {
 
     fn init(&mut self, state: &mut FairingState<D>) -> Result<()> {
         if state.is_closed() {
-            return Err(strategy_error("batten", "closed curves are not supported"));
+            return Err(Error::refused(
+                "batten",
+                Refusal::Closed,
+                "does not fair closed curves",
+            ));
         }
         self.settings.validate()?;
         let n = state.len();
@@ -750,10 +754,10 @@ impl<const D: usize> FairingStrategy<D> for Batten<D> {
             }
             let d = Vector::<D>::from_iterator(d.iter().copied());
             if !(d.norm() > 0.0 && d.iter().all(|v| v.is_finite())) {
-                return Err(strategy_error(
-                    "batten",
-                    format!("prescribed tangent at point {i} has no direction"),
-                ));
+                return Err(Error::BadValue {
+                    name: "tangent-directions".into(),
+                    message: format!("prescribed tangent at point {i} has no direction"),
+                });
             }
             directions.push((*i, d));
         }

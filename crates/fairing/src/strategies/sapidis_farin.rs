@@ -70,7 +70,7 @@ use super::tournament::Tournament;
 use super::CurveDomain;
 use crate::catalog::SharedIndicator;
 use crate::state::strategy_error;
-use crate::{Constraints, EndClamp, Error, FairingState, FairingStrategy, Result, StepOutcome};
+use crate::{Constraints, EndClamp, Error, FairingState, FairingStrategy, Refusal, Result, StepOutcome};
 use fairness::LocalIndicator;
 
 /// The strategy's name, as `fair methods` lists it.
@@ -598,9 +598,10 @@ where
             )?,
             CurveDomain::Function => {
                 if D < 2 {
-                    return Err(strategy_error(
+                    return Err(Error::refused(
                         NAME,
-                        "a function y(x) needs points with at least 2 coordinates",
+                        Refusal::Dimension,
+                        "needs points with at least 2 coordinates for a function y(x)",
                     ));
                 }
                 let x: Vec<f64> = state.points().iter().map(|p| p[0]).collect();

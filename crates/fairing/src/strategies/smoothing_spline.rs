@@ -49,7 +49,7 @@ use curve_repr::{Curve, Parametrization, Side, Vector};
 use serde::{Deserialize, Serialize};
 
 use crate::state::strategy_error;
-use crate::{Error, FairingState, FairingStrategy, Result, StepOutcome};
+use crate::{Error, FairingState, FairingStrategy, Refusal, Result, StepOutcome};
 use pentadiagonal::{Band, Ldlt};
 
 /// The strategy's name, as `fair methods` lists it.
@@ -650,9 +650,10 @@ impl<const D: usize> SmoothingSplineFairing<D> {
             }
             CurveDomain::Function => {
                 if D < 2 {
-                    return Err(strategy_error(
+                    return Err(Error::refused(
                         NAME,
-                        "a function y(x) needs points with at least 2 coordinates",
+                        Refusal::Dimension,
+                        "needs points with at least 2 coordinates for a function y(x)",
                     ));
                 }
                 let x: Vec<f64> = points.iter().map(|p| p[0]).collect();

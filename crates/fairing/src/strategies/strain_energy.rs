@@ -19,7 +19,7 @@ use curve_repr::{Curve, HermiteSettings, HermiteSpline, Parametrization, Vector}
 use super::tournament::Tournament;
 use crate::catalog::SharedIndicator;
 use crate::state::strategy_error;
-use crate::{project_into_ball, Error, FairingState, FairingStrategy, Result, StepOutcome};
+use crate::{project_into_ball, Error, FairingState, FairingStrategy, Refusal, Result, StepOutcome};
 use fairness::LocalIndicator;
 
 /// Knots on each side of a move within which tangents (and so jumps and segment energies) can
@@ -488,7 +488,11 @@ impl<const D: usize> FairingStrategy<D> for StrainEnergy<D> {
 
     fn init(&mut self, state: &mut FairingState<D>) -> Result<()> {
         if state.is_closed() {
-            return Err(strategy_error(&self.name, "closed curves are not supported"));
+            return Err(Error::refused(
+                &self.name,
+                Refusal::Closed,
+                "does not fair closed curves",
+            ));
         }
         self.settings.validate()?;
         let settings = match &self.settings.parameters {

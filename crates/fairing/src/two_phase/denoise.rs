@@ -21,50 +21,27 @@
 //! on any cubic and small where the third derivative varies slowly, so at the same residual it
 //! bends a smooth curve less than the cubic smoothing spline, whose penalty ∫s″² flattens
 //! every curved part; the cubic spline leaves the phases the noise's vibrations to remove by
-//! their own moves. Measured with the judge (`docs/experiments/two_phase_judge.md`, seeds 1–4, 45 rows):
-//! two-phase beats csaps at equal S_d on 37 rows with this pre-pass, on 26 with `gcv`, on 32
-//! with `jump-lsq` (λ by the discrepancy rule, which moves the points by the whole noise
-//! vector σ̂ and over-smooths curves: ellipse RMS to the clean curve 0.0083 against 0.0024,
-//! S_d 1.72 against 0.96).
+//! their own moves. With the judge (`docs/experiments/two_phase_judge.md`) two-phase beats csaps at
+//! equal S_d on more rows with this pre-pass than with `gcv` or `jump-lsq` (λ by the
+//! discrepancy rule, which moves the points by the whole noise vector σ̂ and over-smooths
+//! curves).
 //!
 //! On dense data jump-lsq's λ can stop at its precision limit ([`jump_lsq`]'s λ_max) before
-//! its rule is met, and the fit then leaves noise: on 2·10^4 points of a noisy sine with
-//! uneven spacing it left 15–26 inflections (the clean curve has 1–2) and the phases ended 5
-//! where the cubic pre-pass ends 1 (λ limited there and on 10^5 such points; not on 10^5
-//! evenly spaced points of sin(x/2), x = 0.1k, where jump-lsq then ends with 1592 vibrations
-//! against the cubic pre-pass's 22 177–22 692, both with the clean curve's 1591 inflections,
-//! seeds 1–4). When λ is limited the jump-lsq variants therefore fall
-//! back to the cubic smoothing spline of `gcv` (for that fit; a closed curve's periodic fit
-//! falls back to `gcv`'s seam blend). The `jump-lsq-gcv` pre-pass under the GCV rule instead
-//! keeps whichever of the two fits, jump-lsq's at the limit or the cubic's, has the lower
-//! score V_γ = (RSS/(n D)) / (1 − γ tr A/n)², D the coordinates (both are linear smoothers
-//! of the same data, so GCV compares them as it compares values of λ). A curve's cubic is
-//! fitted over chords of windows wide enough to see past the noise there
-//! ([`windowed_chord_knots`]), not over the noisy points' chord lengths (`weigh_limited`
-//! says why); a periodic fit gives way to the seam blend where the open
-//! cubic of its points scores lower, and the blend's open fits are weighed in turn. Over the chord lengths the cubic had all but interpolated
-//! a noisy arc as dense as its noise (radius 2 over 270°, σ = 0.01 in each coordinate: p >
-//! 0.999 by GCV), and two-phase, falling back to it, had left the arc as noisy as it came
-//! (500 points: 175 inflections, RMS 0.0096 to the clean arc). Now (inflections /
-//! vibrations / RMS): 500 points keep jump-lsq's fit, 0 / 266 / 0.00069; 2 000 points take
-//! the cubic, 0 / 551 / 0.0012 (jump-lsq's fit 0 / 504 / 0.0014), 5 000 0 / 1 334 / 0.00092
-//! (125 / 2 095 / 0.0017), 2·10^4 0 / 4 878 / 0.00048 (645 / 9 387 / 0.0018); a noisy
-//! closed circle as dense (radius 2, [`corner_reaches`] on why it is no longer taken for a
-//! cornered curve) 0 / 580 / 0.00097 at 2 000 points and 0 / 5 020 / 0.00043 at 2·10^4,
-//! where two-phase ended with 800 / 1 446 / 0.0099 and 6 538 / 14 702 / 0.010. Measured on evenly spaced y = sin(x/2)
-//! over [0, 20] with σ = 0.01, where jump-lsq's GCV still falls at λ_max from 2 000 points
-//! on: jump-lsq's fit scores lower up to 3 000 points (2 000: RMS to the clean curve 0.00109
-//! against the cubic's 0.00127), the cubic's from 5 000 on (10^5: 0.00023 against 0.00092;
-//! jump-lsq's fit left 802 inflections, the cubic's 4), the scores ordering the two fits as
-//! their distances to the clean curve do at every size tried (10^3–10^5). Two-phase then
-//! ends with the clean curve's 3 inflections at every size, where with jump-lsq's fit kept
-//! it ended with 5 at 2·10^4 points and 24 at 10^5. At 10^6 points the cubic's own GCV was
-//! unreliable (its score jumps by 1e-3 between neighbouring p) and two-phase ended with
-//! hundreds: beyond a limit the pre-pass fits bin means instead ([`bins`](super::bins): 3
-//! inflections there). A function's limit is now [`MAX_PREPASS_POINTS`] = 2 000 points, so
-//! these one-knot-per-point measurements of functions beyond it hold with
-//! `function-prepass-points` raised; the binned fits come nearer the clean curve (`bins`'
-//! table).
+//! its rule is met, and the fit then leaves noise. When λ is limited the jump-lsq variants
+//! therefore fall back to the cubic smoothing spline of `gcv` (for that fit; a closed
+//! curve's periodic fit falls back to `gcv`'s seam blend). The `jump-lsq-gcv` pre-pass under
+//! the GCV rule instead keeps whichever of the two fits, jump-lsq's at the limit or the
+//! cubic's, has the lower score V_γ = (RSS/(n D)) / (1 − γ tr A/n)², D the coordinates (both
+//! are linear smoothers of the same data, so GCV compares them as it compares values of λ;
+//! on the noisy sines measured the scores order the two fits as their distances to the clean
+//! curve do). A curve's cubic is fitted over chords of windows wide enough to see past the
+//! noise there ([`windowed_chord_knots`]), not over the noisy points' chord lengths, over
+//! which it all but interpolates a noisy arc as dense as its noise (`weigh_limited` says
+//! why); a periodic fit gives way to the seam blend where the open cubic of its points
+//! scores lower, and the blend's open fits are weighed in turn. Beyond
+//! [`MAX_PREPASS_POINTS`] points of a function, where one knot per point loses double
+//! precision, the pre-pass fits bin means instead ([`bins`](super::bins)). The measurements
+//! behind these choices are in `docs/experiments/code-notes.md`.
 //!
 //! `gcv` replaces the data by the cubic smoothing spline's values ([`SmoothingSpline`], csaps's
 //! convention) with p chosen by generalised cross-validation of the free fit (every weight
@@ -300,7 +277,7 @@ impl Denoise {
 }
 
 /// Rounds of reweighting for points that must stay within a bound, at most.
-pub const MAX_REWEIGHTS: usize = 60;
+pub(super) const MAX_REWEIGHTS: usize = 60;
 
 /// Where a point may go: `keep(i)` (interpolated exactly) and the distance `allowed(i)` it
 /// may move (+∞ for none).
@@ -688,11 +665,11 @@ pub const CORRECTION_ROUNDS: usize = 3;
 
 /// A turn (radians) from which the point of a closed curve where the direction turns most is
 /// a corner (an airfoil's trailing edge) that [`denoise_curve`] keeps as the seam of its fit.
-pub const CORNER_TURN: f64 = PI / 4.0;
+pub(super) const CORNER_TURN: f64 = PI / 4.0;
 
 /// How many points away [`denoise_curve`] measures a closed curve's turns (between the chords
 /// P_{i−3}P_i and P_iP_{i+3}).
-pub const CORNER_REACH: usize = 3;
+pub(super) const CORNER_REACH: usize = 3;
 
 /// The reaches over which [`denoise_curve`] measures the turns of a closed curve of `n`
 /// points, a corner's turn being the least of them ([`largest_turn`]): `CORNER_REACH`, then
@@ -1179,7 +1156,7 @@ fn uniform_knots(knots: &[f64]) -> Vec<f64> {
 }
 
 /// The noise a windowed chord must exceed, in noise estimates σ̂ ([`windowed_chord_knots`]).
-pub const CHORD_NOISE_RATIO: f64 = 20.0;
+pub(super) const CHORD_NOISE_RATIO: f64 = 20.0;
 
 /// Parameters for the points of `sequence` from chords over windows wide enough to see past
 /// their noise, spanning `knots` (the limited fit's). Point i's step is |P_hi − P_lo| / (hi −

@@ -37,7 +37,9 @@ use curve_repr::{EndCondition, SplineFunction, Vec2};
 
 use crate::partition::SegmentFairer;
 use crate::state::strategy_error;
-use crate::{reject_derivative_clamps, Constraints, FairingState, FairingStrategy, Result, StepOutcome};
+use crate::{
+    reject_derivative_clamps, Constraints, Error, FairingState, FairingStrategy, Refusal, Result, StepOutcome,
+};
 
 /// One full pass: a [`coarse_pass`] then a [`fine_pass`] (Han §4.1: "the two primary phases
 /// are performed in an alternative way iteratively"). Returns both reports.
@@ -48,8 +50,8 @@ use crate::{reject_derivative_clamps, Constraints, FairingState, FairingStrategy
 /// with, it is undone and redone with the coarse moves guarded (the coarse report is then
 /// marked `reverted`), so a full pass never raises Infl_num. On noise, Phase 1 turns short
 /// wrong-sign runs of c into runs that the absorption can take, adding inflections on the way
-/// that Phase 2 then removes; guarding every coarse move stops that (measured in [`phase2`]'s
-/// table). O(n · guard_window), twice for a redone pass.
+/// that Phase 2 then removes; guarding every coarse move stops that (see
+/// [`phase2`]). O(n · guard_window), twice for a redone pass.
 pub fn full_pass(
     spline: &mut SplineFunction,
     settings: &TwoPhaseSettings,
@@ -258,7 +260,11 @@ impl FairingStrategy<2> for TwoPhase {
     fn init(&mut self, state: &mut FairingState<2>) -> Result<()> {
         self.settings.validate()?;
         if state.is_closed() {
-            return Err(strategy_error("two-phase", "a function segment cannot be closed"));
+            return Err(Error::refused(
+                "two-phase",
+                Refusal::Closed,
+                "cannot fair a closed function segment",
+            ));
         }
         // σ̂ and the data bound B from one noise estimate.
         let bound =

@@ -35,14 +35,12 @@
 //! `max_move_factor` × the smaller spacing next to the moved point is skipped; a move that
 //! would increase the inflection or vibration count within `guard_window` points is refused
 //! (judged before it is made, on c as the windowed update would leave it; counted by sign,
-//! without DESIGN.md's drop level, so that a move is never credited for pushing a sign change
+//! without docs/CONTRACT.md's drop level, so that a move is never credited for pushing a sign change
 //! below it; recounted only where a sign changed); and a pass that increased either global
 //! count is undone whole (O(n) once per pass). So a pass never increases Infl_num or Vib_num
-//! (DESIGN.md counts) unless the guard is [`CountGuard::Off`]. Measured on a noisy sine
-//! (y = sin(x/2) + N(0, 0.01²), x = 0.1k, n = 1000; vibrations / inflections): 820 / 785 →
-//! 360 / 215 after 50 passes with `Local` (the default); → 245 / 171 with `Off` (the paper's
-//! rule, not monotone pass by pass in general); → 467 / 257 with `Pass`, which stops after 7
-//! passes, at the first undone pass.
+//! (docs/CONTRACT.md counts) unless the guard is [`CountGuard::Off`]. On a noisy sine `Local`
+//! (the default) ends with fewer sign changes than `Pass`, which stops at the first undone
+//! pass, and more than `Off` (the paper's rule, not monotone pass by pass).
 
 use curve_repr::SplineFunction;
 #[cfg(doc)]
@@ -113,7 +111,7 @@ pub struct PassReport {
     pub refused_by_data: usize,
     /// The pass increased a global count and was undone whole.
     pub reverted: bool,
-    /// Global (vibrations, inflections) after the pass (DESIGN.md counts, as [`counts`]), so
+    /// Global (vibrations, inflections) after the pass (docs/CONTRACT.md counts, as [`counts`]), so
     /// that a caller need not count again.
     pub counts: (usize, usize),
 }
@@ -300,7 +298,7 @@ pub fn displacement(spline: &SplineFunction, case: Case, lambda: f64) -> Option<
     }
 }
 
-/// Vibrations and inflections among points lo..=hi (DESIGN.md counts on the slice), the e
+/// Vibrations and inflections among points lo..=hi (docs/CONTRACT.md counts on the slice), the e
 /// values computed once into `scratch`. O(hi − lo).
 fn local_counts(spline: &SplineFunction, lo: usize, hi: usize, scratch: &mut Vec<f64>) -> (usize, usize) {
     let n = spline.x().len();
@@ -357,9 +355,9 @@ fn window_values(
 /// changed, widened to the nearest non-zero entry on each side, is recounted: outside it both
 /// sequences have the same signs. O(len).
 ///
-/// Unlike the DESIGN.md count it drops no small value (no 1e-12 · max level): a move that
+/// Unlike the docs/CONTRACT.md count it drops no small value (no 1e-12 · max level): a move that
 /// drives a value towards zero is judged by its sign, so that the guard never rewards hiding
-/// a sign change below the drop level. The pass guard ([`counts`]) is DESIGN.md's.
+/// a sign change below the drop level. The pass guard ([`counts`]) is docs/CONTRACT.md's.
 fn count_change(before: &[f64], after: &[f64]) -> isize {
     match (sign_mask(before), sign_mask(after)) {
         (Some(b), Some(a)) if before.len() == after.len() => {
@@ -468,7 +466,7 @@ fn changes(values: impl Iterator<Item = f64> + Clone) -> usize {
     count
 }
 
-/// Global (vibrations, inflections) of the spline's x–c polyline (DESIGN.md counts). O(n).
+/// Global (vibrations, inflections) of the spline's x–c polyline (docs/CONTRACT.md counts). O(n).
 pub fn counts(spline: &SplineFunction) -> (usize, usize) {
     let n = spline.x().len();
     local_counts(spline, 0, n.saturating_sub(1), &mut Vec::new())

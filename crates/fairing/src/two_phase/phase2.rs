@@ -74,32 +74,17 @@
 //! against 2133 with the full-pass guard). So a full pass never increases Infl_num but may
 //! increase Vib_num.
 //!
-//! Measured (`cargo run --release --example two_phase_runs [n] all [σ]`: y = sin(x/2) +
-//! N(0, σ²) at x = 0.1k, up to 50 full passes), inflections / vibrations / RMS distance to the
-//! clean sine:
-//!
-//! | σ, n | clean | noisy | paper (`max_run` 2) | `max_run` 64 | `max_run` 64, `max_move_factor` 0.2 | `max_run` 64, [`CountGuard::Off`](super::CountGuard::Off) |
-//! |---|---|---|---|---|---|---|
-//! | 0.01, 10^4 | 159 / 166 | 7953 / 8290 / 9.9e-3 | 2271 / 3684 / 6.5e-3 | 228 / 2544 / 1.1e-2 | 202 / 2420 / 7.7e-3 | 220 / 2590 / 3.1e-2 |
-//! | 0.01, 10^5 | 1591 / 1595 | 79536 / 83342 / 1.0e-2 | 23302 / 37028 / 6.6e-3 | **1909** / 24079 / 1.2e-2 | 1995 / 23751 / 7.5e-3 | 2093 / 25371 / 3.0e-2 |
-//! | 0.001, 10^4 | 159 / 166 | 7165 / 8290 / 9.9e-4 | 367 / 3380 / 8.9e-4 | 161 / 2878 / 1.2e-3 | 161 / 2882 / 9.8e-4 | 169 / 2694 / 1.0e-2 |
-//! | 0.001, 10^5 | 1591 / 1595 | 72301 / 83342 / 1.0e-3 | 3839 / 33662 / 9.5e-4 | **1611** / 26133 / 1.4e-3 | 1609 / 26137 / 1.2e-3 | 1635 / 26672 / 1.1e-2 |
-//!
-//! At σ = 0.01 the option leaves 1.2× the clean curve's inflections where the paper's rules
-//! leave 15× (the reference was a fifth of the noisy input's count); at σ = 0.001,
-//! 1.01×, and it leaves fewer vibrations too. The price is distance: with the default size
-//! guard (a move up to half a spacing) the points end about as far from the clean curve as the
-//! noise (RMS 1.2–1.4 σ) where the paper's rules end at 0.65–0.95 σ; a smaller size guard
-//! (`max_move_factor` 0.2) ends closer to the truth than the noisy data (0.75–0.98 σ) with
-//! about as many inflections at 10^4 and 10^5 points (at n = 2000, σ = 0.01: 49 against 33;
-//! clean 31). The option is meant for dense noisy data: on the sparse real curves of
-//! `examples/han_tables.rs` it removes more inflections than the paper's rules but moves the
-//! points much farther (UA(2)-180 upper: 1 inflection against 3, RMS distance to the
-//! database's smoothed twin 3.7e-3 against 5.3e-4, the input's 4.4e-4). Without the count
-//! guards the option ends 3–10× farther from the truth with about as many inflections.
+//! On dense noisy sines (`examples/two_phase_runs.rs`) the option leaves about the clean
+//! curve's inflection count where the paper's rules leave many times it, and fewer
+//! vibrations. The price is distance: with the default size guard the points end about as far
+//! from the clean curve as the noise, and a smaller one (`max_move_factor` 0.2) ends closer.
+//! It is meant for dense noisy data: on the sparse real curves of `examples/han_tables.rs` it
+//! moves the points much farther than the paper's rules. Without the count guards it ends
+//! several times farther from the truth with about as many inflections. The measured table
+//! is in `docs/experiments/code-notes.md`.
 //!
 //! Detection: a run is recognised at its first point, values with |c| ≤ 1e-12 · max|c| count
-//! as zero (DESIGN.md) and end a run without starting a case. The sweep visits i = 0 … n − 1
+//! as zero (docs/CONTRACT.md) and end a run without starting a case. The sweep visits i = 0 … n − 1
 //! once and continues after a case's run. Guards as in Phase 1 ([`TwoPhaseSettings`]): size of
 //! every move (including the neighbours' −λσ), local and pass count guards.
 
@@ -109,7 +94,7 @@ use super::phase1::{guarded_pass, Case, CaseKind, PassReport, Proposal};
 use super::TwoPhaseSettings;
 use crate::Result;
 
-/// The level below which a c value counts as zero: 1e-12 · max |c| (DESIGN.md). O(n).
+/// The level below which a c value counts as zero: 1e-12 · max |c| (docs/CONTRACT.md). O(n).
 pub fn zero_level(spline: &SplineFunction) -> f64 {
     1e-12 * spline.c().iter().fold(0.0f64, |m, v| m.max(v.abs()))
 }

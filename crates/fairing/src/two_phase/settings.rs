@@ -62,10 +62,8 @@ pub struct TwoPhaseSettings {
     /// by less than this fraction of their value before the pass (0: off, the default). The
     /// paper alternates the phases "iteratively" and names no stop; with λ < 1 cases never run
     /// out on noisy data, and late passes mostly shrink |e| of vibrations they do not remove.
-    /// Measured on the noisy sine of `examples/two_phase_runs.rs`, 0.005 against no stop
-    /// (inflections / vibrations, passes): n = 10^5, 23958 / 39201 after 15 passes against
-    /// 23302 / 37028 after 48 (a pass that applied nothing); n = 10^6, 239356 / 390392 after
-    /// 15 (5.8 s) against 233380 / 369009 after 50 (17.0 s).
+    /// On the noisy sine of `examples/two_phase_runs.rs` 0.005 stops after a third of the
+    /// passes, at a few per cent more sign changes than running on.
     pub min_gain: f64,
     /// Longest wrong-sign run of c fixed; > 2 turns on the long-run option (dense noisy data).
     ///
@@ -99,21 +97,11 @@ pub struct TwoPhaseSettings {
     /// As [`curve_end_runs`](Self::curve_end_runs), for a function y(x). Default on: dense
     /// noisy data need it (2·10^4 points of a noisy sine: the pre-pass leaves end runs of
     /// 500–650 points, and off, two-phase ends with 2 inflections where the clean curve has
-    /// 1; `two_phase_ends.rs`). Its cost, measured with the judge (`docs/experiments/two_phase_judge.md`,
-    /// the 18 function rows, seeds 1–8): it takes the true end run of every sine (y =
-    /// sin(x/2), its inflection at x = 6π eleven points from the end) for noise, leaving 2
-    /// inflections where the clean curve has 3 and lifting the tail by up to 0.017 (σ =
-    /// 0.01). Off, every sine keeps the clean curve's 3 inflections and ends nearer it (seed 1
-    /// 2/9/0.00317 → 3/4/0.0031 inflections / vibrations / RMS to the clean curve, seed 4
-    /// 2/24/0.00428 → 3/20/0.00337, seed 6 2/8/0.00304 → 3/4/0.00225), the NACA upper
-    /// surface seeds 1 and 4 gain an end inflection (0 → 1; their clean twin has 6) and come
-    /// nearer, UA(2)-180 upper and R140 upper 0 → 1. Turn it off for data with a real
-    /// inflection near an end and few points; no size of the run tells the true run from a
-    /// noisy one (measured, in the doc). A run whose absorption would fit the data worse is
-    /// refused by [`end_run_max_deviance`](Self::end_run_max_deviance): by default, which
-    /// keeps the true end runs of 7 of those 8 sines (all their runs cost more than half a
-    /// noise variance to absorb but seed 7's), so the cost above is paid on the sine seed 7
-    /// alone; the dense data's runs cost about nothing to absorb and are still taken.
+    /// 1; `two_phase_ends.rs`). Its cost is a true end run (a real inflection near an end)
+    /// taken for noise: no size of the run tells the true run from a noisy one. The absorptions
+    /// that would fit the data worse are refused by
+    /// [`end_run_max_deviance`](Self::end_run_max_deviance), so the cost is paid only where the
+    /// data cannot tell; turn it off for data with a real inflection near an end and few points.
     pub function_end_runs: bool,
     /// Functions: refuse an end-run move that raises the residual sum of squares against the data by more than this many noise variances (0: off).
     ///
@@ -130,28 +118,12 @@ pub struct TwoPhaseSettings {
     /// with σ̂ = 0 (a direct [`fair_function`](super::fair_function)); 0 is the earlier
     /// behaviour, as is [`TwoPhaseSettings::paper`] (which has no end-run case).
     ///
-    /// Default 0.5 (since 2026-12-05; 3.84 before, the 95 % quantile of χ² with one degree of
-    /// freedom): an end run is absorbed only where absorbing it fits the data about as well
-    /// as keeping it. Under 3.84 the test let through the true end runs of six of the
-    /// judge's eight sines (y = sin(x/2), whose third inflection, x = 6π, is eleven points
-    /// from the end; each run costs 1.9–3.7 σ̂² to absorb) and with them the clean curve's
-    /// third inflection, lifting the tail by up to 1.7 σ̂: at 3.84 the data cannot tell such
-    /// a run from noise, so the question is which mistake costs less, and measured, erasing
-    /// a true inflection does. Measured with the judge (`docs/experiments/two_phase_judge.md`, section
-    /// `end-run-max-deviance = 0.5`): the same 80 of 81 rows beat csaps; every sine of seeds
-    /// 1–8 but seed 7 (whose run costs −0.9 σ̂²: absorbing it fits the data better) keeps the
-    /// clean curve's 3 inflections and comes nearer it (seed 6 0.00289 → 0.00213), the NACA
-    /// upper surface seeds 1 and 8 keep an end inflection and come nearer (0.000457 →
-    /// 0.000387), R140 upper 0 → 1 (csaps 20) and nearer the UIUC smoothed twin (RMS 8.53e-5 →
-    /// 7.55e-5, `examples/han_tables.rs`). On 40 draws of the sine the clean curve's
-    /// inflection count is kept on 37 (was 23), geometric mean of our RMS to the clean curve
-    /// over csaps's at equal S_d 0.720 → 0.701, vibrations summed 316 → 251; the NACA upper
-    /// surface unchanged (0.548 → 0.547). Any bound from 0.01 to 0.5 gives those 40 sines
-    /// bit for bit; 1 leaves one more sine without its true inflection, 2 four more. The
-    /// dense sine's end runs (2·10^4 points, `two_phase_ends.rs`) cost about 0 and pass. The
-    /// cost, on the 70 planar lines of `data/` as functions: 5 change, and Block Island
-    /// waterline 27 in (18 sparse offsets) keeps two end inflections that csaps at the same
-    /// S_d does not have (0/2 → 2/2, csaps 0/2). 3.84 is one `--set` away.
+    /// Default 0.5 (3.84 is one `--set` away): an end run is absorbed only where absorbing it
+    /// fits the data about as well as keeping it. At 3.84 the data cannot tell a true end run
+    /// from noise, so the question is which mistake costs less, and with the judge
+    /// (`docs/experiments/two_phase_judge.md`, section `end-run-max-deviance = 0.5`) erasing a true
+    /// inflection does: at 0.5 the same rows beat csaps and more sines keep the clean curve's
+    /// inflections and come nearer it.
     pub end_run_max_deviance: f64,
     /// The data values y of the current run before the pre-pass (set by the strategy for a
     /// function; empty when unknown). Not a parameter.
@@ -201,20 +173,9 @@ pub struct TwoPhaseSettings {
     /// earlier rule (no cap), as is [`TwoPhaseSettings::paper`]; the cap is off when B is 0
     /// (a direct call of [`fair_function`](super::fair_function), which sees no raw data).
     ///
-    /// Default 1, measured against 0 (the judge `docs/experiments/two_phase_judge.md`, seeds 1–4, and
-    /// the default rows of `examples/han_tables.rs`): two-phase beats csaps at equal S_d on
-    /// 40 of the judge's 45 rows against 39, no row lost; the NACA upper surface seed 2 turns
-    /// (2/16 inflections/vibrations, RMS to the clean curve 1.14e-3 at S_d 0.045 → 6/22,
-    /// 2.5e-4 at S_d 0.013; csaps there 36/41, 6.4e-4), and no parametric row changes. On the
-    /// real curves UA(2)-180 lower keeps 2/8 and its RMS to the UIUC smoothed twin falls
-    /// 1.149e-3 → 7.45e-4 (largest move 4.5e-3 → 2.3e-3), FX 63-137 upper 3.38e-4 →
-    /// 3.24e-4 (vibrations 10 → 12); the cost is Gunnerus WL 3, 4/15 → 7/15 (its ripple
-    /// takes moves of up to 0.29, 26 B; csaps at the new S_d 7/24), and a dent in exact data
-    /// is filled only as far as the pre-pass fills it (B is the exact part's, far below the
-    /// dent: `two_phase_ends.rs`, the dent at a segment join). UA(2)-180 upper, R140,
-    /// SC(2)-0714 and Block Island are unchanged. 0.5 and 2 left UA(2)-180 lower 4
-    /// inflections (RMS 3.6e-4 and 1.2e-3); the cap in Phase 1 only, 1, lost the Gunnerus row
-    /// (5/17 against csaps's 4/24).
+    /// Default 1, chosen over 0 with the judge (`docs/experiments/two_phase_judge.md`): one more row beats
+    /// csaps at equal S_d, none is lost, and the leading edge above moves half as far; the
+    /// cost is a real hull line whose ripple takes larger moves and keeps more inflections.
     pub max_move_bound: f64,
     /// The data bound B of the current run (set by the strategy; not a parameter).
     #[serde(skip)]
@@ -234,23 +195,20 @@ pub struct TwoPhaseSettings {
     /// Not in the paper: within a pass, case detection reads |e_i| ≤ `detection_floor` ·
     /// max|e| (Phase 1) and |c_i| ≤ max(`detection_floor`, 1e-12) · max|c| (Phase 2) as zero:
     /// such a value starts and joins no case. 0 is the paper (Phase 1 reads only exact zeros
-    /// as zero; Phase 2 the DESIGN.md level 1e-12). The counts (DESIGN.md) are unchanged.
+    /// as zero; Phase 2 the docs/CONTRACT.md level 1e-12). The counts (docs/CONTRACT.md) are unchanged.
     ///
     /// With a floor the small cases that λ < 1 only shrinks stop being found, so a fairing of
     /// noise ends by "no case applies" instead of running `max_passes`; but it ends with more
-    /// sign changes. Measured (y = sin(x/2) + N(0, 0.01²), x = 0.1 k, n = 10^5; vibrations /
-    /// inflections, passes until no move): 0 → 36833 / 23372 after all 50 passes; 1e-4 →
-    /// 40065 / 24436, no move after ~27; 1e-3 → 42847 / 26862, ~20; 1e-2 → 49387 / 34432,
-    /// ~11. The default is 0 (the paper) because every floor tried leaves more inflections
-    /// than the paper's rules reach in 50 passes.
+    /// sign changes: on a noisy sine every floor tried left more inflections than the paper's
+    /// rules reach in 50 passes, so the default is 0 (the paper).
     pub detection_floor: f64,
     /// Remove the data's noise first: jump-lsq-gcv (jump least squares, λ by GCV), jump-lsq (λ by discrepancy), gcv (cubic smoothing spline, p by GCV) or off (the paper).
     ///
     /// Not in the paper: remove the data's noise before the phases ([`Denoise`];
     /// [`denoise`](super::denoise) says why and compares the smoothers). Applied once per
     /// stage (for arbitrary curves, to the whole curve before the first pass). Default
-    /// `jump-lsq-gcv`: with it two-phase beats csaps at equal S_d on 37 of the judge's 45 rows
-    /// (seeds 1–4), against 26 with `gcv`, the default before.
+    /// `jump-lsq-gcv`: with it two-phase beats csaps at equal S_d on more of the judge's rows
+    /// than with `gcv` or `jump-lsq` ([`denoise`](super::denoise)).
     pub denoise: Denoise,
     /// Arbitrary curves: the factor gamma >= 1 on the trace in the jump-lsq-gcv pre-pass's GCV (1: Craven and Wahba's GCV; more smooths more).
     ///
@@ -263,24 +221,15 @@ pub struct TwoPhaseSettings {
     /// [`function_gcv_gamma`](Self::function_gcv_gamma). No effect with the other pre-passes
     /// (the cubic fallback keeps its own GCV).
     ///
-    /// Default 1.4, measured against 1 with the judge (`docs/experiments/two_phase_judge.md`, the 24
-    /// parametric rows, seeds 1–4): two-phase beats csaps at equal S_d on all 24 against 20
-    /// (the arc seeds 1 and 2, the strophoid seed 2 and the strophoid loop seed 1 turn: RMS
-    /// to the clean curve 0.00594 / 0.00448 / 0.0192 / 0.0151 → 0.00506 / 0.00283 / 0.0156 /
-    /// 0.0126, csaps at the new S_d 0.00639 / 0.00433 / 0.0184 / 0.0128), no row lost;
-    /// inflections summed over the 24 rows 18 → 6, vibrations 415 → 368, the geometric mean
-    /// of our RMS over csaps's 0.73 → 0.67. 1.2 beats csaps on the same 24 (inflections 17,
-    /// vibrations 398, mean ratio 0.69), 1.1 on 22.
+    /// Default 1.4 (Kim and Gu's value): with the judge (`docs/experiments/two_phase_judge.md`) two-phase
+    /// then beats csaps at equal S_d on every parametric row, with fewer inflections and
+    /// vibrations than at 1.
     pub curve_gcv_gamma: f64,
     /// Functions: the factor gamma >= 1 on the trace in the jump-lsq-gcv pre-pass's GCV (1: Craven and Wahba's GCV).
     ///
     /// As [`curve_gcv_gamma`](Self::curve_gcv_gamma), for the pre-pass of a function segment
-    /// y(x) ([`denoise_by`](super::denoise_by)). Default 1 (the GCV as before), measured
-    /// with the judge (the 21 function rows, seeds 1–4): 1.2 and 1.4 turn the sine seed 4
-    /// (RMS to the clean curve 0.00428 → 0.00303 / 0.00301, csaps at the new S_d 0.00306) but
-    /// lose the Gunnerus waterline 3 (7 inflections at S_d 2.27 / 2.52, where csaps has 5 /
-    /// 4); 1.1 and 1.15 keep Gunnerus (7 against csaps's 7) and turn no row (sine seed 4
-    /// 0.00348 and 0.00341 against 0.00306 and 0.00307).
+    /// y(x) ([`denoise_by`](super::denoise_by)). Default 1: with the judge, no larger factor
+    /// tried turns a function row without losing another (a real waterline).
     pub function_gcv_gamma: f64,
     /// Functions: how the jump-lsq-gcv pre-pass chooses λ, auto (gml where its RMS displacement is within 1.2 σ̂, the noise estimate, else gcv), gcv (with function-gcv-gamma) or gml (generalised maximum likelihood, REML).
     ///
@@ -289,27 +238,17 @@ pub struct TwoPhaseSettings {
     /// GCV to undersmoothing); `auto` ([`PrepassRule::Auto`], jump-lsq's `auto` rule) keeps
     /// GML's fit where it moves the points by at most 1.2 times the data's noise estimate σ̂
     /// (RMS), and GCV's elsewhere, since GML assumes white noise on a smooth curve and
-    /// tabulated data break that model. Default `auto`, measured with the judge
-    /// (`docs/experiments/two_phase_judge.md`, the 33 function rows, seeds 1–8): `gcv` 31 beat csaps (the
-    /// sine seeds 4 and 8 miss on distance); `gml` turns the sine seed 4 but loses the real
-    /// SC(2)-0714 upper surface (2 inflections at 8× the S_d, where csaps has 0), smoothing the
-    /// real rows 2–8 times more; `auto` 32 (the sine seed 4 turns, 0.00334 → 0.00227 against
-    /// csaps's 0.00274; seed 8 comes nearer, 0.00288 → 0.00269, still a miss against 0.00251;
-    /// every real row kept: SC(2)-0714's GML fit moves it 25 σ̂, so GCV's is kept). On 40 draws
-    /// of the judge's sine, misses against csaps 9 → 3, the geometric mean of our RMS over
-    /// csaps's 0.863 → 0.791; on the wavier sin(2x) 1–2 % farther, no miss either way. No
-    /// effect with the other pre-passes, nor on bin means (beyond `function-prepass-points`:
-    /// GCV).
+    /// tabulated data break that model. Default `auto`: with the judge
+    /// (`docs/experiments/two_phase_judge.md`) it beats csaps on more function rows than `gcv` and keeps
+    /// the real row that `gml` alone loses. No effect with the other pre-passes, nor on bin
+    /// means (beyond `function-prepass-points`: GCV).
     pub function_prepass_rule: PrepassRule,
     /// Arbitrary curves: how the jump-lsq-gcv pre-pass chooses λ, gcv (with curve-gcv-gamma), gml (generalised maximum likelihood, REML) or auto (gml where its RMS displacement is within 1.2 σ̂, else gcv).
     ///
     /// As [`function_prepass_rule`](Self::function_prepass_rule), for the pre-pass of an
-    /// arbitrary curve. Default `gcv`: with `gml` all 48 parametric rows
-    /// (seeds 1–8) still beat csaps, none turned (they all pass with `gcv`), RMS to the clean
-    /// curve about the same (`docs/experiments/two_phase_judge.md`, `prepass-gml`); with `auto` too, 1–5 %
-    /// nearer the clean curves on most shapes (clothoid: our RMS over csaps's, geometric mean
-    /// over 8 seeds, 0.737 → 0.699), but the closed airfoil's inflections summed over the 8
-    /// seeds 20 → 28 (`function-prepass-rule = auto` in the doc).
+    /// arbitrary curve. Default `gcv`: with the judge (`docs/experiments/two_phase_judge.md`) `gml` and
+    /// `auto` beat csaps on the same parametric rows, `auto` a little nearer the clean curves,
+    /// but it leaves the closed airfoil more inflections.
     pub curve_prepass_rule: PrepassRule,
     /// Arbitrary open curves: the end conditions of the jump-lsq pre-pass's spline, runout (s''' = 0 on the end spans, the end curvature free) or natural (s'' = 0 at the ends).
     ///
@@ -317,33 +256,19 @@ pub struct TwoPhaseSettings {
     /// and of a closed curve cut at its corner ([`denoise_curve_by`](super::denoise_curve_by));
     /// functions always have the runout spline, the cubic fallback the natural one. Natural
     /// ends pull the fit's curvature to zero at each end, a bias wherever the curve is curved
-    /// there. Default `runout`, measured against `natural` with the judge
-    /// (`docs/experiments/two_phase_judge.md`, the 40 open and cornered closed parametric rows, seeds
-    /// 1–8): two-phase beats csaps at equal S_d on all 40 against 39 (the strophoid loop seed
-    /// 7 turns, 0.0113 → 0.00955 against csaps's 0.00956); nearer the clean curve on all 8
-    /// arcs (geometric mean of our RMS over csaps's 0.80 → 0.65), all 8 clothoids (0.82 →
-    /// 0.74) and 7 of 8 loops (0.89 → 0.86); the open strophoid and the closed airfoil about
-    /// the same (0.84 → 0.83, 0.49 → 0.49). The cost is vibrations, still a third to a half
-    /// of csaps's: summed over the 8 seeds 82 → 152 on the arc, 202 → 242 on the clothoid,
-    /// 84 → 149 on the strophoid, 66 → 114 on the loop (csaps 400–650 on each).
+    /// there. Default `runout`: with the judge (`docs/experiments/two_phase_judge.md`) it beats csaps on
+    /// one more row than `natural` and comes nearer the clean curve on the arcs, clothoids and
+    /// loops, at more vibrations (still a third to a half of csaps's).
     pub curve_ends: CurveEnds,
     /// Arbitrary curves: the difference order d of the jump-lsq pre-pass's penalty, 1 to 3, or auto (1, 2 or 3, whichever fits with the lowest GCV score).
     ///
     /// Not in the paper: jump-lsq's `difference-order` for the pre-pass of an arbitrary curve
     /// (open, closed, or closed cut at its corner) of at most 2000 points (beyond, and on bin
-    /// means, 1), as `function-difference-order` for a function. Default `auto`, measured
-    /// against 1 with the judge (`docs/experiments/two_phase_judge.md`, the 48 parametric rows, seeds
-    /// 1–8): all 48 still beat csaps at equal S_d, inflections 0 on every open row and the
-    /// closed airfoil's the same; GCV kept d = 1 on the strophoid, the ellipse, the closed
-    /// airfoil and 7 of 8 loops (byte for byte the same) and a higher order on the arcs and
-    /// clothoids, which come nearer their clean curve (geometric mean of our RMS over csaps's
-    /// 0.648 → 0.605 and 0.737 → 0.666; nearer on 7 of 8 arcs and 8 of 8 clothoids) at more
-    /// vibrations, summed over the 8 seeds 152 → 176 and 242 → 286 (csaps 425 and 656); the
-    /// one changed loop 3 % farther (0.0117 → 0.0121, csaps 0.0138). On the real closed
-    /// sections of `data/` only SC(2)-0714 changes (vibrations 53 → 59, 3 inflections as
-    /// before). On noisy arcs, circles and clothoids of 500 and 2000 points (σ = 0.01) it
-    /// changes no point, at 2–3× the time: two-phase on a 2000-point arc 0.1 → 0.4 s, a
-    /// closed circle 0.4 → 1.1 s; nothing beyond 2000 points.
+    /// means, 1), as `function-difference-order` for a function. Default `auto`: with the
+    /// judge (`docs/experiments/two_phase_judge.md`) every parametric row still beats csaps, GCV keeps
+    /// d = 1 on most shapes and takes a higher order on the arcs and clothoids, which come
+    /// nearer their clean curve at more vibrations. It costs 2–3× two-phase's time up to 2000
+    /// points, nothing beyond.
     #[serde(with = "crate::catalog::value::auto_count")]
     #[schemars(with = "crate::catalog::value::AutoCount")]
     pub curve_difference_order: Option<usize>,
@@ -355,36 +280,20 @@ pub struct TwoPhaseSettings {
     /// has the lowest GCV score (jump-lsq's `function-ends`, module `ends`: four GCV searches
     /// up to 2000 points; beyond, runout).
     ///
-    /// Default `auto`, measured against `runout` (the pre-pass before) with the judge
-    /// (`docs/experiments/two_phase_judge.md`, the 33 function rows, seeds 1–8): two-phase beats csaps at
-    /// equal S_d on 32 against 31 (the held-out sine seed 6 turns: RMS to the clean curve
-    /// 0.00304 → 0.00286, csaps 0.00288), none lost. The judge's sine starts at an
-    /// inflection; `auto` takes it natural there on 7 of 8 draws (natural at both ends on one)
-    /// and the sines come nearer their clean curve on 6 of 8 (0.00317 / 0.00266 → 0.00287 /
-    /// 0.00232 on seeds 1 and 3; seed 8 0.00283 → 0.00288, seed 5 unchanged); the dense sine
-    /// (2000 points) nearer on 6 of 8. The real airfoils take runout at the leading edge
-    /// (natural there scores 7–100 % worse) and natural at the trailing edge, the hull lines
-    /// natural at both ends; their counts stay or fall (UA(2)-180 upper 1/9 → 1/5, Block
-    /// Island WL 36 0/7 → 0/6). The NACA upper surface's pre-passes are within 1e-5 of the
-    /// runout ones, but the later passes of seeds 2 and 7 end farther (2.5e-4 → 3.4e-4,
-    /// 4.8e-4 → 5.7e-4, csaps 7.2e-4 and 1.0e-3). Beyond 2000 points `auto` is the runout
-    /// pair without a search, bit for bit the pre-pass before.
+    /// Default `auto`: with the judge (`docs/experiments/two_phase_judge.md`) it beats csaps on one more
+    /// function row than `runout`, none lost, and the sines come nearer their clean curve; the
+    /// real airfoils take runout at the leading edge and natural at the trailing edge. Beyond
+    /// 2000 points `auto` is the runout pair without a search.
     pub function_ends: FunctionEnds,
     /// Functions: the difference order d of the jump-lsq pre-pass's penalty, 1 to 3, or auto (1, 2 or 3, whichever fits with the lowest GCV score).
     ///
     /// Not in the paper: jump-lsq's `difference-order` for the pre-pass of a function segment
     /// of at most 2000 points (beyond, and on bin means, 1). `auto` fits d = 1, 2 and 3 by
     /// GCV and keeps the order of least score, then fits it with `function-prepass-rule`:
-    /// about 3.5× the pre-pass's time up to 2000 points (200 points 23 → 72 ms, 2000 points
-    /// 0.20 → 0.80 s, release), nothing beyond. Default `auto`, measured against 1 (the
-    /// pre-pass before) with the judge (`docs/experiments/two_phase_judge.md`, the 33 function rows, seeds
-    /// 1–8): the same 32 beat csaps at equal S_d and the same inflections; GCV took d = 3 on
-    /// 7 of the 8 sines (2 on seed 1) and on all 8 dense sines, and d = 1 on the 8 NACA upper
-    /// surfaces and 8 of the 9 real rows (2 on UA(2)-180 lower, whose counts stay 2/8), which
-    /// are therefore unchanged. The sines come nearer their clean curve: geometric mean of our
-    /// RMS over csaps's at the same S_d 0.802 → 0.726, the dense sines 0.650 → 0.546 (on 40
-    /// draws 0.791 → 0.720 and 0.671 → 0.559); the held-out sine seed 8 stays a miss
-    /// (0.00269 → 0.00261 against csaps's 0.00255). `1` is the pre-pass before, bit for bit.
+    /// about 3.5× the pre-pass's time up to 2000 points, nothing beyond. Default `auto`: with
+    /// the judge (`docs/experiments/two_phase_judge.md`) the same rows beat csaps as with 1, GCV takes
+    /// d = 1 on the airfoils and real rows (which are therefore unchanged) and a higher order
+    /// on the sines, which come nearer their clean curve.
     #[serde(with = "crate::catalog::value::auto_count")]
     #[schemars(with = "crate::catalog::value::AutoCount")]
     pub function_difference_order: Option<usize>,
@@ -395,17 +304,12 @@ pub struct TwoPhaseSettings {
     /// unit length, right where the sampling follows the detail (an airfoil's nose) and wrong
     /// where it does not; 0 is blind to the spacing. `auto` fits both (each with its own
     /// order where `function-difference-order` is `auto`) and keeps the lower GCV score; on
-    /// evenly spaced x it is 8 without a search. Its cost where it searches: two-phase on 200
-    /// unevenly spaced points 0.07 → 0.11 s, on 2000 0.88 → 1.40 s (release).
+    /// evenly spaced x it is 8 without a search; where it searches it costs about 1.6×
+    /// two-phase's time.
     ///
-    /// Default 8 (the pre-pass before), measured against `auto`
-    /// (`docs/experiments/two_phase_judge.md`): `auto` changes no synthetic row of the judge (the sines
-    /// are evenly spaced; GCV keeps 8 on every NACA upper surface, also on 36 draws with
-    /// other spacings) and brings 24 noisy sines sampled with spacings in a ratio of 2 nearer
-    /// their clean curve (geometric mean of our RMS over csaps's 0.698 → 0.637 at 200 points,
-    /// 0.856 → 0.763 at 1000), but of the real rows it changes only R140 upper, for the worse:
-    /// 1/7 → 1/9 inflections/vibrations and 7.6e-5 → 1.07e-4 from the database's smoothed
-    /// twin (csaps 1.26e-4 at that S_d), where GCV preferred 0 by 4 %.
+    /// Default 8: with the judge (`docs/experiments/two_phase_judge.md`) `auto` changes no synthetic row
+    /// and brings unevenly spaced noisy sines nearer their clean curve, but of the real rows
+    /// it changes only R140 upper, for the worse.
     #[serde(with = "crate::catalog::value::auto")]
     #[schemars(with = "crate::catalog::value::AutoNumber")]
     pub function_exponent: Option<f64>,
@@ -422,13 +326,8 @@ pub struct TwoPhaseSettings {
     /// this many if more, and one per point at most), read back at every x through the
     /// quintic spline through the fitted means. Default
     /// [`MAX_PREPASS_POINTS`](super::MAX_PREPASS_POINTS) = 2 000, so no function row of the
-    /// judge changes: on 2 500–3·10^4 noisy points of sin(kx) over [0, 20] (k = 0.5, 2, 8;
-    /// σ = 0.01 and 0.05) two-phase then ends with the clean curve's inflections, nearer it on
-    /// 17 of 18 size and noise pairs (up to 30 % at 3·10^4 points, 4 % farther on one) and with
-    /// the clean curve's vibrations or a few more, where one knot per point left 689–7 516 on 9
-    /// of the 18 pairs; on 10^6 points of sin(x/2) (σ = 0.01) the clean curve's 3 inflections
-    /// at RMS 5.0e-5, where one knot per point left 124 at 1.5e-4. 10^5, the limit before, is
-    /// one `--set` away (beyond it the read-back is now the quintic's).
+    /// judge changes; on larger noisy sines two-phase then ends with the clean curve's
+    /// inflections and nearer it, where one knot per point leaves thousands of vibrations.
     pub function_prepass_points: usize,
     /// Arbitrary curves: the most points the noise pre-pass fits with one knot per point; beyond, it fits the means of bins of consecutive points (at least 4).
     ///
@@ -436,13 +335,8 @@ pub struct TwoPhaseSettings {
     /// arbitrary curve ([`denoise_curve_by`](super::denoise_curve_by)); each point is read
     /// back at a parameter interpolated between its bin's centre and the next, so the points
     /// keep their order. Default [`MAX_CURVE_PREPASS_POINTS`](super::MAX_CURVE_PREPASS_POINTS)
-    /// = 2.5·10^4, lower than a function's: on a noisy arc (radius 2 over 270°, σ = 0.01 per
-    /// coordinate) two-phase ends with 0 inflections on 3·10^4–10^5 points where one knot per
-    /// point left 1–5, in a quarter of the time, and with 0 at RMS 8.2e-5 from the circle at
-    /// 3·10^5 points in 6.6 s, where one knot per point left 12 at 1.9e-4 in 71 s (10^6: 0 at
-    /// 5.8e-5 in 26 s, where it left 1 109 in 209 s); a closed noisy circle of 10^5 points
-    /// takes 2.6 s instead of 40 s, at RMS 1.6e-4 instead of 2.4e-4. 10^5, the limit before,
-    /// is one `--set` away.
+    /// = 2.5·10^4, lower than a function's: on noisy arcs and circles beyond it the bins end
+    /// with fewer inflections, nearer the clean curve, in a fraction of the time.
     pub curve_prepass_points: usize,
     /// Arbitrary curves: the pre-pass's points become the foot points of the data on its fitted curve (foot-point), after refits on those parameters (parameter-correction), or stay its values at the data's chord-length parameters (off).
     ///
@@ -452,14 +346,10 @@ pub struct TwoPhaseSettings {
     /// ([`foot_point`](super::foot_point) says how, and why the tangential part of the fit's
     /// move is lost displacement). Never farther from the data than the fit's value, so the
     /// allowed distances hold; kept points bit for bit. No effect on functions (y over fixed
-    /// x) or with `denoise` = `off`. Default `foot-point`: on the judge
-    /// (`docs/experiments/two_phase_judge.md`, seeds 1–4) it lowers S_d on all 24 parametric rows by
-    /// 1.0–6.0 % at about the same RMS to the clean curve (3.6 % lower to 0.7 % higher: the
-    /// points stay on the same curve), and two-phase beats csaps at equal S_d on 39 of 45
-    /// rows, against 38 with `off`
-    /// (the strophoid seed 2 turns) and 38 with `parameter-correction` (three refits on the
-    /// foot-point parameters: no nearer on the arc, 0.00487–0.00616 against 0.00493–0.00618,
-    /// and the strophoid seed 1 lost).
+    /// x) or with `denoise` = `off`. Default `foot-point`: with the judge
+    /// (`docs/experiments/two_phase_judge.md`) it lowers S_d on every parametric row at about the same RMS
+    /// to the clean curve (the points stay on the same curve), and beats csaps on one row more
+    /// than `off` or `parameter-correction`.
     pub project: Projection,
     /// Whether the noise pre-pass fits the end points of a function or an open curve too (free, the default) or keeps them (keep, the paper).
     ///
@@ -471,27 +361,12 @@ pub struct TwoPhaseSettings {
     /// points, `--clamp-ends g0`) stay bit for bit either way. Without a pre-pass (`denoise` =
     /// `off`) the ends never move. A closed curve has no ends.
     ///
-    /// Open arbitrary curves, measured with the judge (the 12 open parametric rows, seeds 1–4,
-    /// `project` = `foot-point`): with `free` the RMS to the clean curve is lower on 10 rows,
-    /// equal on one and higher on one (arc seeds 1–4 0.00618 / 0.00493 / 0.00393 / 0.00602 →
-    /// 0.00594 / 0.00448 / 0.00354 / 0.00438, clothoid seed 2 0.00402 → 0.00345, strophoid
-    /// seed 1 0.0227 → 0.0215; strophoid seed 2 0.0187 → 0.0192): the kept noisy end points
-    /// had dragged their neighbours (arc seed 4: the last 10 points 0.015 from the circle,
-    /// csaps's 0.0045). The arc seed 4 turns, the strophoid seed 2 is lost (0.0192 against
-    /// csaps's 0.0188); with both kinds free, 39 of the 45 rows are beaten, as with both kept.
-    ///
-    /// Functions:
-    /// measured with the judge (`docs/experiments/two_phase_judge.md`, the 21 function rows, seeds 1–4),
-    /// `free` beats csaps at equal S_d on 19 rows as `keep` does, but not the same ones (the
-    /// Gunnerus waterline 3 turns, 5 → 4 inflections against csaps's 4; the NACA upper surface
-    /// seed 2 is lost, S_d 0.029 → 0.045 and 2 inflections against csaps's 0 there); it is
-    /// nearer the clean curve on 10 of the 12 synthetic rows (sine seeds 1–4 0.00324 / 0.00407
-    /// / 0.00338 / 0.00474 → 0.00317 / 0.00344 / 0.00266 / 0.00428, NACA upper seeds 1, 3, 4
-    /// 0.00059 → 0.00046 / 0.00037 / 0.00046). Its cost: a noisy leading-edge end point of the
-    /// NACA upper surface (x = 0, where y(x) has a square-root tip a spline in x cannot follow)
-    /// ends 1.5–2.0e-3 from the truth on three seeds (σ = 3e-4; kept: within 7e-4), and on the
-    /// real airfoils, whose ends are exact by normalisation, the ends move by up to 3e-4 (keep
-    /// them with `--clamp-ends g0`).
+    /// With the judge (`docs/experiments/two_phase_judge.md`) `free` comes nearer the clean curve on most
+    /// open parametric and synthetic function rows (kept noisy end points drag their
+    /// neighbours) and beats csaps on as many rows as `keep`. Its cost is an end point where a
+    /// spline in x cannot follow the curve (an airfoil's square-root nose at x = 0), and real
+    /// data whose ends are exact by normalisation move by up to 3e-4 (keep them with
+    /// `--clamp-ends g0`).
     pub ends: Ends,
 }
 

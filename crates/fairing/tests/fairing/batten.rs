@@ -8,7 +8,7 @@ use fairing::strategies::batten::{
     okada_tangents,
 };
 use fairing::strategies::{Batten, BattenSettings, PositionUpdate};
-use fairing::{Constraints, FairingState, FairingStrategy, Pipeline, TerminationReason};
+use fairing::{Constraints, Error, FairingState, FairingStrategy, Pipeline, Refusal, TerminationReason};
 use proptest::prelude::*;
 
 /// A noisy spatial (or planar) arc: n points on a circle of radius 10, lifted in z for D = 3.
@@ -454,13 +454,30 @@ fn bad_inputs_are_errors() {
     assert!(chords(&[Vec2::new(0.0, 0.0), Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0)]).is_err());
     let p: Vec<Vec2> = (0..6).map(|i| Vec2::new(i as f64, (i as f64).sin())).collect();
     let mut closed = FairingState::new(p.clone(), Constraints::default(), true).unwrap();
-    assert!(Batten::new(BattenSettings::default()).init(&mut closed).is_err());
+    // Typed refusals a caller can match on: the closed curve, the parameter at fault.
+    let refusal = Batten::new(BattenSettings::default())
+        .init(&mut closed)
+        .unwrap_err();
+    assert!(
+        matches!(
+            refusal,
+            Error::Refused {
+                what: Refusal::Closed,
+                ..
+            }
+        ),
+        "{refusal:?}"
+    );
     for settings in [
         BattenSettings::default().with_tangent_direction(2, Vec2::zeros()),
         BattenSettings::default().with_tangent_direction(9, Vec2::new(1.0, 0.0)),
     ] {
         let mut state = FairingState::new(p.clone(), Constraints::default(), false).unwrap();
-        assert!(Batten::new(settings).init(&mut state).is_err());
+        let refusal = Batten::new(settings).init(&mut state).unwrap_err();
+        assert!(
+            matches!(&refusal, Error::BadValue { name, .. } if name == "tangent-directions"),
+            "{refusal:?}"
+        );
     }
     // tangents that do not fit the points: an error, not a panic
     let mut t = okada_tangents(&p, &[]).unwrap();

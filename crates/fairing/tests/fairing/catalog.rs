@@ -11,7 +11,7 @@ use fairing::{Constraints, Error};
 use fairness::FnCriterion;
 
 /// The UA(2)-180 upper surface (x increasing), from `data/`.
-pub fn ua2_180_upper() -> Vec<Vec2> {
+pub(crate) fn ua2_180_upper() -> Vec<Vec2> {
     let text = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/../../data/airfoil_ua2-180/ua2-180_upper.csv"

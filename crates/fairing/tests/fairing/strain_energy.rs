@@ -4,7 +4,7 @@
 use curve_repr::{Curve, HermiteSettings, HermiteSpline, Parametrization, Side, Vector};
 use fairing::strategies::strain_energy::{eq13, eq8, hermite_energy, jump, stiffness_diagonal};
 use fairing::strategies::{Mode, Replacement, StrainEnergy, StrainEnergySettings};
-use fairing::{Constraints, FairingState, FairingStrategy, Pipeline};
+use fairing::{Constraints, Error, FairingState, FairingStrategy, Pipeline, Refusal};
 use proptest::prelude::*;
 
 fn params<const D: usize>(p: &[Vector<D>], par: Parametrization) -> Vec<f64> {
@@ -466,7 +466,18 @@ fn bad_inputs_are_errors() {
     assert!(s.step(&mut state).is_err(), "step before init");
     let mut closed = FairingState::new(p, Constraints::default(), true).unwrap();
     let mut s = StrainEnergy::new(StrainEnergySettings::default());
-    assert!(s.init(&mut closed).is_err());
+    // A typed refusal a caller can match on, not a free-text failure.
+    let refusal = s.init(&mut closed).unwrap_err();
+    assert!(
+        matches!(
+            refusal,
+            Error::Refused {
+                what: Refusal::Closed,
+                ..
+            }
+        ),
+        "{refusal:?}"
+    );
 }
 
 /// §5 on random data: on a noisy arc with two adjacent points pushed out together, one

@@ -15,7 +15,7 @@ fn gaussian(seed: u64, n: usize) -> Vec<f64> {
     (0..n).map(|_| normal.sample(&mut rng)).collect()
 }
 
-/// (inflections, vibrations) of the parametric kind (DESIGN.md).
+/// (inflections, vibrations) of the parametric kind (docs/CONTRACT.md).
 fn counts(points: &[Vec2]) -> (usize, usize) {
     let s = fairness::summary::parametric(points).unwrap();
     (s.inflections.unwrap(), s.vibrations.unwrap())

@@ -132,7 +132,7 @@ fn an_end_run_longer_than_its_neighbour_is_no_case() {
     assert_eq!(detect_fine(&s, 0, 8), None);
 }
 
-/// Inflections of the planar polygon (DESIGN.md's parametric count) and where they are.
+/// Inflections of the planar polygon (docs/CONTRACT.md's parametric count) and where they are.
 fn inflections(points: &[Vec2]) -> usize {
     fairness::summary::parametric(points)
         .unwrap()

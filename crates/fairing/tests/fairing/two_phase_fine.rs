@@ -267,7 +267,7 @@ fn noisy(n: usize, amplitude: f64, seed: u64) -> (Vec<f64>, Vec<f64>) {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(48))]
     /// A full pass (coarse then fine) never increases Infl_num, nor Vib_num with the paper's
-    /// rules (DESIGN.md counts on a fresh solve); fixed points and the ends never move. With the
+    /// rules (docs/CONTRACT.md counts on a fresh solve); fixed points and the ends never move. With the
     /// long-run option the fine pass guards inflections only and may trade vibrations for
     /// them, so only Infl_num is asserted there.
     #[test]
@@ -364,7 +364,7 @@ fn long_runs_leave_fewer_inflections() {
 }
 
 /// The long-run option's full-pass guard: replayed pass by pass, no full pass raises
-/// Infl_num (DESIGN.md count on a fresh solve), and a pass whose unguarded coarse half would
+/// Infl_num (docs/CONTRACT.md count on a fresh solve), and a pass whose unguarded coarse half would
 /// (marked `reverted` on its coarse report) ends exactly where a coarse pass with the count
 /// guards on, then the fine pass, take the spline from the state before it (replayed on a
 /// copy, y compared bit for bit). The run below meets such a pass (the redo is exercised,
@@ -510,7 +510,7 @@ fn stall_stop_matches_its_definition() {
     }
 }
 
-/// `min_gain`: replayed pass by pass (DESIGN.md counts), every pass before the last removed
+/// `min_gain`: replayed pass by pass (docs/CONTRACT.md counts), every pass before the last removed
 /// at least `min_gain` of the sign changes it started with, and the last removed less.
 #[test]
 fn min_gain_stop_matches_its_definition() {

@@ -97,7 +97,7 @@ fn indicators(c: &mut Bench) {
 }
 
 /// The command's whole measuring path (`fair inspect`): build the spline through n points and
-/// compute every indicator and energy of DESIGN.md's summary. A noisy sine, so that the curve
+/// compute every indicator and energy of docs/CONTRACT.md's summary. A noisy sine, so that the curve
 /// has many inflections and vibrations, like measured data; the noise is a fixed fraction of
 /// the spacing h, so that every n sees pieces of the same shape (noise of fixed amplitude
 /// would make the curve rougher per piece as n grows, and the quadrature's work per piece

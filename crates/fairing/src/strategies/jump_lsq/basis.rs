@@ -91,39 +91,39 @@ pub(crate) struct Knots {
 
 impl Knots {
     /// Open knots t (at least 2, strictly increasing: the caller checks).
-    pub fn open(t: Vec<f64>) -> Self {
+    pub(super) fn open(t: Vec<f64>) -> Self {
         Knots { t, period: None }
     }
 
     /// Closed knots: `t` holds t_0 … t_n, t_n the period end (n + 1 values).
-    pub fn closed(mut t: Vec<f64>) -> Self {
+    pub(super) fn closed(mut t: Vec<f64>) -> Self {
         let end = t.pop();
         let period = end.zip(t.first()).map(|(e, s)| e - s);
         Knots { t, period }
     }
 
     /// The number of points n.
-    pub fn len(&self) -> usize {
+    pub(super) fn len(&self) -> usize {
         self.t.len()
     }
 
     /// The period T of closed knots (`None` when open).
-    pub fn period(&self) -> Option<f64> {
+    pub(super) fn period(&self) -> Option<f64> {
         self.period
     }
 
     /// Whether the knots are periodic.
-    pub fn is_closed(&self) -> bool {
+    pub(super) fn is_closed(&self) -> bool {
         self.period.is_some()
     }
 
     /// The parameters t_i.
-    pub fn values(&self) -> &[f64] {
+    pub(super) fn values(&self) -> &[f64] {
         &self.t
     }
 
     /// Knot u_j of the extended sequence (module docs).
-    pub fn knot(&self, j: isize) -> f64 {
+    pub(super) fn knot(&self, j: isize) -> f64 {
         let n = self.t.len() as isize;
         match self.period {
             None => self.t[j.clamp(0, n - 1) as usize],
@@ -135,7 +135,7 @@ impl Knots {
     }
 
     /// The number of spans: n − 1 open, n closed.
-    pub fn spans(&self) -> usize {
+    pub(super) fn spans(&self) -> usize {
         if self.is_closed() {
             self.t.len()
         } else {
@@ -144,13 +144,13 @@ impl Knots {
     }
 
     /// The length of span k.
-    pub fn spacing(&self, k: usize) -> f64 {
+    pub(super) fn spacing(&self, k: usize) -> f64 {
         let k = k as isize;
         self.knot(k + 1) - self.knot(k)
     }
 
     /// The window u_{k−2} … u_{k+3} of span k.
-    pub fn window(&self, k: usize) -> [f64; 6] {
+    pub(super) fn window(&self, k: usize) -> [f64; 6] {
         let k = k as isize;
         std::array::from_fn(|r| self.knot(k - 2 + r as isize))
     }

@@ -33,7 +33,7 @@ pub(crate) struct Profile {
 
 impl Profile {
     /// The profile whose row i starts at column `first[i]` (clamped to i).
-    pub fn new(mut first: Vec<usize>) -> Self {
+    pub(super) fn new(mut first: Vec<usize>) -> Self {
         let mut start = Vec::with_capacity(first.len() + 1);
         let mut offset = 0;
         start.push(0);
@@ -46,18 +46,18 @@ impl Profile {
     }
 
     /// The matrix size m.
-    pub fn size(&self) -> usize {
+    pub(super) fn size(&self) -> usize {
         self.first.len()
     }
 
     /// Number of stored entries (lower triangle with the diagonal).
-    pub fn stored(&self) -> usize {
+    pub(super) fn stored(&self) -> usize {
         self.start.last().copied().unwrap_or(0)
     }
 
     /// The first stored column of row i.
     #[cfg(test)]
-    pub fn first(&self, i: usize) -> usize {
+    pub(super) fn first(&self, i: usize) -> usize {
         self.first[i]
     }
 
@@ -67,24 +67,24 @@ impl Profile {
     }
 
     /// The storage index of entry (i, j), j ≤ i, if it lies inside the envelope.
-    pub fn index(&self, i: usize, j: usize) -> Option<usize> {
+    pub(super) fn index(&self, i: usize, j: usize) -> Option<usize> {
         let f = *self.first.get(i)?;
         (f <= j && j <= i).then(|| self.start[i] + (j - f))
     }
 
     /// Row i's first stored column and the storage index of that entry.
     #[inline]
-    pub fn row(&self, i: usize) -> (usize, usize) {
+    pub(super) fn row(&self, i: usize) -> (usize, usize) {
         (self.first[i], self.start[i])
     }
 
     /// A zero matrix of this profile.
-    pub fn zeros(&self) -> Vec<f64> {
+    pub(super) fn zeros(&self) -> Vec<f64> {
         vec![0.0; self.stored()]
     }
 
     /// out = A x for the symmetric matrix A with entries `values`. O(stored).
-    pub fn multiply<T: Field>(&self, values: &[f64], x: &[T], out: &mut [T]) {
+    pub(super) fn multiply<T: Field>(&self, values: &[f64], x: &[T], out: &mut [T]) {
         for o in out.iter_mut() {
             *o = *o * 0.0;
         }
@@ -151,13 +151,17 @@ impl<'p> Ldlt<'p> {
     /// v_j = A_ij − Σ_l v_l L_jl (l from max(first(i), first(j)) to j − 1), then
     /// L_ij = v_j / d_j and d_i = A_ii − Σ_j v_j L_ij (v_j = L_ij d_j, the entries of L D).
     #[cfg(test)]
-    pub fn factor(profile: &'p Profile, values: Vec<f64>, negative: &[bool]) -> Result<Self, PivotFailure> {
+    pub(super) fn factor(
+        profile: &'p Profile,
+        values: Vec<f64>,
+        negative: &[bool],
+    ) -> Result<Self, PivotFailure> {
         Self::factor_in(profile, values, negative, None)
     }
 
     /// [`factor`](Self::factor), returning the storage to `pool` when the factors (or a
     /// failed attempt) are dropped.
-    pub fn factor_in(
+    pub(super) fn factor_in(
         profile: &'p Profile,
         values: Vec<f64>,
         negative: &[bool],
@@ -234,7 +238,7 @@ impl<'p> Ldlt<'p> {
 
     /// Factors given directly: `values` holds L's strict lower part and D on the diagonal,
     /// on `profile`.
-    pub fn from_factors(profile: &'p Profile, values: Vec<f64>) -> Self {
+    pub(super) fn from_factors(profile: &'p Profile, values: Vec<f64>) -> Self {
         Ldlt {
             profile,
             values,
@@ -243,7 +247,7 @@ impl<'p> Ldlt<'p> {
     }
 
     /// Solves A x = `rhs` in place. O(m·b).
-    pub fn solve_in_place<T: Field>(&self, rhs: &mut [T]) {
+    pub(super) fn solve_in_place<T: Field>(&self, rhs: &mut [T]) {
         let p = self.profile;
         let m = p.size();
         // L z = b, row by row.
@@ -281,7 +285,7 @@ impl<'p> Ldlt<'p> {
     /// for i from the last row up. Every Z_kl needed has k, l ∈ S_i, and such a pair lies
     /// inside the envelope (first(max(k, l)) ≤ i < min(k, l)), so the recurrence never
     /// leaves it. O(m·b²) time, O(stored) memory.
-    pub fn selected_inverse(&self) -> Vec<f64> {
+    pub(super) fn selected_inverse(&self) -> Vec<f64> {
         let p = self.profile;
         let m = p.size();
         // Column structure S_i of the strict lower part, as lists of rows (CSC pattern).
@@ -329,7 +333,7 @@ impl<'p> Ldlt<'p> {
     }
 
     /// ln |det A| = Σ_i ln |d_i| (L is unit lower triangular). O(m).
-    pub fn log_abs_det(&self) -> f64 {
+    pub(super) fn log_abs_det(&self) -> f64 {
         (0..self.profile.size())
             .map(|i| self.values[self.profile.start[i + 1] - 1].abs().ln())
             .sum()
@@ -337,7 +341,7 @@ impl<'p> Ldlt<'p> {
 
     /// The pivots d_i.
     #[cfg(test)]
-    pub fn pivots(&self) -> Vec<f64> {
+    pub(super) fn pivots(&self) -> Vec<f64> {
         (0..self.profile.size())
             .map(|i| self.values[self.profile.start[i + 1] - 1])
             .collect()

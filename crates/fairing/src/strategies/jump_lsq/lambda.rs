@@ -341,7 +341,7 @@ pub(crate) struct GmlDimensions {
 
 impl GmlDimensions {
     /// The dimensions of `system` (see [`gml`] for the assumption on the constraints).
-    pub fn of<const D: usize>(system: &System<'_, D>) -> Self {
+    pub(super) fn of<const D: usize>(system: &System<'_, D>) -> Self {
         let n = system.space().len();
         let p = system.constraints().len().min(n);
         let m = system.space().penalty_nullity();

@@ -760,9 +760,10 @@ fn interpolant<const D: usize>(
 
 fn check_kind<const D: usize>(domain: CurveDomain, closed: bool) -> Result<()> {
     if domain == CurveDomain::Function && D < 2 {
-        return Err(crate::state::strategy_error(
+        return Err(Error::refused(
             NAME,
-            "a function y(x) needs points with at least 2 coordinates",
+            crate::Refusal::Dimension,
+            "needs points with at least 2 coordinates for a function y(x)",
         ));
     }
     if domain == CurveDomain::Function && closed {

@@ -33,7 +33,7 @@ pub(crate) struct GivensQr<const D: usize> {
 impl<const D: usize> GivensQr<D> {
     /// An empty factor for m unknowns whose rows reach at most `reach[j]` from leading
     /// column j (`reach[j] ≥ j`; the running maximum is taken here).
-    pub fn new(mut reach: Vec<usize>) -> Self {
+    pub(super) fn new(mut reach: Vec<usize>) -> Self {
         let m = reach.len();
         let mut start = Vec::with_capacity(m + 1);
         start.push(0);
@@ -56,7 +56,7 @@ impl<const D: usize> GivensQr<D> {
 
     /// Rotates the row with coefficients `entries` (column, value) and right side `rhs` into
     /// R. O(b²).
-    pub fn add_row(&mut self, entries: impl Iterator<Item = (usize, f64)> + Clone, rhs: Vector<D>) {
+    pub(super) fn add_row(&mut self, entries: impl Iterator<Item = (usize, f64)> + Clone, rhs: Vector<D>) {
         let Some(lead) = entries.clone().map(|(j, _)| j).min() else {
             return;
         };
@@ -72,7 +72,7 @@ impl<const D: usize> GivensQr<D> {
 
     /// [`add_row`](Self::add_row) for a row whose coefficients are those of the columns
     /// `lead`, `lead + 1`, … in order. O(b²).
-    pub fn add_contiguous(&mut self, lead: usize, coefficients: &[f64], rhs: Vector<D>) {
+    pub(super) fn add_contiguous(&mut self, lead: usize, coefficients: &[f64], rhs: Vector<D>) {
         if coefficients.is_empty() {
             return;
         }
@@ -124,14 +124,14 @@ impl<const D: usize> GivensQr<D> {
 
     /// The least-squares solution R⁻¹ Qᵀb. O(m·b). Fails on a zero or non-finite diagonal
     /// (a column no row reached).
-    pub fn solve(&self) -> Result<Vec<Vector<D>>, PivotFailure> {
+    pub(super) fn solve(&self) -> Result<Vec<Vector<D>>, PivotFailure> {
         let mut x = self.qtb.clone();
         self.back_substitute(&mut x)?;
         Ok(x)
     }
 
     /// ln det(RᵀR) = 2 Σ_j ln |R_jj|. O(m). Fails as [`solve`](Self::solve) does.
-    pub fn log_det_normal(&self) -> Result<f64, PivotFailure> {
+    pub(super) fn log_det_normal(&self) -> Result<f64, PivotFailure> {
         self.check()?;
         Ok((0..self.last.len())
             .map(|j| 2.0 * self.r[self.start[j]].abs().ln())
@@ -162,7 +162,7 @@ impl<const D: usize> GivensQr<D> {
     }
 
     /// Solves RᵀR z = `rhs` in place (the normal equations through the factor). O(m·b).
-    pub fn solve_normal(&self, rhs: &mut [Vector<D>]) -> Result<(), PivotFailure> {
+    pub(super) fn solve_normal(&self, rhs: &mut [Vector<D>]) -> Result<(), PivotFailure> {
         self.check()?;
         // Rᵀ w = rhs: forward, column j of R scattered after w_j is known.
         for j in 0..rhs.len() {
@@ -178,7 +178,7 @@ impl<const D: usize> GivensQr<D> {
 
     /// RᵀR as an LDLᵀ factorisation on an envelope (L = Rᵀ scaled by its diagonal, D the
     /// squared diagonal), for the selected inverse.
-    pub fn ldlt_profile(&self) -> Profile {
+    pub(super) fn ldlt_profile(&self) -> Profile {
         let m = self.last.len();
         let mut first = vec![0usize; m];
         let mut j = 0;
@@ -192,7 +192,7 @@ impl<const D: usize> GivensQr<D> {
     }
 
     /// The LDLᵀ factors of RᵀR on `profile` (from [`ldlt_profile`](Self::ldlt_profile)).
-    pub fn ldlt<'p>(&self, profile: &'p Profile) -> Result<Ldlt<'p>, PivotFailure> {
+    pub(super) fn ldlt<'p>(&self, profile: &'p Profile) -> Result<Ldlt<'p>, PivotFailure> {
         self.check()?;
         let m = self.last.len();
         let mut values = profile.zeros();

@@ -49,9 +49,9 @@ pub(crate) enum Ends {
 
 impl Ends {
     /// Parabolic runout at both ends (Han et al.'s spline function).
-    pub const RUNOUT: Ends = Ends::Open(End::Runout, End::Runout);
+    pub(super) const RUNOUT: Ends = Ends::Open(End::Runout, End::Runout);
     /// Natural at both ends (the parametric kind's spline).
-    pub const NATURAL: Ends = Ends::Open(End::Natural, End::Natural);
+    pub(super) const NATURAL: Ends = Ends::Open(End::Natural, End::Natural);
 }
 
 /// A linear form Σ_r c_r γ_{(start + r) mod m} over the unknowns γ (indices wrap only for
@@ -65,7 +65,7 @@ pub(crate) struct Form {
 
 impl Form {
     /// The form's (index, coefficient) pairs for m unknowns.
-    pub fn entries(&self, m: usize) -> impl Iterator<Item = (usize, f64)> + Clone + '_ {
+    pub(super) fn entries(&self, m: usize) -> impl Iterator<Item = (usize, f64)> + Clone + '_ {
         // start < m and len ≤ m, so one subtraction wraps an index (no division per entry).
         self.c[..self.len].iter().enumerate().map(move |(r, &c)| {
             let j = self.start + r;
@@ -74,7 +74,7 @@ impl Form {
     }
 
     /// Σ c_r x_{index}: the form applied to `x` (γ values).
-    pub fn apply<const D: usize>(&self, x: &[Vector<D>]) -> Vector<D> {
+    pub(super) fn apply<const D: usize>(&self, x: &[Vector<D>]) -> Vector<D> {
         let m = x.len();
         let mut acc = Vector::<D>::zeros();
         for (j, c) in self.entries(m) {
@@ -102,7 +102,7 @@ pub(crate) struct Penalty {
 
 impl Penalty {
     /// The penalty of Δ^d J alone (no end rows).
-    pub fn differences(order: usize, exponent: f64) -> Self {
+    pub(super) fn differences(order: usize, exponent: f64) -> Self {
         Penalty {
             order,
             exponent,
@@ -176,13 +176,13 @@ fn binomial_signs(order: usize) -> [f64; 4] {
 
 impl Space {
     /// The fewest points an open curve needs (the two end substitutions must not meet).
-    pub const MIN_OPEN: usize = 4;
+    pub(super) const MIN_OPEN: usize = 4;
     /// The fewest points a closed curve needs.
-    pub const MIN_CLOSED: usize = 4;
+    pub(super) const MIN_CLOSED: usize = 4;
 
     /// Builds the space on `knots` (strictly increasing; closed knots for `Ends::Periodic`).
     /// O(n).
-    pub fn new(knots: Knots, ends: Ends, penalty: Penalty) -> Result<Self, SpaceError> {
+    pub(super) fn new(knots: Knots, ends: Ends, penalty: Penalty) -> Result<Self, SpaceError> {
         let n = knots.len();
         let closed = ends == Ends::Periodic;
         let needed = if closed { Self::MIN_CLOSED } else { Self::MIN_OPEN };
@@ -254,17 +254,17 @@ impl Space {
     }
 
     /// The number of points n (= the number of unknowns γ).
-    pub fn len(&self) -> usize {
+    pub(super) fn len(&self) -> usize {
         self.knots.len()
     }
 
     /// Whether the curve is closed.
-    pub fn is_closed(&self) -> bool {
+    pub(super) fn is_closed(&self) -> bool {
         self.ends == Ends::Periodic
     }
 
     /// The knots.
-    pub fn knots(&self) -> &Knots {
+    pub(super) fn knots(&self) -> &Knots {
         &self.knots
     }
 
@@ -355,14 +355,14 @@ impl Space {
 
     /// The value s(t_k) at knot k.
     #[inline]
-    pub fn value_form(&self, k: usize) -> Form {
+    pub(super) fn value_form(&self, k: usize) -> Form {
         self.reduce(k as isize, &self.value[k])
     }
 
     /// The value s(t_k) at knot k for unknowns `gamma`: [`value_form`](Self::value_form)
     /// applied, without building the form away from an open curve's ends. O(1).
     #[inline]
-    pub fn value_of<const D: usize>(&self, k: usize, gamma: &[Vector<D>]) -> Vector<D> {
+    pub(super) fn value_of<const D: usize>(&self, k: usize, gamma: &[Vector<D>]) -> Vector<D> {
         if !self.is_closed() && k > 1 && k + 2 < self.len() {
             let c = &self.value[k];
             return gamma[k - 1] * c[0] + gamma[k] * c[1] + gamma[k + 1] * c[2];
@@ -372,7 +372,7 @@ impl Space {
 
     /// The derivative of `order` (1 or 2) at the start (`at_end` false) or end of an open
     /// curve.
-    pub fn end_derivative_form(&self, order: usize, at_end: bool) -> Form {
+    pub(super) fn end_derivative_form(&self, order: usize, at_end: bool) -> Form {
         if at_end {
             self.reduce(self.len() as isize - 2, &self.ders_end[order])
         } else {
@@ -387,7 +387,7 @@ impl Space {
     }
 
     /// The jump J_i = s‴(t_i+) − s‴(t_i−) at knot i (interior for open curves).
-    pub fn jump_form(&self, i: usize) -> Form {
+    pub(super) fn jump_form(&self, i: usize) -> Form {
         let i = i as isize;
         let (right, left) = (self.third_of(i), self.third_of(i - 1));
         let mut c = [0.0; 5];
@@ -399,7 +399,7 @@ impl Space {
     }
 
     /// The knots i that carry a jump: 1 … n − 2 open, 0 … n − 1 closed.
-    pub fn jump_knots(&self) -> std::ops::Range<usize> {
+    pub(super) fn jump_knots(&self) -> std::ops::Range<usize> {
         if self.is_closed() {
             0..self.len()
         } else {
@@ -428,7 +428,7 @@ impl Space {
 
     /// The number of penalty rows: the rows Δ^d J (n − 2 − d open, none if negative; n
     /// closed) and on open curves 2e end rows (e = `end_jumps`, at most n − 2).
-    pub fn penalty_rows(&self) -> usize {
+    pub(super) fn penalty_rows(&self) -> usize {
         self.difference_rows() + 2 * self.end_rows()
     }
 
@@ -443,7 +443,7 @@ impl Space {
     /// plus the cubic's (natural 2, runout 3). Closed curves: 1 (the constants: a periodic
     /// spline without jumps is one periodic cubic, and Δ^d J = 0 around the loop with
     /// Σ J_i = 0 leaves no jump).
-    pub fn penalty_nullity(&self) -> usize {
+    pub(super) fn penalty_nullity(&self) -> usize {
         let n = self.len();
         match self.ends {
             Ends::Periodic => 1,
@@ -461,7 +461,7 @@ impl Space {
     /// median spacing. An end row J_i is the row of order 0 at a = i, its weight ω_e h̄^a
     /// h_med⁶ over the two spans beside knot i (module docs of [`super`]).
     #[inline]
-    pub fn penalty_row(&self, row: usize) -> (Form, f64) {
+    pub(super) fn penalty_row(&self, row: usize) -> (Form, f64) {
         let e = self.end_rows();
         if e == 0 {
             return self.difference_row(row);
@@ -526,7 +526,7 @@ impl Space {
     /// The first and last unknown of [`value_form`](Self::value_form)`(k)`, without building
     /// it away from an open curve's ends (where it is γ_{k−1} … γ_{k+1}). O(1).
     #[inline]
-    pub fn value_extent(&self, k: usize) -> (usize, usize) {
+    pub(super) fn value_extent(&self, k: usize) -> (usize, usize) {
         if !self.is_closed() && k > 1 && k + 2 < self.len() {
             return (k - 1, k + 1);
         }
@@ -537,7 +537,7 @@ impl Space {
     /// The first and last unknown of [`penalty_row`](Self::penalty_row)`(row)`, without
     /// building it away from an open curve's ends (γ_{row−1} … γ_{row+3+d} there). O(1).
     #[inline]
-    pub fn penalty_extent(&self, row: usize) -> (usize, usize) {
+    pub(super) fn penalty_extent(&self, row: usize) -> (usize, usize) {
         let d = self.penalty.order;
         let e = self.end_rows();
         if !self.is_closed() && row >= e && row - e > 1 && row - e + 4 + d < self.len() {
@@ -578,7 +578,7 @@ impl Space {
     }
 
     /// Σ_rows weight · |row · γ|²: the penalty of the spline with unknowns `gamma`. O(n).
-    pub fn penalty_of<const D: usize>(&self, gamma: &[Vector<D>]) -> f64 {
+    pub(super) fn penalty_of<const D: usize>(&self, gamma: &[Vector<D>]) -> f64 {
         (0..self.penalty_rows())
             .map(|r| {
                 let (form, weight) = self.penalty_row(r);
@@ -589,7 +589,10 @@ impl Space {
 
     /// The unknowns of the interpolating spline through `values` (one per knot): the solve
     /// at λ = 0 without constraints. O(n).
-    pub fn interpolate<const D: usize>(&self, values: &[Vector<D>]) -> Result<Vec<Vector<D>>, PivotFailure> {
+    pub(super) fn interpolate<const D: usize>(
+        &self,
+        values: &[Vector<D>],
+    ) -> Result<Vec<Vector<D>>, PivotFailure> {
         let weights = vec![1.0; self.len()];
         // Without the penalty's rows the envelope is the data rows' narrow band (half-width
         // 2 inside instead of 4 + d): a third of the storage and of the factorisation's work.
@@ -682,7 +685,7 @@ impl<'s, const D: usize> System<'s, D> {
 
     /// Assembles the system: data `data[k]` with weight `weights[k]` > 0 at knot k, the
     /// penalty of `space`, and `constraints`. O(n).
-    pub fn new(
+    pub(super) fn new(
         space: &'s Space,
         data: &'s [Vector<D>],
         weights: &'s [f64],
@@ -891,7 +894,7 @@ impl<'s, const D: usize> System<'s, D> {
     /// The largest ratio B_jj / A_jj over the unknowns with A_jj > 0: how much a given λ lets
     /// the penalty outweigh the data locally (λ times this is the stiffness that decides the
     /// solver, [`DIRECT_LIMIT`]).
-    pub fn stiffness(&self) -> f64 {
+    pub(super) fn stiffness(&self) -> f64 {
         self.stiffness
     }
 
@@ -900,7 +903,7 @@ impl<'s, const D: usize> System<'s, D> {
     /// (e.g. every point fixed and an end slope: consistent, but one row too many), which the
     /// weighted rows of the QR solve as a least-squares problem ([`holds`](Self::holds) then
     /// tells a consistent set from a contradictory one). O(n).
-    pub fn solve(&self, lambda: f64) -> Result<Solution<'_, D>, PivotFailure> {
+    pub(super) fn solve(&self, lambda: f64) -> Result<Solution<'_, D>, PivotFailure> {
         if lambda * self.stiffness <= DIRECT_LIMIT {
             let kkt = self.kkt();
             let mut values = self.pool.take();
@@ -1104,7 +1107,7 @@ impl<'s, const D: usize> System<'s, D> {
     /// constraint rows' weights Ω (which depend on λ), whose determinant is
     /// det(ΩCCᵀΩ) · det(ZᵀHZ) to leading order in the weights (1e8, relative error about
     /// 1e-16): the weights' 2 Σ ln ω_c are taken off to return the same quantity. O(n).
-    pub fn log_det(&self, solution: &Solution<'_, D>, lambda: f64) -> Result<f64, PivotFailure> {
+    pub(super) fn log_det(&self, solution: &Solution<'_, D>, lambda: f64) -> Result<f64, PivotFailure> {
         match &solution.factor {
             Factor::Kkt { ldlt, .. } => Ok(ldlt.log_abs_det()),
             Factor::Qr(qr) => {
@@ -1117,19 +1120,19 @@ impl<'s, const D: usize> System<'s, D> {
     }
 
     /// The space.
-    pub fn space(&self) -> &Space {
+    pub(super) fn space(&self) -> &Space {
         self.space
     }
 
     /// The equality constraints.
-    pub fn constraints(&self) -> &[Constraint<D>] {
+    pub(super) fn constraints(&self) -> &[Constraint<D>] {
         &self.constraints
     }
 
     /// Whether `gamma` satisfies `constraints` to 1e-9 of the data's scale (a solve of
     /// contradictory constraints leaves them unmet in the QR path, whose constraint rows are
     /// weighted). O(constraints).
-    pub fn holds(&self, gamma: &[Vector<D>], constraints: &[Constraint<D>]) -> bool {
+    pub(super) fn holds(&self, gamma: &[Vector<D>], constraints: &[Constraint<D>]) -> bool {
         let scale = self
             .data
             .iter()
@@ -1143,7 +1146,7 @@ impl<'s, const D: usize> System<'s, D> {
     }
 
     /// The values of the spline at the knots for unknowns `gamma`. O(n).
-    pub fn values(&self, gamma: &[Vector<D>]) -> Vec<Vector<D>> {
+    pub(super) fn values(&self, gamma: &[Vector<D>]) -> Vec<Vector<D>> {
         (0..self.space.len())
             .map(|k| self.space.value_of(k, gamma))
             .collect()
@@ -1151,13 +1154,16 @@ impl<'s, const D: usize> System<'s, D> {
 
     /// The spline's value at knot k for unknowns `gamma`. O(1).
     #[inline]
-    pub fn value_at(&self, k: usize, gamma: &[Vector<D>]) -> Vector<D> {
+    pub(super) fn value_at(&self, k: usize, gamma: &[Vector<D>]) -> Vector<D> {
         self.space.value_of(k, gamma)
     }
 
     /// dγ/dλ at a solution: K z = [−Bγ; 0] (the constraints' targets do not depend on λ;
     /// in the QR path RᵀR z = −Bγ, the constraints held by their weights). O(n).
-    pub fn gamma_derivative(&self, solution: &Solution<'_, D>) -> Result<Vec<Vector<D>>, PivotFailure> {
+    pub(super) fn gamma_derivative(
+        &self,
+        solution: &Solution<'_, D>,
+    ) -> Result<Vec<Vector<D>>, PivotFailure> {
         let m = self.space.len();
         match &solution.factor {
             Factor::Kkt { ldlt, x } => {
@@ -1201,12 +1207,12 @@ impl<'s, const D: usize> System<'s, D> {
     }
 
     /// The points whose data count (no value constraint on them).
-    pub fn counted(&self) -> &[bool] {
+    pub(super) fn counted(&self) -> &[bool] {
         &self.counted
     }
 
     /// The data.
-    pub fn data(&self) -> &[Vector<D>] {
+    pub(super) fn data(&self) -> &[Vector<D>] {
         self.data
     }
 
@@ -1214,7 +1220,7 @@ impl<'s, const D: usize> System<'s, D> {
     /// Σ_k w_k value_kᵀ Z value_k with Z the unknowns' block of K(λ)⁻¹, read from the selected
     /// inverse. (A value-constrained point would add 0: Z annihilates the constraints' rows.)
     /// O(n).
-    pub fn influence_trace(&self, solution: &Solution<'_, D>) -> Result<f64, PivotFailure> {
+    pub(super) fn influence_trace(&self, solution: &Solution<'_, D>) -> Result<f64, PivotFailure> {
         let closed = self.space.is_closed();
         let m = self.space.len();
         let qr_profile;

@@ -31,7 +31,7 @@ pub(crate) struct Band {
 
 impl Band {
     /// A zero band of size m.
-    pub fn zeros(m: usize) -> Self {
+    pub(super) fn zeros(m: usize) -> Self {
         Band {
             diag: vec![0.0; m],
             first: vec![0.0; m.saturating_sub(1)],
@@ -41,7 +41,7 @@ impl Band {
 
     /// Σ_ij Z_ij B_ji for two symmetric pentadiagonal matrices given by their bands: the trace
     /// of Z·B, which only sees Z inside B's band. O(m).
-    pub fn trace_product(&self, other: &Band) -> f64 {
+    pub(super) fn trace_product(&self, other: &Band) -> f64 {
         let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
         dot(&self.diag, &other.diag)
             + 2.0 * dot(&self.first, &other.first)
@@ -56,7 +56,7 @@ impl Ldlt {
     /// d_i = a_i − l1_{i−1}² d_{i−1} − l2_{i−2}² d_{i−2},
     /// l1_i = (b_i − l1_{i−1} l2_{i−1} d_{i−1}) / d_i, l2_i = c_i / d_i
     /// (the entries (i,i), (i+1,i), (i+2,i) of L D Lᵀ equated to A's).
-    pub fn factor(band: &Band) -> Option<Self> {
+    pub(super) fn factor(band: &Band) -> Option<Self> {
         let m = band.diag.len();
         let mut d = vec![0.0; m];
         let mut l1 = vec![0.0; m.saturating_sub(1)];
@@ -88,7 +88,7 @@ impl Ldlt {
     }
 
     /// Solves A x = `rhs` in place (forward, diagonal, backward substitution). O(m).
-    pub fn solve_in_place<T: Field>(&self, rhs: &mut [T]) {
+    pub(super) fn solve_in_place<T: Field>(&self, rhs: &mut [T]) {
         let m = self.d.len().min(rhs.len());
         for i in 1..m {
             let mut v = rhs[i] - rhs[i - 1] * self.l1[i - 1];
@@ -120,7 +120,7 @@ impl Ldlt {
     /// Z[i][i+1] = −l1_i Z[i+1][i+1] − l2_i Z[i+1][i+2],
     /// Z[i][i]   = 1/d_i − l1_i Z[i][i+1] − l2_i Z[i][i+2].
     /// Every term lies inside the band, so the cost is O(m).
-    pub fn inverse_band(&self) -> Band {
+    pub(super) fn inverse_band(&self) -> Band {
         let m = self.d.len();
         let mut z = Band::zeros(m);
         for i in (0..m).rev() {

@@ -12,7 +12,11 @@ use crate::{Constraints, Pipeline, Result};
 /// (j = 0..n) when it is open in u. A boundary curve that runs along a closed direction is a
 /// closed curve, which the curve method does not fair: it is left out, and so is a seam (a
 /// closed direction has no boundary there).
-pub fn boundary_curves(u_count: usize, v_count: usize, closed: (bool, bool)) -> Vec<Vec<(usize, usize)>> {
+pub(crate) fn boundary_curves(
+    u_count: usize,
+    v_count: usize,
+    closed: (bool, bool),
+) -> Vec<Vec<(usize, usize)>> {
     let along_u = |j: usize| (0..u_count).map(|i| (i, j)).collect::<Vec<_>>();
     let along_v = |i: usize| (0..v_count).map(|j| (i, j)).collect::<Vec<_>>();
     if closed.0 || closed.1 {
@@ -29,7 +33,7 @@ pub fn boundary_curves(u_count: usize, v_count: usize, closed: (bool, bool)) -> 
 /// curve method never moves) stay put, and no point moves farther than `max_distance`.
 /// A boundary curve with two equal consecutive points (a degenerate edge, a pole) is left
 /// as it is. Returns the moves made and the steps taken. O(perimeter) per step.
-pub fn fair_boundary(
+pub(crate) fn fair_boundary(
     points: &mut [Vec3],
     u_count: usize,
     v_count: usize,

@@ -39,7 +39,7 @@ use super::network::{Network, Stiffness};
 pub type Group = Vec<(usize, usize)>;
 
 /// Whether every node of `group` is interior and the group is one, two or four nodes.
-pub fn is_valid_group(network: &Network, group: &[(usize, usize)]) -> bool {
+pub(crate) fn is_valid_group(network: &Network, group: &[(usize, usize)]) -> bool {
     !group.is_empty() && group.len() <= 4 && group.iter().all(|&(i, j)| network.is_interior(i, j))
 }
 
@@ -55,7 +55,7 @@ fn neighbours(stiffness: &Stiffness, k: usize) -> (usize, usize) {
 }
 
 /// α_ij of Eq. 20.
-pub fn alpha(network: &Network, i: usize, j: usize) -> Vec3 {
+pub(crate) fn alpha(network: &Network, i: usize, j: usize) -> Vec3 {
     let s = network.u_stiffness();
     let (a, b) = reciprocal_steps(s, i);
     let (before, after) = neighbours(s, i);
@@ -65,7 +65,7 @@ pub fn alpha(network: &Network, i: usize, j: usize) -> Vec3 {
 }
 
 /// β_ij of Eq. 20 (M^v throughout, papers/README.md).
-pub fn beta(network: &Network, i: usize, j: usize) -> Vec3 {
+pub(crate) fn beta(network: &Network, i: usize, j: usize) -> Vec3 {
     let s = network.v_stiffness();
     let (a, b) = reciprocal_steps(s, j);
     let (before, after) = neighbours(s, j);
@@ -75,7 +75,7 @@ pub fn beta(network: &Network, i: usize, j: usize) -> Vec3 {
 }
 
 /// τ_ij of Eq. 20.
-pub fn tau(network: &Network, i: usize, j: usize) -> f64 {
+pub(crate) fn tau(network: &Network, i: usize, j: usize) -> f64 {
     let (a, b) = reciprocal_steps(network.u_stiffness(), i);
     let (c, d) = reciprocal_steps(network.v_stiffness(), j);
     2.0 * (a.powi(3) + b.powi(3) + c.powi(3) + d.powi(3))
@@ -84,7 +84,7 @@ pub fn tau(network: &Network, i: usize, j: usize) -> f64 {
 /// Eq. 20 / 23 / 25: the minimiser of the group's network-curve energy (Eq. 18 / 22 / 24)
 /// with the tangents held, for a valid group (see [`is_valid_group`]); `None` for an invalid
 /// group or a singular system. O(1).
-pub fn fixed_tangent_targets(network: &Network, group: &[(usize, usize)]) -> Option<Vec<Vec3>> {
+pub(crate) fn fixed_tangent_targets(network: &Network, group: &[(usize, usize)]) -> Option<Vec<Vec3>> {
     if !is_valid_group(network, group) {
         return None;
     }
@@ -118,7 +118,7 @@ pub fn fixed_tangent_targets(network: &Network, group: &[(usize, usize)]) -> Opt
 /// The limit system (Eq. 21 for one point, its analogue for two and four): the positions at
 /// which J^u + J^v vanishes at every node of the group with the tangents re-solved. `None`
 /// for an invalid group or a singular system. O(1).
-pub fn limit_targets(network: &Network, group: &[(usize, usize)]) -> Option<Vec<Vec3>> {
+pub(crate) fn limit_targets(network: &Network, group: &[(usize, usize)]) -> Option<Vec<Vec3>> {
     if !is_valid_group(network, group) {
         return None;
     }
@@ -148,7 +148,7 @@ pub fn limit_targets(network: &Network, group: &[(usize, usize)]) -> Option<Vec<
 
 /// Eq. 21 for one point, P̄ = P − (J^u + J^v)/(K_u[i,i] + K_v[j,j]): [`limit_targets`] of the
 /// group `[(i, j)]` without its general solve. `None` for a node that is not interior. O(1).
-pub fn limit_target(network: &Network, i: usize, j: usize) -> Option<Vec3> {
+pub(crate) fn limit_target(network: &Network, i: usize, j: usize) -> Option<Vec3> {
     if !network.is_interior(i, j) {
         return None;
     }

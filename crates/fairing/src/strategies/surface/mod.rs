@@ -13,29 +13,21 @@
 //!   `radius_scale` · |P̄_ij − P_ij| (P̄ from Eq. 21 on the surface after step 2.1); then every
 //!   step fairs every interior point once, the largest z_ij (Eq. 26) first, each kept in its
 //!   sphere; the surface is rebuilt (2.5) and the run stops when the network strain energy
-//!   changes by at most `tolerance` × its value in one step (2.6). The order of work
-//!   ([`SweepOrder`]) is by default the paper's: z_ij at the step's start, sorted once per
-//!   step (O(m·n log(m·n)), against the step's own O(m·n) moves of O(window) each). The
-//!   other order, `order = queue`, takes the point of largest *current* z_ij off an indexed
-//!   heap whose keys are raised in place as moves raise them (exactly the nodes a move
-//!   changes are looked at; a pop is what a full rescan of the current z would choose). It
-//!   was measured against the sort on the surface table's nets and lost: equal or worse
-//!   largest z_ij at the end (twisted strip 0.0353 against 0.0231, noisy 100 × 100 grid 35.1
-//!   against 27.9; equal on the teapot, hull and panel), and about three times the CPU per
-//!   step (the heap's pops and re-keys miss the cache where the sort reads an array); on the
-//!   noisy 200 × 200 grid it reaches a lower z (27.7 against 35.1, where the sort's run is
-//!   stopped by the max-z rule) but takes 116 steps to converge against 16. The default,
-//!   `order = tiles` (`tiles`), is the paper's sort inside 64 × 64 tiles of the grid, the
+//!   changes by at most `tolerance` × its value in one step (2.6). The order of work is a
+//!   [`SweepOrder`]. `order = sort` is the paper's: z_ij at the step's start, sorted once per
+//!   step (O(m·n log(m·n)), against the step's own O(m·n) moves of O(window) each).
+//!   `order = queue` takes the point of largest *current* z_ij off an indexed heap whose keys
+//!   are raised in place as moves raise them (exactly the nodes a move changes are looked at;
+//!   a pop is what a full rescan of the current z would choose); on the surface table's nets
+//!   it ends with an equal or larger largest z_ij than the sort, at about three times the
+//!   CPU per step (the heap's pops and re-keys miss the cache where the sort reads an array).
+//!   The default, `order = tiles`, is the paper's sort inside 64 × 64 tiles of the grid, the
 //!   tiles taken by their largest z: a move changes only its own windows, so far-apart moves
 //!   do not see each other's order, and a tile's moves stay in the processor's cache where
 //!   the global order scatters them over a grid that outgrew it. On a net of at most 64
 //!   nodes each way it is the paper's order bit for bit (every net of the surface table but
-//!   the grids); on the noisy 400 × 400 grid it ends lower than the sort on every measure
-//!   (largest z 29.70 against 30.02, energy 97.02 against 97.06, RMS to the clean surface
-//!   1.235e-3 against 1.236e-3, both 125 steps) in 0.59× the time, on the 200 × 200 grid
-//!   at a lower energy (74.8 against 84.6) and RMS (2.12e-3 against 2.20e-3) with a largest
-//!   z 1.5 % higher (35.6 against 35.1). `order = sort` is the paper's order on any net.
-//!   Kjellander, which moves one point per step, takes its worst point off a lazy queue.
+//!   the grids); on the large noisy grids it ends at the sort's measures or lower in less
+//!   time. Kjellander, which moves one point per step, takes its worst point off a lazy queue.
 //! - **Interactive** (§4.4, algorithm 1): the user's bad points are sorted by z_ij and grouped
 //!   as step 1.3 says (the next two adjacent: a pair, Eq. 23; diagonal: the 2×2 block they
 //!   span, Eq. 25; else one point, Eq. 20); one step fairs every group once; stop on the
@@ -90,153 +82,34 @@
 //!   (~45 nodes) set by the decay of the spline's response (0.27 per knot) and its 1e-13
 //!   trim, not by m or n.
 //! - *O(m·n) per step, that is O(1) per point moved:* the order (z of every candidate, read
-//!   in O(1) each, and a radix sort of each 64 × 64 tile's, O(m·n), `radix`, `tiles`; the comparison sort it replaced,
-//!   O(m·n log(m·n)), was the only super-linear term, 7 % of the instructions of four steps
-//!   at 400 × 400) and the judgement: chord-length knots from the moved points, the
-//!   network rebuilt over them (one spline solve per grid line, the unit responses of the
-//!   two knot vectors, O((m + n) · window)), its energy and largest z, in the storage of the
-//!   step before (a fresh grid-sized array is fresh pages, a fault per 4 KB). The
-//!   knot refresh cannot be local: a move of P_ij changes only the averaged knot steps next
-//!   to i and j, but every u-line shares the u knots, so the responses, tangents and jumps
-//!   of all n + 1 u-lines change near i (O(n · window) a move, against O(window) for the
-//!   move itself); one full refresh per step is the cheaper schedule. The max-z and energy
-//!   rules judge the whole surface over the refreshed knots, which a local measure cannot
-//!   replace either.
+//!   in O(1) each, and a radix sort of each 64 × 64 tile's, O(m·n), `radix`, `tiles`) and the
+//!   judgement: chord-length knots from the moved points, the network rebuilt over them (one
+//!   spline solve per grid line, the unit responses of the two knot vectors,
+//!   O((m + n) · window)), its energy and largest z, in the storage of the step before (a
+//!   fresh grid-sized array is fresh pages, a fault per 4 KB). The knot refresh cannot be
+//!   local: a move of P_ij changes only the averaged knot steps next to i and j, but every
+//!   u-line shares the u knots, so the responses, tangents and jumps of all n + 1 u-lines
+//!   change near i (O(n · window) a move, against O(window) for the move itself); one full
+//!   refresh per step is the cheaper schedule. The max-z and energy rules judge the whole
+//!   surface over the refreshed knots, which a local measure cannot replace either.
 //! - *Per grid line, not per point (so a small grid pays more per point):* the unit
-//!   responses, O((m + n) · window) per step (they were O(m² + n²), quadratic on a long
-//!   strip: a 10 × 20 000 strip's two steps took 10.1 s, now 0.86 s), and once per run the
-//!   boundary fairing of step 2.1, the curve method on the four boundary curves to its own
-//!   convergence (O(perimeter) per curve step, some 540 steps at 50 × 50). In the
-//!   `surface_step` bench (4 steps, the whole run) at 50 × 50 the boundary fairing was 28 %
-//!   of the instructions (callgrind) and the unit responses 13 %; at 400 × 400, 3.3 % and
-//!   3.6 %. Per point moved that was 3 200 and 1 500 instructions at 50 × 50 against 260 and
-//!   280 at 400 × 400, while the rest cost 6 600 against 7 400: these two terms were the
-//!   whole difference in instructions between the sizes. Both now run on the spline's
-//!   windowed update without allocating (its storage kept by the spline, one chord slope per
-//!   row), and the curve method refreshes only the rows the update re-solved, computes each
-//!   segment's C‴ once and pushes a z onto its heap only when it changed (same results bit
-//!   for bit): at 50 × 50 the boundary fairing is 20 % of the instructions (1 840 per point
-//!   moved) and the unit responses 12 % (1 140), the rest 6 350: 373 M instructions for
-//!   four such runs against 451 M. Since then the unit responses no longer move the line
-//!   back (the spline's trial move, `HermiteSpline::unit_move_tangents`, builds a unit
-//!   move's window rows from the knots), the windowed solves build their rows in one loop
-//!   that carries the knot step and chord slope, the window's decay bounds are measured
-//!   once per knot vector, and an open net's input surface is built once (same results bit
-//!   for bit): per point moved as above (callgrind, 4 steps), 8 560 instructions at
-//!   50 × 50 (the boundary fairing 1 620, the unit responses 900, the rest 6 030) against
-//!   9 370, 7 210 at 200 × 200 against 7 750, 7 100 at 400 × 400 against 7 510. The small
-//!   end still executed 1.19× the instructions per point of 200 × 200 (1.21× before): the
-//!   cuts in the rows and the surface build are cuts at every size.
-//!
-//!   The next round measured with `examples/surface_cost.rs` (the bench's `tiles` run: 4
-//!   steps and the boundary fairing, on its noisy net), callgrind collecting inside
-//!   `SurfaceFairing::run` only, instructions / (4 · N²). Before: 8 450 / 7 610 / 7 030 per
-//!   point moved at 50² / 100² / 200² (the boundary fairing 1 610 / 770 / 290, the unit
-//!   responses 905 / 560 / 307); after: 7 300 / 6 970 / 6 680 (the boundary fairing
-//!   1 000 / 480 / 181, the unit responses 696 / 428 / 234), so 50 × 50 executes 1.09× the
-//!   instructions per point of 200 × 200 (1.20× before); at 400² 6 620 after, ~6 860
-//!   before (cachegrind's count of the whole program less the net's construction), and the
-//!   D1 misses of the whole 400² program 81.5 M against 82.1 M. A boundary curve step (544 of them
-//!   at 50 × 50, 1 698 at 400 × 400) cost ~29 500 instructions, now ~18 400. It was no
-//!   O(n) work: the update window (~30 knots each side of the move, to the 1e-17 of
-//!   `hermite::update`) covers most of a 50-point boundary, and the cost was per row. The
-//!   worst point now comes off a tournament tree replayed over the refreshed rows (the lazy
-//!   heap took a push per changed z, every z of the window, and skipped stale entries at
-//!   every pop), each segment's chord slope serves its energy and its C‴, the spline keeps
-//!   the rows of its tangent system between moves (a move of P_j changes rows j − 1..j + 1
-//!   only; the window's other rows are copied, not rebuilt), and a step allocates nothing.
-//!   The unit responses read the re-solved rows directly (no copy of the whole line) and
-//!   take the rows' weights once per knot vector; every grid line's tangents are solved in
-//!   one spline's storage (`HermiteSpline::refit`: a dozen allocations and a check of the
-//!   knots fewer per line). The same results bit for bit (the faired nets at 50², 100²,
-//!   200², 400² compared as bits, and the curve method alone on curves of 50–3 000 points:
-//!   one point, pairs, interactive). What the small end still pays: the boundary fairing's
-//!   ~18 400 instructions per curve step are the refresh of the window's segment energies,
-//!   C‴ and z (~9 200, ~2 000 of it the tree) and the windowed solve (~7 200), arithmetic
-//!   per row that the same bits need; a unit response ~11 600 per node, ~5 300 of it the
-//!   solve of the unit move. Tried without a gain: refreshing only the rows whose tangents
-//!   changed bit for bit (few fewer, and the comparison cost more), a tree keyed by the
-//!   bits of z, one array for all of a line's responses (slower moves at every size).
-//!   Criterion after that round (`surface_step/{tiles,tiles_steps}`, one round on a quiet
-//!   machine, 2026-12-03, medians in M points moved/s at 50² / 100² / 200² / 400²): `tiles`
-//!   0.77 / 0.93 / 0.91 / 0.66 (before it, the same morning: 0.51 / 0.71 / 0.74 / 0.66),
-//!   `tiles_steps` 0.97 / 0.95 / 0.90 / 0.65. The small end is now 1.21× the time per point of the
-//!   fastest size (1.45× before); the large end 1.42×: 400 × 400 executes the fewest instructions
-//!   per point of all four and is the slowest, its step's whole-grid passes (the knot
-//!   refresh and rebuilt network, the order, the energy and largest z) and its moves
-//!   running from L3 and memory. Tried, not adopted: tiles of 32 × 32 nodes (three rounds:
-//!   400² 0.70–0.74 against 0.66, but 100² 0.73–0.85 with the same code, the machine's
-//!   noise as large as the effect; it would change the result on nets of 33–64 nodes a side,
-//!   which now get the paper's order).
-//!
-//!   The round after it cut the step's whole-grid passes, which at 400² stream from memory
-//!   (the same results bit for bit: `surface_cost SIZE dump` with and without `steps` at
-//!   50²–400², its `curve` mode, and its `net` mode on both teapot nets and the PX121 hull,
-//!   whose runs pin lines and retry steps). Each tile's candidates are sorted on their own
-//!   while in cache and the sweep takes the tiles' runs in order (the whole grid's radix
-//!   sort and regrouping were ~10 passes over 16 bytes a node); z for the order and the
-//!   largest z come from the rebuild's exact z bounds (one contiguous array; the largest
-//!   kept until a move, so the step's cap and the measure are O(1)); a rebuild takes each
-//!   line's energy terms and jumps right after its solve (three passes fewer; the energy's
-//!   running sum in its old order) and stores no tangents that the run never reads (limit
-//!   replacement); the accepted state's jump norms are built only when the max-z rule
-//!   pins; the judged and accepted points change hands by exchanging storage, not by
-//!   copies. Cachegrind (`--cache-sim=yes`, D1 48 KB 12-way, LL 2 MB 16-way: this
-//!   machine's L1 and L2; callgrind inside `SurfaceFairing::run`, per point moved, 4 · N²),
-//!   at 50² / 100² / 200² / 400²: instructions 7 309 / 6 962 / 6 674 / 6 617 before,
-//!   7 123 / 6 695 / 6 390 / 6 388 after; D1 misses 71.8 / 94.1 / 110.4 / 127.1 before,
-//!   61.7 / 82.5 / 102.8 / 114.8 after; LL misses 0.0 / 7.2 / 21.3 / 35.3 before,
-//!   0.0 / 4.3 / 11.4 / 18.7 after. Of the 400² LL misses left (12.0 M), the four
-//!   rebuilds are ~3.5 M, the moves 1.6 M, and the rest is once per run: the data's
-//!   precision 1.65 M (it sorts every coordinate), the input's and the result's bicubic
-//!   surfaces ~1 M each, the first network ~1.3 M. Tried, not kept: the precision's sorts
-//!   by the radix sort (231 M instructions at 400² against 202 M: the coordinates' keys
-//!   share few digits, so all eight passes run).
+//!   responses, O((m + n) · window) per step, and once per run the boundary fairing of step
+//!   2.1, the curve method on the four boundary curves to its own convergence (O(perimeter)
+//!   per curve step). Both run on the spline's windowed update without allocating.
 //! - *What grows with the size:* memory traffic, not work. The moves come in the order of
 //!   z, scattered over the grid; once its data outgrow the processor's caches the cache lines
 //!   a move touches (~50: its point and its two windows of jumps and z bounds) are misses.
 //!   The network keeps the windows contiguous where it can (`network`'s "memory layout") and
-//!   the sweep prefetches the move two ahead (prefetching the move's whole windows as well
-//!   measured slower: 1.29–1.39 against 1.49–1.54 M points/s of CPU time at 400 × 400). No
-//!   order of the same moves avoids the rest: each move's result depends on every earlier
-//!   move whose windows cross its own, so the paper's order can be followed but not
-//!   regrouped by place without changing the result. The default `tiles` order changes it
-//!   (the paper's order inside 64 × 64 tiles, `tiles`) and keeps a tile's moves in cache. How much this costs depends on the machine: the earlier notes
-//!   measured the time per point at 400 × 400 at 1.32× that at 100 × 100; on the machine of
-//!   the numbers below (2 MB of L2 per core, 32 MB of L3) it was within 5 % of it, and is
-//!   1.11–1.13× now that the work per move is smaller.
-//! - *Measured* (2 shared cores, AMD EPYC with 2 MB L2 per core and 32 MB L3, load 2–3
-//!   from other work; the build before this change run alternately with it): `cargo bench
-//!   -p fairing --bench fairing -- surface_step/sort`, three rounds each, criterion's
-//!   medians 1.08–1.22 / 1.33–1.48 / 1.58–1.69 / 1.17–1.47 M points/s at 50² / 100² /
-//!   200² / 400² before, 1.45–1.52 / 1.64–1.85 / 1.77–1.92 / 1.52–1.69 after (slowest to
-//!   fastest size 1.39–1.46× before, 1.20–1.26× after; 1.23× on the medians of the three
-//!   rounds, 1.48 against 1.83); on the process's CPU time over the same 4-step runs in a
-//!   loop (medians of five rounds) before 1.18 / 1.46 / 1.56 / 1.42, after 1.47 / 1.71 /
-//!   1.73 / 1.52 (1.18× from 50² to 200²); the same points, energies and counts bit for
-//!   bit. Nearly flat, the small end still the slowest by the per-line and per-run costs
-//!   above. The `sort_steps` entry (the four steps without the boundary fairing, a
-//!   different run) shows the steps alone: 2.33 / 2.28 / 2.18 / 1.57 M points/s (medians of
-//!   three rounds), the largest grid paying its cache misses. After the cuts of the
-//!   per-line costs named above (the same points bit for bit), on the same machine at load
-//!   2–5, five rounds alternating with the build before: 0.65–0.89 / 0.88–1.08 /
-//!   0.63–0.92 / 0.53–0.80 M points/s (before 0.48–0.83 / 0.59–0.87 / 0.57–0.97 /
-//!   0.45–0.65): slowest to fastest size 1.20–1.85× per round, 1.29× on the rounds'
-//!   medians (1.45× before), the slowest now 400 × 400 in four rounds of five. So the time
-//!   per point is not within 1.2× reliably: under load the large grid's cache misses (the
-//!   caches shared with other processes), not the small grid's per-line costs, set the
-//!   spread.
-//! - *Where the large grid's time goes* (cachegrind, 4 MiB L2 simulated as the last level,
-//!   `sort_steps`): the instructions per point are flat (6 440 / 6 410 / 6 360 / 6 380 at
-//!   50² / 100² / 200² / 400² with the radix sort, 6 490–6 550 before), the L2 data misses
-//!   per point are not (~0 / 2 / 13 / 56), half of them in the moves' updates of the
-//!   windows of the jumps (48 B per node in two arrays of 3.8 MB at 400 × 400, against
-//!   4 MiB of L2). On a quiet machine of that L2 size 400 × 400 is the slowest size by
-//!   1.38–1.70× per point.
-//!   What was tried without a gain: prefetching a move's whole windows one or two moves
-//!   ahead, and transparent huge pages for the per-node arrays (`madvise`; glibc's
-//!   `glibc.malloc.hugetlb=1` tunable, which covers them fully, looked ~10 % faster at
-//!   400 × 400 in CPU time, not separable from the load of 7–10 it was measured at).
+//!   the sweep prefetches the move two ahead. No order of the same moves avoids the rest:
+//!   each move's result depends on every earlier move whose windows cross its own, so the
+//!   paper's order can be followed but not regrouped by place without changing the result.
+//!   The default `tiles` order changes it (the paper's order inside 64 × 64 tiles) and keeps
+//!   a tile's moves in cache.
+//!
+//! So the work per point moved is flat in the grid's size and the time per point nearly so,
+//! the small end paying its per-line costs and the large end its cache misses. The profiles
+//! and benchmarks behind this, and what was tried and not kept, are in
+//! `docs/experiments/code-notes.md`.
 
 // The building blocks index the grid directly (their callers validate it first), so they
 // stay inside the crate; `SurfaceFairing` is the checked entry point.

@@ -92,7 +92,7 @@ fn push_line_jumps(stiffness: &Stiffness, line: &[Vec3], tangents: &[Vec3], out:
 /// The response of one knot vector's splines (natural, or periodic when closed) to unit point
 /// moves, and the stiffness J = K P read from it.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Stiffness {
+pub(crate) struct Stiffness {
     /// Distinct nodes N.
     count: usize,
     /// Whether the line is closed (indices mod N).
@@ -122,9 +122,8 @@ impl Stiffness {
     /// whole line. The move is not made: the spline's
     /// [`unit_move_tangents`](HermiteSpline::unit_move_tangents) gives the re-solved rows
     /// and the line stays zero (moving it back, or copying the zero line, cost as much as
-    /// the move again: 12 % of the instructions of a 50 × 50 run went to the responses).
-    /// Was O(N²): quadratic on a long strip.
-    pub fn new(knots: &[f64], closed: bool) -> Result<Self> {
+    /// the move again).
+    pub(crate) fn new(knots: &[f64], closed: bool) -> Result<Self> {
         let count = knots.len() - usize::from(closed);
         let mut settings = HermiteSettings::<1>::new().with_parameters(knots.to_vec());
         if closed {
@@ -318,7 +317,7 @@ impl Stiffness {
     }
 
     /// The next node along the line (wrapping when closed).
-    pub fn next(&self, k: usize) -> Option<usize> {
+    pub(crate) fn next(&self, k: usize) -> Option<usize> {
         if k + 1 < self.count {
             Some(k + 1)
         } else {
@@ -327,7 +326,7 @@ impl Stiffness {
     }
 
     /// The previous node along the line (wrapping when closed).
-    pub fn previous(&self, k: usize) -> Option<usize> {
+    pub(crate) fn previous(&self, k: usize) -> Option<usize> {
         if k > 0 {
             Some(k - 1)
         } else {
@@ -336,18 +335,18 @@ impl Stiffness {
     }
 
     /// Whether node k has a jump (every node of a closed line; not an open line's ends).
-    pub fn is_interior(&self, k: usize) -> bool {
+    pub(crate) fn is_interior(&self, k: usize) -> bool {
         self.closed || (k >= 1 && k + 1 < self.count)
     }
 
     /// The knot step from node k to node next(k).
-    pub fn step(&self, k: usize) -> f64 {
+    pub(crate) fn step(&self, k: usize) -> f64 {
         self.steps[k]
     }
 
     /// K_{a,b} for a = b or neighbours, else 0 (the far entries are not needed: the groups of
     /// Eq. 23 and 25 are adjacent).
-    pub fn entry(&self, a: usize, b: usize) -> f64 {
+    pub(crate) fn entry(&self, a: usize, b: usize) -> f64 {
         if a == b {
             self.diagonal.get(a).copied().unwrap_or(0.0)
         } else if self.next(a) == Some(b) {
@@ -368,7 +367,7 @@ fn third1(p0: f64, p1: f64, m0: f64, m1: f64, h: f64) -> f64 {
 /// Responses are kept where they exceed this fraction of their largest entry: the neglected
 /// far tail (it decays by ~0.27 per knot) changes a tangent or a jump by less than 1e-13 of
 /// the move's own effect, and the network is rebuilt exactly at every step.
-pub const RESPONSE_TRIM: f64 = 1e-13;
+pub(crate) const RESPONSE_TRIM: f64 = 1e-13;
 
 /// How many exact zeros in a row end the support of a unit move's tangents: inside the
 /// spline's update window the response decays by at most 1/2 per knot from 1 down to
@@ -431,7 +430,7 @@ const COLUMN_BLOCK: usize = 16;
 
 /// The iso-parametric spline network of a grid of distinct nodes (see the module docs).
 #[derive(Clone, Debug)]
-pub struct Network {
+pub(crate) struct Network {
     /// Distinct nodes along u.
     u_count: usize,
     /// Distinct nodes along v.
@@ -469,7 +468,12 @@ impl Network {
     /// The network of the flat grid of distinct nodes `points[i·v_count + j]` = P_ij over the
     /// given knots: one per node along an open direction, one per node and the closing one
     /// along a closed direction (`closed` = (u, v)). O(m·n + (m + n) · window).
-    pub fn new(points: &[Vec3], u_knots: &[f64], v_knots: &[f64], closed: (bool, bool)) -> Result<Self> {
+    pub(crate) fn new(
+        points: &[Vec3],
+        u_knots: &[f64],
+        v_knots: &[f64],
+        closed: (bool, bool),
+    ) -> Result<Self> {
         Self::with_tangents(points, u_knots, v_knots, closed, true)
     }
 
@@ -477,7 +481,7 @@ impl Network {
     /// [`stop_tracking_tangents`](Self::stop_tracking_tangents), without writing them once
     /// first: two arrays of the grid's size a run never reads). The same points, jumps,
     /// bounds and energy either way.
-    pub fn with_tangents(
+    pub(crate) fn with_tangents(
         points: &[Vec3],
         u_knots: &[f64],
         v_knots: &[f64],
@@ -512,7 +516,7 @@ impl Network {
     ///
     /// [`stop_tracking_tangents`]: Self::stop_tracking_tangents
     /// O(m·n + (m + n) · window).
-    pub fn rebuild(
+    pub(crate) fn rebuild(
         &mut self,
         points: &[Vec3],
         u_knots: &[f64],
@@ -661,7 +665,7 @@ impl Network {
 
     /// Whether node (i, j) has a z_ij (interior along both directions, a seam counting as
     /// interior).
-    pub fn is_interior(&self, i: usize, j: usize) -> bool {
+    pub(crate) fn is_interior(&self, i: usize, j: usize) -> bool {
         i < self.u_count
             && j < self.v_count
             && self.u_stiffness.is_interior(i)
@@ -669,40 +673,40 @@ impl Network {
     }
 
     /// All points, flat (distinct nodes).
-    pub fn points(&self) -> &[Vec3] {
+    pub(crate) fn points(&self) -> &[Vec3] {
         &self.points
     }
 
     /// Exchanges the points' storage with `other`: a caller that rebuilds the network from
     /// its own points takes them out without a copy. The network is unusable until its
     /// next [`rebuild`](Self::rebuild). O(1).
-    pub fn swap_points(&mut self, other: &mut Vec<Vec3>) {
+    pub(crate) fn swap_points(&mut self, other: &mut Vec<Vec3>) {
         std::mem::swap(&mut self.points, other);
         self.fresh_max_z = None;
     }
 
     /// P_ij (callers keep i, j inside the grid).
-    pub fn point(&self, i: usize, j: usize) -> Vec3 {
+    pub(crate) fn point(&self, i: usize, j: usize) -> Vec3 {
         self.points[self.index(i, j)]
     }
 
     /// M^u_ij = ∂S/∂u(u_i, v_j).
-    pub fn u_tangent(&self, i: usize, j: usize) -> Vec3 {
+    pub(crate) fn u_tangent(&self, i: usize, j: usize) -> Vec3 {
         self.u_tangents[self.column_index(i, j)]
     }
 
     /// M^v_ij = ∂S/∂v(u_i, v_j).
-    pub fn v_tangent(&self, i: usize, j: usize) -> Vec3 {
+    pub(crate) fn v_tangent(&self, i: usize, j: usize) -> Vec3 {
         self.v_tangents[self.index(i, j)]
     }
 
     /// ∂³S/∂u³(u_i+, v_j) − ∂³S/∂u³(u_i−, v_j) (0 at an open end along u). O(1).
-    pub fn u_jump(&self, i: usize, j: usize) -> Vec3 {
+    pub(crate) fn u_jump(&self, i: usize, j: usize) -> Vec3 {
         self.u_jumps[self.column_index(i, j)]
     }
 
     /// ∂³S/∂v³(u_i, v_j+) − ∂³S/∂v³(u_i, v_j−) (0 at an open end along v). O(1).
-    pub fn v_jump(&self, i: usize, j: usize) -> Vec3 {
+    pub(crate) fn v_jump(&self, i: usize, j: usize) -> Vec3 {
         self.v_jumps[self.index(i, j)]
     }
 
@@ -712,24 +716,24 @@ impl Network {
     /// rebuild two grid-sized writes. [`u_tangent`](Self::u_tangent) and
     /// [`v_tangent`](Self::v_tangent) are stale after moves made without them and are not
     /// to be called after a rebuild without them (their arrays are empty then).
-    pub fn stop_tracking_tangents(&mut self) {
+    pub(crate) fn stop_tracking_tangents(&mut self) {
         self.track_tangents = false;
     }
 
     /// (J^u, J^v) at every node, flat (i-major).
-    pub fn u_jumps_and_v_jumps(&self) -> impl Iterator<Item = (Vec3, Vec3)> + '_ {
+    pub(crate) fn u_jumps_and_v_jumps(&self) -> impl Iterator<Item = (Vec3, Vec3)> + '_ {
         (0..self.u_count * self.v_count).map(|k| (self.u_jumps[self.column_of(k)], self.v_jumps[k]))
     }
 
     /// z_ij = |u jump| + |v jump| (Eq. 26, corrected in papers/README.md), interior nodes.
     /// O(1).
-    pub fn z(&self, i: usize, j: usize) -> f64 {
+    pub(crate) fn z(&self, i: usize, j: usize) -> f64 {
         self.u_jump(i, j).norm() + self.v_jump(i, j).norm()
     }
 
     /// max z_ij over the interior nodes (0 when there are none). O(1) while no move was
     /// made since the last rebuild (taken then), else O(m·n).
-    pub fn max_z(&self) -> f64 {
+    pub(crate) fn max_z(&self) -> f64 {
         if let Some(max) = self.fresh_max_z {
             return max;
         }
@@ -752,17 +756,17 @@ impl Network {
 
     /// The network strain energy Σ_j ∫|S_uu(u, v_j)|² du + Σ_i ∫|S_vv(u_i, v)|² dv over the
     /// distinct lines, kept up to date by [`move_points`](Self::move_points).
-    pub fn energy(&self) -> f64 {
+    pub(crate) fn energy(&self) -> f64 {
         self.energy
     }
 
     /// The stiffness of the u-lines (shared by every u-line: same knots).
-    pub fn u_stiffness(&self) -> &Stiffness {
+    pub(crate) fn u_stiffness(&self) -> &Stiffness {
         &self.u_stiffness
     }
 
     /// The stiffness of the v-lines.
-    pub fn v_stiffness(&self) -> &Stiffness {
+    pub(crate) fn v_stiffness(&self) -> &Stiffness {
         &self.v_stiffness
     }
 
@@ -772,7 +776,7 @@ impl Network {
     /// on a position or an energy that is not finite, leaving that move undone, or
     /// [`Error::BadConstraint`] on a node outside the grid or not interior (the energy formula
     /// holds at interior nodes; boundary nodes move through a rebuilt network).
-    pub fn move_points(&mut self, moves: &[((usize, usize), Vec3)]) -> Result<()> {
+    pub(crate) fn move_points(&mut self, moves: &[((usize, usize), Vec3)]) -> Result<()> {
         for &((i, j), position) in moves {
             self.move_one(i, j, position)?;
         }
@@ -782,7 +786,7 @@ impl Network {
     /// Whether a node on u-line j or v-line i of (i, j), within the jump responses of a move
     /// of P_ij, has z above `cap` (its bound checked first; its z computed, and its bound
     /// tightened, only when the bound passes the cap). O(window).
-    pub fn exceeds(&mut self, i: usize, j: usize, cap: f64) -> bool {
+    pub(crate) fn exceeds(&mut self, i: usize, j: usize, cap: f64) -> bool {
         let vc = self.v_count;
         let (u_lo, u_values) = &self.u_stiffness.jump_response[i];
         for (start, _, len) in runs(*u_lo, u_values.len(), self.u_count) {
@@ -806,7 +810,7 @@ impl Network {
 
     /// The flat indices of the nodes whose z a move of P_ij changes: u-line j and v-line i
     /// within the jump responses (P_ij itself twice), into `out` (cleared first). O(window).
-    pub fn affected(&self, i: usize, j: usize, out: &mut Vec<usize>) {
+    pub(crate) fn affected(&self, i: usize, j: usize, out: &mut Vec<usize>) {
         out.clear();
         let vc = self.v_count;
         let (u_lo, u_values) = &self.u_stiffness.jump_response[i];
@@ -820,7 +824,7 @@ impl Network {
     }
 
     /// z of the node at flat index k (i·v_count + j): |J^u| + |J^v| (Eq. 26). O(1).
-    pub fn z_at(&self, k: usize) -> f64 {
+    pub(crate) fn z_at(&self, k: usize) -> f64 {
         self.u_jumps[self.column_of(k)].norm() + self.v_jumps[k].norm()
     }
 
@@ -831,7 +835,7 @@ impl Network {
 
     /// An upper bound of the z of the node at flat index k, kept by every move (exact after a
     /// rebuild or [`tighten`](Self::tighten)). O(1).
-    pub fn z_bound(&self, k: usize) -> f64 {
+    pub(crate) fn z_bound(&self, k: usize) -> f64 {
         self.z_bounds[k]
     }
 
@@ -840,12 +844,12 @@ impl Network {
     /// exact, computed as [`z`](Self::z) computes z, so a whole-grid reader can take them
     /// from one contiguous array instead of the two jump arrays (one of them column-major).
     /// `None` after a move. O(1).
-    pub fn exact_zs(&self) -> Option<&[f64]> {
+    pub(crate) fn exact_zs(&self) -> Option<&[f64]> {
         self.fresh_max_z.map(|_| &self.z_bounds[..])
     }
 
     /// The z of the node at flat index k, its bound set to it. O(1).
-    pub fn tighten(&mut self, k: usize) -> f64 {
+    pub(crate) fn tighten(&mut self, k: usize) -> f64 {
         let z = self.z_at(k);
         self.z_bounds[k] = z;
         z
@@ -855,7 +859,7 @@ impl Network {
     /// jumps, its z bound): a caller that knows its next moves issues this a few moves ahead,
     /// so that the loads overlap the moves in between instead of stalling the next one (module
     /// docs, "memory layout"). Changes no value. O(1).
-    pub fn prefetch(&self, i: usize, j: usize) {
+    pub(crate) fn prefetch(&self, i: usize, j: usize) {
         let k = self.index(i, j);
         prefetch(&self.points[k]);
         prefetch(&self.u_jumps[self.column_index(i, j)]);
@@ -887,7 +891,7 @@ impl Network {
     }
 
     /// The exact change of the network energy if P_ij moves by `delta` (module docs). O(1).
-    pub fn energy_change(&self, i: usize, j: usize, delta: Vec3) -> f64 {
+    pub(crate) fn energy_change(&self, i: usize, j: usize, delta: Vec3) -> f64 {
         let gradient = self.u_jump(i, j) + self.v_jump(i, j);
         let curvature = self.u_stiffness.diagonal[i] + self.v_stiffness.diagonal[j];
         2.0 * gradient.dot(&delta) + curvature * delta.norm_squared()
@@ -952,6 +956,8 @@ impl Network {
 
 /// A hint to the processor to bring the cache line of `value` into its caches (x86-64's
 /// `prefetcht0`; nothing elsewhere). It has no effect on any value.
+// The workspace denies unsafe code; this cache hint is its one exception (SAFETY below).
+#[allow(unsafe_code)]
 pub(crate) fn prefetch<T>(value: &T) {
     #[cfg(target_arch = "x86_64")]
     // SAFETY: a prefetch reads no memory architecturally and cannot fault, whatever the

@@ -37,27 +37,27 @@ impl PartialOrd for Entry {
 
 /// Nodes by decreasing current z (module docs).
 #[derive(Debug, Default)]
-pub struct LazyQueue {
+pub(super) struct LazyQueue {
     heap: BinaryHeap<Entry>,
 }
 
 impl LazyQueue {
     /// The queue of `(z, node)` pairs. O(K).
-    pub fn new(entries: impl IntoIterator<Item = (f64, usize)>) -> Self {
+    pub(super) fn new(entries: impl IntoIterator<Item = (f64, usize)>) -> Self {
         Self {
             heap: entries.into_iter().map(|(z, k)| Entry(z, k)).collect(),
         }
     }
 
     /// Adds a node with its current z. O(log K).
-    pub fn push(&mut self, z: f64, node: usize) {
+    pub(super) fn push(&mut self, z: f64, node: usize) {
         self.heap.push(Entry(z, node));
     }
 
     /// The node of largest current z among those `accept` lets through (others are dropped
     /// when they come to the top), re-reading z with `current` as described in the module
     /// docs; `None` when the queue runs empty.
-    pub fn pop(
+    pub(super) fn pop(
         &mut self,
         mut current: impl FnMut(usize) -> f64,
         mut accept: impl FnMut(usize) -> bool,
@@ -92,7 +92,7 @@ impl LazyQueue {
 /// the key is raised in place (sift up). O(K) to build, O(log K) a pop, O(window) a move
 /// plus O(log K) per raised node (usually O(1): a small rise climbs few levels).
 #[derive(Debug)]
-pub struct SweepQueue {
+pub(super) struct SweepQueue {
     /// Nodes in heap order.
     heap: Vec<usize>,
     /// Each node's position in `heap` (`usize::MAX`: not in the queue).
@@ -105,7 +105,7 @@ pub struct SweepQueue {
 impl SweepQueue {
     /// The queue of `members` (flat indices into the network's nodes, each once) keyed by
     /// their current z. O(K).
-    pub fn new(network: &Network, members: impl IntoIterator<Item = usize>) -> Self {
+    pub(super) fn new(network: &Network, members: impl IntoIterator<Item = usize>) -> Self {
         let total = network.points().len();
         let mut queue = Self {
             heap: members.into_iter().collect(),
@@ -172,7 +172,7 @@ impl SweepQueue {
 
     /// The node to come with the largest current z (ties: smaller index), taken off the
     /// queue; `None` when every member has come.
-    pub fn pop(&mut self, network: &Network) -> Option<usize> {
+    pub(super) fn pop(&mut self, network: &Network) -> Option<usize> {
         loop {
             let &top = self.heap.first()?;
             let z = network.z_at(top);
@@ -196,7 +196,7 @@ impl SweepQueue {
 
     /// After P_ij moved (or a move was tried and undone): raises the keys of the nodes still
     /// to come whose z the move raised above their key. O(window).
-    pub fn moved(&mut self, network: &mut Network, i: usize, j: usize) {
+    pub(super) fn moved(&mut self, network: &mut Network, i: usize, j: usize) {
         let mut buffer = std::mem::take(&mut self.buffer);
         network.affected(i, j, &mut buffer);
         for &k in &buffer {

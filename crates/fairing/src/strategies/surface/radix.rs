@@ -1,9 +1,8 @@
 //! The sorted sweep's order (Zhang–Cheng §4.4 step 2.3: every point once, by z_ij at the
 //! step's start, largest first, ties by index) by a least-significant-digit radix sort.
 //!
-//! The comparison sort it replaces spent O(log n) comparisons per point, the one per-point
-//! cost of a step that grew with the grid (7 % of the instructions of four steps at 400 ×
-//! 400, 5 % at 200 × 200); the radix sort spends at most eight passes of 8 bits, and skips a
+//! A comparison sort spends O(log n) comparisons per point, the one per-point cost of a step
+//! that would grow with the grid; the radix sort spends at most eight passes of 8 bits, and skips a
 //! pass whose digit every key shares (the sign and the top of the exponent, on any net whose
 //! z are within a few binades of each other). The order is the same: no two entries are
 //! equal (the indices differ), so every correct sort gives the same sequence.

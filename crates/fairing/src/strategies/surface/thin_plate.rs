@@ -31,7 +31,7 @@ const GAUSS: [(f64, f64); 4] = [
 
 /// The Hermite value function of the corner at offset `far` (0: φ0, 1: ψ0) and its first and
 /// second derivatives at s.
-pub fn value_basis(far: bool, s: f64) -> [f64; 3] {
+pub(crate) fn value_basis(far: bool, s: f64) -> [f64; 3] {
     let near = [
         1.0 - 3.0 * s * s + 2.0 * s * s * s,
         -6.0 * s + 6.0 * s * s,
@@ -68,7 +68,7 @@ fn copies(surface: &BicubicSplineSurface, i: usize, j: usize) -> Vec<(usize, usi
 /// (a closed direction's seam nodes named by index 0; their patches on both sides of the seam
 /// are summed): `Ok(None)` for an empty or oversized group, a node outside the interior, or a
 /// singular system; errors only on a surface that cannot be evaluated.
-pub fn thin_plate_targets(
+pub(crate) fn thin_plate_targets(
     surface: &BicubicSplineSurface,
     group: &[(usize, usize)],
 ) -> Result<Option<Vec<Vec3>>> {

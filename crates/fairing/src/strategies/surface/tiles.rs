@@ -14,7 +14,7 @@
 /// Nodes along each side of a tile: 64 × 64 nodes and a window's halo on each side are some
 /// 7 400 nodes of ~160 bytes (points, originals, jumps, z bounds, tangents, radii), ~1.2 MB,
 /// within the 2–4 MB of second-level cache of current server cores.
-pub const TILE: usize = 64;
+pub(super) const TILE: usize = 64;
 
 /// The tiled order of one step, tile by tile: each tile's movable nodes (`movable(i, j)`)
 /// sorted by their z (`z(k)`, k = i·`v_count` + j, read at the step's start) descending,

@@ -1,0 +1,303 @@
+//! Penalised, robustly weighted least squares of a cubic B-spline function of one variable
+//! (an edge line alone) or a tensor product of two (the hull), with the smoothing chosen by the
+//! discrepancy principle: the smoothest spline whose robust RMS move equals tol/√3, the RMS of
+//! an error spread evenly over ±tol (rounding). On Block Island no λ reaches it (its offsets
+//! disagree by more than the rounding), and the smallest λ tried (10⁻⁸) is taken: the knot
+//! grid, one span per station interval and per waterline, is then the smoother.
+
+#![allow(clippy::needless_range_loop)] // index loops over fixed-size basis arrays read as the book writes them
+
+use crate::spline::{Band, Knots};
+
+/// One observation: the spline at `at` should equal `target`; `free` says how a move of the
+/// offset's measured coordinates maps to the residual (see [`Fit::gain`]).
+#[derive(Clone, Debug)]
+pub(crate) struct Obs {
+    /// (x, u): the spline's arguments (u unused in one variable).
+    pub at: (f64, f64),
+    pub target: f64,
+    /// Which coordinates of the offset were measured: the value v, the argument u.
+    pub free_v: bool,
+    pub free_u: bool,
+    /// Held: weighted heavily and never rejected (a knuckle's faired point shared by regions).
+    pub held: bool,
+}
+
+impl Obs {
+    pub fn new(at: (f64, f64), target: f64, free_v: bool, free_u: bool) -> Self {
+        Self {
+            at,
+            target,
+            free_v,
+            free_u,
+            held: false,
+        }
+    }
+}
+
+/// Weight of a held observation relative to an offset.
+const HELD: f64 = 1e4;
+
+/// A spline of one (`ku` None) or two variables, v = S(x, u).
+#[derive(Clone, Debug)]
+pub(crate) struct Spline {
+    pub kx: Knots,
+    pub ku: Option<Knots>,
+    /// Coefficients, index i·nu + j.
+    pub c: Vec<f64>,
+}
+
+impl Spline {
+    pub fn nu(&self) -> usize {
+        self.ku.as_ref().map_or(1, Knots::count)
+    }
+
+    /// Coefficient indices and weights of S (d = 0), ∂S/∂x (1) or ∂S/∂u (2) at (x, u).
+    pub fn row(&self, x: f64, u: f64, which: usize) -> Vec<(usize, f64)> {
+        let sx = self.kx.span(x, false);
+        let bx = self.kx.ders(sx, x, 1);
+        let nu = self.nu();
+        match &self.ku {
+            None => (0..4)
+                .map(|r| (sx - 3 + r, bx[usize::from(which == 1)][r]))
+                .collect(),
+            Some(ku) => {
+                let su = ku.span(u, false);
+                let bu = ku.ders(su, u, 1);
+                let (dx, du) = match which {
+                    1 => (1, 0),
+                    2 => (0, 1),
+                    _ => (0, 0),
+                };
+                let mut out = Vec::with_capacity(16);
+                for r in 0..4 {
+                    for q in 0..4 {
+                        out.push(((sx - 3 + r) * nu + su - 3 + q, bx[dx][r] * bu[du][q]));
+                    }
+                }
+                out
+            }
+        }
+    }
+
+    fn dot(&self, row: &[(usize, f64)]) -> f64 {
+        row.iter().map(|&(i, w)| self.c[i] * w).sum()
+    }
+
+    /// (S, ∂S/∂x, ∂S/∂u) at (x, u).
+    pub fn eval(&self, x: f64, u: f64) -> (f64, f64, f64) {
+        let v = self.dot(&self.row(x, u, 0));
+        let vx = self.dot(&self.row(x, u, 1));
+        let vu = if self.ku.is_some() {
+            self.dot(&self.row(x, u, 2))
+        } else {
+            0.0
+        };
+        (v, vx, vu)
+    }
+
+    /// The penalty: jumps of the third derivative across every interior knot line, along x and
+    /// along u, each weighted by its knot spacing cubed (jump-lsq's measure on a tensor
+    /// product: the jump of ∂³S/∂x³ across x = ξ is a spline in u whose coefficients are the
+    /// rows below). Returned as a banded matrix Σ r rᵀ.
+    fn penalty(&self, bw: usize) -> Band {
+        let nu = self.nu();
+        let n = self.kx.count() * nu;
+        let mut p = Band::zeros(n, bw);
+        for jr in self.kx.jumps() {
+            for j in 0..nu {
+                let row: Vec<(usize, f64)> = jr.iter().map(|&(i, w)| (i * nu + j, w)).collect();
+                p.add_outer(&row, 1.0);
+            }
+        }
+        if let Some(ku) = &self.ku {
+            for jr in ku.jumps() {
+                for i in 0..self.kx.count() {
+                    let row: Vec<(usize, f64)> = jr.iter().map(|&(j, w)| (i * nu + j, w)).collect();
+                    p.add_outer(&row, 1.0);
+                }
+            }
+        }
+        p
+    }
+}
+
+/// The outcome of a fit.
+#[derive(Clone, Debug)]
+pub(crate) struct Fit {
+    pub spline: Spline,
+    /// Smoothing weight (dimensionless: penalty and data both in tolerance units).
+    pub lambda: f64,
+    /// Per observation: the robust weight (0 = rejected) and the move (residual over gain).
+    pub weight: Vec<f64>,
+    #[allow(dead_code)]
+    pub moves: Vec<f64>,
+    pub iterations: usize,
+}
+
+/// Smallest gain: a residual is converted into a move of the offset's measured coordinates by
+/// dividing by the gain |∇F| over those coordinates (F = S − v); where the surface is nearly
+/// parallel to the measured direction the gain is small and the move ill-defined, so it is held
+/// at this floor.
+const MIN_GAIN: f64 = 0.1;
+/// Huber's threshold, in robust scales (one rounding step on a table whose error is its rounding).
+const HUBER: f64 = 2.0;
+/// A move beyond this many robust scales (three rounding steps on a table whose error is its
+/// rounding) rejects the offset (weight 0): a wrong offset does not bend the hull.
+pub(crate) const REJECT: f64 = 6.0;
+const OUTER: usize = 8;
+/// Outer iterations fitted stiffer, the last of them deciding the first rejections.
+const STIFF: usize = 2;
+
+impl Fit {
+    /// |∇F| over the measured coordinates of `o` on spline `s`.
+    pub fn gain(s: &Spline, o: &Obs) -> f64 {
+        let (_, _, vu) = s.eval(o.at.0, o.at.1);
+        let mut g2 = 0.0;
+        if o.free_v {
+            g2 += 1.0;
+        }
+        if o.free_u {
+            g2 += vu * vu;
+        }
+        g2.sqrt().max(MIN_GAIN)
+    }
+}
+
+/// Fits `obs` by a spline on knots (kx, ku) with tolerance `tol` per offset (half the rounding
+/// step by default). Observations with `hold` are fitted with a large weight and never
+/// rejected. Returns None when the system is singular (too few offsets).
+pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64) -> Option<Fit> {
+    let nu = ku.as_ref().map_or(1, Knots::count);
+    let n = kx.count() * nu;
+    // a jump row spans five consecutive x coefficients
+    let bw = 4 * nu + 4;
+    let mut s = Spline {
+        kx,
+        ku,
+        c: vec![0.0; n],
+    };
+    let rows: Vec<Vec<(usize, f64)>> = obs.iter().map(|o| s.row(o.at.0, o.at.1, 0)).collect();
+    let pen = s.penalty(bw);
+    let mut gain = vec![1.0; obs.len()];
+    let mut robust = vec![1.0; obs.len()];
+    let mut lambda: f64 = 1.0;
+    let mut moves = vec![0.0; obs.len()];
+    let mut it = 0;
+    let target = tol / 3f64.sqrt();
+    for outer in 0..OUTER {
+        it = outer + 1;
+        let mut ata = Band::zeros(n, bw);
+        let mut atb = vec![0.0; n];
+        for (k, (r, o)) in rows.iter().zip(obs).enumerate() {
+            let w = robust[k] / (gain[k] * gain[k]) * if o.held { HELD } else { 1.0 };
+            if w == 0.0 {
+                continue;
+            }
+            ata.add_outer(r, w);
+            for &(i, v) in r {
+                atb[i] += w * v * o.target;
+            }
+        }
+        // a tiny ridge keeps coefficients without data (outside the hull) determined
+        let solve = |lam: f64| -> Option<Vec<f64>> {
+            let mut m = ata.clone();
+            m.add_scaled(&pen, lam);
+            for row in m.a.iter_mut() {
+                row[0] += 1e-10 * (1.0 + lam);
+            }
+            m.solve(&atb)
+        };
+        let rms_move = |c: &[f64]| -> f64 {
+            let (mut num, mut den) = (0.0, 0.0);
+            for (k, r) in rows.iter().enumerate() {
+                if obs[k].held {
+                    continue;
+                }
+                let v: f64 = r.iter().map(|&(i, w)| c[i] * w).sum();
+                let m = (v - obs[k].target) / gain[k];
+                num += robust[k] * m * m;
+                den += robust[k];
+            }
+            (num / den.max(1e-300)).sqrt()
+        };
+        // the discrepancy principle: the largest λ whose robust RMS move is at most the RMS of
+        // an error spread evenly over ±tol (rounding to the nearest step): tol/√3
+        // the first two fits are stiffer (four times the move): an offset in conflict with a
+        // neighbour at the same point then stands out against the fair trend of all the others
+        // instead of sharing the conflict with it
+        let goal = if outer < STIFF { 4.0 * target } else { target };
+        // after the first fit, λ is searched near the previous one (the weights change little)
+        let (mut lo, mut hi) = if outer == 0 {
+            (-8.0f64, 8.0f64)
+        } else {
+            ((lambda.log10() - 3.0).max(-8.0), (lambda.log10() + 3.0).min(8.0))
+        };
+        let mut best: Option<(f64, Vec<f64>)> = None;
+        if let Some(c) = solve(10f64.powf(lo)) {
+            if rms_move(&c) > goal {
+                best = Some((lo, c));
+                hi = lo;
+            }
+        }
+        if best.is_none() {
+            for _ in 0..24 {
+                let mid = 0.5 * (lo + hi);
+                let c = solve(10f64.powf(mid))?;
+                if rms_move(&c) <= goal {
+                    lo = mid;
+                    best = Some((mid, c));
+                } else {
+                    hi = mid;
+                }
+                if hi - lo < 0.05 {
+                    break;
+                }
+            }
+        }
+        let (l, c) = match best {
+            Some(b) => b,
+            None => (lo, solve(10f64.powf(lo))?),
+        };
+        lambda = 10f64.powf(l);
+        s.c = c;
+        // new gains and moves; the robust scale: the tolerance, or the moves' own spread
+        // (1.4826 × their median absolute value) where that is larger (a table noisier than
+        // its rounding), so that noise is not mistaken for wrong offsets
+        for (k, (r, o)) in rows.iter().zip(obs).enumerate() {
+            gain[k] = Fit::gain(&s, o);
+            let v: f64 = r.iter().map(|&(i, w)| s.c[i] * w).sum();
+            moves[k] = (v - o.target) / gain[k];
+        }
+        let mut abs: Vec<f64> = moves.iter().map(|m| m.abs()).collect();
+        abs.sort_by(f64::total_cmp);
+        let scale = tol.max(1.4826 * abs[abs.len() / 2]);
+        let mut changed = false;
+        for k in 0..obs.len() {
+            let a = moves[k].abs() / scale;
+            let w = if obs[k].held {
+                1.0
+            } else if outer + 1 >= STIFF && a > REJECT {
+                0.0
+            } else if a > HUBER {
+                HUBER / a
+            } else {
+                1.0
+            };
+            if (w - robust[k]).abs() > 1e-3 {
+                changed = true;
+            }
+            robust[k] = w;
+        }
+        if !changed && outer > STIFF {
+            break;
+        }
+    }
+    Some(Fit {
+        spline: s,
+        lambda,
+        weight: robust,
+        moves,
+        iterations: it,
+    })
+}

@@ -1,0 +1,492 @@
+//! Fairing a table as one hull: the settings, the fit of every offset at once and the cut of
+//! every offset back from the hull.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::fit::{fit, Fit, Obs, Spline};
+use crate::report::{build_report, Report};
+use crate::spline::Knots;
+use crate::table::{Coord, Kind, Table};
+
+/// How a table is faired.
+#[derive(Clone, Debug, Default, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(default, deny_unknown_fields)]
+pub struct Settings {
+    /// The table's rounding step; default: inferred from its values ([`Table::step`]).
+    pub step: Option<f64>,
+    /// The tolerance per offset: the bound of its error. The hull is the smoothest whose robust
+    /// RMS move is tol/√3, the RMS of an error spread evenly over ±tol; moves beyond six
+    /// tolerances are rejected (flagged, and no longer pull the hull). Default: half the
+    /// rounding step (rounding to the nearest step errs by at most that). Raise it for a table
+    /// noisier than its rounding.
+    pub tolerance: Option<f64>,
+    /// Labels of the knuckle edges (G0 breaks: chine, knuckle); default: edge lines whose label
+    /// contains "chine" or "knuckle". An empty list declares none.
+    pub knuckles: Option<Vec<String>>,
+}
+
+impl Settings {
+    fn validate(&self) -> Result<()> {
+        for (name, v) in [("step", self.step), ("tolerance", self.tolerance)] {
+            if let Some(v) = v {
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(Error::Setting {
+                        name,
+                        message: format!("{v} is not a positive number"),
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// One smooth region of the hull: v = S(x, u), a bicubic B-spline on clamped uniform knots,
+/// with v the half-breadth y and u the height z (topsides, a round-bilge hull), or v the height
+/// z and u the half-breadth y (the bottom below a chine, nearly flat athwartships).
+#[derive(Clone, Debug)]
+pub struct Hull {
+    pub(crate) s: Spline,
+    value: Coord,
+    region: String,
+}
+
+impl Hull {
+    /// Which coordinate the surface gives: y (then u is z) or z (then u is y).
+    pub fn value(&self) -> Coord {
+        self.value
+    }
+
+    /// The region's name: "hull", or "above " / "below " and the knuckle's label.
+    pub fn region(&self) -> &str {
+        &self.region
+    }
+
+    /// v at (x, u) and its partial derivatives (v, ∂v/∂x, ∂v/∂u).
+    pub fn eval(&self, x: f64, u: f64) -> (f64, f64, f64) {
+        self.s.eval(x, u)
+    }
+
+    /// The point (x, y, z) of the surface at (x, u).
+    pub fn point(&self, x: f64, u: f64) -> [f64; 3] {
+        let v = self.eval(x, u).0;
+        match self.value {
+            Coord::Z => [x, u, v],
+            _ => [x, v, u],
+        }
+    }
+
+    /// The x and u domain: ((x0, x1), (u0, u1)).
+    pub fn domain(&self) -> ((f64, f64), (f64, f64)) {
+        let kx = &self.s.kx.t;
+        let ku = &self.s.ku.as_ref().expect("a hull has two variables").t;
+        ((kx[0], kx[kx.len() - 1]), (ku[0], ku[ku.len() - 1]))
+    }
+
+    /// The u where the section at x reaches v = target, nearest u0 (Newton, then a scan of the
+    /// domain); None when the section does not reach it.
+    pub fn solve_arg(&self, x: f64, target: f64, u0: f64) -> Option<f64> {
+        let (_, (ua, ub)) = self.domain();
+        let mut u = u0;
+        for _ in 0..30 {
+            let (v, _, vu) = self.eval(x, u);
+            if vu.abs() < 1e-12 {
+                break;
+            }
+            let du = (v - target) / vu;
+            u -= du;
+            if !u.is_finite() {
+                break;
+            }
+            if du.abs() <= 1e-12 * (1.0 + u.abs()) {
+                if (u - u0).abs() <= (ub - ua) {
+                    return Some(u);
+                }
+                break;
+            }
+        }
+        let n = 400;
+        let h = (ub - ua) / n as f64;
+        let f = |u: f64| self.eval(x, u).0 - target;
+        for k in 0..n {
+            for dir in [1.0, -1.0] {
+                let a = u0 + dir * k as f64 * h;
+                let c = a + dir * h;
+                if c < ua - h || c > ub + h {
+                    continue;
+                }
+                let (fa, fc) = (f(a), f(c));
+                if fa == 0.0 {
+                    return Some(a);
+                }
+                if fa * fc < 0.0 {
+                    let (mut lo, mut hi, mut flo) = (a, c, fa);
+                    for _ in 0..60 {
+                        let m = 0.5 * (lo + hi);
+                        let fm = f(m);
+                        if fm * flo <= 0.0 {
+                            hi = m;
+                        } else {
+                            lo = m;
+                            flo = fm;
+                        }
+                    }
+                    return Some(0.5 * (lo + hi));
+                }
+            }
+        }
+        None
+    }
+
+    /// The point of the section at x nearest (v0, u0) in the body plan, as (v, u) (Newton on
+    /// the foot-point condition from u0, the second derivative dropped).
+    pub fn project(&self, x: f64, v0: f64, u0: f64) -> (f64, f64) {
+        let mut u = u0;
+        for _ in 0..30 {
+            let (v, _, vu) = self.eval(x, u);
+            let step = ((u - u0) + (v - v0) * vu) / (1.0 + vu * vu);
+            u -= step;
+            if step.abs() < 1e-12 * (1.0 + u.abs()) {
+                break;
+            }
+        }
+        (self.eval(x, u).0, u)
+    }
+
+    pub(crate) fn spline(&self) -> &Spline {
+        &self.s
+    }
+
+    /// (u, v) of a point (y, z).
+    fn uv(&self, y: f64, z: f64) -> (f64, f64) {
+        match self.value {
+            Coord::Z => (y, z),
+            _ => (z, y),
+        }
+    }
+}
+
+/// Where a faired offset's value came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Source {
+    /// Cut from the hull surface.
+    Hull,
+    /// The line faired alone (a knuckle, a profile-only or plan-only line, a table without
+    /// redundant views).
+    Line,
+    /// Kept as read (on the centreline, or too few cells to fair).
+    Held,
+}
+
+/// A faired table: the input, the new value of every cell, the hull and the report.
+#[derive(Clone, Debug)]
+pub struct Faired {
+    /// The table as read.
+    pub table: Table,
+    /// New (x, y, z) per cell, in the table's cell order.
+    pub values: Vec<[f64; 3]>,
+    /// Where each value came from.
+    pub sources: Vec<Source>,
+    /// Per cell: flagged as a suspect offset (its move exceeds three rounding steps, or the
+    /// robust fit rejected it).
+    pub flagged: Vec<bool>,
+    /// The hull's surfaces: one when the table has waterlines or buttocks and no knuckle, one
+    /// on each side of the first knuckle edge otherwise; none without redundant views.
+    pub hulls: Vec<Hull>,
+    /// The rounding step used.
+    pub step: f64,
+    /// The report (serialisable).
+    pub report: Report,
+}
+
+/// Fairs a table: the hull is fitted to every waterline, buttock and (non-knuckle) edge offset
+/// at once, and every such offset is cut back from it. A knuckle edge (the first, when there are
+/// several) is faired alone first and splits the hull into two regions holding its faired
+/// points: y(x, z) above it, z(x, y) below it. Knuckle edges, profile-only and plan-only lines,
+/// and every line of a table without waterlines or buttocks are faired alone (y(x) and z(x),
+/// the same penalty and tolerance). Offsets on the centreline (y = 0 of a waterline) are held.
+/// Fails with [`Error::Setting`] for a non-positive step or tolerance and [`Error::Fit`] when
+/// fewer than 8 offsets lie on the hull. O(n·bw²) per solve, with n the surface's coefficients
+/// and bw its band (4·nu + 4); about 100 solves.
+pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
+    settings.validate()?;
+    let step = settings.step.unwrap_or(table.step);
+    let tol = settings.tolerance.unwrap_or(0.5 * step);
+    let mut t = table.clone();
+    if let Some(k) = &settings.knuckles {
+        for l in t.lines.iter_mut() {
+            l.knuckle = l.kind == Kind::Edge && k.iter().any(|n| n == &l.label);
+        }
+    }
+    let n = t.cells.len();
+    let mut values: Vec<[f64; 3]> = t.cells.iter().map(|c| [c.x, c.y, c.z]).collect();
+    let mut sources = vec![Source::Held; n];
+    let mut rejected = vec![false; n];
+    let surface_cell = |i: usize| -> bool {
+        let c = &t.cells[i];
+        let l = &t.lines[c.line];
+        match l.kind {
+            Kind::Waterline => c.y != 0.0,
+            Kind::Buttock => true,
+            Kind::Edge => !l.knuckle,
+            _ => false,
+        }
+    };
+    let use_hull = t.has_redundant_views();
+    // lines faired alone (knuckles first: the hull's regions are split along them)
+    let mut knuckle_fit: Option<(usize, Spline)> = None;
+    for (li, l) in t.lines.iter().enumerate() {
+        let alone = !use_hull || l.knuckle || matches!(l.kind, Kind::Profile | Kind::Plan);
+        if !alone {
+            continue;
+        }
+        let cells = t.line_cells(li);
+        for coord in [1usize, 2] {
+            let pts: Vec<usize> = cells
+                .iter()
+                .copied()
+                .filter(|&i| values[i][coord].is_finite())
+                .collect();
+            if pts.len() < 3 {
+                continue;
+            }
+            let (x0, x1) = (t.cells[pts[0]].x, t.cells[pts[pts.len() - 1]].x);
+            if x1 <= x0 {
+                continue;
+            }
+            let obs: Vec<Obs> = pts
+                .iter()
+                .map(|&i| Obs::new((t.cells[i].x, 0.0), t.cells[i].get_index(coord), true, false))
+                .collect();
+            let Some(f) = fit(Knots::uniform(x0, x1, pts.len() - 1), None, &obs, tol) else {
+                continue;
+            };
+            for (k, &i) in pts.iter().enumerate() {
+                values[i][coord] = f.spline.eval(t.cells[i].x, 0.0).0;
+                sources[i] = Source::Line;
+                if f.weight[k] == 0.0 {
+                    rejected[i] = true;
+                }
+            }
+            if use_hull && l.knuckle && coord == 2 && knuckle_fit.is_none() {
+                knuckle_fit = Some((li, f.spline.clone()));
+            }
+        }
+    }
+    let mut hulls = Vec::new();
+    let mut fits = Vec::new();
+    if use_hull {
+        let idx: Vec<usize> = (0..n).filter(|&i| surface_cell(i)).collect();
+        // regions: one hull, or above (y(x, z)) and below (z(x, y)) the first knuckle edge,
+        // each holding the knuckle's faired points
+        let mut regions: Vec<(String, Coord, Vec<usize>, Vec<usize>)> = Vec::new();
+        let mut band: Vec<usize> = Vec::new();
+        match &knuckle_fit {
+            Some((kl, zk)) => {
+                let (xa, xb) = (zk.kx.t[0], zk.kx.t[zk.kx.t.len() - 1]);
+                let kz = |x: f64| zk.eval(x.clamp(xa, xb), 0.0).0;
+                let held: Vec<usize> = t
+                    .line_cells(*kl)
+                    .into_iter()
+                    .filter(|&i| values[i][1].is_finite() && values[i][2].is_finite())
+                    .collect();
+                // offsets within KNUCKLE_BAND steps of the knuckle's height could lie on either
+                // side: they pull neither region and are cut from the one that moves them least
+                let near: Vec<usize> = idx
+                    .iter()
+                    .copied()
+                    .filter(|&i| (t.cells[i].z - kz(t.cells[i].x)).abs() <= KNUCKLE_BAND * step)
+                    .collect();
+                let (above, below): (Vec<usize>, Vec<usize>) = idx
+                    .iter()
+                    .filter(|i| !near.contains(i))
+                    .partition(|&&i| t.cells[i].z >= kz(t.cells[i].x));
+                band = near;
+                let name = &t.lines[*kl].label;
+                regions.push((format!("above {name}"), Coord::Y, above, held.clone()));
+                regions.push((format!("below {name}"), Coord::Z, below, held));
+            }
+            None => regions.push(("hull".into(), Coord::Y, idx.clone(), Vec::new())),
+        }
+        for (name, value, cells, held) in regions {
+            if cells.len() < 8 {
+                continue;
+            }
+            let uv = |y: f64, z: f64| if value == Coord::Z { (y, z) } else { (z, y) };
+            let (mut x0, mut x1, mut u0, mut u1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+            let pts: Vec<(f64, f64, f64)> = cells
+                .iter()
+                .map(|&i| (t.cells[i].x, t.cells[i].y, t.cells[i].z))
+                .chain(held.iter().map(|&i| (values[i][0], values[i][1], values[i][2])))
+                .collect();
+            for &(x, y, z) in &pts {
+                let (u, _) = uv(y, z);
+                x0 = x0.min(x);
+                x1 = x1.max(x);
+                u0 = u0.min(u);
+                u1 = u1.max(u);
+            }
+            if x1 <= x0 || u1 <= u0 {
+                continue;
+            }
+            let xs = t.stations.len().max(2) - 1;
+            // knots: one span per station interval and per plane of the u family (tried on
+            // Block Island and the Wigley tuning tables: twice as many in either direction
+            // follow the disagreeing offsets of Block Island instead of agreeing them)
+            let family = if value == Coord::Z {
+                Kind::Buttock
+            } else {
+                Kind::Waterline
+            };
+            let mut planes: Vec<f64> = t
+                .lines
+                .iter()
+                .filter(|l| l.kind == family)
+                .filter_map(|l| l.plane)
+                .collect();
+            planes.sort_by(f64::total_cmp);
+            planes.dedup();
+            let us = planes.len().clamp(3, 40);
+            let kx = Knots::uniform(x0, x1, xs.min(80));
+            let ku = Knots::uniform(u0, u1, us);
+            let mut obs: Vec<Obs> = cells
+                .iter()
+                .map(|&i| {
+                    let c = &t.cells[i];
+                    let kind = t.lines[c.line].kind;
+                    let (u, v) = uv(c.y, c.z);
+                    let (my, mz) = (kind != Kind::Buttock, kind != Kind::Waterline);
+                    let (mu, mv) = if value == Coord::Z { (my, mz) } else { (mz, my) };
+                    Obs::new((c.x, u), v, mv, mu)
+                })
+                .collect();
+            for &i in &held {
+                let (u, v) = uv(values[i][1], values[i][2]);
+                let mut o = Obs::new((values[i][0], u), v, true, true);
+                o.held = true;
+                obs.push(o);
+            }
+            let f = fit(kx, Some(ku), &obs, tol)
+                .ok_or_else(|| Error::Fit(format!("the {name} system is singular")))?;
+            let h = Hull {
+                s: f.spline.clone(),
+                value,
+                region: name,
+            };
+            for (k, &i) in cells.iter().enumerate() {
+                let c = &t.cells[i];
+                let kind = t.lines[c.line].kind;
+                let (u, v) = h.uv(c.y, c.z);
+                let (mu, mv) = (obs[k].free_u, obs[k].free_v);
+                let new = if mv && !mu {
+                    Some(h.point(c.x, u))
+                } else if mu && !mv {
+                    h.solve_arg(c.x, v, u).map(|u2| h.point(c.x, u2))
+                } else {
+                    let (_, u2) = h.project(c.x, v, u);
+                    Some(h.point(c.x, u2))
+                };
+                match new {
+                    Some(p) => {
+                        // the plane coordinate of a waterline / buttock stays exact
+                        values[i] = [
+                            c.x,
+                            if kind == Kind::Buttock { c.y } else { p[1] },
+                            if kind == Kind::Waterline { c.z } else { p[2] },
+                        ];
+                    }
+                    None => rejected[i] = true,
+                }
+                sources[i] = Source::Hull;
+                if f.weight[k] == 0.0 {
+                    rejected[i] = true;
+                }
+            }
+            fits.push((h.region.clone(), f));
+            hulls.push(h);
+        }
+        for &i in &band {
+            let c = &t.cells[i];
+            let kind = t.lines[c.line].kind;
+            let best = hulls
+                .iter()
+                .filter_map(|h| cut(h, c.x, c.y, c.z, kind))
+                .min_by(|a, b| dist(&[c.x, c.y, c.z], a).total_cmp(&dist(&[c.x, c.y, c.z], b)));
+            match best {
+                Some(p) => {
+                    values[i] = p;
+                    sources[i] = Source::Hull;
+                }
+                None => rejected[i] = true,
+            }
+        }
+        if hulls.is_empty() {
+            return Err(Error::Fit(format!(
+                "{} offsets on the hull: too few for a surface",
+                idx.len()
+            )));
+        }
+    }
+    let flagged: Vec<bool> = (0..n)
+        .map(|i| {
+            let c = &t.cells[i];
+            let d = dist(&[c.x, c.y, c.z], &values[i]);
+            rejected[i] || d > 3.0 * step * (1.0 + 1e-9)
+        })
+        .collect();
+    let report = build_report(&t, &values, &sources, &flagged, step, tol, &fits, use_hull);
+    Ok(Faired {
+        table: t,
+        values,
+        sources,
+        flagged,
+        hulls,
+        step,
+        report,
+    })
+}
+
+/// Offsets within this many rounding steps of a knuckle's height are cut from the region that
+/// moves them least instead of being assigned to one by their (rounded) height.
+const KNUCKLE_BAND: f64 = 2.0;
+
+/// The offset (x, y, z) of a line of family `kind` cut from hull region `h`: a waterline keeps
+/// its z, a buttock its y, an edge point is projected; None where the section misses it.
+fn cut(h: &Hull, x: f64, y: f64, z: f64, kind: Kind) -> Option<[f64; 3]> {
+    let (u, v) = h.uv(y, z);
+    let (my, mz) = (kind != Kind::Buttock, kind != Kind::Waterline);
+    let (mu, mv) = if h.value == Coord::Z { (my, mz) } else { (mz, my) };
+    let p = if mv && !mu {
+        h.point(x, u)
+    } else if mu && !mv {
+        h.point(x, h.solve_arg(x, v, u)?)
+    } else {
+        let (_, u2) = h.project(x, v, u);
+        h.point(x, u2)
+    };
+    Some([
+        x,
+        if kind == Kind::Buttock { y } else { p[1] },
+        if kind == Kind::Waterline { z } else { p[2] },
+    ])
+}
+
+/// Distance between two cells' values, missing coordinates ignored.
+pub(crate) fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a.iter()
+        .zip(b)
+        .filter(|(p, q)| p.is_finite() && q.is_finite())
+        .map(|(p, q)| (p - q) * (p - q))
+        .sum::<f64>()
+        .sqrt()
+}
+
+pub(crate) fn fit_summary(f: &Fit) -> (f64, usize, usize) {
+    (
+        f.lambda,
+        f.iterations,
+        f.weight.iter().filter(|w| **w == 0.0).count(),
+    )
+}

@@ -1,0 +1,146 @@
+use fair_lines::{fair, generate, read_table, Kind, Settings};
+
+fn table(g: &generate::Generated) -> (tempfile::TempDir, fair_lines::Table) {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("wigley.csv");
+    std::fs::write(&p, &g.table).unwrap();
+    let t = read_table(&p).unwrap();
+    (dir, t)
+}
+
+fn truth(t: &fair_lines::Table, i: usize) -> [f64; 3] {
+    let c = &t.cells[i];
+    match t.lines[c.line].kind {
+        Kind::Waterline => [c.x, generate::wigley_y(c.x, c.z), c.z],
+        _ => [c.x, c.y, generate::wigley_z(c.x, c.y).unwrap()],
+    }
+}
+
+#[test]
+fn every_view_is_cut_from_one_hull() {
+    let (_d, t) = table(&generate::wigley(0.0, 0, 7));
+    let f = fair(&t, &Settings::default()).unwrap();
+    let h = f.hulls.first().unwrap();
+    for (i, c) in t.cells.iter().enumerate() {
+        if c.y == 0.0 {
+            continue;
+        }
+        let v = f.values[i];
+        // a waterline's and a buttock's faired offset both lie on the hull: the views agree
+        assert!((h.eval(v[0], v[2]).0 - v[1]).abs() < 1e-9, "{c:?} {v:?}");
+    }
+    // the rounded table moves by about the rounding, not more
+    assert!(f.report.moves.rms < 1.0, "{:?}", f.report.moves);
+}
+
+#[test]
+fn planted_errors_are_flagged_and_pulled_toward_the_truth() {
+    let g = generate::wigley(0.0, 3, 11);
+    let (_d, t) = table(&g);
+    let f = fair(&t, &Settings::default()).unwrap();
+    let planted: serde_json::Value = serde_json::from_str(&g.planted).unwrap();
+    for e in planted["errors"].as_array().unwrap() {
+        let cell = &e["cells"][0];
+        let i = t
+            .cells
+            .iter()
+            .position(|c| {
+                t.lines[c.line].label == cell["line"].as_str().unwrap()
+                    && c.station_index == cell["station_index"].as_i64().unwrap()
+            })
+            .unwrap();
+        assert!(f.flagged[i], "planted error {e} not flagged");
+        let tr = truth(&t, i);
+        let before = (0..3)
+            .map(|k| (t.cells[i].get_coord(k) - tr[k]).abs())
+            .fold(0.0, f64::max);
+        let after = (0..3).map(|k| (f.values[i][k] - tr[k]).abs()).fold(0.0, f64::max);
+        assert!(after < 0.5 * before, "{e}: {before} -> {after}");
+    }
+    // and no clean offset is flagged with them
+    assert_eq!(f.report.flagged, 3);
+}
+
+#[test]
+fn a_table_without_redundant_views_says_so() {
+    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../data/hull_chesapeake_bay_sharpie/offsets_table.csv");
+    let f = fair(&read_table(p).unwrap(), &Settings::default()).unwrap();
+    assert!(!f.report.consistency_measurable);
+    assert!(f.hulls.is_empty());
+    assert!(f.report.note.contains("cannot be measured"));
+}
+
+#[test]
+fn a_bad_setting_is_refused() {
+    let (_d, t) = table(&generate::wigley(0.0, 0, 7));
+    let s = Settings {
+        tolerance: Some(-1.0),
+        ..Settings::default()
+    };
+    assert!(matches!(
+        fair(&t, &s),
+        Err(fair_lines::Error::Setting {
+            name: "tolerance",
+            ..
+        })
+    ));
+}
+
+/// Turning angle (degrees) of the polyline a → b → c at b, in the body plan (y, z).
+fn turn(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
+    let (u, v) = ([b[1] - a[1], b[2] - a[2]], [c[1] - b[1], c[2] - b[2]]);
+    let cos = (u[0] * v[0] + u[1] * v[1])
+        / ((u[0] * u[0] + u[1] * u[1]).sqrt() * (v[0] * v[0] + v[1] * v[1]).sqrt());
+    cos.clamp(-1.0, 1.0).acos().to_degrees()
+}
+
+#[test]
+fn a_chine_is_kept_as_a_knuckle_between_two_regions() {
+    let (_d, t) = table(&generate::hard_chine(0.0, 0, 7));
+    let f = fair(&t, &Settings::default()).unwrap();
+    assert_eq!(f.hulls.len(), 2, "one region on each side of the chine");
+    assert!(
+        f.hulls.iter().any(|h| h.value() == fair_lines::Coord::Z),
+        "the bottom is z(x, y)"
+    );
+    // at every station the section turns at the chine by the true angle, within 10 %
+    let chine = t.lines.iter().position(|l| l.label == "chine").unwrap();
+    for ci in t.line_cells(chine) {
+        let si = t.cells[ci].station_index;
+        let mut pts: Vec<usize> = (0..t.cells.len())
+            .filter(|&i| {
+                t.cells[i].station_index == si && t.cells[i].y.is_finite() && t.cells[i].z.is_finite()
+            })
+            .collect();
+        // girth order: bottom points by y, then topsides points by z
+        let (yc, zc) = (t.cells[ci].y, t.cells[ci].z);
+        pts.sort_by(|&a, &b| {
+            let key = |i: usize| {
+                if t.cells[i].z < zc - 1e-9 {
+                    t.cells[i].y - yc
+                } else {
+                    t.cells[i].z - zc
+                }
+            };
+            key(a).total_cmp(&key(b))
+        });
+        let k = pts.iter().position(|&i| i == ci).unwrap();
+        // the neighbours a chord of at least 1 in away (a point a step from the chine turns
+        // its rounding into the angle)
+        let far = |i: &&usize| ((t.cells[**i].y - yc).powi(2) + (t.cells[**i].z - zc).powi(2)).sqrt() > 1.0;
+        let (Some(&a), Some(&b)) = (pts[..k].iter().rev().find(far), pts[k + 1..].iter().find(far)) else {
+            continue;
+        };
+        let truth_angle = turn(
+            [0.0, t.cells[a].y, t.cells[a].z],
+            [0.0, yc, zc],
+            [0.0, t.cells[b].y, t.cells[b].z],
+        );
+        let faired_angle = turn(f.values[a], f.values[ci], f.values[b]);
+        assert!(
+            (faired_angle / truth_angle - 1.0).abs() < 0.1,
+            "station {si}: {truth_angle} -> {faired_angle}"
+        );
+    }
+}

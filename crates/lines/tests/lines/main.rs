@@ -1,0 +1,5 @@
+//! The fair-lines integration tests.
+
+mod known_hull;
+mod read;
+mod write;
