@@ -246,7 +246,7 @@ enum Sniffed {
 ///
 /// Fails with the file and line of the first problem; a file without any point is
 /// [`Error::Empty`]. The minimum number of points is the caller's to check
-/// ([`CurveInput::require_at_least`]).
+/// ([`fair_door::CurveData::require_at_least`]).
 pub fn read_curve(path: &str) -> Result<CurveInput> {
     parse_curve(&Source::read(path)?)
 }
