@@ -380,3 +380,58 @@ fn cad_to_standard_output() {
     let model = cad::read(&text, cad::Format::Step).unwrap();
     assert_eq!(model.curves.len(), 1);
 }
+
+/// `--cad-units m` declares metres (a ship's waterline in metres stays 35 m long, not 35 mm),
+/// with the coordinates unchanged; `--step-schema ap242` writes AP242; both are refused where
+/// they cannot apply.
+#[test]
+fn the_file_declares_the_units_and_schema_asked_for() {
+    let scratch = crate::scratch_dir("fair-cad-cli-");
+    let dir = scratch.path();
+    let input = data("hull_gunnerus/waterlines/wl_03.csv");
+    let step = dir.join("wl.step");
+    let report = dir.join("wl.json");
+    let run = |extra: &[&str]| {
+        let mut args = vec!["curve", &input, "-q", "-o", step.to_str().unwrap()];
+        args.extend(["--report", report.to_str().unwrap()]);
+        args.extend_from_slice(extra);
+        fair(&args)
+    };
+    ok(&run(&[]));
+    assert!(!std::fs::read_to_string(&step).unwrap().contains("AP242_MANAGED"));
+    let millimetres = cad::read_path(&step, None).unwrap();
+    assert_eq!(millimetres.units, cad::Units::Millimetre);
+    ok(&run(&["--cad-units", "m", "--step-schema", "ap242"]));
+    let metres = cad::read_path(&step, None).unwrap();
+    assert_eq!(metres.units, cad::Units::Metre);
+    assert_eq!(
+        metres.curves[0].curve.control_points(),
+        millimetres.curves[0].curve.control_points(),
+        "the coordinates are written as they are"
+    );
+    let text = std::fs::read_to_string(&step).unwrap();
+    assert!(text.contains("AP242_MANAGED"), "not AP242");
+    let value: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert_eq!(value["cad"]["units"], "m");
+    for (args, option) in [
+        (vec!["curve", &input, "--cad-units", "m"], "--cad-units"),
+        (vec!["curve", &input, "--step-schema", "ap242"], "--step-schema"),
+        (
+            vec![
+                "curve",
+                &input,
+                "-o",
+                dir.join("wl.igs").to_str().unwrap(),
+                "--step-schema",
+                "ap242",
+            ],
+            "--step-schema",
+        ),
+    ] {
+        let output = fair(&args);
+        assert_eq!(output.status.code(), Some(2), "{args:?}");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(stderr.contains(option), "{args:?}: {stderr}");
+    }
+    assert!(!dir.join("wl.igs").exists());
+}

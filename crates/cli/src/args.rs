@@ -14,7 +14,7 @@ use std::path::PathBuf;
     about = "Fair measured curves and surfaces: splines, fairness indicators, fairing strategies",
     propagate_version = true
 )]
-pub struct Cli {
+pub(crate) struct Cli {
     /// What to do.
     #[command(subcommand)]
     pub command: Command,
@@ -22,7 +22,7 @@ pub struct Cli {
 
 /// The subcommands.
 #[derive(Debug, Clone, Subcommand)]
-pub enum Command {
+pub(crate) enum Command {
     /// Fair a curve (CSV x,y or x,y,z; JSON {"points": ...}; Selig .dat; - for stdin).
     Curve(FairArgs),
     /// Fair a surface grid (CSV i,j,x,y,z).
@@ -34,7 +34,7 @@ pub enum Command {
     /// Run every method on the embedded data sets.
     Demo(DemoArgs),
     /// Fair interactively in the browser: a local web page over a JSON API.
-    Serve(crate::serve::ServeArgs),
+    Serve(ServeArgs),
 }
 
 /// How to read a curve's points.
@@ -71,9 +71,35 @@ impl ClampEnds {
     }
 }
 
+impl From<KindArg> for fair_door::KindChoice {
+    fn from(kind: KindArg) -> Self {
+        match kind {
+            KindArg::Auto => fair_door::KindChoice::Auto,
+            KindArg::Function => fair_door::KindChoice::Function,
+            KindArg::Parametric => fair_door::KindChoice::Parametric,
+        }
+    }
+}
+
+impl From<ClampEnds> for fairing::EndClamp {
+    fn from(clamp: ClampEnds) -> Self {
+        match clamp {
+            ClampEnds::G0 => fairing::EndClamp::G0,
+            ClampEnds::G1 => fairing::EndClamp::G1,
+            ClampEnds::G2 => fairing::EndClamp::G2,
+        }
+    }
+}
+
+/// Whether a path names a JSON-lines stream (`.jsonl`, `.ndjson`).
+pub(crate) fn is_stream_name(path: &str) -> bool {
+    let lower = path.to_ascii_lowercase();
+    lower.ends_with(".jsonl") || lower.ends_with(".ndjson")
+}
+
 /// Options of `fair curve` and `fair surface`.
 #[derive(Debug, Clone, Args)]
-pub struct FairArgs {
+pub(crate) struct FairArgs {
     /// Input file, or - for standard input.
     #[arg(value_name = "INPUT")]
     pub input: String,
@@ -142,7 +168,7 @@ pub struct FairArgs {
 /// Options that write the faired result as an exact B-spline into a CAD file (IGES, STEP,
 /// DXF). The settings themselves are `fair-cad`'s [`cad::CadSettings`].
 #[derive(Debug, Clone, Default, PartialEq, Args)]
-pub struct CadArgs {
+pub(crate) struct CadArgs {
     /// Write the faired curve or surface as an exact B-spline in this CAD format (iges, step,
     /// dxf) to the file -o names, instead of the points. Without it, -o's extension chooses
     /// (.igs/.iges, .step/.stp, .dxf). DXF holds curves only.
@@ -157,24 +183,85 @@ pub struct CadArgs {
     /// points as points does.
     #[arg(long, value_name = "D", value_parser = parse_tolerance, allow_negative_numbers = true)]
     pub fit_tolerance: Option<f64>,
+    /// The length unit the CAD file declares: mm (default), cm, m, um, in or ft. The
+    /// coordinates are written as they are: give the unit the points are in (a ship's lines
+    /// in metres: m).
+    #[arg(long, value_name = "UNIT", value_parser = parse_units)]
+    pub cad_units: Option<cad::Units>,
+    /// The STEP application protocol: ap214 (default, read by every importer) or ap242.
+    #[arg(long, value_name = "SCHEMA", value_parser = parse_step_schema)]
+    pub step_schema: Option<cad::StepSchema>,
+}
+
+/// Parses `--cad-units`: a unit's short name.
+fn parse_units(text: &str) -> Result<cad::Units, String> {
+    cad::Units::ALL
+        .into_iter()
+        .find(|u| u.name().eq_ignore_ascii_case(text.trim()))
+        .ok_or_else(|| format!("`{text}` is not a length unit (mm, cm, m, um, in or ft)"))
+}
+
+/// Parses `--step-schema`: ap214 or ap242.
+fn parse_step_schema(text: &str) -> Result<cad::StepSchema, String> {
+    match text.trim().to_ascii_lowercase().as_str() {
+        "ap214" => Ok(cad::StepSchema::Ap214),
+        "ap242" => Ok(cad::StepSchema::Ap242),
+        _ => Err(format!("`{text}` is not a STEP schema (ap214 or ap242)")),
+    }
 }
 
 /// Parses `--cad`: iges/igs, step/stp or dxf, any case.
-pub fn parse_cad_format(text: &str) -> Result<cad::Format, String> {
+pub(crate) fn parse_cad_format(text: &str) -> Result<cad::Format, String> {
     text.parse::<cad::Format>()
         .map_err(|_| format!("`{text}` is not a CAD format (iges, step or dxf)"))
 }
 
 impl FairArgs {
+    /// Whether the input is a batch: `--batch`, a directory, or a JSON-lines stream
+    /// (`.jsonl`, `.ndjson`).
+    pub(crate) fn is_batch(&self) -> bool {
+        self.batch || std::path::Path::new(&self.input).is_dir() || is_stream_name(&self.input)
+    }
+
+    /// The `--set`s as the catalogue's parameter map.
+    pub(crate) fn parameters(&self) -> fairing::catalog::ParameterMap {
+        fairing::catalog::ParameterMap::from_sets(
+            self.settings.iter().map(|s| (s.name.as_str(), s.value.as_str())),
+        )
+    }
+
+    /// `--fixed`, `--points`, `--tolerance`, `--clamp-ends` as the door takes them.
+    pub(crate) fn constraints(&self) -> fair_door::ConstraintRequest {
+        fair_door::ConstraintRequest {
+            fixed: self.fixed.as_ref().map(|l| l.0.clone()),
+            bad_points: self.points.as_ref().map(|l| l.0.clone()),
+            tolerance: self.tolerance,
+            clamp_ends: self.clamp_ends.map(Into::into),
+        }
+    }
+
+    /// `-o`, `--cad`, `--control-points`, `--fit-tolerance` as the door's CAD request.
+    pub(crate) fn cad_request(&self) -> fair_door::cad::CadRequest {
+        fair_door::cad::CadRequest {
+            output: self.output.clone(),
+            format: self.cad.cad,
+            control_points: self.cad.control_points,
+            fit_tolerance: self.cad.fit_tolerance,
+            units: self.cad.cad_units,
+            step_schema: self.cad.step_schema,
+            batch: self.is_batch(),
+        }
+    }
+
     /// How to read the input: `--columns`.
-    pub fn read_options(&self) -> crate::input::ReadOptions {
+    pub(crate) fn read_options(&self) -> crate::input::ReadOptions {
         crate::input::ReadOptions::with_columns(self.columns.clone())
     }
 }
 
 /// Options of `fair inspect`.
 #[derive(Debug, Clone, Args)]
-pub struct InspectArgs {
+pub(crate) struct InspectArgs {
     /// Input file, or - for standard input.
     #[arg(value_name = "INPUT")]
     pub input: String,
@@ -200,14 +287,14 @@ pub struct InspectArgs {
 
 impl InspectArgs {
     /// How to read the input: `--columns`.
-    pub fn read_options(&self) -> crate::input::ReadOptions {
+    pub(crate) fn read_options(&self) -> crate::input::ReadOptions {
         crate::input::ReadOptions::with_columns(self.columns.clone())
     }
 }
 
 /// Options of `fair demo`.
 #[derive(Debug, Clone, Args)]
-pub struct DemoArgs {
+pub(crate) struct DemoArgs {
     /// Directory for the outputs, reports and plots (created if missing).
     #[arg(long, value_name = "DIR", default_value = "out/demo")]
     pub out: PathBuf,
@@ -218,7 +305,7 @@ pub struct DemoArgs {
 
 /// One `--set NAME=VALUE`.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Setting {
+pub(crate) struct Setting {
     /// The parameter name.
     pub name: String,
     /// Its value, as text (the method parses it).
@@ -227,10 +314,10 @@ pub struct Setting {
 
 /// A comma-separated list of point indices, in the order given, without duplicates.
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
-pub struct IndexList(pub Vec<usize>);
+pub(crate) struct IndexList(pub Vec<usize>);
 
 /// Parses `NAME=VALUE`: a name of letters, digits, `_` or `-`, and a non-empty value.
-pub fn parse_setting(text: &str) -> Result<Setting, String> {
+pub(crate) fn parse_setting(text: &str) -> Result<Setting, String> {
     let Some((name, value)) = text.split_once('=') else {
         return Err(format!("expected NAME=VALUE, got `{text}`"));
     };
@@ -254,7 +341,7 @@ pub fn parse_setting(text: &str) -> Result<Setting, String> {
 }
 
 /// Parses `2,5,7` (spaces allowed) into point indices counted from 0.
-pub fn parse_index_list(text: &str) -> Result<IndexList, String> {
+pub(crate) fn parse_index_list(text: &str) -> Result<IndexList, String> {
     let mut indices = Vec::new();
     for field in text.split(',') {
         let field = field.trim();
@@ -270,12 +357,40 @@ pub fn parse_index_list(text: &str) -> Result<IndexList, String> {
 }
 
 /// Parses a tolerance: a finite number greater than 0.
-pub fn parse_tolerance(text: &str) -> Result<f64, String> {
+pub(crate) fn parse_tolerance(text: &str) -> Result<f64, String> {
     match text.trim().parse::<f64>() {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
         Ok(_) => Err(format!("`{text}` must be a finite number greater than 0")),
         Err(_) => Err(format!("`{text}` is not a number")),
     }
+}
+
+/// The default port of `fair serve`.
+pub(crate) const DEFAULT_PORT: u16 = 8765;
+
+/// The default largest request body, in bytes (16 MiB: a scan of about 400 000 points as JSON).
+pub(crate) const DEFAULT_MAX_UPLOAD: usize = 16 << 20;
+
+/// Options of `fair serve`.
+#[derive(Debug, Clone, clap::Args)]
+pub(crate) struct ServeArgs {
+    /// Curve or surface files to offer on the page, or folders of them (every .csv, .json,
+    /// .dat and .txt file inside); nothing outside them is ever read.
+    #[arg(value_name = "FILE")]
+    pub files: Vec<std::path::PathBuf>,
+    /// The port to listen on (0: any free port; the address is printed).
+    #[arg(long, short = 'p', value_name = "P", default_value_t = DEFAULT_PORT)]
+    pub port: u16,
+    /// The address to listen on. The default serves this machine only; another address lets
+    /// anyone who reaches it use the page and read the files given.
+    #[arg(long, value_name = "ADDR", default_value = "127.0.0.1")]
+    pub bind: std::net::IpAddr,
+    /// The largest request body (an upload, a curve to fair), in bytes.
+    #[arg(long, value_name = "BYTES", default_value_t = DEFAULT_MAX_UPLOAD)]
+    pub max_upload: usize,
+    /// Print nothing but the address (no line per request).
+    #[arg(long, short = 'q')]
+    pub quiet: bool,
 }
 
 #[cfg(test)]

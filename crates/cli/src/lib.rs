@@ -1,10 +1,10 @@
 //! The `fair` command: read measured points, fair them, write points, a report and a plot.
 //!
-//! The command surface is the contract of `docs/CONTRACT.md` ([`args`]); [`main_with`]
-//! parses it and dispatches to one handler per subcommand ([`commands`]) with a
-//! [`Catalog`] of methods: the command is a thin shell over the library's catalogue, which
-//! knows every method, its parameters (`fair methods`, `--set`, config files and pipelines)
-//! and what it refuses. A program with its own methods is a few lines:
+//! The command surface is the contract of `docs/CONTRACT.md`; [`main_with`] parses it and
+//! dispatches to one handler per subcommand with a [`Catalog`] of methods. The command is a
+//! thin adapter over the library's door ([`fair_door`]: fair a curve, fair a surface,
+//! measure), which the local server (`fair serve`) and the Python package use too. A program
+//! with its own methods is a few lines:
 //!
 //! ```no_run
 //! use fairing::catalog::Catalog;
@@ -14,38 +14,27 @@
 //! }
 //! ```
 //!
-//! Around the handlers:
-//! - [`input`] reads curves (CSV, JSON, Selig/Lednicer `.dat`, `-` for stdin) and surface
-//!   grids (CSV `i,j,x,y,z`), naming file and line on every error; [`output`] writes results
-//!   back in the input's format;
-//! - [`report`] is the JSON report; [`svg`] a small plotting toolkit and [`plots`] the pictures
-//!   built with it;
-//! - [`constraints`] checks `--fixed`/`--points`/`--tolerance`/`--clamp-ends`, [`kind`]
-//!   resolves `--kind`;
-//! - [`serve`] is `fair serve`, the local web page and its JSON API over the same code.
-//!
-//! The numerical crates plug in through the catalogue ([`fairing::catalog`]): the command
-//! never names a method.
+//! Split by job, each part importing one way (`.ci/import_cycles.py` checks it): [`input`]
+//! reads curves (CSV, JSON, Selig/Lednicer `.dat`, `-` for stdin) and surface grids (CSV
+//! `i,j,x,y,z`), naming file and line on every error, and the output module writes results
+//! back in the input's format; [`svg`] is a small plotting toolkit and [`plots`] the pictures
+//! built with it; the server and its page, the argument parsing and the handlers are private
+//! modules.
 //!
 //! Exit status: 0 on success, 2 on bad input or arguments, 1 on internal failure; every
 //! error is one line on standard error, `fair: <file>:<line>: <what is wrong>`. No input
 //! makes the command panic, and a panic in a library would still end as one line and exit 1.
 
-pub mod args;
-pub mod cad_file;
-pub mod commands;
-pub mod constraints;
-pub mod error;
+pub(crate) mod args;
+pub(crate) mod commands;
 pub mod input;
-pub mod kind;
-pub mod output;
+pub(crate) mod output;
 pub mod plots;
-pub mod progress;
-pub mod report;
-pub mod serve;
+pub(crate) mod progress;
+pub(crate) mod serve;
 pub mod svg;
 
-pub use error::{Error, Result};
+pub use fair_door::{Error, Result};
 
 use clap::Parser;
 use fairing::catalog::Catalog;

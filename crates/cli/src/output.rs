@@ -5,14 +5,14 @@
 
 use curve_repr::number::Compact;
 
-use crate::error::{Error, Result};
-use crate::input::{io_reason, CurveInput, Delimiter, Grid, InputFormat, Layout, Points, SurfaceInput};
+use crate::input::{io_reason, CurveInput, CurvePoints, Delimiter, Grid, InputFormat, Layout, SurfaceInput};
+use fair_door::error::{Error, Result};
 use std::io::Write;
 
 /// Formats `points` in the format of `input` (header, JSON document, airfoil name).
 ///
 /// `points` must have the dimension of the input; a Lednicer input needs the same count.
-pub fn format_curve(input: &CurveInput, points: &Points) -> Result<String> {
+pub(crate) fn format_curve(input: &CurveInput, points: &CurvePoints) -> Result<String> {
     if let Some(index) = points.first_non_finite() {
         return Err(Error::NonFiniteOutput {
             what: "output point".into(),
@@ -96,7 +96,7 @@ pub fn format_curve(input: &CurveInput, points: &Points) -> Result<String> {
 }
 
 /// Formats a surface grid in the row order and header of `input`, indices as in the file.
-pub fn format_surface(input: &SurfaceInput, grid: &Grid) -> Result<String> {
+pub(crate) fn format_surface(input: &SurfaceInput, grid: &Grid) -> Result<String> {
     if let Some(index) = grid.points.iter().position(|p| !p.iter().all(|c| c.is_finite())) {
         return Err(Error::NonFiniteOutput {
             what: "output grid point".into(),
@@ -126,7 +126,7 @@ pub fn format_surface(input: &SurfaceInput, grid: &Grid) -> Result<String> {
 
 /// A coordinate as text: the shortest digits that read back as the same f64, scientific
 /// outside 1e-5 ≤ |v| < 1e16 ([`Compact`]): `1e-200`, not 200 digits of zeros. O(1).
-pub fn number(v: f64) -> String {
+pub(crate) fn number(v: f64) -> String {
     Compact(v).to_string()
 }
 
@@ -179,7 +179,7 @@ fn push_layout_rows(
 
 /// The format `-o` asks for, by its extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum OutputFormat {
+pub(crate) enum OutputFormat {
     /// The input's own format (`-o -`, standard output).
     SameAsInput,
     /// `.csv`: comma-separated, a header naming the columns.
@@ -194,7 +194,7 @@ impl OutputFormat {
     /// The format of `path` by its extension: `.csv`, `.json`, `.dat` (and `.txt`, written as
     /// a table like `.csv`); `-` keeps the input's. Any other extension, or none, is refused
     /// naming the ones known, before anything runs. O(1).
-    pub fn of_path(path: &str) -> Result<OutputFormat> {
+    pub(crate) fn of_path(path: &str) -> Result<OutputFormat> {
         if path == "-" {
             return Ok(OutputFormat::SameAsInput);
         }
@@ -231,7 +231,11 @@ impl OutputFormat {
 /// with a header of the coordinates' names (label columns kept), a JSON object with the
 /// points (and the label columns as `labels`), a Selig file named after the input. A 3D curve
 /// cannot be an airfoil `.dat`. O(n).
-pub fn format_curve_as(input: &CurveInput, points: &Points, format: OutputFormat) -> Result<String> {
+pub(crate) fn format_curve_as(
+    input: &CurveInput,
+    points: &CurvePoints,
+    format: OutputFormat,
+) -> Result<String> {
     let same = matches!(
         (format, &input.format),
         (OutputFormat::SameAsInput, _)
@@ -334,7 +338,7 @@ pub fn format_curve_as(input: &CurveInput, points: &Points, format: OutputFormat
 /// Writes text to a file, or to standard output for `-`.
 ///
 /// A closed standard output (`fair ... -o - | head`) is not an error.
-pub fn write_text(path: &str, text: &str) -> Result<()> {
+pub(crate) fn write_text(path: &str, text: &str) -> Result<()> {
     if path == "-" {
         let mut stdout = std::io::stdout().lock();
         return match stdout.write_all(text.as_bytes()).and_then(|()| stdout.flush()) {
@@ -407,14 +411,14 @@ mod tests {
     #[test]
     fn moved_points_are_written() {
         let input = parse_curve(&Source::from_text("a.csv", "x,y\n0,0\n1,1\n")).unwrap();
-        let moved = Points::Planar(vec![Vec2::new(0., 0.5), Vec2::new(1., 1.)]);
+        let moved = CurvePoints::Planar(vec![Vec2::new(0., 0.5), Vec2::new(1., 1.)]);
         assert_eq!(format_curve(&input, &moved).unwrap(), "x,y\n0,0.5\n1,1\n");
     }
 
     #[test]
     fn never_writes_nan() {
         let input = parse_curve(&Source::from_text("a.csv", "0,0\n1,1\n")).unwrap();
-        let bad = Points::Planar(vec![Vec2::new(0., f64::NAN), Vec2::new(1., 1.)]);
+        let bad = CurvePoints::Planar(vec![Vec2::new(0., f64::NAN), Vec2::new(1., 1.)]);
         let e = format_curve(&input, &bad).unwrap_err();
         assert!(matches!(e, Error::NonFiniteOutput { index: 0, .. }), "{e}");
     }

@@ -2,37 +2,12 @@
 //! a surface grid with its z_ij map. Built from plain data so the numerical crates supply
 //! what they have and the rest is left out.
 
-use crate::input::{Grid, Points};
+use crate::input::{CurvePoints, Grid};
 use crate::svg::{Bars, Color, ColorMap, Comb, Figure, Line, Markers, Panel};
 use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings};
 use fairness::highlight::{HighlightSettings, LightSetup};
 
-/// A curvature comb in the plane: points, unit normals and signed curvatures.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct CombData {
-    /// Points on the curve (usually densely sampled).
-    pub points: Vec<[f64; 2]>,
-    /// Unit normals there.
-    pub normals: Vec<[f64; 2]>,
-    /// Signed curvature there.
-    pub curvature: Vec<f64>,
-}
-
-/// A curvature plot: a line and the values at the data points (Han's x–c polyline for a
-/// function, κ over the chord-length parameter for a parametric curve).
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct CurvaturePlot {
-    /// Panel title.
-    pub title: String,
-    /// The abscissa's name (`x`, or `t` the chord-length parameter).
-    pub x_label: String,
-    /// The ordinate's name (`c = y''/6`, or `κ`).
-    pub y_label: String,
-    /// The plotted line.
-    pub line: Vec<[f64; 2]>,
-    /// The values at the data points.
-    pub knots: Vec<[f64; 2]>,
-}
+pub use fair_door::measure::{CombData, CurvaturePlot};
 
 /// What a curve plot shows; every field but the input is optional.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -92,12 +67,16 @@ pub fn axis_names(names: &[String]) -> [String; 2] {
 /// The projections of a 3D curve that [`planar_view`] leaves out — onto the planes of the
 /// first two and of the last two coordinates —, each named by its coordinates; none for a
 /// planar curve. O(n).
-pub fn other_projections(names: &[String], input: &Points, faired: Option<&Points>) -> Vec<Projection> {
-    let (Points::Spatial(before), true) = (input, names.len() == 3) else {
+pub fn other_projections(
+    names: &[String],
+    input: &CurvePoints,
+    faired: Option<&CurvePoints>,
+) -> Vec<Projection> {
+    let (CurvePoints::Spatial(before), true) = (input, names.len() == 3) else {
         return Vec::new();
     };
     let after = match faired {
-        Some(Points::Spatial(p)) => Some(p),
+        Some(CurvePoints::Spatial(p)) => Some(p),
         _ => None,
     };
     [(0usize, 1usize), (1, 2)]
@@ -115,24 +94,14 @@ pub fn other_projections(names: &[String], input: &Points, faired: Option<&Point
 
 /// The plane a spatial curve is drawn in: (x, y) for planar points, (x, z) for spatial ones
 /// (a ship's sheer in profile). Documented choice; O(n).
-pub fn planar_view(points: &Points) -> Vec<[f64; 2]> {
+pub fn planar_view(points: &CurvePoints) -> Vec<[f64; 2]> {
     match points {
-        Points::Planar(p) => p.iter().map(|v| [v.x, v.y]).collect(),
-        Points::Spatial(p) => p.iter().map(|v| [v.x, v.z]).collect(),
+        CurvePoints::Planar(p) => p.iter().map(|v| [v.x, v.y]).collect(),
+        CurvePoints::Spatial(p) => p.iter().map(|v| [v.x, v.z]).collect(),
     }
 }
 
 impl CurvePlot {
-    /// A plot of the input points only.
-    pub fn of_input(title: impl Into<String>, points: &Points, function: bool) -> CurvePlot {
-        CurvePlot {
-            title: title.into(),
-            input: planar_view(points),
-            function,
-            ..CurvePlot::default()
-        }
-    }
-
     /// The figure: the curve panel, then a z_i panel when z values are given.
     pub fn figure(&self) -> Figure {
         let [x_label, y_label] = self

@@ -11,15 +11,15 @@ use std::sync::Arc;
 use std::time::Duration;
 
 /// How long a single run goes before its spinner appears.
-pub const SPINNER_DELAY: Duration = Duration::from_secs(1);
+pub(crate) const SPINNER_DELAY: Duration = Duration::from_secs(1);
 
 /// Whether progress may be drawn at all.
-pub fn visible(quiet: bool) -> bool {
+pub(crate) fn visible(quiet: bool) -> bool {
     !quiet && std::io::stderr().is_terminal()
 }
 
 /// A bar over `total` items (a batch), hidden when not [`visible`].
-pub fn bar(total: u64, quiet: bool, message: &str) -> ProgressBar {
+pub(crate) fn bar(total: u64, quiet: bool, message: &str) -> ProgressBar {
     if !visible(quiet) {
         return ProgressBar::hidden();
     }
@@ -35,14 +35,14 @@ pub fn bar(total: u64, quiet: bool, message: &str) -> ProgressBar {
 /// A spinner that appears after [`SPINNER_DELAY`] if the work is still running, and is cleared
 /// when this value is dropped.
 #[derive(Debug)]
-pub struct Activity {
+pub(crate) struct Activity {
     done: Arc<AtomicBool>,
     thread: Option<std::thread::JoinHandle<()>>,
 }
 
 impl Activity {
     /// Starts watching a piece of work described by `message`.
-    pub fn start(message: &str, quiet: bool) -> Activity {
+    pub(crate) fn start(message: &str, quiet: bool) -> Activity {
         let done = Arc::new(AtomicBool::new(false));
         if !visible(quiet) {
             return Activity { done, thread: None };

@@ -14,11 +14,14 @@ use std::collections::BTreeMap;
 
 use std::sync::OnceLock;
 
-use fair_cli::args::{ClampEnds, FairArgs, IndexList, KindArg, Setting};
-use fair_cli::commands::{curve, inspect, surface};
-use fair_cli::input::{CurveInput, Delimiter, Grid, InputFormat, Points, SurfaceInput};
-use fair_cli::Error;
-use fairing::catalog::{Catalog, ConfigFile, MethodKind};
+use fair_door::curve::{default_method, CurveRequest, MIN_CURVE_POINTS};
+use fair_door::measure::Detail;
+use fair_door::surface::{SurfaceRequest, DEFAULT_METHOD};
+use fair_door::{ConstraintRequest, CurveData, Error, GridData, KindChoice};
+use fairing::catalog::{
+    Catalog, ConfigFile, CurveKind, CurvePoints, GivenValue, Grid, MethodKind, ParameterMap,
+};
+use fairing::EndClamp;
 
 /// The methods, criteria and indicators the bindings run: the library's built-in catalogue,
 /// the one `fair` runs, made once per process.
@@ -112,11 +115,11 @@ fn argument_name(option: &'static str) -> &'static str {
 pub type Result<T> = std::result::Result<T, Failure>;
 
 /// `kind=` of a curve: `None`/`"auto"`, `"function"` or `"parametric"`.
-pub fn kind_argument(kind: Option<&str>) -> Result<KindArg> {
+pub fn kind_argument(kind: Option<&str>) -> Result<KindChoice> {
     match kind {
-        None | Some("auto") => Ok(KindArg::Auto),
-        Some("function") => Ok(KindArg::Function),
-        Some("parametric") => Ok(KindArg::Parametric),
+        None | Some("auto") => Ok(KindChoice::Auto),
+        Some("function") => Ok(KindChoice::Function),
+        Some("parametric") => Ok(KindChoice::Parametric),
         Some(other) => Err(Failure::bad_input(format!(
             "kind: `{other}` is not a kind of curve (auto, function or parametric)"
         ))),
@@ -124,12 +127,12 @@ pub fn kind_argument(kind: Option<&str>) -> Result<KindArg> {
 }
 
 /// `clamp_ends=`: `None`, `"g0"`, `"g1"` or `"g2"`.
-pub fn clamp_argument(clamp: Option<&str>) -> Result<Option<ClampEnds>> {
+pub fn clamp_argument(clamp: Option<&str>) -> Result<Option<EndClamp>> {
     match clamp {
         None => Ok(None),
-        Some("g0") => Ok(Some(ClampEnds::G0)),
-        Some("g1") => Ok(Some(ClampEnds::G1)),
-        Some("g2") => Ok(Some(ClampEnds::G2)),
+        Some("g0") => Ok(Some(EndClamp::G0)),
+        Some("g1") => Ok(Some(EndClamp::G1)),
+        Some("g2") => Ok(Some(EndClamp::G2)),
         Some(other) => Err(Failure::bad_input(format!(
             "clamp_ends: `{other}` is not an end condition (g0, g1 or g2)"
         ))),
@@ -169,8 +172,8 @@ pub struct Options {
     pub method: Option<String>,
     /// `--kind` (curves only).
     pub kind: Option<String>,
-    /// `--set NAME=VALUE`, in order.
-    pub params: Vec<(String, String)>,
+    /// `--set NAME=VALUE`, in order: numbers and booleans as JSON values, strings as text.
+    pub params: Vec<(String, GivenValue)>,
     /// `--fixed`.
     pub fixed: Option<Vec<usize>>,
     /// `--points`.
@@ -186,51 +189,93 @@ pub struct Options {
 }
 
 impl Options {
-    /// The command line these options stand for (`input` is only a name for messages).
-    fn args(&self, input: &str) -> Result<FairArgs> {
-        let index_list = |what: &str, list: &Option<Vec<usize>>| -> Result<Option<IndexList>> {
+    /// The parameters as the catalogue's map (given at `--set`, as on the command line),
+    /// each name checked as the command checks `--set NAME=VALUE`.
+    fn parameters(&self) -> Result<ParameterMap> {
+        let mut map = ParameterMap::new();
+        for (name, value) in &self.params {
+            if name.is_empty()
+                || !name
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+            {
+                return Err(Failure::bad_input(format!(
+                    "params: parameter name `{name}` must be letters, digits, `_` or `-`"
+                )));
+            }
+            let value = match value {
+                GivenValue::Text(text) | GivenValue::Json(serde_json::Value::String(text)) => {
+                    let text = text.trim();
+                    if text.is_empty() {
+                        return Err(Failure::bad_input(format!(
+                            "params: parameter `{name}` has an empty value"
+                        )));
+                    }
+                    GivenValue::Text(text.to_string())
+                }
+                other => other.clone(),
+            };
+            map.insert(name, value, "--set");
+        }
+        Ok(map)
+    }
+
+    /// Refuses a tolerance that is not a finite positive number.
+    fn check_tolerance(&self) -> Result<()> {
+        match self.tolerance {
+            Some(t) if !(t.is_finite() && t > 0.0) => Err(Failure::bad_input(format!(
+                "tolerance: {t} must be a finite number greater than 0"
+            ))),
+            _ => Ok(()),
+        }
+    }
+
+    /// The constraints, checked as the command's option parser checks them.
+    fn constraints(&self) -> Result<ConstraintRequest> {
+        let index_list = |what: &str, list: &Option<Vec<usize>>| -> Result<Option<Vec<usize>>> {
             let Some(list) = list else { return Ok(None) };
             for (k, i) in list.iter().enumerate() {
                 if list[..k].contains(i) {
                     return Err(Failure::bad_input(format!("{what}: index {i} appears twice")));
                 }
             }
-            Ok(Some(IndexList(list.clone())))
+            Ok(Some(list.clone()))
         };
-        if let Some(t) = self.tolerance {
-            if !(t.is_finite() && t > 0.0) {
-                return Err(Failure::bad_input(format!(
-                    "tolerance: {t} must be a finite number greater than 0"
-                )));
-            }
-        }
-        let mut settings = Vec::with_capacity(self.params.len());
-        for (name, value) in &self.params {
-            let setting = fair_cli::args::parse_setting(&format!("{name}={value}"))
-                .map_err(|e| Failure::bad_input(format!("params: {e}")))?;
-            settings.push(Setting {
-                name: setting.name,
-                value: setting.value,
-            });
-        }
-        Ok(FairArgs {
-            input: input.into(),
-            method: self.method.clone(),
-            kind: kind_argument(self.kind.as_deref())?,
-            columns: None,
-            config: None,
-            settings,
+        Ok(ConstraintRequest {
             fixed: index_list("fixed", &self.fixed)?,
-            points: index_list("points_to_fix", &self.bad_points)?,
+            bad_points: index_list("points_to_fix", &self.bad_points)?,
             tolerance: self.tolerance,
             clamp_ends: clamp_argument(self.clamp_ends.as_deref())?,
-            output: None,
-            report: None,
-            plot: None,
-            quiet: true,
-            print_config: false,
-            batch: false,
-            cad: Default::default(),
+        })
+    }
+
+    /// The door's request for a curve (checked in the order the command's option parser
+    /// checks: tolerance, parameters, kind, indices, ends).
+    fn curve_request(&self) -> Result<CurveRequest> {
+        self.check_tolerance()?;
+        let settings = self.parameters()?;
+        let kind = kind_argument(self.kind.as_deref())?;
+        let constraints = self.constraints()?;
+        Ok(CurveRequest {
+            method: self.method.clone(),
+            kind,
+            settings,
+            config: self.config.as_ref().map(|c| c.0.clone()),
+            constraints,
+            samples: false,
+        })
+    }
+
+    /// The door's request for a surface.
+    fn surface_request(&self) -> Result<SurfaceRequest> {
+        self.check_tolerance()?;
+        let settings = self.parameters()?;
+        let constraints = self.constraints()?;
+        Ok(SurfaceRequest {
+            method: self.method.clone(),
+            settings,
+            config: self.config.as_ref().map(|c| c.0.clone()),
+            constraints,
         })
     }
 }
@@ -244,15 +289,14 @@ pub struct Faired {
     pub report: serde_json::Value,
 }
 
-/// Checks the shape and values of curve points and makes the command's input of them.
-fn curve_input(points: &Coordinates) -> Result<CurveInput> {
-    let rows = points.rows();
+/// Checks the shape and values of curve points and makes the library's points of them.
+fn curve_points(points: &Coordinates) -> Result<CurvePoints> {
     let planar = |v: &[f64]| curve_repr::Vec2::new(v[0], v[1]);
     let spatial = |v: &[f64]| curve_repr::Vec3::new(v[0], v[1], v[2]);
     let chunks = points.values.chunks_exact(points.dimension.max(1));
     let library = match points.dimension {
-        2 => Points::Planar(chunks.map(planar).collect()),
-        3 => Points::Spatial(chunks.map(spatial).collect()),
+        2 => CurvePoints::Planar(chunks.map(planar).collect()),
+        3 => CurvePoints::Spatial(chunks.map(spatial).collect()),
         d => {
             return Err(Failure::bad_input(format!(
                 "{POINTS}: a curve's points have 2 or 3 coordinates, got {d} columns"
@@ -265,48 +309,15 @@ fn curve_input(points: &Coordinates) -> Result<CurveInput> {
             &points.values[i * points.dimension..(i + 1) * points.dimension]
         )));
     }
-    debug_assert_eq!(library.len(), rows);
-    Ok(CurveInput {
-        points: library,
-        format: InputFormat::Csv {
-            header: None,
-            delimiter: Delimiter::Comma,
-            layout: fair_cli::input::columns::Layout {
-                columns: points.dimension,
-                coordinates: (0..points.dimension).collect(),
-                names: ["x", "y", "z"][..points.dimension]
-                    .iter()
-                    .map(|s| s.to_string())
-                    .collect(),
-                labels: Vec::new(),
-            },
-        },
-        source: POINTS.into(),
-        lines: Vec::new(),
-        notes: Vec::new(),
-    })
+    Ok(library)
 }
 
-/// Reads back the command's output text (comma-separated rows of shortest round-trip numbers,
-/// so the values are bit for bit the library's). `skip` leading columns are dropped (a grid's
-/// `i,j`).
-fn parse_rows(text: &str, dimension: usize, skip: usize) -> Result<Vec<f64>> {
-    let mut values = Vec::new();
-    for line in text.lines().filter(|l| !l.trim().is_empty()) {
-        let fields: Vec<&str> = line.split(',').collect();
-        if fields.len() != skip + dimension {
-            return Err(internal(format!("unexpected output row `{line}`")));
-        }
-        for field in &fields[skip..] {
-            values.push(
-                field
-                    .trim()
-                    .parse::<f64>()
-                    .map_err(|_| internal(format!("unexpected output number `{field}`")))?,
-            );
-        }
+/// The points' coordinates, row after row.
+fn flat(points: &CurvePoints) -> Vec<f64> {
+    match points {
+        CurvePoints::Planar(p) => p.iter().flat_map(|v| [v.x, v.y]).collect(),
+        CurvePoints::Spatial(p) => p.iter().flat_map(|v| [v.x, v.y, v.z]).collect(),
     }
-    Ok(values)
 }
 
 fn internal(message: String) -> Failure {
@@ -316,7 +327,7 @@ fn internal(message: String) -> Failure {
     }
 }
 
-fn report_value(report: &fair_cli::report::Report) -> Result<serde_json::Value> {
+fn report_value(report: &fair_door::Report) -> Result<serde_json::Value> {
     report.check_finite()?;
     serde_json::to_value(report).map_err(|e| internal(e.to_string()))
 }
@@ -332,7 +343,7 @@ const CLOSED: &str = "closed";
 /// command's for that input, so its `n` counts the repeat).
 pub fn fair_curve(points: &Coordinates, options: &Options) -> Result<Faired> {
     let mut options = options.clone();
-    let mut input = curve_input(points)?;
+    let mut library = curve_points(points)?;
     let mut repeated = false;
     if options.closed {
         let has_closed = options.config.is_none()
@@ -343,30 +354,32 @@ pub fn fair_curve(points: &Coordinates, options: &Options) -> Result<Faired> {
                 .is_some_and(|m| m.parameter(CLOSED).is_some());
         if has_closed {
             if let Some((_, value)) = options.params.iter().find(|(n, _)| n == CLOSED) {
-                if value != "true" {
+                let value = value.text();
+                if value.trim() != "true" {
                     return Err(Failure::bad_input(format!(
                         "params: `closed` = `{value}` contradicts closed=True"
                     )));
                 }
             } else {
-                options.params.push((CLOSED.into(), "true".into()));
+                options
+                    .params
+                    .push((CLOSED.into(), GivenValue::Json(serde_json::Value::Bool(true))));
             }
-        } else if input.len() > 1 {
-            let first = input.points.coordinates(0).unwrap_or_default();
-            let last = input.points.coordinates(input.len() - 1).unwrap_or_default();
+        } else if library.len() > 1 {
+            let first = library.coordinates(0).unwrap_or_default();
+            let last = library.coordinates(library.len() - 1).unwrap_or_default();
             if first != last {
-                match &mut input.points {
-                    Points::Planar(p) => p.push(p[0]),
-                    Points::Spatial(p) => p.push(p[0]),
+                match &mut library {
+                    CurvePoints::Planar(p) => p.push(p[0]),
+                    CurvePoints::Spatial(p) => p.push(p[0]),
                 }
                 repeated = true;
             }
         }
     }
-    let args = options.args(POINTS)?;
-    let config = options.config.as_ref().map(|c| &c.0);
-    let faired = curve::process(catalog(), &input, &args, config)?;
-    let mut values = parse_rows(&faired.points_text, points.dimension, 0)?;
+    let request = options.curve_request()?;
+    let faired = fair_door::curve(catalog(), &CurveData::new(&library, POINTS), &request)?;
+    let mut values = flat(&faired.points);
     if repeated {
         values.truncate(values.len() - points.dimension);
     }
@@ -386,8 +399,8 @@ pub fn fair_curve(points: &Coordinates, options: &Options) -> Result<Faired> {
     })
 }
 
-/// Checks a grid's values and makes the command's input of it (`rows × columns` points).
-fn surface_input(grid: &Coordinates, rows: usize, columns: usize) -> Result<SurfaceInput> {
+/// Checks a grid's values and makes the library's grid of it (`rows × columns` points).
+fn grid_of(grid: &Coordinates, rows: usize, columns: usize) -> Result<Grid> {
     if grid.dimension != 3 || grid.values.len() != rows * columns * 3 {
         return Err(internal(format!(
             "grid of {} values is not {rows} × {columns} × 3",
@@ -407,20 +420,10 @@ fn surface_input(grid: &Coordinates, rows: usize, columns: usize) -> Result<Surf
             &grid.values[3 * k..3 * k + 3]
         )));
     }
-    Ok(SurfaceInput {
-        grid: Grid {
-            rows,
-            columns,
-            points,
-        },
-        offset: (0, 0),
-        order: (0..rows)
-            .flat_map(|i| (0..columns).map(move |j| (i, j)))
-            .collect(),
-        header: None,
-        delimiter: Delimiter::Comma,
-        source: GRID.into(),
-        lines: Vec::new(),
+    Ok(Grid {
+        rows,
+        columns,
+        points,
     })
 }
 
@@ -432,11 +435,14 @@ pub fn fair_surface(grid: &Coordinates, rows: usize, columns: usize, options: &O
             "kind and closed apply to curves only; a surface grid has neither",
         ));
     }
-    let input = surface_input(grid, rows, columns)?;
-    let args = options.args(GRID)?;
-    let config = options.config.as_ref().map(|c| &c.0);
-    let faired = surface::process(catalog(), &input, &args, config)?;
-    let values = parse_rows(&faired.grid_text, 3, 2)?;
+    let library = grid_of(grid, rows, columns)?;
+    let request = options.surface_request()?;
+    let data = GridData {
+        grid: &library,
+        source: GRID,
+    };
+    let faired = fair_door::surface(catalog(), &data, &request)?;
+    let values: Vec<f64> = faired.grid.points.iter().flat_map(|p| [p.x, p.y, p.z]).collect();
     if values.len() != grid.values.len() {
         return Err(internal("the faired grid has another size".into()));
     }
@@ -447,20 +453,32 @@ pub fn fair_surface(grid: &Coordinates, rows: usize, columns: usize, options: &O
 }
 
 /// `fair inspect` on curve points: the report (`method` = `inspect`, `after` = `before`).
+/// Errors about a point name it as the command names the line of a file holding the points
+/// one per line (`points:LINE: ...`).
 pub fn inspect_curve(points: &Coordinates, kind: Option<&str>) -> Result<serde_json::Value> {
     let kind = kind_argument(kind)?;
-    let input = curve_input(points)?;
-    let text = fair_cli::output::format_curve(&input, &input.points)?;
-    let source = fair_cli::input::Source::from_text(POINTS, &text);
-    report_value(&inspect::inspect(catalog(), &source, kind, false, None)?)
+    let library = curve_points(points)?;
+    let lines: Vec<usize> = (1..=library.len()).collect();
+    let data = CurveData {
+        points: &library,
+        source: POINTS,
+        lines: &lines,
+    };
+    let detail = Detail {
+        plot: false,
+        record: true,
+    };
+    report_value(&fair_door::inspect_curve(catalog(), &data, kind, detail)?.report)
 }
 
 /// `fair inspect --surface` on a `rows × columns` grid: the report.
 pub fn inspect_surface(grid: &Coordinates, rows: usize, columns: usize) -> Result<serde_json::Value> {
-    let input = surface_input(grid, rows, columns)?;
-    let text = fair_cli::output::format_surface(&input, &input.grid)?;
-    let source = fair_cli::input::Source::from_text(GRID, &text);
-    report_value(&inspect::inspect(catalog(), &source, KindArg::Auto, true, None)?)
+    let library = grid_of(grid, rows, columns)?;
+    let data = GridData {
+        grid: &library,
+        source: GRID,
+    };
+    report_value(&fair_door::inspect_surface(&data)?.report)
 }
 
 /// The methods, as `fair methods` lists them (from the catalogue, each method's settings
@@ -498,15 +516,9 @@ pub fn methods() -> Vec<serde_json::Value> {
 /// The default method for a curve of `kind` and for surfaces, as the command chooses them.
 pub fn default_methods() -> BTreeMap<&'static str, &'static str> {
     BTreeMap::from([
-        (
-            "function",
-            curve::default_method(fair_cli::kind::CurveKind::Function),
-        ),
-        (
-            "parametric",
-            curve::default_method(fair_cli::kind::CurveKind::Parametric),
-        ),
-        ("surface", surface::DEFAULT_METHOD),
+        ("function", default_method(CurveKind::Function)),
+        ("parametric", default_method(CurveKind::Parametric)),
+        ("surface", DEFAULT_METHOD),
     ])
 }
 
@@ -525,18 +537,19 @@ pub struct CadRequest {
     pub fit_tolerance: Option<f64>,
 }
 
+/// Parses a CAD format's name: iges/igs, step/stp or dxf, any case.
+fn cad_format(text: &str) -> Result<cad::Format> {
+    text.parse::<cad::Format>().map_err(|_| {
+        Failure::bad_input(format!(
+            "format: `{text}` is not a CAD format (iges, step or dxf)"
+        ))
+    })
+}
+
 impl CadRequest {
-    /// The command's CAD target for these options, checked as the command checks them.
-    fn target(&self, surface: bool) -> Result<fair_cli::cad_file::CadTarget> {
-        let mut args = Options::default().args(POINTS)?;
-        args.output = Some(self.path.clone());
-        args.cad.cad = self
-            .format
-            .as_deref()
-            .map(fair_cli::args::parse_cad_format)
-            .transpose()
-            .map_err(|e| Failure::bad_input(format!("format: {e}")))?;
-        args.cad.control_points = self.control_points;
+    /// The door's CAD target for these options, checked as the command checks them.
+    fn target(&self, surface: bool) -> Result<fair_door::cad::CadTarget> {
+        let format = self.format.as_deref().map(cad_format).transpose()?;
         if let Some(d) = self.fit_tolerance {
             if !(d.is_finite() && d > 0.0) {
                 return Err(Failure::bad_input(format!(
@@ -544,8 +557,16 @@ impl CadRequest {
                 )));
             }
         }
-        args.cad.fit_tolerance = self.fit_tolerance;
-        fair_cli::cad_file::target(&args, surface)?.ok_or_else(|| {
+        let request = fair_door::cad::CadRequest {
+            output: Some(self.path.clone()),
+            format,
+            control_points: self.control_points,
+            fit_tolerance: self.fit_tolerance,
+            units: None,
+            step_schema: None,
+            batch: false,
+        };
+        fair_door::cad::target(&request, surface)?.ok_or_else(|| {
             Failure::bad_input(format!(
                 "path: `{}` names no CAD format by its extension (.igs, .iges, .step, .stp, .dxf); give format=",
                 self.path
@@ -554,9 +575,15 @@ impl CadRequest {
     }
 }
 
-/// The file's stem, as the shape's name inside it.
-fn shape_name(path: &str) -> String {
-    fair_cli::commands::curve::stem(path)
+/// Writes a CAD file's text as the command writes `-o`.
+fn write_text(path: &str, text: &str) -> Result<()> {
+    std::fs::write(path, text).map_err(|e| {
+        Error::Write {
+            path: path.into(),
+            reason: fair_door::error::io_reason(&e),
+        }
+        .into()
+    })
 }
 
 /// Writes a curve as `fair curve -o FILE.igs` does: `record` is the report's `curve` of a
@@ -570,12 +597,18 @@ pub fn export_cad_curve(
     request: &CadRequest,
 ) -> Result<serde_json::Value> {
     let target = request.target(false)?;
-    let input = curve_input(points)?;
-    input.require_at_least(curve::MIN_CURVE_POINTS, "a curve")?;
-    let kind = fair_cli::kind::resolve(kind_argument(kind)?, &input)?;
-    let made =
-        fair_cli::cad_file::export_curve(&target, record, &input.points, kind, &shape_name(&request.path))?;
-    fair_cli::output::write_text(&request.path, &made.text)?;
+    let library = curve_points(points)?;
+    let data = CurveData::new(&library, POINTS);
+    data.require_at_least(MIN_CURVE_POINTS, "a curve")?;
+    let kind = fair_door::kind::resolve(kind_argument(kind)?, &data)?;
+    let made = fair_door::cad::export_curve(
+        &target,
+        record,
+        &library,
+        kind,
+        &fair_door::cad::stem(&request.path),
+    )?;
+    write_text(&request.path, &made.text)?;
     Ok(made.summary)
 }
 
@@ -589,10 +622,15 @@ pub fn export_cad_surface(
     request: &CadRequest,
 ) -> Result<serde_json::Value> {
     let target = request.target(true)?;
-    let input = surface_input(grid, rows, columns)?;
-    surface::require_grid(&input)?;
-    let made = fair_cli::cad_file::export_surface(&target, record, &input.grid, &shape_name(&request.path))?;
-    fair_cli::output::write_text(&request.path, &made.text)?;
+    let library = grid_of(grid, rows, columns)?;
+    GridData {
+        grid: &library,
+        source: GRID,
+    }
+    .require_grid()?;
+    let made =
+        fair_door::cad::export_surface(&target, record, &library, &fair_door::cad::stem(&request.path))?;
+    write_text(&request.path, &made.text)?;
     Ok(made.summary)
 }
 
@@ -601,10 +639,7 @@ pub fn export_cad_surface(
 /// "surfaces": [{"name", "degrees", "u_knots", "v_knots", "control_points" (rows of rows),
 /// "weights"}]}`, every number as read (the writers' round trip is exact).
 pub fn read_cad(path: &str, format: Option<&str>) -> Result<serde_json::Value> {
-    let format = format
-        .map(fair_cli::args::parse_cad_format)
-        .transpose()
-        .map_err(|e| Failure::bad_input(format!("format: {e}")))?;
+    let format = format.map(cad_format).transpose()?;
     let model = cad::read_path(path, format).map_err(|e| Failure::bad_input(e.to_string()))?;
     let curves: Vec<serde_json::Value> = model
         .curves

@@ -18,6 +18,7 @@
 pub mod backend;
 
 use backend::{Config, Coordinates, Failure, Faired, Options};
+use fairing::catalog::GivenValue;
 use numpy::ndarray::{Array2, Array3};
 use numpy::{
     IntoPyArray, PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods,
@@ -130,38 +131,47 @@ fn shape_text(shape: &[usize]) -> String {
     }
 }
 
-/// `params=`: a dict of parameter names and values (numbers, booleans, strings), as the text
-/// `--set NAME=VALUE` would carry.
-fn params_argument(params: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<(String, String)>> {
+/// `params=`: a dict of parameter names and values: numbers and booleans as the JSON values
+/// they are, strings as text (what `--set NAME=VALUE` carries, which the catalogue reads
+/// against the parameter's schema).
+fn params_argument(params: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<(String, GivenValue)>> {
     let Some(params) = params.filter(|p| !p.is_none()) else {
         return Ok(Vec::new());
     };
     let dict = params
         .cast::<PyDict>()
         .map_err(|_| PyTypeError::new_err("params: a dict of parameter names and values"))?;
+    let number = |x: f64| match serde_json::Number::from_f64(x) {
+        Some(n) => GivenValue::Json(serde_json::Value::Number(n)),
+        // NaN and infinities have no JSON value: the catalogue refuses their text by name.
+        None => GivenValue::Text(format!("{x:?}")),
+    };
     let mut out = Vec::with_capacity(dict.len());
     for (key, value) in dict.iter() {
         let name: String = key
             .extract()
             .map_err(|_| PyTypeError::new_err("params: parameter names are strings"))?;
-        let text = if value.is_instance_of::<PyBool>() {
-            value.extract::<bool>()?.to_string()
+        let given = if value.is_instance_of::<PyBool>() {
+            GivenValue::Json(serde_json::Value::Bool(value.extract::<bool>()?))
         } else if value.is_instance_of::<PyInt>() {
-            value.str()?.to_string()
+            match value.extract::<i64>() {
+                Ok(i) => GivenValue::Json(serde_json::Value::from(i)),
+                Err(_) => GivenValue::Text(value.str()?.to_string()),
+            }
         } else if value.is_instance_of::<PyFloat>() {
-            format!("{:?}", value.extract::<f64>()?)
+            number(value.extract::<f64>()?)
         } else if value.is_instance_of::<PyString>() {
-            value.extract::<String>()?
-        } else if let Ok(number) = value.extract::<f64>() {
+            GivenValue::Text(value.extract::<String>()?)
+        } else if let Ok(x) = value.extract::<f64>() {
             // NumPy scalars and other numbers.
-            format!("{number:?}")
+            number(x)
         } else {
             return Err(PyValueError::new_err(format!(
                 "params: `{name}` must be a number, a boolean or a string, not {}",
                 value.get_type().name()?
             )));
         };
-        out.push((name, text));
+        out.push((name, given));
     }
     Ok(out)
 }

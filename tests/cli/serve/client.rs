@@ -7,21 +7,21 @@ use std::time::Duration;
 
 /// An answer.
 #[derive(Debug, Clone)]
-pub struct Reply {
-    pub status: u16,
-    pub headers: Vec<(String, String)>,
-    pub body: Vec<u8>,
+pub(crate) struct Reply {
+    pub(crate) status: u16,
+    pub(crate) headers: Vec<(String, String)>,
+    pub(crate) body: Vec<u8>,
 }
 
 impl Reply {
     /// The body as JSON (panics with the body if it is not).
-    pub fn json(&self) -> serde_json::Value {
+    pub(crate) fn json(&self) -> serde_json::Value {
         serde_json::from_slice(&self.body)
             .unwrap_or_else(|e| panic!("not JSON ({e}): {}", String::from_utf8_lossy(&self.body)))
     }
 
     /// A header's value.
-    pub fn header(&self, name: &str) -> Option<&str> {
+    pub(crate) fn header(&self, name: &str) -> Option<&str> {
         self.headers
             .iter()
             .find(|(n, _)| n.eq_ignore_ascii_case(name))
@@ -29,7 +29,7 @@ impl Reply {
     }
 
     /// The `error` message of a failure, checked to be one non-empty line.
-    pub fn error(&self) -> String {
+    pub(crate) fn error(&self) -> String {
         let value = self.json();
         let message = value["error"]
             .as_str()
@@ -41,7 +41,7 @@ impl Reply {
 }
 
 /// Sends raw bytes (a whole request) and reads the answer to the end of the connection.
-pub fn raw(address: &str, bytes: &[u8]) -> std::io::Result<Reply> {
+pub(crate) fn raw(address: &str, bytes: &[u8]) -> std::io::Result<Reply> {
     // A signal (a child process of another test ending) may interrupt a system call: retry.
     let mut stream = loop {
         match TcpStream::connect(address) {
@@ -84,7 +84,7 @@ fn complete(answer: &[u8]) -> bool {
 }
 
 /// One request with the given headers (Host and Content-Length are added).
-pub fn request(
+pub(crate) fn request(
     address: &str,
     method: &str,
     path: &str,
@@ -105,12 +105,12 @@ pub fn request(
 }
 
 /// `GET path`.
-pub fn get(address: &str, path: &str) -> Reply {
+pub(crate) fn get(address: &str, path: &str) -> Reply {
     request(address, "GET", path, &[], b"").expect("GET")
 }
 
 /// `POST path` with a JSON body.
-pub fn post(address: &str, path: &str, body: &str) -> Reply {
+pub(crate) fn post(address: &str, path: &str, body: &str) -> Reply {
     request(
         address,
         "POST",

@@ -13,15 +13,15 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 
 /// A running `fair serve`, stopped (by its process id) when dropped.
-pub struct Served {
+pub(crate) struct Served {
     child: Child,
     /// `127.0.0.1:PORT`.
-    pub address: String,
+    pub(crate) address: String,
 }
 
 impl Served {
     /// Starts `fair serve --port 0 --quiet EXTRA...` and waits for its address.
-    pub fn start(extra: &[&str]) -> Served {
+    pub(crate) fn start(extra: &[&str]) -> Served {
         let mut child = Command::new(env!("CARGO_BIN_EXE_fair"))
             .args(["serve", "--port", "0", "--quiet"])
             .args(extra)
@@ -44,7 +44,7 @@ impl Served {
     }
 
     /// Whether the server process is still running.
-    pub fn alive(&mut self) -> bool {
+    pub(crate) fn alive(&mut self) -> bool {
         matches!(self.child.try_wait(), Ok(None))
     }
 }
@@ -57,17 +57,17 @@ impl Drop for Served {
 }
 
 /// The repository's root (data files are read from `data/` there).
-pub fn root() -> PathBuf {
+pub(crate) fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
 /// A fresh directory for a test's files, removed when the returned guard is dropped.
-pub fn scratch(name: &str) -> tempfile::TempDir {
+pub(crate) fn scratch(name: &str) -> tempfile::TempDir {
     crate::scratch_dir(&format!("fair-serve-{name}-"))
 }
 
 /// Runs `fair ARGS` and returns the report it wrote with `--report`, checking success.
-pub fn command_report(args: &[&str], report: &Path) -> serde_json::Value {
+pub(crate) fn command_report(args: &[&str], report: &Path) -> serde_json::Value {
     let output = Command::new(env!("CARGO_BIN_EXE_fair"))
         .args(args)
         .arg("--report")
@@ -83,7 +83,7 @@ pub fn command_report(args: &[&str], report: &Path) -> serde_json::Value {
 }
 
 /// The value with every `elapsed_ms` (a time, different on each run) removed.
-pub fn untimed(value: &serde_json::Value) -> serde_json::Value {
+pub(crate) fn untimed(value: &serde_json::Value) -> serde_json::Value {
     match value {
         serde_json::Value::Object(map) => serde_json::Value::Object(
             map.iter()
@@ -97,7 +97,7 @@ pub fn untimed(value: &serde_json::Value) -> serde_json::Value {
 }
 
 /// Coordinate rows as exact bit patterns, so that comparisons are bit for bit.
-pub fn bits(rows: &serde_json::Value) -> Vec<Vec<u64>> {
+pub(crate) fn bits(rows: &serde_json::Value) -> Vec<Vec<u64>> {
     rows.as_array()
         .expect("rows")
         .iter()
@@ -112,7 +112,7 @@ pub fn bits(rows: &serde_json::Value) -> Vec<Vec<u64>> {
 }
 
 /// A curve file's points as the command reads them, as exact bit patterns.
-pub fn file_bits(path: &Path) -> Vec<Vec<u64>> {
+pub(crate) fn file_bits(path: &Path) -> Vec<Vec<u64>> {
     let input = fair::fair_cli::input::read_curve(&path.display().to_string()).expect("read curve");
     input
         .points

@@ -884,6 +884,8 @@
       state.methods = methods.methods;
       state.defaults = methods.defaults;
       const select = $("dataset");
+      // `fair serve FILE`: the page opens on the first file given (the embedded sets come first).
+      state.firstFile = (datasets.datasets.find((d) => d.origin === "file") || {}).name;
       for (const d of datasets.datasets) {
         const option = document.createElement("option");
         option.value = d.name;
@@ -894,7 +896,7 @@
     });
     render();
     // `#dataset=NAME` in the address opens that data set (a link to a view).
-    const wanted = new URLSearchParams(location.hash.slice(1)).get("dataset");
+    const wanted = new URLSearchParams(location.hash.slice(1)).get("dataset") || state.firstFile;
     if (wanted) {
       $("dataset").value = wanted;
       await loadDataset(wanted);

@@ -7,9 +7,9 @@
 //! smallest runs, to check the code, not to time it. Time per point should be flat.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use fair_cli::args::KindArg;
-use fair_cli::commands::inspect;
-use fair_cli::input::Source;
+use fair_cli::input::{parse_curve, Source};
+use fair_door::measure::Detail;
+use fair_door::KindChoice;
 use std::hint::black_box;
 
 fn sizes() -> Vec<usize> {
@@ -51,7 +51,14 @@ fn inspect_path(c: &mut Criterion) {
         let source = Source::from_text("noisy.csv", &noisy_segment(n));
         group.throughput(Throughput::Elements(n as u64));
         group.bench_with_input(BenchmarkId::new("noisy-function", n), &source, |b, source| {
-            b.iter(|| inspect::inspect(&catalog, black_box(source), KindArg::Auto, false, None).unwrap())
+            b.iter(|| {
+                let input = parse_curve(black_box(source)).unwrap();
+                let detail = Detail {
+                    plot: false,
+                    record: true,
+                };
+                fair_door::inspect_curve(&catalog, &input.data(), KindChoice::Auto, detail).unwrap()
+            })
         });
     }
     group.finish();

@@ -16,82 +16,13 @@
 use fairing::catalog::{Catalog, MethodKind};
 
 use crate::args::{DemoArgs, FairArgs, KindArg};
-use crate::cad_file::CadTarget;
 use crate::commands::{curve, inspect, surface, write_results};
-use crate::error::{Error, Result};
 use crate::input::Source;
-use crate::report::Report;
+use fair_door::cad::CadTarget;
+use fair_door::error::{Error, Result};
+use fair_door::report::Report;
 
-/// One embedded data set.
-#[derive(Debug, Clone, Copy)]
-pub struct Dataset {
-    /// Short name used in file names.
-    pub name: &'static str,
-    /// What it is.
-    pub about: &'static str,
-    /// Curve or surface.
-    pub kind: MethodKind,
-    /// The CSV text.
-    pub text: &'static str,
-}
-
-macro_rules! data {
-    ($path:literal) => {
-        include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/", $path))
-    };
-}
-
-/// The embedded data sets (see `data/README.md` for provenance).
-pub const DATASETS: &[Dataset] = &[
-    Dataset {
-        name: "naca2412-upper",
-        about: "NACA 2412 upper surface, a clean analytic control",
-        kind: MethodKind::Curve,
-        text: data!("airfoil_naca2412/naca2412_upper.csv"),
-    },
-    Dataset {
-        name: "ua2-180-upper",
-        about: "UA(2)-180 upper surface, y oscillating by 3e-4",
-        kind: MethodKind::Curve,
-        text: data!("airfoil_ua2-180/ua2-180_upper.csv"),
-    },
-    Dataset {
-        name: "ua2-180sm-upper",
-        about: "UA(2)-180 upper surface, the published smoothed twin",
-        kind: MethodKind::Curve,
-        text: data!("airfoil_ua2-180/ua2-180sm_upper.csv"),
-    },
-    Dataset {
-        name: "r140-upper",
-        about: "R140 upper surface, hand-digitised, the roughest",
-        kind: MethodKind::Curve,
-        text: data!("airfoil_r140/r140_upper.csv"),
-    },
-    Dataset {
-        name: "block-island-wl36",
-        about: "Block Island boat waterline 36 in, from the offsets table",
-        kind: MethodKind::Curve,
-        text: data!("hull_block_island_boat/waterlines/wl_36in.csv"),
-    },
-    Dataset {
-        name: "gunnerus-wl03",
-        about: "R/V Gunnerus waterline 3, flat-side ripple",
-        kind: MethodKind::Curve,
-        text: data!("hull_gunnerus/waterlines/wl_03.csv"),
-    },
-    Dataset {
-        name: "block-island-sheer",
-        about: "Block Island boat sheer line in 3D",
-        kind: MethodKind::Curve,
-        text: data!("hull_block_island_boat/sheer_3d.csv"),
-    },
-    Dataset {
-        name: "teapot-body",
-        about: "Utah teapot body control net, 13 x 13",
-        kind: MethodKind::Surface,
-        text: data!("surface_utah_teapot/teapot_body_control_net.csv"),
-    },
-];
+pub(crate) use crate::input::embedded::DATASETS;
 
 fn run_args(input: String, method: &str, out: &std::path::Path, stem: &str) -> FairArgs {
     FairArgs {
@@ -122,7 +53,7 @@ fn count(value: Option<usize>) -> String {
 /// The runs whose faired result the demo also writes as a CAD file `<data set>-<method>.<ext>`:
 /// a hand-digitised airfoil faired by two-phase (IGES), the teapot body by Zhang–Cheng
 /// (STEP, a bicubic B-spline surface) and a ship's waterline by strain-energy (DXF).
-pub const CAD_FILES: [(&str, &str, cad::Format); 3] = [
+pub(crate) const CAD_FILES: [(&str, &str, cad::Format); 3] = [
     ("r140-upper", "two-phase", cad::Format::Iges),
     ("teapot-body", "zhang-cheng", cad::Format::Step),
     ("gunnerus-wl03", "strain-energy", cad::Format::Dxf),
@@ -150,7 +81,7 @@ fn fair_curve(catalog: &Catalog, args: &FairArgs, cad: Option<&CadTarget>, name:
     let mut faired = curve::process(catalog, &input, args, None)?;
     if let Some(target) = cad {
         let made =
-            crate::cad_file::export_curve(target, &faired.report.curve, &faired.points, faired.kind, name)?;
+            fair_door::cad::export_curve(target, &faired.report.curve, &faired.points, faired.kind, name)?;
         faired.report.extras.insert("cad".into(), made.summary);
         crate::output::write_text(&target.path, &made.text)?;
     }
@@ -164,7 +95,7 @@ fn fair_surface(catalog: &Catalog, args: &FairArgs, cad: Option<&CadTarget>, nam
     let input = crate::input::read_surface(&args.input)?;
     let mut faired = surface::process(catalog, &input, args, None)?;
     if let Some(target) = cad {
-        let made = crate::cad_file::export_surface(target, &faired.report.curve, &faired.grid, name)?;
+        let made = fair_door::cad::export_surface(target, &faired.report.curve, &faired.grid, name)?;
         faired.report.extras.insert("cad".into(), made.summary);
         crate::output::write_text(&target.path, &made.text)?;
     }
@@ -180,7 +111,8 @@ fn change(before: Option<usize>, after: Option<usize>) -> String {
 /// The comparison columns of one run, in the style of Han et al.'s Tables 1–2. The energy is
 /// E_s of the spline through the points, except for methods that report the criterion they
 /// optimise on their own representation (nurbs-weights: the points, hence E_s, do not change),
-/// whose criterion is shown, named.
+/// whose criterion is shown; the row names which (`(e_s)`, `(ek)`, ...), since the column
+/// holds either.
 fn row(report: &Report) -> String {
     let (b, a) = (&report.before, &report.after);
     let number = |key: &str| report.extras.get(key).and_then(serde_json::Value::as_f64);
@@ -193,7 +125,7 @@ fn row(report: &Report) -> String {
                 .unwrap_or("criterion");
             (before, after, format!(" ({name})"))
         }
-        _ => (b.e_s, a.e_s, String::new()),
+        _ => (b.e_s, a.e_s, " (e_s)".to_string()),
     };
     format!(
         "{:>9} {:>9} {:>10.3e} {:>10.3e} {:>11.4e}→{:<11.4e} {:>10.3e} {:>9.1}{label}",
@@ -214,11 +146,11 @@ fn row(report: &Report) -> String {
 /// `<name>-inspect.svg`) and a table of the measures in the papers' style; then every method
 /// of the data set's kind. A method that is not available yet is listed as such and is not
 /// a failure; any other error of a run makes the command fail (after every run was tried).
-pub fn run(catalog: &Catalog, args: &DemoArgs) -> Result<()> {
+pub(crate) fn run(catalog: &Catalog, args: &DemoArgs) -> Result<()> {
     let data_dir = args.out.join("data");
     std::fs::create_dir_all(&data_dir).map_err(|e| Error::Write {
         path: data_dir.display().to_string(),
-        reason: crate::input::io_reason(&e),
+        reason: fair_door::error::io_reason(&e),
     })?;
     let mut measures = vec![format!(
         "{:20} {:10} {:>4} {:>5} {:>5} {:>12} {:>12}",
@@ -226,7 +158,7 @@ pub fn run(catalog: &Catalog, args: &DemoArgs) -> Result<()> {
     )];
     let mut lines = vec![format!(
         "{:20} {:18} {:>9} {:>9} {:>10} {:>10} {:>23} {:>10} {:>9}",
-        "data set", "method", "infl", "vib", "S_d", "M_d", "E_s before -> after", "max_z", "ms"
+        "data set", "method", "infl", "vib", "S_d", "M_d", "energy before -> after", "max_z", "ms"
     )];
     let mut first_error: Option<Error> = None;
     let (mut failures, mut unavailable, mut runs) = (0, 0, 0);

@@ -6,26 +6,17 @@
 
 use std::path::Path;
 
+use fair_door::error::Result;
+use fair_door::kind::CurveKind;
+use fair_door::measure::Detail;
+use fair_door::report::Report;
 use fairing::catalog::Catalog;
 
 use crate::args::{InspectArgs, KindArg};
-use crate::commands::{curve::MIN_CURVE_POINTS, measure, say, surface};
-use crate::error::Result;
-use crate::input::{self, ReadOptions, Source};
-use crate::kind::{self, CurveKind};
+use crate::commands::say;
+use crate::input::{self, looks_like_surface, ReadOptions, Source};
 use crate::plots::{planar_view, CurvePlot, SurfacePlot};
 use crate::progress;
-use crate::report::{Report, ReportKind};
-
-/// Whether a source is a surface grid: five comma-separated columns on its first row.
-pub fn looks_like_surface(source: &Source) -> bool {
-    let first = source
-        .text
-        .lines()
-        .map(str::trim)
-        .find(|l| !l.is_empty() && !l.starts_with('#'));
-    first.is_some_and(|l| l.split(',').count() == 5)
-}
 
 fn format_measures(report: &Report) -> String {
     let m = &report.before;
@@ -42,7 +33,7 @@ fn format_measures(report: &Report) -> String {
 }
 
 /// Runs `fair inspect`.
-pub fn run(catalog: &Catalog, args: &InspectArgs) -> Result<()> {
+pub(crate) fn run(catalog: &Catalog, args: &InspectArgs) -> Result<()> {
     let source = {
         let _activity = progress::Activity::start(&format!("reading {}", args.input), args.quiet);
         Source::read(&args.input)?
@@ -73,7 +64,7 @@ pub fn run(catalog: &Catalog, args: &InspectArgs) -> Result<()> {
 /// Measures `source` (a surface when `surface` is set or it has five columns, else a curve
 /// of kind `kind`), draws the plot to `plot` if given, and returns the report (checked
 /// finite). The work of `fair inspect` and `fair demo`.
-pub fn inspect(
+pub(crate) fn inspect(
     catalog: &Catalog,
     source: &Source,
     kind_arg: KindArg,
@@ -95,16 +86,16 @@ pub fn inspect(
 /// report's `curve` record is wanted (a curve's record is O(n) JSON values: at 10⁶ points a
 /// few hundred MB that a run without `--report` need not build; it is then `null`).
 #[derive(Debug, Clone, Copy)]
-pub struct Outputs<'a> {
+pub(crate) struct Outputs<'a> {
     /// Draw the plot here.
-    pub plot: Option<&'a Path>,
+    pub(crate) plot: Option<&'a Path>,
     /// Build the report's `curve` record.
-    pub record: bool,
+    pub(crate) record: bool,
 }
 
 /// [`inspect`] with `--columns` ([`ReadOptions`]) and a choice of [`Outputs`]; the reader's
 /// notes and a progress spinner on standard error unless `quiet`.
-pub fn inspect_with(
+pub(crate) fn inspect_with(
     catalog: &Catalog,
     source: &Source,
     kind_arg: KindArg,
@@ -116,7 +107,7 @@ pub fn inspect_with(
     let plot = outputs.plot;
     let report = if surface || looks_like_surface(source) {
         if options.columns.is_some() {
-            return Err(crate::error::Error::Argument {
+            return Err(fair_door::Error::Argument {
                 option: "--columns",
                 message: format!(
                     "{}: the input is a surface grid i,j,x,y,z; --columns is for curves",
@@ -125,7 +116,7 @@ pub fn inspect_with(
             });
         }
         if kind_arg != KindArg::Auto {
-            return Err(crate::error::Error::Argument {
+            return Err(fair_door::Error::Argument {
                 option: "--kind",
                 message: format!(
                     "{}: the input is a surface grid; --kind is for curves",
@@ -134,85 +125,55 @@ pub fn inspect_with(
             });
         }
         let input = input::grid::parse(source)?;
-        surface::require_grid(&input)?;
-        let measured = measure::surface(&input.grid).map_err(|e| measure::in_file(e, &input.source))?;
+        let inspected = fair_door::inspect_surface(&input.data())?;
         if let Some(path) = plot {
             let plot = SurfacePlot {
                 title: format!("{} — inspect", input.source),
                 input: Some(input.grid.clone()),
                 faired: None,
-                z: measured.z.clone(),
+                z: inspected.measured.z.clone(),
                 z_before: None,
                 highlights: true,
             };
             plot.figure().write(path)?;
         }
-        Report::inspection(
-            ReportKind::Surface,
-            input.grid.points.len(),
-            measured.measures,
-            measured.surface,
-        )
+        inspected.report
     } else {
         let input = {
             let _activity = progress::Activity::start(&format!("parsing {}", source.name), quiet);
             input::parse_curve_with(source, options)?
         };
         input.print_notes(quiet);
-        input.require_at_least(MIN_CURVE_POINTS, "a curve")?;
-        let kind = kind::resolve(kind_arg, &input)?;
-        let measured = {
+        let inspected = {
             let _activity = progress::Activity::start(
                 &format!("measuring {} ({} points)", source.name, input.len()),
                 quiet,
             );
-            let detail = measure::Detail {
+            let detail = Detail {
                 plot: plot.is_some(),
                 record: outputs.record,
             };
-            measure::curve_with(kind, &input.points, detail)
-                .map_err(|e| measure::in_file(e, &input.source))?
+            fair_door::inspect_curve(catalog, &input.data(), kind_arg.into(), detail)?
         };
         if let Some(path) = plot {
+            let measured = &inspected.measured;
+            let names = input.coordinate_names();
             let plot = CurvePlot {
                 title: format!("{} — inspect", input.source),
                 input: planar_view(&input.points),
                 input_curve: measured.samples.clone(),
                 comb: measured.comb.clone(),
                 z_before: measured.z.clone(),
-                function: kind == CurveKind::Function,
+                function: inspected.kind == CurveKind::Function,
                 curvature_before: measured.curvature.clone(),
-                axes: Some(crate::plots::axis_names(&input.coordinate_names())),
-                projections: crate::plots::other_projections(&input.coordinate_names(), &input.points, None),
+                axes: Some(crate::plots::axis_names(&names)),
+                projections: crate::plots::other_projections(&names, &input.points, None),
                 ..CurvePlot::default()
             };
             plot.figure().write(path)?;
         }
-        let mut measures = measured.measures;
-        measures.criteria = curve_criteria(catalog, kind, &input, measures.energies.as_ref())?;
-        Report::inspection(ReportKind::from(kind), input.len(), measures, measured.curve)
+        inspected.report
     };
     report.check_finite()?;
     Ok(report)
-}
-
-/// Every registered criterion that applies, on the spline `fair inspect` measures for `input`
-/// read as `kind`, whose energies are `energies` (the report's `criteria`; those that are
-/// energies are read from `energies`, the spline is built again only for the others; a
-/// criterion that fails is left out). O(n) per criterion that is not an energy.
-pub fn curve_criteria(
-    catalog: &Catalog,
-    kind: CurveKind,
-    input: &crate::input::CurveInput,
-    energies: Option<&fairness::Energies>,
-) -> Result<std::collections::BTreeMap<String, f64>> {
-    let mut failed = std::collections::BTreeMap::new();
-    crate::commands::curve::criteria(
-        catalog,
-        input.points.dimension(),
-        energies,
-        || fairing::catalog::measured_curve(kind, &crate::commands::curve::to_catalog(&input.points)),
-        &input.source,
-        &mut failed,
-    )
 }

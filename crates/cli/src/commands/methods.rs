@@ -3,9 +3,9 @@
 
 use fairing::catalog::Catalog;
 
-use crate::error::Result;
+use fair_door::error::Result;
 
 /// Prints [`Catalog::table`] to standard output.
-pub fn run(catalog: &Catalog) -> Result<()> {
+pub(crate) fn run(catalog: &Catalog) -> Result<()> {
     crate::output::write_text("-", &catalog.table())
 }

@@ -4,20 +4,19 @@
 //! report's `before`/`after`) and the catalogue (methods and criteria), which every handler
 //! is given.
 
-pub mod curve;
-pub mod demo;
-pub mod inspect;
-pub mod measure;
-pub mod methods;
-pub mod surface;
+pub(crate) mod curve;
+pub(crate) mod demo;
+pub(crate) mod inspect;
+pub(crate) mod methods;
+pub(crate) mod surface;
 
 use fairing::catalog::Catalog;
 
 use crate::args::{Cli, Command};
-use crate::error::{Error, Result};
+use fair_door::error::{Error, Result};
 
 /// Runs the parsed command with the methods of `catalog`.
-pub fn dispatch(catalog: &Catalog, cli: Cli) -> Result<()> {
+pub(crate) fn dispatch(catalog: &Catalog, cli: Cli) -> Result<()> {
     match cli.command {
         Command::Curve(args) => curve::run(catalog, &args),
         Command::Surface(args) => surface::run(catalog, &args),
@@ -72,7 +71,7 @@ fn check_writable(path: &str) -> Result<()> {
 
 pub(crate) fn write_results(
     args: &crate::args::FairArgs,
-    report: &crate::report::Report,
+    report: &fair_door::report::Report,
     points_text: &str,
     figure: impl FnOnce() -> crate::svg::Figure,
 ) -> Result<()> {

@@ -9,9 +9,9 @@
 //! then lower, the leading edge once when both surfaces start there).
 
 use super::table::number;
-use super::{CurveInput, InputFormat, Points, Source};
-use crate::error::{Error, Result};
+use super::{CurveInput, CurvePoints, InputFormat, Source};
 use curve_repr::Vec2;
+use fair_door::error::{Error, Result};
 
 /// Parses a Selig or Lednicer file.
 pub(super) fn parse(source: &Source) -> Result<CurveInput> {
@@ -78,7 +78,7 @@ pub(super) fn parse(source: &Source) -> Result<CurveInput> {
         return lednicer(path, name, counts_line, counts, &pairs[1..]);
     }
     Ok(CurveInput {
-        points: Points::Planar(pairs.iter().map(|(_, p)| *p).collect()),
+        points: CurvePoints::Planar(pairs.iter().map(|(_, p)| *p).collect()),
         format: InputFormat::Selig { name },
         source: path.into(),
         lines: pairs.iter().map(|(l, _)| *l).collect(),
@@ -119,7 +119,7 @@ fn lednicer(
         .chain(lower_pairs.iter().skip(skip))
         .collect();
     Ok(CurveInput {
-        points: Points::Planar(ordered.iter().map(|(_, p)| *p).collect()),
+        points: CurvePoints::Planar(ordered.iter().map(|(_, p)| *p).collect()),
         format: InputFormat::Lednicer {
             name,
             upper,

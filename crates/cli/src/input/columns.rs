@@ -15,9 +15,9 @@
 //! are stored without a row allocation unless there are label columns.
 
 use super::table::{number, Delimiter};
-use super::{CurveInput, InputFormat, Points, Source};
-use crate::error::{Error, Result};
+use super::{CurveInput, CurvePoints, InputFormat, Source};
 use curve_repr::{Vec2, Vec3};
+use fair_door::error::{Error, Result};
 
 /// How a curve table's columns become points, remembered to write the result back in place.
 #[derive(Debug, Clone, PartialEq)]
@@ -327,9 +327,9 @@ pub fn parse(source: &Source, options: &ReadOptions) -> Result<CurveInput> {
         });
     }
     let points = if dimension == 2 {
-        Points::Planar(planar)
+        CurvePoints::Planar(planar)
     } else {
-        Points::Spatial(spatial)
+        CurvePoints::Spatial(spatial)
     };
     Ok(CurveInput {
         points,

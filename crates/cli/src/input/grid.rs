@@ -6,27 +6,17 @@
 
 use super::table::Table;
 use super::{Delimiter, Source};
-use crate::error::{Error, Result};
 use curve_repr::Vec3;
+use fair_door::error::{Error, Result};
 
-/// A rectangular grid of points P_ij, i = 0..rows, j = 0..columns, stored row by row.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Grid {
-    /// Number of i values.
-    pub rows: usize,
-    /// Number of j values.
-    pub columns: usize,
-    /// The points, `points[i * columns + j]`.
-    pub points: Vec<Vec3>,
-}
+pub use fairing::catalog::Grid;
 
-impl Grid {
-    /// The point P_ij, if inside the grid.
-    pub fn get(&self, i: usize, j: usize) -> Option<&Vec3> {
-        if i < self.rows && j < self.columns {
-            self.points.get(i * self.columns + j)
-        } else {
-            None
+impl SurfaceInput {
+    /// The grid as the door takes it, with the file's name.
+    pub fn data(&self) -> fair_door::GridData<'_> {
+        fair_door::GridData {
+            grid: &self.grid,
+            source: &self.source,
         }
     }
 }

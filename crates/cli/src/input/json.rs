@@ -3,8 +3,8 @@
 //! The points are read by a small serde visitor so that serde_json reports the line of a
 //! wrong value (a string, a point of the wrong length, a number out of range).
 
-use super::{CurveInput, InputFormat, Points, Source};
-use crate::error::{Error, Result};
+use super::{CurveInput, CurvePoints, InputFormat, Source};
+use fair_door::error::{Error, Result};
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
 use serde::Deserialize;
 use std::fmt;
@@ -153,7 +153,7 @@ pub(super) fn parse(source: &Source) -> Result<CurveInput> {
             reason: "the `points` array is empty".into(),
         });
     }
-    let points = Points::from_rows(list.dimension, &list.rows).ok_or_else(|| Error::Internal {
+    let points = CurvePoints::from_rows(list.dimension, &list.rows).ok_or_else(|| Error::Internal {
         message: "JSON points of unequal dimension".into(),
     })?;
     Ok(CurveInput {

@@ -1,6 +1,6 @@
 //! Reading curves and surfaces from files or standard input.
 //!
-//! Formats (DESIGN.md, "The `fair` command"):
+//! Formats (docs/CONTRACT.md, "Commands"):
 //! - CSV `x,y` or `x,y,z`, header optional (a first row that is not all numbers is a header),
 //!   blank lines and `#` comments skipped, spaces around fields allowed; a file without any
 //!   comma is read as whitespace-separated columns;
@@ -17,97 +17,19 @@
 
 mod airfoil;
 pub mod columns;
+pub mod embedded;
 pub mod grid;
 mod json;
 mod table;
 
-use crate::error::{Error, Result};
-use curve_repr::{Vec2, Vec3};
+use fair_door::error::{Error, Result};
 
 pub use columns::{Layout, ReadOptions};
 pub use grid::{Grid, SurfaceInput};
 pub use table::Delimiter;
 
-/// The points of a curve: planar (`x,y`) or spatial (`x,y,z`).
-#[derive(Debug, Clone, PartialEq)]
-pub enum Points {
-    /// Planar points.
-    Planar(Vec<Vec2>),
-    /// Spatial points.
-    Spatial(Vec<Vec3>),
-}
-
-impl Points {
-    /// Number of points.
-    pub fn len(&self) -> usize {
-        match self {
-            Points::Planar(p) => p.len(),
-            Points::Spatial(p) => p.len(),
-        }
-    }
-
-    /// Whether there are no points.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
-    /// 2 or 3.
-    pub fn dimension(&self) -> usize {
-        match self {
-            Points::Planar(_) => 2,
-            Points::Spatial(_) => 3,
-        }
-    }
-
-    /// The coordinates of point `index`, if it exists.
-    pub fn coordinates(&self, index: usize) -> Option<Vec<f64>> {
-        match self {
-            Points::Planar(p) => p.get(index).map(|v| vec![v.x, v.y]),
-            Points::Spatial(p) => p.get(index).map(|v| vec![v.x, v.y, v.z]),
-        }
-    }
-
-    /// All points as coordinate rows (for JSON and generic code).
-    pub fn rows(&self) -> Vec<Vec<f64>> {
-        match self {
-            Points::Planar(p) => p.iter().map(|v| vec![v.x, v.y]).collect(),
-            Points::Spatial(p) => p.iter().map(|v| vec![v.x, v.y, v.z]).collect(),
-        }
-    }
-
-    /// Builds points from coordinate rows that all have `dimension` (2 or 3) entries.
-    ///
-    /// Returns `None` for another dimension or a row of the wrong length.
-    pub fn from_rows(dimension: usize, rows: &[Vec<f64>]) -> Option<Points> {
-        match dimension {
-            2 => rows
-                .iter()
-                .map(|r| match r.as_slice() {
-                    [x, y] => Some(Vec2::new(*x, *y)),
-                    _ => None,
-                })
-                .collect::<Option<Vec<_>>>()
-                .map(Points::Planar),
-            3 => rows
-                .iter()
-                .map(|r| match r.as_slice() {
-                    [x, y, z] => Some(Vec3::new(*x, *y, *z)),
-                    _ => None,
-                })
-                .collect::<Option<Vec<_>>>()
-                .map(Points::Spatial),
-            _ => None,
-        }
-    }
-
-    /// Index of the first point with a NaN or infinite coordinate.
-    pub fn first_non_finite(&self) -> Option<usize> {
-        match self {
-            Points::Planar(p) => p.iter().position(|v| !v.iter().all(|c| c.is_finite())),
-            Points::Spatial(p) => p.iter().position(|v| !v.iter().all(|c| c.is_finite())),
-        }
-    }
-}
+/// The points of a curve: the library's type.
+pub use fairing::catalog::CurvePoints;
 
 /// How a curve file was written, remembered so that the output is written the same way.
 #[derive(Debug, Clone, PartialEq)]
@@ -145,23 +67,11 @@ pub enum InputFormat {
     },
 }
 
-impl InputFormat {
-    /// A short name: `csv`, `json`, `selig`, `lednicer`.
-    pub fn name(&self) -> &'static str {
-        match self {
-            InputFormat::Csv { .. } => "csv",
-            InputFormat::Json { .. } => "json",
-            InputFormat::Selig { .. } => "selig",
-            InputFormat::Lednicer { .. } => "lednicer",
-        }
-    }
-}
-
 /// A curve read from a file: its points, the format to write results in, and where it came from.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CurveInput {
     /// The data points, in file order (Lednicer: Selig order).
-    pub points: Points,
+    pub points: CurvePoints,
     /// The format they were read in.
     pub format: InputFormat,
     /// The path as given, or `<stdin>`.
@@ -184,23 +94,13 @@ impl CurveInput {
         self.points.is_empty()
     }
 
-    /// The line point `index` was read from, when known.
-    pub fn line_of(&self, index: usize) -> Option<usize> {
-        self.lines.get(index).copied()
-    }
-
-    /// Fails with [`Error::TooFewPoints`] when there are fewer than `needed` points; `what`
-    /// names who needs them (`"a curve"`, a method name).
-    pub fn require_at_least(&self, needed: usize, what: &str) -> Result<()> {
-        if self.len() < needed {
-            return Err(Error::TooFewPoints {
-                path: self.source.clone(),
-                found: self.len(),
-                needed,
-                what: what.to_string(),
-            });
+    /// The points as the door takes them: with the file's name and each point's line.
+    pub fn data(&self) -> fair_door::CurveData<'_> {
+        fair_door::CurveData {
+            points: &self.points,
+            source: &self.source,
+            lines: &self.lines,
         }
-        Ok(())
     }
 
     /// The names of the coordinates, abscissa first: the header's names of the columns read
@@ -225,21 +125,16 @@ impl CurveInput {
             eprintln!("fair: note: {note}");
         }
     }
+}
 
-    /// An error about point `index`, naming its line when known.
-    pub fn point_error(&self, index: usize, message: impl Into<String>) -> Error {
-        match self.line_of(index) {
-            Some(line) => Error::Parse {
-                path: self.source.clone(),
-                line,
-                message: message.into(),
-            },
-            None => Error::Invalid {
-                path: self.source.clone(),
-                message: format!("point {index}: {}", message.into()),
-            },
-        }
-    }
+/// Whether a source is a surface grid: five comma-separated columns on its first row.
+pub fn looks_like_surface(source: &Source) -> bool {
+    let first = source
+        .text
+        .lines()
+        .map(str::trim)
+        .find(|l| !l.is_empty() && !l.starts_with('#'));
+    first.is_some_and(|l| l.split(',').count() == 5)
 }
 
 /// The text of an input and where it came from.
@@ -301,19 +196,7 @@ impl Source {
 }
 
 /// The operating system's reason for an I/O failure, without the "(os error 2)" suffix.
-pub(crate) fn io_reason(e: &std::io::Error) -> String {
-    match e.kind() {
-        std::io::ErrorKind::NotFound => "no such file or directory".into(),
-        std::io::ErrorKind::PermissionDenied => "permission denied".into(),
-        _ => {
-            let text = e.to_string();
-            match text.find(" (os error") {
-                Some(cut) => text[..cut].to_string(),
-                None => text,
-            }
-        }
-    }
-}
+pub(crate) use fair_door::error::io_reason;
 
 fn extension_of(path: &str) -> Option<String> {
     std::path::Path::new(path)
@@ -363,7 +246,7 @@ enum Sniffed {
 ///
 /// Fails with the file and line of the first problem; a file without any point is
 /// [`Error::Empty`]. The minimum number of points is the caller's to check
-/// ([`CurveInput::require_at_least`]).
+/// ([`fair_door::CurveData::require_at_least`]).
 pub fn read_curve(path: &str) -> Result<CurveInput> {
     parse_curve(&Source::read(path)?)
 }
@@ -412,6 +295,7 @@ pub fn read_surface(path: &str) -> Result<SurfaceInput> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use curve_repr::{Vec2, Vec3};
 
     fn parse(name: &str, text: &str) -> Result<CurveInput> {
         parse_curve(&Source::from_text(name, text))
@@ -422,7 +306,7 @@ mod tests {
         let c = parse("a.csv", "x,y\n0,1\n1, 2\n 2 ,3\n").unwrap();
         assert_eq!(
             c.points,
-            Points::Planar(vec![Vec2::new(0., 1.), Vec2::new(1., 2.), Vec2::new(2., 3.)])
+            CurvePoints::Planar(vec![Vec2::new(0., 1.), Vec2::new(1., 2.), Vec2::new(2., 3.)])
         );
         assert_eq!(
             c.format,
@@ -445,7 +329,7 @@ mod tests {
         let c = parse("a.csv", "0,1,2\n\n# comment\n3,4,5e-1\n").unwrap();
         assert_eq!(
             c.points,
-            Points::Spatial(vec![Vec3::new(0., 1., 2.), Vec3::new(3., 4., 0.5)])
+            CurvePoints::Spatial(vec![Vec3::new(0., 1., 2.), Vec3::new(3., 4., 0.5)])
         );
         assert_eq!(
             c.format,
@@ -469,14 +353,14 @@ mod tests {
         let c = parse("station.csv", text).unwrap();
         assert_eq!(c.len(), 3);
         assert_eq!(c.points.dimension(), 3);
-        let Points::Spatial(points) = &c.points else {
+        let CurvePoints::Spatial(points) = &c.points else {
             panic!("3D points expected")
         };
         assert_eq!(points[1], Vec3::new(1.0, 9.0, 4.125));
         // Written back with the labels in place, moved values where they were.
         let mut moved = points.clone();
         moved[1].y = 9.5;
-        let written = crate::output::format_curve(&c, &Points::Spatial(moved)).unwrap();
+        let written = crate::output::format_curve(&c, &CurvePoints::Spatial(moved)).unwrap();
         assert_eq!(
             written,
             "x,y,z,source\n1,0.75,0,buttock\n1,9.5,4.125,waterline\n1,18,8.75,buttock\n"
@@ -497,11 +381,11 @@ mod tests {
         let c = parse("s.csv", "y,x,w\n5,0,1\n6,1,2\n7,3,3\n").unwrap();
         assert_eq!(
             c.points,
-            Points::Planar(vec![Vec2::new(0., 5.), Vec2::new(1., 6.), Vec2::new(3., 7.)])
+            CurvePoints::Planar(vec![Vec2::new(0., 5.), Vec2::new(1., 6.), Vec2::new(3., 7.)])
         );
         assert_eq!(c.coordinate_names(), ["x", "y"]);
         assert!(c.notes.is_empty());
-        let moved = Points::Planar(vec![Vec2::new(0., 5.5), Vec2::new(1., 6.), Vec2::new(3., 7.)]);
+        let moved = CurvePoints::Planar(vec![Vec2::new(0., 5.5), Vec2::new(1., 6.), Vec2::new(3., 7.)]);
         assert_eq!(
             crate::output::format_curve(&c, &moved).unwrap(),
             "y,x,w\n5.5,0,1\n6,1,2\n7,3,3\n"
@@ -514,10 +398,10 @@ mod tests {
         .unwrap();
         assert_eq!(
             c.points,
-            Points::Planar(vec![Vec2::new(0., 1.), Vec2::new(1., 2.), Vec2::new(2., 3.)])
+            CurvePoints::Planar(vec![Vec2::new(0., 1.), Vec2::new(1., 2.), Vec2::new(2., 3.)])
         );
         assert_eq!(c.coordinate_names(), ["z", "y"]);
-        let moved = Points::Planar(vec![Vec2::new(0., 1.), Vec2::new(1., 2.25), Vec2::new(2., 3.)]);
+        let moved = CurvePoints::Planar(vec![Vec2::new(0., 1.), Vec2::new(1., 2.25), Vec2::new(2., 3.)]);
         assert_eq!(
             crate::output::format_curve(&c, &moved).unwrap(),
             "x,y,z\n9,1,0\n9,2.25,1\n9,3,2\n"
@@ -526,7 +410,7 @@ mod tests {
         let c = parse_curve_with(&Source::from_text("p.csv", "0,1,2\n1,2,3\n"), &options).unwrap();
         assert_eq!(
             c.points,
-            Points::Planar(vec![Vec2::new(2., 1.), Vec2::new(3., 2.)])
+            CurvePoints::Planar(vec![Vec2::new(2., 1.), Vec2::new(3., 2.)])
         );
         assert_eq!(c.notes.len(), 1);
         assert!(c.notes[0].contains("no header"), "{:?}", c.notes);
@@ -588,7 +472,7 @@ mod tests {
     fn one_point_is_returned_and_caller_decides() {
         let c = parse("one.csv", "x,y\n1,2\n").unwrap();
         assert_eq!(c.len(), 1);
-        let e = c.require_at_least(3, "a curve").unwrap_err();
+        let e = c.data().require_at_least(3, "a curve").unwrap_err();
         assert_eq!(e.to_string(), "one.csv: 1 point, a curve needs at least 3");
         assert_eq!(e.exit_code(), 2);
     }
@@ -644,7 +528,7 @@ mod tests {
         let c = parse("a.json", "{\"name\": \"s\", \"points\": [[0, 1], [2.5, 3]]}").unwrap();
         assert_eq!(
             c.points,
-            Points::Planar(vec![Vec2::new(0., 1.), Vec2::new(2.5, 3.)])
+            CurvePoints::Planar(vec![Vec2::new(0., 1.), Vec2::new(2.5, 3.)])
         );
         assert!(matches!(&c.format, InputFormat::Json { document: Some(d) } if d.contains_key("name")));
         let c = parse("-", "[[0, 1, 2], [2, 3, 4]]").unwrap();
@@ -712,7 +596,7 @@ mod tests {
             Vec2::new(0.5, -0.1),
             Vec2::new(1., 0.),
         ];
-        assert_eq!(c.points, Points::Planar(expected));
+        assert_eq!(c.points, CurvePoints::Planar(expected));
         assert_eq!(
             c.format,
             InputFormat::Lednicer {

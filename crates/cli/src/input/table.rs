@@ -6,7 +6,7 @@
 //! whose label columns are text, have their own reader: [`super::columns`].)
 
 use super::Source;
-use crate::error::{Error, Result};
+use fair_door::error::{Error, Result};
 
 /// How fields are separated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -36,7 +36,7 @@ impl Delimiter {
 
 /// A header row as read.
 #[derive(Debug, Clone)]
-pub struct Header {
+pub(super) struct Header {
     /// The line number, from 1.
     pub line: usize,
     /// The line, trimmed.
@@ -47,7 +47,7 @@ pub struct Header {
 
 /// One data row.
 #[derive(Debug, Clone)]
-pub struct Row {
+pub(super) struct Row {
     /// The line number, from 1.
     pub line: usize,
     /// Its values, all finite, in file order.
@@ -56,7 +56,7 @@ pub struct Row {
 
 /// A parsed table: an optional header and at least one row of equal length.
 #[derive(Debug, Clone)]
-pub struct Table {
+pub(super) struct Table {
     /// The header, if the first row was not numeric.
     pub header: Option<Header>,
     /// The data rows.
@@ -70,7 +70,7 @@ pub struct Table {
 impl Table {
     /// Parses a table; fails on the first bad field or row with its line, and with
     /// [`Error::Empty`] when there is no data row.
-    pub fn parse(source: &Source) -> Result<Table> {
+    pub(super) fn parse(source: &Source) -> Result<Table> {
         let delimiter = if source.text.contains(',') {
             Delimiter::Comma
         } else {
@@ -147,7 +147,7 @@ impl Table {
     }
 
     /// The line of the header, or of the first row.
-    pub fn first_line(&self) -> usize {
+    pub(super) fn first_line(&self) -> usize {
         match (&self.header, self.rows.first()) {
             (Some(h), _) => h.line,
             (None, Some(r)) => r.line,

@@ -32,15 +32,15 @@ use super::drawing;
 use super::engine::{self, Job, JobConstraints};
 use super::http::{Request, Response};
 use super::page;
-use crate::args::{ClampEnds, KindArg};
-use crate::commands::inspect::looks_like_surface;
-use crate::error::Error;
-use crate::input::{self, Grid, Points, Source};
+use crate::input::{self, looks_like_surface, CurvePoints, Grid, Source};
 use curve_repr::Vec3;
+use fair_door::error::Error;
+use fair_door::KindChoice;
+use fairing::EndClamp;
 
 /// What every request may use: the methods, the data sets and the body limit.
 #[derive(Debug, Clone)]
-pub struct Context {
+pub(crate) struct Context {
     /// The methods, criteria and indicators (the command's own catalogue).
     pub catalog: fairing::catalog::Catalog,
     /// The data sets offered.
@@ -61,7 +61,7 @@ impl Default for Context {
 }
 
 /// Answers one request. Never panics on any input (the server catches a panic anyway).
-pub fn handle(request: &Request, context: &Context) -> Response {
+pub(crate) fn handle(request: &Request, context: &Context) -> Response {
     let path = request.path.as_str();
     let get = |answer: fn(&Context) -> Response| match request.method.as_str() {
         "GET" | "HEAD" => answer(context),
@@ -185,9 +185,9 @@ impl ConstraintsBody {
     fn into_job(self) -> std::result::Result<JobConstraints, Response> {
         let clamp_ends = match self.clamp_ends.as_deref() {
             None | Some("none") => None,
-            Some("g0") => Some(ClampEnds::G0),
-            Some("g1") => Some(ClampEnds::G1),
-            Some("g2") => Some(ClampEnds::G2),
+            Some("g0") => Some(EndClamp::G0),
+            Some("g1") => Some(EndClamp::G1),
+            Some("g2") => Some(EndClamp::G2),
             Some(other) => {
                 return Err(Response::error(
                     400,
@@ -255,11 +255,11 @@ struct InspectBody {
     columns: Option<usize>,
 }
 
-fn kind_of(kind: Option<&str>) -> std::result::Result<KindArg, Response> {
+fn kind_of(kind: Option<&str>) -> std::result::Result<KindChoice, Response> {
     match kind {
-        None | Some("auto") => Ok(KindArg::Auto),
-        Some("function") => Ok(KindArg::Function),
-        Some("parametric") => Ok(KindArg::Parametric),
+        None | Some("auto") => Ok(KindChoice::Auto),
+        Some("function") => Ok(KindChoice::Function),
+        Some("parametric") => Ok(KindChoice::Parametric),
         Some(other) => Err(Response::error(
             400,
             format!("kind: `{other}` is not one of function, parametric, auto"),
@@ -275,7 +275,7 @@ fn check_finite(rows: &[Vec<f64>]) -> std::result::Result<(), Response> {
     }
 }
 
-fn curve_points(rows: &[Vec<f64>]) -> std::result::Result<Points, Response> {
+fn curve_points(rows: &[Vec<f64>]) -> std::result::Result<CurvePoints, Response> {
     check_finite(rows)?;
     let dimension = rows.first().map_or(2, Vec::len);
     if dimension != 2 && dimension != 3 {
@@ -284,7 +284,7 @@ fn curve_points(rows: &[Vec<f64>]) -> std::result::Result<Points, Response> {
             format!("points: point 0 has {dimension} coordinates; a curve's have 2 (x, y) or 3 (x, y, z)"),
         ));
     }
-    Points::from_rows(dimension, rows).ok_or_else(|| {
+    CurvePoints::from_rows(dimension, rows).ok_or_else(|| {
         let i = rows.iter().position(|r| r.len() != dimension).unwrap_or(0);
         Response::error(
             400,
@@ -339,7 +339,7 @@ fn datasets(context: &Context) -> Response {
 }
 
 /// Percent-decodes a path segment; `None` for a broken escape or bytes that are not UTF-8.
-pub fn percent_decode(text: &str) -> Option<String> {
+pub(crate) fn percent_decode(text: &str) -> Option<String> {
     let bytes = text.as_bytes();
     let mut out = Vec::with_capacity(bytes.len());
     let mut i = 0;
@@ -380,7 +380,7 @@ fn dataset(encoded: &str, context: &Context) -> Response {
         Err(Refusal::TooLarge(message)) => return Response::error(413, message),
         Err(Refusal::Unreadable(error)) => return failure(error),
     };
-    match load_text(&context.catalog, &source, KindArg::Auto, false) {
+    match load_text(&context.catalog, &source, KindChoice::Auto, false) {
         Ok(mut value) => {
             value["about"] = json!(entry.about);
             Response::json(200, &value)
@@ -394,11 +394,11 @@ fn dataset(encoded: &str, context: &Context) -> Response {
 fn load_text(
     catalog: &fairing::catalog::Catalog,
     source: &Source,
-    kind: KindArg,
+    kind: KindChoice,
     surface: bool,
 ) -> std::result::Result<Value, Response> {
     if surface || looks_like_surface(source) {
-        if kind != KindArg::Auto {
+        if kind != KindChoice::Auto {
             return Err(Response::error(
                 400,
                 "kind: the input is a surface grid; kind is for curves",
@@ -415,7 +415,7 @@ fn load_text(
 fn load_curve(
     catalog: &fairing::catalog::Catalog,
     curve: &input::CurveInput,
-    kind: KindArg,
+    kind: KindChoice,
 ) -> std::result::Result<Value, Response> {
     let (kind, report, measured) = engine::inspect_curve(catalog, curve, kind).map_err(failure)?;
     Ok(json!({
@@ -454,7 +454,7 @@ fn inspect(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
             load_curve(catalog, &curve, kind)?
         }
         (None, Some(points), Some(rows), Some(columns)) => {
-            if kind != KindArg::Auto {
+            if kind != KindChoice::Auto {
                 return Err(Response::error(400, "kind: the input is a surface grid; kind is for curves"));
             }
             let grid = grid_points(rows, columns, &points)?;
@@ -482,9 +482,9 @@ fn fair_curve(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
     };
     let result = engine::fair_curve(catalog, &input, kind, &job).map_err(failure)?;
     let before = drawing::measure_curve(&input.points, result.kind)
-        .map_err(|e| failure(crate::commands::measure::in_file(e, &name)))?;
+        .map_err(|e| failure(fair_door::measure::in_file(e, &name)))?;
     let after = drawing::measure_curve(&result.points, result.kind)
-        .map_err(|e| failure(crate::commands::measure::in_file(e, &name)))?;
+        .map_err(|e| failure(fair_door::measure::in_file(e, &name)))?;
     Ok(Response::json(
         200,
         &json!({
@@ -507,7 +507,7 @@ fn fair_surface(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
     };
     let result = engine::fair_surface(catalog, &input, &job).map_err(failure)?;
     let light = drawing::light_for(&input.grid);
-    let in_file = |e| failure(crate::commands::measure::in_file(e, &name));
+    let in_file = |e| failure(fair_door::measure::in_file(e, &name));
     let before = drawing::measure_surface(&input.grid, light.as_ref()).map_err(in_file)?;
     let after = drawing::measure_surface(&result.grid, light.as_ref()).map_err(in_file)?;
     let points: Vec<[f64; 3]> = result.grid.points.iter().map(|p| [p.x, p.y, p.z]).collect();
@@ -542,7 +542,7 @@ fn yes() -> bool {
 
 /// A file name made of the request's name: letters, digits, `.`, `-` and `_` kept, the rest `_`.
 fn file_stem(name: &str) -> String {
-    let stem = crate::commands::curve::stem(name);
+    let stem = fair_door::cad::stem(name);
     stem.chars()
         .map(|c| {
             if c.is_ascii_alphanumeric() || "._-".contains(c) {
@@ -583,11 +583,16 @@ fn cad_file(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
     })?;
     let surface = object.contains_key("rows");
     let rest = serde_json::to_vec(&value).unwrap_or_default();
-    let mut args = engine::arguments(&Job::default(), KindArg::Auto).map_err(failure)?;
-    args.output = Some(format!("points.{}", format.extension()));
-    args.cad.control_points = cad_body.control_points;
-    args.cad.fit_tolerance = cad_body.fit_tolerance;
-    let mut target = crate::cad_file::target(&args, surface)
+    let request = fair_door::cad::CadRequest {
+        output: Some(format!("points.{}", format.extension())),
+        format: None,
+        control_points: cad_body.control_points,
+        fit_tolerance: cad_body.fit_tolerance,
+        units: None,
+        step_schema: None,
+        batch: false,
+    };
+    let mut target = fair_door::cad::target(&request, surface)
         .map_err(failure)?
         .ok_or_else(|| Response::error(500, "no CAD target"))?;
     let (name, made) = if surface {
@@ -608,7 +613,7 @@ fn cad_file(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
         };
         let stem = format!("{}-{method}", file_stem(&name));
         target.path = format!("{stem}.{}", format.extension());
-        let made = crate::cad_file::export_surface(&target, &record, &grid, &stem).map_err(failure)?;
+        let made = fair_door::cad::export_surface(&target, &record, &grid, &stem).map_err(failure)?;
         (stem, made)
     } else {
         let body: CurveBody = parse_body(&rest)?;
@@ -629,16 +634,16 @@ fn cad_file(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
                 result.report.method,
             )
         } else {
-            input
-                .require_at_least(crate::commands::curve::MIN_CURVE_POINTS, "a curve")
+            let data = input.data();
+            data.require_at_least(fair_door::curve::MIN_CURVE_POINTS, "a curve")
                 .map_err(failure)?;
-            let kind = crate::kind::resolve(kind, &input).map_err(failure)?;
+            let kind = fair_door::kind::resolve(kind, &data).map_err(failure)?;
             (input.points, Value::Null, kind, "points".to_string())
         };
         let stem = format!("{}-{method}", file_stem(&name));
         target.path = format!("{stem}.{}", format.extension());
-        let made = crate::cad_file::export_curve(&target, &record, &points, kind, &stem)
-            .map_err(|e| failure(crate::commands::measure::in_file(e, &name)))?;
+        let made = fair_door::cad::export_curve(&target, &record, &points, kind, &stem)
+            .map_err(|e| failure(fair_door::measure::in_file(e, &name)))?;
         (stem, made)
     };
     let content_type = match format {

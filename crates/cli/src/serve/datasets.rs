@@ -10,22 +10,22 @@
 
 use std::path::{Component, Path, PathBuf};
 
-use crate::commands::demo::DATASETS;
-use crate::error::{Error, Result};
+use crate::input::embedded::DATASETS;
 use crate::input::Source;
+use fair_door::error::{Error, Result};
 
 /// File extensions offered from a folder.
-pub const EXTENSIONS: [&str; 4] = ["csv", "json", "dat", "txt"];
+pub(crate) const EXTENSIONS: [&str; 4] = ["csv", "json", "dat", "txt"];
 
 /// The most files offered from the folders given (the walk stops there).
-pub const MAX_FILES: usize = 10_000;
+pub(crate) const MAX_FILES: usize = 10_000;
 
 /// The deepest folder level walked below a folder given.
-pub const MAX_DEPTH: usize = 8;
+pub(crate) const MAX_DEPTH: usize = 8;
 
 /// Where an entry's text comes from.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub enum Origin {
+pub(crate) enum Origin {
     /// Text in the binary.
     Embedded(&'static str),
     /// A file given on the command line.
@@ -37,7 +37,7 @@ pub enum Origin {
 
 /// One data set.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Dataset {
+pub(crate) struct Dataset {
     /// The name the API takes.
     pub name: String,
     /// One line on what it is.
@@ -48,7 +48,7 @@ pub struct Dataset {
 
 impl Dataset {
     /// `embedded` or `file`.
-    pub fn origin_name(&self) -> &'static str {
+    pub(crate) fn origin_name(&self) -> &'static str {
         match self.origin {
             Origin::Embedded(_) => "embedded",
             Origin::File(_) | Origin::InFolder(..) => "file",
@@ -58,7 +58,7 @@ impl Dataset {
 
 /// Why a data set cannot be given.
 #[derive(Debug)]
-pub enum Refusal {
+pub(crate) enum Refusal {
     /// The name reaches outside the data folders (400).
     Outside(String),
     /// No data set has this name (404).
@@ -71,14 +71,14 @@ pub enum Refusal {
 
 /// The list of data sets.
 #[derive(Debug, Clone, Default)]
-pub struct Datasets {
+pub(crate) struct Datasets {
     entries: Vec<Dataset>,
 }
 
 impl Datasets {
     /// The embedded data sets, then each file given and every curve file in each folder
     /// given. Fails (exit status 2) for a path that is neither.
-    pub fn new(paths: &[PathBuf]) -> Result<Datasets> {
+    pub(crate) fn new(paths: &[PathBuf]) -> Result<Datasets> {
         let mut entries: Vec<Dataset> = DATASETS
             .iter()
             .map(|d| Dataset {
@@ -105,7 +105,7 @@ impl Datasets {
             } else if path.is_dir() {
                 let root = path.canonicalize().map_err(|e| Error::Read {
                     path: shown.clone(),
-                    reason: crate::input::io_reason(&e),
+                    reason: fair_door::error::io_reason(&e),
                 })?;
                 let label = root
                     .file_name()
@@ -140,12 +140,12 @@ impl Datasets {
     }
 
     /// Every data set, embedded ones first.
-    pub fn list(&self) -> &[Dataset] {
+    pub(crate) fn list(&self) -> &[Dataset] {
         &self.entries
     }
 
     /// The data set called `name`, its text read now (at most `limit` bytes).
-    pub fn read(&self, name: &str, limit: usize) -> std::result::Result<(&Dataset, Source), Refusal> {
+    pub(crate) fn read(&self, name: &str, limit: usize) -> std::result::Result<(&Dataset, Source), Refusal> {
         if outside(name) {
             return Err(Refusal::Outside(name.to_string()));
         }
@@ -161,7 +161,7 @@ impl Datasets {
                 let real = path.canonicalize().map_err(|e| {
                     Refusal::Unreadable(Error::Read {
                         path: entry.name.clone(),
-                        reason: crate::input::io_reason(&e),
+                        reason: fair_door::error::io_reason(&e),
                     })
                 })?;
                 if !real.starts_with(root) {
@@ -193,7 +193,7 @@ impl Datasets {
 
 /// Whether a requested name reaches outside the data folders: `..`, a root, a drive prefix,
 /// a backslash or a NUL.
-pub fn outside(name: &str) -> bool {
+pub(crate) fn outside(name: &str) -> bool {
     name.contains('\\')
         || name.contains('\0')
         || name.starts_with('/')

@@ -24,15 +24,15 @@
 use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings};
 use serde_json::{json, Value};
 
-use crate::commands::measure::{self, CurveMeasurement, SurfaceMeasurement};
-use crate::error::Result;
-use crate::input::{Grid, Points};
-use crate::kind::CurveKind;
+use crate::input::{CurvePoints, Grid};
 use crate::plots::planar_view;
+use fair_door::error::Result;
+use fair_door::kind::CurveKind;
+use fair_door::measure::{self, CurveMeasurement, SurfaceMeasurement};
 use fairness::highlight::{HighlightSettings, LightSetup};
 
 /// The drawing of a curve from its measurement. O(samples).
-pub fn curve(points: &Points, kind: CurveKind, measured: &CurveMeasurement) -> Value {
+pub(crate) fn curve(points: &CurvePoints, kind: CurveKind, measured: &CurveMeasurement) -> Value {
     let comb = measured.comb.as_ref().map(|c| {
         json!({
             "points": c.points,
@@ -61,7 +61,7 @@ pub fn curve(points: &Points, kind: CurveKind, measured: &CurveMeasurement) -> V
 }
 
 /// Measures a curve and draws it. O(n).
-pub fn measure_curve(points: &Points, kind: CurveKind) -> Result<Value> {
+pub(crate) fn measure_curve(points: &CurvePoints, kind: CurveKind) -> Result<Value> {
     let measured = measure::curve(kind, points)?;
     Ok(curve(points, kind, &measured))
 }
@@ -77,13 +77,13 @@ fn bicubic(grid: &Grid) -> Option<BicubicSplineSurface> {
 }
 
 /// The light every drawing of a surface and its faired twin shares: set up on `grid`.
-pub fn light_for(grid: &Grid) -> Option<LightSetup> {
+pub(crate) fn light_for(grid: &Grid) -> Option<LightSetup> {
     LightSetup::for_surface(&bicubic(grid)?, &HighlightSettings::default())
 }
 
 /// The drawing of a surface grid from its measurement, its highlight lines under `light`
 /// (none without a light). O(m·n + highlight samples).
-pub fn surface(grid: &Grid, measured: &SurfaceMeasurement, light: Option<&LightSetup>) -> Value {
+pub(crate) fn surface(grid: &Grid, measured: &SurfaceMeasurement, light: Option<&LightSetup>) -> Value {
     let view: Vec<[f64; 2]> = grid.points.iter().map(|p| [p.x, p.y]).collect();
     let highlights = light.zip(bicubic(grid)).map(|(light, surface)| {
         let points: Vec<[f64; 2]> = grid.points.iter().map(|p| light.project(p)).collect();
@@ -102,7 +102,7 @@ pub fn surface(grid: &Grid, measured: &SurfaceMeasurement, light: Option<&LightS
 }
 
 /// Measures a surface grid and draws it under `light`. O(m·n + highlight samples).
-pub fn measure_surface(grid: &Grid, light: Option<&LightSetup>) -> Result<Value> {
+pub(crate) fn measure_surface(grid: &Grid, light: Option<&LightSetup>) -> Result<Value> {
     let measured = measure::surface(grid)?;
     Ok(surface(grid, &measured, light))
 }
@@ -114,7 +114,7 @@ mod tests {
 
     #[test]
     fn a_curve_drawing_has_one_z_per_point_and_a_comb() {
-        let points = Points::Planar(
+        let points = CurvePoints::Planar(
             (0..15)
                 .map(|i| Vec2::new(i as f64, (i as f64 * 0.4).sin()))
                 .collect(),

@@ -1,69 +1,70 @@
 //! The server's one door to the fairing code: the methods and their parameters, fairing a
 //! curve or a surface, inspecting one.
 //!
-//! Everything runs through the command's own code path — [`curve::process`],
-//! [`surface::process`], [`measure`] and [`Report::inspection`] as `fair inspect` uses them —
-//! so that a report from the page is the report `fair curve` writes for the same points,
-//! method, parameters and constraints (`elapsed_ms` aside). A request's parameters and
-//! constraints are turned into the command line they stand for ([`FairArgs`]).
+//! Everything runs through the library's door ([`fair_door`]), as the command does, so that a
+//! report from the page is the report `fair curve` writes for the same points, method,
+//! parameters and constraints (`elapsed_ms` aside). A request's parameters go to the
+//! catalogue as the JSON values they are.
 //!
 //! The methods, their parameters and defaults come from the library's catalogue (the one the
 //! command was started with), so a method registered by a program is on the page too.
 
 use std::collections::BTreeMap;
 
-use fairing::catalog::{Catalog, CurveJob, CurvePoints, MethodEntry, MethodKind};
+use fair_door::curve::{default_method, CurveRequest};
+use fair_door::error::{Error, Result};
+use fair_door::kind::{CurveKind, KindChoice};
+use fair_door::measure::{CurveMeasurement, Detail, SurfaceMeasurement};
+use fair_door::report::Report;
+use fair_door::surface::{SurfaceRequest, DEFAULT_METHOD};
+use fair_door::ConstraintRequest;
+use fairing::catalog::{Catalog, CurveJob, CurvePoints, MethodEntry, MethodKind, ParameterMap};
+use fairing::EndClamp;
 
-use crate::args::{ClampEnds, FairArgs, IndexList, KindArg, Setting};
-use crate::commands::{curve, measure, surface};
-use crate::error::{Error, Result};
-use crate::input::grid::Grid;
-use crate::input::{CurveInput, InputFormat, Points, SurfaceInput};
-use crate::kind::{self, CurveKind};
-use crate::report::{Report, ReportKind};
+use crate::input::{CurveInput, Grid, InputFormat, SurfaceInput};
 
 /// What to run: a method, its parameters and the constraints.
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct Job {
-    /// The method; `None` for the command's default for the kind of input.
-    pub method: Option<String>,
+pub(crate) struct Job {
+    /// The method; `None` for the default for the kind of input.
+    pub(crate) method: Option<String>,
     /// Parameter values by name (numbers, strings or booleans; `null` = the default).
-    pub params: BTreeMap<String, serde_json::Value>,
+    pub(crate) params: BTreeMap<String, serde_json::Value>,
     /// Fixed points, bad points, tolerance, ends.
-    pub constraints: JobConstraints,
+    pub(crate) constraints: JobConstraints,
 }
 
 /// The constraints of a [`Job`], as `--fixed`, `--points`, `--tolerance`, `--clamp-ends`.
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct JobConstraints {
+pub(crate) struct JobConstraints {
     /// Points that must not move (from 0; grid points counted row by row).
-    pub fixed: Vec<usize>,
+    pub(crate) fixed: Vec<usize>,
     /// The bad points for the interactive methods.
-    pub points: Vec<usize>,
+    pub(crate) points: Vec<usize>,
     /// No point moves farther than this.
-    pub tolerance: Option<f64>,
+    pub(crate) tolerance: Option<f64>,
     /// What is kept at the ends.
-    pub clamp_ends: Option<ClampEnds>,
+    pub(crate) clamp_ends: Option<EndClamp>,
 }
 
 /// A faired curve.
 #[derive(Debug, Clone, PartialEq)]
-pub struct CurveResult {
+pub(crate) struct CurveResult {
     /// The faired points, same count and order.
-    pub points: Points,
+    pub(crate) points: CurvePoints,
     /// The command's report.
-    pub report: Report,
+    pub(crate) report: Report,
     /// The kind the measures were taken for.
-    pub kind: CurveKind,
+    pub(crate) kind: CurveKind,
 }
 
 /// A faired surface.
 #[derive(Debug, Clone, PartialEq)]
-pub struct SurfaceResult {
+pub(crate) struct SurfaceResult {
     /// The faired grid, same size.
-    pub grid: Grid,
+    pub(crate) grid: Grid,
     /// The command's report.
-    pub report: Report,
+    pub(crate) report: Report,
 }
 
 /// Whether the method refuses spatial curves: asked of the method itself (its check on four
@@ -126,7 +127,7 @@ fn schema(entry: &MethodEntry) -> serde_json::Value {
 /// Every method of `catalog`: name, `kind` (curve or surface), paper, summary, whether it
 /// takes bad points (`takes_points`), whether it fairs planar curves only, and its parameters
 /// as a JSON Schema; plus the default method for each kind of input.
-pub fn methods(catalog: &Catalog) -> serde_json::Value {
+pub(crate) fn methods(catalog: &Catalog) -> serde_json::Value {
     let list: Vec<serde_json::Value> = [MethodKind::Curve, MethodKind::Surface]
         .into_iter()
         .flat_map(|kind| catalog.methods(kind))
@@ -145,48 +146,48 @@ pub fn methods(catalog: &Catalog) -> serde_json::Value {
     serde_json::json!({
         "methods": list,
         "defaults": {
-            "function": curve::default_method(CurveKind::Function),
-            "parametric": curve::default_method(CurveKind::Parametric),
-            "surface": surface::DEFAULT_METHOD,
+            "function": default_method(CurveKind::Function),
+            "parametric": default_method(CurveKind::Parametric),
+            "surface": DEFAULT_METHOD,
         },
     })
 }
 
-/// A parameter value as the text `--set` would carry. `null` means "the default" (`None`).
-fn setting_text(name: &str, value: &serde_json::Value) -> Result<Option<String>> {
-    let text = match value {
-        serde_json::Value::Null => return Ok(None),
-        serde_json::Value::Number(n) => n.to_string(),
-        serde_json::Value::Bool(b) => b.to_string(),
-        serde_json::Value::String(s) if !s.trim().is_empty() => s.trim().to_string(),
-        serde_json::Value::String(_) => {
-            return Err(Error::Parameter {
-                origin: "params".into(),
-                message: format!("`{name}` is empty"),
-            })
-        }
-        _ => {
-            return Err(Error::Parameter {
-                origin: "params".into(),
-                message: format!("`{name}` must be a number, a string or a boolean"),
-            })
-        }
-    };
-    Ok(Some(text))
-}
-
-/// The command line a job stands for (`fair curve` / `fair surface` options; no files).
-pub(crate) fn arguments(job: &Job, kind: KindArg) -> Result<FairArgs> {
-    let mut settings = Vec::new();
+/// A job's parameters as the catalogue's map (given at `--set`, as on the command line);
+/// `null` means "the default" and is left out. Refused: an empty string, an array or an
+/// object.
+fn parameters(job: &Job) -> Result<ParameterMap> {
+    let mut map = ParameterMap::new();
     for (name, value) in &job.params {
-        if let Some(value) = setting_text(name, value)? {
-            settings.push(Setting {
-                name: name.clone(),
-                value,
-            });
+        match value {
+            serde_json::Value::Null => continue,
+            serde_json::Value::Number(_) | serde_json::Value::Bool(_) => {
+                map.insert_json(name, value.clone(), "--set");
+            }
+            serde_json::Value::String(s) if !s.trim().is_empty() => {
+                map.insert_text(name, s.trim(), "--set");
+            }
+            serde_json::Value::String(_) => {
+                return Err(Error::Parameter {
+                    origin: "params".into(),
+                    message: format!("`{name}` is empty"),
+                })
+            }
+            _ => {
+                return Err(Error::Parameter {
+                    origin: "params".into(),
+                    message: format!("`{name}` must be a number, a string or a boolean"),
+                })
+            }
         }
     }
-    let list = |option: &'static str, indices: &[usize]| -> Result<Option<IndexList>> {
+    Ok(map)
+}
+
+/// A job's constraints as the door takes them: indices checked for repeats, the tolerance
+/// for being a finite positive number.
+fn constraints(job: &Job) -> Result<ConstraintRequest> {
+    let list = |option: &'static str, indices: &[usize]| -> Result<Option<Vec<usize>>> {
         if indices.is_empty() {
             return Ok(None);
         }
@@ -198,7 +199,7 @@ pub(crate) fn arguments(job: &Job, kind: KindArg) -> Result<FairArgs> {
                 message: format!("index {} appears twice", pair[0]),
             });
         }
-        Ok(Some(IndexList(indices.to_vec())))
+        Ok(Some(indices.to_vec()))
     };
     if let Some(tolerance) = job.constraints.tolerance {
         if !(tolerance.is_finite() && tolerance > 0.0) {
@@ -208,29 +209,16 @@ pub(crate) fn arguments(job: &Job, kind: KindArg) -> Result<FairArgs> {
             });
         }
     }
-    Ok(FairArgs {
-        input: "-".into(),
-        method: job.method.clone(),
-        kind,
-        columns: None,
-        config: None,
-        settings,
+    Ok(ConstraintRequest {
         fixed: list("--fixed", &job.constraints.fixed)?,
-        points: list("--points", &job.constraints.points)?,
+        bad_points: list("--points", &job.constraints.points)?,
         tolerance: job.constraints.tolerance,
         clamp_ends: job.constraints.clamp_ends,
-        output: None,
-        report: None,
-        plot: None,
-        quiet: true,
-        print_config: false,
-        batch: false,
-        cad: Default::default(),
     })
 }
 
 /// Points from a request, named `name` in messages, as if read from a JSON file.
-pub fn curve_input(name: &str, points: Points) -> CurveInput {
+pub(crate) fn curve_input(name: &str, points: CurvePoints) -> CurveInput {
     CurveInput {
         points,
         format: InputFormat::Json { document: None },
@@ -242,7 +230,7 @@ pub fn curve_input(name: &str, points: Points) -> CurveInput {
 
 /// A grid from a request, named `name` in messages, as if read from an `i,j,x,y,z` file
 /// whose indices start at 0, row by row.
-pub fn surface_input(name: &str, grid: Grid) -> SurfaceInput {
+pub(crate) fn surface_input(name: &str, grid: Grid) -> SurfaceInput {
     let order = (0..grid.rows)
         .flat_map(|i| (0..grid.columns).map(move |j| (i, j)))
         .collect();
@@ -257,90 +245,67 @@ pub fn surface_input(name: &str, grid: Grid) -> SurfaceInput {
     }
 }
 
-fn curve_kind(kind: ReportKind) -> Result<CurveKind> {
-    match kind {
-        ReportKind::Function => Ok(CurveKind::Function),
-        ReportKind::Parametric => Ok(CurveKind::Parametric),
-        ReportKind::Surface => Err(Error::Internal {
-            message: "a curve's report says surface".into(),
-        }),
-    }
-}
-
 /// Fairs a curve as `fair curve` does with the job's options. O(the method).
-pub fn fair_curve(catalog: &Catalog, input: &CurveInput, kind: KindArg, job: &Job) -> Result<CurveResult> {
-    let args = arguments(job, kind)?;
-    let faired = curve::process(catalog, input, &args, None)?;
+pub(crate) fn fair_curve(
+    catalog: &Catalog,
+    input: &CurveInput,
+    kind: KindChoice,
+    job: &Job,
+) -> Result<CurveResult> {
+    let request = CurveRequest {
+        method: job.method.clone(),
+        kind,
+        settings: parameters(job)?,
+        config: None,
+        constraints: constraints(job)?,
+        samples: false,
+    };
+    let faired = fair_door::curve(catalog, &input.data(), &request)?;
     faired.report.check_finite()?;
-    // The command writes the points in the input's format, here a JSON array written with the
-    // shortest digits that read back exactly: reading it back gives the faired f64s unchanged.
-    let rows: Vec<Vec<f64>> = serde_json::from_str(&faired.points_text).map_err(|e| Error::Internal {
-        message: format!("faired points: {e}"),
-    })?;
-    let points = Points::from_rows(input.points.dimension(), &rows).ok_or_else(|| Error::Internal {
-        message: "faired points of another dimension".into(),
-    })?;
     Ok(CurveResult {
-        points,
-        kind: curve_kind(faired.report.kind)?,
+        points: faired.points,
+        kind: faired.kind,
         report: faired.report,
     })
 }
 
 /// Fairs a surface as `fair surface` does with the job's options. O(the method).
-pub fn fair_surface(catalog: &Catalog, input: &SurfaceInput, job: &Job) -> Result<SurfaceResult> {
-    let args = arguments(job, KindArg::Auto)?;
-    let faired = surface::process(catalog, input, &args, None)?;
+pub(crate) fn fair_surface(catalog: &Catalog, input: &SurfaceInput, job: &Job) -> Result<SurfaceResult> {
+    let request = SurfaceRequest {
+        method: job.method.clone(),
+        settings: parameters(job)?,
+        config: None,
+        constraints: constraints(job)?,
+    };
+    let faired = fair_door::surface(catalog, &input.data(), &request)?;
     faired.report.check_finite()?;
-    let grid = faired.plot.faired.clone().ok_or_else(|| Error::Internal {
-        message: "no faired grid".into(),
-    })?;
     Ok(SurfaceResult {
-        grid,
+        grid: faired.grid,
         report: faired.report,
     })
 }
 
 /// Measures a curve as `fair inspect` does: the report (method `inspect`) and the measurement
 /// the drawing is made from. O(n).
-pub fn inspect_curve(
+pub(crate) fn inspect_curve(
     catalog: &Catalog,
     input: &CurveInput,
-    kind: KindArg,
-) -> Result<(CurveKind, Report, measure::CurveMeasurement)> {
-    input.require_at_least(curve::MIN_CURVE_POINTS, "a curve")?;
-    let kind = kind::resolve(kind, input)?;
-    let measured = measure::curve(kind, &input.points).map_err(|e| measure::in_file(e, &input.source))?;
-    let mut measures = measured.measures.clone();
-    measures.criteria =
-        crate::commands::inspect::curve_criteria(catalog, kind, input, measures.energies.as_ref())?;
-    let report = Report::inspection(
-        ReportKind::from(kind),
-        input.len(),
-        measures,
-        measured.curve.clone(),
-    );
-    report.check_finite()?;
-    Ok((kind, report, measured))
+    kind: KindChoice,
+) -> Result<(CurveKind, Report, CurveMeasurement)> {
+    let inspected = fair_door::inspect_curve(catalog, &input.data(), kind, Detail::ALL)?;
+    Ok((inspected.kind, inspected.report, inspected.measured))
 }
 
 /// Measures a surface as `fair inspect` does. O(m·n).
-pub fn inspect_surface(input: &SurfaceInput) -> Result<(Report, measure::SurfaceMeasurement)> {
-    surface::require_grid(input)?;
-    let measured = measure::surface(&input.grid).map_err(|e| measure::in_file(e, &input.source))?;
-    let report = Report::inspection(
-        ReportKind::Surface,
-        input.grid.points.len(),
-        measured.measures.clone(),
-        measured.surface.clone(),
-    );
-    report.check_finite()?;
-    Ok((report, measured))
+pub(crate) fn inspect_surface(input: &SurfaceInput) -> Result<(Report, SurfaceMeasurement)> {
+    let inspected = fair_door::inspect_surface(&input.data())?;
+    Ok((inspected.report, inspected.measured))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use clap::Parser;
     use curve_repr::Vec2;
 
     fn wave(n: usize) -> CurveInput {
@@ -350,11 +315,11 @@ mod tests {
                 Vec2::new(x, x.sin() + if i == n / 2 { 0.05 } else { 0.0 })
             })
             .collect();
-        curve_input("wave", Points::Planar(points))
+        curve_input("wave", CurvePoints::Planar(points))
     }
 
     #[test]
-    fn a_job_is_the_command_line_it_stands_for() {
+    fn a_job_gives_the_door_its_parameters_and_constraints() {
         let job = Job {
             method: Some("smoothing-spline".into()),
             params: BTreeMap::from([
@@ -365,28 +330,19 @@ mod tests {
             constraints: JobConstraints {
                 fixed: vec![3, 1],
                 tolerance: Some(0.5),
-                clamp_ends: Some(ClampEnds::G0),
+                clamp_ends: Some(EndClamp::G0),
                 ..JobConstraints::default()
             },
         };
-        let args = arguments(&job, KindArg::Function).unwrap();
-        assert_eq!(
-            args.settings,
-            vec![
-                Setting {
-                    name: "p".into(),
-                    value: "0.999".into()
-                },
-                Setting {
-                    name: "rule".into(),
-                    value: "gcv".into()
-                }
-            ]
-        );
-        assert_eq!(args.fixed, Some(IndexList(vec![3, 1])));
-        assert_eq!(args.points, None);
-        assert_eq!(args.tolerance, Some(0.5));
-        assert_eq!(args.clamp_ends, Some(ClampEnds::G0));
+        let map = parameters(&job).unwrap();
+        let names: Vec<&String> = map.iter().map(|(n, _)| n).collect();
+        assert_eq!(names, ["p", "rule"]);
+        assert_eq!(map.get("p").unwrap().value.text(), "0.999");
+        let c = constraints(&job).unwrap();
+        assert_eq!(c.fixed, Some(vec![3, 1]));
+        assert_eq!(c.bad_points, None);
+        assert_eq!(c.tolerance, Some(0.5));
+        assert_eq!(c.clamp_ends, Some(EndClamp::G0));
         let twice = Job {
             constraints: JobConstraints {
                 points: vec![4, 4],
@@ -394,15 +350,12 @@ mod tests {
             },
             ..Job::default()
         };
-        assert!(arguments(&twice, KindArg::Auto)
-            .unwrap_err()
-            .to_string()
-            .contains("twice"));
+        assert!(constraints(&twice).unwrap_err().to_string().contains("twice"));
         let nested = Job {
             params: BTreeMap::from([("p".to_string(), serde_json::json!([1]))]),
             ..Job::default()
         };
-        assert_eq!(arguments(&nested, KindArg::Auto).unwrap_err().exit_code(), 2);
+        assert_eq!(parameters(&nested).unwrap_err().exit_code(), 2);
     }
 
     #[test]
@@ -417,9 +370,23 @@ mod tests {
             ..Job::default()
         };
         let catalog = Catalog::builtin();
-        let result = fair_curve(&catalog, &input, KindArg::Auto, &job).unwrap();
-        let args = arguments(&job, KindArg::Auto).unwrap();
-        let command = curve::process(&catalog, &input, &args, None).unwrap();
+        let result = fair_curve(&catalog, &input, KindChoice::Auto, &job).unwrap();
+        let args = match crate::args::Cli::try_parse_from([
+            "fair",
+            "curve",
+            "-",
+            "--method",
+            "strain-energy",
+            "--points",
+            "12",
+        ])
+        .unwrap()
+        .command
+        {
+            crate::args::Command::Curve(args) => args,
+            _ => unreachable!(),
+        };
+        let command = crate::commands::curve::process(&catalog, &input, &args, None).unwrap();
         let mut expected = command.report.clone();
         expected.elapsed_ms = result.report.elapsed_ms;
         assert_eq!(result.report, expected);

@@ -29,7 +29,7 @@ use super::api::{self, Context};
 
 /// How the server listens and what it accepts.
 #[derive(Debug, Clone)]
-pub struct Settings {
+pub(crate) struct Settings {
     /// The address to listen on (default 127.0.0.1).
     pub bind: IpAddr,
     /// The port (0: any free port).
@@ -65,7 +65,7 @@ impl Default for Settings {
 
 /// A request as the routes see it: method, path (without the query) and body.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Request {
+pub(crate) struct Request {
     /// `GET`, `POST`, ...
     pub method: String,
     /// The path as sent, percent-encoded, without `?query`.
@@ -78,7 +78,7 @@ pub struct Request {
 
 /// An answer: status, content type and body (plus headers for the page).
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Response {
+pub(crate) struct Response {
     /// The HTTP status.
     pub status: u16,
     /// The `Content-Type`.
@@ -91,7 +91,7 @@ pub struct Response {
 
 impl Response {
     /// A JSON answer.
-    pub fn json(status: u16, value: &serde_json::Value) -> Response {
+    pub(crate) fn json(status: u16, value: &serde_json::Value) -> Response {
         Response {
             status,
             content_type: "application/json",
@@ -101,12 +101,12 @@ impl Response {
     }
 
     /// A JSON error answer `{"error": message}`.
-    pub fn error(status: u16, message: impl Into<String>) -> Response {
+    pub(crate) fn error(status: u16, message: impl Into<String>) -> Response {
         Response::json(status, &serde_json::json!({ "error": message.into() }))
     }
 
     /// Adds a header.
-    pub fn with_header(mut self, name: &'static str, value: impl Into<String>) -> Response {
+    pub(crate) fn with_header(mut self, name: &'static str, value: impl Into<String>) -> Response {
         self.headers.push((name, value.into()));
         self
     }
@@ -136,7 +136,7 @@ fn reason(status: u16) -> &'static str {
 
 /// A listening server; [`Server::run`] serves until the process ends.
 #[derive(Debug)]
-pub struct Server {
+pub(crate) struct Server {
     listener: TcpListener,
     context: Arc<Context>,
     settings: Settings,
@@ -144,7 +144,7 @@ pub struct Server {
 
 impl Server {
     /// Binds to the settings' address and port.
-    pub fn bind(settings: &Settings, context: Context) -> io::Result<Server> {
+    pub(crate) fn bind(settings: &Settings, context: Context) -> io::Result<Server> {
         let listener = TcpListener::bind(SocketAddr::new(settings.bind, settings.port))?;
         Ok(Server {
             listener,
@@ -154,7 +154,7 @@ impl Server {
     }
 
     /// The address bound (with the port chosen when 0 was asked for).
-    pub fn local_addr(&self) -> SocketAddr {
+    pub(crate) fn local_addr(&self) -> SocketAddr {
         self.listener
             .local_addr()
             .unwrap_or_else(|_| SocketAddr::new(self.settings.bind, self.settings.port))
@@ -162,7 +162,7 @@ impl Server {
 
     /// Accepts connections and hands them to the workers; returns only if accepting fails
     /// for good.
-    pub fn run(self) {
+    pub(crate) fn run(self) {
         let (sender, receiver) = sync_channel::<TcpStream>(self.settings.queue);
         let receiver = Arc::new(Mutex::new(receiver));
         let local = self.local_addr();

@@ -21,51 +21,23 @@
 //! and keeps no state between requests (the page keeps its history), so two tabs or users never
 //! see each other's data.
 
-pub mod api;
-pub mod datasets;
-pub mod drawing;
-pub mod engine;
-pub mod http;
-pub mod page;
+pub(crate) mod api;
+pub(crate) mod datasets;
+pub(crate) mod drawing;
+pub(crate) mod engine;
+pub(crate) mod http;
+pub(crate) mod page;
 
 use std::io::Write;
-use std::net::IpAddr;
-use std::path::PathBuf;
 
-use crate::error::{Error, Result};
+use fair_door::error::{Error, Result};
 
-/// The default port of `fair serve`.
-pub const DEFAULT_PORT: u16 = 8765;
-
-/// The default largest request body, in bytes (16 MiB: a scan of about 400 000 points as JSON).
-pub const DEFAULT_MAX_UPLOAD: usize = 16 << 20;
-
-/// Options of `fair serve`.
-#[derive(Debug, Clone, clap::Args)]
-pub struct ServeArgs {
-    /// Curve or surface files to offer on the page, or folders of them (every .csv, .json,
-    /// .dat and .txt file inside); nothing outside them is ever read.
-    #[arg(value_name = "FILE")]
-    pub files: Vec<PathBuf>,
-    /// The port to listen on (0: any free port; the address is printed).
-    #[arg(long, short = 'p', value_name = "P", default_value_t = DEFAULT_PORT)]
-    pub port: u16,
-    /// The address to listen on. The default serves this machine only; another address lets
-    /// anyone who reaches it use the page and read the files given.
-    #[arg(long, value_name = "ADDR", default_value = "127.0.0.1")]
-    pub bind: IpAddr,
-    /// The largest request body (an upload, a curve to fair), in bytes.
-    #[arg(long, value_name = "BYTES", default_value_t = DEFAULT_MAX_UPLOAD)]
-    pub max_upload: usize,
-    /// Print nothing but the address (no line per request).
-    #[arg(long, short = 'q')]
-    pub quiet: bool,
-}
+pub(crate) use crate::args::{ServeArgs, DEFAULT_MAX_UPLOAD, DEFAULT_PORT};
 
 /// Runs `fair serve`: binds, prints `fair serve: http://ADDR:PORT/` on standard output, and
 /// serves until the process is stopped. Fails (exit status 2) when a FILE does not exist or
 /// the address cannot be bound.
-pub fn run(catalog: &fairing::catalog::Catalog, args: &ServeArgs) -> Result<()> {
+pub(crate) fn run(catalog: &fairing::catalog::Catalog, args: &ServeArgs) -> Result<()> {
     let datasets = datasets::Datasets::new(&args.files)?;
     let context = api::Context {
         catalog: catalog.clone(),

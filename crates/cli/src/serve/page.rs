@@ -7,14 +7,14 @@
 use super::http::Response;
 
 /// The page's HTML.
-pub const INDEX: &str = include_str!("../../assets/serve/index.html");
+pub(crate) const INDEX: &str = include_str!("../../assets/serve/index.html");
 /// The page's script.
-pub const SCRIPT: &str = include_str!("../../assets/serve/app.js");
+pub(crate) const SCRIPT: &str = include_str!("../../assets/serve/app.js");
 /// The page's style sheet.
-pub const STYLE: &str = include_str!("../../assets/serve/style.css");
+pub(crate) const STYLE: &str = include_str!("../../assets/serve/style.css");
 
 /// What the page may load and where it may send requests: this server only.
-pub const CONTENT_SECURITY_POLICY: &str = "default-src 'none'; script-src 'self'; style-src 'self'; \
+pub(crate) const CONTENT_SECURITY_POLICY: &str = "default-src 'none'; script-src 'self'; style-src 'self'; \
      img-src 'self' data: blob:; connect-src 'self'; base-uri 'none'; form-action 'none'; frame-ancestors 'none'";
 
 fn asset(content_type: &'static str, text: &str) -> Response {
@@ -27,16 +27,16 @@ fn asset(content_type: &'static str, text: &str) -> Response {
 }
 
 /// `GET /`.
-pub fn index() -> Response {
+pub(crate) fn index() -> Response {
     asset("text/html; charset=utf-8", INDEX)
 }
 
 /// `GET /app.js`.
-pub fn script() -> Response {
+pub(crate) fn script() -> Response {
     asset("text/javascript; charset=utf-8", SCRIPT)
 }
 
 /// `GET /style.css`.
-pub fn style() -> Response {
+pub(crate) fn style() -> Response {
     asset("text/css; charset=utf-8", STYLE)
 }

@@ -3,7 +3,7 @@
 use super::color::Color;
 use super::series::{Bars, ColorMap, Comb, Line, Markers, Series};
 use super::{escape, ticks};
-use crate::error::{Error, Result};
+use fair_door::error::{Error, Result};
 use std::fmt::Write as _;
 
 const MARGIN_LEFT: f64 = 72.0;
@@ -182,7 +182,7 @@ impl Figure {
     pub fn write(&self, path: &std::path::Path) -> Result<()> {
         std::fs::write(path, self.to_svg()).map_err(|e| Error::Write {
             path: path.display().to_string(),
-            reason: crate::input::io_reason(&e),
+            reason: fair_door::error::io_reason(&e),
         })
     }
 }

@@ -84,6 +84,46 @@ impl CurvePoints {
             .map(|spatial| CurvePoints::Spatial(*spatial))
     }
 
+    /// The coordinates of point `index`, if it exists.
+    pub fn coordinates(&self, index: usize) -> Option<Vec<f64>> {
+        match self {
+            CurvePoints::Planar(p) => p.get(index).map(|v| vec![v.x, v.y]),
+            CurvePoints::Spatial(p) => p.get(index).map(|v| vec![v.x, v.y, v.z]),
+        }
+    }
+
+    /// Points from coordinate rows that all have `dimension` (2 or 3) entries; `None` for
+    /// another dimension or a row of the wrong length.
+    pub fn from_rows(dimension: usize, rows: &[Vec<f64>]) -> Option<CurvePoints> {
+        match dimension {
+            2 => rows
+                .iter()
+                .map(|r| match r.as_slice() {
+                    [x, y] => Some(Vec2::new(*x, *y)),
+                    _ => None,
+                })
+                .collect::<Option<Vec<_>>>()
+                .map(CurvePoints::Planar),
+            3 => rows
+                .iter()
+                .map(|r| match r.as_slice() {
+                    [x, y, z] => Some(Vec3::new(*x, *y, *z)),
+                    _ => None,
+                })
+                .collect::<Option<Vec<_>>>()
+                .map(CurvePoints::Spatial),
+            _ => None,
+        }
+    }
+
+    /// Index of the first point with a NaN or infinite coordinate.
+    pub fn first_non_finite(&self) -> Option<usize> {
+        match self {
+            CurvePoints::Planar(p) => p.iter().position(|v| !v.iter().all(|c| c.is_finite())),
+            CurvePoints::Spatial(p) => p.iter().position(|v| !v.iter().all(|c| c.is_finite())),
+        }
+    }
+
     /// The coordinates of every point as rows.
     pub fn rows(&self) -> Vec<Vec<f64>> {
         match self {
@@ -268,6 +308,15 @@ pub struct Grid {
 }
 
 impl Grid {
+    /// The point P_ij, if inside the grid.
+    pub fn get(&self, i: usize, j: usize) -> Option<&Vec3> {
+        if i < self.rows && j < self.columns {
+            self.points.get(i * self.columns + j)
+        } else {
+            None
+        }
+    }
+
     /// The grid as rows of points.
     pub fn to_rows(&self) -> Vec<Vec<Vec3>> {
         self.points

@@ -23,14 +23,14 @@ use fairing::catalog::{Catalog, ConfigFile};
 use super::{process, Faired};
 use crate::args::FairArgs;
 use crate::commands::say;
-use crate::error::{Error, Result};
 use crate::input::{self, CurveInput, Source};
 use crate::progress;
+use fair_door::error::{Error, Result};
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 
 /// The extensions of the files a directory batch takes (compared without case).
-pub const CURVE_EXTENSIONS: [&str; 4] = ["csv", "json", "dat", "txt"];
+pub(crate) const CURVE_EXTENSIONS: [&str; 4] = ["csv", "json", "dat", "txt"];
 
 fn is_curve_file(path: &Path) -> bool {
     path.extension()
@@ -39,18 +39,13 @@ fn is_curve_file(path: &Path) -> bool {
 }
 
 /// Whether `fair curve` should treat its INPUT as a batch.
-pub fn is_batch(args: &FairArgs) -> bool {
-    args.batch || Path::new(&args.input).is_dir() || is_stream_name(&args.input)
-}
-
-fn is_stream_name(path: &str) -> bool {
-    let lower = path.to_ascii_lowercase();
-    lower.ends_with(".jsonl") || lower.ends_with(".ndjson")
+pub(crate) fn is_batch(args: &FairArgs) -> bool {
+    args.is_batch()
 }
 
 /// One curve of a batch, read when it is faired (in parallel).
 #[derive(Debug, Clone)]
-pub struct Item {
+pub(crate) struct Item {
     /// The file, or `file:LINE` for a stream.
     pub name: String,
     /// The file name (directory batch) or `line-N` (stream), for output files.
@@ -61,7 +56,7 @@ pub struct Item {
 
 /// Where the points of one batch item are.
 #[derive(Debug, Clone)]
-pub enum ItemSource {
+pub(crate) enum ItemSource {
     /// A file of a directory batch.
     File(String),
     /// One line of a JSON-lines stream.
@@ -78,7 +73,7 @@ pub enum ItemSource {
 impl Item {
     /// Reads the item's points (a file with `options`' `--columns`); errors name the file, or
     /// the stream and line.
-    pub fn read(&self, options: &input::ReadOptions) -> Result<CurveInput> {
+    pub(crate) fn read(&self, options: &input::ReadOptions) -> Result<CurveInput> {
         match &self.source {
             ItemSource::File(path) => input::read_curve_with(path, options),
             ItemSource::Line { stream, number, text } => {
@@ -94,7 +89,7 @@ impl Item {
 }
 
 /// Reads the items of a batch.
-pub fn items(args: &FairArgs) -> Result<Vec<Item>> {
+pub(crate) fn items(args: &FairArgs) -> Result<Vec<Item>> {
     let path = Path::new(&args.input);
     if path.is_dir() && !args.batch {
         let entries = std::fs::read_dir(path).map_err(|e| Error::Read {
@@ -199,7 +194,7 @@ fn relocate(error: Error, stream: &str, line: usize) -> Error {
 }
 
 /// Runs a batch.
-pub fn run(catalog: &Catalog, args: &FairArgs, file: Option<&ConfigFile>) -> Result<()> {
+pub(crate) fn run(catalog: &Catalog, args: &FairArgs, file: Option<&ConfigFile>) -> Result<()> {
     if args.print_config {
         return Err(Error::Argument {
             option: "--print-config",

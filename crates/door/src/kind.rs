@@ -1,26 +1,39 @@
 //! Which kind of curve the points are: a function y(x) or a parametric curve.
 
-use crate::args::KindArg;
+use fairing::catalog::CurvePoints;
+
+use crate::data::CurveData;
 use crate::error::Result;
-use crate::input::{CurveInput, Points};
+
+/// The kind a front end asks for: detected from the points, or given.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum KindChoice {
+    /// A function when the points are planar with x strictly increasing, else parametric.
+    #[default]
+    Auto,
+    /// A function y(x) (checked).
+    Function,
+    /// A parametric curve.
+    Parametric,
+}
 
 /// The kind of a curve as the indicators and strategies see it (the catalogue's).
 pub use fairing::catalog::CurveKind;
 
 /// The first index `i` with x_{i+1} ≤ x_i of planar points, or `None` when x increases
 /// strictly (also `None` for spatial points' absence of an answer: see [`detect`]).
-pub fn first_non_increasing(points: &Points) -> Option<usize> {
+pub fn first_non_increasing(points: &CurvePoints) -> Option<usize> {
     match points {
-        Points::Planar(p) => p.windows(2).position(|w| w[1].x <= w[0].x),
-        Points::Spatial(_) => Some(0),
+        CurvePoints::Planar(p) => p.windows(2).position(|w| w[1].x <= w[0].x),
+        CurvePoints::Spatial(_) => Some(0),
     }
 }
 
 /// `--kind auto`: function when the points are planar with x strictly increasing, else
 /// parametric. O(n).
-pub fn detect(points: &Points) -> CurveKind {
+pub fn detect(points: &CurvePoints) -> CurveKind {
     match points {
-        Points::Planar(_) if first_non_increasing(points).is_none() => CurveKind::Function,
+        CurvePoints::Planar(_) if first_non_increasing(points).is_none() => CurveKind::Function,
         _ => CurveKind::Parametric,
     }
 }
@@ -33,8 +46,8 @@ pub const MIN_RELATIVE_SPACING: f64 = 1e-12;
 
 /// The first `i` with 0 < x_{i+1} − x_i ≤ [`MIN_RELATIVE_SPACING`] · (x_max − x_min), for
 /// increasing planar points. O(n).
-pub fn first_too_close(points: &Points) -> Option<usize> {
-    let Points::Planar(p) = points else {
+pub fn first_too_close(points: &CurvePoints) -> Option<usize> {
+    let CurvePoints::Planar(p) = points else {
         return None;
     };
     let (first, last) = (p.first()?.x, p.last()?.x);
@@ -44,8 +57,8 @@ pub fn first_too_close(points: &Points) -> Option<usize> {
 
 /// Refuses a function whose abscissae are closer than round-off can tell apart
 /// ([`first_too_close`]), naming both lines.
-fn check_spacing(input: &CurveInput) -> Result<()> {
-    let (Some(i), Points::Planar(p)) = (first_too_close(&input.points), &input.points) else {
+fn check_spacing(input: &CurveData<'_>) -> Result<()> {
+    let (Some(i), CurvePoints::Planar(p)) = (first_too_close(input.points), input.points) else {
         return Ok(());
     };
     let line = |k: usize| {
@@ -70,7 +83,7 @@ fn check_spacing(input: &CurveInput) -> Result<()> {
 /// Resolves `--kind` for an input: `function` is checked (planar, x strictly increasing and
 /// no two abscissae within round-off of each other) and the first offending point is named
 /// with its line.
-pub fn resolve(argument: KindArg, input: &CurveInput) -> Result<CurveKind> {
+pub fn resolve(argument: KindChoice, input: &CurveData<'_>) -> Result<CurveKind> {
     let kind = resolve_unchecked(argument, input)?;
     if kind == CurveKind::Function {
         check_spacing(input)?;
@@ -78,13 +91,15 @@ pub fn resolve(argument: KindArg, input: &CurveInput) -> Result<CurveKind> {
     Ok(kind)
 }
 
-fn resolve_unchecked(argument: KindArg, input: &CurveInput) -> Result<CurveKind> {
+fn resolve_unchecked(argument: KindChoice, input: &CurveData<'_>) -> Result<CurveKind> {
     match argument {
-        KindArg::Auto => Ok(detect(&input.points)),
-        KindArg::Parametric => Ok(CurveKind::Parametric),
-        KindArg::Function => match (&input.points, first_non_increasing(&input.points)) {
-            (Points::Spatial(_), _) => Err(input.point_error(0, "--kind function needs planar points x,y")),
-            (Points::Planar(p), Some(i)) => Err(input.point_error(
+        KindChoice::Auto => Ok(detect(input.points)),
+        KindChoice::Parametric => Ok(CurveKind::Parametric),
+        KindChoice::Function => match (input.points, first_non_increasing(input.points)) {
+            (CurvePoints::Spatial(_), _) => {
+                Err(input.point_error(0, "--kind function needs planar points x,y"))
+            }
+            (CurvePoints::Planar(p), Some(i)) => Err(input.point_error(
                 i + 1,
                 format!(
                     "--kind function needs x strictly increasing, but x = {} follows x = {}",
@@ -92,7 +107,7 @@ fn resolve_unchecked(argument: KindArg, input: &CurveInput) -> Result<CurveKind>
                     p[i].x
                 ),
             )),
-            (Points::Planar(_), None) => Ok(CurveKind::Function),
+            (CurvePoints::Planar(_), None) => Ok(CurveKind::Function),
         },
     }
 }
@@ -100,10 +115,40 @@ fn resolve_unchecked(argument: KindArg, input: &CurveInput) -> Result<CurveKind>
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::input::{parse_curve, Source};
+    use curve_repr::{Vec2, Vec3};
 
-    fn input(text: &str) -> CurveInput {
-        parse_curve(&Source::from_text("k.csv", text)).unwrap()
+    /// Points of a CSV text `x,y[,z]` per line (after a header line when the first field is
+    /// not a number), with their lines.
+    struct Read {
+        points: CurvePoints,
+        lines: Vec<usize>,
+    }
+
+    impl Read {
+        fn data(&self) -> CurveData<'_> {
+            CurveData {
+                points: &self.points,
+                source: "k.csv",
+                lines: &self.lines,
+            }
+        }
+    }
+
+    fn input(text: &str) -> Read {
+        let mut rows = Vec::new();
+        let mut lines = Vec::new();
+        for (k, line) in text.lines().enumerate() {
+            let fields: Vec<f64> = line.split(',').filter_map(|f| f.trim().parse().ok()).collect();
+            if !fields.is_empty() {
+                rows.push(fields);
+                lines.push(k + 1);
+            }
+        }
+        let points = match rows[0].len() {
+            2 => CurvePoints::Planar(rows.iter().map(|r| Vec2::new(r[0], r[1])).collect()),
+            _ => CurvePoints::Spatial(rows.iter().map(|r| Vec3::new(r[0], r[1], r[2])).collect()),
+        };
+        Read { points, lines }
     }
 
     #[test]
@@ -116,17 +161,17 @@ mod tests {
 
     #[test]
     fn function_is_checked_with_line() {
-        let e = resolve(KindArg::Function, &input("x,y\n0,0\n1,1\n0.5,0\n")).unwrap_err();
+        let e = resolve(KindChoice::Function, &input("x,y\n0,0\n1,1\n0.5,0\n").data()).unwrap_err();
         assert!(
             e.to_string()
                 .starts_with("k.csv:4: --kind function needs x strictly increasing"),
             "{e}"
         );
         assert_eq!(
-            resolve(KindArg::Parametric, &input("0,0\n1,1\n")).unwrap(),
+            resolve(KindChoice::Parametric, &input("0,0\n1,1\n").data()).unwrap(),
             CurveKind::Parametric
         );
-        assert!(resolve(KindArg::Function, &input("0,0,0\n1,1,1\n")).is_err());
+        assert!(resolve(KindChoice::Function, &input("0,0,0\n1,1,1\n").data()).is_err());
     }
 
     /// Two abscissae 1e-15 apart: a clear message naming the line, for --kind auto too; as a
@@ -134,8 +179,8 @@ mod tests {
     #[test]
     fn abscissae_within_round_off_are_refused_with_their_lines() {
         let text = "x,y\n0,0\n1,1\n1.000000000000001,0.5\n2,0\n";
-        for kind in [KindArg::Auto, KindArg::Function] {
-            let e = resolve(kind, &input(text)).unwrap_err();
+        for kind in [KindChoice::Auto, KindChoice::Function] {
+            let e = resolve(kind, &input(text).data()).unwrap_err();
             let line = e.one_line();
             assert!(
                 line.starts_with("k.csv:4: x = 1.000000000000001 is only"),
@@ -148,12 +193,12 @@ mod tests {
             assert_eq!(e.exit_code(), 2);
         }
         assert_eq!(
-            resolve(KindArg::Parametric, &input(text)).unwrap(),
+            resolve(KindChoice::Parametric, &input(text).data()).unwrap(),
             CurveKind::Parametric
         );
         // Spacing of 1e-9 of the range is data, not round-off.
         assert_eq!(
-            resolve(KindArg::Auto, &input("0,0\n1e-9,0\n1,1\n")).unwrap(),
+            resolve(KindChoice::Auto, &input("0,0\n1e-9,0\n1,1\n").data()).unwrap(),
             CurveKind::Function
         );
     }

@@ -71,7 +71,7 @@ pub struct Measures {
     /// energies (`e1` … `ek-prime`) are the `energies` values, not integrated again.
     #[serde(default)]
     pub criteria: BTreeMap<String, f64>,
-    /// The accuracy of `energies` (an addition to DESIGN.md's fields): E1–E3 are exact up to
+    /// The accuracy of `energies` (an addition to the contract's first fields): E1–E3 are exact up to
     /// round-off, Ek and Ek′ adaptive to a relative tolerance; an energy whose tolerance could
     /// not be met within the linear budget is its best estimate, with its error here. `null`
     /// where `energies` is. For a method's own representation (a NURBS) every energy is
@@ -208,7 +208,7 @@ impl Report {
             } else {
                 path.into()
             },
-            reason: crate::input::io_reason(&e),
+            reason: crate::error::io_reason(&e),
         };
         let sink: Box<dyn Write> = if path == "-" {
             Box::new(std::io::stdout().lock())

@@ -1,4 +1,4 @@
-//! Fairness measures of a curve or a surface, as DESIGN.md "Definitions" says, through the
+//! Fairness measures of a curve or a surface, as docs/CONTRACT.md "Definitions" says, through the
 //! `fairness` crate's `summary` module. Both `fair inspect` and the
 //! report's `before`/`after` use them.
 //!
@@ -18,10 +18,9 @@ use curve_repr::{SplineFunction, Vec2, Vec3, Vector};
 use fairness::summary;
 use fairness::{CurvatureForm, FairnessSummary, XcPolyline};
 
+use fairing::catalog::{CurveKind, CurvePoints, Grid};
+
 use crate::error::{Error, Result};
-use crate::input::{Grid, Points};
-use crate::kind::CurveKind;
-use crate::plots::CombData;
 use crate::report::Measures;
 
 /// The path that measurement errors carry until [`in_file`] names the input.
@@ -30,7 +29,32 @@ pub const POINTS: &str = "the points";
 /// The most samples drawn along a curve (a few per interval, at least 2).
 const MAX_SAMPLES: usize = 4000;
 
-pub use crate::plots::CurvaturePlot;
+/// A curvature comb in the plane: points, unit normals and signed curvatures.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct CombData {
+    /// Points on the curve (usually densely sampled).
+    pub points: Vec<[f64; 2]>,
+    /// Unit normals there.
+    pub normals: Vec<[f64; 2]>,
+    /// Signed curvature there.
+    pub curvature: Vec<f64>,
+}
+
+/// A curvature plot: a line and the values at the data points (Han's x–c polyline for a
+/// function, κ over the chord-length parameter for a parametric curve).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct CurvaturePlot {
+    /// Panel title.
+    pub title: String,
+    /// The abscissa's name (`x`, or `t` the chord-length parameter).
+    pub x_label: String,
+    /// The ordinate's name (`c = y''/6`, or `κ`).
+    pub y_label: String,
+    /// The plotted line.
+    pub line: Vec<[f64; 2]>,
+    /// The values at the data points.
+    pub knots: Vec<[f64; 2]>,
+}
 
 /// What measuring a curve gives: the report's numbers and what the plot can show.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -134,9 +158,9 @@ fn padded(interior: impl IntoIterator<Item = f64>) -> Vec<f64> {
     z
 }
 
-/// Measures a curve of the given kind (DESIGN.md "Definitions"), with what a plot shows.
+/// Measures a curve of the given kind (docs/CONTRACT.md "Definitions"), with what a plot shows.
 /// O(n).
-pub fn curve(kind: CurveKind, points: &Points) -> Result<CurveMeasurement> {
+pub fn curve(kind: CurveKind, points: &CurvePoints) -> Result<CurveMeasurement> {
     curve_with(kind, points, Detail::ALL)
 }
 
@@ -162,15 +186,19 @@ impl Detail {
 /// `detail.record` is (else `Value::Null`): at 10⁶ points they are two million evaluations
 /// and a few hundred MB that only a picture or a written report needs. The measures and z
 /// are the same either way. O(n).
-pub fn curve_with(kind: CurveKind, points: &Points, detail: Detail) -> Result<CurveMeasurement> {
+pub fn curve_with(kind: CurveKind, points: &CurvePoints, detail: Detail) -> Result<CurveMeasurement> {
     match (kind, points) {
-        (CurveKind::Function, Points::Planar(p)) => function(p, detail),
-        (CurveKind::Function, Points::Spatial(_)) => Err(Error::Invalid {
+        (CurveKind::Function, CurvePoints::Planar(p)) => function(p, detail),
+        (CurveKind::Function, CurvePoints::Spatial(_)) => Err(Error::Invalid {
             path: POINTS.into(),
             message: "the function kind needs planar points x,y".into(),
         }),
-        (CurveKind::Parametric, Points::Planar(p)) => parametric(p, |v| [v.x, v.y], planar_normal, detail),
-        (CurveKind::Parametric, Points::Spatial(p)) => parametric(p, |v| [v.x, v.z], spatial_normal, detail),
+        (CurveKind::Parametric, CurvePoints::Planar(p)) => {
+            parametric(p, |v| [v.x, v.y], planar_normal, detail)
+        }
+        (CurveKind::Parametric, CurvePoints::Spatial(p)) => {
+            parametric(p, |v| [v.x, v.z], spatial_normal, detail)
+        }
     }
 }
 
@@ -368,7 +396,7 @@ where
     (samples, comb, curvature)
 }
 
-/// Measures a surface grid (DESIGN.md "Definitions", surface kind). O(m·n).
+/// Measures a surface grid (docs/CONTRACT.md "Definitions", surface kind). O(m·n).
 pub fn surface(grid: &Grid) -> Result<SurfaceMeasurement> {
     let surface = BicubicSplineSurface::from_flat(
         grid.points.clone(),
@@ -408,7 +436,7 @@ mod tests {
 
     #[test]
     fn function_and_parametric_measures_are_finite() {
-        let points = Points::Planar(
+        let points = CurvePoints::Planar(
             (0..12)
                 .map(|i| Vec2::new(i as f64 * 0.3, (i as f64 * 0.7).sin()))
                 .collect(),
@@ -436,9 +464,9 @@ mod tests {
             })
             .collect();
         for (kind, points) in [
-            (CurveKind::Function, Points::Planar(planar.clone())),
-            (CurveKind::Parametric, Points::Planar(planar)),
-            (CurveKind::Parametric, Points::Spatial(spatial)),
+            (CurveKind::Function, CurvePoints::Planar(planar.clone())),
+            (CurveKind::Parametric, CurvePoints::Planar(planar)),
+            (CurveKind::Parametric, CurvePoints::Spatial(spatial)),
         ] {
             let full = curve(kind, &points).unwrap();
             let drawn = curve_with(
@@ -474,7 +502,7 @@ mod tests {
 
     #[test]
     fn repeated_points_name_the_file() {
-        let points = Points::Planar(vec![
+        let points = CurvePoints::Planar(vec![
             Vec2::new(0.0, 0.0),
             Vec2::new(0.0, 0.0),
             Vec2::new(1.0, 1.0),
@@ -487,7 +515,7 @@ mod tests {
 
     #[test]
     fn spatial_curve_has_no_inflections() {
-        let points = Points::Spatial(
+        let points = CurvePoints::Spatial(
             (0..10)
                 .map(|i| {
                     let t = i as f64 * 0.5;

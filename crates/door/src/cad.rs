@@ -1,4 +1,4 @@
-//! The faired result as a CAD file (`-o FILE.igs|.step|.dxf`, `--cad FORMAT`): the method's
+//! The faired result as a CAD file (`-o FILE.igs|.step|.dxf`, `--cad FORMAT` in the command): the method's
 //! own representation converted exactly by `fair-cad`, or a least-squares rebuild of it
 //! (`--control-points`, `--fit-tolerance`).
 //!
@@ -16,65 +16,92 @@ use cad::{CadCurve, CadSettings, CadSurface, CurveKind as CadKind, Format, Shape
 use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings, CubicPieces, NurbsCurve, Vec3, Vector};
 use serde_json::{json, Value};
 
-use crate::args::FairArgs;
+use fairing::catalog::{CurveKind, CurvePoints, Grid};
+
 use crate::error::{Error, Result};
-use crate::input::{Grid, Points};
-use crate::kind::CurveKind;
 
 /// Relative accuracy (of the points' size) to which the faired points must lie on the
 /// method's own curve for it to be written; the conversions are exact up to rounding.
 pub const ON_CURVE: f64 = 1e-9;
 
-/// What a command line asks to write as CAD: the format, the file (`-` for standard output)
-/// and the export settings.
+/// What to write as CAD: the format, the file (`-` for standard output) and the export
+/// settings. Made by [`target`], which checks them.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CadTarget {
-    /// The format: `--cad`, else `-o`'s extension.
+    /// The format: asked for, else the file's extension.
     pub format: Format,
-    /// The file `-o` names.
+    /// The file.
     pub path: String,
     /// Rebuild and header settings.
     pub settings: CadSettings,
 }
 
-/// The CAD format a command line asks for, if any: `--cad`, else `-o`'s extension.
-pub fn format_of(args: &FairArgs) -> Option<Format> {
-    args.cad
-        .cad
-        .or_else(|| args.output.as_deref().and_then(Format::from_path))
+/// What a front end was asked to write (the command's `-o`, `--cad`, `--control-points`,
+/// `--fit-tolerance`), before [`target`] checks it.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct CadRequest {
+    /// The output file (`-o`).
+    pub output: Option<String>,
+    /// The format asked for (`--cad`); `None`: by the output's extension.
+    pub format: Option<Format>,
+    /// Rebuild with this many control points.
+    pub control_points: Option<usize>,
+    /// Rebuild to this largest deviation.
+    pub fit_tolerance: Option<f64>,
+    /// The length unit the file declares (`--cad-units`; the coordinates are written as
+    /// they are, in this unit); `None`: millimetres.
+    pub units: Option<cad::Units>,
+    /// The STEP application protocol (`--step-schema`); `None`: AP214.
+    pub step_schema: Option<cad::StepSchema>,
+    /// The run is a batch of curves (which writes points, never CAD).
+    pub batch: bool,
 }
 
-/// The option that chose the format, for messages.
-fn format_option(args: &FairArgs) -> &'static str {
-    if args.cad.cad.is_some() {
-        "--cad"
-    } else {
-        "-o"
+impl CadRequest {
+    /// The CAD format asked for, if any: [`format`](Self::format), else the output's
+    /// extension.
+    pub fn format_of(&self) -> Option<Format> {
+        self.format
+            .or_else(|| self.output.as_deref().and_then(Format::from_path))
     }
 }
 
-/// Checks the CAD options of a command line (before anything runs) and returns what to write,
-/// or `None` for no CAD output. Refused, exit status 2 naming the option: `--control-points`
-/// or `--fit-tolerance` without a CAD output, `--cad` without `-o`, `--cad` against a CAD
+/// Checks a CAD request (before anything runs) and returns what to write, or `None` for no
+/// CAD output. Refused, exit status 2 naming the option: `--control-points` or
+/// `--fit-tolerance` without a CAD output, `--cad` without `-o`, `--cad` against a CAD
 /// extension of another format, a batch, DXF or a rebuild for a surface, and settings the
 /// library refuses (both rebuild options, fewer than 4 control points).
-pub fn target(args: &FairArgs, surface: bool) -> Result<Option<CadTarget>> {
-    let rebuild_option = match (args.cad.control_points, args.cad.fit_tolerance) {
+pub fn target(request: &CadRequest, surface: bool) -> Result<Option<CadTarget>> {
+    let rebuild_option = match (request.control_points, request.fit_tolerance) {
         (Some(_), _) => Some("--control-points"),
         (None, Some(_)) => Some("--fit-tolerance"),
         (None, None) => None,
     };
-    let Some(format) = format_of(args) else {
+    let Some(format) = request.format_of() else {
         return match rebuild_option {
             Some(option) => Err(Error::Argument {
                 option,
                 message: "rebuilds the curve written to a CAD file: give -o FILE.igs|.step|.dxf or --cad FORMAT with -o".into(),
             }),
+            None if request.units.is_some() => Err(Error::Argument {
+                option: "--cad-units",
+                message: "is the unit a CAD file declares: give -o FILE.igs|.step|.dxf or --cad FORMAT with -o".into(),
+            }),
+            None if request.step_schema.is_some() => Err(Error::Argument {
+                option: "--step-schema",
+                message: "applies to a STEP file: give -o FILE.step".into(),
+            }),
             None => Ok(None),
         };
     };
-    let option = format_option(args);
-    let Some(path) = args.output.clone() else {
+    if request.step_schema.is_some() && format != Format::Step {
+        return Err(Error::Argument {
+            option: "--step-schema",
+            message: format!("applies to STEP files; this writes {format}"),
+        });
+    }
+    let option = if request.format.is_some() { "--cad" } else { "-o" };
+    let Some(path) = request.output.clone() else {
         return Err(Error::Argument {
             option: "--cad",
             message: format!(
@@ -82,7 +109,7 @@ pub fn target(args: &FairArgs, surface: bool) -> Result<Option<CadTarget>> {
             ),
         });
     };
-    if let (Some(asked), Some(named)) = (args.cad.cad, Format::from_path(&path)) {
+    if let (Some(asked), Some(named)) = (request.format, Format::from_path(&path)) {
         if asked != named {
             return Err(Error::Argument {
                 option: "--cad",
@@ -92,7 +119,7 @@ pub fn target(args: &FairArgs, surface: bool) -> Result<Option<CadTarget>> {
             });
         }
     }
-    if crate::commands::curve::batch::is_batch(args) {
+    if request.batch {
         return Err(Error::Argument {
             option,
             message: "a batch writes points; CAD files are written for one curve at a time (fair curve FILE -o OUT.igs)".into(),
@@ -112,10 +139,13 @@ pub fn target(args: &FairArgs, surface: bool) -> Result<Option<CadTarget>> {
             });
         }
     }
+    let defaults = CadSettings::default();
     let settings = CadSettings {
-        control_points: args.cad.control_points,
-        fit_tolerance: args.cad.fit_tolerance,
-        ..CadSettings::default()
+        control_points: request.control_points,
+        fit_tolerance: request.fit_tolerance,
+        units: request.units.unwrap_or(defaults.units),
+        step_schema: request.step_schema.unwrap_or(defaults.step_schema),
+        ..defaults
     };
     settings
         .validate()
@@ -125,6 +155,14 @@ pub fn target(args: &FairArgs, surface: bool) -> Result<Option<CadTarget>> {
         path,
         settings,
     }))
+}
+
+/// A name for the shape in a CAD file: the input file's stem (`curve` for standard input).
+pub fn stem(source: &str) -> String {
+    match std::path::Path::new(source).file_stem().and_then(|s| s.to_str()) {
+        Some(s) if source != "-" && !s.is_empty() => s.to_string(),
+        _ => "curve".to_string(),
+    }
 }
 
 /// A `fair-cad` error as the command's: a refused parameter names its option (exit status 2),
@@ -303,7 +341,7 @@ fn deviation(curve: &CadCurve) -> f64 {
 
 /// The exact faired curve: the method's own when the record gives one the faired points lie
 /// on, else the measured spline; with the name of what it is.
-pub fn faired_curve(record: &Value, faired: &Points, kind: CurveKind) -> Result<(CadCurve, String)> {
+pub fn faired_curve(record: &Value, faired: &CurvePoints, kind: CurveKind) -> Result<(CadCurve, String)> {
     fn pick<const D: usize>(
         record: &Value,
         points: &[Vector<D>],
@@ -333,8 +371,8 @@ pub fn faired_curve(record: &Value, faired: &Points, kind: CurveKind) -> Result<
         }
     }
     match faired {
-        Points::Planar(p) => pick(record, p, kind),
-        Points::Spatial(p) => pick(record, p, kind),
+        CurvePoints::Planar(p) => pick(record, p, kind),
+        CurvePoints::Spatial(p) => pick(record, p, kind),
     }
 }
 
@@ -371,8 +409,9 @@ pub fn faired_surface(record: &Value, grid: &Grid) -> Result<(CadSurface, String
     }
 }
 
-/// The header options for a file at `path` (its name recorded inside).
-fn options(path: &str) -> WriteOptions {
+/// The header options for `target`'s file (its name recorded inside, its STEP schema).
+fn options(target: &CadTarget) -> WriteOptions {
+    let path = target.path.as_str();
     let file_name = if path == "-" {
         String::new()
     } else {
@@ -384,6 +423,7 @@ fn options(path: &str) -> WriteOptions {
     };
     WriteOptions {
         file_name,
+        step_schema: target.settings.step_schema,
         ..WriteOptions::default()
     }
 }
@@ -401,7 +441,7 @@ fn counts(c: &cad::CurvatureCounts) -> Value {
 pub fn export_curve(
     target: &CadTarget,
     record: &Value,
-    faired: &Points,
+    faired: &CurvePoints,
     kind: CurveKind,
     name: &str,
 ) -> Result<CadOutput> {
@@ -412,7 +452,7 @@ pub fn export_curve(
     };
     let (curve, representation) = faired_curve(record, faired, kind)?;
     let curve = curve.with_name(name);
-    let options = options(&target.path);
+    let options = options(target);
     let export = cad::export(
         &Shape::Curve(curve.clone()),
         target.format,
@@ -480,7 +520,7 @@ pub fn export_surface(target: &CadTarget, record: &Value, grid: &Grid, name: &st
             })
         })
         .fold(0.0, f64::max);
-    let options = options(&target.path);
+    let options = options(target);
     let export = cad::export(
         &Shape::Surface(surface),
         target.format,
@@ -527,7 +567,7 @@ mod tests {
 
     #[test]
     fn an_unknown_record_falls_back_to_the_measured_spline() {
-        let points = Points::Planar(vec![
+        let points = CurvePoints::Planar(vec![
             Vec2::new(0.0, 0.0),
             Vec2::new(1.0, 0.5),
             Vec2::new(2.0, 0.2),

@@ -7,22 +7,29 @@
 use fairing::catalog::{ConfigConstraints, PlanConstraints};
 use fairing::EndClamp;
 
-use crate::args::{ClampEnds, FairArgs};
 use crate::error::{Error, Result};
 
-/// The library's end clamp for `--clamp-ends`.
-pub fn end_clamp(clamp: Option<ClampEnds>) -> EndClamp {
-    match clamp {
-        None => EndClamp::None,
-        Some(ClampEnds::G0) => EndClamp::G0,
-        Some(ClampEnds::G1) => EndClamp::G1,
-        Some(ClampEnds::G2) => EndClamp::G2,
-    }
+/// The constraints a front end was given (each `None` when not given, so that a config
+/// file's `[constraints]` fills it in).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ConstraintRequest {
+    /// Points that must not move (`--fixed`).
+    pub fixed: Option<Vec<usize>>,
+    /// Points known to be bad, which the method should move (`--points`).
+    pub bad_points: Option<Vec<usize>>,
+    /// The largest distance any point may move (`--tolerance`).
+    pub tolerance: Option<f64>,
+    /// The end condition kept (`--clamp-ends`).
+    pub clamp_ends: Option<EndClamp>,
 }
 
-/// Reads the options, falling back on a config file's `[constraints]` for those not given on
-/// the command line, and checks them against `count` points.
-pub fn resolve(args: &FairArgs, config: &ConfigConstraints, count: usize) -> Result<PlanConstraints> {
+/// Reads the request, falling back on a config file's `[constraints]` for what it does not
+/// give, and checks the indices against `count` points.
+pub fn resolve(
+    request: &ConstraintRequest,
+    config: &ConfigConstraints,
+    count: usize,
+) -> Result<PlanConstraints> {
     let check = |option: &'static str, indices: &[usize]| -> Result<()> {
         match indices.iter().find(|i| **i >= count) {
             Some(i) => Err(Error::Argument {
@@ -36,16 +43,14 @@ pub fn resolve(args: &FairArgs, config: &ConfigConstraints, count: usize) -> Res
             None => Ok(()),
         }
     };
-    let mut fixed = args
+    let mut fixed = request
         .fixed
-        .as_ref()
-        .map(|l| l.0.clone())
+        .clone()
         .or_else(|| config.fixed.clone())
         .unwrap_or_default();
-    let bad_points = args
-        .points
-        .as_ref()
-        .map(|l| l.0.clone())
+    let bad_points = request
+        .bad_points
+        .clone()
         .or_else(|| config.points.clone())
         .unwrap_or_default();
     check("--fixed", &fixed)?;
@@ -58,14 +63,11 @@ pub fn resolve(args: &FairArgs, config: &ConfigConstraints, count: usize) -> Res
     }
     fixed.sort_unstable();
     fixed.dedup();
-    let clamp = match args.clamp_ends {
-        Some(_) => end_clamp(args.clamp_ends),
-        None => config.clamp_ends.unwrap_or(EndClamp::None),
-    };
+    let clamp = request.clamp_ends.or(config.clamp_ends).unwrap_or(EndClamp::None);
     Ok(PlanConstraints {
         fixed,
         bad_points,
-        tolerance: args.tolerance.or(config.tolerance),
+        tolerance: request.tolerance.or(config.tolerance),
         clamp,
     })
 }
@@ -73,48 +75,49 @@ pub fn resolve(args: &FairArgs, config: &ConfigConstraints, count: usize) -> Res
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::args::{Cli, Command};
-    use clap::Parser;
-
-    fn args(extra: &[&str]) -> FairArgs {
-        let cli = Cli::try_parse_from(["fair", "curve", "in.csv"].iter().chain(extra).copied()).unwrap();
-        match cli.command {
-            Command::Curve(a) => a,
-            _ => unreachable!(),
-        }
-    }
 
     #[test]
     fn indices_are_checked() {
         let none = ConfigConstraints::default();
-        let c = resolve(
-            &args(&["--fixed", "7,2", "--points", "4", "--tolerance", "0.1"]),
-            &none,
-            8,
-        )
-        .unwrap();
+        let request = ConstraintRequest {
+            fixed: Some(vec![7, 2]),
+            bad_points: Some(vec![4]),
+            tolerance: Some(0.1),
+            clamp_ends: None,
+        };
+        let c = resolve(&request, &none, 8).unwrap();
         assert_eq!(c.fixed, vec![2, 7]);
         assert_eq!(c.bad_points, vec![4]);
         assert_eq!(c.tolerance, Some(0.1));
-        let e = resolve(&args(&["--fixed", "8"]), &none, 8).unwrap_err();
+        let fixed = |f: Vec<usize>, p: Option<Vec<usize>>| ConstraintRequest {
+            fixed: Some(f),
+            bad_points: p,
+            ..ConstraintRequest::default()
+        };
+        let e = resolve(&fixed(vec![8], None), &none, 8).unwrap_err();
         assert_eq!(
             e.to_string(),
             "--fixed: index 8 is past the last point (8 points, indices 0 to 7)"
         );
         assert_eq!(e.exit_code(), 2);
-        let e = resolve(&args(&["--fixed", "3", "--points", "3"]), &none, 8).unwrap_err();
+        let e = resolve(&fixed(vec![3], Some(vec![3])), &none, 8).unwrap_err();
         assert!(e.to_string().contains("also in --fixed"));
     }
 
     #[test]
-    fn the_command_line_wins_over_the_config() {
+    fn the_request_wins_over_the_config() {
         let config = ConfigConstraints {
             fixed: Some(vec![1]),
             points: None,
             tolerance: Some(0.5),
             clamp_ends: Some(EndClamp::G2),
         };
-        let c = resolve(&args(&["--tolerance", "0.25", "--clamp-ends", "g0"]), &config, 8).unwrap();
+        let request = ConstraintRequest {
+            tolerance: Some(0.25),
+            clamp_ends: Some(EndClamp::G0),
+            ..ConstraintRequest::default()
+        };
+        let c = resolve(&request, &config, 8).unwrap();
         assert_eq!(c.fixed, vec![1]);
         assert_eq!(c.tolerance, Some(0.25));
         assert_eq!(c.clamp, EndClamp::G0);

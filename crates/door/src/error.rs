@@ -1,9 +1,11 @@
-//! The crate's one error type, and the exit status each error maps to.
+//! The one error type of the door and its front ends, and the exit status each error maps to.
 //!
 //! Every message is one line in the style `<file>:<line>: <what is wrong>` (the line when it is
-//! known); [`crate::run`] prefixes it with `fair: `.
+//! known); the command prefixes it with `fair: `. Options are named as the command spells
+//! them (`--fixed`); other front ends rename them for their own users.
 
-/// Everything the `fair` command can fail on.
+/// Everything fairing, measuring or exporting through the door (and the front ends' reading
+/// and writing) can fail on.
 ///
 /// Point indices count from 0, the first data point; line numbers count from 1.
 #[derive(Debug, thiserror::Error)]
@@ -239,6 +241,21 @@ impl Error {
                 path: file.to_string(),
                 message: other.to_string(),
             },
+        }
+    }
+}
+
+/// The operating system's reason for an I/O error, without the `(os error N)` suffix.
+pub fn io_reason(e: &std::io::Error) -> String {
+    match e.kind() {
+        std::io::ErrorKind::NotFound => "no such file or directory".into(),
+        std::io::ErrorKind::PermissionDenied => "permission denied".into(),
+        _ => {
+            let text = e.to_string();
+            match text.find(" (os error") {
+                Some(cut) => text[..cut].to_string(),
+                None => text,
+            }
         }
     }
 }
