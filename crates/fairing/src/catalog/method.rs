@@ -12,6 +12,7 @@ use serde::de::DeserializeOwned;
 use serde::Serialize;
 use serde_json::Value;
 
+use super::frame::{check_coordinates, Frame};
 use super::job::{CurveJob, CurvePoints, CurveRun, SurfaceJob, SurfaceRun};
 use super::parameters::{GivenValue, ParameterMap};
 use super::schema::{self, ParameterInfo};
@@ -581,10 +582,35 @@ impl MethodEntry {
                 reason: "takes no bad points (it finds what to change itself)".into(),
             });
         }
+        check_coordinates(job.points.rows().into_iter(), "point")?;
+        // The method runs in the reference frame (see `frame`), its result mapped back.
+        let frame = Frame::of(&job.points.rows());
+        let points = frame.curve_points_to_frame(job.points);
+        let constraints = frame.constraints_to_frame(job.constraints);
+        let framed = CurveJob {
+            points: &points,
+            constraints: &constraints,
+            ..job
+        };
         self.method
-            .check_curve(settings, &job)
-            .and_then(|()| self.method.run_curve(settings, &job))
+            .check_curve(settings, &framed)
+            .and_then(|()| self.method.run_curve(settings, &framed))
             .map_err(|e| refusal(e, &self.info.name))
+            .map(|mut run| {
+                run.points = frame.curve_points_from_frame(job.points, &points, &run.points);
+                match (job.points, &mut run.points) {
+                    (CurvePoints::Planar(a), CurvePoints::Planar(b)) => {
+                        Frame::hold_band(job.constraints, a, b)
+                    }
+                    (CurvePoints::Spatial(a), CurvePoints::Spatial(b)) => {
+                        Frame::hold_band(job.constraints, a, b)
+                    }
+                    _ => {}
+                }
+                run.curve = frame.record_from_frame(std::mem::take(&mut run.curve));
+                run.represented = run.represented.map(|r| frame.represented_from_frame(r));
+                run
+            })
             .and_then(|run| check_run(&self.info.name, &job, run))
     }
 
@@ -601,6 +627,7 @@ impl MethodEntry {
                 reason: "takes no bad points (it finds what to change itself)".into(),
             });
         }
+        check_coordinates(job.points.rows().into_iter(), "point")?;
         self.method
             .check_curve(settings, &job)
             .map_err(|e| refusal(e, &self.info.name))
@@ -619,11 +646,31 @@ impl MethodEntry {
                 reason: "takes no bad points".into(),
             });
         }
-        let run = self
+        check_coordinates(job.grid.points.iter().map(|p| vec![p.x, p.y, p.z]), "grid point")?;
+        let frame = Frame::of(
+            &job.grid
+                .points
+                .iter()
+                .map(|p| vec![p.x, p.y, p.z])
+                .collect::<Vec<_>>(),
+        );
+        let grid = frame.grid_to_frame(job.grid);
+        let constraints = frame.constraints_to_frame(job.constraints);
+        let framed = SurfaceJob {
+            grid: &grid,
+            constraints: &constraints,
+            ..job
+        };
+        let mut run = self
             .method
-            .check_surface(settings, &job)
-            .and_then(|()| self.method.run_surface(settings, &job))
+            .check_surface(settings, &framed)
+            .and_then(|()| self.method.run_surface(settings, &framed))
             .map_err(|e| refusal(e, &self.info.name))?;
+        if run.grid.points.len() == grid.points.len() {
+            run.grid = frame.grid_from_frame(job.grid, &grid, &run.grid);
+            Frame::hold_band(job.constraints, &job.grid.points, &mut run.grid.points);
+        }
+        run.surface = frame.record_from_frame(std::mem::take(&mut run.surface));
         if (run.grid.rows, run.grid.columns) != (job.grid.rows, job.grid.columns)
             || run.grid.points.len() != job.grid.points.len()
         {

@@ -27,6 +27,7 @@
 pub mod builtin;
 mod config;
 mod criteria;
+mod frame;
 mod job;
 mod method;
 mod parameters;
