@@ -607,6 +607,8 @@ impl MethodEntry {
                     }
                     _ => {}
                 }
+                // Mapping back may round a tiny move away: `moved` is what differs now.
+                run.moved = job.points.differences(&run.points);
                 run.curve = frame.record_from_frame(std::mem::take(&mut run.curve));
                 run.represented = run.represented.map(|r| frame.represented_from_frame(r));
                 run
@@ -669,6 +671,9 @@ impl MethodEntry {
         if run.grid.points.len() == grid.points.len() {
             run.grid = frame.grid_from_frame(job.grid, &grid, &run.grid);
             Frame::hold_band(job.constraints, &job.grid.points, &mut run.grid.points);
+            run.moved = (0..grid.points.len())
+                .filter(|&k| run.grid.points[k] != job.grid.points[k])
+                .collect();
         }
         run.surface = frame.record_from_frame(std::mem::take(&mut run.surface));
         if (run.grid.rows, run.grid.columns) != (job.grid.rows, job.grid.columns)
