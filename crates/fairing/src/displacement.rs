@@ -168,7 +168,9 @@ pub(crate) fn median(values: &mut [f64]) -> Option<f64> {
 
 /// The decimal step the coordinates were written with: 10^−d for the smallest d ≤ 12 such
 /// that every coordinate is a multiple of 10^−d (to 1e-3 of a step, so that a decimal read
-/// into binary still counts); 0 when there is none (data computed, not typed). O(n · 13).
+/// into binary still counts) and no coordinate but 0 rounds to 0 at that step (a value
+/// written with d decimals is 0 or at least 10^−d: without this, coordinates all below 1e-3
+/// passed for whole numbers); 0 when there is none (data computed, not typed). O(n · 13).
 ///
 /// Airfoil files with five or six decimals give 1e-5 or 1e-6; whole inches give 1.
 pub fn decimal_quantum<const D: usize>(points: &[Vector<D>]) -> f64 {
@@ -181,7 +183,9 @@ pub fn decimal_quantum<const D: usize>(points: &[Vector<D>]) -> f64 {
         let fits = values.iter().all(|&v| {
             let scaled = v * scale;
             // Beyond 2^50 a double has no room for the fraction this test reads.
-            scaled.abs() < 1.1e15 && (scaled - scaled.round()).abs() <= 1e-3
+            scaled.abs() < 1.1e15
+                && (scaled - scaled.round()).abs() <= 1e-3
+                && (scaled.round() != 0.0 || v == 0.0)
         });
         if fits {
             return 1.0 / scale;
