@@ -96,12 +96,12 @@ impl Frame {
     }
 
     /// A coordinate along axis `d` into the frame.
-    fn to_frame(&self, d: usize, x: f64) -> f64 {
+    fn inward(&self, d: usize, x: f64) -> f64 {
         times_power_of_two(x - self.centre[d], -self.exponent)
     }
 
     /// A coordinate along axis `d` out of the frame.
-    fn from_frame(&self, d: usize, x: f64) -> f64 {
+    fn outward(&self, d: usize, x: f64) -> f64 {
         times_power_of_two(x, self.exponent) + self.centre[d]
     }
 
@@ -119,7 +119,7 @@ impl Frame {
     fn points_to_frame<const D: usize>(&self, points: &[Vector<D>]) -> Vec<Vector<D>> {
         points
             .iter()
-            .map(|p| Vector::<D>::from_fn(|d, _| self.to_frame(d, p[d])))
+            .map(|p| Vector::<D>::from_fn(|d, _| self.inward(d, p[d])))
             .collect()
     }
 
@@ -137,7 +137,7 @@ impl Frame {
             .map(|(i, q)| {
                 Vector::<D>::from_fn(|d, _| match (given.get(i), original.get(i)) {
                     (Some(g), Some(o)) if g[d].to_bits() == q[d].to_bits() => o[d],
-                    _ => self.from_frame(d, q[d]),
+                    _ => self.outward(d, q[d]),
                 })
             })
             .collect()
@@ -331,7 +331,7 @@ impl Frame {
                 .iter()
                 .enumerate()
                 .map(|(d, x)| match x.as_f64() {
-                    Some(v) if shift && d < self.centre.len() => self.from_frame(d, v).into(),
+                    Some(v) if shift && d < self.centre.len() => self.outward(d, v).into(),
                     Some(v) => self.scaled_by_power(v, power).into(),
                     None => x.clone(),
                 })
@@ -382,7 +382,7 @@ impl Frame {
         if let Some(Value::Array(items)) = map.get_mut(key) {
             for x in items {
                 if let Some(v) = x.as_f64() {
-                    *x = self.from_frame(axis, v).into();
+                    *x = self.outward(axis, v).into();
                 }
             }
         }
@@ -413,7 +413,7 @@ impl<const D: usize> Curve<D> for Unframed<D> {
         let jet = self.inner.jet(t, side);
         let f = &self.frame;
         [
-            Vector::<D>::from_fn(|d, _| f.from_frame(d, jet[0][d])),
+            Vector::<D>::from_fn(|d, _| f.outward(d, jet[0][d])),
             jet[1].map(|x| f.scaled_out(x, 1)),
             jet[2].map(|x| f.scaled_out(x, 1)),
             jet[3].map(|x| f.scaled_out(x, 1)),
@@ -428,7 +428,7 @@ impl<const D: usize> Curve<D> for Unframed<D> {
         let jet = self.inner.jet_on_piece(piece, t);
         let f = &self.frame;
         [
-            Vector::<D>::from_fn(|d, _| f.from_frame(d, jet[0][d])),
+            Vector::<D>::from_fn(|d, _| f.outward(d, jet[0][d])),
             jet[1].map(|x| f.scaled_out(x, 1)),
             jet[2].map(|x| f.scaled_out(x, 1)),
             jet[3].map(|x| f.scaled_out(x, 1)),
@@ -456,10 +456,7 @@ mod tests {
             assert_eq!(other.exponent, 1 + k);
             for (a, b) in rows.iter().zip(&scaled) {
                 for d in 0..2 {
-                    assert_eq!(
-                        frame.to_frame(d, a[d]).to_bits(),
-                        other.to_frame(d, b[d]).to_bits()
-                    );
+                    assert_eq!(frame.inward(d, a[d]).to_bits(), other.inward(d, b[d]).to_bits());
                 }
             }
         }
