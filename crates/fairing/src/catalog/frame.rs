@@ -1,5 +1,6 @@
 //! The reference frame every catalogue method runs in: the data centred on its bounding box
-//! and scaled by a power of two to unit size, the result mapped back.
+//! (unless they already lie within [`NEAR`] extents of the origin) and scaled by a power of
+//! two to unit size, the result mapped back.
 //!
 //! Why: a method's arithmetic has thresholds and starting steps in absolute numbers (a
 //! quantum, a first step, a regularisation floor); run on the data as given, the same curve at
@@ -13,8 +14,9 @@
 //! radii are multiplied by the scale (exact). What comes back is mapped out: points and grid
 //! nodes, and the method's curve or surface record (coordinates, parameters that are lengths,
 //! derivatives). A coordinate the method did not change comes back as the input's own bits, so
-//! fixed points, clamped ends and a function's x stay bit for bit. Method-specific `extras`
-//! (energies, σ̂, a smoothing parameter) are the frame's numbers.
+//! fixed points, clamped ends and a function's x stay bit for bit. Settings and report fields
+//! that are lengths are mapped too ([`LENGTH_SETTINGS`], [`LENGTH_EXTRAS`]); other report
+//! fields with units (energies, penalties, a smoothing parameter) are the frame's numbers.
 //!
 //! Coordinates beyond ±[`LARGEST`] are refused before the method runs: squares of their
 //! differences, which every method forms, overflow. O(n).
@@ -28,6 +30,32 @@ use crate::{Constraints, Error, Result};
 /// The largest coordinate accepted: its square, and the square of a difference of two such,
 /// stays far below `f64::MAX` (≈ 1.8e308) with room for sums over many points.
 pub const LARGEST: f64 = 1e150;
+
+/// The settings of the built-in methods given in the points' units (batten's adjustable
+/// range, jump-lsq's target RMS displacement, sapidis-farin's largest move as a distance, the
+/// surface smoothing spline's displacement sum S_d): the frame scales them with the points.
+const LENGTH_SETTINGS: [&str; 4] = ["range", "target-sd", "max-move", "displacement"];
+
+/// The settings among [`LENGTH_SETTINGS`] that bound every point's move, as the tolerance
+/// band does.
+const MOVE_BOUNDS: [&str; 2] = ["range", "max-move"];
+
+/// Report fields of the built-in methods (in `extras`, at any depth) that are lengths or
+/// squared lengths, with their length power: mapped out of the frame. Other fields with units
+/// (energies, penalties, a smoothing parameter) stay the frame's numbers.
+const LENGTH_EXTRAS: [(&str, i32); 7] = [
+    ("sigma", 1),
+    ("target_sd", 1),
+    ("rms_displacement", 1),
+    ("move_bound", 1),
+    ("quantum", 1),
+    ("displacement_sum", 1),
+    ("gcv", 2),
+];
+
+/// Data whose bounding-box centre is within this many extents (largest distance from it) of
+/// the origin are not moved, only scaled.
+pub(crate) const NEAR: f64 = 4.0;
 
 /// A centre and a power-of-two scale: frame = (p − centre) · 2^−exponent.
 #[derive(Clone, Debug, PartialEq)]
@@ -55,16 +83,10 @@ fn binary_exponent(x: f64) -> i32 {
 }
 
 /// Refuses a non-finite coordinate or one beyond ±[`LARGEST`], naming the point (from 0).
-pub(crate) fn check_coordinates(rows: impl Iterator<Item = Vec<f64>>, what: &str) -> Result<()> {
+pub(crate) fn check_coordinates(rows: impl Iterator<Item = Vec<f64>>, what: &'static str) -> Result<()> {
     for (index, row) in rows.enumerate() {
-        if let Some(&x) = row.iter().find(|x| !x.is_finite() || x.abs() > LARGEST) {
-            return Err(Error::BadValue {
-                name: "points".into(),
-                message: format!(
-                    "{what} {index} has the coordinate {x:e}, beyond ±{LARGEST:e}: the squares \
-                     the fairing forms would overflow; give the coordinates in a larger unit"
-                ),
-            });
+        if let Some(&value) = row.iter().find(|x| !x.is_finite() || x.abs() > LARGEST) {
+            return Err(Error::CoordinateRange { what, index, value });
         }
     }
     Ok(())
@@ -92,7 +114,21 @@ impl Frame {
             .flat_map(|r| r.iter().zip(&centre).map(|(x, c)| (x - c).abs()))
             .fold(0.0, f64::max);
         let exponent = if extent > 0.0 { binary_exponent(extent) } else { 0 };
+        // Data within a few of their extents of the origin are scaled only: the offset costs
+        // them at most three bits, and their results stay the method's own (scaled exactly).
+        let near = centre.iter().all(|c| c.abs() <= NEAR * extent);
+        let centre = if near { vec![0.0; dimension] } else { centre };
         Frame { centre, exponent }
+    }
+
+    /// Marks the thread as running in this frame (for the data's decimal step, see
+    /// [`decimal_quantum`](crate::displacement::decimal_quantum)) until the mark is dropped.
+    pub(crate) fn mark(&self) -> crate::displacement::FrameMark {
+        let mut centre = [0.0; 3];
+        for (c, &x) in centre.iter_mut().zip(&self.centre) {
+            *c = x;
+        }
+        crate::displacement::FrameMark::new(centre, self.exponent)
     }
 
     /// A coordinate along axis `d` into the frame.
@@ -198,16 +234,69 @@ impl Frame {
         out
     }
 
+    /// The method's settings with the lengths among them in the frame: a number under one of
+    /// [`LENGTH_SETTINGS`], at any depth (a pre-pass's own settings too); `auto`, `inf` and
+    /// named rules are left as they are.
+    pub(crate) fn settings_to_frame(&self, settings: &Value) -> Value {
+        match settings {
+            Value::Object(map) => Value::Object(
+                map.iter()
+                    .map(|(key, value)| {
+                        let value = match value.as_f64() {
+                            Some(v) if LENGTH_SETTINGS.contains(&key.as_str()) => {
+                                serde_json::json!(self.length_to_frame(v))
+                            }
+                            _ => self.settings_to_frame(value),
+                        };
+                        (key.clone(), value)
+                    })
+                    .collect(),
+            ),
+            other => other.clone(),
+        }
+    }
+
+    /// A report field out of the frame: the numbers under [`LENGTH_EXTRAS`] scaled by their
+    /// length power, at any depth.
+    pub(crate) fn extra_from_frame(&self, key: &str, value: Value) -> Value {
+        let power = LENGTH_EXTRAS.iter().find(|(k, _)| *k == key).map(|&(_, p)| p);
+        match (power, value) {
+            (Some(power), Value::Number(n)) => match n.as_f64() {
+                Some(v) => serde_json::json!(self.scaled_out(v, power)),
+                None => Value::Number(n),
+            },
+            (_, Value::Object(map)) => Value::Object(
+                map.into_iter()
+                    .map(|(k, v)| {
+                        let v = self.extra_from_frame(&k, v);
+                        (k, v)
+                    })
+                    .collect(),
+            ),
+            (_, Value::Array(items)) => {
+                Value::Array(items.into_iter().map(|v| self.extra_from_frame(key, v)).collect())
+            }
+            (_, other) => other,
+        }
+    }
+
     /// Pulls every moved point back inside its allowed distance when mapping out of the frame
     /// rounded it just outside (the frame's band is the caller's, scaled exactly, so the excess
     /// is a few ulps of the coordinates). O(n).
+    ///
+    /// `settings` may bound every move too ([`MOVE_BOUNDS`]), in the caller's units.
     pub(crate) fn hold_band<const D: usize>(
         constraints: &Constraints,
+        settings: &Value,
         original: &[Vector<D>],
         faired: &mut [Vector<D>],
     ) {
+        let bound = MOVE_BOUNDS
+            .iter()
+            .filter_map(|name| settings.get(*name).and_then(Value::as_f64))
+            .fold(f64::INFINITY, f64::min);
         for (index, (p, q)) in original.iter().zip(faired.iter_mut()).enumerate() {
-            let allowed = constraints.allowed_distance(index);
+            let allowed = constraints.allowed_distance(index).min(bound);
             if !allowed.is_finite() {
                 continue;
             }
@@ -442,9 +531,11 @@ mod tests {
 
     #[test]
     fn the_frame_scales_exactly_with_the_data() {
-        let rows = vec![vec![3.0, -1.0], vec![5.5, 2.25], vec![4.0, 0.1]];
+        let rows = vec![vec![13.0, -1.0], vec![15.5, 2.25], vec![14.0, 0.1]];
         let frame = Frame::of(&rows);
-        assert_eq!(frame.centre, vec![4.25, 0.625]);
+        assert_eq!(frame.centre, vec![14.25, 0.625]);
+        let near = Frame::of(&[vec![3.0, -1.0], vec![5.5, 2.25]]);
+        assert_eq!(near.centre, vec![0.0, 0.0]);
         // Largest distance from the centre 1.625 = 0.8125 · 2^1.
         assert_eq!(frame.exponent, 1);
         for k in [-60, -3, 7, 90] {

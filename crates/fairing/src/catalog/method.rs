@@ -592,24 +592,36 @@ impl MethodEntry {
             constraints: &constraints,
             ..job
         };
-        self.method
-            .check_curve(settings, &framed)
-            .and_then(|()| self.method.run_curve(settings, &framed))
-            .map_err(|e| refusal(e, &self.info.name))
+        let framed_settings = &frame.settings_to_frame(settings);
+        let mark = frame.mark();
+        let outcome = self
+            .method
+            .check_curve(framed_settings, &framed)
+            .and_then(|()| self.method.run_curve(framed_settings, &framed))
+            .map_err(|e| refusal(e, &self.info.name));
+        drop(mark);
+        outcome
             .map(|mut run| {
                 run.points = frame.curve_points_from_frame(job.points, &points, &run.points);
                 match (job.points, &mut run.points) {
                     (CurvePoints::Planar(a), CurvePoints::Planar(b)) => {
-                        Frame::hold_band(job.constraints, a, b)
+                        Frame::hold_band(job.constraints, settings, a, b)
                     }
                     (CurvePoints::Spatial(a), CurvePoints::Spatial(b)) => {
-                        Frame::hold_band(job.constraints, a, b)
+                        Frame::hold_band(job.constraints, settings, a, b)
                     }
                     _ => {}
                 }
                 // Mapping back may round a tiny move away: `moved` is what differs now.
                 run.moved = job.points.differences(&run.points);
                 run.curve = frame.record_from_frame(std::mem::take(&mut run.curve));
+                run.extras = std::mem::take(&mut run.extras)
+                    .into_iter()
+                    .map(|(k, v)| {
+                        let v = frame.extra_from_frame(&k, v);
+                        (k, v)
+                    })
+                    .collect();
                 run.represented = run.represented.map(|r| frame.represented_from_frame(r));
                 run
             })
@@ -663,19 +675,30 @@ impl MethodEntry {
             constraints: &constraints,
             ..job
         };
-        let mut run = self
+        let framed_settings = &frame.settings_to_frame(settings);
+        let mark = frame.mark();
+        let outcome = self
             .method
-            .check_surface(settings, &framed)
-            .and_then(|()| self.method.run_surface(settings, &framed))
-            .map_err(|e| refusal(e, &self.info.name))?;
+            .check_surface(framed_settings, &framed)
+            .and_then(|()| self.method.run_surface(framed_settings, &framed))
+            .map_err(|e| refusal(e, &self.info.name));
+        drop(mark);
+        let mut run = outcome?;
         if run.grid.points.len() == grid.points.len() {
             run.grid = frame.grid_from_frame(job.grid, &grid, &run.grid);
-            Frame::hold_band(job.constraints, &job.grid.points, &mut run.grid.points);
+            Frame::hold_band(job.constraints, settings, &job.grid.points, &mut run.grid.points);
             run.moved = (0..grid.points.len())
                 .filter(|&k| run.grid.points[k] != job.grid.points[k])
                 .collect();
         }
         run.surface = frame.record_from_frame(std::mem::take(&mut run.surface));
+        run.extras = std::mem::take(&mut run.extras)
+            .into_iter()
+            .map(|(k, v)| {
+                let v = frame.extra_from_frame(&k, v);
+                (k, v)
+            })
+            .collect();
         if (run.grid.rows, run.grid.columns) != (job.grid.rows, job.grid.columns)
             || run.grid.points.len() != job.grid.points.len()
         {

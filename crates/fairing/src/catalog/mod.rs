@@ -28,6 +28,7 @@ pub mod builtin;
 mod config;
 mod criteria;
 mod frame;
+pub use frame::LARGEST as LARGEST_COORDINATE;
 mod job;
 mod method;
 mod parameters;
