@@ -51,12 +51,38 @@ pub enum Error {
 pub type Result<T> = std::result::Result<T, Error>;
 
 impl Error {
-    /// A parse error of `format` at `line`.
+    /// A parse error of `format` at `line`. The message is made one line of at most
+    /// [`LONGEST_MESSAGE`] characters, since it may echo a stretch of a malformed file (a
+    /// CR-only file is one "line").
     pub(crate) fn parse(format: &'static str, line: usize, message: impl Into<String>) -> Self {
         Error::Parse {
             format,
             line,
-            message: message.into(),
+            message: one_line(&message.into()),
         }
     }
+}
+
+/// The most characters of a parse message; the echoed input is cut to fit.
+pub(crate) const LONGEST_MESSAGE: usize = 400;
+
+/// `message` with its line breaks and other control characters shown as `\u{..}` escapes and
+/// cut to [`LONGEST_MESSAGE`] characters with an ellipsis.
+fn one_line(message: &str) -> String {
+    let mut out = String::new();
+    let mut count = 0;
+    for c in message.chars() {
+        let shown: Vec<char> = if c.is_control() {
+            c.escape_default().collect()
+        } else {
+            vec![c]
+        };
+        if count + shown.len() > LONGEST_MESSAGE {
+            out.push('…');
+            break;
+        }
+        count += shown.len();
+        out.extend(shown);
+    }
+    out
 }

@@ -168,10 +168,26 @@ pub(crate) fn median(values: &mut [f64]) -> Option<f64> {
 
 /// The decimal step the coordinates were written with: 10^−d for the smallest d ≤ 12 such
 /// that every coordinate is a multiple of 10^−d (to 1e-3 of a step, so that a decimal read
-/// into binary still counts); 0 when there is none (data computed, not typed). O(n · 13).
+/// into binary still counts) and no coordinate but 0 rounds to 0 at that step (a value
+/// written with d decimals is 0 or at least 10^−d: without this, coordinates all below 1e-3
+/// passed for whole numbers); 0 when there is none (data computed, not typed). O(n · 13).
 ///
 /// Airfoil files with five or six decimals give 1e-5 or 1e-6; whole inches give 1.
+///
+/// Inside a catalogue method, which runs on points moved to a reference frame (centred, scaled
+/// by 2^−E), the step is read from the caller's coordinates and returned in the frame's units,
+/// since the frame's coordinates keep no decimal digits.
 pub fn decimal_quantum<const D: usize>(points: &[Vector<D>]) -> f64 {
+    if let Some((centre, exponent)) = FRAME.with(std::cell::Cell::get) {
+        let caller: Vec<Vector<D>> = points
+            .iter()
+            .map(|p| Vector::<D>::from_fn(|d, _| p[d] * 2f64.powi(exponent) + centre[d.min(2)]))
+            .collect();
+        FRAME.with(|f| f.set(None));
+        let quantum = decimal_quantum(&caller);
+        FRAME.with(|f| f.set(Some((centre, exponent))));
+        return quantum * 2f64.powi(-exponent);
+    }
     let values: Vec<f64> = points.iter().flat_map(|p| p.iter().copied()).collect();
     if values.is_empty() || values.iter().any(|v| !v.is_finite()) {
         return 0.0;
@@ -181,13 +197,36 @@ pub fn decimal_quantum<const D: usize>(points: &[Vector<D>]) -> f64 {
         let fits = values.iter().all(|&v| {
             let scaled = v * scale;
             // Beyond 2^50 a double has no room for the fraction this test reads.
-            scaled.abs() < 1.1e15 && (scaled - scaled.round()).abs() <= 1e-3
+            scaled.abs() < 1.1e15
+                && (scaled - scaled.round()).abs() <= 1e-3
+                && (scaled.round() != 0.0 || v == 0.0)
         });
         if fits {
             return 1.0 / scale;
         }
     }
     0.0
+}
+
+thread_local! {
+    /// The reference frame a catalogue method runs in on this thread (centre, exponent E of
+    /// the scale 2^E), for [`decimal_quantum`]; set by the catalogue around a run.
+    static FRAME: std::cell::Cell<Option<([f64; 3], i32)>> = const { std::cell::Cell::new(None) };
+}
+
+/// Marks this thread as running in a reference frame until dropped.
+pub(crate) struct FrameMark(Option<([f64; 3], i32)>);
+
+impl FrameMark {
+    pub(crate) fn new(centre: [f64; 3], exponent: i32) -> FrameMark {
+        FrameMark(FRAME.with(|f| f.replace(Some((centre, exponent)))))
+    }
+}
+
+impl Drop for FrameMark {
+    fn drop(&mut self) {
+        FRAME.with(|f| f.set(self.0));
+    }
 }
 
 /// A bound on point moves derived from the data alone ([`data_bound`]).

@@ -126,6 +126,20 @@ pub enum Error {
         /// What is wrong.
         message: String,
     },
+    /// A coordinate too large for the arithmetic of fairing (see
+    /// [`LARGEST_COORDINATE`](crate::catalog::LARGEST_COORDINATE)), or not finite. Said before
+    /// any method runs.
+    #[error(
+        "{what} {index} has the coordinate {value:e}, beyond ±1e150: the squares fairing forms would overflow; give the coordinates in a larger unit"
+    )]
+    CoordinateRange {
+        /// `point` or `grid point`.
+        what: &'static str,
+        /// The point's index, from 0.
+        index: usize,
+        /// The coordinate.
+        value: f64,
+    },
     /// A method refuses what it was asked to do (an end clamp it cannot hold, bad points it
     /// does not take, a kind or dimension of curve it does not fair). Said before it runs.
     #[error("`{method}` {reason}")]

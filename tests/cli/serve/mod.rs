@@ -5,6 +5,7 @@
 //! first line the command prints) and stops it when done.
 
 mod api;
+mod availability;
 mod browser;
 mod client;
 

@@ -8,6 +8,11 @@ use crate::{Error, Result};
 
 const FORMAT: &str = "STEP";
 
+/// The deepest nesting of parameter lists read. Part 21 files written by CAD systems nest a
+/// few levels (a surface's control points are a list of lists); a bound keeps a hostile file
+/// from overflowing the stack, since the parser recurses once per level.
+const DEEPEST: usize = 64;
+
 /// A parameter value.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) enum Value {
@@ -85,6 +90,8 @@ struct Lexer<'a> {
     bytes: &'a [u8],
     at: usize,
     line: usize,
+    /// How many parameter lists are open.
+    depth: usize,
 }
 
 impl Lexer<'_> {
@@ -267,7 +274,18 @@ impl Lexer<'_> {
     }
 
     /// Values separated by commas, after an opening parenthesis, through the closing one.
+    /// Refuses lists nested deeper than [`DEEPEST`].
     fn values_until_close(&mut self) -> Result<Vec<Value>> {
+        if self.depth >= DEEPEST {
+            return Err(self.error(format!("parameter lists nested deeper than {DEEPEST}")));
+        }
+        self.depth += 1;
+        let out = self.values_until_close_inner();
+        self.depth -= 1;
+        out
+    }
+
+    fn values_until_close_inner(&mut self) -> Result<Vec<Value>> {
         let mut out = Vec::new();
         if self.peek()? == Some(b')') {
             self.at += 1;
@@ -312,6 +330,7 @@ fn data_section(text: &str) -> Option<(usize, usize)> {
         bytes,
         at: 0,
         line: 1,
+        depth: 0,
     };
     loop {
         lexer.skip().ok()?;
@@ -353,6 +372,7 @@ pub(crate) fn parse(text: &str) -> Result<BTreeMap<usize, Instance>> {
         bytes: text.as_bytes(),
         at: start,
         line,
+        depth: 0,
     };
     let mut instances = BTreeMap::new();
     loop {

@@ -3,6 +3,7 @@
 mod common;
 mod errors;
 mod exact;
+mod fuzz;
 mod occ_check;
 mod occ_files;
 mod rebuild;

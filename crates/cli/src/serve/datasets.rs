@@ -97,8 +97,8 @@ impl Datasets {
                 push_unique(
                     &mut entries,
                     Dataset {
+                        about: format!("the file {name} given to fair serve"),
                         name,
-                        about: shown,
                         origin: Origin::File(path.clone()),
                     },
                 );
@@ -120,11 +120,13 @@ impl Datasets {
                         .components()
                         .map(|c| c.as_os_str().to_string_lossy().to_string())
                         .collect();
+                    let name = format!("{label}/{}", relative.join("/"));
                     push_unique(
                         &mut entries,
                         Dataset {
-                            name: format!("{label}/{}", relative.join("/")),
-                            about: file.display().to_string(),
+                            // The server's own paths stay private: the name is relative.
+                            about: format!("the file {name} of a folder given to fair serve"),
+                            name,
                             origin: Origin::InFolder(file, root.clone()),
                         },
                     );
@@ -170,7 +172,21 @@ impl Datasets {
                 real
             }
         };
-        let size = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
+        // A regular file only: a FIFO or device put in a listed file's place would block the
+        // reader (or never end).
+        let metadata = std::fs::metadata(&path).map_err(|e| {
+            Refusal::Unreadable(Error::Read {
+                path: entry.name.clone(),
+                reason: crate::input::io_reason(&e),
+            })
+        })?;
+        if !metadata.is_file() {
+            return Err(Refusal::Unreadable(Error::Read {
+                path: entry.name.clone(),
+                reason: "not a regular file".into(),
+            }));
+        }
+        let size = metadata.len();
         if size > limit as u64 {
             return Err(Refusal::TooLarge(format!(
                 "{name}: {size} bytes, more than the limit of {limit} (fair serve --max-upload)"

@@ -5,11 +5,19 @@
 //! - the head is read up to [`Settings::max_head`] bytes (431 past it), the body up to
 //!   [`Settings::max_body`] (413 past it, decided from `Content-Length` before a byte of the
 //!   body is read); a body must come with `Content-Length` (411 otherwise: no chunked uploads);
-//! - reads and writes time out ([`Settings::timeout`]), so a stalled client holds a worker for
-//!   that long at most;
-//! - a fixed pool of [`Settings::workers`] threads handles connections; the accepting thread
-//!   waits when all are busy and [`Settings::queue`] connections wait, so a burst costs no
-//!   more threads or memory than that;
+//! - a request must arrive whole within [`Settings::read_deadline`] (408 otherwise), however
+//!   it trickles in: each read's timeout is what is left of that deadline, so a client sending
+//!   one byte every few seconds cannot hold a connection for longer;
+//! - every connection is read on its own thread, at most [`Settings::queue`] at once and
+//!   [`Settings::per_client`] from one address (503 past either), so slow clients hold
+//!   threads that sleep, never the workers;
+//! - [`Settings::workers`] requests are answered (faired) at once; the answer must come
+//!   within [`Settings::deadline`] of the request's arrival, else 503. The fairing library
+//!   has no cancellation hook yet, so the abandoned work finishes in the background (it keeps
+//!   its worker until then, so abandoned work cannot pile up beyond the pool);
+//! - an answer over [`Settings::max_response`] bytes is not sent: 422 naming the limit;
+//! - duplicate `Host`, `Content-Length` or `Transfer-Encoding` headers are refused (400): two
+//!   framings of one request are how requests are smuggled past proxies;
 //! - a panic while handling a request is caught and answered with 500: the server lives on.
 //!
 //! Why not `tiny_http` (the usual light choice): its 0.12 release drains an unread body into
@@ -19,10 +27,10 @@
 //! Requests whose `Host` is not a loopback name are refused (403) while the server listens on a
 //! loopback address: a web page elsewhere cannot reach it through DNS rebinding.
 
+use std::collections::HashMap;
 use std::io::{self, BufRead, BufReader, Read, Write};
 use std::net::{IpAddr, Ipv4Addr, SocketAddr, TcpListener, TcpStream};
-use std::sync::mpsc::{sync_channel, Receiver};
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Condvar, Mutex};
 use std::time::{Duration, Instant};
 
 use super::api::{self, Context};
@@ -38,12 +46,22 @@ pub(crate) struct Settings {
     pub max_body: usize,
     /// The largest request head (request line and headers) in bytes. Default 64 KiB.
     pub max_head: usize,
-    /// Read and write timeout of a connection. Default 30 s.
+    /// Write timeout of a connection, and the longest wait for one read. Default 30 s.
     pub timeout: Duration,
-    /// Worker threads. Default 8 (fairing is CPU-bound; more would only share the cores).
+    /// The time a whole request (head and body) has to arrive. Default 20 s.
+    pub read_deadline: Duration,
+    /// The time from a request's arrival to its answer. Default 120 s.
+    pub deadline: Duration,
+    /// Requests answered at once. Default 8 (fairing is CPU-bound; more would only share
+    /// the cores).
     pub workers: usize,
-    /// Accepted connections that may wait for a worker. Default 256.
+    /// Connections open at once (being read, waiting or answered). Default 256.
     pub queue: usize,
+    /// Connections open at once from one address. Default 64 (a page may fire dozens of
+    /// requests at once; every local client shares 127.0.0.1).
+    pub per_client: usize,
+    /// The largest answer body in bytes. Default 64 MiB.
+    pub max_response: usize,
     /// Print one line per request on standard error.
     pub log: bool,
 }
@@ -56,8 +74,12 @@ impl Default for Settings {
             max_body: super::DEFAULT_MAX_UPLOAD,
             max_head: 64 << 10,
             timeout: Duration::from_secs(30),
+            read_deadline: Duration::from_secs(20),
+            deadline: Duration::from_secs(120),
             workers: 8,
             queue: 256,
+            per_client: 64,
+            max_response: 64 << 20,
             log: false,
         }
     }
@@ -129,6 +151,7 @@ fn reason(status: u16) -> &'static str {
         431 => "Request Header Fields Too Large",
         500 => "Internal Server Error",
         501 => "Not Implemented",
+        503 => "Service Unavailable",
         505 => "HTTP Version Not Supported",
         _ => "Status",
     }
@@ -160,37 +183,188 @@ impl Server {
             .unwrap_or_else(|_| SocketAddr::new(self.settings.bind, self.settings.port))
     }
 
-    /// Accepts connections and hands them to the workers; returns only if accepting fails
-    /// for good.
+    /// Accepts connections, each read on its own thread within the connection limits;
+    /// returns only if accepting fails for good.
     pub(crate) fn run(self) {
-        let (sender, receiver) = sync_channel::<TcpStream>(self.settings.queue);
-        let receiver = Arc::new(Mutex::new(receiver));
         let local = self.local_addr();
-        for _ in 0..self.settings.workers.max(1) {
-            let receiver = Arc::clone(&receiver);
-            let context = Arc::clone(&self.context);
-            let settings = self.settings.clone();
-            std::thread::spawn(move || worker(&receiver, &context, &settings, local));
-        }
+        let open = Arc::new(Open::default());
+        let slots = Arc::new(Slots::new(self.settings.workers.max(1)));
         for stream in self.listener.incoming() {
             // A failed accept (a client gone before it was accepted, too many open files) is
             // that client's loss; the server goes on.
             let Ok(stream) = stream else { continue };
-            if sender.send(stream).is_err() {
-                return;
+            let client = stream
+                .peer_addr()
+                .map_or(IpAddr::V4(Ipv4Addr::UNSPECIFIED), |a| a.ip());
+            let Some(ticket) = open.enter(client, &self.settings) else {
+                refuse_busy(stream, &self.settings);
+                continue;
+            };
+            let context = Arc::clone(&self.context);
+            let settings = self.settings.clone();
+            let slots = Arc::clone(&slots);
+            let spawned = std::thread::Builder::new().spawn(move || {
+                let _ticket = ticket;
+                serve_connection(stream, &context, &settings, &slots, local);
+            });
+            // No thread to be had: the connection (moved into the closure) is dropped.
+            drop(spawned);
+        }
+    }
+}
+
+/// The connections open, in all and by client address.
+#[derive(Default)]
+struct Open {
+    counts: Mutex<(usize, HashMap<IpAddr, usize>)>,
+}
+
+/// One open connection, counted until dropped.
+struct Ticket {
+    open: Arc<Open>,
+    client: IpAddr,
+}
+
+impl Open {
+    /// Counts a connection from `client`, or `None` when a limit is reached.
+    fn enter(self: &Arc<Self>, client: IpAddr, settings: &Settings) -> Option<Ticket> {
+        let mut counts = self
+            .counts
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        let (total, by_client) = &mut *counts;
+        let mine = by_client.entry(client).or_insert(0);
+        if *total >= settings.queue.max(1) || *mine >= settings.per_client.max(1) {
+            return None;
+        }
+        *total += 1;
+        *mine += 1;
+        Some(Ticket {
+            open: Arc::clone(self),
+            client,
+        })
+    }
+}
+
+impl Drop for Ticket {
+    fn drop(&mut self) {
+        let mut counts = self
+            .open
+            .counts
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        let (total, by_client) = &mut *counts;
+        *total = total.saturating_sub(1);
+        if let Some(mine) = by_client.get_mut(&self.client) {
+            *mine -= 1;
+            if *mine == 0 {
+                by_client.remove(&self.client);
             }
         }
     }
 }
 
-fn worker(receiver: &Mutex<Receiver<TcpStream>>, context: &Context, settings: &Settings, local: SocketAddr) {
-    loop {
-        let next = match receiver.lock() {
-            Ok(guard) => guard.recv(),
-            Err(poisoned) => poisoned.into_inner().recv(),
-        };
-        let Ok(stream) = next else { return };
-        serve_connection(stream, context, settings, local);
+/// Answers 503 to a connection over the limits without reading it, never waiting on the
+/// client (the accepting thread must not block).
+fn refuse_busy(stream: TcpStream, settings: &Settings) {
+    let _ = stream.set_nonblocking(true);
+    let response = Response::error(
+        503,
+        format!(
+            "too many connections: at most {} at once, {} from one address",
+            settings.queue, settings.per_client
+        ),
+    );
+    let mut stream = stream;
+    let _ = write_response(&mut stream, &response, false);
+}
+
+/// The workers: how many requests may be answered at once.
+struct Slots {
+    free: Mutex<usize>,
+    freed: Condvar,
+}
+
+impl Slots {
+    fn new(count: usize) -> Slots {
+        Slots {
+            free: Mutex::new(count),
+            freed: Condvar::new(),
+        }
+    }
+
+    /// Takes a slot, waiting until `deadline` at most; false if none came free by then.
+    fn take(&self, deadline: Instant) -> bool {
+        let mut free = self
+            .free
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        while *free == 0 {
+            let now = Instant::now();
+            if now >= deadline {
+                return false;
+            }
+            free = match self.freed.wait_timeout(free, deadline - now) {
+                Ok((guard, _)) => guard,
+                Err(poisoned) => poisoned.into_inner().0,
+            };
+        }
+        *free -= 1;
+        true
+    }
+
+    fn give_back(&self) {
+        let mut free = self
+            .free
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        *free += 1;
+        self.freed.notify_one();
+    }
+}
+
+/// Answers `request` on a worker within `deadline`: 503 when no worker comes free or the
+/// answer is not ready by then (the work goes on in the background, see the module doc).
+fn answer_in_time(
+    request: Request,
+    context: &Arc<Context>,
+    slots: &Arc<Slots>,
+    deadline: Instant,
+    settings: &Settings,
+) -> Response {
+    let limit = settings.deadline.as_secs_f64();
+    if !slots.take(deadline) {
+        return Response::error(
+            503,
+            format!("the server is busy: no worker came free within the request's deadline of {limit} s"),
+        );
+    }
+    let (sender, receiver) = std::sync::mpsc::channel();
+    let context = Arc::clone(context);
+    let held = Arc::clone(slots);
+    let spawned = std::thread::Builder::new().spawn(move || {
+        let response = answer(request, &context);
+        held.give_back();
+        let _ = sender.send(response);
+    });
+    if spawned.is_err() {
+        slots.give_back();
+        return Response::error(503, "the server could not start a worker thread");
+    }
+    match receiver.recv_timeout(deadline.saturating_duration_since(Instant::now())) {
+        Ok(response) if response.body.len() > settings.max_response => Response::error(
+            422,
+            format!(
+                "the answer has {} bytes, more than the limit of {} bytes: send fewer points",
+                response.body.len(),
+                settings.max_response
+            ),
+        ),
+        Ok(response) => response,
+        Err(_) => Response::error(
+            503,
+            format!("the request was not answered within its deadline of {limit} s; send fewer points or lighter settings"),
+        ),
     }
 }
 
@@ -203,7 +377,13 @@ enum Incoming {
 
 /// Reads one request, answers it, closes the connection. Never panics past this point: a
 /// panic in the routes becomes a 500.
-fn serve_connection(stream: TcpStream, context: &Context, settings: &Settings, local: SocketAddr) {
+fn serve_connection(
+    stream: TcpStream,
+    context: &Arc<Context>,
+    settings: &Settings,
+    slots: &Arc<Slots>,
+    local: SocketAddr,
+) {
     let started = Instant::now();
     let _ = stream.set_read_timeout(Some(settings.timeout));
     let _ = stream.set_write_timeout(Some(settings.timeout));
@@ -212,7 +392,8 @@ fn serve_connection(stream: TcpStream, context: &Context, settings: &Settings, l
         return;
     };
     let mut reader = BufReader::new(stream);
-    let (line, head_only, response) = match read_request(&mut reader, settings, &write_half) {
+    let read_by = started + settings.read_deadline;
+    let (line, head_only, response) = match read_request(&mut reader, settings, &write_half, read_by) {
         Incoming::Gone => return,
         Incoming::Refused(response) => ("-".to_string(), false, response),
         Incoming::Request(request, host) => {
@@ -220,7 +401,7 @@ fn serve_connection(stream: TcpStream, context: &Context, settings: &Settings, l
             let head_only = request.method == "HEAD";
             let response = match host_problem(host.as_deref(), local) {
                 Some(problem) => Response::error(403, problem),
-                None => answer(request, context),
+                None => answer_in_time(request, context, slots, started + settings.deadline, settings),
             };
             (line, head_only, response)
         }
@@ -300,10 +481,44 @@ fn host_problem(host: Option<&str>, local: SocketAddr) -> Option<String> {
     })
 }
 
-fn read_request(reader: &mut BufReader<TcpStream>, settings: &Settings, writer: &TcpStream) -> Incoming {
+/// Sets the read timeout to what is left before `deadline` (at most the settings' timeout);
+/// false when nothing is left.
+fn arm(reader: &BufReader<TcpStream>, deadline: Instant, settings: &Settings) -> bool {
+    let left = deadline.saturating_duration_since(Instant::now());
+    if left.is_zero() {
+        return false;
+    }
+    let _ = reader
+        .get_ref()
+        .set_read_timeout(Some(left.min(settings.timeout)));
+    true
+}
+
+fn read_request(
+    reader: &mut BufReader<TcpStream>,
+    settings: &Settings,
+    writer: &TcpStream,
+    deadline: Instant,
+) -> Incoming {
+    let late = |what: &str| {
+        Incoming::Refused(Response::error(
+            408,
+            format!(
+                "the request {what} did not arrive within {} s",
+                settings.read_deadline.as_secs_f64()
+            ),
+        ))
+    };
     // The head: read until the blank line, within max_head.
     let mut head = Vec::with_capacity(1024);
     loop {
+        if !arm(reader, deadline, settings) {
+            return if head.is_empty() {
+                Incoming::Gone
+            } else {
+                late("head")
+            };
+        }
         let available = match reader.fill_buf() {
             Ok(bytes) => bytes,
             Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
@@ -367,6 +582,19 @@ fn read_request(reader: &mut BufReader<TcpStream>, settings: &Settings, writer: 
             .find(|h| h.name.eq_ignore_ascii_case(name))
             .map(|h| String::from_utf8_lossy(h.value).trim().to_string())
     };
+    for framing in ["host", "content-length", "transfer-encoding"] {
+        let count = parsed
+            .headers
+            .iter()
+            .filter(|h| h.name.eq_ignore_ascii_case(framing))
+            .count();
+        if count > 1 {
+            return Incoming::Refused(Response::error(
+                400,
+                format!("the request has {count} `{framing}` headers; one is allowed"),
+            ));
+        }
+    }
     if header("transfer-encoding").is_some() {
         return Incoming::Refused(Response::error(
             411,
@@ -405,14 +633,22 @@ fn read_request(reader: &mut BufReader<TcpStream>, settings: &Settings, writer: 
         }
     }
     let length = length as usize;
-    let mut body = Vec::with_capacity(length);
-    match reader.take(length as u64).read_to_end(&mut body) {
-        Ok(n) if n == length => {}
-        Ok(_) => return Incoming::Gone,
-        Err(e) if matches!(e.kind(), io::ErrorKind::WouldBlock | io::ErrorKind::TimedOut) => {
-            return Incoming::Refused(Response::error(408, "the request body did not arrive in time"));
+    let mut body = Vec::with_capacity(length.min(1 << 20));
+    let mut chunk = [0u8; 64 << 10];
+    while body.len() < length {
+        if !arm(reader, deadline, settings) {
+            return late("body");
         }
-        Err(_) => return Incoming::Gone,
+        let want = (length - body.len()).min(chunk.len());
+        match reader.read(&mut chunk[..want]) {
+            Ok(0) => return Incoming::Gone,
+            Ok(n) => body.extend_from_slice(&chunk[..n]),
+            Err(e) if e.kind() == io::ErrorKind::Interrupted => {}
+            Err(e) if matches!(e.kind(), io::ErrorKind::WouldBlock | io::ErrorKind::TimedOut) => {
+                return late("body");
+            }
+            Err(_) => return Incoming::Gone,
+        }
     }
     let path = target.split(['?', '#']).next().unwrap_or("").to_string();
     let request = Request {

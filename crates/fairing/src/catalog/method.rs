@@ -12,6 +12,7 @@ use serde::de::DeserializeOwned;
 use serde::Serialize;
 use serde_json::Value;
 
+use super::frame::{check_coordinates, Frame};
 use super::job::{CurveJob, CurvePoints, CurveRun, SurfaceJob, SurfaceRun};
 use super::parameters::{GivenValue, ParameterMap};
 use super::schema::{self, ParameterInfo};
@@ -581,10 +582,49 @@ impl MethodEntry {
                 reason: "takes no bad points (it finds what to change itself)".into(),
             });
         }
-        self.method
-            .check_curve(settings, &job)
-            .and_then(|()| self.method.run_curve(settings, &job))
-            .map_err(|e| refusal(e, &self.info.name))
+        check_coordinates(job.points.rows().into_iter(), "point")?;
+        // The method runs in the reference frame (see `frame`), its result mapped back.
+        let frame = Frame::of(&job.points.rows());
+        let points = frame.curve_points_to_frame(job.points);
+        let constraints = frame.constraints_to_frame(job.constraints);
+        let framed = CurveJob {
+            points: &points,
+            constraints: &constraints,
+            ..job
+        };
+        let framed_settings = &frame.settings_to_frame(settings);
+        let mark = frame.mark();
+        let outcome = self
+            .method
+            .check_curve(framed_settings, &framed)
+            .and_then(|()| self.method.run_curve(framed_settings, &framed))
+            .map_err(|e| refusal(e, &self.info.name));
+        drop(mark);
+        outcome
+            .map(|mut run| {
+                run.points = frame.curve_points_from_frame(job.points, &points, &run.points);
+                match (job.points, &mut run.points) {
+                    (CurvePoints::Planar(a), CurvePoints::Planar(b)) => {
+                        Frame::hold_band(job.constraints, settings, a, b)
+                    }
+                    (CurvePoints::Spatial(a), CurvePoints::Spatial(b)) => {
+                        Frame::hold_band(job.constraints, settings, a, b)
+                    }
+                    _ => {}
+                }
+                // Mapping back may round a tiny move away: `moved` is what differs now.
+                run.moved = job.points.differences(&run.points);
+                run.curve = frame.record_from_frame(std::mem::take(&mut run.curve));
+                run.extras = std::mem::take(&mut run.extras)
+                    .into_iter()
+                    .map(|(k, v)| {
+                        let v = frame.extra_from_frame(&k, v);
+                        (k, v)
+                    })
+                    .collect();
+                run.represented = run.represented.map(|r| frame.represented_from_frame(r));
+                run
+            })
             .and_then(|run| check_run(&self.info.name, &job, run))
     }
 
@@ -601,6 +641,7 @@ impl MethodEntry {
                 reason: "takes no bad points (it finds what to change itself)".into(),
             });
         }
+        check_coordinates(job.points.rows().into_iter(), "point")?;
         self.method
             .check_curve(settings, &job)
             .map_err(|e| refusal(e, &self.info.name))
@@ -619,11 +660,45 @@ impl MethodEntry {
                 reason: "takes no bad points".into(),
             });
         }
-        let run = self
+        check_coordinates(job.grid.points.iter().map(|p| vec![p.x, p.y, p.z]), "grid point")?;
+        let frame = Frame::of(
+            &job.grid
+                .points
+                .iter()
+                .map(|p| vec![p.x, p.y, p.z])
+                .collect::<Vec<_>>(),
+        );
+        let grid = frame.grid_to_frame(job.grid);
+        let constraints = frame.constraints_to_frame(job.constraints);
+        let framed = SurfaceJob {
+            grid: &grid,
+            constraints: &constraints,
+            ..job
+        };
+        let framed_settings = &frame.settings_to_frame(settings);
+        let mark = frame.mark();
+        let outcome = self
             .method
-            .check_surface(settings, &job)
-            .and_then(|()| self.method.run_surface(settings, &job))
-            .map_err(|e| refusal(e, &self.info.name))?;
+            .check_surface(framed_settings, &framed)
+            .and_then(|()| self.method.run_surface(framed_settings, &framed))
+            .map_err(|e| refusal(e, &self.info.name));
+        drop(mark);
+        let mut run = outcome?;
+        if run.grid.points.len() == grid.points.len() {
+            run.grid = frame.grid_from_frame(job.grid, &grid, &run.grid);
+            Frame::hold_band(job.constraints, settings, &job.grid.points, &mut run.grid.points);
+            run.moved = (0..grid.points.len())
+                .filter(|&k| run.grid.points[k] != job.grid.points[k])
+                .collect();
+        }
+        run.surface = frame.record_from_frame(std::mem::take(&mut run.surface));
+        run.extras = std::mem::take(&mut run.extras)
+            .into_iter()
+            .map(|(k, v)| {
+                let v = frame.extra_from_frame(&k, v);
+                (k, v)
+            })
+            .collect();
         if (run.grid.rows, run.grid.columns) != (job.grid.rows, job.grid.columns)
             || run.grid.points.len() != job.grid.points.len()
         {

@@ -30,6 +30,8 @@
 pub mod builtin;
 mod config;
 mod criteria;
+mod frame;
+pub use frame::LARGEST as LARGEST_COORDINATE;
 mod job;
 mod method;
 mod page;

@@ -89,6 +89,18 @@ fn the_decimal_step_is_read_from_typed_data() {
         .map(|k| Vec2::new(k as f64 * PI, (k as f64).sqrt()))
         .collect();
     assert_eq!(decimal_quantum(&computed), 0.0);
+    // A small arc typed with nine decimals: its step, not 1 (every coordinate is below 1e-3,
+    // so each once passed for a multiple of 1 to within 1e-3).
+    let small: Vec<Vec2> = typed(3)
+        .iter()
+        .map(|p| {
+            Vec2::new(
+                format!("{:.9}", p.x * 1e-6).parse().unwrap(),
+                format!("{:.9}", p.y * 1e-6).parse().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(decimal_quantum(&small), 1e-9);
 }
 
 #[test]

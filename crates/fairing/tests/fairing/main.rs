@@ -6,6 +6,7 @@ mod composition;
 mod contract;
 mod curve_guard;
 mod displacement;
+mod equivariance;
 mod jump_lsq;
 mod pages;
 mod sapidis_farin_data;
