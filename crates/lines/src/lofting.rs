@@ -190,8 +190,8 @@ pub struct Faired {
     pub values: Vec<[f64; 3]>,
     /// Where each value came from.
     pub sources: Vec<Source>,
-    /// Per cell: flagged as a suspect offset (its move exceeds three rounding steps, or the
-    /// robust fit rejected it).
+    /// Per cell: flagged as a suspect offset (its move exceeds three rounding steps, the
+    /// robust fit rejected it, or it is held as part of a run the hull cannot follow).
     pub flagged: Vec<bool>,
     /// The hull's surfaces: one when the table has waterlines or buttocks and no knuckle, one
     /// on each side of the first knuckle edge otherwise; none without redundant views.
