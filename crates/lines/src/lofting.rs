@@ -176,7 +176,8 @@ pub enum Source {
     /// The line faired alone (a knuckle, a profile-only or plan-only line, a table without
     /// redundant views).
     Line,
-    /// Kept as read (on the centreline, or too few cells to fair).
+    /// Kept as read (on the centreline, too few cells to fair, or a run of offsets along a line
+    /// that the hull rejects: a feature such as a skeg, not a transcription error).
     Held,
 }
 
@@ -189,8 +190,8 @@ pub struct Faired {
     pub values: Vec<[f64; 3]>,
     /// Where each value came from.
     pub sources: Vec<Source>,
-    /// Per cell: flagged as a suspect offset (its move exceeds three rounding steps, or the
-    /// robust fit rejected it).
+    /// Per cell: flagged as a suspect offset (its move exceeds three rounding steps, the
+    /// robust fit rejected it, or it is held as part of a run the hull cannot follow).
     pub flagged: Vec<bool>,
     /// The hull's surfaces: one when the table has waterlines or buttocks and no knuckle, one
     /// on each side of the first knuckle edge otherwise; none without redundant views.
@@ -429,6 +430,9 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
             )));
         }
     }
+    if use_hull {
+        hold_feature_runs(&t, &mut values, &mut sources, &mut rejected, tol);
+    }
     let flagged: Vec<bool> = (0..n)
         .map(|i| {
             let c = &t.cells[i];
@@ -446,6 +450,57 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
         step,
         report,
     })
+}
+
+/// Consecutive offsets of one line that the hull rejects or moves beyond six tolerances (the
+/// robust fit's rejection line), this many or more, are a feature the smooth surface cannot
+/// follow (a skeg, the edge of a flat of bottom, a deck's end), not transcription errors (one
+/// wrong offset, far from its neighbours' agreement): they are kept as read (source
+/// [`Source::Held`]) and stay flagged. Two: the planted errors of the generator's tables are
+/// isolated, and Gunnerus's skeg and PX121's flat-of-bottom edge, which their data notes call
+/// real features, are runs of two to five. Six tolerances and not three steps: on a noisy table
+/// faired at its noise, two neighbouring noisy offsets can each move three steps.
+const FEATURE_RUN: usize = 2;
+
+/// Holds runs of [`FEATURE_RUN`] or more suspect hull offsets along a line (see there): their
+/// value is the input's again and they are marked rejected (flagged).
+fn hold_feature_runs(
+    t: &Table,
+    values: &mut [[f64; 3]],
+    sources: &mut [Source],
+    rejected: &mut [bool],
+    tol: f64,
+) {
+    let suspect = |i: usize, values: &[[f64; 3]]| {
+        let c = &t.cells[i];
+        sources[i] == Source::Hull
+            && (rejected[i] || dist(&[c.x, c.y, c.z], &values[i]) > 6.0 * tol * (1.0 + 1e-9))
+    };
+    let mut hold = Vec::new();
+    for li in 0..t.lines.len() {
+        let cells = t.line_cells(li);
+        let mut k = 0;
+        while k < cells.len() {
+            if !suspect(cells[k], values) {
+                k += 1;
+                continue;
+            }
+            let mut e = k;
+            while e + 1 < cells.len() && suspect(cells[e + 1], values) {
+                e += 1;
+            }
+            if e + 1 - k >= FEATURE_RUN {
+                hold.extend_from_slice(&cells[k..=e]);
+            }
+            k = e + 1;
+        }
+    }
+    for i in hold {
+        let c = &t.cells[i];
+        values[i] = [c.x, c.y, c.z];
+        sources[i] = Source::Held;
+        rejected[i] = true;
+    }
 }
 
 /// Offsets within this many rounding steps of a knuckle's height are cut from the region that

@@ -1,4 +1,4 @@
-use fair_lines::{fair, generate, read_table, Kind, Settings};
+use fair_lines::{fair, generate, read_table, Kind, Settings, Source};
 
 fn table(g: &generate::Generated) -> (tempfile::TempDir, fair_lines::Table) {
     let dir = tempfile::tempdir().unwrap();
@@ -143,4 +143,43 @@ fn a_chine_is_kept_as_a_knuckle_between_two_regions() {
             "station {si}: {truth_angle} -> {faired_angle}"
         );
     }
+}
+
+#[test]
+fn a_run_of_offsets_the_hull_cannot_follow_is_held_and_a_lone_one_restored() {
+    let (_d, mut t) = table(&generate::wigley(0.0, 0, 7));
+    // a feature on one waterline (three neighbouring stations 12 steps out, like a skeg) and one
+    // transcription error on another waterline at a station far from it
+    let wls: Vec<usize> = (0..t.lines.len())
+        .filter(|&l| t.lines[l].kind == Kind::Waterline)
+        .collect();
+    let on = |l: usize| -> Vec<usize> {
+        let mut v: Vec<usize> = (0..t.cells.len())
+            .filter(|&i| t.cells[i].line == l && t.cells[i].y > 0.0)
+            .collect();
+        v.sort_by(|&a, &b| t.cells[a].x.total_cmp(&t.cells[b].x));
+        v
+    };
+    let (a, b) = (on(wls[wls.len() / 2]), on(wls[wls.len() / 2 + 1]));
+    let run = [a[a.len() / 2 - 4], a[a.len() / 2 - 3], a[a.len() / 2 - 2]];
+    let lone = b[b.len() / 2 + 3];
+    for &i in &run {
+        t.cells[i].y += 12.0 * generate::STEP;
+    }
+    t.cells[lone].y -= 12.0 * generate::STEP;
+    let f = fair(&t, &Settings::default()).unwrap();
+    for &i in &run {
+        let c = &t.cells[i];
+        assert!(f.flagged[i], "{c:?}");
+        assert_eq!(f.sources[i], Source::Held, "{c:?}");
+        assert_eq!(f.values[i], [c.x, c.y, c.z], "{c:?}");
+    }
+    assert!(f.flagged[lone]);
+    assert_eq!(f.sources[lone], Source::Hull);
+    let tr = truth(&t, lone);
+    assert!(
+        (f.values[lone][1] - tr[1]).abs() < generate::STEP,
+        "{:?} {tr:?}",
+        f.values[lone]
+    );
 }
