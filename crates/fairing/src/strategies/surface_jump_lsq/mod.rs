@@ -60,8 +60,8 @@
 //!
 //! # Choosing λ
 //!
-//! GCV (Craven & Wahba 1979) on the block, V(λ) = (RSS/3N) / (1 − γ·tr A(λ)/N)², N the free
-//! nodes, A the smoother of one coordinate and γ = `gcv-gamma` (1: the classical score). RSS
+//! GCV (Craven & Wahba 1979) on the block, V(λ) = (RSS/3N) / (1 − tr A(λ)/N)², N the free
+//! nodes and A the smoother of one coordinate (the curve method's `rule = gcv`). RSS
 //! and tr A are sums over the spectral entries (O(N) per λ): V is scanned on a grid of
 //! log₁₀ λ from −8 to 12 in steps of 1/4 and the best bracket refined by golden section.
 //! Scattered fixed nodes are treated as data in the score.
@@ -105,7 +105,7 @@ pub const GUARD_FACTOR: f64 = 0.1;
 const CG_ITERATIONS: usize = 500;
 
 /// Settings of [`SurfaceJumpLsq`]: the parameters of the catalogue's surface `jump-lsq`.
-/// Default: λ by GCV (γ = 1), closures detected, chord-length knots.
+/// Default: λ by GCV, closures detected, chord-length knots, fits judged.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields, rename_all = "kebab-case")]
 pub struct SurfaceJumpLsqSettings {
@@ -113,8 +113,6 @@ pub struct SurfaceJumpLsqSettings {
     #[serde(with = "crate::catalog::value::auto")]
     #[schemars(with = "crate::catalog::value::AutoNumber")]
     pub lambda: Option<f64>,
-    /// γ of the GCV score V = (RSS/3N)/(1 − γ·tr/N)² (1: classical; larger: smoother).
-    pub gcv_gamma: f64,
     /// Closed directions: auto (where the last grid line repeats the first), open, u, v, both.
     pub closed: Closure,
     /// Knots, averaged over the grid lines: chord-length or uniform.
@@ -133,7 +131,6 @@ impl Default for SurfaceJumpLsqSettings {
     fn default() -> Self {
         Self {
             lambda: None,
-            gcv_gamma: 1.0,
             closed: Closure::Auto,
             parametrization: Parametrization::ChordLength,
             guard: true,
@@ -144,8 +141,7 @@ impl Default for SurfaceJumpLsqSettings {
 }
 
 impl SurfaceJumpLsqSettings {
-    /// Checks the ranges: λ finite and not negative, γ finite and positive, the tolerance
-    /// not negative.
+    /// Checks the ranges: λ finite and not negative, the tolerance not negative.
     pub fn validate(&self) -> Result<()> {
         if let Some(l) = self.lambda {
             if !(l.is_finite() && l >= 0.0) {
@@ -155,13 +151,6 @@ impl SurfaceJumpLsqSettings {
                     reason: "must be a finite non-negative number (or auto)",
                 });
             }
-        }
-        if !(self.gcv_gamma.is_finite() && self.gcv_gamma > 0.0) {
-            return Err(Error::BadParameter {
-                name: "gcv-gamma",
-                value: self.gcv_gamma.to_string(),
-                reason: "must be a finite positive number",
-            });
         }
         if let Some(d) = self.max_distance {
             if d.is_nan() || d < 0.0 {
@@ -350,7 +339,7 @@ impl SurfaceJumpLsq {
                     let score = |log_l: f64| {
                         let l = 10f64.powf(log_l);
                         let (rss, trace) = spectral.rss_trace(&y_hat, c_hat.as_ref(), l);
-                        let denom = 1.0 - settings.gcv_gamma * trace / n_free;
+                        let denom = 1.0 - trace / n_free;
                         if denom <= 0.0 {
                             f64::INFINITY
                         } else {

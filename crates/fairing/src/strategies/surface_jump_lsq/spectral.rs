@@ -19,6 +19,9 @@ use nalgebra::{DMatrix, SymmetricEigen};
 
 use curve_repr::Vec3;
 
+/// Eigenvalues at most this fraction of the largest are taken as 0 (the null space).
+const NULL_EIGENVALUE: f64 = 1e-11;
+
 /// The eigenbases of the block's two operators.
 pub(crate) struct Spectral {
     pub u: DMatrix<f64>,
@@ -34,11 +37,20 @@ impl Spectral {
     pub fn new(ku: DMatrix<f64>, kv: DMatrix<f64>) -> Self {
         let eu = SymmetricEigen::new(ku);
         let ev = SymmetricEigen::new(kv);
-        // Round-off can make a null eigenvalue slightly negative; the operators are PSD.
+        // The operators are PSD; round-off leaves their null space (the lines of an open
+        // direction) at eigenvalues of ~1e-16 of the largest, which a large λ would turn into
+        // a shrinkage. Below NULL_EIGENVALUE of the largest an eigenvalue is taken as 0.
+        let clean = |values: &nalgebra::DVector<f64>| {
+            let top = values.iter().fold(0.0f64, |m, &x| m.max(x));
+            values
+                .iter()
+                .map(|&x| if x <= NULL_EIGENVALUE * top { 0.0 } else { x })
+                .collect()
+        };
         Self {
-            mu: eu.eigenvalues.iter().map(|&x| x.max(0.0)).collect(),
+            mu: clean(&eu.eigenvalues),
             u: eu.eigenvectors,
-            nu: ev.eigenvalues.iter().map(|&x| x.max(0.0)).collect(),
+            nu: clean(&ev.eigenvalues),
             v: ev.eigenvectors,
         }
     }

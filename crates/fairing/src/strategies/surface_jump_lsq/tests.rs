@@ -112,13 +112,21 @@ fn jump_matrix_is_blind_to_lines_only() {
 fn lambda_zero_is_the_input_and_tiny_lambda_interpolates() {
     let grid = noisy(8, 10, 0.05);
     let flat: Vec<Vec3> = grid.iter().flatten().copied().collect();
-    let zero = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default().with_lambda(0.0))
-        .run(&grid)
-        .unwrap();
+    let zero = SurfaceJumpLsq::new(
+        SurfaceJumpLsqSettings::default()
+            .with_guard(false)
+            .with_lambda(0.0),
+    )
+    .run(&grid)
+    .unwrap();
     assert_eq!(zero.surface.points(), &flat[..]);
-    let tiny = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default().with_lambda(1e-12))
-        .run(&grid)
-        .unwrap();
+    let tiny = SurfaceJumpLsq::new(
+        SurfaceJumpLsqSettings::default()
+            .with_guard(false)
+            .with_lambda(1e-12),
+    )
+    .run(&grid)
+    .unwrap();
     let worst = tiny
         .surface
         .points()
@@ -134,9 +142,13 @@ fn huge_lambda_gives_the_least_squares_bilinear_surface_without_jumps() {
     let grid = noisy(8, 11, 0.05);
     let (rows, columns) = (8, 11);
     let input = BicubicSplineSurface::new(&grid).unwrap();
-    let result = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default().with_lambda(1e12))
-        .run(&grid)
-        .unwrap();
+    let result = SurfaceJumpLsq::new(
+        SurfaceJumpLsqSettings::default()
+            .with_guard(false)
+            .with_lambda(1e12),
+    )
+    .run(&grid)
+    .unwrap();
     // Least-squares fit of a + b u + c v + d u v over the input's knots, independently.
     let (u, v) = (input.u_knots(), input.v_knots());
     let basis = DMatrix::from_fn(rows * columns, 4, |k, c| {
@@ -253,9 +265,13 @@ fn held_boundary_lines_exact_and_interior_optimal() {
 fn tolerance_band_holds() {
     let grid = noisy(12, 12, 0.08);
     let flat: Vec<Vec3> = grid.iter().flatten().copied().collect();
-    let free = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default().with_lambda(10.0))
-        .run(&grid)
-        .unwrap();
+    let free = SurfaceJumpLsq::new(
+        SurfaceJumpLsqSettings::default()
+            .with_guard(false)
+            .with_lambda(10.0),
+    )
+    .run(&grid)
+    .unwrap();
     let widest = free
         .surface
         .points()
