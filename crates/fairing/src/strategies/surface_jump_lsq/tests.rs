@@ -51,6 +51,7 @@ fn tube(rows: usize, around: usize, amplitude: f64) -> Vec<Vec<Vec3>> {
 }
 
 #[test]
+#[allow(clippy::needless_range_loop)] // (i, j, c) name the node and coordinate compared
 fn jump_matrix_gives_the_surface_jumps_scaled() {
     // D applied to a column of the net gives the u-jumps that the bicubic surface itself
     // reports at the column's interior nodes, times h̄³.
