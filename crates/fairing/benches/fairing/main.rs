@@ -8,6 +8,7 @@ mod smoothing_spline;
 mod step_net;
 mod strain_energy;
 mod surface_fairing;
+mod surface_jump;
 mod surface_order;
 mod two_phase;
 
@@ -17,6 +18,7 @@ criterion::criterion_main!(
     smoothing_spline::benches,
     strain_energy::benches,
     surface_fairing::benches,
+    surface_jump::benches,
     surface_order::benches,
     two_phase::benches,
 );

@@ -8,6 +8,8 @@
 //!   spline's third-derivative jumps, O(n), λ chosen automatically.
 //! - [`sapidis_farin`]: Sapidis–Farin knot removal and reinsertion on the cubic B-spline.
 //! - [`surface`]: Zhang–Cheng bicubic surface fairing (Kjellander's surface method as preset).
+//! - [`surface_jump_lsq`]: least squares on a net's nodes with a penalty on its bicubic surface's
+//!   third-derivative jumps in both directions, λ by GCV (surface `jump-lsq`).
 //! - [`surface_smoothing`]: the surface baseline, a tensor-product cubic smoothing spline (csaps's `NdGridCubicSmoothingSpline`, periodic across seams).
 //!
 //! Han's two-phase method lives in [`crate::two_phase`].
@@ -18,6 +20,7 @@ pub mod sapidis_farin;
 pub mod smoothing_spline;
 pub mod strain_energy;
 pub mod surface;
+pub mod surface_jump_lsq;
 pub mod surface_smoothing;
 mod tournament;
 
@@ -37,6 +40,7 @@ pub use surface::{
     Closure, Objective, Refusal, Region, SurfaceFairing, SurfaceFairingResult, SurfaceFairingSettings,
     SurfaceMode, SurfaceStep, SweepOrder,
 };
+pub use surface_jump_lsq::{SurfaceJumpLsq, SurfaceJumpLsqResult, SurfaceJumpLsqSettings};
 pub use surface_smoothing::{
     smooth_grid, SurfaceSmoothing, SurfaceSmoothingResult, SurfaceSmoothingSettings,
 };

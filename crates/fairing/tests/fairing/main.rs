@@ -12,6 +12,7 @@ mod pages;
 mod sapidis_farin_data;
 mod strain_energy;
 mod surface;
+mod surface_jump_lsq;
 mod two_phase;
 mod two_phase_curves;
 mod two_phase_denoise;

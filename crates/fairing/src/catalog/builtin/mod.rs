@@ -14,6 +14,7 @@ mod sapidis_farin;
 mod smoothing_spline;
 mod strain_energy;
 mod surface;
+mod surface_jump_lsq;
 mod surface_smoothing;
 mod two_phase;
 
@@ -24,6 +25,7 @@ pub use sapidis_farin::SapidisFarinMethod;
 pub use smoothing_spline::SmoothingSplineMethod;
 pub use strain_energy::StrainEnergyMethod;
 pub use surface::SurfaceFairingMethod;
+pub use surface_jump_lsq::SurfaceJumpLsqMethod;
 pub use surface_smoothing::SurfaceSmoothingMethod;
 pub use two_phase::{TwoPhaseCurveSettings, TwoPhaseMethod};
 
@@ -157,6 +159,17 @@ pub fn register(catalog: &mut Catalog) {
         )
         .with_paper("baseline: csaps's NdGridCubicSmoothingSpline"),
         SurfaceSmoothingMethod,
+    );
+    catalog.register_surface(
+        MethodInfo::new(
+            "jump-lsq",
+            "least squares on the nodes with a penalty on the bicubic surface's third-derivative \
+             jumps across its knot lines in both directions, λ by GCV",
+        )
+        .with_paper(
+            "Zhang & Cheng Eq. 17/26 as a global objective, tensor form of the curve jump-lsq (issue 46)",
+        ),
+        SurfaceJumpLsqMethod,
     );
 }
 

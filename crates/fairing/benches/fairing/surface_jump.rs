@@ -1,0 +1,50 @@
+//! Surface jump least squares (`jump-lsq` for surfaces, issue 46) on whole noisy nets of
+//! 50², 200² and 1000² nodes, λ by GCV, default settings; criterion's throughput in nodes.
+//! Issue 46's targets: 200² well under 1 s, 1000² in seconds.
+
+use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
+use curve_repr::Vec3;
+use fairing::strategies::{SurfaceJumpLsq, SurfaceJumpLsqSettings};
+
+/// Under `cargo test` (no `--bench` flag) only the smallest size runs.
+fn sizes<T: Copy>(all: &[T]) -> Vec<T> {
+    if std::env::args().any(|a| a == "--bench") {
+        all.to_vec()
+    } else {
+        all[..1].to_vec()
+    }
+}
+
+/// A smooth surface over a square with deterministic pseudo-random bumps on every point.
+fn noisy_net(size: usize) -> Vec<Vec<Vec3>> {
+    (0..size)
+        .map(|i| {
+            (0..size)
+                .map(|j| {
+                    let (x, y) = (i as f64 / 10.0, j as f64 / 10.0);
+                    let noise = 0.01 * ((i * 7919 + j * 104_729) as f64 * 12.9898).sin().fract();
+                    Vec3::new(x, y, (0.3 * x).sin() * (0.2 * y).cos() + noise)
+                })
+                .collect()
+        })
+        .collect()
+}
+
+fn bench(c: &mut Criterion) {
+    let mut group = c.benchmark_group("surface_jump");
+    group.sample_size(10);
+    for size in sizes(&[50usize, 200, 1000]) {
+        let net = noisy_net(size);
+        group.throughput(Throughput::Elements((size * size) as u64));
+        group.bench_with_input(BenchmarkId::from_parameter(size), &net, |b, net| {
+            b.iter(|| {
+                SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default())
+                    .run(net)
+                    .unwrap()
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench);

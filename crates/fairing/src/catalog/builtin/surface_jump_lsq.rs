@@ -1,0 +1,82 @@
+//! `jump-lsq` (surfaces): least squares on the nodes with a penalty on the third-derivative
+//! jumps of the net's bicubic surface in both directions ([`SurfaceJumpLsq`]), λ by GCV.
+//! Seams closed, poles and fixed nodes held bit for bit, the tolerance band held; `g0`
+//! keeps the boundary. It takes no bad points (it fairs every node) and no restraining radii.
+
+use crate::catalog::{Settings, SurfaceJob, SurfaceMethod, SurfaceRun};
+use crate::strategies::{SurfaceJumpLsq, SurfaceJumpLsqSettings};
+use crate::{EndClamp, Error, Refusal, Result};
+
+use super::surface::bicubic_record;
+
+impl Settings for SurfaceJumpLsqSettings {
+    fn validate(&self) -> Result<()> {
+        SurfaceJumpLsqSettings::validate(self)
+    }
+}
+
+/// The surface `jump-lsq` method.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SurfaceJumpLsqMethod;
+
+impl SurfaceMethod for SurfaceJumpLsqMethod {
+    type Settings = SurfaceJumpLsqSettings;
+
+    /// Refuses `g1`/`g2` and restraining radii.
+    fn check(&self, _: &SurfaceJumpLsqSettings, job: &SurfaceJob) -> Result<()> {
+        let refuse = |what, reason: String| Error::Refused {
+            method: job.method.to_owned(),
+            what,
+            reason,
+        };
+        if job.constraints.restraining_radii().is_some() {
+            return Err(refuse(
+                Refusal::Radii,
+                "fairs every node against the data; it takes no restraining radii (use the tolerance band)"
+                    .into(),
+            ));
+        }
+        let clamp = job.constraints.end_clamp();
+        if matches!(clamp, EndClamp::G1 | EndClamp::G2) {
+            return Err(refuse(
+                Refusal::EndClamp,
+                format!(
+                    "keeps at most the boundary points (g0); it cannot hold tangents or curvatures \
+                     across it ({})",
+                    clamp.name()
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    fn run(&self, settings: &SurfaceJumpLsqSettings, job: &SurfaceJob) -> Result<SurfaceRun> {
+        let grid = job.grid;
+        let columns = grid.columns.max(1);
+        let mut settings = settings.clone();
+        settings.fixed = job.fixed_nodes();
+        settings.max_distance = job.constraints.tolerance();
+        let result = SurfaceJumpLsq::new(settings.clone()).run(&grid.to_rows())?;
+        let record = bicubic_record(&result.surface, settings.parametrization, &result.topology);
+        let mut extras = std::collections::BTreeMap::new();
+        extras.insert("lambda".into(), serde_json::json!(result.lambda));
+        extras.insert("gcv".into(), serde_json::json!(result.gcv));
+        extras.insert("dof".into(), serde_json::json!(result.dof));
+        extras.insert("band_pins".into(), serde_json::json!(result.band_pins));
+        extras.insert("cg_iterations".into(), serde_json::json!(result.cg_iterations));
+        extras.insert("displacement_sum".into(), serde_json::json!(result.displacement));
+        Ok(SurfaceRun {
+            grid: crate::catalog::Grid {
+                rows: grid.rows,
+                columns: grid.columns,
+                points: result.surface.points().to_vec(),
+            },
+            iterations: 1,
+            moved: result.moved.iter().map(|&(i, j)| i * columns + j).collect(),
+            elapsed_ms: result.elapsed.as_secs_f64() * 1e3,
+            termination: "strategy-done".to_owned(),
+            surface: record,
+            extras,
+        })
+    }
+}

@@ -1,0 +1,651 @@
+//! `jump-lsq` for surfaces: least squares on the grid nodes with a penalty on the
+//! third-derivative jumps of the bicubic spline surface across its knot lines, in both
+//! directions — the tensor form of the curve method ([`JumpLsq`](super::JumpLsq)), with λ
+//! chosen by generalised cross-validation.
+//!
+//! # The method
+//!
+//! The surface is the [`BicubicSplineSurface`] through the net P_ij (i = 0..m along u,
+//! j = 0..n along v), over its averaged knots. Every u-line of it is the natural (periodic
+//! on a closed direction) cubic spline through its column of points, and ∂³S/∂u³ jumps
+//! across the knot line u = u_i by that spline's jump J^u_ij (Zhang–Cheng Eq. 17's z_i along
+//! the line, and the first term of the surface indicator z_ij, Eq. 26); likewise along v.
+//! The method finds the net P minimising
+//!
+//! ```text
+//! Σ_ij |P_ij − P⁰_ij|²  +  λ ( Σ_j Σ_i |h̄ᵘ_i³ J^u_ij(P)|²  +  Σ_i Σ_j |h̄ᵛ_j³ J^v_ij(P)|² ),
+//! ```
+//!
+//! h̄ the mean of the two knot steps at the knot (so each jump term has the units of the
+//! points and λ is scale-free). J^u is linear in each column of P alone, J^u = D_u P, and
+//! J^v = P D_vᵀ ([`operator`]), so the normal equations are
+//!
+//! ```text
+//! P + λ (K_u P + P K_v) = P⁰,    K = DᵀD,
+//! ```
+//!
+//! a Kronecker sum, solved exactly in the eigenbases of K_u and K_v ([`spectral`]). The
+//! penalty's null space is the surfaces with no jump anywhere: along an open direction a
+//! natural cubic spline with no jump is one cubic with zero second derivative at both ends,
+//! a line, so as λ → ∞ the net tends to the least-squares bilinear surface
+//! a + b u + c v + d u v over the knots (one bicubic polynomial patch with no
+//! third-derivative jump across any knot line); at λ = 0 it is the input.
+//!
+//! # Held nodes, seams, the tolerance band
+//!
+//! - *Closed directions* ([`Closure`]): along a closed direction the lines are periodic
+//!   splines, the jumps are taken at every knot (the seam's included), the unknowns are the
+//!   distinct lines and the repeated line is written from the first, so the seam stays
+//!   closed exactly.
+//! - *Held lines*: a grid line every node of which is held (a pole, a boundary line under
+//!   `g0`, a line of fixed nodes) is left out of the unknowns; the system on the remaining
+//!   block is the same Kronecker sum with the principal submatrices of K and a right-hand
+//!   side carrying the held lines' values, so it is solved exactly as well.
+//! - *Scattered fixed nodes* are equality constraints on the block: the unconstrained solution
+//!   with those nodes set is corrected by conjugate gradients on the free nodes, preconditioned
+//!   by the exact solve (the preconditioned operator is the identity plus a term of rank at
+//!   most the number of such nodes). Held nodes are written back bit for bit.
+//! - *The tolerance band* (`max_distance`): a node the solution moves farther than the band
+//!   is pinned at its projection onto the band and the system re-solved with it held, until no
+//!   free node leaves the band (at most [`BAND_ROUNDS`] rounds; after the last, any node still
+//!   outside is projected onto it, so the band always holds).
+//!
+//! # The refusal rule (`guard`)
+//!
+//! As Zhang–Cheng's runs judge a step ([`SurfaceFairing`](super::SurfaceFairing)'s module
+//! docs), the fit is judged over the knots the output has: if its largest z_ij (Eq. 26) or
+//! its network strain energy is higher than the input's, it is refused and the fit at a tenth
+//! of λ tried, at most [`GUARD_RETRIES`] times; then the input is returned unchanged. A fair
+//! net (the teapot's) is thus never made worse.
+//!
+//! # Choosing λ
+//!
+//! GCV (Craven & Wahba 1979) on the block, V(λ) = (RSS/3N) / (1 − tr A(λ)/N)², N the free
+//! nodes and A the smoother of one coordinate (the curve method's `rule = gcv`). RSS
+//! and tr A are sums over the spectral entries (O(N) per λ): V is scanned on a grid of
+//! log₁₀ λ from −8 to 12 in steps of 1/4 and the best bracket refined by golden section.
+//! Scattered fixed nodes are treated as data in the score.
+//!
+//! # Cost
+//!
+//! Building the jump operators O(m² + n²), their eigendecompositions O(m³ + n³), the
+//! transforms of the data and back O(m·n·(m + n)), the λ search O(m·n) per trial (about 100).
+//! Not linear in the nodes: O(N^1.5) on a square net of N nodes, dominated by dense
+//! matrix products (criterion bench `surface_jump`). Each fixed node or band pin adds at most
+//! one conjugate-gradient iteration of two transforms.
+
+mod operator;
+mod spectral;
+#[cfg(test)]
+mod tests;
+
+use std::time::Duration;
+
+use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings, GridTopology, Parametrization, Vec3};
+use nalgebra::DMatrix;
+
+use super::surface::Closure;
+use crate::state::strategy_error;
+use crate::{Error, Result};
+use spectral::{planes, Planes, Spectral};
+
+/// The strategy's name, as `fair methods` lists it (a surface method).
+pub const NAME: &str = "jump-lsq";
+
+/// Rounds of pinning nodes on the tolerance band before the remaining ones are projected.
+pub const BAND_ROUNDS: usize = 10;
+
+/// Retries of a fit the refusal rule turns down, each at λ × [`GUARD_FACTOR`].
+pub const GUARD_RETRIES: usize = 6;
+
+/// The factor on λ of a retry.
+pub const GUARD_FACTOR: f64 = 0.1;
+
+/// Conjugate-gradient iterations at most per constrained solve.
+const CG_ITERATIONS: usize = 500;
+
+/// Settings of [`SurfaceJumpLsq`]: the parameters of the catalogue's surface `jump-lsq`.
+/// Default: λ by GCV, closures detected, chord-length knots, fits judged.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[serde(default, deny_unknown_fields, rename_all = "kebab-case")]
+pub struct SurfaceJumpLsqSettings {
+    /// Weight of the jump penalty (0: the input; larger: smoother), or auto (GCV).
+    #[serde(with = "crate::catalog::value::auto")]
+    #[schemars(with = "crate::catalog::value::AutoNumber")]
+    pub lambda: Option<f64>,
+    /// Closed directions: auto (where the last grid line repeats the first), open, u, v, both.
+    pub closed: Closure,
+    /// Knots, averaged over the grid lines: chord-length or uniform.
+    pub parametrization: Parametrization,
+    /// Refuse a fit that raises the largest z_ij or the network strain energy over its own knots (on, default; retried at a tenth of λ, then the input), or take it (off).
+    pub guard: bool,
+    /// Nodes that must not move, (i, j). Not a parameter of the catalogue (`--fixed`).
+    #[serde(skip)]
+    pub fixed: Vec<(usize, usize)>,
+    /// No node moves farther than this from where it started (`--tolerance`).
+    #[serde(skip)]
+    pub max_distance: Option<f64>,
+}
+
+impl Default for SurfaceJumpLsqSettings {
+    fn default() -> Self {
+        Self {
+            lambda: None,
+            closed: Closure::Auto,
+            parametrization: Parametrization::ChordLength,
+            guard: true,
+            fixed: Vec::new(),
+            max_distance: None,
+        }
+    }
+}
+
+impl SurfaceJumpLsqSettings {
+    /// Checks the ranges: λ finite and not negative, the tolerance not negative.
+    pub fn validate(&self) -> Result<()> {
+        if let Some(l) = self.lambda {
+            if !(l.is_finite() && l >= 0.0) {
+                return Err(Error::BadParameter {
+                    name: "lambda",
+                    value: l.to_string(),
+                    reason: "must be a finite non-negative number (or auto)",
+                });
+            }
+        }
+        if let Some(d) = self.max_distance {
+            if d.is_nan() || d < 0.0 {
+                return Err(Error::BadParameter {
+                    name: "max_distance",
+                    value: d.to_string(),
+                    reason: "must be a non-negative number",
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Sets λ.
+    pub fn with_lambda(mut self, lambda: f64) -> Self {
+        self.lambda = Some(lambda);
+        self
+    }
+    /// Sets the closed directions.
+    pub fn with_closed(mut self, closed: Closure) -> Self {
+        self.closed = closed;
+        self
+    }
+    /// Sets the knot rule.
+    pub fn with_parametrization(mut self, parametrization: Parametrization) -> Self {
+        self.parametrization = parametrization;
+        self
+    }
+    /// Sets the fixed nodes.
+    pub fn with_fixed(mut self, fixed: impl IntoIterator<Item = (usize, usize)>) -> Self {
+        self.fixed = fixed.into_iter().collect();
+        self
+    }
+    /// Refuse fits that make the net worse or not.
+    pub fn with_guard(mut self, guard: bool) -> Self {
+        self.guard = guard;
+        self
+    }
+    /// Sets the tolerance band.
+    pub fn with_max_distance(mut self, distance: f64) -> Self {
+        self.max_distance = Some(distance);
+        self
+    }
+}
+
+/// What [`SurfaceJumpLsq::run`] returns.
+#[derive(Clone, Debug)]
+pub struct SurfaceJumpLsqResult {
+    /// The faired net's bicubic surface (knots averaged from the faired points).
+    pub surface: BicubicSplineSurface,
+    /// λ used.
+    pub lambda: f64,
+    /// The GCV score at λ (None when λ was given or nothing was free).
+    pub gcv: Option<f64>,
+    /// Effective degrees of freedom per coordinate, tr A(λ), of the free block.
+    pub dof: f64,
+    /// S_d = Σ|ΔP_ij| over every node (both copies of a seam node).
+    pub displacement: f64,
+    /// Nodes pinned on the tolerance band.
+    pub band_pins: usize,
+    /// Conjugate-gradient iterations (fixed nodes and band pins).
+    pub cg_iterations: usize,
+    /// Fits the refusal rule turned down (each retried at a tenth of λ; after
+    /// [`GUARD_RETRIES`] retries the input is returned, λ reported as 0).
+    pub refused: usize,
+    /// The closures and poles used.
+    pub topology: GridTopology,
+    /// Nodes whose final position differs from the input, i-major.
+    pub moved: Vec<(usize, usize)>,
+    /// Time of the fairing itself.
+    pub elapsed: Duration,
+}
+
+/// Surface jump least squares; see the [module docs](self).
+#[derive(Clone, Debug, Default)]
+pub struct SurfaceJumpLsq {
+    settings: SurfaceJumpLsqSettings,
+}
+
+impl SurfaceJumpLsq {
+    /// A run with these settings.
+    pub fn new(settings: SurfaceJumpLsqSettings) -> Self {
+        Self { settings }
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &SurfaceJumpLsqSettings {
+        &self.settings
+    }
+
+    /// Fairs the grid `grid[i][j]` = P_ij (at least 3 × 3). Cost in the module docs.
+    ///
+    /// Errors: a bad setting, a ragged or too small grid, coinciding grid lines, a fixed node
+    /// outside the grid, a closed direction whose last line does not repeat its first.
+    pub fn run(&self, grid: &[Vec<Vec3>]) -> Result<SurfaceJumpLsqResult> {
+        let settings = &self.settings;
+        settings.validate()?;
+        let start = std::time::Instant::now();
+        let rows = grid.len();
+        let columns = grid.first().map_or(0, Vec::len);
+        if rows < 3 || columns < 3 {
+            return Err(strategy_error(
+                NAME,
+                format!("needs a grid of at least 3 × 3 points, got {rows} × {columns}"),
+            ));
+        }
+        if grid.iter().any(|r| r.len() != columns) {
+            return Err(strategy_error(NAME, "the grid's rows differ in length"));
+        }
+        let flat: Vec<Vec3> = grid.iter().flatten().copied().collect();
+        if flat.iter().any(|p| !p.iter().all(|c| c.is_finite())) {
+            return Err(strategy_error(NAME, "a grid point is not finite"));
+        }
+        let topology = settings.closed.topology(&flat, rows, columns);
+        let build = BicubicSurfaceSettings::default()
+            .with_parametrization(settings.parametrization)
+            .with_topology(&topology);
+        let input = BicubicSplineSurface::with_settings(grid, &build)?;
+        let (mu, nv) = (
+            rows - usize::from(topology.closed_u),
+            columns - usize::from(topology.closed_v),
+        );
+        // Held nodes on the distinct grid.
+        let mut held = vec![false; mu * nv];
+        let wrap = |i: usize, j: usize| (i % mu, j % nv);
+        for &(i, j) in &settings.fixed {
+            if i >= rows || j >= columns {
+                return Err(Error::BadConstraint {
+                    reason: format!("fixed node ({i}, {j}) lies outside the {rows} × {columns} grid"),
+                });
+            }
+            let (a, b) = wrap(i, j);
+            held[a * nv + b] = true;
+        }
+        for i in 0..rows {
+            for j in 0..columns {
+                if topology.poles.contains(i, j, rows, columns) {
+                    let (a, b) = wrap(i, j);
+                    held[a * nv + b] = true;
+                }
+            }
+        }
+        let held_row: Vec<bool> = (0..mu).map(|i| (0..nv).all(|j| held[i * nv + j])).collect();
+        let held_col: Vec<bool> = (0..nv).map(|j| (0..mu).all(|i| held[i * nv + j])).collect();
+        let free_rows: Vec<usize> = (0..mu).filter(|&i| !held_row[i]).collect();
+        let free_cols: Vec<usize> = (0..nv).filter(|&j| !held_col[j]).collect();
+        let data = |i: usize, j: usize| flat[i * columns + j];
+
+        let mut out_distinct: Vec<Vec3> = (0..mu * nv).map(|k| data(k / nv, k % nv)).collect();
+        let mut lambda_used = settings.lambda.unwrap_or(0.0);
+        let mut gcv_score = None;
+        let mut dof = 0.0;
+        let mut band_pins = 0;
+        let mut cg_iterations = 0;
+        let mut refused = 0;
+        if !free_rows.is_empty() && !free_cols.is_empty() && settings.lambda != Some(0.0) {
+            let du = operator::jump_matrix(input.u_knots(), topology.closed_u)?;
+            let dv = operator::jump_matrix(input.v_knots(), topology.closed_v)?;
+            let (ku_full, kv_full) = (operator::gram(&du), operator::gram(&dv));
+            let sub = |k: &DMatrix<f64>, a: &[usize], b: &[usize]| {
+                DMatrix::from_fn(a.len(), b.len(), |r, c| k[(a[r], b[c])])
+            };
+            let ku = sub(&ku_full, &free_rows, &free_rows);
+            let kv = sub(&kv_full, &free_cols, &free_cols);
+            let held_rows: Vec<usize> = (0..mu).filter(|&i| held_row[i]).collect();
+            let held_cols: Vec<usize> = (0..nv).filter(|&j| held_col[j]).collect();
+            let (nr, nc) = (free_rows.len(), free_cols.len());
+            let y = planes(nr, nc, |a, b| data(free_rows[a], free_cols[b]));
+            // Coupling to the held lines: K_u[R, Rh] P⁰[Rh, C] + P⁰[R, Ch] K_v[Ch, C].
+            let coupling: Option<Planes> = if held_rows.is_empty() && held_cols.is_empty() {
+                None
+            } else {
+                let kuh = sub(&ku_full, &free_rows, &held_rows);
+                let kvh = sub(&kv_full, &held_cols, &free_cols);
+                let ph = planes(held_rows.len(), nc, |a, b| data(held_rows[a], free_cols[b]));
+                let pv = planes(nr, held_cols.len(), |a, b| data(free_rows[a], held_cols[b]));
+                Some(std::array::from_fn(|c| &kuh * &ph[c] + &pv[c] * &kvh))
+            };
+            let spectral = Spectral::new(ku.clone(), kv.clone());
+            let y_hat = spectral.forward(&y);
+            let c_hat = coupling.as_ref().map(|c| spectral.forward(c));
+            let n_free = (nr * nc) as f64;
+            let lambda = match settings.lambda {
+                Some(l) => l,
+                None => {
+                    let score = |log_l: f64| {
+                        let l = 10f64.powf(log_l);
+                        let (rss, trace) = spectral.rss_trace(&y_hat, c_hat.as_ref(), l);
+                        let denom = 1.0 - trace / n_free;
+                        if denom <= 0.0 {
+                            f64::INFINITY
+                        } else {
+                            (rss / (3.0 * n_free)) / (denom * denom)
+                        }
+                    };
+                    let (l, v) = minimise_log(score, -8.0, 12.0, 0.25);
+                    gcv_score = Some(v);
+                    10f64.powf(l)
+                }
+            };
+            let system = Block {
+                spectral: &spectral,
+                ku: &ku,
+                kv: &kv,
+                y: &y,
+                y_hat: &y_hat,
+                coupling: coupling.as_ref(),
+                c_hat: c_hat.as_ref(),
+            };
+            let mut scattered: Vec<(usize, usize, Vec3)> = Vec::new();
+            for (a, &i) in free_rows.iter().enumerate() {
+                for (b, &j) in free_cols.iter().enumerate() {
+                    if held[i * nv + j] {
+                        scattered.push((a, b, data(i, j)));
+                    }
+                }
+            }
+            let before = judge(&flat, rows, columns, &build)?;
+            let mut trial = lambda;
+            let mut accepted = None;
+            for _ in 0..=GUARD_RETRIES {
+                let (x, pins, iterations) = system.solve(trial, &scattered, settings.max_distance);
+                cg_iterations += iterations;
+                let mut candidate = out_distinct.clone();
+                for (a, &i) in free_rows.iter().enumerate() {
+                    for (b, &j) in free_cols.iter().enumerate() {
+                        let k = i * nv + j;
+                        if !held[k] {
+                            candidate[k] = band_point(data(i, j), y_at(&x, a, b), settings.max_distance);
+                        }
+                    }
+                }
+                if !settings.guard {
+                    accepted = Some((trial, candidate, pins));
+                    break;
+                }
+                let full = expand(&candidate, rows, columns, mu, nv);
+                let after = judge(&full, rows, columns, &build)?;
+                if after.0 <= before.0 * (1.0 + 1e-12) && after.1 <= before.1 * (1.0 + 1e-12) {
+                    accepted = Some((trial, candidate, pins));
+                    break;
+                }
+                refused += 1;
+                trial *= GUARD_FACTOR;
+            }
+            if let Some((l, candidate, pins)) = accepted {
+                lambda_used = l;
+                out_distinct = candidate;
+                band_pins = pins;
+                dof = spectral.rss_trace(&y_hat, c_hat.as_ref(), l).1;
+            } else {
+                lambda_used = 0.0;
+                dof = n_free;
+            }
+        }
+        let points = expand(&out_distinct, rows, columns, mu, nv);
+        if points.iter().any(|p| !p.iter().all(|c| c.is_finite())) {
+            return Err(strategy_error(
+                NAME,
+                format!("the fit at λ = {lambda_used} is not finite"),
+            ));
+        }
+        let displacement = flat.iter().zip(&points).map(|(p, q)| (p - q).norm()).sum();
+        let moved = (0..rows * columns)
+            .filter(|&k| points[k] != flat[k])
+            .map(|k| (k / columns, k % columns))
+            .collect();
+        let surface = BicubicSplineSurface::from_flat(points, rows, columns, &build)?;
+        Ok(SurfaceJumpLsqResult {
+            surface,
+            lambda: lambda_used,
+            gcv: gcv_score,
+            dof,
+            displacement,
+            band_pins,
+            cg_iterations,
+            refused,
+            topology,
+            moved,
+            elapsed: start.elapsed(),
+        })
+    }
+}
+
+/// The node `fitted` kept within `band` of its input `start` (projected onto the band's
+/// sphere when outside it, never beyond it by round-off).
+fn band_point(start: Vec3, fitted: Vec3, band: Option<f64>) -> Vec3 {
+    let Some(band) = band else { return fitted };
+    let d = (fitted - start).norm();
+    if d <= band {
+        return fitted;
+    }
+    let mut p = start + (fitted - start) * (band / d);
+    let mut shrink = 1.0;
+    while (p - start).norm() > band {
+        shrink *= 1.0 - 1e-15;
+        p = start + (fitted - start) * (band / d * shrink);
+    }
+    p
+}
+
+/// The full grid from its distinct nodes (the repeated seam lines written from the first).
+fn expand(distinct: &[Vec3], rows: usize, columns: usize, mu: usize, nv: usize) -> Vec<Vec3> {
+    let mut points = Vec::with_capacity(rows * columns);
+    for i in 0..rows {
+        for j in 0..columns {
+            points.push(distinct[(i % mu) * nv + j % nv]);
+        }
+    }
+    points
+}
+
+/// (max z_ij, network strain energy) of a net over its own knots: the refusal rule's measure,
+/// as Zhang–Cheng's runs judge a step.
+fn judge(points: &[Vec3], rows: usize, columns: usize, build: &BicubicSurfaceSettings) -> Result<(f64, f64)> {
+    let surface = BicubicSplineSurface::from_flat(points.to_vec(), rows, columns, build)?;
+    Ok((surface.max_z(), surface.network_strain_energy()))
+}
+
+fn y_at(p: &Planes, a: usize, b: usize) -> Vec3 {
+    Vec3::new(p[0][(a, b)], p[1][(a, b)], p[2][(a, b)])
+}
+
+/// The block's system: its operator, data and coupling to the held lines.
+struct Block<'a> {
+    spectral: &'a Spectral,
+    ku: &'a DMatrix<f64>,
+    kv: &'a DMatrix<f64>,
+    y: &'a Planes,
+    y_hat: &'a Planes,
+    coupling: Option<&'a Planes>,
+    c_hat: Option<&'a Planes>,
+}
+
+impl Block<'_> {
+    /// The block's solution at λ with the `scattered` nodes held and the tolerance band kept
+    /// by pinning (module docs). Returns the solution, the band pins and the CG iterations.
+    fn solve(
+        &self,
+        lambda: f64,
+        scattered: &[(usize, usize, Vec3)],
+        band: Option<f64>,
+    ) -> (Planes, usize, usize) {
+        let x_hat = self.spectral.solve_hat(self.y_hat, self.c_hat, lambda);
+        let mut x = self.spectral.back(&x_hat);
+        let rhs: Planes = match self.coupling {
+            Some(c) => std::array::from_fn(|k| &self.y[k] - &c[k] * lambda),
+            None => self.y.clone(),
+        };
+        let mut pinned = scattered.to_vec();
+        let mut iterations = 0;
+        if !pinned.is_empty() {
+            iterations += self.constrained(&mut x, &rhs, &pinned, lambda);
+        }
+        let mut band_pins = 0;
+        if let Some(band) = band {
+            let (nr, nc) = self.y[0].shape();
+            let mut is_pinned = DMatrix::from_element(nr, nc, false);
+            for &(a, b, _) in &pinned {
+                is_pinned[(a, b)] = true;
+            }
+            for _ in 0..BAND_ROUNDS {
+                let mut added = 0;
+                for a in 0..nr {
+                    for b in 0..nc {
+                        let p0 = y_at(self.y, a, b);
+                        let p = y_at(&x, a, b);
+                        let d = (p - p0).norm();
+                        if d > band && !is_pinned[(a, b)] {
+                            pinned.push((a, b, p0 + (p - p0) * (band / d)));
+                            is_pinned[(a, b)] = true;
+                            added += 1;
+                        }
+                    }
+                }
+                if added == 0 {
+                    break;
+                }
+                band_pins += added;
+                iterations += self.constrained(&mut x, &rhs, &pinned, lambda);
+            }
+        }
+        (x, band_pins, iterations)
+    }
+
+    /// X + λ (K_u X + X K_v).
+    fn apply(&self, x: &Planes, lambda: f64) -> Planes {
+        std::array::from_fn(|c| &x[c] + (self.ku * &x[c] + &x[c] * self.kv) * lambda)
+    }
+
+    /// The exact inverse, through the eigenbases.
+    fn inverse(&self, r: &Planes, lambda: f64) -> Planes {
+        let hat = self.spectral.forward(r);
+        self.spectral.back(&self.spectral.solve_hat(&hat, None, lambda))
+    }
+
+    /// Solves the block's system with the `pinned` entries held at their values, starting
+    /// from `x`, by conjugate gradients on the free entries preconditioned by the exact
+    /// inverse. Returns the iterations made.
+    fn constrained(
+        &self,
+        x: &mut Planes,
+        rhs: &Planes,
+        pinned: &[(usize, usize, Vec3)],
+        lambda: f64,
+    ) -> usize {
+        let mask = |p: &mut Planes| {
+            for &(a, b, _) in pinned {
+                for plane in p.iter_mut() {
+                    plane[(a, b)] = 0.0;
+                }
+            }
+        };
+        for &(a, b, v) in pinned {
+            for c in 0..3 {
+                x[c][(a, b)] = v[c];
+            }
+        }
+        let dot = |p: &Planes, q: &Planes| (0..3).map(|c| p[c].dot(&q[c])).sum::<f64>();
+        let ax = self.apply(x, lambda);
+        let mut r: Planes = std::array::from_fn(|c| &rhs[c] - &ax[c]);
+        mask(&mut r);
+        let norm_b = dot(rhs, rhs).sqrt().max(f64::MIN_POSITIVE);
+        let mut z = self.inverse(&r, lambda);
+        mask(&mut z);
+        let mut p = z.clone();
+        let mut rz = dot(&r, &z);
+        let mut iterations = 0;
+        while iterations < CG_ITERATIONS && dot(&r, &r).sqrt() > 1e-13 * norm_b {
+            iterations += 1;
+            let mut q = self.apply(&p, lambda);
+            mask(&mut q);
+            let pq = dot(&p, &q);
+            if pq <= 0.0 {
+                break;
+            }
+            let alpha = rz / pq;
+            for c in 0..3 {
+                x[c] += &p[c] * alpha;
+                r[c] -= &q[c] * alpha;
+            }
+            z = self.inverse(&r, lambda);
+            mask(&mut z);
+            let rz_new = dot(&r, &z);
+            let beta = rz_new / rz;
+            rz = rz_new;
+            for c in 0..3 {
+                p[c] = &z[c] + &p[c] * beta;
+            }
+        }
+        iterations
+    }
+}
+
+/// The minimum of `f` over [lo, hi] (in log₁₀ λ): a scan in steps of `step`, then golden
+/// section in the bracket around the best scan point. Returns (argument, value).
+fn minimise_log(f: impl Fn(f64) -> f64, lo: f64, hi: f64, step: f64) -> (f64, f64) {
+    let count = ((hi - lo) / step).round() as usize;
+    let mut best = (lo, f(lo));
+    let mut best_k = 0;
+    for k in 1..=count {
+        let x = lo + step * k as f64;
+        let v = f(x);
+        if v < best.1 {
+            best = (x, v);
+            best_k = k;
+        }
+    }
+    let (mut a, mut b) = (
+        lo + step * best_k.saturating_sub(1) as f64,
+        lo + step * (best_k + 1).min(count) as f64,
+    );
+    let ratio = 0.5 * (5f64.sqrt() - 1.0);
+    let mut c = b - ratio * (b - a);
+    let mut d = a + ratio * (b - a);
+    let (mut fc, mut fd) = (f(c), f(d));
+    for _ in 0..40 {
+        if fc < fd {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - ratio * (b - a);
+            fc = f(c);
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + ratio * (b - a);
+            fd = f(d);
+        }
+    }
+    let (x, v) = if fc < fd { (c, fc) } else { (d, fd) };
+    if v < best.1 {
+        (x, v)
+    } else {
+        best
+    }
+}

@@ -1,0 +1,337 @@
+//! Tests of the surface jump least squares against their defining conditions.
+
+use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings, Vec3};
+use nalgebra::{DMatrix, DVector};
+
+use super::operator::{gram, jump_matrix};
+use super::{SurfaceJumpLsq, SurfaceJumpLsqSettings};
+use crate::strategies::surface::Closure;
+
+/// A smooth open net with a deterministic pseudo-noise on every coordinate.
+fn noisy(rows: usize, columns: usize, amplitude: f64) -> Vec<Vec<Vec3>> {
+    let mut state = 0x2545_f491_4f6c_dd1d_u64;
+    let mut noise = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    (0..rows)
+        .map(|i| {
+            (0..columns)
+                .map(|j| {
+                    let (x, y) = (
+                        i as f64 / (rows - 1) as f64,
+                        j as f64 / (columns - 1) as f64 * 1.3,
+                    );
+                    let z = 0.3 * (2.0 * x).sin() * (1.5 * y).cos() + 0.1 * x * x;
+                    Vec3::new(x, y, z) + Vec3::new(noise(), noise(), noise()) * amplitude
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// A net closed in v (a tube), the last column repeating the first.
+fn tube(rows: usize, around: usize, amplitude: f64) -> Vec<Vec<Vec3>> {
+    let base = noisy(rows, around, amplitude);
+    (0..rows)
+        .map(|i| {
+            let mut line: Vec<Vec3> = (0..around)
+                .map(|j| {
+                    let t = std::f64::consts::TAU * j as f64 / around as f64;
+                    let r = 1.0 + 0.2 * (i as f64 * 0.3).sin() + base[i][j].z * 0.1;
+                    Vec3::new(i as f64 * 0.2, r * t.cos(), r * t.sin())
+                })
+                .collect();
+            line.push(line[0]);
+            line
+        })
+        .collect()
+}
+
+#[test]
+#[allow(clippy::needless_range_loop)] // (i, j, c) name the node and coordinate compared
+fn jump_matrix_gives_the_surface_jumps_scaled() {
+    // D applied to a column of the net gives the u-jumps that the bicubic surface itself
+    // reports at the column's interior nodes, times h̄³.
+    let grid = noisy(9, 7, 0.02);
+    let surface = BicubicSplineSurface::new(&grid).unwrap();
+    let d = jump_matrix(surface.u_knots(), false).unwrap();
+    let h = |i: usize| surface.u_knots()[i] - surface.u_knots()[i - 1];
+    for j in 1..6 {
+        for c in 0..3 {
+            let y = DVector::from_fn(9, |i, _| grid[i][j][c]);
+            let jumps = &d * y;
+            for i in 1..8 {
+                let expected = surface.third_derivative_jump(i, j).unwrap().u[c];
+                let scale = (0.5 * (h(i) + h(i + 1))).powi(3);
+                assert!(
+                    (jumps[i - 1] - scale * expected).abs() <= 1e-9 * (scale * expected.abs()).max(1e-6),
+                    "({i}, {j}) coordinate {c}: {} against {}",
+                    jumps[i - 1],
+                    scale * expected
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn jump_matrix_is_blind_to_lines_only() {
+    // Open: a natural spline has no jump iff it is a line (null space of K of dimension 2).
+    let knots = [0.0, 0.3, 0.7, 1.2, 1.5, 2.1, 2.2];
+    let d = jump_matrix(&knots, false).unwrap();
+    let line = DVector::from_iterator(knots.len(), knots.iter().map(|t| 2.0 - 3.0 * t));
+    assert!((&d * line).amax() < 1e-10);
+    let quad = DVector::from_iterator(knots.len(), knots.iter().map(|t| t * t));
+    assert!((&d * quad).amax() > 1e-3);
+    let k = gram(&d);
+    let eigen = k.symmetric_eigen();
+    let scale = eigen.eigenvalues.amax();
+    let null = eigen
+        .eigenvalues
+        .iter()
+        .filter(|&&e| e.abs() <= 1e-10 * scale)
+        .count();
+    assert_eq!(null, 2);
+    // Closed: only the constants (one dimension).
+    let d = jump_matrix(&knots, true).unwrap();
+    let eigen = gram(&d).symmetric_eigen();
+    let scale = eigen.eigenvalues.amax();
+    assert_eq!(
+        eigen
+            .eigenvalues
+            .iter()
+            .filter(|&&e| e.abs() <= 1e-10 * scale)
+            .count(),
+        1
+    );
+}
+
+#[test]
+fn lambda_zero_is_the_input_and_tiny_lambda_interpolates() {
+    let grid = noisy(8, 10, 0.05);
+    let flat: Vec<Vec3> = grid.iter().flatten().copied().collect();
+    let zero = SurfaceJumpLsq::new(
+        SurfaceJumpLsqSettings::default()
+            .with_guard(false)
+            .with_lambda(0.0),
+    )
+    .run(&grid)
+    .unwrap();
+    assert_eq!(zero.surface.points(), &flat[..]);
+    let tiny = SurfaceJumpLsq::new(
+        SurfaceJumpLsqSettings::default()
+            .with_guard(false)
+            .with_lambda(1e-12),
+    )
+    .run(&grid)
+    .unwrap();
+    let worst = tiny
+        .surface
+        .points()
+        .iter()
+        .zip(&flat)
+        .map(|(p, q)| (p - q).norm())
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-9, "{worst}");
+}
+
+#[test]
+fn huge_lambda_gives_the_least_squares_bilinear_surface_without_jumps() {
+    let grid = noisy(8, 11, 0.05);
+    let (rows, columns) = (8, 11);
+    let input = BicubicSplineSurface::new(&grid).unwrap();
+    let result = SurfaceJumpLsq::new(
+        SurfaceJumpLsqSettings::default()
+            .with_guard(false)
+            .with_lambda(1e12),
+    )
+    .run(&grid)
+    .unwrap();
+    // Least-squares fit of a + b u + c v + d u v over the input's knots, independently.
+    let (u, v) = (input.u_knots(), input.v_knots());
+    let basis = DMatrix::from_fn(rows * columns, 4, |k, c| {
+        let (s, t) = (u[k / columns], v[k % columns]);
+        [1.0, s, t, s * t][c]
+    });
+    let size = grid.iter().flatten().map(|p| p.norm()).fold(0.0, f64::max);
+    for c in 0..3 {
+        let y = DVector::from_iterator(rows * columns, grid.iter().flatten().map(|p| p[c]));
+        let coef = (basis.transpose() * &basis)
+            .lu()
+            .solve(&(basis.transpose() * y))
+            .unwrap();
+        let fit = &basis * coef;
+        for k in 0..rows * columns {
+            let got = result.surface.points()[k][c];
+            assert!(
+                (got - fit[k]).abs() < 1e-7 * size,
+                "node {k} coordinate {c}: {got} against {}",
+                fit[k]
+            );
+        }
+    }
+    // No third-derivative jump across any knot line, over the input's knots.
+    let settings = BicubicSurfaceSettings::default()
+        .with_u_knots(u.to_vec())
+        .with_v_knots(v.to_vec());
+    let over_input =
+        BicubicSplineSurface::from_flat(result.surface.points().to_vec(), rows, columns, &settings).unwrap();
+    assert!(
+        over_input.max_z() < 1e-6 * input.max_z(),
+        "{} against {}",
+        over_input.max_z(),
+        input.max_z()
+    );
+}
+
+/// The gradient of the objective at the free nodes, from the jump matrices directly.
+fn gradient(grid: &[Vec<Vec3>], out: &[Vec3], lambda: f64) -> Vec<Vec3> {
+    let input = BicubicSplineSurface::new(grid).unwrap();
+    let (rows, columns) = (grid.len(), grid[0].len());
+    let ku = gram(&jump_matrix(input.u_knots(), false).unwrap());
+    let kv = gram(&jump_matrix(input.v_knots(), false).unwrap());
+    let mut g = vec![Vec3::zeros(); rows * columns];
+    for c in 0..3 {
+        let p = DMatrix::from_fn(rows, columns, |i, j| out[i * columns + j][c]);
+        let p0 = DMatrix::from_fn(rows, columns, |i, j| grid[i][j][c]);
+        let grad = (&p - &p0) + (&ku * &p + &p * &kv) * lambda;
+        for k in 0..rows * columns {
+            g[k][c] = grad[(k / columns, k % columns)];
+        }
+    }
+    g
+}
+
+#[test]
+fn fixed_nodes_held_bit_for_bit_and_the_rest_optimal() {
+    let grid = noisy(10, 9, 0.05);
+    let fixed = [(0, 0), (3, 4), (5, 5), (9, 2), (4, 0)];
+    let lambda = 0.5;
+    let result = SurfaceJumpLsq::new(
+        SurfaceJumpLsqSettings::default()
+            .with_lambda(lambda)
+            .with_fixed(fixed),
+    )
+    .run(&grid)
+    .unwrap();
+    let out = result.surface.points();
+    for &(i, j) in &fixed {
+        assert_eq!(out[i * 9 + j], grid[i][j]);
+    }
+    let g = gradient(&grid, out, lambda);
+    for (k, gk) in g.iter().enumerate() {
+        if !fixed.contains(&(k / 9, k % 9)) {
+            assert!(gk.norm() < 1e-9, "node {k}: gradient {}", gk.norm());
+        }
+    }
+    assert!(result.cg_iterations > 0);
+}
+
+#[test]
+fn held_boundary_lines_exact_and_interior_optimal() {
+    let grid = noisy(9, 8, 0.05);
+    let mut fixed = Vec::new();
+    for i in 0..9 {
+        for j in 0..8 {
+            if i == 0 || j == 0 || i == 8 || j == 7 {
+                fixed.push((i, j));
+            }
+        }
+    }
+    let lambda = 2.0;
+    let result = SurfaceJumpLsq::new(
+        SurfaceJumpLsqSettings::default()
+            .with_lambda(lambda)
+            .with_fixed(fixed.clone()),
+    )
+    .run(&grid)
+    .unwrap();
+    let out = result.surface.points();
+    for &(i, j) in &fixed {
+        assert_eq!(out[i * 8 + j], grid[i][j]);
+    }
+    assert_eq!(result.cg_iterations, 0, "whole held lines need no iteration");
+    let g = gradient(&grid, out, lambda);
+    for (k, gk) in g.iter().enumerate() {
+        if !fixed.contains(&(k / 8, k % 8)) {
+            assert!(gk.norm() < 1e-9, "node {k}: gradient {}", gk.norm());
+        }
+    }
+}
+
+#[test]
+fn tolerance_band_holds() {
+    let grid = noisy(12, 12, 0.08);
+    let flat: Vec<Vec3> = grid.iter().flatten().copied().collect();
+    let free = SurfaceJumpLsq::new(
+        SurfaceJumpLsqSettings::default()
+            .with_guard(false)
+            .with_lambda(10.0),
+    )
+    .run(&grid)
+    .unwrap();
+    let widest = free
+        .surface
+        .points()
+        .iter()
+        .zip(&flat)
+        .map(|(p, q)| (p - q).norm())
+        .fold(0.0, f64::max);
+    let band = 0.5 * widest;
+    let result = SurfaceJumpLsq::new(
+        SurfaceJumpLsqSettings::default()
+            .with_lambda(10.0)
+            .with_max_distance(band),
+    )
+    .run(&grid)
+    .unwrap();
+    assert!(result.band_pins > 0);
+    for (p, q) in result.surface.points().iter().zip(&flat) {
+        assert!((p - q).norm() <= band, "{} > {band}", (p - q).norm());
+    }
+}
+
+#[test]
+fn seam_stays_closed_and_gcv_moves_toward_the_clean_tube() {
+    let clean = tube(14, 16, 0.0);
+    let grid = tube(14, 16, 0.2);
+    let result = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default().with_closed(Closure::Auto))
+        .run(&grid)
+        .unwrap();
+    assert!(result.topology.closed_v);
+    let out = result.surface.points();
+    for i in 0..14 {
+        assert_eq!(out[i * 17], out[i * 17 + 16], "row {i}");
+    }
+    let rms = |a: &[Vec3]| {
+        (a.iter()
+            .zip(clean.iter().flatten())
+            .map(|(p, q)| (p - q).norm_squared())
+            .sum::<f64>()
+            / a.len() as f64)
+            .sqrt()
+    };
+    let flat: Vec<Vec3> = grid.iter().flatten().copied().collect();
+    assert!(result.gcv.is_some() && result.lambda > 0.0);
+    assert!(rms(out) < rms(&flat), "{} against {}", rms(out), rms(&flat));
+}
+
+#[test]
+fn poles_stay_one_point() {
+    // Row 0 collapsed to one point (a pole).
+    let mut grid = noisy(9, 9, 0.03);
+    let apex = Vec3::new(0.0, 0.5, 0.4);
+    for p in grid[0].iter_mut() {
+        *p = apex;
+    }
+    let result = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default())
+        .run(&grid)
+        .unwrap();
+    assert!(result.topology.poles.u_start);
+    for j in 0..9 {
+        assert_eq!(result.surface.points()[j], apex);
+    }
+}

@@ -1,0 +1,151 @@
+#!/usr/bin/env python3
+"""Noisy nets with clean twins (`python nets.py tuning|test OUT_DIR`) for judging surface fairing (issue 46).
+
+Families: bump (panels with Gaussian bumps), helicoid (helicoidal strips), height60 (60 x 60
+height fields), tube (closed in v), wigley (Wigley hull halves), aniso (height fields on
+anisotropic, uneven spacing), teapot (bicubic Bezier patches of the Utah teapot body, the
+project's data/surface_utah_teapot). Noise: isotropic Gaussian, sigma = LEVEL x 0.002 x the
+bounding-box diagonal, LEVEL in 0.5, 1, 2; the repeated seam line copied from the first.
+
+The split is fixed here, before any tuning: TUNING draws use seeds 1000 + k, TEST draws
+5000 + k; a draw's seed sets both the shape's parameters and the noise.
+"""
+import os
+import sys
+import numpy as np
+
+FAMILIES = ["bump", "helicoid", "height60", "tube", "wigley", "aniso", "teapot"]
+LEVELS = [0.5, 1.0, 2.0]
+BASE = 0.002
+TUNING_DRAWS = [1000]
+TEST_DRAWS = [5000, 5001, 5002]
+HERE = os.path.dirname(os.path.abspath(__file__))
+TEAPOT = os.environ.get("TEAPOT", os.path.join(HERE, "..", "..", "data", "surface_utah_teapot", "teapot_patches.csv"))
+
+
+def bump(r):
+    m, n = 40, 40
+    x, y = np.meshgrid(np.linspace(0, 1, m), np.linspace(0, 1, n), indexing="ij")
+    z = np.zeros_like(x)
+    for _ in range(r.integers(1, 4)):
+        cx, cy = r.uniform(0.25, 0.75, 2)
+        s = r.uniform(0.12, 0.25)
+        z += r.uniform(0.1, 0.3) * np.exp(-((x - cx) ** 2 + (y - cy) ** 2) / (2 * s * s))
+    return np.stack([x, y, z], -1)
+
+
+def helicoid(r):
+    m, n = 20, 60
+    turns = r.uniform(0.5, 1.2)
+    rr, t = np.meshgrid(np.linspace(r.uniform(0.2, 0.6), 1.5, m),
+                        np.linspace(0, 2 * np.pi * turns, n), indexing="ij")
+    c = r.uniform(0.2, 0.5)
+    return np.stack([rr * np.cos(t), rr * np.sin(t), c * t], -1)
+
+
+def height60(r):
+    m = n = 60
+    x, y = np.meshgrid(np.linspace(0, 1, m), np.linspace(0, 1, n), indexing="ij")
+    z = np.zeros_like(x)
+    for _ in range(3):
+        a, b = r.uniform(0.5, 3.0, 2) * np.pi
+        ph = r.uniform(0, 2 * np.pi)
+        z += r.uniform(0.03, 0.1) * np.sin(a * x + b * y + ph)
+    return np.stack([x, y, z], -1)
+
+
+def tube(r):
+    m, n = 30, 33  # n - 1 = 32 distinct around, last column repeats the first
+    s = np.linspace(0, 1, m)
+    th = np.linspace(0, 2 * np.pi, n)
+    th[-1] = 0.0
+    k = r.uniform(0.5, 1.5)
+    amp = r.uniform(0.05, 0.2)
+    rad = 0.3 + amp * np.sin(np.pi * k * s)[:, None] * np.ones(n)[None]
+    bend = r.uniform(0.1, 0.4)
+    S, T = np.meshgrid(s, th, indexing="ij")
+    x = 3 * S
+    y = bend * np.sin(np.pi * S) + rad * np.cos(T)
+    z = rad * np.sin(T)
+    G = np.stack([x, y, z], -1)
+    G[:, -1] = G[:, 0]
+    return G
+
+
+def wigley(r):
+    L, B, T = 1.0, r.uniform(0.08, 0.12), r.uniform(0.05, 0.08)
+    m, n = 41, 16
+    x, z = np.meshgrid(np.linspace(-L / 2, L / 2, m), np.linspace(0, T, n), indexing="ij")
+    y = B / 2 * (1 - (2 * x / L) ** 2) * (1 - (z / T) ** 2)
+    return np.stack([x, y, z], -1)
+
+
+def aniso(r):
+    m, n = 30, 50
+    u = np.linspace(0, 1, m) ** r.uniform(1.3, 2.0)
+    v = np.linspace(0, 1, n)
+    v = v + 0.3 * np.sin(2 * np.pi * v) / (2 * np.pi)
+    x, y = np.meshgrid(3 * u, v, indexing="ij")
+    a, b = r.uniform(0.5, 1.5, 2)
+    z = 0.2 * np.sin(a * x + 0.5) * np.cos(b * np.pi * y) + 0.05 * x * y
+    return np.stack([x, y, z], -1)
+
+
+def bezier(Pc, s, t):
+    bs = lambda u: np.stack([(1 - u) ** 3, 3 * u * (1 - u) ** 2, 3 * u * u * (1 - u), u ** 3], -1)
+    Bu, Bv = bs(s), bs(t)
+    return np.einsum("ia,jb,abk->ijk", Bu, Bv, Pc)
+
+
+def teapot(r):
+    d = np.loadtxt(TEAPOT, delimiter=",", skiprows=1)
+    patches = sorted(set(d[:, 0].astype(int)))
+    p = patches[r.integers(0, min(len(patches), 16))]  # rim and body patches
+    q = d[d[:, 0] == p]
+    Pc = np.zeros((4, 4, 3))
+    Pc[q[:, 1].astype(int), q[:, 2].astype(int)] = q[:, 3:6]
+    m = n = 24
+    return bezier(Pc, np.linspace(0, 1, m), np.linspace(0, 1, n))
+
+
+def diag(G):
+    P = G.reshape(-1, 3)
+    return float(np.linalg.norm(P.max(0) - P.min(0)))
+
+
+def make(family, level, seed):
+    r = np.random.default_rng(seed)
+    clean = globals()[family](r)
+    sigma = level * BASE * diag(clean)
+    noisy = clean + r.normal(0.0, sigma, clean.shape)
+    if family == "tube":
+        noisy[:, -1] = noisy[:, 0]
+    return clean, noisy
+
+
+def write(path, G):
+    m, n, _ = G.shape
+    with open(path, "w") as f:
+        f.write("i,j,x,y,z\n")
+        for i in range(m):
+            for j in range(n):
+                f.write("%d,%d,%.17g,%.17g,%.17g\n" % (i, j, *G[i, j]))
+
+
+def cases(split):
+    draws = TUNING_DRAWS if split == "tuning" else TEST_DRAWS
+    for fam in FAMILIES:
+        for level in LEVELS:
+            for d in draws:
+                seed = d * 100 + FAMILIES.index(fam) * 10 + LEVELS.index(level)
+                yield f"{fam}_{level:g}_{d}", fam, level, seed
+
+
+if __name__ == "__main__":
+    split, out = sys.argv[1], sys.argv[2]
+    os.makedirs(out, exist_ok=True)
+    for name, fam, level, seed in cases(split):
+        clean, noisy = make(fam, level, seed)
+        write(os.path.join(out, name + "_clean.csv"), clean)
+        write(os.path.join(out, name + "_noisy.csv"), noisy)
+        print(name)
