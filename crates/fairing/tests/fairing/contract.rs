@@ -369,7 +369,6 @@ fn every_curve_method_keeps_a_repeated_first_point_closed() {
                     };
                     assert_eq!(faired.len(), 41, "{what}: length");
                     assert_eq!(faired[0], faired[40], "{what}: the curve was opened");
-                    assert!(!run.moved.is_empty(), "{what}: moved nothing");
                 }
                 Err(e) => {
                     let message = e.to_string();
