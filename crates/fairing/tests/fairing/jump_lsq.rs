@@ -244,6 +244,7 @@ fn composes_in_a_pipeline_and_fairs_closed_curves() {
     let points = space_points(&noise);
     // The proposal (1.5 σ̂, second differences), a heavier smoothing than the defaults.
     let settings = JumpLsqSettings::default()
+        .with_rule(LambdaRule::Discrepancy)
         .with_noise_factor(1.5)
         .with_difference_order(2);
     let constraints = Constraints::default().with_fixed([0, 29]).with_tolerance(0.2);
