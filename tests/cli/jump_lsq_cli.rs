@@ -90,7 +90,7 @@ fn a_noisy_function_is_faired_closer_to_its_clean_twin() {
     let scratch = crate::scratch_dir("fair-jump-lsq-");
     let (input, clean) = sine(scratch.path());
     let original = read_rows(&input);
-    let (out, rows, report) = fair(&input, &[], "sine");
+    let (out, rows, report) = fair(&input, &["--set", "rule=discrepancy"], "sine");
     assert_ok(&out);
     assert_eq!(report["method"], "jump-lsq");
     assert_eq!(report["kind"], "function");

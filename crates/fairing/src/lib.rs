@@ -22,6 +22,7 @@ pub mod error;
 pub mod observer;
 pub mod partition;
 pub mod pipeline;
+pub mod smoothing;
 pub mod state;
 pub mod strategies;
 pub mod strategy;

@@ -161,6 +161,13 @@ pub(crate) fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
 /// says the method moved a point farther than the bound the user did not ask to exceed
 /// ([`fairing::displacement::unasked_move`]).
 pub(crate) fn warn_largest_move(source: &str, report: &Report, quiet: bool) {
+    // The method's own `warnings` (jump-lsq: λ at its precision limit, a degenerate σ̂, no
+    // point moved), one line each.
+    if let (false, Some(warnings)) = (quiet, report.extras.get("warnings").and_then(|w| w.as_array())) {
+        for warning in warnings.iter().filter_map(|w| w.as_str()) {
+            eprintln!("fair: warning: {source}: {}: {warning}", report.method);
+        }
+    }
     let Some(largest) = report.extras.get("largest_move") else {
         return;
     };

@@ -13,7 +13,7 @@ use serde::Serialize;
 use serde_json::Value;
 
 use super::frame::{check_coordinates, Frame};
-use super::job::{CurveJob, CurvePoints, CurveRun, SurfaceJob, SurfaceRun};
+use super::job::{CurveJob, CurveKind, CurvePoints, CurveRun, SurfaceJob, SurfaceRun};
 use super::parameters::{GivenValue, ParameterMap};
 use super::schema::{self, ParameterInfo};
 use crate::{Error, FairingStrategy, Pipeline, Refusal, Result};
@@ -626,6 +626,7 @@ impl MethodEntry {
                 run
             })
             .and_then(|run| check_run(&self.info.name, &job, run))
+            .and_then(|run| keep_closed(&self.info.name, &job, run))
     }
 
     /// Checks what [`fair_curve`](Self::fair_curve) checks before running, without running.
@@ -749,6 +750,30 @@ fn refusal(error: Error, method: &str) -> Error {
         }
         other => other,
     }
+}
+
+/// A parametric polygon whose last point repeats its first is a closed curve for every
+/// method: a result that opened it (first and last points no longer equal) is refused,
+/// saying so, rather than written.
+fn keep_closed(method: &str, job: &CurveJob, run: CurveRun) -> Result<CurveRun> {
+    fn ends_equal<const D: usize>(p: &[Vector<D>]) -> bool {
+        p.len() > 2 && p.first() == p.last()
+    }
+    let equal = |points: &CurvePoints| match points {
+        CurvePoints::Planar(p) => ends_equal(p),
+        CurvePoints::Spatial(p) => ends_equal(p),
+    };
+    if job.kind != CurveKind::Parametric || !equal(job.points) || equal(&run.points) {
+        return Ok(run);
+    }
+    Err(Error::Refused {
+        method: method.to_owned(),
+        what: Refusal::Closed,
+        reason: "cannot keep a closed curve closed (the input's last point repeats its first, and \
+                 the method moved the two apart); fix both with --fixed 0,LAST to fair it with \
+                 the seam held"
+            .into(),
+    })
 }
 
 /// The contract every curve method's result keeps, checked for all of them: the input's

@@ -247,7 +247,7 @@ impl Denoise {
     /// difference order.
     fn jump_lsq(self, prepass: Prepass) -> Option<JumpLsqSettings> {
         let settings = match self {
-            Denoise::JumpLsq => JumpLsqSettings::default(),
+            Denoise::JumpLsq => JumpLsqSettings::default().with_rule(LambdaRule::Discrepancy),
             Denoise::JumpLsqGcv => match prepass.rule {
                 PrepassRule::Gcv => JumpLsqSettings::default()
                     .with_rule(LambdaRule::Gcv)

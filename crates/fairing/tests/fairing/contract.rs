@@ -315,3 +315,69 @@ fn every_surface_method_keeps_the_contract() {
         }
     }
 }
+
+/// A noisy ellipse of `n` distinct points with its first point repeated as the last.
+fn closed_ellipse(seed: u64, n: usize) -> Vec<Vec2> {
+    let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
+    let mut points: Vec<Vec2> = (0..n)
+        .map(|i| {
+            let t = std::f64::consts::TAU * i as f64 / n as f64;
+            let r = 1.0 + 0.01 * (rng.random::<f64>() - 0.5);
+            Vec2::new(2.0 * r * t.cos(), r * t.sin())
+        })
+        .collect();
+    points.push(points[0]);
+    points
+}
+
+/// A repeated first point means closed for every curve method (issue 44): each returns a
+/// polygon whose last point is its first, bit for bit, or refuses naming the method and
+/// the closed curve; with `closed = true` given too (where the method has the parameter)
+/// the repeat is not taken for two coincident points.
+#[test]
+fn every_curve_method_keeps_a_repeated_first_point_closed() {
+    let catalog = catalog();
+    let points = CurvePoints::Planar(closed_ellipse(5, 40));
+    let constraints = Constraints::default();
+    for entry in catalog.methods(MethodKind::Curve) {
+        let name = entry.name();
+        let mut variants = vec![("as given", quick(&catalog, MethodKind::Curve, name))];
+        if entry.parameter("closed").is_some() {
+            let mut given = ParameterMap::new();
+            for limit in ["max-iterations", "max-steps", "max-passes"] {
+                if entry.parameter(limit).is_some() {
+                    given.insert_text(limit, "15", "test");
+                }
+            }
+            given.insert_text("closed", "true", "test");
+            variants.push(("closed = true", entry.settings(&given).unwrap()));
+        }
+        for (label, settings) in variants {
+            let what = format!("{name} ({label}) on a closed ellipse");
+            let job = CurveJob {
+                method: name,
+                points: &points,
+                kind: CurveKind::Parametric,
+                constraints: &constraints,
+                bad_points: &[],
+                catalog: &catalog,
+            };
+            match entry.fair_curve(&settings, &job) {
+                Ok(run) => {
+                    let CurvePoints::Planar(faired) = &run.points else {
+                        panic!("{what}: the dimension changed");
+                    };
+                    assert_eq!(faired.len(), 41, "{what}: length");
+                    assert_eq!(faired[0], faired[40], "{what}: the curve was opened");
+                }
+                Err(e) => {
+                    let message = e.to_string();
+                    assert!(
+                        message.contains(name) && message.contains("closed"),
+                        "{what}: `{message}` is not a refusal naming the method and the closed curve"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -10,7 +10,9 @@
 //! `penalty_after`, `closed`, `ends` (the spline's end conditions at the start and the end:
 //! `runout`, `natural` or `periodic`; `function-ends` = `auto` reports its choice),
 //! `difference_order` (the penalty's d; `difference-order` = `auto` reports its choice),
-//! `exponent` (the penalty's spacing exponent a; `exponent` = `auto` reports its choice).
+//! `exponent` (the penalty's spacing exponent a; `exponent` = `auto` reports its choice),
+//! `warnings` (what kept the run from doing its job: λ at its precision limit, a degenerate
+//! σ̂, no point moved; the command prints them on standard error).
 
 use curve_repr::Vector;
 use fairness::curvature::CurvatureForm;
@@ -32,8 +34,9 @@ impl Settings for JumpLsqSettings {
 #[derive(Clone, Copy, Debug, Default)]
 pub struct JumpLsqMethod;
 
-/// Whether the job's points are a closed polygon with its first point repeated at the end.
-fn repeats_first(points: &CurvePoints) -> bool {
+/// Whether the job's points are a closed polygon with its first point repeated at the end
+/// (two-phase reads a closed curve the same way).
+pub(super) fn repeats_first(points: &CurvePoints) -> bool {
     fn repeated<const D: usize>(p: &[Vector<D>]) -> bool {
         p.len() > 4 && p.first() == p.last()
     }
@@ -85,7 +88,7 @@ impl CurveMethod for JumpLsqMethod {
 
 /// The constraints of the first n − 1 points of a polygon whose point n − 1 repeats point 0:
 /// what held either copy holds point 0.
-fn without_repeat(constraints: &Constraints, n: usize) -> Constraints {
+pub(super) fn without_repeat(constraints: &Constraints, n: usize) -> Constraints {
     let last = n - 1;
     let mut fixed: Vec<usize> = constraints
         .fixed()
@@ -168,7 +171,37 @@ where
         run.extras.insert(name.into(), value);
     }
     run.extras.insert("closed".into(), json!(closed));
+    run.extras.insert("warnings".into(), json!(warnings(&report)));
     Ok(run)
+}
+
+/// What kept the run from doing its job, in words for the report's `warnings` (the command
+/// prints them on standard error): λ stopped at its precision limit, a noise estimate σ̂ that
+/// is 0 or not finite where the rule used it, no point moved although λ was not given as 0.
+pub(crate) fn warnings(report: &JumpLsqReport) -> Vec<String> {
+    let mut out = Vec::new();
+    if report.lambda_limited {
+        out.push(format!(
+            "λ stopped at its precision limit ({:e}) before the `{}` rule was satisfied: the \
+             fit may keep noise the rule wanted removed",
+            report.lambda, report.rule
+        ));
+    }
+    let uses_sigma = matches!(report.rule.as_str(), "discrepancy" | "gml" | "gcv");
+    if uses_sigma && !(report.sigma_hat.is_finite() && report.sigma_hat > 0.0) {
+        out.push(format!(
+            "the noise estimate σ̂ is {} (the points' third differences are mostly equal, as on \
+             a zigzag or an exactly tabulated polynomial): λ was chosen without it",
+            report.sigma_hat
+        ));
+    }
+    if report.rule != "given" && report.rms_displacement == 0.0 && report.clipped == 0 {
+        out.push(format!(
+            "moved no point (rule `{}`, λ = {:e})",
+            report.rule, report.lambda
+        ));
+    }
+    out
 }
 
 /// jump-lsq's report as the catalogue spells it (the extras of its runs but `closed`, in the

@@ -16,6 +16,7 @@ use std::f64::consts::PI;
 use curve_repr::{EndCondition, SplineFunction, Vec2};
 use serde::{Deserialize, Serialize};
 
+use super::jump_lsq::{repeats_first, without_repeat};
 use crate::catalog::{CurveJob, CurveKind, CurveMethod, CurvePoints, CurveRun, Settings};
 use crate::two_phase::{PrepassReport, TwoPhase, TwoPhaseSettings};
 use crate::{CurveGuard, EndClamp, Error, PartitionSettings, Pipeline, Refusal, Result, SegmentedFairing};
@@ -129,7 +130,7 @@ impl CurveMethod for TwoPhaseMethod {
                      and cannot hold end tangents or curvatures",
                 ))
             }
-            EndClamp::G0 if settings.closed => {
+            EndClamp::G0 if is_closed(settings, job) => {
                 return Err(refuse(
                     Refusal::EndClamp,
                     "was given an end clamp, but a closed curve has no ends",
@@ -146,7 +147,40 @@ impl CurveMethod for TwoPhaseMethod {
         Ok(())
     }
 
+    /// A parametric polygon whose last point repeats its first is closed (as for jump-lsq):
+    /// faired without the repeat, which is written back equal to the faired first point.
     fn run(&self, settings: &TwoPhaseCurveSettings, job: &CurveJob) -> Result<CurveRun> {
+        if job.kind == CurveKind::Parametric && repeats_first(job.points) {
+            let Some(points) = job.points.as_dimension::<2>() else {
+                return Err(Error::Refused {
+                    method: job.method.to_owned(),
+                    what: Refusal::Dimension,
+                    reason: "fairs planar curves only".into(),
+                });
+            };
+            let n = points.len();
+            let reduced = without_repeat(job.constraints, n);
+            let distinct = CurvePoints::Planar(points[..n - 1].to_vec());
+            let inner = CurveJob {
+                points: &distinct,
+                constraints: &reduced,
+                ..*job
+            };
+            let closed_settings = TwoPhaseCurveSettings {
+                closed: true,
+                ..settings.clone()
+            };
+            let mut run = self.run(&closed_settings, &inner)?;
+            let mut faired = run.points.as_dimension::<2>().unwrap_or(&[]).to_vec();
+            let first = faired[0];
+            faired.push(first);
+            if first != points[n - 1] {
+                run.moved.push(n - 1);
+            }
+            run.points = CurvePoints::Planar(faired);
+            run.curve = describe(&run.points, job.kind, true);
+            return Ok(run);
+        }
         let Some(points) = job.points.as_dimension::<2>() else {
             return Err(Error::Refused {
                 method: job.method.to_owned(),
@@ -187,6 +221,11 @@ impl CurveMethod for TwoPhaseMethod {
         run.extras.insert("prepass".into(), prepass);
         Ok(run)
     }
+}
+
+/// `closed = true`, or a parametric polygon whose last point repeats its first.
+fn is_closed(settings: &TwoPhaseCurveSettings, job: &CurveJob) -> bool {
+    settings.closed || (job.kind == CurveKind::Parametric && repeats_first(job.points))
 }
 
 /// The report's `prepass` (module doc): null where the pre-pass did nothing.

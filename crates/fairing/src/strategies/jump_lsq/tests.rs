@@ -827,7 +827,7 @@ fn dense_noise_beyond_the_precision_limit_takes_one_qr_trial_and_a_target_below_
         })
         .collect();
     let none = Constraints::default();
-    let settings = JumpLsqSettings::default();
+    let settings = JumpLsqSettings::default().with_rule(LambdaRule::Discrepancy);
     let faired = fair(&points, &points, &none, CurveDomain::Function, false, &settings).unwrap();
     let report = &faired.report;
     assert!(report.lambda_limited, "{report:?}");
