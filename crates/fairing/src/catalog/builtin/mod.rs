@@ -167,7 +167,7 @@ pub fn register(catalog: &mut Catalog) {
              jumps across its knot lines in both directions, λ by GCV",
         )
         .with_paper(
-            "Zhang & Cheng Eq. 17/26 as a global objective, tensor form of the curve jump-lsq (issue 46)",
+            "Zhang & Cheng Eq. 17/26 as a global objective, tensor form of the curve jump-lsq (this project)",
         ),
         SurfaceJumpLsqMethod,
     );

@@ -34,7 +34,7 @@ pub(crate) struct Spectral {
 pub(crate) type Planes = [DMatrix<f64>; 3];
 
 impl Spectral {
-    pub fn new(ku: DMatrix<f64>, kv: DMatrix<f64>) -> Self {
+    pub(super) fn new(ku: DMatrix<f64>, kv: DMatrix<f64>) -> Self {
         let eu = SymmetricEigen::new(ku);
         let ev = SymmetricEigen::new(kv);
         // The operators are PSD; round-off leaves their null space (the lines of an open
@@ -56,24 +56,24 @@ impl Spectral {
     }
 
     /// Uᵀ X V for each plane.
-    pub fn forward(&self, x: &Planes) -> Planes {
+    pub(super) fn forward(&self, x: &Planes) -> Planes {
         let ut = self.u.transpose();
         x.clone().map(|p| &ut * p * &self.v)
     }
 
     /// U X̂ Vᵀ for each plane.
-    pub fn back(&self, x: &Planes) -> Planes {
+    pub(super) fn back(&self, x: &Planes) -> Planes {
         let vt = self.v.transpose();
         x.clone().map(|p| &self.u * p * &vt)
     }
 
     /// s_ab = μ_a + ν_b.
-    pub fn s(&self, a: usize, b: usize) -> f64 {
+    pub(super) fn s(&self, a: usize, b: usize) -> f64 {
         self.mu[a] + self.nu[b]
     }
 
     /// X̂ at λ.
-    pub fn solve_hat(&self, y: &Planes, coupling: Option<&Planes>, lambda: f64) -> Planes {
+    pub(super) fn solve_hat(&self, y: &Planes, coupling: Option<&Planes>, lambda: f64) -> Planes {
         let mut out = y.clone();
         for (c, plane) in out.iter_mut().enumerate() {
             for b in 0..plane.ncols() {
@@ -91,7 +91,7 @@ impl Spectral {
 
     /// (RSS, trace of the smoother) at λ: RSS = Σ |X̂ − Ŷ|² over the three planes, the
     /// trace Σ_ab 1/(1 + λ s_ab) (per coordinate).
-    pub fn rss_trace(&self, y: &Planes, coupling: Option<&Planes>, lambda: f64) -> (f64, f64) {
+    pub(super) fn rss_trace(&self, y: &Planes, coupling: Option<&Planes>, lambda: f64) -> (f64, f64) {
         let (rows, cols) = y[0].shape();
         let mut rss = 0.0;
         let mut trace = 0.0;
