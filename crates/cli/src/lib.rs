@@ -68,6 +68,27 @@ pub fn main_with(catalog: Catalog) -> ExitCode {
     run_from_with(&catalog, std::env::args_os())
 }
 
+/// The running binary's name (its first argument's file stem, `fair` when there is none):
+/// a user's binary built on [`main_with`] speaks in its own name.
+static PROGRAM: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+
+/// The name messages start with and point at for help: the running binary's file stem,
+/// `fair` by default.
+pub fn program_name() -> &'static str {
+    PROGRAM.get_or_init(|| stem_of(std::env::args_os().next()))
+}
+
+fn stem_of(first: Option<OsString>) -> String {
+    first
+        .as_deref()
+        .map(std::path::Path::new)
+        .and_then(|p| p.file_stem())
+        .and_then(|s| s.to_str())
+        .filter(|s| !s.is_empty())
+        .unwrap_or("fair")
+        .to_owned()
+}
+
 static LAST_PANIC: std::sync::Mutex<Option<String>> = std::sync::Mutex::new(None);
 
 fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
@@ -97,6 +118,8 @@ where
     I: IntoIterator<Item = T>,
     T: Into<OsString> + Clone,
 {
+    let args: Vec<OsString> = args.into_iter().map(Into::into).collect();
+    let _ = PROGRAM.set(stem_of(args.first().cloned()));
     let cli = match args::Cli::try_parse_from(args) {
         Ok(cli) => cli,
         Err(e) => return usage(e),
@@ -111,7 +134,7 @@ where
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            let _ = writeln!(std::io::stderr(), "fair: {}", e.one_line());
+            let _ = writeln!(std::io::stderr(), "{}: {}", program_name(), e.one_line());
             ExitCode::from(e.exit_code())
         }
     }
@@ -129,7 +152,8 @@ fn usage(e: clap::Error) -> ExitCode {
         ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand | ErrorKind::MissingSubcommand => {
             let _ = writeln!(
                 std::io::stderr(),
-                "fair: a subcommand is required: curve, surface, inspect, methods, demo or serve (see `fair --help`)"
+                "{0}: a subcommand is required: curve, surface, inspect, methods, demo or serve (see `{0} --help`)",
+                program_name()
             );
             ExitCode::from(2)
         }
@@ -137,7 +161,7 @@ fn usage(e: clap::Error) -> ExitCode {
             let error = Error::Usage {
                 message: usage_line(&e.render().to_string()),
             };
-            let _ = writeln!(std::io::stderr(), "fair: {}", error.one_line());
+            let _ = writeln!(std::io::stderr(), "{}: {}", program_name(), error.one_line());
             ExitCode::from(error.exit_code())
         }
     }
@@ -162,12 +186,21 @@ fn usage_line(rendered: &str) -> String {
             message = format!("{} {}", message, rest.join(", "));
         }
     }
-    format!("{message} (see `fair --help`)")
+    format!("{message} (see `{} --help`)", program_name())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Messages speak in the running binary's name: its first argument's file stem.
+    #[test]
+    fn the_program_name_is_the_binary_stem() {
+        assert_eq!(stem_of(Some("/usr/local/bin/my-fair.exe".into())), "my-fair");
+        assert_eq!(stem_of(Some("laplacian-fair".into())), "laplacian-fair");
+        assert_eq!(stem_of(Some("".into())), "fair");
+        assert_eq!(stem_of(None), "fair");
+    }
 
     #[test]
     fn usage_line_is_one_line() {

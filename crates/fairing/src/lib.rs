@@ -36,6 +36,12 @@ pub use partition::{
     curve_counts, partition, CurveGuard, PartitionSettings, Segment, SegmentFairer, SegmentedFairing,
 };
 pub use pipeline::{FairingResult, Pipeline, StageReport, TerminationReason};
+/// What a settings struct derives with, at the framework's versions: a user crate needs no
+/// direct dependency (`#[serde(crate = "fairing::serde")]`,
+/// `#[schemars(crate = "fairing::schemars")]`).
+pub use schemars;
+pub use serde;
+pub use serde_json;
 pub use state::{strategy_error, FairingState, Move};
 pub use strategy::{reject_derivative_clamps, FairingStrategy, StepOutcome};
 pub use trace::{StepRecord, Trace};

@@ -165,7 +165,11 @@ pub(crate) fn warn_largest_move(source: &str, report: &Report, quiet: bool) {
     // point moved), one line each.
     if let (false, Some(warnings)) = (quiet, report.extras.get("warnings").and_then(|w| w.as_array())) {
         for warning in warnings.iter().filter_map(|w| w.as_str()) {
-            eprintln!("fair: warning: {source}: {}: {warning}", report.method);
+            eprintln!(
+                "{}: warning: {source}: {}: {warning}",
+                crate::program_name(),
+                report.method
+            );
         }
     }
     let Some(largest) = report.extras.get("largest_move") else {
@@ -180,7 +184,8 @@ pub(crate) fn warn_largest_move(source: &str, report: &Report, quiet: bool) {
         _ => "the data's noise and decimal step; give --tolerance to bound the moves",
     };
     eprintln!(
-        "fair: warning: {source}: {} moved point {} by {:.6e}, farther than {:.6e} ({from})",
+        "{}: warning: {source}: {} moved point {} by {:.6e}, farther than {:.6e} ({from})",
+        crate::program_name(),
         report.method,
         index + 1,
         largest["distance"].as_f64().unwrap_or(f64::NAN),

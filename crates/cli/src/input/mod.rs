@@ -122,7 +122,7 @@ impl CurveInput {
             return;
         }
         for note in &self.notes {
-            eprintln!("fair: note: {note}");
+            eprintln!("{}: note: {note}", crate::program_name());
         }
     }
 }

@@ -29,6 +29,7 @@
 
 pub mod builtin;
 mod config;
+pub mod contract;
 mod criteria;
 mod frame;
 pub use frame::LARGEST as LARGEST_COORDINATE;

@@ -6,14 +6,12 @@
 //! it never panics. A method registered by a user gets the same check for free (the test
 //! registers one).
 
-use std::panic::{catch_unwind, AssertUnwindSafe};
-
-use curve_repr::{Vec2, Vec3, Vector};
+use curve_repr::Vec2;
 use fairing::catalog::{
-    Catalog, CurveJob, CurveKind, CurvePoints, Grid, MethodKind, ParameterMap, Settings, Strategy,
-    StrategySettings, SurfaceJob,
+    contract, Catalog, CurveJob, CurveKind, CurvePoints, MethodKind, ParameterMap, Settings, Strategy,
+    StrategySettings,
 };
-use fairing::{Constraints, EndClamp, FairingState, FairingStrategy, Result, StepOutcome};
+use fairing::{Constraints, FairingState, FairingStrategy, Result, StepOutcome};
 use rand::{RngExt, SeedableRng};
 
 /// A user's strategy: every free interior point a third of the way to its neighbours' midpoint.
@@ -70,50 +68,6 @@ fn catalog() -> Catalog {
     catalog
 }
 
-/// Noisy samples of a sine (x increasing) and of a helix.
-fn planar(seed: u64, n: usize) -> Vec<Vec2> {
-    let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
-    let mut x = 0.0;
-    (0..n)
-        .map(|_| {
-            x += 0.5 + rng.random::<f64>();
-            Vec2::new(x, (0.3 * x).sin() * 4.0 + 0.05 * (rng.random::<f64>() - 0.5))
-        })
-        .collect()
-}
-
-fn spatial(seed: u64, n: usize) -> Vec<Vec3> {
-    let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
-    (0..n)
-        .map(|k| {
-            let t = 0.35 * k as f64;
-            let e = 0.03 * (rng.random::<f64>() - 0.5);
-            Vec3::new(3.0 * t.cos() + e, 3.0 * t.sin() - e, 0.8 * t + e)
-        })
-        .collect()
-}
-
-/// The constraint sets every method is run under, for `n` points.
-fn constraint_sets(seed: u64, n: usize) -> Vec<(&'static str, Constraints)> {
-    let mut rng = rand::rngs::StdRng::seed_from_u64(seed ^ 0x5eed);
-    let radii: Vec<f64> = (0..n).map(|_| 0.02 * rng.random::<f64>()).collect();
-    vec![
-        ("none", Constraints::default()),
-        ("fixed", Constraints::default().with_fixed([3, n / 2, n - 4])),
-        ("tolerance", Constraints::default().with_tolerance(0.01)),
-        (
-            "fixed+tolerance+g0",
-            Constraints::default()
-                .with_fixed([5])
-                .with_tolerance(0.02)
-                .with_end_clamp(EndClamp::G0),
-        ),
-        ("radii", Constraints::default().with_restraining_radii(radii)),
-        ("g1", Constraints::default().with_end_clamp(EndClamp::G1)),
-        ("g2", Constraints::default().with_end_clamp(EndClamp::G2)),
-    ]
-}
-
 /// Short runs: the contract holds after any number of steps.
 fn quick(catalog: &Catalog, kind: MethodKind, name: &str) -> serde_json::Value {
     let entry = catalog.method(kind, name).unwrap();
@@ -126,28 +80,8 @@ fn quick(catalog: &Catalog, kind: MethodKind, name: &str) -> serde_json::Value {
     entry.settings(&given).unwrap()
 }
 
-fn check_points<const D: usize>(
-    what: &str,
-    original: &[Vector<D>],
-    faired: &[Vector<D>],
-    constraints: &Constraints,
-) {
-    assert_eq!(faired.len(), original.len(), "{what}: length");
-    let n = original.len();
-    for (i, (p, q)) in original.iter().zip(faired).enumerate() {
-        assert!(q.iter().all(|c| c.is_finite()), "{what}: point {i} is not finite");
-        if constraints.fixed().contains(&i) || constraints.is_clamped_end(i, n) {
-            assert_eq!(p, q, "{what}: fixed point {i} moved");
-        }
-        let distance = (q - p).norm();
-        assert!(
-            distance <= constraints.allowed_distance(i),
-            "{what}: point {i} moved {distance}, allowed {}",
-            constraints.allowed_distance(i)
-        );
-    }
-}
-
+/// The library's public contract check (`fairing::catalog::contract`), on every curve
+/// method, the user's `shrink` included.
 #[test]
 fn every_curve_method_keeps_the_contract() {
     let catalog = catalog();
@@ -156,163 +90,67 @@ fn every_curve_method_keeps_the_contract() {
         .map(|m| m.name().to_owned())
         .collect();
     assert!(names.len() >= 9, "{names:?}");
-    let n = 24;
-    for seed in [1, 2] {
-        let cases = [
-            (
-                "planar function",
-                CurvePoints::Planar(planar(seed, n)),
-                CurveKind::Function,
-            ),
-            (
-                "planar parametric",
-                CurvePoints::Planar(planar(seed, n)),
-                CurveKind::Parametric,
-            ),
-            (
-                "spatial",
-                CurvePoints::Spatial(spatial(seed, n)),
-                CurveKind::Parametric,
-            ),
-        ];
-        for name in &names {
-            let entry = catalog.method(MethodKind::Curve, name).unwrap();
-            let settings = quick(&catalog, MethodKind::Curve, name);
-            for (case, points, kind) in &cases {
-                for (label, constraints) in constraint_sets(seed, n) {
-                    let what = format!("{name} on {case} (seed {seed}) with {label}");
-                    let job = CurveJob {
-                        method: name,
-                        points,
-                        kind: *kind,
-                        constraints: &constraints,
-                        bad_points: &[],
-                        catalog: &catalog,
-                    };
-                    let result = catch_unwind(AssertUnwindSafe(|| entry.fair_curve(&settings, &job)))
-                        .unwrap_or_else(|_| panic!("{what}: panicked"));
-                    match result {
-                        Ok(run) => {
-                            match (points, &run.points) {
-                                (CurvePoints::Planar(a), CurvePoints::Planar(b)) => {
-                                    check_points(&what, a, b, &constraints)
-                                }
-                                (CurvePoints::Spatial(a), CurvePoints::Spatial(b)) => {
-                                    check_points(&what, a, b, &constraints)
-                                }
-                                _ => panic!("{what}: the dimension changed"),
-                            }
-                            assert!(!run.termination.is_empty(), "{what}: no termination");
-                            assert!(
-                                run.termination
-                                    .chars()
-                                    .all(|c| c.is_ascii_lowercase() || c == '-'),
-                                "{what}: termination `{}` is not kebab-case",
-                                run.termination
-                            );
-                            assert!(run.elapsed_ms.is_finite() && run.elapsed_ms >= 0.0);
-                            assert_eq!(run.moved, points.differences(&run.points), "{what}: moved");
-                        }
-                        Err(e) => {
-                            let message = e.to_string();
-                            assert!(
-                                message.contains(name.as_str()),
-                                "{what}: `{message}` does not name the method"
-                            );
-                            // Without constraints on planar points every method fairs.
-                            assert!(
-                                !(label == "none" && *case != "spatial"),
-                                "{what}: failed without constraints: {message}"
-                            );
-                        }
-                    }
-                }
-            }
-            // Bad points for a method that takes none: refused, naming the method.
-            if !entry.takes_bad_points() {
-                let constraints = Constraints::default();
-                let job = CurveJob {
-                    method: name,
-                    points: &cases[1].1,
-                    kind: CurveKind::Parametric,
-                    constraints: &constraints,
-                    bad_points: &[4],
-                    catalog: &catalog,
-                };
-                let e = entry.fair_curve(&settings, &job).unwrap_err();
-                assert!(
-                    matches!(
-                        e,
-                        fairing::Error::Refused {
-                            what: fairing::Refusal::BadPoints,
-                            ..
-                        }
-                    ),
-                    "{name}: {e}"
-                );
-                assert!(e.to_string().contains(name.as_str()), "{e}");
-            }
-        }
+    assert!(names.iter().any(|n| n == "shrink"));
+    for name in &names {
+        contract::assert_curve_method(&catalog, name);
     }
 }
 
 #[test]
 fn every_surface_method_keeps_the_contract() {
     let catalog = catalog();
-    let (rows, columns) = (7, 8);
-    let mut rng = rand::rngs::StdRng::seed_from_u64(9);
-    let points: Vec<Vec3> = (0..rows * columns)
-        .map(|k| {
-            let (i, j) = ((k / columns) as f64, (k % columns) as f64);
-            Vec3::new(
-                i,
-                j,
-                0.2 * (0.5 * i).sin() * (0.4 * j).cos() + 0.02 * rng.random::<f64>(),
-            )
-        })
+    let names: Vec<String> = catalog
+        .methods(MethodKind::Surface)
+        .map(|m| m.name().to_owned())
         .collect();
-    let grid = Grid {
-        rows,
-        columns,
-        points,
-    };
-    for entry in catalog.methods(MethodKind::Surface) {
-        let name = entry.name();
-        let settings = quick(&catalog, MethodKind::Surface, name);
-        for (label, constraints) in constraint_sets(3, rows * columns) {
-            let what = format!("{name} with {label}");
-            let job = SurfaceJob {
-                method: name,
-                grid: &grid,
-                constraints: &constraints,
-                bad_points: &[],
-                catalog: &catalog,
-            };
-            let result = catch_unwind(AssertUnwindSafe(|| entry.fair_surface(&settings, &job)))
-                .unwrap_or_else(|_| panic!("{what}: panicked"));
-            match result {
-                Ok(run) => {
-                    assert_eq!((run.grid.rows, run.grid.columns), (rows, columns), "{what}");
-                    check_points(&what, &grid.points, &run.grid.points, &constraints);
-                    if constraints.end_clamp() == EndClamp::G0 {
-                        for k in grid.boundary() {
-                            assert_eq!(
-                                grid.points[k], run.grid.points[k],
-                                "{what}: boundary point {k} moved"
-                            );
-                        }
-                    }
-                }
-                Err(e) => {
-                    let message = e.to_string();
-                    assert!(
-                        message.contains(name),
-                        "{what}: `{message}` does not name the method"
-                    );
-                    assert!(label != "none", "{what}: failed without constraints: {message}");
-                }
-            }
+    assert!(!names.is_empty());
+    for name in &names {
+        if let Err(failure) = contract::check_surface_method(&catalog, name) {
+            panic!("{failure}");
         }
+    }
+}
+
+/// The check can fail: a strategy that refuses every input is caught, named, with its case.
+#[test]
+fn the_contract_check_catches_a_moved_fixed_point() {
+    let mut catalog = Catalog::builtin();
+    catalog.register_curve(
+        fairing::catalog::MethodInfo::new("cheat", "refuses everything"),
+        Strategy::<CheatSettings>::new(),
+    );
+    let failure = contract::check_curve_method(&catalog, "cheat").unwrap_err();
+    assert_eq!(failure.method, "cheat");
+    assert!(failure.case.contains("with none"), "{failure}");
+    assert!(
+        failure.to_string().contains("refused without constraints"),
+        "{failure}"
+    );
+    assert!(contract::check_curve_method(&catalog, "no-such-method").is_err());
+}
+
+/// A strategy breaking the contract: it refuses even unconstrained planar points.
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[serde(default, deny_unknown_fields)]
+struct CheatSettings {}
+
+impl Settings for CheatSettings {}
+
+struct Cheat;
+
+impl<const D: usize> FairingStrategy<D> for Cheat {
+    fn name(&self) -> &str {
+        "cheat"
+    }
+    fn step(&mut self, state: &mut FairingState<D>) -> Result<StepOutcome> {
+        let _ = state;
+        Err(fairing::strategy_error("cheat", "refuses every input"))
+    }
+}
+
+impl StrategySettings for CheatSettings {
+    fn strategy<const D: usize>(&self, _: &CurveJob) -> Result<Box<dyn FairingStrategy<D>>> {
+        Ok(Box::new(Cheat))
     }
 }
 

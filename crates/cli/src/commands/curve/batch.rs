@@ -112,7 +112,8 @@ pub(crate) fn items(args: &FairArgs) -> Result<Vec<Item>> {
         if !skipped.is_empty() && !args.quiet {
             let names: Vec<String> = skipped.iter().map(|p| p.display().to_string()).collect();
             eprintln!(
-                "fair: note: skipped {} file{} without a curve extension (.{}): {}",
+                "{}: note: skipped {} file{} without a curve extension (.{}): {}",
+                crate::program_name(),
                 names.len(),
                 if names.len() == 1 { "" } else { "s" },
                 CURVE_EXTENSIONS.join(", ."),

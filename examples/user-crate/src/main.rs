@@ -1,0 +1,3 @@
+fn main() -> std::process::ExitCode {
+    fair_cli::main_with(laplacian_fair::catalog())
+}
