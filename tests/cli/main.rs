@@ -9,6 +9,7 @@ mod formats_cli;
 mod inspect;
 mod jump_lsq_cli;
 mod largest_move_cli;
+mod lines_cli;
 // A file of fairing's benches, shared: its item is `pub` for the benches' crate.
 #[allow(unreachable_pub)]
 #[path = "../../crates/fairing/benches/fairing/noisy_segment.rs"]

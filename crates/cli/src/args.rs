@@ -29,6 +29,8 @@ pub(crate) enum Command {
     Surface(FairArgs),
     /// Measure a curve or surface without changing it.
     Inspect(InspectArgs),
+    /// Fair a ship's table of offsets (stations, waterlines, buttocks) as one hull.
+    Lines(LinesArgs),
     /// List every method and its parameters.
     Methods,
     /// Run every method on the embedded data sets.
@@ -257,6 +259,41 @@ impl FairArgs {
     pub(crate) fn read_options(&self) -> crate::input::ReadOptions {
         crate::input::ReadOptions::with_columns(self.columns.clone())
     }
+}
+
+/// Options of `fair lines`; the settings' meanings and defaults are `fair_lines::Settings`'s.
+#[derive(Debug, Clone, Args)]
+pub(crate) struct LinesArgs {
+    /// The table of offsets (CSV).
+    #[arg(value_name = "TABLE")]
+    pub table: PathBuf,
+    /// Write the faired table here, in the input's layout.
+    #[arg(short = 'o', long = "output", value_name = "FAIRED_TABLE")]
+    pub output: Option<PathBuf>,
+    /// Write every faired line as its own CSV into this directory.
+    #[arg(long, value_name = "DIR")]
+    pub lines_dir: Option<PathBuf>,
+    /// Write the JSON report here.
+    #[arg(long, value_name = "REPORT.json")]
+    pub report: Option<PathBuf>,
+    /// Write the three views (body plan, half-breadth, profile) as SVG here.
+    #[arg(long, value_name = "PLOT.svg")]
+    pub plot: Option<PathBuf>,
+    /// Write the hull surface here (.igs or .step).
+    #[arg(long, value_name = "HULL.igs|.step")]
+    pub hull: Option<PathBuf>,
+    /// The table's rounding step (default: read from the table's digits).
+    #[arg(long, value_name = "S")]
+    pub step: Option<f64>,
+    /// How far an offset may move before it is flagged.
+    #[arg(long, value_name = "T")]
+    pub tolerance: Option<f64>,
+    /// The edge lines the hull is split along (knuckles), comma-separated.
+    #[arg(long, value_name = "NAMES", value_delimiter = ',')]
+    pub knuckles: Option<Vec<String>>,
+    /// Print nothing on success.
+    #[arg(long, short = 'q')]
+    pub quiet: bool,
 }
 
 /// Options of `fair inspect`.

@@ -515,6 +515,43 @@ fn inspect(py: Python<'_>, points: &Bound<'_, PyAny>, kind: Option<String>) -> P
     Ok(to_python(py, &report)?.unbind())
 }
 
+/// Fairs a ship's table of offsets as one hull, as `fair lines TABLE` does: returns
+/// `(report, values)`, the lines report as a dict (the command's `--report`) and the faired
+/// offsets as an (n, 3) array of x, half-breadth, height, one row per offset in the report's
+/// order. The numerics are `fair_lines`'s; a bad table or setting raises ValueError naming the
+/// file and line, a failed fit RuntimeError.
+#[pyfunction]
+#[pyo3(signature = (path, step=None, tolerance=None, knuckles=None))]
+fn lines(
+    py: Python<'_>,
+    path: std::path::PathBuf,
+    step: Option<f64>,
+    tolerance: Option<f64>,
+    knuckles: Option<Vec<String>>,
+) -> PyResult<(Py<PyAny>, Py<PyAny>)> {
+    let settings = fair_lines::Settings {
+        step,
+        tolerance,
+        knuckles,
+    };
+    let outcome = py.detach(|| {
+        fair_lines::read_table(&path)
+            .and_then(|table| fair_lines::fair(&table, &settings))
+            .map(|faired| (fair_lines::write::report_json(&faired), faired.values))
+    });
+    let (report, values) = outcome.map_err(|e| match e {
+        fair_lines::Error::Fit(_) | fair_lines::Error::Cad(_) => PyRuntimeError::new_err(e.to_string()),
+        _ => PyValueError::new_err(e.to_string()),
+    })?;
+    let report: serde_json::Value =
+        serde_json::from_str(&report).map_err(|e| PyRuntimeError::new_err(format!("internal error: {e}")))?;
+    let n = values.len();
+    let array = Array2::from_shape_vec((n, 3), values.into_iter().flatten().collect())
+        .map_err(|e| PyRuntimeError::new_err(format!("internal error: {e}")))?
+        .into_pyarray(py);
+    Ok((to_python(py, &report)?.unbind(), array.into_any().unbind()))
+}
+
 /// The catalogue of methods, as `fair methods` lists them: a list of dicts with `name`,
 /// `kind` ("curve" or "surface"), `paper`, `summary` and `parameters` (each a dict with
 /// `name`, `default` as text and `meaning`).
@@ -764,6 +801,7 @@ fn fair_python(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(curve, module)?)?;
     module.add_function(wrap_pyfunction!(surface, module)?)?;
     module.add_function(wrap_pyfunction!(inspect, module)?)?;
+    module.add_function(wrap_pyfunction!(lines, module)?)?;
     module.add_function(wrap_pyfunction!(methods, module)?)?;
     module.add_function(wrap_pyfunction!(pipeline, module)?)?;
     module.add_function(wrap_pyfunction!(default_methods, module)?)?;

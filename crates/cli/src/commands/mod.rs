@@ -7,6 +7,7 @@
 pub(crate) mod curve;
 pub(crate) mod demo;
 pub(crate) mod inspect;
+pub(crate) mod lines;
 pub(crate) mod methods;
 pub(crate) mod surface;
 
@@ -21,6 +22,7 @@ pub(crate) fn dispatch(catalog: &Catalog, cli: Cli) -> Result<()> {
         Command::Curve(args) => curve::run(catalog, &args),
         Command::Surface(args) => surface::run(catalog, &args),
         Command::Inspect(args) => inspect::run(catalog, &args),
+        Command::Lines(args) => lines::run(&args),
         Command::Methods => methods::run(catalog),
         Command::Demo(args) => demo::run(catalog, &args),
         Command::Serve(args) => crate::serve::run(catalog, &args),

@@ -124,6 +124,14 @@ def surface(
 def inspect(points: ArrayLike, kind: Kind | None = None) -> dict[str, Any]:
     """Measure a curve ((n, 2)/(n, 3)) or a grid ((m, n, 3)), as `fair inspect` does."""
 
+def lines(
+    path: Union[str, os.PathLike[str]],
+    step: float | None = None,
+    tolerance: float | None = None,
+    knuckles: Sequence[str] | None = None,
+) -> tuple[dict[str, Any], npt.NDArray[np.float64]]:
+    """Fair a table of offsets as one hull, as `fair lines` does: (report, (n, 3) offsets)."""
+
 def methods() -> list[Method]:
     """The catalogue of methods, as `fair methods` lists them."""
 
