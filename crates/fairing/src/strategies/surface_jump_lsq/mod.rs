@@ -18,13 +18,13 @@
 //!
 //! h̄ the mean of the two knot steps at the knot (so each jump term has the units of the
 //! points and λ is scale-free). J^u is linear in each column of P alone, J^u = D_u P, and
-//! J^v = P D_vᵀ ([`operator`]), so the normal equations are
+//! J^v = P D_vᵀ (module `operator`), so the normal equations are
 //!
 //! ```text
 //! P + λ (K_u P + P K_v) = P⁰,    K = DᵀD,
 //! ```
 //!
-//! a Kronecker sum, solved exactly in the eigenbases of K_u and K_v ([`spectral`]). The
+//! a Kronecker sum, solved exactly in the eigenbases of K_u and K_v (module `spectral`). The
 //! penalty's null space is the surfaces with no jump anywhere: along an open direction a
 //! natural cubic spline with no jump is one cubic with zero second derivative at both ends,
 //! a line, so as λ → ∞ the net tends to the least-squares bilinear surface
