@@ -34,7 +34,7 @@ from typing import Any, Iterable
 
 import numpy as np
 
-import fair
+import fairspline
 
 
 # --- reading curves -------------------------------------------------------------------------
@@ -106,7 +106,7 @@ def fair_one(item: dict[str, Any], method: str | None = None, params: dict | Non
             points = document["points"] if isinstance(document, dict) else document
         else:
             points = item["points"]
-        result = fair.curve(points, method=method, params=params)
+        result = fairspline.curve(points, method=method, params=params)
     except (ValueError, TypeError, KeyError, OSError) as error:
         return {"source": source, "error": str(error), "exit_status": 2}
     except Exception as error:  # a failure of the framework: reported, the fleet goes on

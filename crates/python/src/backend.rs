@@ -23,11 +23,20 @@ use fairing::catalog::{
 };
 use fairing::EndClamp;
 
-/// The methods, criteria and indicators the bindings run: the library's built-in catalogue,
-/// the one `fair` runs, made once per process.
+/// The catalogue the module was built over, made once per process.
+static CATALOG: OnceLock<Catalog> = OnceLock::new();
+
+/// The methods, criteria and indicators the module's functions run and `Catalog()` starts
+/// from: the library's built-in catalogue (the one `fair` runs), or a Rust user's own when
+/// their module's init installed it first ([`install`]).
 pub fn catalog() -> &'static Catalog {
-    static CATALOG: OnceLock<Catalog> = OnceLock::new();
     CATALOG.get_or_init(Catalog::builtin)
+}
+
+/// Makes `make()` the module's catalogue; the first call of a process wins (the module's
+/// init calls it once, before any function runs).
+pub fn install(make: fn() -> Catalog) {
+    CATALOG.get_or_init(make);
 }
 
 /// What the points are called in messages (the command names the file instead).
@@ -87,7 +96,7 @@ impl From<Error> for Failure {
         };
         let message = error
             .one_line()
-            .replace("`fair methods` lists them", "`fair.methods()` lists them");
+            .replace("`fair methods` lists them", "`fairspline.methods()` lists them");
         Failure { message, bad_input }
     }
 }
@@ -341,7 +350,7 @@ const CLOSED: &str = "closed";
 /// method gets the loop the way the command takes a closed curve, its first point repeated
 /// at the end, and the repeat is dropped from the returned points (the report is the
 /// command's for that input, so its `n` counts the repeat).
-pub fn fair_curve(points: &Coordinates, options: &Options) -> Result<Faired> {
+pub fn fair_curve(catalog: &Catalog, points: &Coordinates, options: &Options) -> Result<Faired> {
     let mut options = options.clone();
     let mut library = curve_points(points)?;
     let mut repeated = false;
@@ -350,7 +359,7 @@ pub fn fair_curve(points: &Coordinates, options: &Options) -> Result<Faired> {
             && options
                 .method
                 .as_deref()
-                .and_then(|m| catalog().method(MethodKind::Curve, m).ok())
+                .and_then(|m| catalog.method(MethodKind::Curve, m).ok())
                 .is_some_and(|m| m.parameter(CLOSED).is_some());
         if has_closed {
             if let Some((_, value)) = options.params.iter().find(|(n, _)| n == CLOSED) {
@@ -378,7 +387,7 @@ pub fn fair_curve(points: &Coordinates, options: &Options) -> Result<Faired> {
         }
     }
     let request = options.curve_request()?;
-    let faired = fair_door::curve(catalog(), &CurveData::new(&library, POINTS), &request)?;
+    let faired = fair_door::curve(catalog, &CurveData::new(&library, POINTS), &request)?;
     let mut values = flat(&faired.points);
     if repeated {
         values.truncate(values.len() - points.dimension);
@@ -429,7 +438,13 @@ fn grid_of(grid: &Coordinates, rows: usize, columns: usize) -> Result<Grid> {
 
 /// `fair surface` on a `rows × columns` grid of 3D points (row-major): the faired grid and
 /// the report. Indices in `fixed`/`bad_points` count row by row (k = i · columns + j).
-pub fn fair_surface(grid: &Coordinates, rows: usize, columns: usize, options: &Options) -> Result<Faired> {
+pub fn fair_surface(
+    catalog: &Catalog,
+    grid: &Coordinates,
+    rows: usize,
+    columns: usize,
+    options: &Options,
+) -> Result<Faired> {
     if options.kind.is_some() || options.closed {
         return Err(Failure::bad_input(
             "kind and closed apply to curves only; a surface grid has neither",
@@ -441,7 +456,7 @@ pub fn fair_surface(grid: &Coordinates, rows: usize, columns: usize, options: &O
         grid: &library,
         source: GRID,
     };
-    let faired = fair_door::surface(catalog(), &data, &request)?;
+    let faired = fair_door::surface(catalog, &data, &request)?;
     let values: Vec<f64> = faired.grid.points.iter().flat_map(|p| [p.x, p.y, p.z]).collect();
     if values.len() != grid.values.len() {
         return Err(internal("the faired grid has another size".into()));
@@ -455,7 +470,11 @@ pub fn fair_surface(grid: &Coordinates, rows: usize, columns: usize, options: &O
 /// `fair inspect` on curve points: the report (`method` = `inspect`, `after` = `before`).
 /// Errors about a point name it as the command names the line of a file holding the points
 /// one per line (`points:LINE: ...`).
-pub fn inspect_curve(points: &Coordinates, kind: Option<&str>) -> Result<serde_json::Value> {
+pub fn inspect_curve(
+    catalog: &Catalog,
+    points: &Coordinates,
+    kind: Option<&str>,
+) -> Result<serde_json::Value> {
     let kind = kind_argument(kind)?;
     let library = curve_points(points)?;
     let lines: Vec<usize> = (1..=library.len()).collect();
@@ -468,7 +487,7 @@ pub fn inspect_curve(points: &Coordinates, kind: Option<&str>) -> Result<serde_j
         plot: false,
         record: true,
     };
-    report_value(&fair_door::inspect_curve(catalog(), &data, kind, detail)?.report)
+    report_value(&fair_door::inspect_curve(catalog, &data, kind, detail)?.report)
 }
 
 /// `fair inspect --surface` on a `rows × columns` grid: the report.
@@ -484,10 +503,10 @@ pub fn inspect_surface(grid: &Coordinates, rows: usize, columns: usize) -> Resul
 /// The methods, as `fair methods` lists them (from the catalogue, each method's settings
 /// type): name, kind (`curve`/`surface`), paper, summary and the parameters (name, default as
 /// text, default as a value, meaning, JSON Schema), in the catalogue's order.
-pub fn methods() -> Vec<serde_json::Value> {
+pub fn methods(catalog: &Catalog) -> Vec<serde_json::Value> {
     [MethodKind::Curve, MethodKind::Surface]
         .into_iter()
-        .flat_map(|kind| catalog().methods(kind))
+        .flat_map(|kind| catalog.methods(kind))
         .map(|m| {
             let parameters: Vec<serde_json::Value> = m
                 .parameters()
@@ -522,7 +541,7 @@ pub fn default_methods() -> BTreeMap<&'static str, &'static str> {
     ])
 }
 
-/// What `fair.export_cad` writes: the file, its format (`None`: by the extension) and an
+/// What `fairspline.export_cad` writes: the file, its format (`None`: by the extension) and an
 /// optional rebuild — `fair curve -o PATH [--cad FORMAT] [--control-points N]
 /// [--fit-tolerance D]`.
 #[derive(Debug, Clone, Default, PartialEq)]

@@ -1,4 +1,4 @@
-//! Python bindings of the fair framework: the module `fair` (its native part, `fair._native`).
+//! Python bindings of the fair framework: the module `fair` (its native part, `fairspline._native`).
 //!
 //! `pip install ./crates/python` builds and installs it (maturin). The functions mirror the
 //! command: `curve` is `fair curve`, `surface` is `fair surface`, `inspect` is
@@ -16,9 +16,14 @@
 //! underneath); results are handed to NumPy without a copy (the array owns the `Vec`).
 
 pub mod backend;
+pub mod callables;
+mod catalog;
+
+use std::sync::Arc;
 
 use backend::{Config, Coordinates, Failure, Faired, Options};
-use fairing::catalog::GivenValue;
+use callables::Sink;
+use fairing::catalog::{Catalog, GivenValue};
 use numpy::ndarray::{Array2, Array3};
 use numpy::{
     IntoPyArray, PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods,
@@ -58,7 +63,7 @@ fn without_gil<T: Send>(py: Python<'_>, work: impl FnOnce() -> backend::Result<T
 /// float64 arrays are read in place when C-contiguous; other real dtypes (integers, float32)
 /// are converted by NumPy; anything else (complex, bool, strings, objects, ragged lists) is
 /// refused.
-fn float_array(value: &Bound<'_, PyAny>, what: &str) -> PyResult<(Vec<f64>, Vec<usize>)> {
+pub(crate) fn float_array(value: &Bound<'_, PyAny>, what: &str) -> PyResult<(Vec<f64>, Vec<usize>)> {
     let py = value.py();
     let numpy = py.import("numpy")?;
     let array = match value.cast::<PyUntypedArray>() {
@@ -93,7 +98,7 @@ fn float_array(value: &Bound<'_, PyAny>, what: &str) -> PyResult<(Vec<f64>, Vec<
 }
 
 /// Curve points: an `(n, 2)` or `(n, 3)` array.
-fn curve_points(value: &Bound<'_, PyAny>) -> PyResult<Coordinates> {
+pub(crate) fn curve_points(value: &Bound<'_, PyAny>) -> PyResult<Coordinates> {
     let (values, shape) = float_array(value, backend::POINTS)?;
     match shape.as_slice() {
         [_, d @ (2 | 3)] => Ok(Coordinates {
@@ -121,7 +126,7 @@ fn grid_points(value: &Bound<'_, PyAny>) -> PyResult<(Coordinates, usize, usize)
     }
 }
 
-fn shape_text(shape: &[usize]) -> String {
+pub(crate) fn shape_text(shape: &[usize]) -> String {
     match shape {
         [one] => format!("({one},)"),
         _ => format!(
@@ -134,7 +139,7 @@ fn shape_text(shape: &[usize]) -> String {
 /// `params=`: a dict of parameter names and values: numbers and booleans as the JSON values
 /// they are, strings as text (what `--set NAME=VALUE` carries, which the catalogue reads
 /// against the parameter's schema).
-fn params_argument(params: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<(String, GivenValue)>> {
+pub(crate) fn params_argument(params: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<(String, GivenValue)>> {
     let Some(params) = params.filter(|p| !p.is_none()) else {
         return Ok(Vec::new());
     };
@@ -227,7 +232,7 @@ fn non_negative(index: i64, what: &str) -> PyResult<usize> {
 }
 
 /// A serde_json value as the Python object `json.loads` would make of its text.
-fn to_python<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound<'py, PyAny>> {
+pub(crate) fn to_python<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound<'py, PyAny>> {
     use serde_json::Value;
     Ok(match value {
         Value::Null => py.None().into_bound(py),
@@ -261,7 +266,7 @@ fn to_python<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound<
 
 /// A faired curve: `points`, an (n, d) float64 array, and `report`, the command's JSON report
 /// as a dict.
-#[pyclass(frozen, module = "fair", name = "FairedCurve")]
+#[pyclass(frozen, module = "fairspline", name = "FairedCurve")]
 pub struct FairedCurve {
     points: Py<PyAny>,
     report: Py<PyAny>,
@@ -299,7 +304,7 @@ impl FairedCurve {
 
 /// A faired surface: `grid`, an (m, n, 3) float64 array, and `report`, the command's JSON
 /// report as a dict.
-#[pyclass(frozen, module = "fair", name = "FairedSurface")]
+#[pyclass(frozen, module = "fairspline", name = "FairedSurface")]
 pub struct FairedSurface {
     grid: Py<PyAny>,
     report: Py<PyAny>,
@@ -334,7 +339,7 @@ impl FairedSurface {
     }
 }
 
-fn faired_curve(py: Python<'_>, faired: Faired) -> PyResult<FairedCurve> {
+pub(crate) fn faired_curve(py: Python<'_>, faired: Faired) -> PyResult<FairedCurve> {
     let Coordinates { dimension, values } = faired.points;
     let rows = values.len() / dimension;
     let array = Array2::from_shape_vec((rows, dimension), values)
@@ -361,7 +366,7 @@ fn faired_surface(py: Python<'_>, faired: Faired, rows: usize, columns: usize) -
 
 /// The options shared by curves and surfaces, checked for their Python types.
 #[allow(clippy::too_many_arguments)]
-fn options(
+pub(crate) fn options(
     method: Option<String>,
     kind: Option<String>,
     params: Option<&Bound<'_, PyAny>>,
@@ -388,7 +393,7 @@ fn options(
 /// Fair a curve, as `fair curve` does.
 ///
 /// points: an (n, 2) or (n, 3) array of float64 (other real dtypes are converted).
-/// method: a curve method of `fair.methods()`; default two-phase for a function y(x),
+/// method: a curve method of `fairspline.methods()`; default two-phase for a function y(x),
 ///     strain-energy for a parametric curve.
 /// kind: "function", "parametric" or "auto" (None): a function when x increases strictly.
 /// params: the method's parameters, {"name": value} (what `--set name=value` takes).
@@ -431,14 +436,36 @@ fn curve(
         closed,
         None,
     )?;
-    let faired = without_gil(py, || backend::fair_curve(&coordinates, &options))?;
-    faired_curve(py, faired)
+    run_curve(py, backend::catalog(), None, &coordinates, &options)
+}
+
+/// Fairs `coordinates` with `catalog`'s methods. With a `sink` (a `Catalog` that holds Python
+/// methods), the calls of that catalogue run one at a time, and an exception a Python
+/// callable raised during the run is raised here, as the `__cause__` of a RuntimeError whose
+/// message names the strategy or criterion.
+pub(crate) fn run_curve(
+    py: Python<'_>,
+    catalog: &Catalog,
+    sink: Option<&Arc<Sink>>,
+    coordinates: &Coordinates,
+    options: &Options,
+) -> PyResult<FairedCurve> {
+    let faired = without_gil(py, || {
+        let _one_at_a_time = sink.map(|s| s.call());
+        backend::fair_curve(catalog, coordinates, options)
+    });
+    if let Some((line, error)) = sink.and_then(|s| s.take()) {
+        let raised = PyRuntimeError::new_err(line);
+        raised.set_cause(py, Some(error));
+        return Err(raised);
+    }
+    faired_curve(py, faired?)
 }
 
 /// Fair a surface grid, as `fair surface` does.
 ///
 /// grid: an (m, n, 3) array of float64, grid[i, j] = P_ij.
-/// method: a surface method of `fair.methods()`; default zhang-cheng.
+/// method: a surface method of `fairspline.methods()`; default zhang-cheng.
 /// params: the method's parameters, {"name": value}.
 /// fixed, points_to_fix: grid points, as indices k = i * n + j or pairs (i, j).
 /// tolerance: no point moves farther than this.
@@ -471,7 +498,7 @@ fn surface(
         Some(columns),
     )?;
     let faired = without_gil(py, || {
-        backend::fair_surface(&coordinates, rows, columns, &options)
+        backend::fair_surface(backend::catalog(), &coordinates, rows, columns, &options)
     })?;
     faired_surface(py, faired, rows, columns)
 }
@@ -492,7 +519,9 @@ fn inspect(py: Python<'_>, points: &Bound<'_, PyAny>, kind: Option<String>) -> P
                 dimension: *d,
                 values,
             };
-            without_gil(py, || backend::inspect_curve(&coordinates, kind.as_deref()))?
+            without_gil(py, || {
+                backend::inspect_curve(backend::catalog(), &coordinates, kind.as_deref())
+            })?
         }
         [m, n, 3] => {
             if kind.as_deref().is_some_and(|k| k != "auto") {
@@ -557,24 +586,26 @@ fn lines(
 /// `name`, `default` as text and `meaning`).
 #[pyfunction]
 fn methods(py: Python<'_>) -> PyResult<Py<PyAny>> {
-    let list = serde_json::Value::Array(backend::methods());
+    let list = serde_json::Value::Array(backend::methods(backend::catalog()));
     Ok(to_python(py, &list)?.unbind())
 }
 
 /// A pipeline from a config, as `fair curve --config FILE` takes it: method parameters (top
 /// level or in a table named after the method), `[constraints]` and `[[stage]]`s.
 ///
-/// Build it with `fair.pipeline(config)`; call `.curve(points, ...)` (or the pipeline itself)
+/// Build it with `fairspline.pipeline(config)`; call `.curve(points, ...)` (or the pipeline itself)
 /// and `.surface(grid, ...)`. Arguments given to the call win over the config's
 /// `[constraints]`, as the command line wins over the file.
-#[pyclass(frozen, module = "fair", name = "Pipeline")]
+#[pyclass(frozen, module = "fairspline", name = "Pipeline")]
 pub struct Pipeline {
     config: Config,
+    /// The `Catalog` object it was made by (its catalogue and sink); `None` for the module's.
+    catalog: Option<(Arc<Catalog>, Arc<Sink>)>,
 }
 
 #[pymethods]
 impl Pipeline {
-    /// Fair a curve with this config. Same arguments as `fair.curve` but the method and
+    /// Fair a curve with this config. Same arguments as `fairspline.curve` but the method and
     /// parameters, which come from the config.
     #[pyo3(signature = (points, kind=None, fixed=None, points_to_fix=None, tolerance=None, clamp_ends=None, closed=false))]
     #[allow(clippy::too_many_arguments)]
@@ -602,8 +633,10 @@ impl Pipeline {
             None,
         )?;
         options.config = Some(self.config.clone());
-        let faired = without_gil(py, || backend::fair_curve(&coordinates, &options))?;
-        faired_curve(py, faired)
+        match &self.catalog {
+            Some((catalog, sink)) => run_curve(py, catalog, Some(sink), &coordinates, &options),
+            None => run_curve(py, backend::catalog(), None, &coordinates, &options),
+        }
     }
 
     /// Same as `.curve(...)`.
@@ -656,8 +689,9 @@ impl Pipeline {
             Some(columns),
         )?;
         options.config = Some(self.config.clone());
+        let catalog = self.catalog.as_ref().map_or(backend::catalog(), |(c, _)| &**c);
         let faired = without_gil(py, || {
-            backend::fair_surface(&coordinates, rows, columns, &options)
+            backend::fair_surface(catalog, &coordinates, rows, columns, &options)
         })?;
         faired_surface(py, faired, rows, columns)
     }
@@ -672,9 +706,17 @@ impl Pipeline {
 /// config: a dict (the JSON form of the config), a str of TOML (or JSON) text, or a path
 ///     (os.PathLike) to a .toml or .json file.
 ///
-/// Returns a Pipeline; `fair.pipeline(c).curve(points)` is `fair curve FILE --config c`.
+/// Returns a Pipeline; `fairspline.pipeline(c).curve(points)` is `fair curve FILE --config c`.
 #[pyfunction]
 fn pipeline(py: Python<'_>, config: &Bound<'_, PyAny>) -> PyResult<Pipeline> {
+    Ok(Pipeline {
+        config: parse_config(py, config)?,
+        catalog: None,
+    })
+}
+
+/// A config from a dict, TOML text or a path (see [`pipeline`]).
+pub(crate) fn parse_config(py: Python<'_>, config: &Bound<'_, PyAny>) -> PyResult<Config> {
     let os = py.import("os")?;
     let parsed = if config.is_instance_of::<PyDict>() {
         let text: String = py
@@ -693,9 +735,7 @@ fn pipeline(py: Python<'_>, config: &Bound<'_, PyAny>) -> PyResult<Pipeline> {
             "config: a dict, a str of TOML text, or a path to a .toml or .json file",
         ));
     };
-    Ok(Pipeline {
-        config: parsed.map_err(to_py_error)?,
-    })
+    parsed.map_err(to_py_error)
 }
 
 /// The default methods: {"function": ..., "parametric": ..., "surface": ...}.
@@ -794,10 +834,16 @@ fn read_cad(py: Python<'_>, path: std::path::PathBuf, format: Option<String>) ->
     Ok(to_python(py, &model)?.unbind())
 }
 
-/// The native module `fair._native`; `fair` re-exports it.
-#[pymodule]
-#[pyo3(name = "_native")]
-fn fair_python(module: &Bound<'_, PyModule>) -> PyResult<()> {
+/// Fills `module` (a package's native module) with the package's functions and classes, over
+/// the catalogue `make()` makes: the module's functions, `methods()` and `Catalog()` then
+/// have the methods and criteria of that catalogue. The package's own module is this over
+/// [`Catalog::builtin`]; a Rust user's crate exposes its own methods to Python by calling it
+/// from its own `#[pymodule]` with its catalogue's constructor (docs/python.md, "A Rust
+/// catalogue in Python").
+///
+/// The first call of a process decides the catalogue (one extension module per process).
+pub fn init_module(module: &Bound<'_, PyModule>, make: fn() -> Catalog) -> PyResult<()> {
+    backend::install(make);
     module.add_function(wrap_pyfunction!(curve, module)?)?;
     module.add_function(wrap_pyfunction!(surface, module)?)?;
     module.add_function(wrap_pyfunction!(inspect, module)?)?;
@@ -810,6 +856,18 @@ fn fair_python(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_class::<FairedCurve>()?;
     module.add_class::<FairedSurface>()?;
     module.add_class::<Pipeline>()?;
+    module.add_class::<catalog::PyCatalog>()?;
     module.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
+}
+
+/// The native module `fairspline._native` over the built-in catalogue; `fairspline`
+/// re-exports it. Behind the default feature `module`, so that a Rust user's crate that
+/// builds its own module with [`init_module`] (without default features) exports no second
+/// module.
+#[cfg(feature = "module")]
+#[pymodule]
+#[pyo3(name = "_native")]
+fn fair_python(module: &Bound<'_, PyModule>) -> PyResult<()> {
+    init_module(module, Catalog::builtin)
 }

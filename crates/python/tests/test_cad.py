@@ -1,4 +1,4 @@
-"""`fair.export_cad` and `fair.read_cad`: the file holds the same curve as `fair curve -o
+"""`fairspline.export_cad` and `fairspline.read_cad`: the file holds the same curve as `fair curve -o
 FILE.igs` writes (bit for bit), and the faired points lie on it to 1e-9 of their size,
 evaluated here by de Boor's algorithm independently of the framework."""
 
@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import fair
+import fairspline
 from conftest import DATA, read_points, read_report, run_fair
 
 
@@ -39,14 +39,14 @@ def size(points: np.ndarray) -> float:
 
 def test_a_function_result_is_the_command_s_file(tmp_path, fair_bin):
     path = DATA / "airfoil_r140" / "r140_upper.csv"
-    result = fair.curve(read_points(path), method="two-phase")
-    summary = fair.export_cad(result, tmp_path / "py.igs")
+    result = fairspline.curve(read_points(path), method="two-phase")
+    summary = fairspline.export_cad(result, tmp_path / "py.igs")
     assert summary["representation"] == "spline-function" and summary["exact"]
-    ours = fair.read_cad(tmp_path / "py.igs")
+    ours = fairspline.read_cad(tmp_path / "py.igs")
     command = run_fair(fair_bin, "curve", path, "-m", "two-phase", "-q", "-o", tmp_path / "cmd.igs",
                        "--report", tmp_path / "cmd.json")
     assert command.returncode == 0, command.stderr
-    theirs = fair.read_cad(tmp_path / "cmd.igs")
+    theirs = fairspline.read_cad(tmp_path / "cmd.igs")
     for field in ("degree", "knots", "control_points", "weights"):
         assert ours["curves"][0][field] == theirs["curves"][0][field], field
     report = read_report(tmp_path / "cmd.json")["cad"]
@@ -61,10 +61,10 @@ def test_a_function_result_is_the_command_s_file(tmp_path, fair_bin):
 def test_a_parametric_result_passes_through_its_points(tmp_path, method, fmt):
     points = read_points(DATA / "airfoil_naca2412" / "naca2412_upper.csv")
     params = {"max-iterations": 60} if method == "nurbs-weights" else None
-    result = fair.curve(points, method=method, kind="parametric", params=params)
-    summary = fair.export_cad(result, tmp_path / "c.out", format=fmt)
+    result = fairspline.curve(points, method=method, kind="parametric", params=params)
+    summary = fairspline.export_cad(result, tmp_path / "c.out", format=fmt)
     assert summary["format"] == fmt and summary["exact"]
-    model = fair.read_cad(tmp_path / "c.out", format=fmt)
+    model = fairspline.read_cad(tmp_path / "c.out", format=fmt)
     record = result.report["curve"]
     parameters = record["knots"] if record["type"] == "hermite" else record["params"]
     faired = lifted(result.points)
@@ -74,13 +74,13 @@ def test_a_parametric_result_passes_through_its_points(tmp_path, method, fmt):
 
 def test_points_as_they_are_with_a_rebuild(tmp_path):
     points = read_points(DATA / "airfoil_r140" / "r140_upper.csv")
-    summary = fair.export_cad(points, tmp_path / "r.step", control_points=10)
+    summary = fairspline.export_cad(points, tmp_path / "r.step", control_points=10)
     assert not summary["exact"] and summary["control_points"] == 10
     assert summary["wiggles_back"] == (
         summary["written"]["vibrations"] > summary["faired"]["vibrations"]
         or summary["written"]["inflections"] > summary["faired"]["inflections"]
     )
-    curve = fair.read_cad(tmp_path / "r.step")["curves"][0]
+    curve = fairspline.read_cad(tmp_path / "r.step")["curves"][0]
     assert len(curve["control_points"]) == 10
     deviation = max(abs(evaluate(curve, x)[1] - y) for x, y in points)
     assert deviation == pytest.approx(summary["max_deviation"], rel=1e-9, abs=1e-15)
@@ -90,17 +90,17 @@ def test_a_surface_and_the_refusals(tmp_path):
     x, y = np.meshgrid(np.arange(7.0) * 10, np.arange(6.0) * 8, indexing="ij")
     grid = np.stack([x, y, 0.002 * x * x + 0.1 * y], axis=-1)
     grid[3, 2, 2] += 1.5
-    result = fair.surface(grid)
-    summary = fair.export_cad(result, tmp_path / "s.stp")
+    result = fairspline.surface(grid)
+    summary = fairspline.export_cad(result, tmp_path / "s.stp")
     assert summary["representation"] == "bicubic"
-    model = fair.read_cad(tmp_path / "s.stp")
+    model = fairspline.read_cad(tmp_path / "s.stp")
     assert len(model["surfaces"]) == 1 and not model["curves"]
     for call, argument in [
-        (lambda: fair.export_cad(result, tmp_path / "s.dxf"), "path"),
-        (lambda: fair.export_cad(result, tmp_path / "s.igs", control_points=6), "control_points"),
-        (lambda: fair.export_cad(grid[0], tmp_path / "c.csv"), "path"),
-        (lambda: fair.export_cad(grid[0], tmp_path / "c.igs", format="obj"), "format"),
-        (lambda: fair.export_cad(grid[0], tmp_path / "c.igs", control_points=5, fit_tolerance=0.1), "control_points"),
+        (lambda: fairspline.export_cad(result, tmp_path / "s.dxf"), "path"),
+        (lambda: fairspline.export_cad(result, tmp_path / "s.igs", control_points=6), "control_points"),
+        (lambda: fairspline.export_cad(grid[0], tmp_path / "c.csv"), "path"),
+        (lambda: fairspline.export_cad(grid[0], tmp_path / "c.igs", format="obj"), "format"),
+        (lambda: fairspline.export_cad(grid[0], tmp_path / "c.igs", control_points=5, fit_tolerance=0.1), "control_points"),
     ]:
         with pytest.raises(ValueError, match=f"^{argument}:"):
             call()

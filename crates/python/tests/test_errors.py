@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import fair
+import fairspline
 
 T = np.linspace(0.0, 1.0, 12)
 GOOD = np.column_stack([T, np.sin(3.0 * T)])
@@ -25,7 +25,7 @@ GRID = np.stack([I, J, 0.1 * I * J], axis=-1)
 )
 def test_wrong_shape(points, words):
     with pytest.raises(ValueError) as raised:
-        fair.curve(points)
+        fairspline.curve(points)
     for word in words:
         assert word in str(raised.value)
 
@@ -35,13 +35,13 @@ def test_not_finite(bad):
     points = GOOD.copy()
     points[4, 1] = bad
     with pytest.raises(ValueError, match="point 4 .*not finite"):
-        fair.curve(points)
+        fairspline.curve(points)
     with pytest.raises(ValueError, match="not finite"):
-        fair.inspect(points)
+        fairspline.inspect(points)
     grid = GRID.copy()
     grid[2, 3, 2] = bad
     with pytest.raises(ValueError, match=r"\(2, 3\).*not finite"):
-        fair.surface(grid)
+        fairspline.surface(grid)
 
 
 @pytest.mark.parametrize(
@@ -55,74 +55,74 @@ def test_not_finite(bad):
 )
 def test_wrong_dtype(points, dtype):
     with pytest.raises(ValueError, match=f"dtype.*{dtype}"):
-        fair.curve(points)
+        fairspline.curve(points)
 
 
 def test_ragged_list():
     with pytest.raises(ValueError, match="points"):
-        fair.curve([[0.0, 1.0], [1.0], [2.0, 3.0]])
+        fairspline.curve([[0.0, 1.0], [1.0], [2.0, 3.0]])
 
 
 def test_unknown_method():
     with pytest.raises(ValueError, match=r"unknown curve method `wobble`.*strain-energy"):
-        fair.curve(GOOD, method="wobble")
+        fairspline.curve(GOOD, method="wobble")
     with pytest.raises(ValueError, match=r"unknown surface method `strain-energy`"):
-        fair.surface(GRID, method="strain-energy")
+        fairspline.surface(GRID, method="strain-energy")
 
 
 def test_unknown_parameter():
     with pytest.raises(ValueError, match=r"params.*`wobble`"):
-        fair.curve(GOOD, method="smoothing-spline", params={"wobble": 1})
+        fairspline.curve(GOOD, method="smoothing-spline", params={"wobble": 1})
 
 
 def test_bad_parameter_value():
     with pytest.raises(ValueError, match=r"\bp\b"):
-        fair.curve(GOOD, method="smoothing-spline", params={"p": 7.0})
+        fairspline.curve(GOOD, method="smoothing-spline", params={"p": 7.0})
     with pytest.raises(ValueError, match="must be a number, a boolean or a string"):
-        fair.curve(GOOD, method="smoothing-spline", params={"p": [0.5]})
+        fairspline.curve(GOOD, method="smoothing-spline", params={"p": [0.5]})
 
 
 def test_fixed_index_out_of_range():
     with pytest.raises(ValueError, match=r"fixed: index 12 is past the last point \(12 points"):
-        fair.curve(GOOD, fixed=[0, 12])
+        fairspline.curve(GOOD, fixed=[0, 12])
     with pytest.raises(ValueError, match=r"fixed: index -1 is negative"):
-        fair.curve(GOOD, fixed=[-1])
+        fairspline.curve(GOOD, fixed=[-1])
     with pytest.raises(ValueError, match=r"fixed: index 3 appears twice"):
-        fair.curve(GOOD, fixed=[3, 3])
+        fairspline.curve(GOOD, fixed=[3, 3])
     with pytest.raises(ValueError, match=r"points_to_fix: index 40 is past the last point"):
-        fair.curve(GOOD, method="strain-energy", points_to_fix=[40])
+        fairspline.curve(GOOD, method="strain-energy", points_to_fix=[40])
     with pytest.raises(ValueError, match=r"fixed: column j = 9 of \(1, 9\)"):
-        fair.surface(GRID, fixed=[(1, 9)])
+        fairspline.surface(GRID, fixed=[(1, 9)])
     with pytest.raises(ValueError, match=r"fixed: index 20 is past the last point \(20 points"):
-        fair.surface(GRID, fixed=[20])
+        fairspline.surface(GRID, fixed=[20])
 
 
 def test_options_the_method_cannot_use():
     with pytest.raises(ValueError, match="points_to_fix"):
-        fair.curve(GOOD, method="smoothing-spline", points_to_fix=[3])
+        fairspline.curve(GOOD, method="smoothing-spline", points_to_fix=[3])
     with pytest.raises(ValueError, match="clamp_ends"):
-        fair.curve(GOOD, method="two-phase", clamp_ends="g2")
+        fairspline.curve(GOOD, method="two-phase", clamp_ends="g2")
     with pytest.raises(ValueError, match="clamp_ends: `g4`"):
-        fair.curve(GOOD, clamp_ends="g4")
+        fairspline.curve(GOOD, clamp_ends="g4")
     with pytest.raises(ValueError, match="kind: `spline`"):
-        fair.curve(GOOD, kind="spline")
+        fairspline.curve(GOOD, kind="spline")
     with pytest.raises(ValueError, match="tolerance"):
-        fair.curve(GOOD, tolerance=-1.0)
+        fairspline.curve(GOOD, tolerance=-1.0)
     with pytest.raises(ValueError, match="kind"):
-        fair.curve(GOOD[::-1], kind="function")
+        fairspline.curve(GOOD[::-1], kind="function")
 
 
 def test_bad_config():
     with pytest.raises(ValueError, match="unknown curve method `wobble`"):
-        fair.pipeline("[[stage]]\nmethod = 'wobble'\n").curve(GOOD)
+        fairspline.pipeline("[[stage]]\nmethod = 'wobble'\n").curve(GOOD)
     with pytest.raises(ValueError, match=r"config:2"):
-        fair.pipeline("[constraints]\nfixed = [0,\n")
+        fairspline.pipeline("[constraints]\nfixed = [0,\n")
     with pytest.raises(TypeError, match="config"):
-        fair.pipeline(42)
+        fairspline.pipeline(42)
 
 
 def test_a_failure_leaves_the_interpreter_usable():
     for _ in range(3):
         with pytest.raises(ValueError):
-            fair.curve(np.full((5, 2), np.nan))
-    assert fair.curve(GOOD).points.shape == GOOD.shape
+            fairspline.curve(np.full((5, 2), np.nan))
+    assert fairspline.curve(GOOD).points.shape == GOOD.shape

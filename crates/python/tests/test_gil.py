@@ -11,7 +11,7 @@ import time
 import numpy as np
 import pytest
 
-import fair
+import fairspline
 
 
 def noisy_sine(n: int, seed: int) -> np.ndarray:
@@ -21,7 +21,7 @@ def noisy_sine(n: int, seed: int) -> np.ndarray:
 
 
 def work(points: np.ndarray) -> None:
-    fair.curve(points, method="smoothing-spline", params={"p": "auto"})
+    fairspline.curve(points, method="smoothing-spline", params={"p": "auto"})
 
 
 def timed(job) -> float:

@@ -1,4 +1,4 @@
-"""fair.lines: a table of offsets faired as one hull, through Python."""
+"""fairspline.lines: a table of offsets faired as one hull, through Python."""
 
 import csv
 import pathlib
@@ -6,7 +6,7 @@ import pathlib
 import numpy as np
 import pytest
 
-import fair
+import fairspline
 
 TABLE = (
     pathlib.Path(__file__).resolve().parents[3]
@@ -17,7 +17,7 @@ TABLE = (
 
 
 def test_lines_fairs_the_block_island_table():
-    report, values = fair.lines(TABLE)
+    report, values = fairspline.lines(TABLE)
     offsets = report["offsets"]
     assert values.shape == (len(offsets), 3)
     # The array holds the report's faired coordinates (NaN where the report has none).
@@ -46,9 +46,9 @@ def test_lines_names_the_file_and_line_of_a_bad_value(tmp_path):
     bad = tmp_path / "bad.csv"
     bad.write_text("\n".join(text) + "\n")
     with pytest.raises(ValueError, match=rf"{bad.name}:5: "):
-        fair.lines(bad)
+        fairspline.lines(bad)
 
 
 def test_lines_refuses_a_bad_setting():
     with pytest.raises(ValueError, match="step"):
-        fair.lines(TABLE, step=-1.0)
+        fairspline.lines(TABLE, step=-1.0)

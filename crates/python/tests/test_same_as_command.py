@@ -1,6 +1,6 @@
 """Every method through the package gives the command's output bit for bit.
 
-For each method and each data file it can take, `fair.curve(points, ...)` and
+For each method and each data file it can take, `fairspline.curve(points, ...)` and
 `fair curve FILE -o OUT --report REPORT` are run on the same points and options: the faired
 points must have the same bits, and the reports the same fields and values (all but
 `elapsed_ms`, the time it took). Where the command refuses (exit status 2), the package must
@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import fair
+import fairspline
 from conftest import DATA, read_grid, read_points, read_report, run_fair, same_bits, without_timing
 
 FUNCTION = DATA / "airfoil_naca2412" / "naca2412_upper.csv"
@@ -25,8 +25,8 @@ SECTION = DATA / "hull_block_island_boat" / "sections" / "station_01.csv"
 CURVE_FILES = [FUNCTION, WATERLINE, CONTOUR, SECTION]
 GRID = DATA / "surface_utah_teapot" / "teapot_lid_control_net.csv"
 
-CURVE_METHODS = [m["name"] for m in fair.methods() if m["kind"] == "curve"]
-SURFACE_METHODS = [m["name"] for m in fair.methods() if m["kind"] == "surface"]
+CURVE_METHODS = [m["name"] for m in fairspline.methods() if m["kind"] == "curve"]
+SURFACE_METHODS = [m["name"] for m in fairspline.methods() if m["kind"] == "surface"]
 
 
 def command_curve(fair_bin, tmp_path: Path, source: Path, *options: str):
@@ -44,7 +44,7 @@ def set_options(params: dict) -> list[str]:
     return [arg for k, v in params.items() for arg in ("--set", f"{k}={text[type(v)](v)}")]
 
 
-def assert_same(result: fair.FairedCurve, command) -> None:
+def assert_same(result: fairspline.FairedCurve, command) -> None:
     points, report = command
     assert same_bits(result.points, points), np.abs(result.points - points).max()
     assert set(result.report) == set(report)
@@ -61,16 +61,16 @@ def test_every_curve_method_on_data_files(fair_bin, tmp_path, method):
         if not isinstance(command, tuple):
             assert command.returncode == 2, command.stderr
             with pytest.raises(ValueError):
-                fair.curve(points, method=method)
+                fairspline.curve(points, method=method)
             continue
-        assert_same(fair.curve(points, method=method), command)
+        assert_same(fairspline.curve(points, method=method), command)
         succeeded += 1
     assert succeeded > 0, f"{method} ran on none of the files"
 
 
 def test_default_methods_match(fair_bin, tmp_path):
     for source in (FUNCTION, CONTOUR, SECTION):
-        assert_same(fair.curve(read_points(source)), command_curve(fair_bin, tmp_path, source))
+        assert_same(fairspline.curve(read_points(source)), command_curve(fair_bin, tmp_path, source))
 
 
 CASES = [
@@ -100,13 +100,13 @@ def test_parameters_and_constraints(fair_bin, tmp_path, method, source, params, 
             flags += [flag, repr(options[name]) if isinstance(options[name], float) else options[name]]
     command = command_curve(fair_bin, tmp_path, source, *flags)
     assert isinstance(command, tuple), command.stderr
-    assert_same(fair.curve(read_points(source), method=method, params=params, **options), command)
+    assert_same(fairspline.curve(read_points(source), method=method, params=params, **options), command)
 
 
 def test_closed_two_phase_is_the_closed_parameter(fair_bin, tmp_path):
     command = command_curve(fair_bin, tmp_path, CONTOUR, "--method", "two-phase", "--set", "closed=true")
     assert isinstance(command, tuple), command.stderr
-    assert_same(fair.curve(read_points(CONTOUR), method="two-phase", closed=True), command)
+    assert_same(fairspline.curve(read_points(CONTOUR), method="two-phase", closed=True), command)
 
 
 def test_closed_loop_is_given_with_its_first_point_repeated(fair_bin, tmp_path):
@@ -117,7 +117,7 @@ def test_closed_loop_is_given_with_its_first_point_repeated(fair_bin, tmp_path):
     repeated = tmp_path / "loop.csv"
     repeated.write_text("x,y\n" + "".join(f"{float(x)!r},{float(y)!r}\n" for x, y in np.vstack([loop, loop[:1]])))
     points, report = command_curve(fair_bin, tmp_path, repeated, "--method", "strain-energy")
-    result = fair.curve(loop, method="strain-energy", closed=True)
+    result = fairspline.curve(loop, method="strain-energy", closed=True)
     assert same_bits(result.points, points[:-1])
     assert same_bits(points[0], points[-1])
     assert without_timing(result.report) == without_timing(report)
@@ -128,7 +128,7 @@ def test_every_surface_method(fair_bin, tmp_path, method):
     out, report = tmp_path / "out.csv", tmp_path / "report.json"
     done = run_fair(fair_bin, "surface", GRID, "--method", method, "-o", out, "--report", report, "-q")
     assert done.returncode == 0, done.stderr
-    result = fair.surface(read_grid(GRID), method=method)
+    result = fairspline.surface(read_grid(GRID), method=method)
     assert same_bits(result.grid, read_grid(out))
     assert without_timing(result.report) == without_timing(read_report(report))
 
@@ -140,7 +140,7 @@ def test_surface_constraints(fair_bin, tmp_path):
     done = run_fair(fair_bin, "surface", GRID, "-o", out, "--report", report, "-q", "--fixed",
                     f"{columns + 1},{2 * columns + 2}", "--tolerance", "0.05", "--set", "max-steps=200")
     assert done.returncode == 0, done.stderr
-    result = fair.surface(grid, fixed=[(1, 1), 2 * columns + 2], tolerance=0.05, params={"max-steps": 200})
+    result = fairspline.surface(grid, fixed=[(1, 1), 2 * columns + 2], tolerance=0.05, params={"max-steps": 200})
     assert same_bits(result.grid, read_grid(out))
     assert without_timing(result.report) == without_timing(read_report(report))
 
@@ -151,10 +151,10 @@ def test_inspect_matches(fair_bin, tmp_path):
         flags = ["--kind", kind] if kind else []
         done = run_fair(fair_bin, "inspect", source, "--report", report, "-q", *flags)
         assert done.returncode == 0, done.stderr
-        assert fair.inspect(read_points(source), kind=kind) == read_report(report)
+        assert fairspline.inspect(read_points(source), kind=kind) == read_report(report)
     done = run_fair(fair_bin, "inspect", GRID, "--report", report, "-q")
     assert done.returncode == 0, done.stderr
-    assert fair.inspect(read_grid(GRID)) == read_report(report)
+    assert fairspline.inspect(read_grid(GRID)) == read_report(report)
 
 
 PIPELINE = """
@@ -185,7 +185,7 @@ def test_pipeline_from_toml_dict_and_path(fair_bin, tmp_path):
             {"method": "strain-energy", "energy-tolerance": 1e-7},
         ],
     }
-    for pipeline in (fair.pipeline(config), fair.pipeline(PIPELINE), fair.pipeline(as_dict)):
+    for pipeline in (fairspline.pipeline(config), fairspline.pipeline(PIPELINE), fairspline.pipeline(as_dict)):
         assert_same(pipeline.curve(points), command)
         assert_same(pipeline(points), command)
 
@@ -195,19 +195,19 @@ def test_pipeline_arguments_win_over_the_config(fair_bin, tmp_path):
     config.write_text(PIPELINE)
     command = command_curve(fair_bin, tmp_path, CONTOUR, "--config", config, "--fixed", "3", "--tolerance", "0.001")
     assert isinstance(command, tuple), command.stderr
-    assert_same(fair.pipeline(config).curve(read_points(CONTOUR), fixed=[3], tolerance=0.001), command)
+    assert_same(fairspline.pipeline(config).curve(read_points(CONTOUR), fixed=[3], tolerance=0.001), command)
 
 
 def test_methods_is_the_command_catalogue(fair_bin):
     listed = run_fair(fair_bin, "methods")
     assert listed.returncode == 0
-    catalogue = fair.methods()
+    catalogue = fairspline.methods()
     assert {m["kind"] for m in catalogue} == {"curve", "surface"}
     for method in catalogue:
         assert method["name"] in listed.stdout
         for parameter in method["parameters"]:
             assert f"{parameter['name']}={parameter['default']}" in listed.stdout
-    defaults = fair.default_methods()
+    defaults = fairspline.default_methods()
     assert set(defaults) == {"function", "parametric", "surface"}
     assert all(any(m["name"] == d for m in catalogue) for d in defaults.values())
 
@@ -216,9 +216,9 @@ def test_inputs_that_are_not_float64_c_arrays(fair_bin, tmp_path):
     """A Fortran-ordered or strided array, a list, and integer points give the same result as
     the float64 C array of the same values."""
     points = read_points(CONTOUR)
-    reference = fair.curve(points, method="smoothing-spline")
+    reference = fairspline.curve(points, method="smoothing-spline")
     for variant in (np.asfortranarray(points), np.repeat(points, 2, axis=0)[::2], points.tolist()):
-        result = fair.curve(variant, method="smoothing-spline")
+        result = fairspline.curve(variant, method="smoothing-spline")
         assert same_bits(result.points, reference.points)
     integers = np.array([[0, 0], [1, 2], [2, 3], [3, 3], [4, 2], [5, 0]])
-    assert same_bits(fair.curve(integers).points, fair.curve(integers.astype(np.float64)).points)
+    assert same_bits(fairspline.curve(integers).points, fairspline.curve(integers.astype(np.float64)).points)

@@ -400,6 +400,30 @@ impl MethodEntry {
         entry
     }
 
+    /// An entry whose settings schema and defaults are given when the program runs, not
+    /// derived from a settings type (see [`Catalog::register_curve_with_schema`]); the
+    /// defaults must be settings the method accepts.
+    ///
+    /// [`Catalog::register_curve_with_schema`]: super::Catalog::register_curve_with_schema
+    pub(crate) fn with_schema(
+        info: MethodInfo,
+        method: Arc<dyn ErasedMethod>,
+        schema: Value,
+        defaults: Value,
+    ) -> Result<MethodEntry> {
+        method.accept(&defaults, true)?;
+        let mut entry = MethodEntry {
+            info,
+            method,
+            schema,
+            defaults,
+            pinned: Vec::new(),
+            parameters: Vec::new(),
+        };
+        entry.parameters = entry.derive_parameters();
+        Ok(entry)
+    }
+
     /// A preset of this entry: other defaults (merged over these), some parameters pinned
     /// (neither listed nor accepted).
     pub(crate) fn preset(&self, info: MethodInfo, defaults: &Value, pinned: &[&str]) -> Result<MethodEntry> {

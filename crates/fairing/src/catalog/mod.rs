@@ -115,6 +115,27 @@ impl Catalog {
         self
     }
 
+    /// Registers a curve method whose parameters are known only when the program runs (a
+    /// method written in another language, as the Python bindings' strategies are):
+    /// `schema` is the JSON Schema of its settings object (`properties`, each with a `type`
+    /// and a `description` whose first line is its meaning), `defaults` its complete default
+    /// settings. `M::Settings` must deserialise every object the schema admits (a map of
+    /// values). The entry then lists, converts and checks its parameters as a typed one does.
+    ///
+    /// Errors: defaults that `M::Settings` refuses.
+    pub fn register_curve_with_schema<M: CurveMethod>(
+        &mut self,
+        mut info: MethodInfo,
+        method: M,
+        schema: serde_json::Value,
+        defaults: serde_json::Value,
+    ) -> Result<&mut Self> {
+        info.kind = MethodKind::Curve;
+        let method = Arc::new(method::CurveAdapter(method));
+        self.insert(MethodEntry::with_schema(info, method, schema, defaults)?);
+        Ok(self)
+    }
+
     /// Registers a surface method (replacing one of the same name).
     pub fn register_surface<M: SurfaceMethod>(&mut self, mut info: MethodInfo, method: M) -> &mut Self {
         info.kind = MethodKind::Surface;

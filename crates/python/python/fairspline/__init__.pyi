@@ -1,4 +1,4 @@
-"""Typed interface of the `fair` package (the native module `fair._native`)."""
+"""Typed interface of the `fairspline` package (the native module `fairspline._native`)."""
 
 import os
 from typing import Any, Literal, Mapping, Sequence, TypedDict, Union
@@ -49,7 +49,7 @@ class FairedSurface:
         """The report: exactly the fields of `fair surface --report`."""
 
 class Pipeline:
-    """A config as `fair curve --config` takes it; build with `fair.pipeline(config)`."""
+    """A config as `fair curve --config` takes it; build with `fairspline.pipeline(config)`."""
 
     def curve(
         self,
@@ -216,3 +216,64 @@ class CadModel(TypedDict):
 def read_cad(path: Union[str, os.PathLike[str]], format: CadFormat | None = None) -> CadModel:
     """Read an IGES, STEP or DXF file (ours, OpenCASCADE's, ezdxf's): its B-spline curves and
     surfaces, every number as written (the round trip is exact)."""
+
+class StrategyContext:
+    """What a Python strategy's function is given beside the points (a SimpleNamespace)."""
+
+    original: npt.NDArray[np.float64]
+    fixed: npt.NDArray[np.uint64]
+    tolerance: float | None
+    settings: dict[str, ParamValue]
+    step: int
+    kind: Literal["function", "parametric"]
+    name: str
+
+class CurveSamples:
+    """What a Python criterion's function is given (a SimpleNamespace): the measured curve
+    at every break and 15 more parameters inside each piece."""
+
+    t: npt.NDArray[np.float64]
+    points: npt.NDArray[np.float64]
+    d1: npt.NDArray[np.float64]
+    d2: npt.NDArray[np.float64]
+    d3: npt.NDArray[np.float64]
+    breaks: npt.NDArray[np.float64]
+
+class Catalog:
+    """The module's methods and criteria, to which methods and criteria written in Python are
+    added; `curve` and `pipeline` run them all as the built-ins run."""
+
+    def __init__(self) -> None: ...
+    def methods(self) -> list[Method]: ...
+    def criteria(self) -> list[dict[str, str]]: ...
+    def add_strategy(
+        self,
+        name: str,
+        function: Any,
+        summary: str | None = None,
+        settings: Mapping[str, ParamValue] | None = None,
+        docs: Mapping[str, str] | None = None,
+        max_steps: int | None = None,
+        paper: str | None = None,
+    ) -> None:
+        """Add a strategy: function(points, context: StrategyContext) -> proposed (n, d)
+        points, or None when done. The framework clips every move to the constraints."""
+    def add_criterion(self, name: str, function: Any, summary: str | None = None) -> None:
+        """Add a criterion: function(curve: CurveSamples) -> float; it is in every report's
+        criteria."""
+    def curve(
+        self,
+        points: ArrayLike,
+        method: str | None = None,
+        kind: Kind | None = None,
+        params: Mapping[str, ParamValue] | None = None,
+        fixed: Sequence[int] | None = None,
+        points_to_fix: Sequence[int] | None = None,
+        tolerance: float | None = None,
+        clamp_ends: Clamp | None = None,
+        closed: bool = False,
+    ) -> FairedCurve:
+        """Fair a curve with this catalogue's methods (the arguments of `fairspline.curve`)."""
+    def pipeline(self, config: Union[Mapping[str, Any], str, os.PathLike[str]]) -> Pipeline:
+        """A config pipeline over this catalogue: its stages may name Python methods."""
+    def __contains__(self, name: str) -> bool: ...

@@ -1,9 +1,10 @@
-"""Fair measured curves and surfaces from Python: the `fair` command's methods on NumPy arrays.
+"""Fair measured curves and surfaces from Python: the `fair` command's methods on NumPy arrays,
+and a place to compose methods of your own.
 
-    >>> import numpy as np, fair
+    >>> import numpy as np, fairspline
     >>> x = np.linspace(0.0, 1.0, 41)
     >>> noisy = np.column_stack([x, np.sin(3 * x) + 1e-3 * np.cos(97 * x)])
-    >>> result = fair.curve(noisy, method="smoothing-spline")
+    >>> result = fairspline.curve(noisy, method="smoothing-spline")
     >>> result.points.shape, result.report["method"]
     ((41, 2), 'smoothing-spline')
 
@@ -13,9 +14,15 @@ takes the config files `--config` takes; `export_cad` writes a result as an exac
 B-spline into IGES, STEP or DXF (`fair curve -o FILE.igs`) and `read_cad` reads such files. Reports are dicts with exactly the fields of the
 command's JSON report. Bad input raises ValueError with the framework's message; the GIL is
 released while a curve is faired, so threads fair curves in parallel.
+
+`Catalog()` holds the same methods and criteria; `add_strategy` adds a strategy written in
+Python (a function that proposes moved points; the framework applies the constraints, runs the
+pipeline and writes the report) and `add_criterion` a criterion written in Python, both then
+run as the built-ins run (`catalog.curve`, `catalog.pipeline`).
 """
 
 from ._native import (
+    Catalog,
     FairedCurve,
     FairedSurface,
     Pipeline,
@@ -32,6 +39,7 @@ from ._native import (
 )
 
 __all__ = [
+    "Catalog",
     "FairedCurve",
     "FairedSurface",
     "Pipeline",
