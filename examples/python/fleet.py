@@ -1,4 +1,4 @@
-"""Fair a fleet of curves on a Dask cluster with the `fair` package.
+"""Fair a fleet of curves on a Dask cluster with the `fairspline` package.
 
 A fleet is many independent curves: every station, waterline and buttock of a set of hull
 scans, every section of a wing. Fairing them is a map over curves, which Dask already
@@ -12,7 +12,7 @@ CURVES is a folder of curve files (CSV `x,y` / `x,y,z` with an optional header, 
 `{"points": ...}`), a JSON-lines file (one `{"points": [[x, y], ...]}` per line), or a
 Parquet file with a `points` column (a list of [x, y] or [x, y, z] per row; needs pyarrow).
 Without `--scheduler` a LocalCluster of `--workers` processes runs here; with
-`--scheduler tcp://HOST:8786` the same code runs on that cluster (its workers need `fair`
+`--scheduler tcp://HOST:8786` the same code runs on that cluster (its workers need `fairspline`
 installed, nothing else). `--make-fleet N DIR` writes N noisy test curves to DIR.
 
 The report is one JSON line per curve in input order, the command's batch report: the
@@ -153,7 +153,7 @@ def connect(workers: int = 2, scheduler: str | None = None):
 
     Run as a script, this module's functions travel to the workers by value; imported (as
     the tests do), the module file is uploaded to them. Either way the workers need only
-    `fair` (and numpy) installed.
+    `fairspline` (and numpy) installed.
     """
     from dask.distributed import Client, LocalCluster
 

@@ -14,7 +14,8 @@ use serde_json::Value;
 use crate::backend;
 use crate::callables::{json_type, schema_of, PythonCriterion, PythonMethod, Sink};
 use crate::{
-    curve_points, options, params_argument, parse_config, run_curve, to_python, FairedCurve, Pipeline,
+    curve_points, options, params_argument, parse_config, raise_kept, run_curve, to_python, without_gil,
+    FairedCurve, Pipeline,
 };
 
 /// A catalogue of methods and criteria: `Catalog()` starts with the module's (the built-ins,
@@ -251,6 +252,20 @@ impl PyCatalog {
             None,
         )?;
         run_curve(py, &self.catalog, Some(&self.sink), &coordinates, &options)
+    }
+
+    /// Measure a curve without changing it, as `fairspline.inspect` does, with this
+    /// catalogue's criteria (the Python ones included) in the report's `criteria`.
+    #[pyo3(signature = (points, kind=None))]
+    fn inspect(&self, py: Python<'_>, points: &Bound<'_, PyAny>, kind: Option<String>) -> PyResult<Py<PyAny>> {
+        let coordinates = curve_points(points)?;
+        let (catalog, sink) = (&self.catalog, &self.sink);
+        let report = without_gil(py, || {
+            let _one_at_a_time = sink.call();
+            backend::inspect_curve(catalog, &coordinates, kind.as_deref())
+        });
+        raise_kept(py, sink)?;
+        Ok(to_python(py, &report?)?.unbind())
     }
 
     /// A pipeline over this catalogue from a config (what `fairspline.pipeline` takes): its

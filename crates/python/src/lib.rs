@@ -43,7 +43,7 @@ fn to_py_error(failure: Failure) -> PyErr {
 }
 
 /// Runs `work` with the GIL released; a panic becomes a `RuntimeError` (never a crash).
-fn without_gil<T: Send>(py: Python<'_>, work: impl FnOnce() -> backend::Result<T> + Send) -> PyResult<T> {
+pub(crate) fn without_gil<T: Send>(py: Python<'_>, work: impl FnOnce() -> backend::Result<T> + Send) -> PyResult<T> {
     let outcome = py.detach(|| std::panic::catch_unwind(std::panic::AssertUnwindSafe(work)));
     match outcome {
         Ok(result) => result.map_err(to_py_error),
@@ -454,12 +454,23 @@ pub(crate) fn run_curve(
         let _one_at_a_time = sink.map(|s| s.call());
         backend::fair_curve(catalog, coordinates, options)
     });
-    if let Some((line, error)) = sink.and_then(|s| s.take()) {
-        let raised = PyRuntimeError::new_err(line);
-        raised.set_cause(py, Some(error));
-        return Err(raised);
+    if let Some(sink) = sink {
+        raise_kept(py, sink)?;
     }
     faired_curve(py, faired?)
+}
+
+/// The first exception a Python callable of `sink`'s catalogue raised in the last call, as
+/// the `__cause__` of a RuntimeError naming the strategy or criterion.
+pub(crate) fn raise_kept(py: Python<'_>, sink: &Sink) -> PyResult<()> {
+    match sink.take() {
+        Some((line, error)) => {
+            let raised = PyRuntimeError::new_err(line);
+            raised.set_cause(py, Some(error));
+            Err(raised)
+        }
+        None => Ok(()),
+    }
 }
 
 /// Fair a surface grid, as `fair surface` does.

@@ -274,6 +274,8 @@ class Catalog:
         closed: bool = False,
     ) -> FairedCurve:
         """Fair a curve with this catalogue's methods (the arguments of `fairspline.curve`)."""
+    def inspect(self, points: ArrayLike, kind: Kind | None = None) -> dict[str, Any]:
+        """Measure a curve, as `fairspline.inspect`, with this catalogue's criteria."""
     def pipeline(self, config: Union[Mapping[str, Any], str, os.PathLike[str]]) -> Pipeline:
         """A config pipeline over this catalogue: its stages may name Python methods."""
     def __contains__(self, name: str) -> bool: ...
