@@ -292,7 +292,7 @@ impl<const D: usize> FairingStrategy<D> for PythonStrategy {
 pub const SAMPLES_PER_PIECE: usize = 16;
 
 /// A criterion written in Python: `function(curve)` → a number, where `curve` holds samples
-/// of the measured curve (see [`samples`]).
+/// of the measured curve: `t`, `points`, `d1`, `d2`, `d3` and `breaks`, arrays.
 #[derive(Clone)]
 pub struct PythonCriterion {
     /// The name it is registered under.

@@ -257,7 +257,12 @@ impl PyCatalog {
     /// Measure a curve without changing it, as `fairspline.inspect` does, with this
     /// catalogue's criteria (the Python ones included) in the report's `criteria`.
     #[pyo3(signature = (points, kind=None))]
-    fn inspect(&self, py: Python<'_>, points: &Bound<'_, PyAny>, kind: Option<String>) -> PyResult<Py<PyAny>> {
+    fn inspect(
+        &self,
+        py: Python<'_>,
+        points: &Bound<'_, PyAny>,
+        kind: Option<String>,
+    ) -> PyResult<Py<PyAny>> {
         let coordinates = curve_points(points)?;
         let (catalog, sink) = (&self.catalog, &self.sink);
         let report = without_gil(py, || {

@@ -43,7 +43,10 @@ fn to_py_error(failure: Failure) -> PyErr {
 }
 
 /// Runs `work` with the GIL released; a panic becomes a `RuntimeError` (never a crash).
-pub(crate) fn without_gil<T: Send>(py: Python<'_>, work: impl FnOnce() -> backend::Result<T> + Send) -> PyResult<T> {
+pub(crate) fn without_gil<T: Send>(
+    py: Python<'_>,
+    work: impl FnOnce() -> backend::Result<T> + Send,
+) -> PyResult<T> {
     let outcome = py.detach(|| std::panic::catch_unwind(std::panic::AssertUnwindSafe(work)));
     match outcome {
         Ok(result) => result.map_err(to_py_error),

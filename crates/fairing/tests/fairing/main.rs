@@ -9,6 +9,7 @@ mod displacement;
 mod equivariance;
 mod jump_lsq;
 mod pages;
+mod runtime_schema;
 mod sapidis_farin_data;
 mod strain_energy;
 mod surface;
