@@ -1,10 +1,15 @@
-//! Python bindings of the fair framework: the module `fair` (its native part, `fairspline._native`).
+//! Python bindings of the fair framework: the package `fairspline` (its native part,
+//! `fairspline._native`).
 //!
 //! `pip install ./crates/python` builds and installs it (maturin). The functions mirror the
 //! command: `curve` is `fair curve`, `surface` is `fair surface`, `inspect` is
 //! `fair inspect`, `methods` is `fair methods` and `pipeline` takes the config files
 //! `--config` takes. The results are the command's bit for bit: the same faired points and a
 //! report dict with exactly the fields of its JSON report.
+//!
+//! `Catalog` (in `catalog.rs`) holds the same catalogue, to which a Python user adds
+//! strategies and criteria written in Python ([`callables`]: the library's own traits,
+//! calling back into Python); [`init_module`] builds the module over a Rust user's catalogue.
 //!
 //! This file only converts between Python and Rust: argument checking that Python alone can
 //! do (shapes, dtypes, types of the options), NumPy arrays in and out, errors to exceptions,
