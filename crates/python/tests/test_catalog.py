@@ -184,3 +184,30 @@ def test_bad_proposals_and_settings_are_refused_by_name():
         catalog.add_strategy("x", 3)
     with pytest.raises(ValueError, match=r"name: `a b`"):
         catalog.add_strategy("a b", laplace)
+
+
+def test_a_builtin_method_searches_with_a_python_criterion():
+    """nurbs-weights takes `criterion=NAME`: it minimises the Python criterion, which sees the
+    curve's second derivative (its trapezoid rule over the samples is within 2 % of the
+    built-in e2 = ∫|C''|² dt of the same curve)."""
+    catalog = fairspline.Catalog()
+    calls = []
+
+    def sampled_e2(curve):
+        """∫|C''|² dt by the trapezoid rule over the samples."""
+        calls.append(1)
+        squared = np.sum(curve.d2**2, axis=1)
+        return float(np.sum(0.5 * (squared[:-1] + squared[1:]) * np.diff(curve.t)))
+
+    catalog.add_criterion("sampled-e2", sampled_e2)
+    points = noisy_arc(21)
+    result = catalog.curve(
+        points, method="nurbs-weights", kind="parametric", params={"criterion": "sampled-e2", "max-iterations": 5}
+    )
+    report = result.report
+    assert report["params"]["criterion"] == "sampled-e2"
+    assert len(calls) > 2  # during the search, not only for the report's before and after
+    for side in ("before", "after"):
+        criteria = report[side]["criteria"]
+        assert abs(criteria["sampled-e2"] - criteria["e2"]) < 2e-2 * criteria["e2"]
+    assert report["after"]["criteria"]["sampled-e2"] < report["before"]["criteria"]["sampled-e2"]
