@@ -41,7 +41,8 @@ impl Sink {
             .push((what, error));
     }
 
-    /// The first exception kept since the last call, and forgets the others.
+    /// The first exception kept since the last call, and forgets the others. Called with the
+    /// call's lock still held, so that it takes the exceptions of its own call only.
     pub fn take(&self) -> Option<(String, PyErr)> {
         let mut errors = self.errors.lock().unwrap_or_else(|e| e.into_inner());
         let first = (!errors.is_empty()).then(|| errors.remove(0));

@@ -14,8 +14,8 @@ use serde_json::Value;
 use crate::backend;
 use crate::callables::{json_type, schema_of, PythonCriterion, PythonMethod, Sink};
 use crate::{
-    curve_points, options, params_argument, parse_config, raise_kept, run_curve, to_python, without_gil,
-    FairedCurve, Pipeline,
+    curve_points, options, params_argument, parse_config, raise_kept, run_curve, to_py_error, to_python,
+    without_gil, FairedCurve, Pipeline,
 };
 
 /// A catalogue of methods and criteria: `Catalog()` starts with the module's (the built-ins,
@@ -265,12 +265,13 @@ impl PyCatalog {
     ) -> PyResult<Py<PyAny>> {
         let coordinates = curve_points(points)?;
         let (catalog, sink) = (&self.catalog, &self.sink);
-        let report = without_gil(py, || {
+        let (report, kept) = without_gil(py, || {
             let _one_at_a_time = sink.call();
-            backend::inspect_curve(catalog, &coordinates, kind.as_deref())
-        });
-        raise_kept(py, sink)?;
-        Ok(to_python(py, &report?)?.unbind())
+            let report = backend::inspect_curve(catalog, &coordinates, kind.as_deref());
+            Ok((report, sink.take()))
+        })?;
+        raise_kept(py, kept)?;
+        Ok(to_python(py, &report.map_err(to_py_error)?)?.unbind())
     }
 
     /// A pipeline over this catalogue from a config (what `fairspline.pipeline` takes): its

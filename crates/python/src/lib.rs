@@ -39,7 +39,7 @@ use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString};
 
 /// A failure of the framework as a Python exception: `ValueError` for bad input (what the
 /// command exits 2 for), `RuntimeError` for a failure of the framework itself.
-fn to_py_error(failure: Failure) -> PyErr {
+pub(crate) fn to_py_error(failure: Failure) -> PyErr {
     if failure.bad_input {
         PyValueError::new_err(failure.message)
     } else {
@@ -458,20 +458,20 @@ pub(crate) fn run_curve(
     coordinates: &Coordinates,
     options: &Options,
 ) -> PyResult<FairedCurve> {
-    let faired = without_gil(py, || {
+    let (faired, kept) = without_gil(py, || {
         let _one_at_a_time = sink.map(|s| s.call());
-        backend::fair_curve(catalog, coordinates, options)
-    });
-    if let Some(sink) = sink {
-        raise_kept(py, sink)?;
-    }
-    faired_curve(py, faired?)
+        let faired = backend::fair_curve(catalog, coordinates, options);
+        Ok((faired, sink.and_then(|s| s.take())))
+    })?;
+    raise_kept(py, kept)?;
+    faired_curve(py, faired.map_err(to_py_error)?)
 }
 
-/// The first exception a Python callable of `sink`'s catalogue raised in the last call, as
-/// the `__cause__` of a RuntimeError naming the strategy or criterion.
-pub(crate) fn raise_kept(py: Python<'_>, sink: &Sink) -> PyResult<()> {
-    match sink.take() {
+/// The first exception a Python callable raised during a call (taken from its catalogue's
+/// sink before the next call can run), as the `__cause__` of a RuntimeError naming the
+/// strategy or criterion.
+pub(crate) fn raise_kept(py: Python<'_>, kept: Option<(String, PyErr)>) -> PyResult<()> {
+    match kept {
         Some((line, error)) => {
             let raised = PyRuntimeError::new_err(line);
             raised.set_cause(py, Some(error));

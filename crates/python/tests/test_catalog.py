@@ -211,3 +211,27 @@ def test_a_builtin_method_searches_with_a_python_criterion():
         criteria = report[side]["criteria"]
         assert abs(criteria["sampled-e2"] - criteria["e2"]) < 2e-2 * criteria["e2"]
     assert report["after"]["criteria"]["sampled-e2"] < report["before"]["criteria"]["sampled-e2"]
+
+
+def test_threads_share_a_catalog_with_python_methods():
+    """Calls from several threads (each releasing the GIL, the strategy taking it back at every
+    step) neither deadlock nor mix their results or exceptions: each is the sequential one."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    catalog = catalog_with_laplace()
+    catalog.add_strategy("broken", lambda p, c: 1 / 0)
+    cases = [noisy_arc(41, seed) for seed in range(6)]
+    expected = [catalog.curve(p, method="laplace", fixed=FIXED, tolerance=TOLERANCE).points for p in cases]
+
+    def run(k):
+        if k % 3 == 2:
+            with pytest.raises(RuntimeError, match="strategy `broken`"):
+                catalog.curve(cases[k], method="broken")
+            return None
+        return catalog.curve(cases[k], method="laplace", fixed=FIXED, tolerance=TOLERANCE).points
+
+    with ThreadPoolExecutor(3) as pool:
+        results = list(pool.map(run, range(len(cases))))
+    for k, points in enumerate(results):
+        if points is not None:
+            assert points.tobytes() == expected[k].tobytes()
