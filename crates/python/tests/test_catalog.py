@@ -235,3 +235,17 @@ def test_threads_share_a_catalog_with_python_methods():
     for k, points in enumerate(results):
         if points is not None:
             assert points.tobytes() == expected[k].tobytes()
+
+
+def test_the_docs_example_runs():
+    """docs/python.md's "Composing methods in Python" block, on a noisy arc of 41 points."""
+    from test_readme import python_blocks
+
+    (block,) = python_blocks("docs/python.md", "Composing methods in Python")
+    namespace = {"points": noisy_arc()}
+    exec(compile(block, "docs/python.md (composing methods)", "exec"), namespace)
+    report = namespace["result"].report
+    assert [s["method"] for s in report["stages"]] == ["smoothing-spline", "laplacian"]
+    assert report["after"]["criteria"]["turning"] < report["before"]["criteria"]["turning"]
+    moves = np.linalg.norm(namespace["result"].points - namespace["points"], axis=1)
+    assert moves.max() <= 0.005
