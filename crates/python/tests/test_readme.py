@@ -20,8 +20,6 @@ def python_blocks(page: str, heading: str) -> list[str]:
 
 def test_readme_example_runs(monkeypatch, capsys):
     (block,) = python_blocks("README.md", "In Python")
-    if re.search(r"^import numpy as np, fair\b(?!spline)", block, flags=re.M):
-        pytest.xfail("the README's Python example still imports the package's old name `fair`")
     monkeypatch.chdir(REPO)
     exec(compile(block, "README.md (Python example)", "exec"), {})
     before, after = capsys.readouterr().out.split("->")
