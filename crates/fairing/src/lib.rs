@@ -15,6 +15,10 @@
 //! its angular bisector, fair it as a function y(x), transform back and blend the overlaps
 //! ([`SegmentedFairing`]).
 
+// `fairing::serde` and `fairing::schemars`, the paths `settings!` derives through, resolve
+// inside this crate too.
+extern crate self as fairing;
+
 pub mod catalog;
 pub mod constraints;
 pub mod displacement;
@@ -22,6 +26,7 @@ pub mod error;
 pub mod observer;
 pub mod partition;
 pub mod pipeline;
+mod settings_macro;
 pub mod smoothing;
 pub mod state;
 pub mod strategies;
