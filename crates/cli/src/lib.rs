@@ -9,7 +9,7 @@
 //! ```no_run
 //! use fairing::catalog::Catalog;
 //! fn main() -> std::process::ExitCode {
-//!     let catalog = Catalog::builtin(); // then catalog.register_curve(...), ...
+//!     let catalog = Catalog::builtin(); // then catalog.register_strategy::<S>(...), ...
 //!     fair_cli::main_with(catalog)
 //! }
 //! ```

@@ -32,6 +32,30 @@ pub fn default_method(kind: CurveKind) -> &'static str {
 }
 
 /// What to do with a curve: the method, its settings, the constraints, the kind.
+///
+/// A config pipeline with its constraints runs from the library in one call:
+///
+/// ```
+/// use curve_repr::Vec2;
+/// use fairing::catalog::{Catalog, ConfigFile, CurvePoints};
+/// use fair_door::{CurveData, CurveRequest};
+///
+/// let points = CurvePoints::Planar((0..30).map(|i| {
+///     let x = i as f64 / 29.0;
+///     Vec2::new(x, (3.0 * x).sin() + if i % 2 == 0 { 2e-3 } else { -2e-3 })
+/// }).collect());
+/// let toml = "[constraints]\nfixed = [0, 29]\ntolerance = 0.01\n\n\
+///             [[stage]]\nmethod = \"smoothing-spline\"\n\n[[stage]]\nmethod = \"two-phase\"\n";
+/// let request = CurveRequest {
+///     config: Some(ConfigFile::parse("pipeline.toml", toml).unwrap()),
+///     ..CurveRequest::default()
+/// };
+/// let faired = fair_door::curve(&Catalog::builtin(), &CurveData::new(&points, "points"), &request)?;
+/// assert_eq!(faired.report.method, "smoothing-spline+two-phase");
+/// assert!(faired.report.m_d <= 0.01);
+/// assert_eq!(faired.points.rows()[29], points.rows()[29]);
+/// # Ok::<(), fair_door::Error>(())
+/// ```
 #[derive(Debug, Clone, Default)]
 pub struct CurveRequest {
     /// The method (or pipeline) by name; `None` for the kind's [`default_method`] or the
@@ -145,9 +169,6 @@ fn fair_points(catalog: &Catalog, data: &CurveData<'_>, request: &CurveRequest) 
         .run_curve_plan(&plan, data.points, kind, &constraints)
         .map_err(|e| Error::from_fairing(e, data.source))?;
     let faired = run.points;
-    if kind == CurveKind::Function {
-        check_still_a_function(&faired, &plan)?;
-    }
     let detail = Detail {
         plot: request.samples,
         record: true,
@@ -212,7 +233,13 @@ fn fair_points(catalog: &Catalog, data: &CurveData<'_>, request: &CurveRequest) 
         m_d,
         moved: run.moved,
         elapsed_ms: run.elapsed_ms,
-        curve: run.curve,
+        // Every method's report has a curve: the method's own representation, or the spline
+        // the report measures when the method gives none.
+        curve: if run.curve.is_null() {
+            after.curve.clone()
+        } else {
+            run.curve
+        },
         params: plan.params(catalog),
         extras,
     };
@@ -223,29 +250,6 @@ fn fair_points(catalog: &Catalog, data: &CurveData<'_>, request: &CurveRequest) 
         before,
         after,
     })
-}
-
-/// Methods for parametric curves (strain-energy, batten) move x as well as y; on function
-/// input the result must still be a function for the function-kind measures. Says which point
-/// broke it and how to ask for parametric measures instead.
-fn check_still_a_function(points: &CurvePoints, plan: &Plan) -> Result<()> {
-    let rows = points.rows();
-    let broken = rows
-        .windows(2)
-        .position(|w| w[1][0].partial_cmp(&w[0][0]) != Some(std::cmp::Ordering::Greater));
-    match broken {
-        Some(i) => Err(Error::Argument {
-            option: "--kind",
-            message: format!(
-                "`{}` moved x so that it no longer increases at point {} (x = {} then {}); fair this curve with --kind parametric",
-                plan.name(),
-                i + 1,
-                rows[i][0],
-                rows[i + 1][0]
-            ),
-        }),
-        None => Ok(()),
-    }
 }
 
 #[cfg(test)]

@@ -18,7 +18,7 @@ use fair_door::measure::{CurveMeasurement, Detail, SurfaceMeasurement};
 use fair_door::report::Report;
 use fair_door::surface::{SurfaceRequest, DEFAULT_METHOD};
 use fair_door::ConstraintRequest;
-use fairing::catalog::{Catalog, CurveJob, CurvePoints, MethodEntry, MethodKind, ParameterMap};
+use fairing::catalog::{Catalog, CurvePoints, MethodEntry, MethodKind, ParameterMap};
 use fairing::EndClamp;
 
 use crate::input::{CurveInput, Grid, InputFormat, SurfaceInput};
@@ -67,35 +67,6 @@ pub(crate) struct SurfaceResult {
     pub(crate) report: Report,
 }
 
-/// Whether the method refuses spatial curves: asked of the method itself (its check on four
-/// points in 3D with its defaults), so that a registered method answers for itself.
-fn planar_only(catalog: &Catalog, entry: &MethodEntry) -> bool {
-    if entry.info().kind != MethodKind::Curve {
-        return false;
-    }
-    let points = CurvePoints::Spatial(
-        (0..4)
-            .map(|i| curve_repr::Vec3::new(i as f64, (i * i) as f64, 0.5 * i as f64))
-            .collect(),
-    );
-    let constraints = fairing::Constraints::default();
-    let job = CurveJob {
-        method: entry.name(),
-        points: &points,
-        kind: fairing::catalog::CurveKind::Parametric,
-        constraints: &constraints,
-        bad_points: &[],
-        catalog,
-    };
-    matches!(
-        entry.check_curve(entry.defaults(), &job),
-        Err(fairing::Error::Refused {
-            what: fairing::Refusal::Dimension,
-            ..
-        })
-    )
-}
-
 /// A method's parameters as a JSON Schema object: each property's own schema (from the
 /// method's settings type) with its `default` and `description`, and the settings' `$defs`
 /// that enumerations refer to.
@@ -138,7 +109,7 @@ pub(crate) fn methods(catalog: &Catalog) -> serde_json::Value {
                 "paper": m.info().paper,
                 "summary": m.info().summary,
                 "takes_points": m.takes_bad_points(),
-                "planar_only": planar_only(catalog, m),
+                "planar_only": m.planar_only(),
                 "schema": schema(m),
             })
         })

@@ -91,6 +91,50 @@ impl CriterionEntry {
         }
     }
 
+    /// An entry for a criterion of both dimensions, under the criterion's own
+    /// [`name`](Criterion::name) (one name: the trait's is the catalogue's).
+    ///
+    /// ```
+    /// use curve_repr::Curve;
+    /// use fairing::catalog::CriterionEntry;
+    ///
+    /// /// The parameter span of the curve.
+    /// struct Span;
+    /// impl<const D: usize> fairness::Criterion<dyn Curve<D>> for Span {
+    ///     fn name(&self) -> &str {
+    ///         "span"
+    ///     }
+    ///     fn evaluate(&self, curve: &dyn Curve<D>) -> fairness::Result<f64> {
+    ///         let (a, b) = curve.domain();
+    ///         Ok(b - a)
+    ///     }
+    /// }
+    ///
+    /// let entry = CriterionEntry::of(Span, "the parameter span");
+    /// assert_eq!(entry.name(), "span");
+    /// assert!(entry.applies_to(2) && entry.applies_to(3));
+    /// ```
+    pub fn of<C>(criterion: C, summary: impl Into<String>) -> Self
+    where
+        C: Criterion<dyn Curve<2>> + Criterion<dyn Curve<3>> + Send + Sync + 'static,
+    {
+        let name = Criterion::<dyn Curve<2>>::name(&criterion).to_owned();
+        let shared = Arc::new(criterion);
+        CriterionEntry {
+            planar: Some(shared.clone()),
+            spatial: Some(shared),
+            ..CriterionEntry::new(name, summary)
+        }
+    }
+
+    /// The name of the first implementation that does not answer to the entry's name, if any
+    /// (what [`Catalog::register_criterion`](super::Catalog::register_criterion) checks).
+    pub(crate) fn other_name(&self) -> Option<String> {
+        let planar = self.planar.as_ref().map(|c| c.name().to_owned());
+        let spatial = self.spatial.as_ref().map(|c| c.name().to_owned());
+        [planar, spatial].into_iter().flatten().find(|n| *n != self.name)
+    }
+
     /// Says that the entry's value is the energy `name` of [`fairness::Energies`], so that a
     /// report that has measured a curve's energies takes the value from them instead of
     /// integrating again ([`evaluate_with`](Self::evaluate_with)). The built-in `e1` … `ek-prime`

@@ -98,6 +98,13 @@ pub trait CurveMethod: Send + Sync + 'static {
         false
     }
 
+    /// Whether the method fairs planar curves only (a declared capability: the catalogue
+    /// refuses spatial points with [`Refusal::Dimension`] before [`check`](Self::check), and
+    /// a front end lists the method as planar-only). Default false.
+    fn planar_only(&self) -> bool {
+        false
+    }
+
     /// What the method refuses, before anything runs: kinds, dimensions, end clamps, closed
     /// curves, combinations of settings ([`Error::Refused`] naming the method, or
     /// [`Error::BadValue`] naming a parameter). Default: accept.
@@ -189,6 +196,105 @@ pub trait StrategySettings: Settings {
     }
 }
 
+/// The easy path for a strategy that fairs planar curves only (it implements
+/// [`FairingStrategy<2>`] alone): the same as [`StrategySettings`] without the dimension
+/// parameter. Registered with [`Catalog::register_planar_strategy`]; the method is declared
+/// planar-only ([`CurveMethod::planar_only`]), so the catalogue refuses spatial points for it.
+///
+/// [`Catalog::register_planar_strategy`]: super::Catalog::register_planar_strategy
+pub trait PlanarStrategySettings: Settings {
+    /// The strategy for planar points.
+    fn strategy(&self, job: &CurveJob) -> Result<Box<dyn FairingStrategy<2>>>;
+
+    /// The pipeline's step limit. Default [`Pipeline::DEFAULT_MAX_ITERATIONS`].
+    fn max_iterations(&self) -> usize {
+        Pipeline::<2>::DEFAULT_MAX_ITERATIONS
+    }
+
+    /// Whether `--points` means something to the strategy. Default false.
+    fn takes_bad_points(&self) -> bool {
+        false
+    }
+
+    /// What the method refuses, before anything runs (besides spatial points). Default:
+    /// accept (the strategy's own [`FairingStrategy::supports`] is asked too).
+    fn check(&self, job: &CurveJob) -> Result<()> {
+        let _ = job;
+        Ok(())
+    }
+}
+
+/// The [`CurveMethod`] of a [`PlanarStrategySettings`] type (see
+/// [`Catalog::register_planar_strategy`](super::Catalog::register_planar_strategy)).
+pub struct PlanarStrategy<S>(PhantomData<fn() -> S>);
+
+impl<S> PlanarStrategy<S> {
+    /// The adapter.
+    pub fn new() -> Self {
+        PlanarStrategy(PhantomData)
+    }
+}
+
+impl<S> Default for PlanarStrategy<S> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<S: PlanarStrategySettings> CurveMethod for PlanarStrategy<S> {
+    type Settings = S;
+
+    fn takes_bad_points(&self) -> bool {
+        S::default().takes_bad_points()
+    }
+
+    fn planar_only(&self) -> bool {
+        true
+    }
+
+    fn check(&self, settings: &S, job: &CurveJob) -> Result<()> {
+        settings.check(job)?;
+        match job.points {
+            CurvePoints::Planar(_) => settings.strategy(job)?.supports(job.constraints),
+            CurvePoints::Spatial(_) => Err(planar_refusal(job.method)),
+        }
+    }
+
+    fn run(&self, settings: &S, job: &CurveJob) -> Result<CurveRun> {
+        match job.points {
+            CurvePoints::Planar(p) => {
+                run_strategy(settings.strategy(job)?, p, job, settings.max_iterations())
+            }
+            CurvePoints::Spatial(_) => Err(planar_refusal(job.method)),
+        }
+    }
+}
+
+/// Puts the input's x back into every faired point of a function (`x` is the abscissa, not
+/// a coordinate a method may move); true when some x had moved. O(n).
+fn keep_x(input: &CurvePoints, faired: &mut CurvePoints) -> bool {
+    let (CurvePoints::Planar(a), CurvePoints::Planar(b)) = (input, faired) else {
+        return false;
+    };
+    let mut moved = false;
+    for (p, q) in a.iter().zip(b.iter_mut()) {
+        if q.x.to_bits() != p.x.to_bits() {
+            q.x = p.x;
+            moved = true;
+        }
+    }
+    moved
+}
+
+/// The refusal of spatial points by a planar-only method.
+fn planar_refusal(method: &str) -> Error {
+    Error::Refused {
+        method: method.to_owned(),
+        what: Refusal::Dimension,
+        reason: "fairs planar curves (x, y) only; the input has 3 coordinates".into(),
+    }
+}
+
 /// The [`CurveMethod`] of a [`StrategySettings`] type: register it with
 /// `catalog.register_curve(info, Strategy::<MySettings>::new())`.
 pub struct Strategy<S>(PhantomData<fn() -> S>);
@@ -257,6 +363,7 @@ pub(crate) trait ErasedMethod: Send + Sync {
     /// Deserialises complete settings, and validates them when `validate` is set.
     fn accept(&self, settings: &Value, validate: bool) -> Result<()>;
     fn takes_bad_points(&self) -> bool;
+    fn planar_only(&self) -> bool;
     fn check_curve(&self, settings: &Value, job: &CurveJob) -> Result<()>;
     fn run_curve(&self, settings: &Value, job: &CurveJob) -> Result<CurveRun>;
     fn check_surface(&self, settings: &Value, job: &SurfaceJob) -> Result<()>;
@@ -313,6 +420,9 @@ impl<M: CurveMethod> ErasedMethod for CurveAdapter<M> {
     fn takes_bad_points(&self) -> bool {
         self.0.takes_bad_points()
     }
+    fn planar_only(&self) -> bool {
+        self.0.planar_only()
+    }
     fn check_curve(&self, settings: &Value, job: &CurveJob) -> Result<()> {
         self.0.check(&read(settings)?, job)
     }
@@ -342,6 +452,9 @@ impl<M: SurfaceMethod> ErasedMethod for SurfaceAdapter<M> {
     }
     fn takes_bad_points(&self) -> bool {
         self.0.takes_bad_points()
+    }
+    fn planar_only(&self) -> bool {
+        false
     }
     fn check_curve(&self, _: &Value, job: &CurveJob) -> Result<()> {
         Err(not_kind(job.method, "surfaces"))
@@ -517,6 +630,28 @@ impl MethodEntry {
         self.method.takes_bad_points()
     }
 
+    /// Whether it fairs planar curves only ([`CurveMethod::planar_only`]; false for surface
+    /// methods).
+    pub fn planar_only(&self) -> bool {
+        self.method.planar_only()
+    }
+
+    /// Bad points refused unless the method takes them; spatial points refused for a
+    /// planar-only method; coordinates the arithmetic cannot square refused.
+    fn refuse_before_check(&self, job: &CurveJob) -> Result<()> {
+        if !job.bad_points.is_empty() && !self.takes_bad_points() {
+            return Err(Error::Refused {
+                method: self.info.name.clone(),
+                what: Refusal::BadPoints,
+                reason: "takes no bad points (it finds what to change itself)".into(),
+            });
+        }
+        if self.planar_only() && job.points.dimension() != 2 {
+            return Err(planar_refusal(&self.info.name));
+        }
+        check_coordinates(job.points.rows().into_iter(), "point")
+    }
+
     fn known_names(&self) -> String {
         let names: Vec<&str> = self.parameters.iter().map(|p| p.name.as_str()).collect();
         if names.is_empty() {
@@ -599,14 +734,7 @@ impl MethodEntry {
             method: &self.info.name,
             ..*job
         };
-        if !job.bad_points.is_empty() && !self.takes_bad_points() {
-            return Err(Error::Refused {
-                method: self.info.name.clone(),
-                what: Refusal::BadPoints,
-                reason: "takes no bad points (it finds what to change itself)".into(),
-            });
-        }
-        check_coordinates(job.points.rows().into_iter(), "point")?;
+        self.refuse_before_check(&job)?;
         // The method runs in the reference frame (see `frame`), its result mapped back.
         let frame = Frame::of(&job.points.rows());
         let points = frame.curve_points_to_frame(job.points);
@@ -636,6 +764,13 @@ impl MethodEntry {
                     }
                     _ => {}
                 }
+                // A function's x is the framework's to keep, not each method's: a method that
+                // moved x (the parametric ones) has its y kept at the input's x, and its own
+                // curve, which passed through the moved points, is no longer the result's.
+                if job.kind == CurveKind::Function && keep_x(job.points, &mut run.points) {
+                    run.represented = None;
+                    run.curve = Value::Null;
+                }
                 // Mapping back may round a tiny move away: `moved` is what differs now.
                 run.moved = job.points.differences(&run.points);
                 run.curve = frame.record_from_frame(std::mem::take(&mut run.curve));
@@ -659,14 +794,7 @@ impl MethodEntry {
             method: &self.info.name,
             ..*job
         };
-        if !job.bad_points.is_empty() && !self.takes_bad_points() {
-            return Err(Error::Refused {
-                method: self.info.name.clone(),
-                what: Refusal::BadPoints,
-                reason: "takes no bad points (it finds what to change itself)".into(),
-            });
-        }
-        check_coordinates(job.points.rows().into_iter(), "point")?;
+        self.refuse_before_check(&job)?;
         self.method
             .check_curve(settings, &job)
             .map_err(|e| refusal(e, &self.info.name))

@@ -16,8 +16,11 @@
 //! here, so the command, the bindings and a Rust program share one path.
 //!
 //! Adding a method:
-//! - a [`FairingStrategy`](crate::FairingStrategy) and a settings struct implementing
-//!   [`StrategySettings`]: `catalog.register_curve(info, Strategy::<MySettings>::new())`;
+//! - a [`FairingStrategy`](crate::FairingStrategy) and a settings struct (declared with
+//!   [`settings!`](crate::settings!)) implementing [`StrategySettings`]:
+//!   `catalog.register_strategy::<MySettings>(info)`; a strategy for planar curves only
+//!   implements [`PlanarStrategySettings`] instead and is registered with
+//!   [`register_planar_strategy`](Catalog::register_planar_strategy);
 //! - or, for full control of the run and its report, a [`CurveMethod`] (or
 //!   [`SurfaceMethod`]) — as every built-in in [`builtin`] is.
 //!
@@ -54,8 +57,8 @@ pub use job::{
     AnyCurve, CurveJob, CurveKind, CurvePoints, CurveRun, Grid, Represented, SurfaceJob, SurfaceRun,
 };
 pub use method::{
-    run_strategy, CurveMethod, MethodEntry, MethodInfo, MethodKind, Settings, Strategy, StrategySettings,
-    SurfaceMethod,
+    run_strategy, CurveMethod, MethodEntry, MethodInfo, MethodKind, PlanarStrategy, PlanarStrategySettings,
+    Settings, Strategy, StrategySettings, SurfaceMethod,
 };
 pub use page::GENERATED_MARKER;
 pub use parameters::{Given, GivenValue, ParameterMap};
@@ -115,6 +118,19 @@ impl Catalog {
         self
     }
 
+    /// Registers the strategy that the settings `S` build, as a curve method of both
+    /// dimensions (the same as `register_curve(info, Strategy::<S>::new())`).
+    pub fn register_strategy<S: StrategySettings>(&mut self, info: MethodInfo) -> &mut Self {
+        self.register_curve(info, Strategy::<S>::new())
+    }
+
+    /// Registers the planar-only strategy that the settings `S` build: a curve method that
+    /// declares itself planar-only ([`CurveMethod::planar_only`]), so that spatial points are
+    /// refused before it runs and front ends list it as planar.
+    pub fn register_planar_strategy<S: PlanarStrategySettings>(&mut self, info: MethodInfo) -> &mut Self {
+        self.register_curve(info, PlanarStrategy::<S>::new())
+    }
+
     /// Registers a curve method whose parameters are known only when the program runs (a
     /// method written in another language, as the Python bindings' strategies are):
     /// `schema` is the JSON Schema of its settings object (`properties`, each with a `type`
@@ -163,7 +179,18 @@ impl Catalog {
     }
 
     /// Registers a criterion (replacing one of the same name).
+    ///
+    /// # Panics
+    /// When an implementation's [`name`](fairness::Criterion::name) differs from the entry's:
+    /// a criterion has one name (a program's construction error, caught when the catalogue is
+    /// built, before any input is read; [`CriterionEntry::of`] cannot make it).
     pub fn register_criterion(&mut self, entry: CriterionEntry) -> &mut Self {
+        if let Some(other) = entry.other_name() {
+            panic!(
+                "criterion entry `{}` holds an implementation named `{other}`: a criterion has one name (use CriterionEntry::of)",
+                entry.name()
+            );
+        }
         match self.criteria.iter_mut().find(|c| c.name() == entry.name()) {
             Some(slot) => *slot = entry,
             None => self.criteria.push(entry),

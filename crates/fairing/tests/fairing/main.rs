@@ -7,6 +7,7 @@ mod contract;
 mod curve_guard;
 mod displacement;
 mod equivariance;
+mod extending;
 mod jump_lsq;
 mod pages;
 mod runtime_schema;

@@ -107,7 +107,13 @@ pub struct TwoPhaseMethod;
 impl CurveMethod for TwoPhaseMethod {
     type Settings = TwoPhaseCurveSettings;
 
-    /// Planar points only; `g0` at most (the spline function has the parabolic-runout end
+    /// Han's spline function and its parametric pair are planar: spatial points are refused
+    /// by the catalogue.
+    fn planar_only(&self) -> bool {
+        true
+    }
+
+    /// `g0` at most (the spline function has the parabolic-runout end
     /// condition and cannot hold end tangents or curvatures), no clamp on a closed curve;
     /// `closed` needs parametric input.
     fn check(&self, settings: &TwoPhaseCurveSettings, job: &CurveJob) -> Result<()> {
@@ -116,12 +122,6 @@ impl CurveMethod for TwoPhaseMethod {
             what,
             reason: reason.to_owned(),
         };
-        if job.points.dimension() != 2 {
-            return Err(refuse(
-                Refusal::Dimension,
-                "fairs planar curves (x, y); the input has 3 coordinates",
-            ));
-        }
         match job.constraints.end_clamp() {
             EndClamp::G1 | EndClamp::G2 => {
                 return Err(refuse(
