@@ -19,7 +19,7 @@
 //! `cargo test` runs the checks at the end of this file.
 
 use curve_repr::{Curve, Side, Vec2};
-use fairing::catalog::{Catalog, CriterionEntry, CurveJob, MethodInfo, Settings, Strategy, StrategySettings};
+use fairing::catalog::{Catalog, CriterionEntry, CurveJob, MethodInfo, Settings, StrategySettings};
 use fairing::{Error, FairingState, FairingStrategy, Result, StepOutcome};
 use fairness::Criterion;
 
@@ -142,13 +142,12 @@ impl Criterion<dyn Curve<2>> for TurningAngle {
 /// The built-in catalogue plus `laplacian` and `turning-angle`.
 pub fn catalog() -> Catalog {
     let mut catalog = Catalog::builtin();
-    catalog.register_curve(
+    catalog.register_strategy::<LaplacianSettings>(
         MethodInfo::new(
             "laplacian",
             "moves every free interior point toward its neighbours' midpoint, pass after pass",
         )
         .with_paper("Laplacian smoothing, a user's example"),
-        Strategy::<LaplacianSettings>::new(),
     );
     catalog.register_criterion(
         CriterionEntry::new(

@@ -2,51 +2,24 @@
 //! `turning-angle`, registered into the built-in catalogue.
 
 use curve_repr::{Curve, Side};
-use fairing::catalog::{Catalog, CriterionEntry, CurveJob, MethodInfo, Settings, Strategy, StrategySettings};
-use fairing::schemars::JsonSchema;
-use fairing::serde::{Deserialize, Serialize};
+use fairing::catalog::{Catalog, CriterionEntry, CurveJob, MethodInfo, StrategySettings};
 use fairing::{FairingState, FairingStrategy, Result, StepOutcome};
 
-/// Laplacian smoothing: every free interior point a fraction of the way to its neighbours'
-/// midpoint, a number of passes.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(
-    crate = "fairing::serde",
-    default,
-    deny_unknown_fields,
-    rename_all = "kebab-case"
-)]
-#[schemars(crate = "fairing::schemars")]
-pub struct LaplacianSettings {
-    /// How far towards the midpoint per pass.
-    pub factor: f64,
-    /// Passes over the points.
-    pub max_passes: usize,
-}
-
-impl Default for LaplacianSettings {
-    fn default() -> Self {
-        LaplacianSettings {
-            factor: 0.5,
-            max_passes: 10,
-        }
+fairing::settings! {
+    /// Laplacian smoothing: every free interior point a fraction of the way to its
+    /// neighbours' midpoint, a number of passes.
+    pub struct Laplacian {
+        /// How far towards the midpoint per pass.
+        pub factor: f64 = 0.5,
+        /// Passes over the points.
+        pub max_passes: usize = 10,
     }
 }
 
-impl Settings for LaplacianSettings {}
-
-impl StrategySettings for LaplacianSettings {
+impl StrategySettings for Laplacian {
     fn strategy<const D: usize>(&self, _: &CurveJob) -> Result<Box<dyn FairingStrategy<D>>> {
-        Ok(Box::new(Laplacian {
-            factor: self.factor,
-            passes: self.max_passes,
-        }))
+        Ok(Box::new(self.clone()))
     }
-}
-
-struct Laplacian {
-    factor: f64,
-    passes: usize,
 }
 
 impl<const D: usize> FairingStrategy<D> for Laplacian {
@@ -61,8 +34,8 @@ impl<const D: usize> FairingStrategy<D> for Laplacian {
                 state.move_point(i, target)?;
             }
         }
-        self.passes = self.passes.saturating_sub(1);
-        Ok(if self.passes == 0 {
+        self.max_passes = self.max_passes.saturating_sub(1);
+        Ok(if self.max_passes == 0 {
             StepOutcome::done(None)
         } else {
             StepOutcome::running(None)
@@ -98,14 +71,7 @@ impl<const D: usize> fairness::Criterion<dyn Curve<D>> for TurningAngle {
 /// The built-ins and the two methods above.
 pub fn catalog() -> Catalog {
     let mut catalog = Catalog::builtin();
-    catalog.register_curve(
-        MethodInfo::new("laplacian", "Laplacian smoothing"),
-        Strategy::<LaplacianSettings>::new(),
-    );
-    catalog.register_criterion(
-        CriterionEntry::new("turning-angle", "total tangent turning at the breaks")
-            .planar(TurningAngle)
-            .spatial(TurningAngle),
-    );
+    catalog.register_strategy::<Laplacian>(MethodInfo::new("laplacian", "Laplacian smoothing"));
+    catalog.register_criterion(CriterionEntry::of(TurningAngle, "total tangent turning at the breaks"));
     catalog
 }
