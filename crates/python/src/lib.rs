@@ -484,7 +484,7 @@ pub(crate) fn raise_kept(py: Python<'_>, kept: Option<(String, PyErr)>) -> PyRes
 /// Fair a surface grid, as `fair surface` does.
 ///
 /// grid: an (m, n, 3) array of float64, grid[i, j] = P_ij.
-/// method: a surface method of `fairspline.methods()`; default zhang-cheng.
+/// method: a surface method of `fairspline.methods()`; default jump-lsq.
 /// params: the method's parameters, {"name": value}.
 /// fixed, points_to_fix: grid points, as indices k = i * n + j or pairs (i, j).
 /// tolerance: no point moves farther than this.

@@ -137,10 +137,11 @@ def test_surface_constraints(fair_bin, tmp_path):
     grid = read_grid(GRID)
     columns = grid.shape[1]
     out, report = tmp_path / "out.csv", tmp_path / "report.json"
-    done = run_fair(fair_bin, "surface", GRID, "-o", out, "--report", report, "-q", "--fixed",
-                    f"{columns + 1},{2 * columns + 2}", "--tolerance", "0.05", "--set", "max-steps=200")
+    done = run_fair(fair_bin, "surface", GRID, "-o", out, "--report", report, "-q", "--method", "zhang-cheng",
+                    "--fixed", f"{columns + 1},{2 * columns + 2}", "--tolerance", "0.05", "--set", "max-steps=200")
     assert done.returncode == 0, done.stderr
-    result = fairspline.surface(grid, fixed=[(1, 1), 2 * columns + 2], tolerance=0.05, params={"max-steps": 200})
+    result = fairspline.surface(grid, method="zhang-cheng", fixed=[(1, 1), 2 * columns + 2], tolerance=0.05,
+                                params={"max-steps": 200})
     assert same_bits(result.grid, read_grid(out))
     assert without_timing(result.report) == without_timing(read_report(report))
 

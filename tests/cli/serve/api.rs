@@ -294,7 +294,12 @@ fn surface_fairing_answers_the_command_report_and_grid() {
     let dir = dir_guard.path();
     let teapot = get(&server.address, "/api/datasets/teapot-body").json();
     for (k, (body, args)) in [
-        (json!({ "constraints": { "points": [20, 21, 33, 34] } }), vec!["--points", "20,21,33,34"]),
+        // The default method (jump-lsq) with a fixed node, then the paper's with bad points.
+        (json!({ "constraints": { "fixed": [84] } }), vec!["--fixed", "84"]),
+        (
+            json!({ "method": "zhang-cheng", "constraints": { "points": [20, 21, 33, 34] } }),
+            vec!["--method", "zhang-cheng", "--points", "20,21,33,34"],
+        ),
         (
             json!({ "method": "kjellander", "params": { "max-steps": 40 }, "constraints": { "clamp-ends": "g0" } }),
             vec!["--method", "kjellander", "--set", "max-steps=40", "--clamp-ends", "g0"],
@@ -597,7 +602,7 @@ fn fifty_concurrent_requests_are_answered_as_sequential_ones() {
                 4 => ("/api/curve", json!({ "points": points, "constraints": { "fixed": [1, 2], "clamp-ends": "g0" } })),
                 _ => {
                     let node = (1 + k % 11) * 13 + 1 + (k / 5) % 11;
-                    ("/api/surface", json!({ "rows": 13, "columns": 13, "points": teapot["points"], "constraints": { "points": [node] } }))
+                    ("/api/surface", json!({ "rows": 13, "columns": 13, "points": teapot["points"], "method": "zhang-cheng", "constraints": { "points": [node] } }))
                 }
             }
         })

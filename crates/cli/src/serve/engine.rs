@@ -385,6 +385,6 @@ mod tests {
         let two_phase = list.iter().find(|m| m["name"] == "two-phase").unwrap();
         assert_eq!(two_phase["planar_only"], true);
         assert_eq!(two_phase["takes_points"], false);
-        assert_eq!(value["defaults"]["surface"], "zhang-cheng");
+        assert_eq!(value["defaults"]["surface"], "jump-lsq");
     }
 }
