@@ -26,6 +26,7 @@ use fair_door::error::{Error, Result};
 
 pub use columns::{Layout, ReadOptions};
 pub use grid::{Grid, SurfaceInput};
+pub use json::JsonDocument;
 pub use table::Delimiter;
 
 /// The points of a curve: the library's type.
@@ -47,7 +48,7 @@ pub enum InputFormat {
     Json {
         /// The original document: an object whose `points` is replaced on output, or `None`
         /// for a bare top-level array.
-        document: Option<serde_json::Map<String, serde_json::Value>>,
+        document: Option<JsonDocument>,
     },
     /// Selig airfoil `.dat`: a name line, then the contour.
     Selig {
@@ -129,12 +130,73 @@ impl CurveInput {
 
 /// Whether a source is a surface grid: five comma-separated columns on its first row.
 pub fn looks_like_surface(source: &Source) -> bool {
-    let first = source
-        .text
-        .lines()
-        .map(str::trim)
+    let first = numbered_lines(&source.text)
+        .map(|(_, l)| l.trim())
         .find(|l| !l.is_empty() && !l.starts_with('#'));
     first.is_some_and(|l| l.split(',').count() == 5)
+}
+
+/// The lines of a text, numbered from 1. A line ends at `\n`, `\r\n` or a lone `\r` (old Mac
+/// files): a file with CR line ends is read line by line, not as one line. O(size).
+pub(crate) fn numbered_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
+    text.split('\n')
+        .flat_map(|l| l.strip_suffix('\r').unwrap_or(l).split('\r'))
+        .enumerate()
+        .map(|(i, l)| (i + 1, l))
+}
+
+/// The most characters of input a message echoes ([`echo`]).
+const ECHO: usize = 120;
+
+/// The longest message a reader gives (characters after `FILE:LINE: `): whatever the input,
+/// a refusal is one line that a terminal shows whole.
+pub const LONGEST_MESSAGE: usize = 400;
+
+/// A piece of the input as a message quotes it: control characters (line ends, tabs, NUL) as
+/// spaces, cut at [`ECHO`] characters with `…`. O(ECHO).
+pub(crate) fn echo(text: &str) -> String {
+    shorten(text, ECHO)
+}
+
+fn shorten(text: &str, limit: usize) -> String {
+    let mut out: String = text
+        .chars()
+        .take(limit)
+        .map(|c| if c.is_control() { ' ' } else { c })
+        .collect();
+    if text.chars().nth(limit).is_some() {
+        out.push('…');
+    }
+    out
+}
+
+/// A reader's error made one line of at most [`LONGEST_MESSAGE`] characters: the net under
+/// every reader, whatever a message quotes.
+pub(crate) fn bounded(error: Error) -> Error {
+    match error {
+        Error::Parse {
+            path,
+            line,
+            message,
+        } => Error::Parse {
+            path,
+            line,
+            message: shorten(&message, LONGEST_MESSAGE),
+        },
+        Error::Invalid { path, message } => Error::Invalid {
+            path,
+            message: shorten(&message, LONGEST_MESSAGE),
+        },
+        Error::Empty { path, reason } => Error::Empty {
+            path,
+            reason: shorten(&reason, LONGEST_MESSAGE),
+        },
+        Error::Argument { option, message } => Error::Argument {
+            option,
+            message: shorten(&message, LONGEST_MESSAGE),
+        },
+        other => other,
+    }
 }
 
 /// The text of an input and where it came from.
@@ -205,35 +267,63 @@ fn extension_of(path: &str) -> Option<String> {
         .map(|e| e.to_ascii_lowercase())
 }
 
-/// The curve format of a source: by extension (`.json`, `.dat`), else by content.
-fn sniff(source: &Source) -> Sniffed {
+/// The curve format of a source: JSON by extension or a first `{`/`[`; a table whose first
+/// line is a header naming its columns ([`names_columns`]), whatever the extension; then an
+/// airfoil by `.dat`, or by a name line (no comma, not all numbers) followed by a line of
+/// whitespace-separated numbers; else a table.
+fn sniff(source: &Source, options: &ReadOptions) -> Sniffed {
     match source.extension.as_deref() {
         Some("json") => return Sniffed::Json,
-        Some("dat") => return Sniffed::Airfoil,
         Some("csv") => return Sniffed::Table,
         _ => {}
     }
     let first = source.text.trim_start();
-    if first.starts_with('{') || first.starts_with('[') {
+    if source.extension.as_deref() != Some("dat") && (first.starts_with('{') || first.starts_with('[')) {
         return Sniffed::Json;
     }
-    let mut lines = source
-        .text
-        .lines()
-        .map(str::trim)
+    let mut lines = numbered_lines(&source.text)
+        .map(|(_, l)| l.trim().trim_start_matches('\u{feff}'))
         .filter(|l| !l.is_empty() && !l.starts_with('#'));
-    match lines.next() {
+    let (head, next) = (lines.next(), lines.next());
+    if let (Some(head), Some(next)) = (head, next) {
+        if names_columns(head, next, options) {
+            return Sniffed::Table;
+        }
+    }
+    if source.extension.as_deref() == Some("dat") {
+        return Sniffed::Airfoil;
+    }
+    match (head, next) {
         // A name line with no comma and not all numbers, then whitespace-separated numbers.
-        Some(head) if !head.contains(',') && !table::all_numeric(head, Delimiter::Whitespace) => {
-            match lines.next() {
-                Some(next) if !next.contains(',') && table::all_numeric(next, Delimiter::Whitespace) => {
-                    Sniffed::Airfoil
-                }
-                _ => Sniffed::Table,
-            }
+        (Some(head), Some(next))
+            if !head.contains(',')
+                && !table::all_numeric(head, Delimiter::Whitespace)
+                && !next.contains(',')
+                && table::all_numeric(next, Delimiter::Whitespace) =>
+        {
+            Sniffed::Airfoil
         }
         _ => Sniffed::Table,
     }
+}
+
+/// Whether a whitespace-separated first line is a table's header rather than an airfoil's
+/// name: it has as many words as the next line has fields, and among its words (compared
+/// without case, quotes removed) are the coordinate columns (`x` and `y`, or the names
+/// `--columns` gives). `y x` over `0 1` is a header; `NACA 0012` over `1 0` is a name.
+fn names_columns(head: &str, next: &str, options: &ReadOptions) -> bool {
+    if head.contains(',') || next.contains(',') {
+        return false;
+    }
+    let words: Vec<&str> = head.split_whitespace().map(|w| w.trim_matches('"')).collect();
+    if words.len() != next.split_whitespace().count() {
+        return false;
+    }
+    let default = ["x".to_string(), "y".to_string()];
+    let wanted = options.columns.as_deref().unwrap_or(&default);
+    wanted
+        .iter()
+        .all(|name| words.iter().any(|w| w.eq_ignore_ascii_case(name.trim())))
 }
 
 enum Sniffed {
@@ -265,7 +355,7 @@ pub fn parse_curve(source: &Source) -> Result<CurveInput> {
 /// name ([`columns`]). `--columns` is refused for JSON and airfoil files, whose coordinates
 /// are not named columns.
 pub fn parse_curve_with(source: &Source, options: &ReadOptions) -> Result<CurveInput> {
-    let sniffed = sniff(source);
+    let sniffed = sniff(source, options);
     if options.columns.is_some() && !matches!(sniffed, Sniffed::Table) {
         return Err(Error::Argument {
             option: "--columns",
@@ -285,12 +375,14 @@ pub fn parse_curve_with(source: &Source, options: &ReadOptions) -> Result<CurveI
         Sniffed::Airfoil => airfoil::parse(source),
         Sniffed::Table => columns::parse(source, options),
     }
+    .map_err(bounded)
 }
 
 /// Reads a surface grid `i,j,x,y,z` from `path` (`-` for standard input).
 pub fn read_surface(path: &str) -> Result<SurfaceInput> {
     grid::parse(&Source::read(path)?)
 }
+
 
 #[cfg(test)]
 mod tests {
