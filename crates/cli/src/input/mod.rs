@@ -532,6 +532,81 @@ mod tests {
         assert!(e.to_string().contains("--columns"), "{e}");
     }
 
+    /// A whitespace table with a header is read by the header's names, not taken for an
+    /// airfoil's name line: `y x` puts the second column in x, from a file or standard input.
+    #[test]
+    fn whitespace_header_is_read_by_name() {
+        for name in ["t.txt", "-", "t.dat"] {
+            let c = parse(name, "y x\n0 1\n1 2\n4 3\n").unwrap();
+            assert_eq!(
+                c.points,
+                CurvePoints::Planar(vec![Vec2::new(1., 0.), Vec2::new(2., 1.), Vec2::new(3., 4.)]),
+                "{name}"
+            );
+            assert!(
+                matches!(&c.format, InputFormat::Csv { header: Some(h), delimiter: Delimiter::Whitespace, .. } if h == "y x"),
+                "{name}: {:?}",
+                c.format
+            );
+            assert_eq!(c.lines, vec![2, 3, 4]);
+        }
+        // Labels and z by name too; a name line is still a name line.
+        let c = parse("-", "station Z X Y\nA 0 1 2\nB 1 2 3\n").unwrap();
+        assert_eq!(
+            c.points,
+            CurvePoints::Spatial(vec![Vec3::new(1., 2., 0.), Vec3::new(2., 3., 1.)])
+        );
+        let c = parse("-", "NACA 0012\n1 0\n0 0\n1 0.1\n").unwrap();
+        assert!(matches!(c.format, InputFormat::Selig { .. }), "{:?}", c.format);
+        // --columns names the coordinates of a whitespace header.
+        let options = ReadOptions::with_columns(Some(vec!["z".into(), "y".into()]));
+        let c = parse_curve_with(&Source::from_text("-", "y z\n5 0\n6 1\n"), &options).unwrap();
+        assert_eq!(
+            c.points,
+            CurvePoints::Planar(vec![Vec2::new(0., 5.), Vec2::new(1., 6.)])
+        );
+    }
+
+    /// Old Mac files (CR line ends) are read line by line, with the right line numbers.
+    #[test]
+    fn cr_line_ends_are_line_ends() {
+        let c = parse("m.csv", "x,y\r0,1\r1,2\r2,3\r").unwrap();
+        assert_eq!(c.len(), 3);
+        assert_eq!(c.lines, vec![2, 3, 4]);
+        let e = parse("m.csv", "x,y\r0,1\r1,oops\r").unwrap_err();
+        assert!(e.to_string().starts_with("m.csv:3: "), "{e}");
+        let c = parse("m.dat", "FOIL\r1 0\r0 0\r1 0.1\r").unwrap();
+        assert_eq!(c.len(), 3);
+    }
+
+    /// However long the garbage, a message is one line quoting at most a few hundred
+    /// characters of it.
+    #[test]
+    fn messages_are_one_short_line() {
+        let long = "7".repeat(100_000);
+        let huge_header = format!("a{}\r", "b\r".repeat(50_000));
+        for (name, text) in [
+            ("l.csv", format!("x,y\n0,{long}x\n")),
+            ("l.csv", format!("q{long},w\n1,2\n")),
+            ("l.txt", huge_header.clone()),
+            ("l.dat", format!("NAME\n1 {long}z\n")),
+            ("l.json", format!("{{\"points\": [[0, 1]], \"{long}\": 1, \"{long}\": 2}}")),
+        ] {
+            let e = parse(name, &text).unwrap_err().one_line();
+            assert!(e.chars().count() <= 500 && !e.contains(['\n', '\r']), "{name}: {} chars", e.len());
+        }
+        let e = grid::parse(&Source::from_text("g.csv", &format!("i,j,x,y,{long}\n0,0,0,0,0\n"))).unwrap_err();
+        assert!(e.to_string().chars().count() <= 500, "{} chars", e.to_string().len());
+    }
+
+    /// A CSV label is written back exactly, spaces included.
+    #[test]
+    fn labels_keep_their_spaces() {
+        let text = "x,y, note \n0,1,  left \n1,2,right  \n2,3, \n";
+        let c = parse("s.csv", text).unwrap();
+        assert_eq!(crate::output::format_curve(&c, &c.points).unwrap(), text);
+    }
+
     #[test]
     fn whitespace_columns() {
         let c = parse("a.txt", "0 1\n1\t2\n").unwrap();
@@ -626,6 +701,35 @@ mod tests {
         let c = parse("-", "[[0, 1, 2], [2, 3, 4]]").unwrap();
         assert_eq!(c.points.dimension(), 3);
         assert!(matches!(c.format, InputFormat::Json { document: None }));
+    }
+
+    /// Other keys round-trip exactly: order, a 23-digit integer, nested values; a key given
+    /// twice is refused with its line.
+    #[test]
+    fn json_other_keys_round_trip_exactly() {
+        let text = "{\"zeta\": 1, \"id\": 12345678901234567890123, \"points\": [[0, 1], [1, 2]], \"alpha\": {\"b\": [1.50, 2e400]}}";
+        let c = parse("k.json", text).unwrap();
+        let written = crate::output::format_curve(&c, &c.points).unwrap();
+        let (zeta, id, points, alpha) = (
+            written.find("\"zeta\"").unwrap(),
+            written.find("\"id\": 12345678901234567890123,").unwrap(),
+            written.find("\"points\"").unwrap(),
+            written.find("\"alpha\": {\"b\": [1.50, 2e400]}").unwrap(),
+        );
+        assert!(zeta < id && id < points && points < alpha, "{written}");
+        let e = parse("k.json", "{\"points\": [[0, 1], [1, 2]],\n \"a\": 1,\n \"a\": 2}").unwrap_err();
+        assert!(e.to_string().starts_with("k.json:3: the key `a` is given twice"), "{e}");
+        let e = parse("k.json", "{\"points\": [[0, 1]],\n\"points\": [[0, 1]]}").unwrap_err();
+        assert!(e.to_string().starts_with("k.json:2: "), "{e}");
+        // A kept value nested 100 000 deep is skipped without recursion and written back whole;
+        // points nested deeper than a point are refused at once.
+        let nest = |depth: usize| format!("{}{}", "[".repeat(depth), "]".repeat(depth));
+        let deep = format!("{{\"points\": [[0, 1]], \"d\": {}}}", nest(100_000));
+        let c = parse("k.json", &deep).map_err(|e| e.to_string()).unwrap();
+        let written = crate::output::format_curve(&c, &c.points).unwrap();
+        assert!(written.contains(&nest(100_000)));
+        let e = parse("k.json", &nest(100_000)).unwrap_err().to_string();
+        assert!(e.starts_with("k.json:1: invalid type: sequence"), "{e}");
     }
 
     #[test]
