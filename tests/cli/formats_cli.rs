@@ -224,14 +224,21 @@ fn json_other_values_come_back_as_written() {
         serde_json::to_string(&pts).unwrap()
     );
     let written = round_trip("keys.json", &text);
-    let at = |needle: &str| written.find(needle).unwrap_or_else(|| panic!("{needle} in {written}"));
+    let at = |needle: &str| {
+        written
+            .find(needle)
+            .unwrap_or_else(|| panic!("{needle} in {written}"))
+    };
     assert!(at("\"zulu\"") < at("\"id\": 12345678901234567890123,"));
     assert!(at("\"id\"") < at("\"points\"") && at("\"points\"") < at("\"alpha\": 1.50"));
     let twice = "{\"points\": [[0, 0], [1, 1], [2, 0]],\n\"units\": \"m\",\n\"units\": \"mm\"}";
     let run = fair(&["curve", "-", "-o", "-"], Some(twice));
     assert_eq!(run.status.code(), Some(2));
     let stderr = String::from_utf8_lossy(&run.stderr);
-    assert!(stderr.starts_with("fair: <stdin>:3: the key `units` is given twice"), "{stderr}");
+    assert!(
+        stderr.starts_with("fair: <stdin>:3: the key `units` is given twice"),
+        "{stderr}"
+    );
 }
 
 /// x not strictly increasing: `--kind function` refuses naming the line; `auto` fairs it as
@@ -271,7 +278,11 @@ fn a_message_quotes_a_few_hundred_characters_at_most() {
         assert_eq!(run.status.code(), Some(2));
         let stderr = String::from_utf8_lossy(&run.stderr);
         assert_eq!(stderr.lines().count(), 1, "{}", &stderr[..200.min(stderr.len())]);
-        assert!(stderr.chars().count() <= 500, "{} characters", stderr.chars().count());
+        assert!(
+            stderr.chars().count() <= 500,
+            "{} characters",
+            stderr.chars().count()
+        );
     }
 }
 
@@ -325,7 +336,10 @@ fn a_surface_grid_is_read_by_name() {
     };
     let (plain_header, plain_cells) = cells(&surface(&plain));
     let (moved_header, moved_cells) = cells(&surface(&moved));
-    assert_eq!((plain_header.as_str(), moved_header.as_str()), ("i,j,x,y,z", "x,y,z,j,i"));
+    assert_eq!(
+        (plain_header.as_str(), moved_header.as_str()),
+        ("i,j,x,y,z", "x,y,z,j,i")
+    );
     assert_eq!(plain_cells.len(), 30);
     assert_eq!(plain_cells, moved_cells);
 }

@@ -55,7 +55,12 @@ fn samples() -> Vec<(&'static str, &'static str, String)> {
             format!("{x:.6} {:.6}\n", -0.06 * (std::f64::consts::PI * x).sin())
         })
         .collect();
-    let selig: String = upper.lines().rev().chain(lower.lines().skip(1)).map(|l| format!("{l}\n")).collect();
+    let selig: String = upper
+        .lines()
+        .rev()
+        .chain(lower.lines().skip(1))
+        .map(|l| format!("{l}\n"))
+        .collect();
     vec![
         (
             "csv",
@@ -119,7 +124,11 @@ fn mutated_files_are_read_or_refused_in_one_short_line() {
     let mut counts: Vec<(&str, usize, usize)> = Vec::new();
     for (s, (what, name, text)) in samples().into_iter().enumerate() {
         // The sample itself is read.
-        assert_eq!(outcome(what, &Source::from_text(name, &text)), Ok(true), "{name} unmutated");
+        assert_eq!(
+            outcome(what, &Source::from_text(name, &text)),
+            Ok(true),
+            "{name} unmutated"
+        );
         let mut rng = Rng(0xf00d ^ (s as u64) << 12);
         let (mut accepted, mut refused) = (0, 0);
         for case in 0..CASES {
@@ -143,9 +152,15 @@ fn mutated_files_are_read_or_refused_in_one_short_line() {
         }
     }
     for (what, accepted, refused) in &counts {
-        eprintln!("{what}: {} mutated files, {accepted} read, {refused} refused", accepted + refused);
+        eprintln!(
+            "{what}: {} mutated files, {accepted} read, {refused} refused",
+            accepted + refused
+        );
         // Neither vacuous nor blind: some mutations survive, some are caught.
-        assert!(*accepted > 0 && *refused > 0, "{what}: {accepted} read, {refused} refused");
+        assert!(
+            *accepted > 0 && *refused > 0,
+            "{what}: {accepted} read, {refused} refused"
+        );
     }
     eprintln!("{:.1} s", started.elapsed().as_secs_f64());
 }

@@ -107,7 +107,13 @@ pub(crate) fn format_surface(input: &SurfaceInput, grid: &Grid) -> Result<String
             message: format!("output grid has no cell ({i}, {j})"),
         })?;
         let (fi, fj) = (i as i64 + input.offset.0, j as i64 + input.offset.1);
-        let fields = [fi.to_string(), fj.to_string(), number(p.x), number(p.y), number(p.z)];
+        let fields = [
+            fi.to_string(),
+            fj.to_string(),
+            number(p.x),
+            number(p.y),
+            number(p.z),
+        ];
         // Each field in its file column (input.columns is a permutation of 0..5).
         let mut row: [&str; 5] = [""; 5];
         for (field, &column) in fields.iter().zip(&input.columns) {

@@ -58,7 +58,11 @@ pub fn auto_note(argument: KindChoice, input: &CurveData<'_>) -> Option<String> 
         "{place}: x = {} {} x = {}, so x is not strictly increasing and the points are faired as a \
          parametric curve (x values may move); --kind function refuses such a file instead",
         p[i + 1].x,
-        if p[i + 1].x == p[i].x { "repeats" } else { "follows" },
+        if p[i + 1].x == p[i].x {
+            "repeats"
+        } else {
+            "follows"
+        },
         p[i].x
     ))
 }
@@ -205,13 +209,19 @@ mod tests {
     fn auto_says_why_a_curve_is_parametric() {
         let swapped = input("x,y\n0,0\n2,1\n1,0\n3,1\n");
         let note = auto_note(KindChoice::Auto, &swapped.data()).unwrap();
-        assert!(note.starts_with("k.csv:4: x = 1 follows x = 2, so x is not strictly increasing"), "{note}");
+        assert!(
+            note.starts_with("k.csv:4: x = 1 follows x = 2, so x is not strictly increasing"),
+            "{note}"
+        );
         assert!(note.contains("parametric") && !note.contains('\n'), "{note}");
         let repeated = input("x,y\n0,0\n1,1\n1,0\n3,1\n");
         let note = auto_note(KindChoice::Auto, &repeated.data()).unwrap();
         assert!(note.starts_with("k.csv:4: x = 1 repeats x = 1"), "{note}");
         assert_eq!(auto_note(KindChoice::Parametric, &repeated.data()), None);
-        assert_eq!(auto_note(KindChoice::Auto, &input("0,0\n1,1\n2,0\n").data()), None);
+        assert_eq!(
+            auto_note(KindChoice::Auto, &input("0,0\n1,1\n2,0\n").data()),
+            None
+        );
         assert_eq!(auto_note(KindChoice::Auto, &input("0,0,0\n1,1,1\n").data()), None);
     }
 

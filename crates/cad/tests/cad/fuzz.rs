@@ -55,7 +55,10 @@ fn mutated_files_are_read_or_refused_in_one_short_line() {
                     panic!("{format} file {f} case {case}: the reader panicked");
                 };
                 if let Ok(model) = &result {
-                    assert!(finite(model), "{format} file {f} case {case}: a number read is not finite");
+                    assert!(
+                        finite(model),
+                        "{format} file {f} case {case}: a number read is not finite"
+                    );
                     accepted += 1;
                 } else {
                     refused += 1;
@@ -71,9 +74,15 @@ fn mutated_files_are_read_or_refused_in_one_short_line() {
                 }
             }
         }
-        eprintln!("{format}: {} mutated files, {accepted} read, {refused} refused", accepted + refused);
+        eprintln!(
+            "{format}: {} mutated files, {accepted} read, {refused} refused",
+            accepted + refused
+        );
         // Neither vacuous nor blind: some mutations survive, some are caught.
-        assert!(accepted > 0 && refused > 0, "{format}: {accepted} read, {refused} refused");
+        assert!(
+            accepted > 0 && refused > 0,
+            "{format}: {accepted} read, {refused} refused"
+        );
     }
 }
 
@@ -83,14 +92,19 @@ fn finite(model: &CadModel) -> bool {
         let curve = &c.curve;
         curve.knots().iter().all(|k| k.is_finite())
             && curve.weights().iter().all(|w| w.is_finite())
-            && curve.control_points().iter().all(|p| p.iter().all(|v| v.is_finite()))
+            && curve
+                .control_points()
+                .iter()
+                .all(|p| p.iter().all(|v| v.is_finite()))
     });
     let surfaces = model.surfaces.iter().all(|s| {
         let surface = &s.surface;
         let (u, v) = surface.net_size();
         (0..u).all(|i| {
             (0..v).all(|j| {
-                surface.control_point(i, j).is_some_and(|p| p.iter().all(|c| c.is_finite()))
+                surface
+                    .control_point(i, j)
+                    .is_some_and(|p| p.iter().all(|c| c.is_finite()))
                     && surface.weight(i, j).is_some_and(f64::is_finite)
             })
         })

@@ -89,7 +89,10 @@ pub(crate) fn mutate(text: &str, rng: &mut Rng) -> Vec<u8> {
         }
         // A header or key repeated: the first line duplicated.
         9 => {
-            let end = bytes.iter().position(|&b| b == b'\n').map_or(bytes.len(), |i| i + 1);
+            let end = bytes
+                .iter()
+                .position(|&b| b == b'\n')
+                .map_or(bytes.len(), |i| i + 1);
             let first = bytes[..end].to_vec();
             bytes.splice(0..0, first);
         }
@@ -103,4 +106,3 @@ pub(crate) fn mutate(text: &str, rng: &mut Rng) -> Vec<u8> {
     }
     bytes
 }
-

@@ -270,7 +270,10 @@ mod tests {
             "x,y,z,i,j\n0,0,1,0,0\n0,1,2,0,1\n1,0,3,1,0\n1,1,5,1,1\n"
         );
         for (text, needle) in [
-            ("i,j,x,y,w\n0,0,0,0,0\n", "column 5 `w` is not one of i, j, x, y, z"),
+            (
+                "i,j,x,y,w\n0,0,0,0,0\n",
+                "column 5 `w` is not one of i, j, x, y, z",
+            ),
             ("i,j,x,y\n0,0,0,0\n", "no `z` column"),
             ("i,j,x,y,z,t\n0,0,0,0,0,0\n", "`t` is not one of"),
             ("i,i,x,y,z\n0,0,0,0,0\n", "names `i` twice"),

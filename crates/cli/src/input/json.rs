@@ -54,7 +54,8 @@ impl JsonDocument {
 
     /// Appends `key` with `value` written as serde_json writes it.
     pub fn push(&mut self, key: &str, value: &serde_json::Value) {
-        self.entries.push((key.to_string(), Entry::Raw(value.to_string())));
+        self.entries
+            .push((key.to_string(), Entry::Raw(value.to_string())));
     }
 
     /// The document with `rows` as its points (at the `points` key's place, else last),
@@ -64,7 +65,10 @@ impl JsonDocument {
         for (key, entry) in &self.entries {
             entries.push(match entry {
                 Entry::Points => (key.as_str(), Value::Points(rows)),
-                Entry::Raw(text) => (key.as_str(), Value::Raw(serde_json::value::RawValue::from_string(text.clone())?)),
+                Entry::Raw(text) => (
+                    key.as_str(),
+                    Value::Raw(serde_json::value::RawValue::from_string(text.clone())?),
+                ),
             });
         }
         if !self.contains_key("points") {

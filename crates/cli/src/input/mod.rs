@@ -174,11 +174,7 @@ fn shorten(text: &str, limit: usize) -> String {
 /// every reader, whatever a message quotes.
 pub(crate) fn bounded(error: Error) -> Error {
     match error {
-        Error::Parse {
-            path,
-            line,
-            message,
-        } => Error::Parse {
+        Error::Parse { path, line, message } => Error::Parse {
             path,
             line,
             message: shorten(&message, LONGEST_MESSAGE),
@@ -382,7 +378,6 @@ pub fn parse_curve_with(source: &Source, options: &ReadOptions) -> Result<CurveI
 pub fn read_surface(path: &str) -> Result<SurfaceInput> {
     grid::parse(&Source::read(path)?)
 }
-
 
 #[cfg(test)]
 mod tests {
@@ -590,13 +585,28 @@ mod tests {
             ("l.csv", format!("q{long},w\n1,2\n")),
             ("l.txt", huge_header.clone()),
             ("l.dat", format!("NAME\n1 {long}z\n")),
-            ("l.json", format!("{{\"points\": [[0, 1]], \"{long}\": 1, \"{long}\": 2}}")),
+            (
+                "l.json",
+                format!("{{\"points\": [[0, 1]], \"{long}\": 1, \"{long}\": 2}}"),
+            ),
         ] {
             let e = parse(name, &text).unwrap_err().one_line();
-            assert!(e.chars().count() <= 500 && !e.contains(['\n', '\r']), "{name}: {} chars", e.len());
+            assert!(
+                e.chars().count() <= 500 && !e.contains(['\n', '\r']),
+                "{name}: {} chars",
+                e.len()
+            );
         }
-        let e = grid::parse(&Source::from_text("g.csv", &format!("i,j,x,y,{long}\n0,0,0,0,0\n"))).unwrap_err();
-        assert!(e.to_string().chars().count() <= 500, "{} chars", e.to_string().len());
+        let e = grid::parse(&Source::from_text(
+            "g.csv",
+            &format!("i,j,x,y,{long}\n0,0,0,0,0\n"),
+        ))
+        .unwrap_err();
+        assert!(
+            e.to_string().chars().count() <= 500,
+            "{} chars",
+            e.to_string().len()
+        );
     }
 
     /// A CSV label is written back exactly, spaces included.
@@ -718,7 +728,10 @@ mod tests {
         );
         assert!(zeta < id && id < points && points < alpha, "{written}");
         let e = parse("k.json", "{\"points\": [[0, 1], [1, 2]],\n \"a\": 1,\n \"a\": 2}").unwrap_err();
-        assert!(e.to_string().starts_with("k.json:3: the key `a` is given twice"), "{e}");
+        assert!(
+            e.to_string().starts_with("k.json:3: the key `a` is given twice"),
+            "{e}"
+        );
         let e = parse("k.json", "{\"points\": [[0, 1]],\n\"points\": [[0, 1]]}").unwrap_err();
         assert!(e.to_string().starts_with("k.json:2: "), "{e}");
         // A kept value nested 100 000 deep is skipped without recursion and written back whole;
