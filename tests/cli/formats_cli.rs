@@ -292,7 +292,11 @@ fn a_message_quotes_a_few_hundred_characters_at_most() {
 fn a_surface_grid_is_read_by_name() {
     let cell = |i: usize, j: usize| {
         let (x, y) = (i as f64, j as f64);
-        [x, y, 0.1 * x * y + if (i + j).is_multiple_of(3) { 0.05 } else { 0.0 }]
+        [
+            x,
+            y,
+            0.1 * x * y + if (i + j).is_multiple_of(3) { 0.05 } else { 0.0 },
+        ]
     };
     let mut plain = String::from("i,j,x,y,z\n");
     let mut moved = String::from("x,y,z,j,i\n");

@@ -236,7 +236,13 @@ impl Source {
             Ok(text) => text,
             Err(e) => {
                 let valid = &e.as_bytes()[..e.utf8_error().valid_up_to()];
-                let line = 1 + valid.iter().filter(|b| **b == b'\n').count();
+                // Lines as the readers count them: `\n`, `\r\n` or a lone `\r` ends one.
+                let ends = valid
+                    .iter()
+                    .enumerate()
+                    .filter(|&(i, &b)| b == b'\n' || (b == b'\r' && valid.get(i + 1) != Some(&b'\n')))
+                    .count();
+                let line = 1 + ends;
                 return Err(Error::Parse {
                     path: name,
                     line,
@@ -572,6 +578,16 @@ mod tests {
         assert!(e.to_string().starts_with("m.csv:3: "), "{e}");
         let c = parse("m.dat", "FOIL\r1 0\r0 0\r1 0.1\r").unwrap();
         assert_eq!(c.len(), 3);
+    }
+
+    /// Bytes that are not UTF-8 are named by their line, CR line ends counted like the readers'.
+    #[test]
+    fn invalid_utf8_names_its_line_with_cr_ends() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("mac.csv");
+        std::fs::write(&path, b"x,y\r0,1\r\n1,2\r2,\xff\r").unwrap();
+        let e = read_curve(path.to_str().unwrap()).unwrap_err().to_string();
+        assert!(e.ends_with("mac.csv:4: not UTF-8 text"), "{e}");
     }
 
     /// However long the garbage, a message is one line quoting at most a few hundred
