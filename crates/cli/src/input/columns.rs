@@ -2,7 +2,9 @@
 //!
 //! - With a header (a first row that is not all numbers), the coordinates are the columns
 //!   named `x`, `y` and (optionally) `z`, compared without case, wherever they stand; every
-//!   other column is a label, carried through to the output as text, numeric or not.
+//!   other column is a label, carried through to the output as text, numeric or not, byte
+//!   for byte in a comma table (spaces included). A whitespace table's header is read the
+//!   same way ([`super`]'s sniffing takes it for a header, not an airfoil's name line).
 //!   `--columns z,y` names the coordinates instead (a hull section faired as y(z)): the first
 //!   named column is the abscissa, and the faired values are written back into the same
 //!   columns.
