@@ -6,10 +6,13 @@ mod batten_cli;
 mod cad_cli;
 mod columns_cli;
 mod formats_cli;
+mod fuzz_readers;
 mod inspect;
 mod jump_lsq_cli;
 mod largest_move_cli;
 mod lines_cli;
+#[path = "../../crates/cad/tests/cad/mutate.rs"]
+mod mutate;
 // A file of fairing's benches, shared: its item is `pub` for the benches' crate.
 #[allow(unreachable_pub)]
 #[path = "../../crates/fairing/benches/fairing/noisy_segment.rs"]

@@ -43,18 +43,11 @@ pub(crate) fn format_curve(input: &CurveInput, points: &CurvePoints) -> Result<S
             push_layout_rows(&mut text, &rows, layout, *delimiter)?;
         }
         InputFormat::Json { document } => {
-            let array = serde_json::to_value(&rows).map_err(|e| Error::Internal {
-                message: e.to_string(),
-            })?;
-            let value = match document {
-                Some(map) => {
-                    let mut map = map.clone();
-                    map.insert("points".into(), array);
-                    serde_json::Value::Object(map)
-                }
-                None => array,
+            let written = match document {
+                Some(document) => document.to_pretty(&rows),
+                None => serde_json::to_string_pretty(&rows),
             };
-            text = serde_json::to_string_pretty(&value).map_err(|e| Error::Internal {
+            text = written.map_err(|e| Error::Internal {
                 message: e.to_string(),
             })?;
             text.push('\n');
@@ -114,12 +107,22 @@ pub(crate) fn format_surface(input: &SurfaceInput, grid: &Grid) -> Result<String
             message: format!("output grid has no cell ({i}, {j})"),
         })?;
         let (fi, fj) = (i as i64 + input.offset.0, j as i64 + input.offset.1);
-        text.push_str(&format!(
-            "{fi}{separator}{fj}{separator}{}{separator}{}{separator}{}\n",
+        let fields = [
+            fi.to_string(),
+            fj.to_string(),
             number(p.x),
             number(p.y),
-            number(p.z)
-        ));
+            number(p.z),
+        ];
+        // Each field in its file column (input.columns is a permutation of 0..5).
+        let mut row: [&str; 5] = [""; 5];
+        for (field, &column) in fields.iter().zip(&input.columns) {
+            if let Some(slot) = row.get_mut(column) {
+                *slot = field;
+            }
+        }
+        text.push_str(&row.join(separator));
+        text.push('\n');
     }
     Ok(text)
 }
@@ -276,10 +279,10 @@ pub(crate) fn format_curve_as(
             }
         }
         OutputFormat::Json => {
-            let mut document = serde_json::Map::new();
+            let mut document = crate::input::JsonDocument::new();
             match &input.format {
                 InputFormat::Selig { name } | InputFormat::Lednicer { name, .. } => {
-                    document.insert("name".into(), serde_json::json!(name));
+                    document.push("name", &serde_json::json!(name));
                 }
                 InputFormat::Csv { header, layout, .. } if !layout.labels.is_empty() => {
                     let names: Vec<String> = header
@@ -306,7 +309,7 @@ pub(crate) fn format_curve_as(
                         let values: Vec<&str> = layout.labels.iter().map(|row| row[k].as_str()).collect();
                         labels.insert(name, serde_json::json!(values));
                     }
-                    document.insert("labels".into(), serde_json::Value::Object(labels));
+                    document.push("labels", &serde_json::Value::Object(labels));
                 }
                 _ => {}
             }

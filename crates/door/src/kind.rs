@@ -38,6 +38,35 @@ pub fn detect(points: &CurvePoints) -> CurveKind {
     }
 }
 
+/// What `--kind auto` tells the user when planar points are not a function: the first point
+/// whose x does not increase, with its line (or number), and that the curve is faired as
+/// parametric, so its x values may move. `None` for a function, spatial points or another
+/// choice than [`KindChoice::Auto`]. One line. O(n).
+pub fn auto_note(argument: KindChoice, input: &CurveData<'_>) -> Option<String> {
+    let CurvePoints::Planar(p) = input.points else {
+        return None;
+    };
+    if argument != KindChoice::Auto {
+        return None;
+    }
+    let i = first_non_increasing(input.points)?;
+    let place = match input.line_of(i + 1) {
+        Some(line) => format!("{}:{line}", input.source),
+        None => format!("{}: point {}", input.source, i + 1),
+    };
+    Some(format!(
+        "{place}: x = {} {} x = {}, so x is not strictly increasing and the points are faired as a \
+         parametric curve (x values may move); --kind function refuses such a file instead",
+        p[i + 1].x,
+        if p[i + 1].x == p[i].x {
+            "repeats"
+        } else {
+            "follows"
+        },
+        p[i].x
+    ))
+}
+
 /// How close two abscissae of a function may be, relative to the x range: closer than
 /// 10⁻¹² of it, the spline's slope between them is 10¹² times the curve's typical slope and
 /// its curvature beyond anything the data can mean — the points are one point up to
@@ -172,6 +201,28 @@ mod tests {
             CurveKind::Parametric
         );
         assert!(resolve(KindChoice::Function, &input("0,0,0\n1,1,1\n").data()).is_err());
+    }
+
+    /// Auto on a repeated or swapped x: a note naming the line; nothing for a function, for
+    /// spatial points or when the kind was given.
+    #[test]
+    fn auto_says_why_a_curve_is_parametric() {
+        let swapped = input("x,y\n0,0\n2,1\n1,0\n3,1\n");
+        let note = auto_note(KindChoice::Auto, &swapped.data()).unwrap();
+        assert!(
+            note.starts_with("k.csv:4: x = 1 follows x = 2, so x is not strictly increasing"),
+            "{note}"
+        );
+        assert!(note.contains("parametric") && !note.contains('\n'), "{note}");
+        let repeated = input("x,y\n0,0\n1,1\n1,0\n3,1\n");
+        let note = auto_note(KindChoice::Auto, &repeated.data()).unwrap();
+        assert!(note.starts_with("k.csv:4: x = 1 repeats x = 1"), "{note}");
+        assert_eq!(auto_note(KindChoice::Parametric, &repeated.data()), None);
+        assert_eq!(
+            auto_note(KindChoice::Auto, &input("0,0\n1,1\n2,0\n").data()),
+            None
+        );
+        assert_eq!(auto_note(KindChoice::Auto, &input("0,0,0\n1,1,1\n").data()), None);
     }
 
     /// Two abscissae 1e-15 apart: a clear message naming the line, for --kind auto too; as a

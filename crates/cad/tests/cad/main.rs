@@ -4,6 +4,7 @@ mod common;
 mod errors;
 mod exact;
 mod fuzz;
+mod mutate;
 mod occ_check;
 mod occ_files;
 mod rebuild;

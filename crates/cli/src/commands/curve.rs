@@ -101,6 +101,10 @@ pub(crate) fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
         let _activity = progress::Activity::start(&format!("reading {}", args.input), args.quiet);
         input::read_curve_with(&args.input, &args.read_options())?
     };
+    let mut input = input;
+    input
+        .notes
+        .extend(fair_door::kind::auto_note(args.kind.into(), &input.data()));
     input.print_notes(args.quiet);
     if args.print_config {
         let (_, plan, constraints) =

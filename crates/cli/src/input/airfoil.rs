@@ -16,7 +16,7 @@ use fair_door::error::{Error, Result};
 /// Parses a Selig or Lednicer file.
 pub(super) fn parse(source: &Source) -> Result<CurveInput> {
     let path = source.name.as_str();
-    let mut lines = source.text.lines().enumerate().map(|(i, l)| (i + 1, l.trim()));
+    let mut lines = super::numbered_lines(&source.text).map(|(i, l)| (i, l.trim()));
     let name = loop {
         match lines.next() {
             Some((_, "")) => continue,
@@ -30,8 +30,9 @@ pub(super) fn parse(source: &Source) -> Result<CurveInput> {
                             path: path.into(),
                             line,
                             message: format!(
-                                "`{l}` is a coordinate pair, but an airfoil .dat file starts with a \
-                                 name line (add one, or give the points as CSV `x,y`)"
+                                "`{}` is a coordinate pair, but an airfoil .dat file starts with a \
+                                 name line (add one, or give the points as CSV `x,y`)",
+                                super::echo(l)
                             ),
                         });
                     }

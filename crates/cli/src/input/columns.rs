@@ -2,7 +2,9 @@
 //!
 //! - With a header (a first row that is not all numbers), the coordinates are the columns
 //!   named `x`, `y` and (optionally) `z`, compared without case, wherever they stand; every
-//!   other column is a label, carried through to the output as text, numeric or not.
+//!   other column is a label, carried through to the output as text, numeric or not, byte
+//!   for byte in a comma table (spaces included). A whitespace table's header is read the
+//!   same way ([`super`]'s sniffing takes it for a header, not an airfoil's name line).
 //!   `--columns z,y` names the coordinates instead (a hull section faired as y(z)): the first
 //!   named column is the abscissa, and the faired values are written back into the same
 //!   columns.
@@ -100,8 +102,9 @@ fn coordinates_from_header(
                 find(name)?.ok_or_else(|| Error::Argument {
                     option: "--columns",
                     message: format!(
-                        "{}: no column `{name}` in the header `{text}` (line {line})",
-                        source.name
+                        "{}: no column `{name}` in the header `{}` (line {line})",
+                        source.name,
+                        super::echo(text)
                     ),
                 })
             })
@@ -116,8 +119,9 @@ fn coordinates_from_header(
                         path: source.name.clone(),
                         line,
                         message: format!(
-                            "the header `{text}` has no `{missing}` column: name the coordinate columns \
-                             x, y (and z), or choose them with --columns (e.g. --columns z,y)"
+                            "the header `{}` has no `{missing}` column: name the coordinate columns \
+                             x, y (and z), or choose them with --columns (e.g. --columns z,y)",
+                            super::echo(text)
                         ),
                     })
                 }
@@ -196,14 +200,14 @@ pub fn parse(source: &Source, options: &ReadOptions) -> Result<CurveInput> {
     } else {
         Delimiter::Whitespace
     };
-    let mut lines_iter = source
-        .text
-        .lines()
-        .enumerate()
-        .map(|(index, raw)| (index + 1, raw.trim().trim_start_matches('\u{feff}')))
-        .filter(|(_, text)| !text.is_empty() && !text.starts_with('#'))
+    let mut lines_iter = super::numbered_lines(&source.text)
+        .map(|(line, raw)| {
+            let raw = raw.trim_start_matches('\u{feff}');
+            (line, raw.trim(), raw)
+        })
+        .filter(|(_, text, _)| !text.is_empty() && !text.starts_with('#'))
         .peekable();
-    let Some(&(first_line, first_text)) = lines_iter.peek() else {
+    let Some(&(first_line, first_text, first_raw)) = lines_iter.peek() else {
         return Err(Error::Empty {
             path: source.name.clone(),
             reason: "the file is empty".into(),
@@ -226,7 +230,7 @@ pub fn parse(source: &Source, options: &ReadOptions) -> Result<CurveInput> {
         }
         let coordinates = coordinates_from_header(source, first_line, first_text, &names, chosen)?;
         let chosen_names = coordinates.iter().map(|&c| names[c].to_string()).collect();
-        (Some(first_text.to_string()), coordinates, chosen_names)
+        (Some(first_raw.to_string()), coordinates, chosen_names)
     } else {
         if columns != 2 && columns != 3 {
             let hint = if columns == 5 {
@@ -272,10 +276,12 @@ pub fn parse(source: &Source, options: &ReadOptions) -> Result<CurveInput> {
     let mut lines: Vec<usize> = Vec::new();
     let mut fields: Vec<&str> = Vec::with_capacity(columns);
     let mut values = [0.0_f64; 3];
-    for (line, text) in lines_iter {
+    for (line, text, raw) in lines_iter {
         fields.clear();
         match delimiter {
-            Delimiter::Comma => fields.extend(text.split(',').map(str::trim)),
+            // Untrimmed: a label is written back exactly as read, spaces and all; a
+            // coordinate is trimmed where it is parsed.
+            Delimiter::Comma => fields.extend(raw.split(',')),
             Delimiter::Whitespace => fields.extend(text.split_whitespace()),
         }
         if fields.len() != columns {
@@ -294,7 +300,7 @@ pub fn parse(source: &Source, options: &ReadOptions) -> Result<CurveInput> {
             });
         }
         for (k, &c) in coordinates.iter().enumerate() {
-            values[k] = number(fields[c]).map_err(|problem| Error::Parse {
+            values[k] = number(fields[c].trim()).map_err(|problem| Error::Parse {
                 path: source.name.clone(),
                 line,
                 message: format!("column {} ({}): {problem}", c + 1, column_name(c)),

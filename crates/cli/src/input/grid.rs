@@ -1,5 +1,10 @@
 //! Surface grids: CSV rows `i,j,x,y,z` (header optional) into a rectangular grid P_ij.
 //!
+//! With a header the columns are taken by name, in any order (`j,i,x,y,z` is read as the
+//! header says, and written back in the same order); a header naming a column that is not
+//! one of `i, j, x, y, z`, or missing one, is refused with its line. Without a header the five
+//! columns are `i, j, x, y, z` by position.
+//!
 //! Indices are integers and may start anywhere (a table of offsets starting at station 20);
 //! the grid spans i_min..=i_max by j_min..=j_max and every cell must be given exactly once.
 //! The row order of the file is remembered so that the output is written in the same order.
@@ -34,6 +39,9 @@ pub struct SurfaceInput {
     pub header: Option<String>,
     /// The separator found.
     pub delimiter: Delimiter,
+    /// The file column (from 0) of `i`, `j`, `x`, `y`, `z`: `[0, 1, 2, 3, 4]` without a
+    /// header; the output writes its fields back in this order.
+    pub columns: [usize; 5],
     /// The path as given, or `<stdin>`.
     pub source: String,
     /// The line of each file row, from 1.
@@ -44,8 +52,53 @@ fn index(value: f64) -> Option<i64> {
     (value.fract() == 0.0 && value.abs() < 1e9).then_some(value as i64)
 }
 
-/// Parses an `i,j,x,y,z` grid.
+/// The names of a grid's columns, in the order of [`SurfaceInput::columns`].
+const NAMES: [&str; 5] = ["i", "j", "x", "y", "z"];
+
+/// The file column of each of `i, j, x, y, z` by the header's names, or why they are not a
+/// grid's: an unknown name, a name given twice, a name missing.
+fn columns_by_name(path: &str, line: usize, names: &[String]) -> Result<[usize; 5]> {
+    let refuse = |message: String| Error::Parse {
+        path: path.into(),
+        line,
+        message,
+    };
+    let mut columns = [usize::MAX; 5];
+    for (c, name) in names.iter().enumerate() {
+        let name = name.trim();
+        let Some(k) = NAMES.iter().position(|n| n.eq_ignore_ascii_case(name)) else {
+            return Err(refuse(format!(
+                "the header's column {} `{}` is not one of i, j, x, y, z (a surface grid has \
+                 exactly these five columns, in any order)",
+                c + 1,
+                super::echo(name)
+            )));
+        };
+        if columns[k] != usize::MAX {
+            return Err(refuse(format!(
+                "the header names `{}` twice (columns {} and {})",
+                NAMES[k],
+                columns[k] + 1,
+                c + 1
+            )));
+        }
+        columns[k] = c;
+    }
+    if let Some(k) = columns.iter().position(|&c| c == usize::MAX) {
+        return Err(refuse(format!(
+            "the header has no `{}` column (a surface grid has the columns i, j, x, y, z, in any order)",
+            NAMES[k]
+        )));
+    }
+    Ok(columns)
+}
+
+/// Parses an `i,j,x,y,z` grid; every message is one line of bounded length.
 pub fn parse(source: &Source) -> Result<SurfaceInput> {
+    parse_grid(source).map_err(super::bounded)
+}
+
+fn parse_grid(source: &Source) -> Result<SurfaceInput> {
     let path = source.name.as_str();
     let first = source.text.trim_start();
     if first.starts_with('{') || first.starts_with('[') {
@@ -55,20 +108,25 @@ pub fn parse(source: &Source) -> Result<SurfaceInput> {
         });
     }
     let table = Table::parse(source)?;
-    if table.columns != 5 {
-        return Err(Error::Parse {
-            path: path.into(),
-            line: table.first_line(),
-            message: format!("{} columns, expected 5 (i,j,x,y,z)", table.columns),
-        });
-    }
+    let layout = match &table.header {
+        Some(header) => columns_by_name(path, header.line, &header.names)?,
+        None if table.columns == 5 => [0, 1, 2, 3, 4],
+        None => {
+            return Err(Error::Parse {
+                path: path.into(),
+                line: table.first_line(),
+                message: format!("{} columns, expected 5 (i,j,x,y,z)", table.columns),
+            })
+        }
+    };
     let mut cells = Vec::with_capacity(table.rows.len());
     for row in &table.rows {
-        let [i, j, x, y, z] = row.values[..] else {
+        let [i, j, x, y, z] = layout.map(|c| row.values.get(c).copied().unwrap_or(f64::NAN));
+        if !(x.is_finite() && y.is_finite() && z.is_finite()) {
             return Err(Error::Internal {
                 message: "grid row without 5 values".into(),
             });
-        };
+        }
         let (Some(i), Some(j)) = (index(i), index(j)) else {
             return Err(Error::Parse {
                 path: path.into(),
@@ -134,6 +192,7 @@ pub fn parse(source: &Source) -> Result<SurfaceInput> {
         order,
         header: table.header.map(|h| h.text),
         delimiter: table.delimiter,
+        columns: layout,
         source: path.into(),
         lines: table.rows.iter().map(|r| r.line).collect(),
     })
@@ -183,12 +242,46 @@ mod tests {
         assert!(e.to_string().starts_with("s.csv:2: "), "{e}");
         let e = parse_text("0,0.5,0,0,0\n").unwrap_err();
         assert!(e.to_string().starts_with("s.csv:1: indices"), "{e}");
-        let e = parse_text("x,y\n0,0\n").unwrap_err();
+        let e = parse_text("0,0\n0,1\n").unwrap_err();
         assert!(e.to_string().contains("expected 5"), "{e}");
         let e = parse_text("0,0,0,0,0\n1000000,1000000,0,0,0\n").unwrap_err();
         assert!(e.to_string().contains("span far more cells"), "{e}");
         let e = parse_text("i,j,x,y,z\n0,0,0,nan,0\n").unwrap_err();
         assert!(e.to_string().starts_with("s.csv:2: "), "{e}");
+    }
+
+    /// Columns by the header's names in any order, written back in the same order; a header
+    /// naming an unknown column, one twice or missing one is refused with its line.
+    #[test]
+    fn columns_are_taken_by_name() {
+        let by_name = |text: &str| parse_text(text).unwrap();
+        let plain = by_name("i,j,x,y,z\n0,0,0,0,1\n0,1,0,1,2\n1,0,1,0,3\n1,1,1,1,5\n");
+        let swapped = by_name("j,i,x,y,z\n0,0,0,0,1\n1,0,0,1,2\n0,1,1,0,3\n1,1,1,1,5\n");
+        let moved = by_name("x,y,z,i,j\n0,0,1,0,0\n0,1,2,0,1\n1,0,3,1,0\n1,1,5,1,1\n");
+        assert_eq!(swapped.grid, plain.grid);
+        assert_eq!(moved.grid, plain.grid);
+        assert_eq!(swapped.columns, [1, 0, 2, 3, 4]);
+        assert_eq!(
+            crate::output::format_surface(&swapped, &swapped.grid).unwrap(),
+            "j,i,x,y,z\n0,0,0,0,1\n1,0,0,1,2\n0,1,1,0,3\n1,1,1,1,5\n"
+        );
+        assert_eq!(
+            crate::output::format_surface(&moved, &moved.grid).unwrap(),
+            "x,y,z,i,j\n0,0,1,0,0\n0,1,2,0,1\n1,0,3,1,0\n1,1,5,1,1\n"
+        );
+        for (text, needle) in [
+            (
+                "i,j,x,y,w\n0,0,0,0,0\n",
+                "column 5 `w` is not one of i, j, x, y, z",
+            ),
+            ("i,j,x,y\n0,0,0,0\n", "no `z` column"),
+            ("i,j,x,y,z,t\n0,0,0,0,0,0\n", "`t` is not one of"),
+            ("i,i,x,y,z\n0,0,0,0,0\n", "names `i` twice"),
+        ] {
+            let e = parse_text(&format!("# grid\n{text}")).unwrap_err().to_string();
+            assert!(e.starts_with("s.csv:2: "), "{e}");
+            assert!(e.contains(needle), "{e}");
+        }
     }
 
     #[test]

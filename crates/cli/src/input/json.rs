@@ -1,7 +1,10 @@
 //! JSON curves: `{"points": [[x, y], ...]}` (other keys kept) or a bare `[[x, y], ...]`.
 //!
-//! The points are read by a small serde visitor so that serde_json reports the line of a
-//! wrong value (a string, a point of the wrong length, a number out of range).
+//! One pass of a small serde visitor: serde_json reports the line of a wrong value (a string,
+//! a point of the wrong length, a number out of range, a key given twice). The other keys are
+//! kept in file order with their values' text exactly as written ([`JsonDocument`]): a
+//! 23-digit id comes back digit for digit. Nesting is bounded by serde_json's recursion limit
+//! (128); a deeper document is refused with its line.
 
 use super::{CurveInput, CurvePoints, InputFormat, Source};
 use fair_door::error::{Error, Result};
@@ -15,10 +18,128 @@ struct PointList {
     rows: Vec<Vec<f64>>,
 }
 
-/// The object form; unknown keys are ignored here and kept from the untyped parse.
-#[derive(Deserialize)]
-struct PointsObject {
-    points: PointList,
+/// A JSON object as read: its keys in file order, the `points` entry's place, and every other
+/// value's text exactly as written (numbers of any size, spacing, nested objects).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct JsonDocument {
+    entries: Vec<(String, Entry)>,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+enum Entry {
+    /// Where the points go.
+    Points,
+    /// A value's JSON text.
+    Raw(String),
+}
+
+impl JsonDocument {
+    /// An empty document (the points alone).
+    pub fn new() -> JsonDocument {
+        JsonDocument::default()
+    }
+
+    /// Whether the document has `key` (`points` included once the points were read).
+    pub fn contains_key(&self, key: &str) -> bool {
+        self.entries.iter().any(|(k, _)| k == key)
+    }
+
+    /// The text of `key`'s value as read, or `None` (and for `points`).
+    pub fn raw(&self, key: &str) -> Option<&str> {
+        self.entries.iter().find_map(|(k, e)| match e {
+            Entry::Raw(text) if k == key => Some(text.as_str()),
+            _ => None,
+        })
+    }
+
+    /// Appends `key` with `value` written as serde_json writes it.
+    pub fn push(&mut self, key: &str, value: &serde_json::Value) {
+        self.entries
+            .push((key.to_string(), Entry::Raw(value.to_string())));
+    }
+
+    /// The document with `rows` as its points (at the `points` key's place, else last),
+    /// pretty-printed; the other values' text as read. O(size).
+    pub fn to_pretty(&self, rows: &[Vec<f64>]) -> serde_json::Result<String> {
+        let mut entries: Vec<(&str, Value<'_>)> = Vec::with_capacity(self.entries.len() + 1);
+        for (key, entry) in &self.entries {
+            entries.push(match entry {
+                Entry::Points => (key.as_str(), Value::Points(rows)),
+                Entry::Raw(text) => (
+                    key.as_str(),
+                    Value::Raw(serde_json::value::RawValue::from_string(text.clone())?),
+                ),
+            });
+        }
+        if !self.contains_key("points") {
+            entries.push(("points", Value::Points(rows)));
+        }
+        serde_json::to_string_pretty(&Ordered(entries))
+    }
+}
+
+enum Value<'a> {
+    Points(&'a [Vec<f64>]),
+    Raw(Box<serde_json::value::RawValue>),
+}
+
+/// Entries serialised as an object in their order.
+struct Ordered<'a>(Vec<(&'a str, Value<'a>)>);
+
+impl serde::Serialize for Ordered<'_> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut map = serializer.serialize_map(Some(self.0.len()))?;
+        for (key, value) in &self.0 {
+            match value {
+                Value::Points(rows) => map.serialize_entry(key, rows)?,
+                Value::Raw(raw) => map.serialize_entry(key, raw)?,
+            }
+        }
+        map.end()
+    }
+}
+
+/// What the top level holds: an object (its document and its points, if any) or an array.
+enum Top {
+    Object(JsonDocument, Option<PointList>),
+    Array(PointList),
+}
+
+struct TopVisitor;
+
+impl<'de> Visitor<'de> for TopVisitor {
+    type Value = Top;
+
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("{\"points\": [[x, y], ...]} or an array of points")
+    }
+
+    fn visit_map<A: de::MapAccess<'de>>(self, mut map: A) -> std::result::Result<Top, A::Error> {
+        let mut document = JsonDocument::new();
+        let mut seen = std::collections::HashSet::new();
+        let mut points = None;
+        while let Some(key) = map.next_key::<String>()? {
+            if !seen.insert(key.clone()) {
+                return Err(de::Error::custom(format!(
+                    "the key `{}` is given twice: an object's keys must be distinct (which one is meant?)",
+                    super::echo(&key)
+                )));
+            }
+            if key == "points" {
+                points = Some(map.next_value::<PointList>()?);
+                document.entries.push((key, Entry::Points));
+            } else {
+                let raw = map.next_value::<Box<serde_json::value::RawValue>>()?;
+                document.entries.push((key, Entry::Raw(raw.get().to_string())));
+            }
+        }
+        Ok(Top::Object(document, points))
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> std::result::Result<Top, A::Error> {
+        PointListVisitor.visit_seq(seq).map(Top::Array)
+    }
 }
 
 impl<'de> Deserialize<'de> for PointList {
@@ -124,28 +245,20 @@ fn json_error(path: &str, e: serde_json::Error) -> Error {
 /// Parses a JSON curve.
 pub(super) fn parse(source: &Source) -> Result<CurveInput> {
     let path = source.name.as_str();
-    let value: serde_json::Value = serde_json::from_str(&source.text).map_err(|e| json_error(path, e))?;
-    let (list, document) = match value {
-        serde_json::Value::Object(map) => {
-            if !map.contains_key("points") {
-                return Err(Error::Invalid {
-                    path: path.into(),
-                    message: "expected an object with a `points` array of [x, y] or [x, y, z]".into(),
-                });
-            }
-            let object: PointsObject = serde_json::from_str(&source.text).map_err(|e| json_error(path, e))?;
-            (object.points, Some(map))
-        }
-        serde_json::Value::Array(_) => {
-            let list: PointList = serde_json::from_str(&source.text).map_err(|e| json_error(path, e))?;
-            (list, None)
-        }
-        _ => {
+    let mut deserializer = serde_json::Deserializer::from_str(&source.text);
+    let top = deserializer
+        .deserialize_any(TopVisitor)
+        .and_then(|top| deserializer.end().map(|()| top))
+        .map_err(|e| json_error(path, e))?;
+    let (list, document) = match top {
+        Top::Object(document, Some(list)) => (list, Some(document)),
+        Top::Object(_, None) => {
             return Err(Error::Invalid {
                 path: path.into(),
-                message: "expected {\"points\": [[x, y], ...]} or an array of points".into(),
+                message: "expected an object with a `points` array of [x, y] or [x, y, z]".into(),
             })
         }
+        Top::Array(list) => (list, None),
     };
     if list.rows.is_empty() {
         return Err(Error::Empty {

@@ -26,6 +26,7 @@ use fair_door::error::{Error, Result};
 
 pub use columns::{Layout, ReadOptions};
 pub use grid::{Grid, SurfaceInput};
+pub use json::JsonDocument;
 pub use table::Delimiter;
 
 /// The points of a curve: the library's type.
@@ -47,7 +48,7 @@ pub enum InputFormat {
     Json {
         /// The original document: an object whose `points` is replaced on output, or `None`
         /// for a bare top-level array.
-        document: Option<serde_json::Map<String, serde_json::Value>>,
+        document: Option<JsonDocument>,
     },
     /// Selig airfoil `.dat`: a name line, then the contour.
     Selig {
@@ -129,12 +130,69 @@ impl CurveInput {
 
 /// Whether a source is a surface grid: five comma-separated columns on its first row.
 pub fn looks_like_surface(source: &Source) -> bool {
-    let first = source
-        .text
-        .lines()
-        .map(str::trim)
+    let first = numbered_lines(&source.text)
+        .map(|(_, l)| l.trim())
         .find(|l| !l.is_empty() && !l.starts_with('#'));
     first.is_some_and(|l| l.split(',').count() == 5)
+}
+
+/// The lines of a text, numbered from 1. A line ends at `\n`, `\r\n` or a lone `\r` (old Mac
+/// files): a file with CR line ends is read line by line, not as one line. O(size).
+pub(crate) fn numbered_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
+    text.split('\n')
+        .flat_map(|l| l.strip_suffix('\r').unwrap_or(l).split('\r'))
+        .enumerate()
+        .map(|(i, l)| (i + 1, l))
+}
+
+/// The most characters of input a message echoes ([`echo`]).
+const ECHO: usize = 120;
+
+/// The longest message a reader gives (characters after `FILE:LINE: `): whatever the input,
+/// a refusal is one line that a terminal shows whole.
+pub const LONGEST_MESSAGE: usize = 400;
+
+/// A piece of the input as a message quotes it: control characters (line ends, tabs, NUL) as
+/// spaces, cut at [`ECHO`] characters with `…`. O(ECHO).
+pub(crate) fn echo(text: &str) -> String {
+    shorten(text, ECHO)
+}
+
+fn shorten(text: &str, limit: usize) -> String {
+    let mut out: String = text
+        .chars()
+        .take(limit)
+        .map(|c| if c.is_control() { ' ' } else { c })
+        .collect();
+    if text.chars().nth(limit).is_some() {
+        out.push('…');
+    }
+    out
+}
+
+/// A reader's error made one line of at most [`LONGEST_MESSAGE`] characters: the net under
+/// every reader, whatever a message quotes.
+pub(crate) fn bounded(error: Error) -> Error {
+    match error {
+        Error::Parse { path, line, message } => Error::Parse {
+            path,
+            line,
+            message: shorten(&message, LONGEST_MESSAGE),
+        },
+        Error::Invalid { path, message } => Error::Invalid {
+            path,
+            message: shorten(&message, LONGEST_MESSAGE),
+        },
+        Error::Empty { path, reason } => Error::Empty {
+            path,
+            reason: shorten(&reason, LONGEST_MESSAGE),
+        },
+        Error::Argument { option, message } => Error::Argument {
+            option,
+            message: shorten(&message, LONGEST_MESSAGE),
+        },
+        other => other,
+    }
 }
 
 /// The text of an input and where it came from.
@@ -178,7 +236,13 @@ impl Source {
             Ok(text) => text,
             Err(e) => {
                 let valid = &e.as_bytes()[..e.utf8_error().valid_up_to()];
-                let line = 1 + valid.iter().filter(|b| **b == b'\n').count();
+                // Lines as the readers count them: `\n`, `\r\n` or a lone `\r` ends one.
+                let ends = valid
+                    .iter()
+                    .enumerate()
+                    .filter(|&(i, &b)| b == b'\n' || (b == b'\r' && valid.get(i + 1) != Some(&b'\n')))
+                    .count();
+                let line = 1 + ends;
                 return Err(Error::Parse {
                     path: name,
                     line,
@@ -205,35 +269,63 @@ fn extension_of(path: &str) -> Option<String> {
         .map(|e| e.to_ascii_lowercase())
 }
 
-/// The curve format of a source: by extension (`.json`, `.dat`), else by content.
-fn sniff(source: &Source) -> Sniffed {
+/// The curve format of a source: JSON by extension or a first `{`/`[`; a table whose first
+/// line is a header naming its columns ([`names_columns`]), whatever the extension; then an
+/// airfoil by `.dat`, or by a name line (no comma, not all numbers) followed by a line of
+/// whitespace-separated numbers; else a table.
+fn sniff(source: &Source, options: &ReadOptions) -> Sniffed {
     match source.extension.as_deref() {
         Some("json") => return Sniffed::Json,
-        Some("dat") => return Sniffed::Airfoil,
         Some("csv") => return Sniffed::Table,
         _ => {}
     }
     let first = source.text.trim_start();
-    if first.starts_with('{') || first.starts_with('[') {
+    if source.extension.as_deref() != Some("dat") && (first.starts_with('{') || first.starts_with('[')) {
         return Sniffed::Json;
     }
-    let mut lines = source
-        .text
-        .lines()
-        .map(str::trim)
+    let mut lines = numbered_lines(&source.text)
+        .map(|(_, l)| l.trim().trim_start_matches('\u{feff}'))
         .filter(|l| !l.is_empty() && !l.starts_with('#'));
-    match lines.next() {
+    let (head, next) = (lines.next(), lines.next());
+    if let (Some(head), Some(next)) = (head, next) {
+        if names_columns(head, next, options) {
+            return Sniffed::Table;
+        }
+    }
+    if source.extension.as_deref() == Some("dat") {
+        return Sniffed::Airfoil;
+    }
+    match (head, next) {
         // A name line with no comma and not all numbers, then whitespace-separated numbers.
-        Some(head) if !head.contains(',') && !table::all_numeric(head, Delimiter::Whitespace) => {
-            match lines.next() {
-                Some(next) if !next.contains(',') && table::all_numeric(next, Delimiter::Whitespace) => {
-                    Sniffed::Airfoil
-                }
-                _ => Sniffed::Table,
-            }
+        (Some(head), Some(next))
+            if !head.contains(',')
+                && !table::all_numeric(head, Delimiter::Whitespace)
+                && !next.contains(',')
+                && table::all_numeric(next, Delimiter::Whitespace) =>
+        {
+            Sniffed::Airfoil
         }
         _ => Sniffed::Table,
     }
+}
+
+/// Whether a whitespace-separated first line is a table's header rather than an airfoil's
+/// name: it has as many words as the next line has fields, and among its words (compared
+/// without case, quotes removed) are the coordinate columns (`x` and `y`, or the names
+/// `--columns` gives). `y x` over `0 1` is a header; `NACA 0012` over `1 0` is a name.
+fn names_columns(head: &str, next: &str, options: &ReadOptions) -> bool {
+    if head.contains(',') || next.contains(',') {
+        return false;
+    }
+    let words: Vec<&str> = head.split_whitespace().map(|w| w.trim_matches('"')).collect();
+    if words.len() != next.split_whitespace().count() {
+        return false;
+    }
+    let default = ["x".to_string(), "y".to_string()];
+    let wanted = options.columns.as_deref().unwrap_or(&default);
+    wanted
+        .iter()
+        .all(|name| words.iter().any(|w| w.eq_ignore_ascii_case(name.trim())))
 }
 
 enum Sniffed {
@@ -265,7 +357,7 @@ pub fn parse_curve(source: &Source) -> Result<CurveInput> {
 /// name ([`columns`]). `--columns` is refused for JSON and airfoil files, whose coordinates
 /// are not named columns.
 pub fn parse_curve_with(source: &Source, options: &ReadOptions) -> Result<CurveInput> {
-    let sniffed = sniff(source);
+    let sniffed = sniff(source, options);
     if options.columns.is_some() && !matches!(sniffed, Sniffed::Table) {
         return Err(Error::Argument {
             option: "--columns",
@@ -285,6 +377,7 @@ pub fn parse_curve_with(source: &Source, options: &ReadOptions) -> Result<CurveI
         Sniffed::Airfoil => airfoil::parse(source),
         Sniffed::Table => columns::parse(source, options),
     }
+    .map_err(bounded)
 }
 
 /// Reads a surface grid `i,j,x,y,z` from `path` (`-` for standard input).
@@ -440,6 +533,106 @@ mod tests {
         assert!(e.to_string().contains("--columns"), "{e}");
     }
 
+    /// A whitespace table with a header is read by the header's names, not taken for an
+    /// airfoil's name line: `y x` puts the second column in x, from a file or standard input.
+    #[test]
+    fn whitespace_header_is_read_by_name() {
+        for name in ["t.txt", "-", "t.dat"] {
+            let c = parse(name, "y x\n0 1\n1 2\n4 3\n").unwrap();
+            assert_eq!(
+                c.points,
+                CurvePoints::Planar(vec![Vec2::new(1., 0.), Vec2::new(2., 1.), Vec2::new(3., 4.)]),
+                "{name}"
+            );
+            assert!(
+                matches!(&c.format, InputFormat::Csv { header: Some(h), delimiter: Delimiter::Whitespace, .. } if h == "y x"),
+                "{name}: {:?}",
+                c.format
+            );
+            assert_eq!(c.lines, vec![2, 3, 4]);
+        }
+        // Labels and z by name too; a name line is still a name line.
+        let c = parse("-", "station Z X Y\nA 0 1 2\nB 1 2 3\n").unwrap();
+        assert_eq!(
+            c.points,
+            CurvePoints::Spatial(vec![Vec3::new(1., 2., 0.), Vec3::new(2., 3., 1.)])
+        );
+        let c = parse("-", "NACA 0012\n1 0\n0 0\n1 0.1\n").unwrap();
+        assert!(matches!(c.format, InputFormat::Selig { .. }), "{:?}", c.format);
+        // --columns names the coordinates of a whitespace header.
+        let options = ReadOptions::with_columns(Some(vec!["z".into(), "y".into()]));
+        let c = parse_curve_with(&Source::from_text("-", "y z\n5 0\n6 1\n"), &options).unwrap();
+        assert_eq!(
+            c.points,
+            CurvePoints::Planar(vec![Vec2::new(0., 5.), Vec2::new(1., 6.)])
+        );
+    }
+
+    /// Old Mac files (CR line ends) are read line by line, with the right line numbers.
+    #[test]
+    fn cr_line_ends_are_line_ends() {
+        let c = parse("m.csv", "x,y\r0,1\r1,2\r2,3\r").unwrap();
+        assert_eq!(c.len(), 3);
+        assert_eq!(c.lines, vec![2, 3, 4]);
+        let e = parse("m.csv", "x,y\r0,1\r1,oops\r").unwrap_err();
+        assert!(e.to_string().starts_with("m.csv:3: "), "{e}");
+        let c = parse("m.dat", "FOIL\r1 0\r0 0\r1 0.1\r").unwrap();
+        assert_eq!(c.len(), 3);
+    }
+
+    /// Bytes that are not UTF-8 are named by their line, CR line ends counted like the readers'.
+    #[test]
+    fn invalid_utf8_names_its_line_with_cr_ends() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("mac.csv");
+        std::fs::write(&path, b"x,y\r0,1\r\n1,2\r2,\xff\r").unwrap();
+        let e = read_curve(path.to_str().unwrap()).unwrap_err().to_string();
+        assert!(e.ends_with("mac.csv:4: not UTF-8 text"), "{e}");
+    }
+
+    /// However long the garbage, a message is one line quoting at most a few hundred
+    /// characters of it.
+    #[test]
+    fn messages_are_one_short_line() {
+        let long = "7".repeat(100_000);
+        let huge_header = format!("a{}\r", "b\r".repeat(50_000));
+        for (name, text) in [
+            ("l.csv", format!("x,y\n0,{long}x\n")),
+            ("l.csv", format!("q{long},w\n1,2\n")),
+            ("l.txt", huge_header.clone()),
+            ("l.dat", format!("NAME\n1 {long}z\n")),
+            (
+                "l.json",
+                format!("{{\"points\": [[0, 1]], \"{long}\": 1, \"{long}\": 2}}"),
+            ),
+        ] {
+            let e = parse(name, &text).unwrap_err().one_line();
+            assert!(
+                e.chars().count() <= 500 && !e.contains(['\n', '\r']),
+                "{name}: {} chars",
+                e.len()
+            );
+        }
+        let e = grid::parse(&Source::from_text(
+            "g.csv",
+            &format!("i,j,x,y,{long}\n0,0,0,0,0\n"),
+        ))
+        .unwrap_err();
+        assert!(
+            e.to_string().chars().count() <= 500,
+            "{} chars",
+            e.to_string().len()
+        );
+    }
+
+    /// A CSV label is written back exactly, spaces included.
+    #[test]
+    fn labels_keep_their_spaces() {
+        let text = "x,y, note \n0,1,  left \n1,2,right  \n2,3, \n";
+        let c = parse("s.csv", text).unwrap();
+        assert_eq!(crate::output::format_curve(&c, &c.points).unwrap(), text);
+    }
+
     #[test]
     fn whitespace_columns() {
         let c = parse("a.txt", "0 1\n1\t2\n").unwrap();
@@ -534,6 +727,38 @@ mod tests {
         let c = parse("-", "[[0, 1, 2], [2, 3, 4]]").unwrap();
         assert_eq!(c.points.dimension(), 3);
         assert!(matches!(c.format, InputFormat::Json { document: None }));
+    }
+
+    /// Other keys round-trip exactly: order, a 23-digit integer, nested values; a key given
+    /// twice is refused with its line.
+    #[test]
+    fn json_other_keys_round_trip_exactly() {
+        let text = "{\"zeta\": 1, \"id\": 12345678901234567890123, \"points\": [[0, 1], [1, 2]], \"alpha\": {\"b\": [1.50, 2e400]}}";
+        let c = parse("k.json", text).unwrap();
+        let written = crate::output::format_curve(&c, &c.points).unwrap();
+        let (zeta, id, points, alpha) = (
+            written.find("\"zeta\"").unwrap(),
+            written.find("\"id\": 12345678901234567890123,").unwrap(),
+            written.find("\"points\"").unwrap(),
+            written.find("\"alpha\": {\"b\": [1.50, 2e400]}").unwrap(),
+        );
+        assert!(zeta < id && id < points && points < alpha, "{written}");
+        let e = parse("k.json", "{\"points\": [[0, 1], [1, 2]],\n \"a\": 1,\n \"a\": 2}").unwrap_err();
+        assert!(
+            e.to_string().starts_with("k.json:3: the key `a` is given twice"),
+            "{e}"
+        );
+        let e = parse("k.json", "{\"points\": [[0, 1]],\n\"points\": [[0, 1]]}").unwrap_err();
+        assert!(e.to_string().starts_with("k.json:2: "), "{e}");
+        // A kept value nested 100 000 deep is skipped without recursion and written back whole;
+        // points nested deeper than a point are refused at once.
+        let nest = |depth: usize| format!("{}{}", "[".repeat(depth), "]".repeat(depth));
+        let deep = format!("{{\"points\": [[0, 1]], \"d\": {}}}", nest(100_000));
+        let c = parse("k.json", &deep).map_err(|e| e.to_string()).unwrap();
+        let written = crate::output::format_curve(&c, &c.points).unwrap();
+        assert!(written.contains(&nest(100_000)));
+        let e = parse("k.json", &nest(100_000)).unwrap_err().to_string();
+        assert!(e.starts_with("k.json:1: invalid type: sequence"), "{e}");
     }
 
     #[test]

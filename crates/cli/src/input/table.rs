@@ -79,8 +79,7 @@ impl Table {
         let mut header = None;
         let mut rows: Vec<Row> = Vec::new();
         let mut columns = 0;
-        for (index, raw) in source.text.lines().enumerate() {
-            let line = index + 1;
+        for (line, raw) in super::numbered_lines(&source.text) {
             let text = raw.trim().trim_start_matches('\u{feff}');
             if text.is_empty() || text.starts_with('#') {
                 continue;
@@ -172,8 +171,8 @@ pub(crate) fn number(field: &str) -> std::result::Result<f64, String> {
     }
     match field.parse::<f64>() {
         Ok(v) if v.is_finite() => Ok(v),
-        Ok(_) => Err(format!("`{field}` is not finite")),
-        Err(_) => Err(format!("`{field}` is not a number")),
+        Ok(_) => Err(format!("`{}` is not finite", super::echo(field))),
+        Err(_) => Err(format!("`{}` is not a number", super::echo(field))),
     }
 }
 

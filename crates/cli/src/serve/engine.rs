@@ -211,6 +211,7 @@ pub(crate) fn surface_input(name: &str, grid: Grid) -> SurfaceInput {
         order,
         header: None,
         delimiter: crate::input::Delimiter::Comma,
+        columns: [0, 1, 2, 3, 4],
         source: name.to_string(),
         lines: Vec::new(),
     }
