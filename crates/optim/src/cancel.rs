@@ -251,6 +251,40 @@ mod tests {
     }
 
     #[test]
+    fn a_cancelled_search_is_an_error_and_stops_within_an_iteration() {
+        use crate::nelder_mead::{minimize, NelderMeadSettings};
+        use std::cell::Cell;
+        // Cancelled by the objective itself after 50 evaluations (as another thread would):
+        // the search makes at most one iteration's evaluations more.
+        let evaluations = Cell::new(0u64);
+        let objective = |p: &[f64]| {
+            evaluations.set(evaluations.get() + 1);
+            if evaluations.get() == 50 {
+                Cancel::current().unwrap().cancel();
+            }
+            Ok(p.iter().map(|x| (x - 3.0).powi(2)).sum::<f64>().sqrt().sin() + 2.0)
+        };
+        let token = Cancel::new();
+        let result = token.scope(|| {
+            minimize(
+                &objective,
+                &[0.0, 0.0, 0.0],
+                NelderMeadSettings::default().with_sd_tolerance(0.0),
+            )
+        });
+        assert_eq!(result.unwrap_err(), crate::Error::Cancelled(Cancelled));
+        assert_eq!(evaluations.get(), 50);
+        // L-BFGS likewise.
+        let gradient = |p: &[f64]| Ok(((p[0] - 3.0).powi(2), vec![2.0 * (p[0] - 3.0)]));
+        let result = token.scope(|| crate::lbfgs::minimize_lbfgs(&gradient, &[0.0], Default::default()));
+        assert_eq!(result.unwrap_err(), crate::Error::Cancelled(Cancelled));
+        // Not cancelled, the same search runs on.
+        let fresh = Cancel::new();
+        let ok = fresh.scope(|| crate::lbfgs::minimize_lbfgs(&gradient, &[0.0], Default::default()));
+        assert!(ok.is_ok());
+    }
+
+    #[test]
     fn the_token_is_not_inherited_by_spawned_threads() {
         let token = Cancel::new();
         token.cancel();
