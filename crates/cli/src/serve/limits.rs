@@ -25,6 +25,11 @@ pub(crate) const MAX_CURVE_POINTS: usize = 50_000;
 /// The most nodes (rows × columns) of a grid a request may send.
 pub(crate) const MAX_SURFACE_NODES: usize = 90_000;
 
+/// The most points of a nurbs-weights request with one weight per point searched by
+/// Nelder–Mead: its simplex holds (n + 1) × n numbers, 8 n² bytes (32 MB at this limit, 20 GB
+/// at [`MAX_CURVE_POINTS`]).
+pub(crate) const MAX_SIMPLEX_POINTS: usize = 2_000;
+
 /// Iteration settings (`params`) and the largest value the server accepts for each: every
 /// method's default is within them.
 pub(crate) const ITERATION_LIMITS: &[(&str, u64)] = &[
@@ -103,6 +108,40 @@ pub(crate) fn curve_points(count: usize) -> Result<(), Response> {
     Ok(())
 }
 
+/// A curve of `count` points faired by `method` with `params`: a nurbs-weights search with
+/// one weight per point by Nelder–Mead (`law = per-point` with `solver = nelder-mead`, or
+/// `auto` with a criterion L-BFGS cannot take) is checked against [`MAX_SIMPLEX_POINTS`]
+/// (413 past it), every other method against [`MAX_CURVE_POINTS`] only.
+pub(crate) fn curve_work(
+    count: usize,
+    method: Option<&str>,
+    params: &BTreeMap<String, Value>,
+) -> Result<(), Response> {
+    curve_points(count)?;
+    let text = |name: &str, default: &str| -> String {
+        match params.get(name) {
+            Some(Value::String(s)) => s.trim().to_ascii_lowercase(),
+            _ => default.to_string(),
+        }
+    };
+    let simplex = method.is_some_and(|m| m.trim() == "nurbs-weights")
+        && text("law", "bernstein") == "per-point"
+        && match text("solver", "auto").as_str() {
+            "nelder-mead" => true,
+            "auto" => optim::SmoothCriterion::from_name(&text("criterion", "ek")).is_none(),
+            _ => false,
+        };
+    if simplex && count > MAX_SIMPLEX_POINTS {
+        return Err(Response::error(
+            413,
+            format!(
+                "points: {count} points, more than this server's limit of {MAX_SIMPLEX_POINTS} for nurbs-weights with law per-point searched by Nelder–Mead (its simplex holds n² numbers); use solver lbfgs, law bernstein, or `fair curve`"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// A grid of `rows` × `columns` nodes, checked against [`MAX_SURFACE_NODES`] (413 past it).
 pub(crate) fn surface_nodes(rows: usize, columns: usize) -> Result<(), Response> {
     let nodes = rows.saturating_mul(columns);
@@ -165,6 +204,22 @@ mod tests {
         let r = curve_points(MAX_CURVE_POINTS + 1).unwrap_err();
         assert_eq!(r.status, 413);
         assert!(String::from_utf8_lossy(&r.body).contains("50000"));
+        let params = |pairs: &[(&str, &str)]| -> BTreeMap<String, Value> {
+            pairs
+                .iter()
+                .map(|(k, v)| (k.to_string(), serde_json::json!(v)))
+                .collect()
+        };
+        let simplex = params(&[("law", "per-point"), ("solver", "nelder-mead")]);
+        assert!(curve_work(MAX_SIMPLEX_POINTS, Some("nurbs-weights"), &simplex).is_ok());
+        let r = curve_work(MAX_SIMPLEX_POINTS + 1, Some("nurbs-weights"), &simplex).unwrap_err();
+        assert_eq!(r.status, 413);
+        assert!(String::from_utf8_lossy(&r.body).contains("2000"));
+        let e3 = params(&[("law", "per-point"), ("criterion", "e3")]);
+        assert!(curve_work(5_000, Some("nurbs-weights"), &e3).is_err());
+        let lbfgs = params(&[("law", "per-point")]);
+        assert!(curve_work(5_000, Some("nurbs-weights"), &lbfgs).is_ok());
+        assert!(curve_work(5_000, Some("two-phase"), &simplex).is_ok());
         assert!(surface_nodes(300, 300).is_ok());
         assert_eq!(surface_nodes(301, 300).unwrap_err().status, 413);
         assert_eq!(surface_nodes(usize::MAX, 2).unwrap_err().status, 413);
