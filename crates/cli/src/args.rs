@@ -408,6 +408,9 @@ pub(crate) const DEFAULT_PORT: u16 = 8765;
 /// The default largest request body, in bytes (16 MiB: a scan of about 400 000 points as JSON).
 pub(crate) const DEFAULT_MAX_UPLOAD: usize = 16 << 20;
 
+/// `fair serve --deadline`: seconds a request has, reading, fairing and writing.
+pub(crate) const DEFAULT_DEADLINE: u64 = 120;
+
 /// Options of `fair serve`.
 #[derive(Debug, Clone, clap::Args)]
 pub(crate) struct ServeArgs {
@@ -425,6 +428,10 @@ pub(crate) struct ServeArgs {
     /// The largest request body (an upload, a curve to fair), in bytes.
     #[arg(long, value_name = "BYTES", default_value_t = DEFAULT_MAX_UPLOAD)]
     pub max_upload: usize,
+    /// The time a request has, from its first byte to the last byte of its answer (reading,
+    /// fairing and writing); past it the work is stopped and the answer is 503.
+    #[arg(long, value_name = "SECONDS", default_value_t = DEFAULT_DEADLINE, value_parser = clap::value_parser!(u64).range(1..=86_400))]
+    pub deadline: u64,
     /// Print nothing but the address (no line per request).
     #[arg(long, short = 'q')]
     pub quiet: bool,

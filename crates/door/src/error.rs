@@ -144,6 +144,10 @@ pub enum Error {
         /// What failed.
         message: String,
     },
+    /// The work was cancelled by its caller ([`optim::cancel`]): its deadline passed or its
+    /// client left. Only a front end that cancels (the server) sees it.
+    #[error("{}", optim::cancel::Cancelled)]
+    Cancelled,
 }
 
 impl Error {
@@ -165,7 +169,10 @@ impl Error {
             | Error::NotApplicable { .. }
             | Error::Write { .. } => 2,
             Error::Batch { status, .. } => *status,
-            Error::NotAvailable { .. } | Error::NonFiniteOutput { .. } | Error::Internal { .. } => 1,
+            Error::NotAvailable { .. }
+            | Error::NonFiniteOutput { .. }
+            | Error::Internal { .. }
+            | Error::Cancelled => 1,
         }
     }
 
@@ -192,6 +199,7 @@ impl Error {
                 path: file.to_string(),
                 source,
             },
+            F::Cancelled | F::Optim(optim::Error::Cancelled(_)) => Error::Cancelled,
             F::UnknownMethod { name, kind, known } => Error::UnknownMethod { name, kind, known },
             F::UnknownName {
                 origin,

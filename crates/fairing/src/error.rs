@@ -14,9 +14,15 @@ pub enum Error {
     /// can use `?`).
     #[error(transparent)]
     Fairness(#[from] fairness::Error),
-    /// An error of the optimisation crate (the NURBS weight search).
+    /// An error of the optimisation crate (the NURBS weight search); its cancellation
+    /// becomes [`Error::Cancelled`].
     #[error(transparent)]
-    Optim(#[from] optim::Error),
+    Optim(optim::Error),
+    /// The run was cancelled ([`optim::cancel`]): the token of the scope it ran in was
+    /// cancelled or its deadline passed. Not a failure of the data or the method: there is no
+    /// result because the caller stopped waiting for it.
+    #[error("{}", optim::cancel::Cancelled)]
+    Cancelled,
     /// A strategy cannot honour a constraint it was given. Strategies say so before they run,
     /// never ignore a constraint silently.
     #[error("strategy {strategy} cannot honour the constraint: {constraint}")]
@@ -162,6 +168,21 @@ impl Error {
             what,
             reason: reason.into(),
         }
+    }
+}
+
+impl From<optim::Error> for Error {
+    fn from(error: optim::Error) -> Self {
+        match error {
+            optim::Error::Cancelled(_) => Error::Cancelled,
+            other => Error::Optim(other),
+        }
+    }
+}
+
+impl From<optim::cancel::Cancelled> for Error {
+    fn from(_: optim::cancel::Cancelled) -> Self {
+        Error::Cancelled
     }
 }
 

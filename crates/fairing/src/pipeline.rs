@@ -181,7 +181,8 @@ impl<'a, const D: usize> Pipeline<'a, D> {
     ///
     /// Errors: no stage; non-finite points; constraints that do not fit the points or that a
     /// stage does not support (before anything runs); a strategy's own error; a NaN
-    /// criterion; a final result that breaks a constraint ([`Error::ConstraintViolated`]).
+    /// criterion; a final result that breaks a constraint ([`Error::ConstraintViolated`]);
+    /// a cancellation ([`Error::Cancelled`], checked before every step, see [`optim::cancel`]).
     pub fn run(&mut self, points: Vec<Vector<D>>) -> Result<FairingResult<D>> {
         if self.stages.is_empty() {
             return Err(Error::NoStages);
@@ -208,6 +209,7 @@ impl<'a, const D: usize> Pipeline<'a, D> {
             state.stage = index;
             state.iteration = 0;
             state.criterion = None;
+            optim::cancel::checkpoint()?;
             strategy.init(&mut state)?;
             let init_moves = state.take_moves();
             if !init_moves.is_empty() && self.record_trace {
@@ -235,6 +237,7 @@ impl<'a, const D: usize> Pipeline<'a, D> {
                 if state.iteration >= self.max_iterations {
                     break TerminationReason::MaxIterations;
                 }
+                optim::cancel::checkpoint()?;
                 let outcome = strategy.step(&mut state)?;
                 state.iteration += 1;
                 total += 1;

@@ -64,6 +64,10 @@ pub enum Error {
     /// A curve representation failed (for criteria that re-solve a curve with new weights).
     #[error(transparent)]
     Curve(#[from] curve_repr::Error),
+    /// The search was cancelled ([`crate::cancel`]): its token was cancelled or its deadline
+    /// passed. No result: the best point so far is dropped.
+    #[error(transparent)]
+    Cancelled(#[from] crate::cancel::Cancelled),
 }
 
 impl Error {

@@ -76,6 +76,9 @@ struct Adapter<'o, O: ?Sized> {
 
 impl<O: GradientObjective + ?Sized> Adapter<'_, O> {
     fn evaluate(&self, params: &[f64]) -> std::result::Result<(f64, Vec<f64>), argmin::core::Error> {
+        if crate::cancel::cancelled() {
+            return Err(argmin::core::Error::msg("cancelled"));
+        }
         match self.objective.value_and_gradient(params) {
             Ok((value, gradient)) if value.is_finite() && gradient.iter().all(|g| g.is_finite()) => {
                 Ok((value, gradient))
@@ -130,12 +133,15 @@ pub struct LbfgsMinimum {
 /// Minimises `objective` from `start` by L-BFGS with More–Thuente line search.
 ///
 /// A failed or non-finite evaluation during the search stops it with the best point so far
-/// (termination `Other` with the reason); one at the start is [`Error::StartFailed`].
+/// (termination `Other` with the reason); one at the start is [`Error::StartFailed`]. A
+/// cancellation ([`crate::cancel`], checked once per iteration and per evaluation) is
+/// [`Error::Cancelled`].
 /// Cost per iteration: a few value-and-gradient evaluations plus O(memory · parameters).
 pub fn minimize_lbfgs<O>(objective: &O, start: &[f64], settings: LbfgsSettings) -> Result<LbfgsMinimum>
 where
     O: GradientObjective + ?Sized,
 {
+    crate::cancel::checkpoint()?;
     let start_cost = match objective.value_and_gradient(start) {
         Ok((cost, gradient)) if cost.is_finite() && gradient.iter().all(|g| g.is_finite()) => cost,
         Ok(_) => {
@@ -176,6 +182,8 @@ where
         .param(start.to_vec())
         .max_iters(settings.max_iterations);
     let (state, stopped) = run(solver, &mut problem, state);
+    // A cancellation stops the loop (or a line search) like a failure; it is an error here.
+    crate::cancel::checkpoint()?;
     let termination = match (stopped, state.get_termination_reason()) {
         (Some(reason), _) => Termination::Other(reason),
         (None, Some(TerminationReason::SolverConverged)) => Termination::Converged,
@@ -213,6 +221,9 @@ fn run<O: GradientObjective + ?Sized>(
         }
         if state.terminated() {
             return (state, None);
+        }
+        if crate::cancel::cancelled() {
+            return (state, Some("cancelled".into()));
         }
         let previous = state.clone();
         match solver.next_iter(problem, state) {

@@ -10,9 +10,12 @@
 //! - [`weight_law`]: [`WeightLaw`]s mapping parameters to positive weights
 //!   ([`CubicBernstein`], [`PerPoint`], or your own).
 //! - [`problem`]: [`WeightProblem`], a law plus a criterion of the weights, solved by Nelder–Mead.
+//! - [`cancel`]: a [`Cancel`] token and the [`checkpoint`] the searches here (and the fairing
+//!   strategies above) call, so that a caller can stop a long run.
 //!
 //! The crate hides argmin's types and `anyhow` errors behind its own [`Error`].
 
+pub mod cancel;
 pub mod dual;
 pub mod error;
 pub mod gradient;
@@ -22,6 +25,7 @@ pub mod nurbs_weights;
 pub mod problem;
 pub mod weight_law;
 
+pub use cancel::{checkpoint, Cancel, Cancelled};
 pub use dual::Dual;
 pub use error::{Error, Result};
 pub use gradient::{InterpolantCriterion, SmoothCriterion};

@@ -239,7 +239,8 @@ pub struct Minimum {
 /// Minimises `objective` by Nelder–Mead from `start`.
 ///
 /// Errors: a non-finite start coordinate or simplex vertex, invalid settings, a degenerate
-/// initial simplex, or an objective that fails at the start point. With no parameters at all
+/// initial simplex, an objective that fails at the start point, or a cancellation
+/// ([`Error::Cancelled`], checked once per iteration, see [`crate::cancel`]). With no parameters at all
 /// the start (empty) point is returned as converged after one evaluation.
 pub fn minimize<O>(objective: &O, start: &[f64], settings: NelderMeadSettings<'_>) -> Result<Minimum>
 where
@@ -258,6 +259,7 @@ where
             reason: format!("must be finite and non-negative, got {sd_tolerance}"),
         });
     }
+    crate::cancel::checkpoint()?;
     let start_cost = match objective.cost(start) {
         Ok(cost) if cost.is_finite() => cost,
         Ok(cost) => {
@@ -379,6 +381,7 @@ fn run<O: Objective + ?Sized>(
         if state.terminated() {
             return Ok(state);
         }
+        crate::cancel::checkpoint()?;
         let (next, _) = solver.next_iter(problem, state).map_err(Error::from_solver)?;
         state = next;
         state.update();
@@ -400,7 +403,9 @@ impl<O: Objective + ?Sized> CostFunction for CountedObjective<'_, O> {
     fn cost(&self, params: &Vec<f64>) -> std::result::Result<f64, argmin::core::Error> {
         let counts = self.counts;
         counts.through_solver.set(counts.through_solver.get() + 1);
-        let cost = if params.iter().all(|x| x.is_finite()) {
+        // Cancelled: no more evaluations (a shrink evaluates n of them); the loop's next
+        // checkpoint ends the search.
+        let cost = if params.iter().all(|x| x.is_finite()) && !crate::cancel::cancelled() {
             match self.objective.cost(params) {
                 Ok(cost) if cost.is_finite() => Some(cost),
                 _ => None,

@@ -19,8 +19,10 @@
 //! The `drawing`s are described in [`super::drawing`].
 //!
 //! Every failure is `{"error": "one line"}` with a 4xx status for what the request got wrong
-//! (400 bad input, 404 unknown route or data set, 405 wrong method, 413 too large, 415 not
-//! JSON) and 5xx for the server's own failures.
+//! (400 bad input, 404 unknown route or data set, 405 wrong method, 413 too large or too
+//! many points, 415 not JSON, 422 an iteration setting over the server's limit, see
+//! [`super::limits`]) and 5xx for the server's own failures (503 when the request's deadline
+//! passed and its work was cancelled).
 
 use std::collections::BTreeMap;
 
@@ -31,6 +33,7 @@ use super::datasets::{Datasets, Refusal};
 use super::drawing;
 use super::engine::{self, Job, JobConstraints};
 use super::http::{Request, Response};
+use super::limits::{self, Rows};
 use super::page;
 use crate::input::{self, looks_like_surface, CurvePoints, Grid, Source};
 use curve_repr::Vec3;
@@ -126,6 +129,8 @@ type Answer = std::result::Result<Response, Response>;
 fn status_of(error: &Error) -> u16 {
     match error {
         Error::NotAvailable { .. } => 501,
+        // The server cancelled the work (its deadline passed); the server says which.
+        Error::Cancelled => 503,
         e if e.exit_code() == 2 => 400,
         _ => 500,
     }
@@ -161,6 +166,9 @@ fn failure(error: Error) -> Response {
 
 fn parse_body<'a, T: Deserialize<'a>>(body: &'a [u8]) -> std::result::Result<T, Response> {
     serde_json::from_slice(body).map_err(|e| {
+        if let Some(refusal) = limits::too_many_rows(&e) {
+            return refusal;
+        }
         let hint = if e.is_syntax() {
             " (JSON has no NaN or Infinity: every number must be finite)"
         } else {
@@ -207,7 +215,7 @@ impl ConstraintsBody {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct CurveBody {
-    points: Vec<Vec<f64>>,
+    points: Rows,
     #[serde(default)]
     kind: Option<String>,
     #[serde(default)]
@@ -225,7 +233,7 @@ struct CurveBody {
 struct SurfaceBody {
     rows: usize,
     columns: usize,
-    points: Vec<Vec<f64>>,
+    points: Rows,
     #[serde(default)]
     method: Option<String>,
     #[serde(default)]
@@ -248,7 +256,7 @@ struct InspectBody {
     #[serde(default)]
     surface: bool,
     #[serde(default)]
-    points: Option<Vec<Vec<f64>>>,
+    points: Option<Rows>,
     #[serde(default)]
     rows: Option<usize>,
     #[serde(default)]
@@ -405,9 +413,11 @@ fn load_text(
             ));
         }
         let grid = input::grid::parse(source).map_err(failure)?;
+        limits::surface_nodes(grid.grid.rows, grid.grid.columns)?;
         load_surface(&grid.source.clone(), grid)
     } else {
         let curve = input::parse_curve(source).map_err(failure)?;
+        limits::curve_points(curve.points.len())?;
         load_curve(catalog, &curve, kind)
     }
 }
@@ -449,15 +459,17 @@ fn inspect(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
     let name = body.name.unwrap_or_else(|| "upload".into());
     let value = match (body.text, body.points, body.rows, body.columns) {
         (Some(text), None, None, None) => load_text(catalog, &Source::from_text(&name, &text), kind, body.surface)?,
-        (None, Some(points), None, None) if !body.surface => {
+        (None, Some(Rows(points)), None, None) if !body.surface => {
+            limits::curve_points(points.len())?;
             let curve = engine::curve_input(&name, curve_points(&points)?);
             load_curve(catalog, &curve, kind)?
         }
-        (None, Some(points), Some(rows), Some(columns)) => {
+        (None, Some(Rows(points)), Some(rows), Some(columns)) => {
             if kind != KindChoice::Auto {
                 return Err(Response::error(400, "kind: the input is a surface grid; kind is for curves"));
             }
             let grid = grid_points(rows, columns, &points)?;
+            limits::surface_nodes(rows, columns)?;
             load_surface(&name, engine::surface_input(&name, grid))?
         }
         _ => {
@@ -473,8 +485,10 @@ fn inspect(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
 fn fair_curve(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
     let body: CurveBody = parse_body(body)?;
     let kind = kind_of(body.kind.as_deref())?;
+    limits::curve_work(body.points.0.len(), body.method.as_deref(), &body.params)?;
+    limits::iterations(&body.params)?;
     let name = body.name.unwrap_or_else(|| "points".into());
-    let input = engine::curve_input(&name, curve_points(&body.points)?);
+    let input = engine::curve_input(&name, curve_points(&body.points.0)?);
     let job = Job {
         method: body.method,
         params: body.params,
@@ -497,8 +511,10 @@ fn fair_curve(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
 
 fn fair_surface(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
     let body: SurfaceBody = parse_body(body)?;
+    let grid = grid_points(body.rows, body.columns, &body.points.0)?;
+    limits::surface_nodes(body.rows, body.columns)?;
+    limits::iterations(&body.params)?;
     let name = body.name.unwrap_or_else(|| "points".into());
-    let grid = grid_points(body.rows, body.columns, &body.points)?;
     let input = engine::surface_input(&name, grid);
     let job = Job {
         method: body.method,
@@ -523,9 +539,11 @@ fn fair_surface(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
     ))
 }
 
-/// The CAD part of a `/api/cad` body: the format, a rebuild, and whether to fair first.
+/// A `/api/cad` body: the body of `/api/curve` (or of `/api/surface`, with `rows` and
+/// `columns`) plus the format, a rebuild, and whether to fair first. Read in one pass, so that
+/// its points are counted ([`Rows`]) as they are read.
 #[derive(Debug, Deserialize)]
-#[serde(rename_all = "kebab-case")]
+#[serde(deny_unknown_fields, rename_all = "kebab-case")]
 struct CadBody {
     format: String,
     #[serde(default)]
@@ -534,6 +552,21 @@ struct CadBody {
     fit_tolerance: Option<f64>,
     #[serde(default = "yes")]
     fair: bool,
+    #[serde(default)]
+    rows: Option<usize>,
+    #[serde(default)]
+    columns: Option<usize>,
+    points: Rows,
+    #[serde(default)]
+    kind: Option<String>,
+    #[serde(default)]
+    method: Option<String>,
+    #[serde(default)]
+    params: BTreeMap<String, Value>,
+    #[serde(default)]
+    constraints: ConstraintsBody,
+    #[serde(default)]
+    name: Option<String>,
 }
 
 fn yes() -> bool {
@@ -560,46 +593,50 @@ fn file_stem(name: &str) -> String {
 /// in the `X-Fair-Cad` header. The page sends the request of the step that made the current
 /// result, so that the file holds that step's own curve.
 fn cad_file(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
-    let mut value: Value = parse_body(body)?;
-    let object = value
-        .as_object_mut()
-        .ok_or_else(|| Response::error(400, "request body: expected a JSON object"))?;
-    let mut cad_part = serde_json::Map::new();
-    for key in ["format", "control-points", "fit-tolerance", "fair"] {
-        if let Some(v) = object.remove(key) {
-            cad_part.insert(key.into(), v);
-        }
-    }
-    let cad_body: CadBody = serde_json::from_value(Value::Object(cad_part))
-        .map_err(|e| Response::error(400, format!("request body: {e}")))?;
-    let format: cad::Format = cad_body.format.parse().map_err(|_| {
+    let body: CadBody = parse_body(body)?;
+    let format: cad::Format = body.format.parse().map_err(|_| {
         Response::error(
             400,
             format!(
                 "format: `{}` is not a CAD format (iges, step or dxf)",
-                cad_body.format
+                body.format
             ),
         )
     })?;
-    let surface = object.contains_key("rows");
-    let rest = serde_json::to_vec(&value).unwrap_or_default();
+    let grid_size = match (body.rows, body.columns) {
+        (Some(rows), Some(columns)) => Some((rows, columns)),
+        (None, None) => None,
+        _ => {
+            return Err(Response::error(
+                400,
+                "request body: a grid needs both `rows` and `columns`",
+            ))
+        }
+    };
+    limits::iterations(&body.params)?;
     let request = fair_door::cad::CadRequest {
         output: Some(format!("points.{}", format.extension())),
         format: None,
-        control_points: cad_body.control_points,
-        fit_tolerance: cad_body.fit_tolerance,
+        control_points: body.control_points,
+        fit_tolerance: body.fit_tolerance,
         units: None,
         step_schema: None,
         batch: false,
     };
-    let mut target = fair_door::cad::target(&request, surface)
+    let mut target = fair_door::cad::target(&request, grid_size.is_some())
         .map_err(failure)?
         .ok_or_else(|| Response::error(500, "no CAD target"))?;
-    let (name, made) = if surface {
-        let body: SurfaceBody = parse_body(&rest)?;
-        let name = body.name.unwrap_or_else(|| "points".into());
-        let grid = grid_points(body.rows, body.columns, &body.points)?;
-        let (grid, record, method) = if cad_body.fair {
+    let name = body.name.unwrap_or_else(|| "points".into());
+    let (name, made) = if let Some((rows, columns)) = grid_size {
+        if body.kind.is_some() {
+            return Err(Response::error(
+                400,
+                "kind: the input is a surface grid; kind is for curves",
+            ));
+        }
+        let grid = grid_points(rows, columns, &body.points.0)?;
+        limits::surface_nodes(rows, columns)?;
+        let (grid, record, method) = if body.fair {
             let input = engine::surface_input(&name, grid);
             let job = Job {
                 method: body.method,
@@ -616,11 +653,10 @@ fn cad_file(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
         let made = fair_door::cad::export_surface(&target, &record, &grid, &stem).map_err(failure)?;
         (stem, made)
     } else {
-        let body: CurveBody = parse_body(&rest)?;
         let kind = kind_of(body.kind.as_deref())?;
-        let name = body.name.unwrap_or_else(|| "points".into());
-        let input = engine::curve_input(&name, curve_points(&body.points)?);
-        let (points, record, kind, method) = if cad_body.fair {
+        limits::curve_work(body.points.0.len(), body.method.as_deref(), &body.params)?;
+        let input = engine::curve_input(&name, curve_points(&body.points.0)?);
+        let (points, record, kind, method) = if body.fair {
             let job = Job {
                 method: body.method,
                 params: body.params,

@@ -5,16 +5,23 @@
 //! - the head is read up to [`Settings::max_head`] bytes (431 past it), the body up to
 //!   [`Settings::max_body`] (413 past it, decided from `Content-Length` before a byte of the
 //!   body is read); a body must come with `Content-Length` (411 otherwise: no chunked uploads);
-//! - a request must arrive whole within [`Settings::read_deadline`] (408 otherwise), however
+//! - a request must arrive whole within [`Settings::read_deadline`] or [`Settings::deadline`],
+//!   whichever is shorter (408 otherwise), however
 //!   it trickles in: each read's timeout is what is left of that deadline, so a client sending
 //!   one byte every few seconds cannot hold a connection for longer;
 //! - every connection is read on its own thread, at most [`Settings::queue`] at once and
 //!   [`Settings::per_client`] from one address (503 past either), so slow clients hold
 //!   threads that sleep, never the workers;
-//! - [`Settings::workers`] requests are answered (faired) at once; the answer must come
-//!   within [`Settings::deadline`] of the request's arrival, else 503. The fairing library
-//!   has no cancellation hook yet, so the abandoned work finishes in the background (it keeps
-//!   its worker until then, so abandoned work cannot pile up beyond the pool);
+//! - [`Settings::workers`] requests are answered (faired) at once; a request has
+//!   [`Settings::deadline`] (`fair serve --deadline`) from its first byte to the last byte of
+//!   its answer, reading, fairing and writing. The work runs under a [`Cancel`] token with
+//!   that deadline ([`optim::cancel`]); the connection's thread watches it, every
+//!   [`WATCH`], and cancels the token when the deadline passes (the answer is then 503
+//!   naming the deadline) or when the client has closed its connection (nothing to answer).
+//!   The work stops at its next checkpoint and frees its worker: abandoned work does not
+//!   burn a core. A client that half-closes its connection (shuts down its sending side)
+//!   while waiting counts as gone: HTTP/1.1 clients, the page's `fetch` and curl among
+//!   them, do not;
 //! - an answer over [`Settings::max_response`] bytes is not sent: 422 naming the limit;
 //! - duplicate `Host`, `Content-Length` or `Transfer-Encoding` headers are refused (400): two
 //!   framings of one request are how requests are smuggled past proxies;
@@ -33,7 +40,16 @@ use std::net::{IpAddr, Ipv4Addr, SocketAddr, TcpListener, TcpStream};
 use std::sync::{Arc, Condvar, Mutex};
 use std::time::{Duration, Instant};
 
+use optim::cancel::Cancel;
+
 use super::api::{self, Context};
+
+/// How often the connection's thread checks a request being answered for its deadline and
+/// for its client having left: the longest a cancelled request's work goes on unwatched.
+const WATCH: Duration = Duration::from_millis(100);
+
+/// The least time an answer made at the deadline (the 503 saying so) has to be written.
+const GRACE: Duration = Duration::from_secs(1);
 
 /// How the server listens and what it accepts.
 #[derive(Debug, Clone)]
@@ -50,7 +66,8 @@ pub(crate) struct Settings {
     pub timeout: Duration,
     /// The time a whole request (head and body) has to arrive. Default 20 s.
     pub read_deadline: Duration,
-    /// The time from a request's arrival to its answer. Default 120 s.
+    /// The time from a request's first byte to the last byte of its answer (reading,
+    /// fairing, writing). Default 120 s (`fair serve --deadline`).
     pub deadline: Duration,
     /// Requests answered at once. Default 8 (fairing is CPU-bound; more would only share
     /// the cores).
@@ -276,7 +293,7 @@ fn refuse_busy(stream: TcpStream, settings: &Settings) {
         ),
     );
     let mut stream = stream;
-    let _ = write_response(&mut stream, &response, false);
+    let _ = write_response(&mut stream, &response, false, Instant::now() + GRACE);
 }
 
 /// The workers: how many requests may be answered at once.
@@ -323,49 +340,108 @@ impl Slots {
     }
 }
 
-/// Answers `request` on a worker within `deadline`: 503 when no worker comes free or the
-/// answer is not ready by then (the work goes on in the background, see the module doc).
+/// What the watch over a request's work gave.
+enum Answered {
+    /// The answer to send.
+    Response(Response),
+    /// The client left before the answer was ready; its work was cancelled.
+    Gone,
+}
+
+/// Answers `request` on a worker by `deadline`, watching the work every [`WATCH`]: 503 when
+/// no worker comes free or the answer is not ready by then, [`Answered::Gone`] when the
+/// client closes its connection first. Either way the work's token is cancelled, so the
+/// work stops at its next checkpoint and gives its worker back.
 fn answer_in_time(
     request: Request,
     context: &Arc<Context>,
     slots: &Arc<Slots>,
     deadline: Instant,
     settings: &Settings,
-) -> Response {
+    client: &TcpStream,
+) -> Answered {
     let limit = settings.deadline.as_secs_f64();
+    let late = || {
+        Response::error(
+            503,
+            format!("the request was not answered within its deadline of {limit} s (fair serve --deadline); its work was stopped: send fewer points or lighter settings"),
+        )
+    };
     if !slots.take(deadline) {
-        return Response::error(
+        return Answered::Response(Response::error(
             503,
             format!("the server is busy: no worker came free within the request's deadline of {limit} s"),
-        );
+        ));
     }
+    let token = Cancel::with_deadline(deadline);
     let (sender, receiver) = std::sync::mpsc::channel();
     let context = Arc::clone(context);
     let held = Arc::clone(slots);
+    let work = token.clone();
     let spawned = std::thread::Builder::new().spawn(move || {
-        let response = answer(request, &context);
+        let response = work.scope(|| answer(request, &context));
         held.give_back();
         let _ = sender.send(response);
     });
     if spawned.is_err() {
         slots.give_back();
-        return Response::error(503, "the server could not start a worker thread");
+        return Answered::Response(Response::error(503, "the server could not start a worker thread"));
     }
-    match receiver.recv_timeout(deadline.saturating_duration_since(Instant::now())) {
-        Ok(response) if response.body.len() > settings.max_response => Response::error(
-            422,
-            format!(
-                "the answer has {} bytes, more than the limit of {} bytes: send fewer points",
-                response.body.len(),
-                settings.max_response
-            ),
-        ),
-        Ok(response) => response,
-        Err(_) => Response::error(
-            503,
-            format!("the request was not answered within its deadline of {limit} s; send fewer points or lighter settings"),
-        ),
+    loop {
+        let left = deadline.saturating_duration_since(Instant::now());
+        match receiver.recv_timeout(left.min(WATCH)) {
+            // The work stopped at a checkpoint because the deadline passed.
+            Ok(response) if response.status == 503 && token.is_cancelled() => {
+                return Answered::Response(late())
+            }
+            Ok(response) if response.body.len() > settings.max_response => {
+                return Answered::Response(Response::error(
+                    422,
+                    format!(
+                        "the answer has {} bytes, more than the limit of {} bytes: send fewer points",
+                        response.body.len(),
+                        settings.max_response
+                    ),
+                ))
+            }
+            Ok(response) => return Answered::Response(response),
+            Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => {
+                return Answered::Response(Response::error(
+                    500,
+                    "internal error: the worker stopped without an answer",
+                ))
+            }
+            Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {
+                if Instant::now() >= deadline {
+                    token.cancel();
+                    return Answered::Response(late());
+                }
+                if client_gone(client) {
+                    token.cancel();
+                    return Answered::Gone;
+                }
+            }
+        }
     }
+}
+
+/// Whether the client has closed its connection: a non-blocking peek reads end of file (or
+/// the connection was reset). Bytes waiting (a pipelined request) count as present. O(1).
+fn client_gone(stream: &TcpStream) -> bool {
+    if stream.set_nonblocking(true).is_err() {
+        return false;
+    }
+    let mut byte = [0u8; 1];
+    let gone = match stream.peek(&mut byte) {
+        Ok(0) => true,
+        Ok(_) => false,
+        Err(e) => !matches!(
+            e.kind(),
+            io::ErrorKind::WouldBlock | io::ErrorKind::Interrupted | io::ErrorKind::TimedOut
+        ),
+    };
+    let _ = stream.set_nonblocking(false);
+    gone
 }
 
 /// What reading a request gave: a request, or the answer to send instead.
@@ -392,7 +468,8 @@ fn serve_connection(
         return;
     };
     let mut reader = BufReader::new(stream);
-    let read_by = started + settings.read_deadline;
+    let deadline = started + settings.deadline;
+    let read_by = started + settings.read_deadline.min(settings.deadline);
     let (line, head_only, response) = match read_request(&mut reader, settings, &write_half, read_by) {
         Incoming::Gone => return,
         Incoming::Refused(response) => ("-".to_string(), false, response),
@@ -401,14 +478,31 @@ fn serve_connection(
             let head_only = request.method == "HEAD";
             let response = match host_problem(host.as_deref(), local) {
                 Some(problem) => Response::error(403, problem),
-                None => answer_in_time(request, context, slots, started + settings.deadline, settings),
+                None => match answer_in_time(request, context, slots, deadline, settings, &write_half) {
+                    Answered::Response(response) => response,
+                    Answered::Gone => {
+                        if settings.log {
+                            let _ = writeln!(
+                                io::stderr(),
+                                "fair serve: {line} → client left, work stopped ({:.1} ms)",
+                                started.elapsed().as_secs_f64() * 1e3
+                            );
+                        }
+                        return;
+                    }
+                },
             };
             (line, head_only, response)
         }
     };
     let refused_early = response.status == 413 || response.status == 431 || response.status == 411;
     let mut writer = write_half;
-    let _ = write_response(&mut writer, &response, head_only);
+    let _ = write_response(
+        &mut writer,
+        &response,
+        head_only,
+        deadline.max(Instant::now() + GRACE),
+    );
     if refused_early {
         // The client may still be sending a body we will not read: close our side, then
         // read (and drop) what arrives for a moment, so that the kernel does not reset the
@@ -669,7 +763,14 @@ fn find_head_end(bytes: &[u8], from: usize) -> Option<usize> {
         .map(|p| from + p + 4)
 }
 
-fn write_response(writer: &mut TcpStream, response: &Response, head_only: bool) -> io::Result<()> {
+/// Writes the answer by `deadline`: each write waits at most what is left of it, so a client
+/// that reads slowly cannot hold the connection past it (the answer is then cut off).
+fn write_response(
+    writer: &mut TcpStream,
+    response: &Response,
+    head_only: bool,
+    deadline: Instant,
+) -> io::Result<()> {
     let mut text = format!(
         "HTTP/1.1 {} {}\r\nContent-Type: {}\r\nContent-Length: {}\r\nConnection: close\r\n\
          Cache-Control: no-store\r\nX-Content-Type-Options: nosniff\r\nReferrer-Policy: no-referrer\r\n",
@@ -686,7 +787,17 @@ fn write_response(writer: &mut TcpStream, response: &Response, head_only: bool) 
     if !head_only {
         bytes.extend_from_slice(&response.body);
     }
-    writer.write_all(&bytes)?;
+    for chunk in bytes.chunks(64 << 10) {
+        let left = deadline.saturating_duration_since(Instant::now());
+        if left.is_zero() {
+            return Err(io::Error::new(
+                io::ErrorKind::TimedOut,
+                "the request's deadline passed",
+            ));
+        }
+        let _ = writer.set_write_timeout(Some(left));
+        writer.write_all(chunk)?;
+    }
     writer.flush()
 }
 

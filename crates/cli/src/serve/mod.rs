@@ -8,7 +8,9 @@
 //! the command's reports.
 //!
 //! - [`http`]: a small synchronous HTTP/1.1 server (one request per connection, bounded
-//!   header and body sizes, read timeouts, a fixed pool of worker threads);
+//!   header and body sizes, a deadline per request that cancels its work, a fixed pool of
+//!   worker threads);
+//! - [`limits`]: the work one request may ask for (points, nodes, iterations);
 //! - [`api`]: the routes, the request and answer bodies, errors as 4xx with a message;
 //! - [`engine`]: the one door to the fairing code (switching to the library's catalogue is a
 //!   change inside it);
@@ -26,6 +28,7 @@ pub(crate) mod datasets;
 pub(crate) mod drawing;
 pub(crate) mod engine;
 pub(crate) mod http;
+pub(crate) mod limits;
 pub(crate) mod page;
 
 use std::io::Write;
@@ -48,6 +51,7 @@ pub(crate) fn run(catalog: &fairing::catalog::Catalog, args: &ServeArgs) -> Resu
         bind: args.bind,
         port: args.port,
         max_body: args.max_upload,
+        deadline: std::time::Duration::from_secs(args.deadline),
         log: !args.quiet,
         ..http::Settings::default()
     };

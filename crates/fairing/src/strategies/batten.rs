@@ -552,6 +552,7 @@ pub fn eq13_positions<const D: usize>(
     if binds {
         let scale = points.iter().map(|p| p.amax()).fold(0.0, f64::max).max(1.0);
         for _ in 0..max_sweeps {
+            optim::cancel::checkpoint()?;
             let mut change: f64 = 0.0;
             for i in (1..n.saturating_sub(1)).filter(|&i| free(i)) {
                 let (lo, di, up, b) = row(i);

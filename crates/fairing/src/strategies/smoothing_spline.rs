@@ -709,6 +709,7 @@ impl<const D: usize> FairingStrategy<D> for SmoothingSplineFairing<D> {
         let mut fit;
         self.reweights = 0;
         loop {
+            optim::cancel::checkpoint()?;
             let sigma: Vec<f64> = weights.iter().map(|w| 1.0 / w).collect();
             fit = SmoothingSpline::solve_at(&t, &y, &Reinsch::new(&t, sigma), p, rule, gcv)?;
             let mut violated = false;

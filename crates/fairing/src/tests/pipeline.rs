@@ -298,3 +298,30 @@ fn trace_serialises() {
     assert_eq!(back, result.trace);
     assert_eq!(back.move_count(), 2);
 }
+
+#[test]
+fn a_cancelled_run_stops_between_steps_with_its_typed_error() {
+    // Cancelled from inside the run (as the server's watchdog would from its thread) after
+    // five steps: the sixth is never taken and the run is an error, not a result.
+    let token = optim::Cancel::new();
+    let steps = std::cell::Cell::new(0usize);
+    let result = token.scope(|| {
+        Pipeline::new(Laplacian { lambda: 0.5 })
+            .with_max_iterations(1000)
+            .with_observer(|state: &FairingState<2>, _: &StepRecord<2>| {
+                steps.set(state.iteration);
+                if state.iteration == 5 {
+                    token.cancel();
+                }
+            })
+            .run(noisy(20))
+    });
+    assert!(matches!(result, Err(Error::Cancelled)), "{result:?}");
+    assert_eq!(steps.get(), 5);
+    // Outside the scope the same run goes to its end.
+    let result = Pipeline::new(Laplacian { lambda: 0.5 })
+        .with_max_iterations(10)
+        .run(noisy(20))
+        .unwrap();
+    assert_eq!(result.iterations, 10);
+}

@@ -128,6 +128,7 @@ fn fair_spline(
     let mut now = counts(spline);
     let mut stall = Stall::new(now);
     for pass in 1..=settings.max_passes {
+        optim::cancel::checkpoint()?;
         let (coarse, fine) = full_pass_from(spline, settings, movable, Some(now))?;
         now = fine.counts;
         if (coarse.moves.is_empty() && fine.moves.is_empty()) || stall.stop(now, settings) {

@@ -1166,6 +1166,7 @@ fn fair_from<const D: usize>(
     let mut last_period = None;
     let mut last_evaluation: Option<(Space, Evaluation<D>)> = None;
     for round in 0..rounds {
+        optim::cancel::checkpoint()?;
         let knots = match &given {
             Some(knots) => knots.clone(),
             None => knots_of(&current, domain, closed)?,

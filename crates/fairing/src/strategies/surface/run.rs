@@ -364,6 +364,7 @@ pub(super) fn run(
     let mut termination = TerminationReason::MaxIterations;
     let mut refusal = None;
     while steps < settings.max_steps {
+        optim::cancel::checkpoint()?;
         if settings.objective == Objective::ThinPlate {
             run.surface = Some(run.surface_of(run.state.network.points(), &run.state.knots)?);
         }
