@@ -102,7 +102,8 @@ impl std::fmt::Display for Clash {
 
 /// The first pair of `outputs` (flag, target) that name one file ([`Target`]'s identity:
 /// symbolic links and `.` resolved), or `None`. For checking a command line before anything
-/// runs. O(n²) in the number of outputs, a handful.
+/// runs. An existing device or FIFO named twice is no clash (`/dev/null` takes both); standard
+/// output twice is. O(n²) in the number of outputs, a handful.
 pub fn find_clash<'f>(outputs: impl IntoIterator<Item = (&'f str, Target)>) -> Option<Clash> {
     let keyed: Vec<(&str, Target, Target)> = outputs
         .into_iter()
@@ -112,6 +113,11 @@ pub fn find_clash<'f>(outputs: impl IntoIterator<Item = (&'f str, Target)>) -> O
         })
         .collect();
     for (i, (second, target, key)) in keyed.iter().enumerate() {
+        if let Target::File(path) = key {
+            if std::fs::metadata(path).is_ok_and(|m| !m.is_file() && !m.is_dir()) {
+                continue;
+            }
+        }
         if let Some((first, _, _)) = keyed[..i].iter().find(|(_, _, k)| k == key) {
             return Some(Clash {
                 first: first.to_string(),

@@ -91,6 +91,11 @@ fn output_format(args: &FairArgs) -> Result<crate::output::OutputFormat> {
 
 /// Runs `fair curve`: one input, or a batch ([`batch`]).
 pub(crate) fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
+    super::refuse_shared_outputs(&[
+        ("-o", args.output.as_deref().map(std::path::Path::new)),
+        ("--report", args.report.as_deref()),
+        ("--plot", args.plot.as_deref()),
+    ])?;
     let file = read_config(args)?;
     let cad = fair_door::cad::target(&args.cad_request(), false)?;
     if batch::is_batch(args) {
