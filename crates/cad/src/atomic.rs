@@ -522,6 +522,14 @@ mod tests {
                 .path,
             "<stdout>"
         );
+        #[cfg(unix)]
+        assert_eq!(
+            find_clash([
+                ("-o", Target::File("/dev/null".into())),
+                ("--report", Target::File("/dev/null".into()))
+            ]),
+            None
+        );
         assert_eq!(
             find_clash([
                 ("-o", Target::File(x.clone())),
