@@ -98,7 +98,10 @@ pub(crate) fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
     super::refuse_shared_outputs(&[
         (
             "-o",
-            args.output.as_deref().map(std::path::Path::new).filter(|_| !directory_batch),
+            args.output
+                .as_deref()
+                .map(std::path::Path::new)
+                .filter(|_| !directory_batch),
         ),
         ("--report", args.report.as_deref()),
         ("--plot", args.plot.as_deref().filter(|_| !batch)),

@@ -34,7 +34,10 @@ fn format_measures(report: &Report) -> String {
 
 /// Runs `fair inspect`.
 pub(crate) fn run(catalog: &Catalog, args: &InspectArgs) -> Result<()> {
-    super::refuse_shared_outputs(&[("--report", args.report.as_deref()), ("--plot", args.plot.as_deref())])?;
+    super::refuse_shared_outputs(&[
+        ("--report", args.report.as_deref()),
+        ("--plot", args.plot.as_deref()),
+    ])?;
     let source = {
         let _activity = progress::Activity::start(&format!("reading {}", args.input), args.quiet);
         Source::read(&args.input)?

@@ -95,5 +95,3 @@ pub(crate) fn run(args: &LinesArgs) -> Result<()> {
     );
     Ok(())
 }
-
-
