@@ -40,12 +40,7 @@ fn two_outputs_naming_one_file_are_refused_before_the_run() {
     std::fs::write(dir.path().join("x.csv"), "old\n").unwrap();
     let cases: [(&[&str], &str, &str, &str); 5] = [
         (&["-o", "x.csv", "--report", "x.csv"], "-o", "--report", "x.csv"),
-        (
-            &["--report", "x.csv", "-o", "./x.csv"],
-            "-o",
-            "--report",
-            "x.csv",
-        ),
+        (&["--report", "x.csv", "-o", "./x.csv"], "-o", "--report", "x.csv"),
         (&["-o", "./x.csv", "--plot", "x.csv"], "-o", "--plot", "x.csv"),
         (
             &["--report", "r.json", "--plot", "./r.json"],

@@ -95,7 +95,7 @@ pub(crate) fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
     // A batch's --plot (and a directory batch's -o) is a directory of files named per curve;
     // the files that can clash are a stream's -o and --report.
     let directory_batch = batch && std::path::Path::new(&args.input).is_dir() && !args.batch;
-    super::refuse_shared_outputs(&[
+    super::check_outputs(&[
         (
             "-o",
             args.output

@@ -34,7 +34,7 @@ fn format_measures(report: &Report) -> String {
 
 /// Runs `fair inspect`.
 pub(crate) fn run(catalog: &Catalog, args: &InspectArgs) -> Result<()> {
-    super::refuse_shared_outputs(&[
+    super::check_outputs(&[
         ("--report", args.report.as_deref()),
         ("--plot", args.plot.as_deref()),
     ])?;

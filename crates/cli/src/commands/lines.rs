@@ -6,7 +6,7 @@
 use fair_door::error::{Error, Result};
 
 use crate::args::LinesArgs;
-use crate::commands::{refuse_shared_outputs, say, target};
+use crate::commands::{check_outputs, say, target};
 
 /// The command's error for a `fair_lines` error: the table's file and line are kept.
 fn error(e: fair_lines::Error) -> Error {
@@ -32,7 +32,7 @@ fn error(e: fair_lines::Error) -> Error {
 /// ([`cad::atomic::Outputs`]; a `--lines-dir` created for them is removed again when the
 /// writing fails).
 pub(crate) fn run(args: &LinesArgs) -> Result<()> {
-    refuse_shared_outputs(&[
+    check_outputs(&[
         ("-o", args.output.as_deref()),
         ("--report", args.report.as_deref()),
         ("--plot", args.plot.as_deref()),

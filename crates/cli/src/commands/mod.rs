@@ -44,11 +44,38 @@ pub(crate) fn say(quiet: bool, points_on_stdout: bool, text: &str) {
     }
 }
 
-/// Refuses, before anything runs, two outputs of one command line that name one file
-/// (`-o x.csv --report ./x.csv`, or a symbolic link to it; `-` twice is standard output
-/// twice): `outputs` are (flag, path) pairs, `None` for an output not asked for. Writing
-/// over the input is allowed (the output replaces it only when complete). Exit status 2.
-pub(crate) fn refuse_shared_outputs(outputs: &[(&str, Option<&std::path::Path>)]) -> Result<()> {
+/// Whether `path` (not `-`) can be a file: not a directory, in a directory that exists.
+/// The write itself can still fail (permissions, a full disk) and says so then. O(1).
+fn check_writable(path: &std::path::Path) -> Result<()> {
+    if path.as_os_str() == "-" {
+        return Ok(());
+    }
+    let problem = if path.is_dir() {
+        Some("it is a directory".to_string())
+    } else {
+        match path.parent().filter(|p| !p.as_os_str().is_empty()) {
+            Some(dir) if !dir.is_dir() => Some(format!("no directory {}", dir.display())),
+            _ => None,
+        }
+    };
+    match problem {
+        Some(reason) => Err(Error::Write {
+            path: path.display().to_string(),
+            reason,
+        }),
+        None => Ok(()),
+    }
+}
+
+/// Checks a command line's outputs before anything runs: each can be a file
+/// ([`check_writable`]), and no two name one file (`-o x.csv --report ./x.csv`, or a
+/// symbolic link to it; `-` twice is standard output twice). `outputs` are (flag, path)
+/// pairs, `None` for an output not asked for. Writing over the input is allowed (the output
+/// replaces it only when complete). Exit status 2.
+pub(crate) fn check_outputs(outputs: &[(&str, Option<&std::path::Path>)]) -> Result<()> {
+    for path in outputs.iter().filter_map(|(_, path)| *path) {
+        check_writable(path)?;
+    }
     let given = outputs
         .iter()
         .filter_map(|(flag, path)| path.map(|p| (*flag, cad::atomic::Target::from_arg(p))));

@@ -79,7 +79,7 @@ pub(crate) fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
             message: "applies to curves only; a surface grid has no kind to choose".into(),
         });
     }
-    super::refuse_shared_outputs(&[
+    super::check_outputs(&[
         ("-o", args.output.as_deref().map(std::path::Path::new)),
         ("--report", args.report.as_deref()),
         ("--plot", args.plot.as_deref()),
