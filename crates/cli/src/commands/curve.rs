@@ -99,12 +99,12 @@ pub(crate) fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
         (
             "-o",
             args.output
-                .as_deref()
-                .map(std::path::Path::new)
-                .filter(|_| !directory_batch),
+                .as_ref()
+                .filter(|_| !directory_batch)
+                .map(super::target),
         ),
-        ("--report", args.report.as_deref()),
-        ("--plot", args.plot.as_deref().filter(|_| !batch)),
+        ("--report", args.report.as_ref().map(super::target)),
+        ("--plot", args.plot.as_ref().filter(|_| !batch).map(super::file)),
     ])?;
     let file = read_config(args)?;
     let cad = fair_door::cad::target(&args.cad_request(), false)?;

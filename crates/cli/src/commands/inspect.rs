@@ -35,8 +35,8 @@ fn format_measures(report: &Report) -> String {
 /// Runs `fair inspect`.
 pub(crate) fn run(catalog: &Catalog, args: &InspectArgs) -> Result<()> {
     super::check_outputs(&[
-        ("--report", args.report.as_deref()),
-        ("--plot", args.plot.as_deref()),
+        ("--report", args.report.as_ref().map(super::target)),
+        ("--plot", args.plot.as_ref().map(super::file)),
     ])?;
     let source = {
         let _activity = progress::Activity::start(&format!("reading {}", args.input), args.quiet);

@@ -6,7 +6,7 @@
 use fair_door::error::{Error, Result};
 
 use crate::args::LinesArgs;
-use crate::commands::{check_outputs, say, target};
+use crate::commands::{check_outputs, file, say};
 
 /// The command's error for a `fair_lines` error: the table's file and line are kept.
 fn error(e: fair_lines::Error) -> Error {
@@ -33,10 +33,10 @@ fn error(e: fair_lines::Error) -> Error {
 /// writing fails).
 pub(crate) fn run(args: &LinesArgs) -> Result<()> {
     check_outputs(&[
-        ("-o", args.output.as_deref()),
-        ("--report", args.report.as_deref()),
-        ("--plot", args.plot.as_deref()),
-        ("--hull", args.hull.as_deref()),
+        ("-o", args.output.as_ref().map(file)),
+        ("--report", args.report.as_ref().map(file)),
+        ("--plot", args.plot.as_ref().map(file)),
+        ("--hull", args.hull.as_ref().map(file)),
     ])?;
     let table = fair_lines::read_table(&args.table).map_err(error)?;
     let settings = fair_lines::Settings {
@@ -47,17 +47,17 @@ pub(crate) fn run(args: &LinesArgs) -> Result<()> {
     let faired = fair_lines::fair(&table, &settings).map_err(error)?;
     let mut outputs = cad::atomic::Outputs::new();
     if let Some(path) = &args.output {
-        outputs.add_text(target(path), fair_lines::write::table_text(&faired));
+        outputs.add_text(file(path), fair_lines::write::table_text(&faired));
     }
     if let Some(path) = &args.report {
-        outputs.add_text(target(path), fair_lines::write::report_json(&faired));
+        outputs.add_text(file(path), fair_lines::write::report_json(&faired));
     }
     if let Some(path) = &args.plot {
-        outputs.add_text(target(path), fair_lines::write::svg(&faired));
+        outputs.add_text(file(path), fair_lines::write::svg(&faired));
     }
     if let Some(path) = &args.hull {
         let text = fair_lines::write::hull_text(&faired, path).map_err(error)?;
-        outputs.add_text(target(path), text);
+        outputs.add_text(file(path), text);
     }
     let mut created = None;
     if let Some(dir) = &args.lines_dir {

@@ -69,16 +69,18 @@ fn check_writable(path: &std::path::Path) -> Result<()> {
 
 /// Checks a command line's outputs before anything runs: each can be a file
 /// ([`check_writable`]), and no two name one file (`-o x.csv --report ./x.csv`, or a
-/// symbolic link to it; `-` twice is standard output twice). `outputs` are (flag, path)
+/// symbolic link to it; `-` twice is standard output twice). `outputs` are (flag, target)
 /// pairs, `None` for an output not asked for. Writing over the input is allowed (the output
 /// replaces it only when complete). Exit status 2.
-pub(crate) fn check_outputs(outputs: &[(&str, Option<&std::path::Path>)]) -> Result<()> {
-    for path in outputs.iter().filter_map(|(_, path)| *path) {
-        check_writable(path)?;
+pub(crate) fn check_outputs(outputs: &[(&str, Option<cad::atomic::Target>)]) -> Result<()> {
+    for target in outputs.iter().filter_map(|(_, target)| target.as_ref()) {
+        if let cad::atomic::Target::File(path) = target {
+            check_writable(path)?;
+        }
     }
     let given = outputs
         .iter()
-        .filter_map(|(flag, path)| path.map(|p| (*flag, cad::atomic::Target::from_arg(p))));
+        .filter_map(|(flag, target)| target.clone().map(|t| (*flag, t)));
     match cad::atomic::find_clash(given) {
         Some(clash) => Err(Error::Write {
             path: clash.path,
@@ -91,9 +93,16 @@ pub(crate) fn check_outputs(outputs: &[(&str, Option<&std::path::Path>)]) -> Res
     }
 }
 
-/// The output of `path` for [`cad::atomic`] (`-`: standard output).
+/// The output of `path` for [`cad::atomic`] (`-`: standard output), for the flags that
+/// take `-` (`-o` and `--report` of `fair curve`, `fair surface`, `fair inspect`).
 pub(crate) fn target(path: impl AsRef<std::path::Path>) -> cad::atomic::Target {
     cad::atomic::Target::from_arg(path)
+}
+
+/// The output of `path` for [`cad::atomic`], a file even when named `-` (`--plot`, `fair
+/// lines`' outputs).
+pub(crate) fn file(path: impl AsRef<std::path::Path>) -> cad::atomic::Target {
+    cad::atomic::Target::File(path.as_ref().to_path_buf())
 }
 
 /// Writes what `-o`, `--report` and `--plot` ask for: the faired points (or grid, or CAD
@@ -116,7 +125,7 @@ pub(crate) fn write_results(
         outputs.add(target(path), |w| report.write_json_to(w));
     }
     if let Some(path) = &args.plot {
-        outputs.add(target(path), move |w| w.write_all(figure().to_svg().as_bytes()));
+        outputs.add(file(path), move |w| w.write_all(figure().to_svg().as_bytes()));
     }
     outputs.commit().map_err(|e| Error::from_write(&e))
 }

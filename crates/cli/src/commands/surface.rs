@@ -80,9 +80,9 @@ pub(crate) fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
         });
     }
     super::check_outputs(&[
-        ("-o", args.output.as_deref().map(std::path::Path::new)),
-        ("--report", args.report.as_deref()),
-        ("--plot", args.plot.as_deref()),
+        ("-o", args.output.as_ref().map(super::target)),
+        ("--report", args.report.as_ref().map(super::target)),
+        ("--plot", args.plot.as_ref().map(super::file)),
     ])?;
     let file = super::curve::read_config(args)?;
     let cad = fair_door::cad::target(&args.cad_request(), true)?;
