@@ -285,7 +285,7 @@ impl KillCase {
 #[test]
 fn a_killed_run_leaves_each_output_old_or_complete() {
     use std::os::unix::process::ExitStatusExt;
-    let case = KillCase::new(10_000);
+    let case = KillCase::new(6_000);
     // One whole run: its duration, the moment it began writing, and complete outputs.
     let start = Instant::now();
     let mut child = case.spawn();
