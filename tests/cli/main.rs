@@ -1,5 +1,6 @@
 //! The crate's integration tests, one binary (it links once): one module per subject.
 
+mod atomic_outputs_cli;
 mod baselines_cli;
 mod basics;
 mod batten_cli;

@@ -277,7 +277,8 @@ pub fn export(
 /// [`export`] into a file: the format from `format` or else the file's extension
 /// ([`Format::from_path`]), the file's name recorded inside it. Fails with
 /// [`Error::UnknownFormat`] when neither names a format and [`Error::Io`] when the file
-/// cannot be written (nothing is written when the export fails).
+/// cannot be written (nothing is written when the export fails; the file is written
+/// completely or not at all, [`crate::atomic`]).
 pub fn export_to_path(
     shape: &Shape,
     path: impl AsRef<Path>,
@@ -298,9 +299,9 @@ pub fn export_to_path(
         ..WriteOptions::default()
     };
     let export = export(shape, format, settings, &options)?;
-    std::fs::write(path, &export.text).map_err(|e| Error::Io {
+    crate::atomic::write_text(path, &export.text).map_err(|e| Error::Io {
         path: path.display().to_string(),
-        message: e.to_string(),
+        message: e.error.to_string(),
     })?;
     Ok(export)
 }

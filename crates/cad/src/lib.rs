@@ -17,6 +17,8 @@
 //! 3. rebuilds a curve with few control points ([`rebuild()`], The NURBS Book Eq. 9.63–9.69)
 //!    and says whether the rebuild brought wiggles back.
 //!
+//! Every file the workspace writes goes through [`atomic`]: complete or not at all.
+//!
 //! The command needs one call, [`export()`] (or [`export_to_path`]): the faired shape, a
 //! [`Format`] (from `-o`'s extension or `--cad`), [`CadSettings`] (unit, tolerance,
 //! `--control-points`, `--fit-tolerance`), header [`WriteOptions`].
@@ -35,6 +37,7 @@
 //! # Ok::<(), cad::Error>(())
 //! ```
 
+pub mod atomic;
 pub mod dxf;
 pub mod error;
 pub mod export;

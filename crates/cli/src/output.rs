@@ -5,9 +5,8 @@
 
 use curve_repr::number::Compact;
 
-use crate::input::{io_reason, CurveInput, CurvePoints, Delimiter, Grid, InputFormat, Layout, SurfaceInput};
+use crate::input::{CurveInput, CurvePoints, Delimiter, Grid, InputFormat, Layout, SurfaceInput};
 use fair_door::error::{Error, Result};
-use std::io::Write;
 
 /// Formats `points` in the format of `input` (header, JSON document, airfoil name).
 ///
@@ -338,24 +337,14 @@ pub(crate) fn format_curve_as(
     format_curve(&converted_input, points)
 }
 
-/// Writes text to a file, or to standard output for `-`.
+/// Writes text to a file, completely or not at all ([`cad::atomic`]), or to standard output
+/// for `-`.
 ///
 /// A closed standard output (`fair ... -o - | head`) is not an error.
 pub(crate) fn write_text(path: &str, text: &str) -> Result<()> {
-    if path == "-" {
-        let mut stdout = std::io::stdout().lock();
-        return match stdout.write_all(text.as_bytes()).and_then(|()| stdout.flush()) {
-            Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(Error::Write {
-                path: "<stdout>".into(),
-                reason: io_reason(&e),
-            }),
-            _ => Ok(()),
-        };
-    }
-    std::fs::write(path, text).map_err(|e| Error::Write {
-        path: path.into(),
-        reason: io_reason(&e),
-    })
+    let mut outputs = cad::atomic::Outputs::new();
+    outputs.add_text(cad::atomic::Target::from_arg(path), text);
+    outputs.commit().map_err(|e| Error::from_write(&e))
 }
 
 #[cfg(test)]

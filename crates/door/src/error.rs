@@ -253,6 +253,17 @@ impl Error {
     }
 }
 
+impl Error {
+    /// The error of an output that could not be written ([`cad::atomic`]): the path as given
+    /// (`<stdout>` for standard output) and the system's reason. Exit status 2.
+    pub fn from_write(e: &cad::atomic::WriteError) -> Self {
+        Error::Write {
+            path: e.target.name(),
+            reason: io_reason(&e.error),
+        }
+    }
+}
+
 /// The operating system's reason for an I/O error, without the `(os error N)` suffix.
 pub fn io_reason(e: &std::io::Error) -> String {
     match e.kind() {

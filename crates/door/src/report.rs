@@ -196,36 +196,25 @@ impl Report {
     }
 
     /// Writes the report as pretty JSON to `path` (`-`: standard output), after
-    /// [`Report::check_finite`]: the same text as [`to_json`](Self::to_json), streamed through
-    /// a buffer rather than built in memory (at 10⁶ points the text of a curve record is a few
-    /// hundred MB).
+    /// [`Report::check_finite`], completely or not at all ([`cad::atomic`]). The text is
+    /// [`write_json_to`](Self::write_json_to)'s.
     pub fn write_json(&self, path: &str) -> Result<()> {
-        use std::io::Write;
         self.check_finite()?;
-        let failed = |e: std::io::Error| Error::Write {
-            path: if path == "-" {
-                "<stdout>".into()
-            } else {
-                path.into()
-            },
-            reason: crate::error::io_reason(&e),
-        };
-        let sink: Box<dyn Write> = if path == "-" {
-            Box::new(std::io::stdout().lock())
-        } else {
-            Box::new(std::fs::File::create(path).map_err(failed)?)
-        };
-        let mut writer = std::io::BufWriter::new(sink);
-        serde_json::to_writer_pretty(&mut writer, self).map_err(|e| match e.io_error_kind() {
-            Some(kind) => failed(std::io::Error::new(kind, e.to_string())),
-            None => Error::Internal {
-                message: e.to_string(),
-            },
+        let mut outputs = cad::atomic::Outputs::new();
+        outputs.add(cad::atomic::Target::from_arg(path), |w| self.write_json_to(w));
+        outputs.commit().map_err(|e| crate::error::Error::from_write(&e))
+    }
+
+    /// Streams the report as pretty JSON and a newline into `writer`: the same text as
+    /// [`to_json`](Self::to_json), through the writer rather than built in memory (at 10⁶
+    /// points the text of a curve record is a few hundred MB). Call [`Report::check_finite`]
+    /// first; a value that JSON cannot hold is an error of kind `InvalidData`.
+    pub fn write_json_to(&self, writer: &mut dyn std::io::Write) -> std::io::Result<()> {
+        serde_json::to_writer_pretty(&mut *writer, self).map_err(|e| match e.io_error_kind() {
+            Some(kind) => std::io::Error::new(kind, e.to_string()),
+            None => std::io::Error::new(std::io::ErrorKind::InvalidData, e.to_string()),
         })?;
-        match writer.write_all(b"\n").and_then(|()| writer.flush()) {
-            Err(e) if path == "-" && e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
-            other => other.map_err(failed),
-        }
+        writer.write_all(b"\n")
     }
 
     /// The report as pretty JSON, after [`Report::check_finite`].

@@ -71,10 +71,18 @@ pub fn table_text(f: &Faired) -> String {
     out
 }
 
-/// Writes the faired table in the input's layout.
+/// Writes the faired table in the input's layout, completely or not at all
+/// ([`cad::atomic`]).
 pub fn write_table(f: &Faired, path: impl AsRef<Path>) -> Result<()> {
-    let p = path.as_ref();
-    std::fs::write(p, table_text(f)).map_err(|e| io(p, e))
+    cad::atomic::write_text(path, table_text(f)).map_err(|e| written(&e))
+}
+
+/// The crate's error for an output that could not be written.
+pub(crate) fn written(e: &cad::atomic::WriteError) -> Error {
+    Error::Io {
+        path: e.target.name(),
+        message: e.error.to_string(),
+    }
 }
 
 fn file_name(label: &str) -> String {
@@ -94,10 +102,22 @@ fn file_name(label: &str) -> String {
 
 /// Writes every line as its own CSV `x,y,z` (faired offsets sorted by x) as
 /// `<dir>/line_<label>_<kind>.csv`, and every station as `<dir>/station_<index>.csv` (sorted by
-/// z). Returns the files written.
+/// z), creating `dir` if need be; all files or none ([`cad::atomic::Outputs`]). Returns the
+/// files written.
 pub fn write_lines(f: &Faired, dir: impl AsRef<Path>) -> Result<Vec<String>> {
     let dir = dir.as_ref();
     std::fs::create_dir_all(dir).map_err(|e| io(dir, e))?;
+    let files = lines_files(f);
+    let mut outputs = cad::atomic::Outputs::new();
+    for (name, text) in &files {
+        outputs.add_text(cad::atomic::Target::File(dir.join(name)), text);
+    }
+    outputs.commit().map_err(|e| written(&e))?;
+    Ok(files.into_iter().map(|(name, _)| name).collect())
+}
+
+/// What [`write_lines`] writes: each file's name and text, lines first, then stations. O(offsets).
+pub fn lines_files(f: &Faired) -> Vec<(String, String)> {
     let t = &f.table;
     let mut written = Vec::new();
     let num = |v: f64| {
@@ -107,16 +127,13 @@ pub fn write_lines(f: &Faired, dir: impl AsRef<Path>) -> Result<Vec<String>> {
             String::new()
         }
     };
-    let mut put = |name: String, idx: Vec<usize>| -> Result<()> {
+    let mut put = |name: String, idx: Vec<usize>| {
         let mut s = String::from("x,y,z\n");
         for i in idx {
             let v = f.values[i];
             let _ = writeln!(s, "{},{},{}", num(v[0]), num(v[1]), num(v[2]));
         }
-        let p = dir.join(&name);
-        std::fs::write(&p, s).map_err(|e| io(&p, e))?;
-        written.push(name);
-        Ok(())
+        written.push((name, s));
     };
     for (li, l) in t.lines.iter().enumerate() {
         let kind = serde_json::to_value(l.kind)
@@ -126,7 +143,7 @@ pub fn write_lines(f: &Faired, dir: impl AsRef<Path>) -> Result<Vec<String>> {
         put(
             format!("line_{}_{}.csv", file_name(&l.label), kind),
             t.line_cells(li),
-        )?;
+        );
     }
     for si in t.stations.keys() {
         let mut idx: Vec<usize> = (0..t.cells.len())
@@ -134,9 +151,9 @@ pub fn write_lines(f: &Faired, dir: impl AsRef<Path>) -> Result<Vec<String>> {
             .filter(|&i| f.values[i][1].is_finite() && f.values[i][2].is_finite())
             .collect();
         idx.sort_by(|&a, &b| f.values[a][2].total_cmp(&f.values[b][2]));
-        put(format!("station_{si:02}.csv"), idx)?;
+        put(format!("station_{si:02}.csv"), idx);
     }
-    Ok(written)
+    written
 }
 
 /// The report as pretty JSON.
@@ -212,8 +229,17 @@ pub fn hull_model(f: &Faired) -> Result<CadModel> {
     model.ok_or_else(|| Error::Fit("no hull surface".into()))
 }
 
-/// Writes the hull as IGES or STEP (from the extension: .igs/.iges, .stp/.step).
+/// Writes the hull as IGES or STEP (from the extension: .igs/.iges, .stp/.step), completely
+/// or not at all ([`cad::atomic`]).
 pub fn write_hull(f: &Faired, path: impl AsRef<Path>) -> Result<()> {
+    let path = path.as_ref();
+    let text = hull_text(f, path)?;
+    cad::atomic::write_text(path, text).map_err(|e| written(&e))
+}
+
+/// The text [`write_hull`] writes to `path` (its format from the extension, its name in the
+/// header).
+pub fn hull_text(f: &Faired, path: impl AsRef<Path>) -> Result<String> {
     let p = path.as_ref();
     let format = Format::from_path(p).ok_or_else(|| Error::Setting {
         name: "hull file",
@@ -232,8 +258,7 @@ pub fn write_hull(f: &Faired, path: impl AsRef<Path>) -> Result<()> {
         timestamp: cad::Timestamp::from_unix(1_796_515_200),
         ..WriteOptions::default()
     };
-    let text = cad::write(&model, format, &options)?;
-    std::fs::write(p, text).map_err(|e| io(p, e))
+    Ok(cad::write(&model, format, &options)?)
 }
 
 /// Signed curvature of the circle through three points (Menger): 4·area / (|ab|·|bc|·|ca|).

@@ -594,15 +594,10 @@ impl CadRequest {
     }
 }
 
-/// Writes a CAD file's text as the command writes `-o`.
+/// Writes a CAD file's text as the command writes `-o`: completely or not at all
+/// ([`cad::atomic`]).
 fn write_text(path: &str, text: &str) -> Result<()> {
-    std::fs::write(path, text).map_err(|e| {
-        Error::Write {
-            path: path.into(),
-            reason: fair_door::error::io_reason(&e),
-        }
-        .into()
-    })
+    cad::atomic::write_text(path, text).map_err(|e| Error::from_write(&e).into())
 }
 
 /// Writes a curve as `fair curve -o FILE.igs` does: `record` is the report's `curve` of a

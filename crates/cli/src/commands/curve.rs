@@ -91,9 +91,24 @@ fn output_format(args: &FairArgs) -> Result<crate::output::OutputFormat> {
 
 /// Runs `fair curve`: one input, or a batch ([`batch`]).
 pub(crate) fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
+    let batch = batch::is_batch(args);
+    // A batch's --plot (and a directory batch's -o) is a directory of files named per curve;
+    // the files that can clash are a stream's -o and --report.
+    let directory_batch = batch && std::path::Path::new(&args.input).is_dir() && !args.batch;
+    super::check_outputs(&[
+        (
+            "-o",
+            args.output
+                .as_ref()
+                .filter(|_| !directory_batch)
+                .map(super::target),
+        ),
+        ("--report", args.report.as_ref().map(super::target)),
+        ("--plot", args.plot.as_ref().filter(|_| !batch).map(super::file)),
+    ])?;
     let file = read_config(args)?;
     let cad = fair_door::cad::target(&args.cad_request(), false)?;
-    if batch::is_batch(args) {
+    if batch {
         return batch::run(catalog, args, file.as_ref());
     }
     output_format(args)?;

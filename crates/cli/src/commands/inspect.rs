@@ -34,25 +34,35 @@ fn format_measures(report: &Report) -> String {
 
 /// Runs `fair inspect`.
 pub(crate) fn run(catalog: &Catalog, args: &InspectArgs) -> Result<()> {
+    super::check_outputs(&[
+        ("--report", args.report.as_ref().map(super::target)),
+        ("--plot", args.plot.as_ref().map(super::file)),
+    ])?;
     let source = {
         let _activity = progress::Activity::start(&format!("reading {}", args.input), args.quiet);
         Source::read(&args.input)?
     };
-    let report = inspect_with(
+    let (report, figure) = measure(
         catalog,
         &source,
         args.kind,
         args.surface,
-        Outputs {
-            plot: args.plot.as_deref(),
-            record: args.report.is_some(),
-        },
+        args.plot.is_some(),
+        args.report.is_some(),
         &args.read_options(),
         args.quiet,
     )?;
+    // The report and the plot written all or none (cad::atomic).
+    let mut outputs = cad::atomic::Outputs::new();
     if let Some(path) = &args.report {
-        report.write_json(&path.display().to_string())?;
+        outputs.add(super::target(path), |w| report.write_json_to(w));
     }
+    if let (Some(path), Some(figure)) = (&args.plot, &figure) {
+        outputs.add(super::file(path), move |w| {
+            w.write_all(figure.to_svg().as_bytes())
+        });
+    }
+    outputs.commit().map_err(|e| fair_door::Error::from_write(&e))?;
     say(
         args.quiet,
         false,
@@ -104,7 +114,36 @@ pub(crate) fn inspect_with(
     options: &ReadOptions,
     quiet: bool,
 ) -> Result<Report> {
-    let plot = outputs.plot;
+    let (report, figure) = measure(
+        catalog,
+        source,
+        kind_arg,
+        surface,
+        outputs.plot.is_some(),
+        outputs.record,
+        options,
+        quiet,
+    )?;
+    if let (Some(path), Some(figure)) = (outputs.plot, figure) {
+        figure.write(path)?;
+    }
+    Ok(report)
+}
+
+/// Measures `source` as [`inspect_with`] does and draws the plot if `draw`, without writing
+/// it. The report is checked finite.
+#[allow(clippy::too_many_arguments)]
+fn measure(
+    catalog: &Catalog,
+    source: &Source,
+    kind_arg: KindArg,
+    surface: bool,
+    draw: bool,
+    record: bool,
+    options: &ReadOptions,
+    quiet: bool,
+) -> Result<(Report, Option<crate::svg::Figure>)> {
+    let mut figure = None;
     let report = if surface || looks_like_surface(source) {
         if options.columns.is_some() {
             return Err(fair_door::Error::Argument {
@@ -126,7 +165,7 @@ pub(crate) fn inspect_with(
         }
         let input = input::grid::parse(source)?;
         let inspected = fair_door::inspect_surface(&input.data())?;
-        if let Some(path) = plot {
+        if draw {
             let plot = SurfacePlot {
                 title: format!("{} — inspect", input.source),
                 input: Some(input.grid.clone()),
@@ -135,7 +174,7 @@ pub(crate) fn inspect_with(
                 z_before: None,
                 highlights: true,
             };
-            plot.figure().write(path)?;
+            figure = Some(plot.figure());
         }
         inspected.report
     } else {
@@ -149,13 +188,10 @@ pub(crate) fn inspect_with(
                 &format!("measuring {} ({} points)", source.name, input.len()),
                 quiet,
             );
-            let detail = Detail {
-                plot: plot.is_some(),
-                record: outputs.record,
-            };
+            let detail = Detail { plot: draw, record };
             fair_door::inspect_curve(catalog, &input.data(), kind_arg.into(), detail)?
         };
-        if let Some(path) = plot {
+        if draw {
             let measured = &inspected.measured;
             let names = input.coordinate_names();
             let plot = CurvePlot {
@@ -170,10 +206,10 @@ pub(crate) fn inspect_with(
                 projections: crate::plots::other_projections(&names, &input.points, None),
                 ..CurvePlot::default()
             };
-            plot.figure().write(path)?;
+            figure = Some(plot.figure());
         }
         inspected.report
     };
     report.check_finite()?;
-    Ok(report)
+    Ok((report, figure))
 }

@@ -6,7 +6,7 @@
 use fair_door::error::{Error, Result};
 
 use crate::args::LinesArgs;
-use crate::commands::say;
+use crate::commands::{check_outputs, file, say};
 
 /// The command's error for a `fair_lines` error: the table's file and line are kept.
 fn error(e: fair_lines::Error) -> Error {
@@ -28,8 +28,16 @@ fn error(e: fair_lines::Error) -> Error {
     }
 }
 
-/// Runs `fair lines`.
+/// Runs `fair lines`: every output made in memory, then written all or none
+/// ([`cad::atomic::Outputs`]; a `--lines-dir` created for them is removed again when the
+/// writing fails).
 pub(crate) fn run(args: &LinesArgs) -> Result<()> {
+    check_outputs(&[
+        ("-o", args.output.as_ref().map(file)),
+        ("--report", args.report.as_ref().map(file)),
+        ("--plot", args.plot.as_ref().map(file)),
+        ("--hull", args.hull.as_ref().map(file)),
+    ])?;
     let table = fair_lines::read_table(&args.table).map_err(error)?;
     let settings = fair_lines::Settings {
         step: args.step,
@@ -37,20 +45,39 @@ pub(crate) fn run(args: &LinesArgs) -> Result<()> {
         knuckles: args.knuckles.clone(),
     };
     let faired = fair_lines::fair(&table, &settings).map_err(error)?;
+    let mut outputs = cad::atomic::Outputs::new();
     if let Some(path) = &args.output {
-        fair_lines::write::write_table(&faired, path).map_err(error)?;
-    }
-    if let Some(dir) = &args.lines_dir {
-        fair_lines::write::write_lines(&faired, dir).map_err(error)?;
+        outputs.add_text(file(path), fair_lines::write::table_text(&faired));
     }
     if let Some(path) = &args.report {
-        write_text(path, &fair_lines::write::report_json(&faired))?;
+        outputs.add_text(file(path), fair_lines::write::report_json(&faired));
     }
     if let Some(path) = &args.plot {
-        write_text(path, &fair_lines::write::svg(&faired))?;
+        outputs.add_text(file(path), fair_lines::write::svg(&faired));
     }
     if let Some(path) = &args.hull {
-        fair_lines::write::write_hull(&faired, path).map_err(error)?;
+        let text = fair_lines::write::hull_text(&faired, path).map_err(error)?;
+        outputs.add_text(file(path), text);
+    }
+    let mut created = None;
+    if let Some(dir) = &args.lines_dir {
+        if !dir.is_dir() {
+            std::fs::create_dir_all(dir).map_err(|e| Error::Write {
+                path: dir.display().to_string(),
+                reason: fair_door::error::io_reason(&e),
+            })?;
+            created = Some(dir);
+        }
+        for (name, text) in fair_lines::write::lines_files(&faired) {
+            outputs.add_text(cad::atomic::Target::File(dir.join(name)), text);
+        }
+    }
+    if let Err(e) = outputs.commit() {
+        if let Some(dir) = created {
+            // Empty again: every temporary file in it was removed.
+            let _ = std::fs::remove_dir(dir);
+        }
+        return Err(Error::from_write(&e));
     }
     let r = &faired.report;
     say(
@@ -67,11 +94,4 @@ pub(crate) fn run(args: &LinesArgs) -> Result<()> {
         ),
     );
     Ok(())
-}
-
-fn write_text(path: &std::path::Path, text: &str) -> Result<()> {
-    std::fs::write(path, text).map_err(|e| Error::Write {
-        path: path.display().to_string(),
-        reason: e.to_string(),
-    })
 }

@@ -44,33 +44,71 @@ pub(crate) fn say(quiet: bool, points_on_stdout: bool, text: &str) {
     }
 }
 
-/// Writes what `-o`, `--report` and `--plot` ask for: the faired points (or grid) as text,
-/// the report and the picture. The report text is made (and checked finite) before anything
-/// is written, so a failing report leaves no half-written outputs.
 /// Whether `path` (not `-`) can be a file: not a directory, in a directory that exists.
 /// The write itself can still fail (permissions, a full disk) and says so then. O(1).
-fn check_writable(path: &str) -> Result<()> {
-    if path == "-" {
+fn check_writable(path: &std::path::Path) -> Result<()> {
+    if path.as_os_str() == "-" {
         return Ok(());
     }
-    let target = std::path::Path::new(path);
-    let problem = if target.is_dir() {
+    let problem = if path.is_dir() {
         Some("it is a directory".to_string())
     } else {
-        match target.parent().filter(|p| !p.as_os_str().is_empty()) {
+        match path.parent().filter(|p| !p.as_os_str().is_empty()) {
             Some(dir) if !dir.is_dir() => Some(format!("no directory {}", dir.display())),
             _ => None,
         }
     };
     match problem {
         Some(reason) => Err(Error::Write {
-            path: path.into(),
+            path: path.display().to_string(),
             reason,
         }),
         None => Ok(()),
     }
 }
 
+/// Checks a command line's outputs before anything runs: each can be a file
+/// ([`check_writable`]), and no two name one file (`-o x.csv --report ./x.csv`, or a
+/// symbolic link to it; `-` twice is standard output twice). `outputs` are (flag, target)
+/// pairs, `None` for an output not asked for. Writing over the input is allowed (the output
+/// replaces it only when complete). Exit status 2.
+pub(crate) fn check_outputs(outputs: &[(&str, Option<cad::atomic::Target>)]) -> Result<()> {
+    for target in outputs.iter().filter_map(|(_, target)| target.as_ref()) {
+        if let cad::atomic::Target::File(path) = target {
+            check_writable(path)?;
+        }
+    }
+    let given = outputs
+        .iter()
+        .filter_map(|(flag, target)| target.clone().map(|t| (*flag, t)));
+    match cad::atomic::find_clash(given) {
+        Some(clash) => Err(Error::Write {
+            path: clash.path,
+            reason: format!(
+                "{} and {} both name it (one would overwrite the other); give them different files",
+                clash.first, clash.second
+            ),
+        }),
+        None => Ok(()),
+    }
+}
+
+/// The output of `path` for [`cad::atomic`] (`-`: standard output), for the flags that
+/// take `-` (`-o` and `--report` of `fair curve`, `fair surface`, `fair inspect`).
+pub(crate) fn target(path: impl AsRef<std::path::Path>) -> cad::atomic::Target {
+    cad::atomic::Target::from_arg(path)
+}
+
+/// The output of `path` for [`cad::atomic`], a file even when named `-` (`--plot`, `fair
+/// lines`' outputs).
+pub(crate) fn file(path: impl AsRef<std::path::Path>) -> cad::atomic::Target {
+    cad::atomic::Target::File(path.as_ref().to_path_buf())
+}
+
+/// Writes what `-o`, `--report` and `--plot` ask for: the faired points (or grid, or CAD
+/// file) as text, the report and the picture, all or none ([`cad::atomic::Outputs`]): each to
+/// a temporary file beside its target, renamed over the targets only when every one was
+/// written. The report is checked finite before anything is written.
 pub(crate) fn write_results(
     args: &crate::args::FairArgs,
     report: &fair_door::report::Report,
@@ -79,24 +117,15 @@ pub(crate) fn write_results(
 ) -> Result<()> {
     // The report is checked even when not written: a non-finite measure is an error either way.
     report.check_finite()?;
-    // Every target checked before the first is written, so that a bad --report or --plot path
-    // does not leave a fresh output file behind an exit status of 2.
-    let targets = [
-        args.output.clone(),
-        args.report.as_ref().map(|p| p.display().to_string()),
-        args.plot.as_ref().map(|p| p.display().to_string()),
-    ];
-    for path in targets.iter().flatten() {
-        check_writable(path)?;
-    }
+    let mut outputs = cad::atomic::Outputs::new();
     if let Some(out) = &args.output {
-        crate::output::write_text(out, points_text)?;
+        outputs.add_text(target(out), points_text);
     }
     if let Some(path) = &args.report {
-        report.write_json(&path.display().to_string())?;
+        outputs.add(target(path), |w| report.write_json_to(w));
     }
     if let Some(path) = &args.plot {
-        figure().write(path)?;
+        outputs.add(file(path), move |w| w.write_all(figure().to_svg().as_bytes()));
     }
-    Ok(())
+    outputs.commit().map_err(|e| Error::from_write(&e))
 }

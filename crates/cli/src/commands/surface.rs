@@ -79,6 +79,11 @@ pub(crate) fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
             message: "applies to curves only; a surface grid has no kind to choose".into(),
         });
     }
+    super::check_outputs(&[
+        ("-o", args.output.as_ref().map(super::target)),
+        ("--report", args.report.as_ref().map(super::target)),
+        ("--plot", args.plot.as_ref().map(super::file)),
+    ])?;
     let file = super::curve::read_config(args)?;
     let cad = fair_door::cad::target(&args.cad_request(), true)?;
     let input = input::read_surface(&args.input)?;

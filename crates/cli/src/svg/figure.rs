@@ -178,12 +178,9 @@ impl Figure {
         svg
     }
 
-    /// Writes the SVG document to `path`.
+    /// Writes the SVG document to `path`, completely or not at all ([`cad::atomic`]).
     pub fn write(&self, path: &std::path::Path) -> Result<()> {
-        std::fs::write(path, self.to_svg()).map_err(|e| Error::Write {
-            path: path.display().to_string(),
-            reason: fair_door::error::io_reason(&e),
-        })
+        cad::atomic::write_text(path, self.to_svg()).map_err(|e| Error::from_write(&e))
     }
 }
 

@@ -245,6 +245,8 @@ pub(crate) fn run(catalog: &Catalog, args: &FairArgs, file: Option<&ConfigFile>)
 
     let mut report_lines = String::new();
     let mut output_lines = String::new();
+    // Every file of the batch written all or none, after every curve was faired.
+    let mut outputs = cad::atomic::Outputs::new();
     let (mut failed, mut status) = (0usize, 2u8);
     for (item, result) in items.iter().zip(&results) {
         match result {
@@ -260,7 +262,7 @@ pub(crate) fn run(catalog: &Catalog, args: &FairArgs, file: Option<&ConfigFile>)
                 if let Some(out) = &args.output {
                     if directory_batch {
                         let path = Path::new(out).join(&item.stem);
-                        crate::output::write_text(&path.display().to_string(), &faired.points_text)?;
+                        outputs.add_text(cad::atomic::Target::File(path), &faired.points_text);
                     } else {
                         let value: serde_json::Value =
                             serde_json::from_str(&faired.points_text).map_err(|e| Error::Internal {
@@ -274,7 +276,10 @@ pub(crate) fn run(catalog: &Catalog, args: &FairArgs, file: Option<&ConfigFile>)
                         .file_stem()
                         .and_then(|s| s.to_str())
                         .unwrap_or("curve");
-                    faired.plot.figure().write(&dir.join(format!("{stem}.svg")))?;
+                    let path = dir.join(format!("{stem}.svg"));
+                    outputs.add(cad::atomic::Target::File(path), |w| {
+                        w.write_all(faired.plot.figure().to_svg().as_bytes())
+                    });
                 }
             }
             Err(e) => {
@@ -293,12 +298,14 @@ pub(crate) fn run(catalog: &Catalog, args: &FairArgs, file: Option<&ConfigFile>)
         }
     }
     if let (Some(out), false) = (&args.output, directory_batch) {
-        crate::output::write_text(out, &output_lines)?;
+        outputs.add_text(crate::commands::target(out), output_lines);
     }
-    match &args.report {
-        Some(path) => crate::output::write_text(&path.display().to_string(), &report_lines)?,
-        None => crate::output::write_text("-", &report_lines)?,
-    }
+    let report_target = match &args.report {
+        Some(path) => crate::commands::target(path),
+        None => cad::atomic::Target::Stdout,
+    };
+    outputs.add_text(report_target, report_lines);
+    outputs.commit().map_err(|e| Error::from_write(&e))?;
     if args.report.is_some() {
         say(
             args.quiet,
