@@ -439,7 +439,7 @@ impl MethodEntry {
                     return Err(Error::UnknownName {
                         origin: format!("preset `{}`", info.name),
                         what: format!("a parameter of `{}`", self.info.name),
-                        name: name.clone(),
+                        name: schema::clip(name, 80),
                         known: self.known_names(),
                     });
                 }
@@ -544,7 +544,7 @@ impl MethodEntry {
                     return Err(Error::UnknownName {
                         origin: value.origin.clone(),
                         what: format!("a parameter of `{}`", self.info.name),
-                        name: name.clone(),
+                        name: schema::clip(name, 80),
                         known: self.known_names(),
                     })
                 }

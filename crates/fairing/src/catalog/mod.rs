@@ -252,7 +252,7 @@ impl Catalog {
             .ok_or_else(|| Error::UnknownName {
                 origin: origin.to_owned(),
                 what: "a registered criterion".into(),
-                name: name.to_owned(),
+                name: schema::clip(name, 80),
                 known: self
                     .criteria
                     .iter()
@@ -270,7 +270,7 @@ impl Catalog {
             .ok_or_else(|| Error::UnknownName {
                 origin: origin.to_owned(),
                 what: "a registered indicator".into(),
-                name: name.to_owned(),
+                name: schema::clip(name, 80),
                 known: self
                     .indicators
                     .iter()

@@ -809,6 +809,14 @@ fn values_outside_the_declared_range_are_refused_with_the_range() {
         .settings(&sets(&[("range", &format!("x{long}"))]))
         .unwrap_err();
     assert!(e.to_string().len() < 400, "{} characters", e.to_string().len());
+    let e = catalog
+        .method(MethodKind::Curve, "batten")
+        .unwrap()
+        .settings(&sets(&[(&long, "1")]))
+        .unwrap_err();
+    assert!(e.to_string().len() < 600, "{} characters", e.to_string().len());
+    let e = catalog.method(MethodKind::Curve, &long).unwrap_err();
+    assert!(e.to_string().len() < 600, "{} characters", e.to_string().len());
 }
 
 /// Every declared range agrees with the settings' own checks: for every built-in method
