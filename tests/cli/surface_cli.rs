@@ -339,7 +339,11 @@ fn a_run_whose_every_step_was_refused_says_so() {
         "--report",
         report.to_str().unwrap(),
     ]);
-    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    assert!(
+        result.status.success(),
+        "{}",
+        String::from_utf8_lossy(&result.stderr)
+    );
     let report: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
     assert!(report["refused_steps"].as_u64().unwrap() > 0, "{report}");
     assert_eq!(report["moved"].as_array().map(Vec::len), Some(0));
