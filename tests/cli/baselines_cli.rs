@@ -318,7 +318,26 @@ fn options_a_method_cannot_use_exit_2() {
         ("nurbs-weights", vec!["--clamp-ends", "g2"], "--clamp-ends"),
         // Parameters of the arbitrary-curve pipeline are checked on function input too.
         ("two-phase", vec!["--set", "segment-passes=abc"], "segment-passes"),
-        ("two-phase", vec!["--set", "turning-limit=-5"], "degrees"),
+        (
+            "two-phase",
+            vec!["--set", "turning-limit=-5"],
+            "turning-limit = -5 is out of range: a number in (0, 180]",
+        ),
+        (
+            "two-phase",
+            vec!["--set", "max-passes=0"],
+            "`two-phase`: max-passes = 0 is out of range: an integer ≥ 1",
+        ),
+        (
+            "two-phase",
+            vec!["--set", "max-passes=2.5"],
+            "max-passes = 2.5: expected an integer ≥ 1",
+        ),
+        (
+            "zhang-cheng",
+            vec![],
+            "--method: `zhang-cheng` is a surface method and the input is a curve",
+        ),
     ] {
         let (out, _, _) = fair(&input, method, &args, "refused");
         assert_eq!(out.status.code(), Some(2), "{method} {args:?}");

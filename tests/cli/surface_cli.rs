@@ -315,3 +315,38 @@ fn the_smoothing_baseline_matches_a_displacement_and_is_listed() {
         assert!(text.contains(word), "`fair methods` lacks {word}");
     }
 }
+
+/// A surface run whose every step the rules refused (the Utah teapot's control net under
+/// zhang-cheng: each step would raise the largest z_ij) reports `termination: refused` and
+/// the rule, not `strategy-done` with no refusal.
+#[test]
+fn a_run_whose_every_step_was_refused_says_so() {
+    let scratch = out_dir("refused");
+    let dir = scratch.path();
+    let input = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/data/surface_utah_teapot/teapot_body_control_net.csv"
+    );
+    let (out, report) = (dir.join("out.csv"), dir.join("report.json"));
+    let result = fair(&[
+        "surface",
+        input,
+        "--method",
+        "zhang-cheng",
+        "-q",
+        "-o",
+        out.to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+    ]);
+    assert!(
+        result.status.success(),
+        "{}",
+        String::from_utf8_lossy(&result.stderr)
+    );
+    let report: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert!(report["refused_steps"].as_u64().unwrap() > 0, "{report}");
+    assert_eq!(report["moved"].as_array().map(Vec::len), Some(0));
+    assert_eq!(report["termination"], "refused");
+    assert_eq!(report["refusal"], "max-z");
+}

@@ -201,6 +201,10 @@ impl Error {
             },
             F::Cancelled | F::Optim(optim::Error::Cancelled(_)) => Error::Cancelled,
             F::UnknownMethod { name, kind, known } => Error::UnknownMethod { name, kind, known },
+            F::WrongKind { .. } => Error::Argument {
+                option: "--method",
+                message: error.to_string(),
+            },
             F::UnknownName {
                 origin,
                 what,
@@ -213,6 +217,16 @@ impl Error {
             F::Parameter { origin, message } | F::Config { origin, message } => {
                 Error::Parameter { origin, message }
             }
+            F::OutOfRange {
+                origin,
+                method,
+                setting,
+                value,
+                allowed,
+            } => Error::Parameter {
+                origin,
+                message: format!("`{method}`: {setting} = {value} is out of range: {allowed}"),
+            },
             F::Refused {
                 what: Refusal::Dimension | Refusal::Closed,
                 ..

@@ -103,6 +103,19 @@ pub enum Error {
         /// The known names, comma-separated.
         known: String,
     },
+    /// A method the catalogue has for the other kind of input: a surface method asked to
+    /// fair a curve, or a curve method a surface.
+    #[error("`{name}` is a {fairs} method and the input is a {kind} (the {kind} methods: {known})")]
+    WrongKind {
+        /// The name given.
+        name: String,
+        /// The input's kind: `curve` or `surface`.
+        kind: &'static str,
+        /// What the method fairs: `surface` or `curve`.
+        fairs: &'static str,
+        /// The methods of the input's kind, comma-separated.
+        known: String,
+    },
     /// A name (a parameter of a method, a criterion, an indicator) the catalogue does not know.
     #[error("{origin}: `{name}` is not {what} (known: {known})")]
     UnknownName {
@@ -123,6 +136,21 @@ pub enum Error {
         origin: String,
         /// What is wrong.
         message: String,
+    },
+    /// A parameter's value outside the range its settings declare (the schema's `minimum`,
+    /// `maximum` and exclusive bounds), with where it was given.
+    #[error("{origin}: `{method}`: {setting} = {value} is out of range: {allowed}")]
+    OutOfRange {
+        /// `--set`, `config.toml:3`, ...
+        origin: String,
+        /// The method whose parameter it is.
+        method: String,
+        /// The parameter's name (kebab-case).
+        setting: String,
+        /// The value as given (at most a few dozen characters of it).
+        value: String,
+        /// The range in words: `an integer ≥ 1`, `a number in (0, 1]`.
+        allowed: String,
     },
     /// A config file (TOML or JSON) that is malformed, with the file and line.
     #[error("{origin}: {message}")]

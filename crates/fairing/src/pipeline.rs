@@ -17,7 +17,8 @@ use crate::{Constraints, Error, FairingState, FairingStrategy, Observer, Result,
 /// Why a stage (and, for the last stage, the run) stopped. Not an error.
 ///
 /// Serialised (and named by [`name`](Self::name)) in kebab-case, the one spelling every
-/// report uses: `max-iterations`, `converged`, `strategy-done`, `indicator-satisfied`.
+/// report uses: `max-iterations`, `converged`, `strategy-done`, `indicator-satisfied`,
+/// `refused`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum TerminationReason {
@@ -29,6 +30,9 @@ pub enum TerminationReason {
     StrategyDone,
     /// The user's predicate (e.g. "no inflection left") holds; later stages are skipped.
     IndicatorSatisfied,
+    /// The strategy's own rules refused every step it tried (a surface fairing whose every
+    /// step would have raised its energy or its largest z_ij): nothing it proposed was kept.
+    Refused,
 }
 
 impl TerminationReason {
@@ -39,6 +43,7 @@ impl TerminationReason {
             TerminationReason::Converged => "converged",
             TerminationReason::StrategyDone => "strategy-done",
             TerminationReason::IndicatorSatisfied => "indicator-satisfied",
+            TerminationReason::Refused => "refused",
         }
     }
 }

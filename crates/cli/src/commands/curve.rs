@@ -197,6 +197,8 @@ pub(crate) fn warn_largest_move(source: &str, report: &Report, quiet: bool) {
     if quiet || largest["exceeds"].as_bool() != Some(true) {
         return;
     }
+    // From 0, as `--fixed`, `--points` and the report count: a user who pastes the number
+    // into `--fixed` pins the point that moved.
     let index = largest["index"].as_u64().unwrap_or(0);
     let from = match largest["bound_from"].as_str() {
         Some("tolerance") => "the --tolerance given",
@@ -206,7 +208,7 @@ pub(crate) fn warn_largest_move(source: &str, report: &Report, quiet: bool) {
         "{}: warning: {source}: {} moved point {} by {:.6e}, farther than {:.6e} ({from})",
         crate::program_name(),
         report.method,
-        index + 1,
+        index,
         largest["distance"].as_f64().unwrap_or(f64::NAN),
         largest["bound"].as_f64().unwrap_or(f64::NAN),
     );

@@ -344,6 +344,114 @@ fn runs(points: &[[f64; 2]], frame: &Frame) -> Vec<Vec<(f64, f64)>> {
     runs
 }
 
+/// Above this many points per pixel of a panel's width, a series is thinned ([`thin`]).
+const THIN_PER_PIXEL: f64 = 4.0;
+
+/// The side, in pixels, of the boxes within which [`thin`] keeps only the extremes.
+const THIN_BOX: f64 = 2.0;
+
+/// The indices of `run` (pixel positions, in order) that draw it as the whole does, when it
+/// has more than [`THIN_PER_PIXEL`] points per pixel of `width`: min/max decimation per pixel
+/// column, on boxes of [`THIN_BOX`] pixels. Consecutive points within such a box form a group
+/// (so that points which jitter by a pixel, as a noisy curve's comb does, still group), of
+/// which the first, the last, and those of the lowest and highest y and of the least and
+/// greatest x are kept, in their order; so every extreme (and the bounding box) is kept
+/// exactly, and the polyline through the kept points differs from the whole only inside
+/// boxes of two pixels. All indices when the run is short. O(n); at most 6 points are kept
+/// per box the run passes through.
+pub(super) fn thin(run: &[(f64, f64)], width: f64) -> Vec<usize> {
+    if (run.len() as f64) <= THIN_PER_PIXEL * width.max(1.0) {
+        return (0..run.len()).collect();
+    }
+    let mut kept = Vec::new();
+    let mut start = 0;
+    while start < run.len() {
+        let mut end = start + 1;
+        let [mut low, mut high, mut left, mut right] = [start; 4];
+        while end < run.len() {
+            let (x, y) = run[end];
+            // The group's box with this point: less than `THIN_BOX` pixels each way.
+            let wide = run[right].0.max(x) - run[left].0.min(x);
+            let tall = run[high].1.max(y) - run[low].1.min(y);
+            if wide >= THIN_BOX || tall >= THIN_BOX {
+                break;
+            }
+            if y < run[low].1 {
+                low = end;
+            }
+            if y > run[high].1 {
+                high = end;
+            }
+            if x < run[left].0 {
+                left = end;
+            }
+            if x > run[right].0 {
+                right = end;
+            }
+            end += 1;
+        }
+        let mut group = [start, low, high, left, right, end - 1];
+        group.sort_unstable();
+        for k in group {
+            if kept.last() != Some(&k) {
+                kept.push(k);
+            }
+        }
+        start = end;
+    }
+    // Points that jump by more than a box from one to the next (a comb's tips over noisy
+    // curvature) group poorly: past 8 per pixel of width the kept points are grouped by
+    // count instead, the extremes of each chunk kept, so that no series keeps more than
+    // about 12 points per pixel of width whatever its shape.
+    let limit = 8.0 * width.max(1.0);
+    if kept.len() as f64 > limit {
+        let chunk = (kept.len() as f64 / (limit / 4.0)).ceil() as usize;
+        let mut fewer = Vec::new();
+        for group in kept.chunks(chunk.max(1)) {
+            let by = |f: fn(&(f64, f64)) -> f64, less: bool| {
+                group
+                    .iter()
+                    .copied()
+                    .reduce(|a, b| {
+                        let (fa, fb) = (f(&run[a]), f(&run[b]));
+                        if (less && fb < fa) || (!less && fb > fa) {
+                            b
+                        } else {
+                            a
+                        }
+                    })
+                    .unwrap_or(group[0])
+            };
+            let x = |p: &(f64, f64)| p.0;
+            let y = |p: &(f64, f64)| p.1;
+            let mut extremes = [
+                group[0],
+                by(y, true),
+                by(y, false),
+                by(x, true),
+                by(x, false),
+                group[group.len() - 1],
+            ];
+            extremes.sort_unstable();
+            for k in extremes {
+                if fewer.last() != Some(&k) {
+                    fewer.push(k);
+                }
+            }
+        }
+        kept = fewer;
+    }
+    kept
+}
+
+/// `run` thinned for a panel `width` pixels wide ([`thin`]).
+fn thinned(run: Vec<(f64, f64)>, width: f64) -> Vec<(f64, f64)> {
+    if (run.len() as f64) <= THIN_PER_PIXEL * width.max(1.0) {
+        return run;
+    }
+    thin(&run, width).into_iter().map(|k| run[k]).collect()
+}
+
 fn polyline(svg: &mut String, run: &[(f64, f64)], attributes: &str) {
     svg.push_str("<polyline points=\"");
     for (k, (x, y)) in run.iter().enumerate() {
@@ -363,7 +471,7 @@ fn render_line(svg: &mut String, line: &Line, frame: &Frame, color: &str) {
         line.width.max(0.1)
     );
     for run in runs(&line.points, frame) {
-        polyline(svg, &run, &attributes);
+        polyline(svg, &thinned(run, frame.width), &attributes);
     }
 }
 
@@ -374,14 +482,16 @@ fn render_markers(svg: &mut String, markers: &Markers, frame: &Frame, color: &st
         color.to_string()
     };
     let _ = writeln!(svg, r#"<g fill="{fill}" stroke="{color}">"#);
-    for p in &markers.points {
-        if let Some((x, y)) = frame.point(*p) {
-            let _ = writeln!(
-                svg,
-                r#"<circle cx="{x:.2}" cy="{y:.2}" r="{:.2}"/>"#,
-                markers.radius.max(0.5)
-            );
-        }
+    // In pixels, thinned as a line through them would be: past a few markers per pixel
+    // column they draw a solid band between the column's lowest and highest, which the kept
+    // ones and the curve through them still show.
+    let placed: Vec<(f64, f64)> = markers.points.iter().filter_map(|p| frame.point(*p)).collect();
+    for (x, y) in thinned(placed, frame.width) {
+        let _ = writeln!(
+            svg,
+            r#"<circle cx="{x:.2}" cy="{y:.2}" r="{:.2}"/>"#,
+            markers.radius.max(0.5)
+        );
     }
     svg.push_str("</g>\n");
 }
@@ -389,6 +499,11 @@ fn render_markers(svg: &mut String, markers: &Markers, frame: &Frame, color: &st
 fn render_bars(svg: &mut String, bars: &Bars, frame: &Frame, color: &str) {
     let half = bars.resolved_width() / 2.0;
     let _ = writeln!(svg, r#"<g fill="{color}" fill-opacity="0.8">"#);
+    if (bars.x.len() as f64) > THIN_PER_PIXEL * frame.width.max(1.0) {
+        render_bar_columns(svg, bars, frame);
+        svg.push_str("</g>\n");
+        return;
+    }
     for (x, h) in bars.x.iter().zip(&bars.heights) {
         if let (Some((x0, y0)), Some((x1, y1))) = (frame.point([x - half, 0.0]), frame.point([x + half, *h]))
         {
@@ -405,13 +520,49 @@ fn render_bars(svg: &mut String, bars: &Bars, frame: &Frame, color: &str) {
     svg.push_str("</g>\n");
 }
 
+/// Bars too many for their pixels, one pixel column each: the highest and the lowest bar
+/// whose x falls in the column, drawn a pixel wide (what the overlapping bars would have
+/// covered). O(n + width).
+fn render_bar_columns(svg: &mut String, bars: &Bars, frame: &Frame) {
+    let mut columns: std::collections::BTreeMap<i64, (f64, f64)> = std::collections::BTreeMap::new();
+    for (x, h) in bars.x.iter().zip(&bars.heights) {
+        if let Some((px, _)) = frame.point([*x, *h]) {
+            let entry = columns.entry(px.floor() as i64).or_insert((0.0, 0.0));
+            *entry = (entry.0.min(*h), entry.1.max(*h));
+        }
+    }
+    for (column, (low, high)) in columns {
+        for h in [low, high] {
+            let (Some((_, y0)), Some((_, y1))) = (frame.point([0.0, 0.0]), frame.point([0.0, h])) else {
+                continue;
+            };
+            if h != 0.0 {
+                let _ = writeln!(
+                    svg,
+                    r#"<rect x="{column}" y="{:.2}" width="1" height="{:.2}"/>"#,
+                    y0.min(y1),
+                    (y1 - y0).abs()
+                );
+            }
+        }
+    }
+}
+
 fn render_comb(svg: &mut String, comb: &Comb, frame: &Frame, color: &str) {
     let tips = comb.tips();
     let mut teeth = String::new();
-    for (p, tip) in comb.base.iter().zip(&tips) {
-        if let (Some((x0, y0)), Some((x1, y1))) = (frame.point(*p), frame.point(*tip)) {
-            let _ = write!(teeth, "M{x0:.2} {y0:.2}L{x1:.2} {y1:.2}");
-        }
+    let placed: Vec<((f64, f64), (f64, f64))> = comb
+        .base
+        .iter()
+        .zip(&tips)
+        .filter_map(|(p, tip)| Some((frame.point(*p)?, frame.point(*tip)?)))
+        .collect();
+    // The teeth whose tips the envelope keeps ([`thin`]): the comb's extremes, a few per
+    // pixel column.
+    let tip_pixels: Vec<(f64, f64)> = placed.iter().map(|(_, tip)| *tip).collect();
+    for k in thin(&tip_pixels, frame.width) {
+        let ((x0, y0), (x1, y1)) = placed[k];
+        let _ = write!(teeth, "M{x0:.2} {y0:.2}L{x1:.2} {y1:.2}");
     }
     if !teeth.is_empty() {
         let _ = writeln!(
@@ -420,7 +571,11 @@ fn render_comb(svg: &mut String, comb: &Comb, frame: &Frame, color: &str) {
         );
     }
     for run in runs(&tips, frame) {
-        polyline(svg, &run, &format!(r#"stroke="{color}" stroke-width="1.2""#));
+        polyline(
+            svg,
+            &thinned(run, frame.width),
+            &format!(r#"stroke="{color}" stroke-width="1.2""#),
+        );
     }
 }
 

@@ -178,3 +178,143 @@ fn write_saves_the_document() {
         .unwrap_err();
     assert_eq!(e.exit_code(), 2);
 }
+
+/// The points of every polyline, in pixels.
+fn polylines(doc: &roxmltree::Document) -> Vec<Vec<(f64, f64)>> {
+    doc.descendants()
+        .filter(|n| n.has_tag_name("polyline"))
+        .map(|n| {
+            n.attribute("points")
+                .unwrap_or_default()
+                .split(' ')
+                .filter_map(|xy| {
+                    let (x, y) = xy.split_once(',')?;
+                    Some((x.parse().ok()?, y.parse().ok()?))
+                })
+                .collect()
+        })
+        .collect()
+}
+
+fn bounding_box(points: &[(f64, f64)]) -> [f64; 4] {
+    points.iter().fold(
+        [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY],
+        |b, &(x, y)| [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)],
+    )
+}
+
+/// A 10^6-point curve with its markers and comb is thinned per pixel column to a plot of a
+/// few hundred kB (the whole would be some 100 MB), and what is kept holds every extreme:
+/// the thinned polyline's bounding box is the whole one's, to the printed 0.01 px.
+#[test]
+fn a_million_point_plot_is_thinned_and_keeps_its_extremes() {
+    let n = 1_000_000;
+    // A noisy sine with one spike, so that the extremes are single points.
+    let curve: Vec<[f64; 2]> = (0..n)
+        .map(|i| {
+            let t = i as f64 / (n - 1) as f64;
+            let noise = ((i * 7919) % 1000) as f64 / 1e5;
+            let spike = if i == 123_457 { 3.0 } else { 0.0 };
+            [t, (20.0 * t).sin() + noise + spike]
+        })
+        .collect();
+    let normals = vec![[0.0, 1.0]; n];
+    // Curvature as noisy as a million noisy points give: the comb's tips jump about.
+    let lengths: Vec<f64> = (0..n)
+        .map(|i| curve[i][1].cos() + ((i * 104_729) % 997) as f64 / 300.0)
+        .collect();
+    let heights: Vec<f64> = curve.iter().map(|p| p[1] - 0.5).collect();
+    let figure = Figure::new()
+        .with_panel(
+            Panel::new("curve")
+                .with(Line::new(curve.clone()))
+                .with(Markers::new(curve.clone()))
+                .with(Comb::new(curve.clone(), normals, lengths)),
+        )
+        .with_panel(Panel::new("z_i").with(Bars::new((0..n).map(|i| i as f64).collect(), heights)));
+    let svg = figure.to_svg();
+    assert!(svg.len() < 8_000_000, "{} bytes", svg.len());
+    let doc = parse(&svg);
+    let lines = polylines(&doc);
+    // The curve's line: at most 4 points per pixel column; the markers at the same places.
+    let line = &lines[0];
+    assert!(line.len() < 6 * 1000, "{} points", line.len());
+    let markers = circle_centres(&doc);
+    assert!(markers.len() < 6 * 1000, "{} markers", markers.len());
+    // The comb's envelope, and the bars: two per pixel column at most.
+    assert!(
+        lines.iter().all(|l| l.len() < 12 * 1000),
+        "{:?}",
+        lines.iter().map(Vec::len).collect::<Vec<_>>()
+    );
+    assert!(
+        count(&doc, "rect") < 2 * 1000 + 20,
+        "{} rects",
+        count(&doc, "rect")
+    );
+    assert_eq!(bounding_box(&markers), bounding_box(line));
+    // The line alone, against a line through only its first, last, lowest and highest
+    // points: the same extent, so the same frame, and the same bounding box in pixels.
+    let alone = |points: Vec<[f64; 2]>| {
+        let svg = Figure::new()
+            .with_panel(Panel::new("curve").with(Line::new(points)))
+            .to_svg();
+        let doc = parse(&svg);
+        bounding_box(&polylines(&doc)[0])
+    };
+    let by_y = |a: &&[f64; 2], b: &&[f64; 2]| a[1].total_cmp(&b[1]);
+    let extremes = vec![
+        curve[0],
+        *curve.iter().min_by(by_y).unwrap(),
+        *curve.iter().max_by(by_y).unwrap(),
+        curve[n - 1],
+    ];
+    assert_eq!(alone(curve), alone(extremes));
+}
+
+/// Thinning keeps, in order, the first, last and extreme points of each run of points within
+/// a two-pixel box, and leaves a short series whole.
+#[test]
+fn thinning_keeps_each_boxes_extremes_in_order() {
+    use super::figure::thin;
+    let run = [
+        (0.2, 5.0),
+        (0.5, 9.0),
+        (0.7, 1.0),
+        (0.9, 4.0),
+        (1.1, 3.0),
+        (1.5, 3.5),
+    ];
+    assert_eq!(thin(&run, 100.0), (0..run.len()).collect::<Vec<_>>());
+    // Width 1: more than 4 points per pixel, so thinned; but each point is more than two
+    // pixels above or below the one before, so each is a group of its own.
+    assert_eq!(thin(&run, 1.0), (0..run.len()).collect::<Vec<_>>());
+    // Jitter across a column's edge stays one group: first, greatest x, last (= highest).
+    let jitter: Vec<(f64, f64)> = (0..40)
+        .map(|k| (10.0 + 0.3 * (k % 2) as f64 - 0.1, 10.0 + 0.01 * k as f64))
+        .collect();
+    assert_eq!(thin(&jitter, 1.0), vec![0, 1, 39]);
+    // Two boxes ([0, 2) and [2, 4) in x): each keeps its extremes, in order.
+    let long: Vec<(f64, f64)> = (0..200)
+        .map(|k| (k as f64 / 50.0, ((k * 37) % 11) as f64 / 10.0))
+        .collect();
+    let kept = thin(&long, 1.0);
+    assert!(kept.windows(2).all(|w| w[0] < w[1]), "{kept:?}");
+    assert_eq!((kept[0], *kept.last().unwrap()), (0, 199));
+    assert!(kept.len() <= 12, "{kept:?}");
+    for half in [0.0, 1.0] {
+        let inside = |p: &&(f64, f64)| (p.0 / 2.0).floor() == half;
+        let ys: Vec<f64> = long.iter().filter(inside).map(|p| p.1).collect();
+        let kept_ys: Vec<f64> = kept
+            .iter()
+            .map(|&k| long[k])
+            .collect::<Vec<_>>()
+            .iter()
+            .filter(inside)
+            .map(|p| p.1)
+            .collect();
+        let max = |v: &[f64]| v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let min = |v: &[f64]| v.iter().copied().fold(f64::INFINITY, f64::min);
+        assert_eq!((min(&kept_ys), max(&kept_ys)), (min(&ys), max(&ys)));
+    }
+}

@@ -209,6 +209,43 @@ impl ConfigFile {
         Ok(out)
     }
 
+    /// Refuses a table that is neither `[constraints]`, a `[[stage]]` nor named after a
+    /// method (`is_method`), at its line, with the known names (`known`): its values would
+    /// otherwise be ignored without a word. O(size of the file).
+    pub fn check_tables(&self, is_method: impl Fn(&str) -> bool, known: impl Fn() -> String) -> Result<()> {
+        for (key, value) in &self.table {
+            if key == STAGE_KEY || key == CONSTRAINTS_KEY || !value.is_table() || is_method(key) {
+                continue;
+            }
+            return Err(Error::Config {
+                origin: self.locate_table(key),
+                message: format!(
+                    "`[{}]` names no method (a table is `[constraints]`, `[[stage]]` or a method's name: {})",
+                    super::schema::clip(key, 80),
+                    known()
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// `file:LINE` of the table header `[key]` (TOML) or `"key":` (JSON), or the file name.
+    fn locate_table(&self, key: &str) -> String {
+        let header = format!("[{key}]");
+        let quoted = format!("\"{key}\"");
+        let line = self.text.lines().position(|l| {
+            let l = l.trim();
+            l.starts_with(&header)
+                || l.trim_start_matches(['{', ',', ' '])
+                    .strip_prefix(&quoted)
+                    .is_some_and(|rest| rest.trim_start().starts_with(':'))
+        });
+        match line {
+            Some(i) => format!("{}:{}", self.name, i + 1),
+            None => self.name.clone(),
+        }
+    }
+
     /// Whether the file is a pipeline (has `[[stage]]`s).
     pub fn has_stages(&self) -> bool {
         self.table.contains_key(STAGE_KEY)

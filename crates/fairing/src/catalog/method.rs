@@ -18,6 +18,10 @@ use super::parameters::{GivenValue, ParameterMap};
 use super::schema::{self, ParameterInfo};
 use crate::{Error, FairingStrategy, Pipeline, Refusal, Result};
 
+/// The most characters of a given value (or of a deserialiser's message quoting it) that a
+/// one-line message echoes.
+const ECHO: usize = 120;
+
 /// A method's settings: the one source of its parameters (GUIDE.md's conventions: serde with
 /// `default, deny_unknown_fields, rename_all = "kebab-case"`, a doc comment per field whose
 /// first line is its meaning, `Default` = the chosen defaults).
@@ -548,7 +552,7 @@ impl MethodEntry {
                     return Err(Error::UnknownName {
                         origin: format!("preset `{}`", info.name),
                         what: format!("a parameter of `{}`", self.info.name),
-                        name: name.clone(),
+                        name: schema::clip(name, 80),
                         known: self.known_names(),
                     });
                 }
@@ -675,7 +679,7 @@ impl MethodEntry {
                     return Err(Error::UnknownName {
                         origin: value.origin.clone(),
                         what: format!("a parameter of `{}`", self.info.name),
-                        name: name.clone(),
+                        name: schema::clip(name, 80),
                         known: self.known_names(),
                     })
                 }
@@ -685,6 +689,9 @@ impl MethodEntry {
                 GivenValue::Json(Value::String(text)) => schema::text_to_value(text, property, &self.schema),
                 GivenValue::Json(v) => v.clone(),
             };
+            if let Some(range) = schema::NumberRange::of(property, &self.schema) {
+                self.check_range(name, value, &json, &range)?;
+            }
             if let Value::Object(map) = &mut settings {
                 map.insert(name.clone(), json);
             }
@@ -697,7 +704,11 @@ impl MethodEntry {
                 };
                 return Err(Error::Parameter {
                     origin: value.origin.clone(),
-                    message: format!("`{name}` = `{}`: {message}", value.value.text()),
+                    message: format!(
+                        "`{name}` = `{}`: {}",
+                        schema::clip(&value.value.text(), ECHO),
+                        schema::clip(&message, ECHO)
+                    ),
                 });
             }
         }
@@ -705,6 +716,48 @@ impl MethodEntry {
             .accept(&settings, true)
             .map_err(|e| parameter_error(e, given))?;
         Ok(settings)
+    }
+
+    /// Refuses a number outside the range the parameter's schema declares
+    /// ([`Error::OutOfRange`]), or a fraction where it takes integers, naming the method, the
+    /// parameter, the value and the range, at the value's origin. `json` is the value as the
+    /// schema read it (a text an integer parameter cannot take stays a string). O(1).
+    fn check_range(
+        &self,
+        name: &str,
+        value: &super::parameters::Given,
+        json: &Value,
+        range: &schema::NumberRange,
+    ) -> Result<()> {
+        let number = match json {
+            Value::Number(n) => n.as_f64(),
+            Value::String(s) if range.integer => s.trim().parse::<f64>().ok().filter(|x| x.is_finite()),
+            _ => None,
+        };
+        let Some(x) = number else {
+            return Ok(());
+        };
+        let text = schema::clip(&value.value.text(), ECHO);
+        if range.integer && x.fract() != 0.0 {
+            return Err(Error::Parameter {
+                origin: value.origin.clone(),
+                message: format!(
+                    "`{}`: {name} = {text}: expected {}",
+                    self.info.name,
+                    range.describe()
+                ),
+            });
+        }
+        if !range.contains(x) {
+            return Err(Error::OutOfRange {
+                origin: value.origin.clone(),
+                method: self.info.name.clone(),
+                setting: name.to_owned(),
+                value: text,
+                allowed: range.describe(),
+            });
+        }
+        Ok(())
     }
 
     /// The settings' value of the parameter `name` (pinned or not).

@@ -63,7 +63,7 @@ pub use method::{
 pub use page::GENERATED_MARKER;
 pub use parameters::{Given, GivenValue, ParameterMap};
 pub use plan::{Plan, PlanConstraints, Stage};
-pub use schema::ParameterInfo;
+pub use schema::{check_declared_ranges, NumberRange, ParameterInfo};
 
 use crate::{Error, Result};
 
@@ -207,20 +207,52 @@ impl Catalog {
         self
     }
 
-    /// The `kind` method called `name`, or [`Error::UnknownMethod`] listing the known ones.
+    /// The `kind` method called `name`; [`Error::WrongKind`] when only a method of the other
+    /// kind has the name (`zhang-cheng` for a curve), else [`Error::UnknownMethod`]; both list
+    /// the known ones.
     pub fn method(&self, kind: MethodKind, name: &str) -> Result<&MethodEntry> {
-        self.methods
+        if let Some(entry) = self
+            .methods
             .iter()
             .find(|m| m.info.kind == kind && m.info.name == name)
-            .ok_or_else(|| Error::UnknownMethod {
+        {
+            return Ok(entry);
+        }
+        let known = self
+            .methods(kind)
+            .map(MethodEntry::name)
+            .collect::<Vec<_>>()
+            .join(", ");
+        match self.methods.iter().find(|m| m.info.name == name) {
+            Some(other) => Err(Error::WrongKind {
                 name: name.to_owned(),
                 kind: kind.name(),
-                known: self
-                    .methods(kind)
-                    .map(MethodEntry::name)
-                    .collect::<Vec<_>>()
-                    .join(", "),
-            })
+                fairs: other.info.kind.name(),
+                known,
+            }),
+            None => Err(Error::UnknownMethod {
+                name: schema::clip(name, 80),
+                kind: kind.name(),
+                known,
+            }),
+        }
+    }
+
+    /// The names of every method, curve and surface, comma-separated (a name both kinds have
+    /// once).
+    pub fn method_names(&self) -> String {
+        let mut names: Vec<&str> = Vec::new();
+        for m in &self.methods {
+            if !names.contains(&m.name()) {
+                names.push(m.name());
+            }
+        }
+        names.join(", ")
+    }
+
+    /// Whether a method of either kind is called `name`.
+    pub fn has_method(&self, name: &str) -> bool {
+        self.methods.iter().any(|m| m.info.name == name)
     }
 
     /// The methods of `kind`, in registration order.
@@ -247,7 +279,7 @@ impl Catalog {
             .ok_or_else(|| Error::UnknownName {
                 origin: origin.to_owned(),
                 what: "a registered criterion".into(),
-                name: name.to_owned(),
+                name: schema::clip(name, 80),
                 known: self
                     .criteria
                     .iter()
@@ -265,7 +297,7 @@ impl Catalog {
             .ok_or_else(|| Error::UnknownName {
                 origin: origin.to_owned(),
                 what: "a registered indicator".into(),
-                name: name.to_owned(),
+                name: schema::clip(name, 80),
                 known: self
                     .indicators
                     .iter()

@@ -195,10 +195,9 @@ fn type_and_range(schema: &Value, root: &Value) -> (String, String) {
     } else {
         base.to_owned()
     };
-    let mut bounds = Vec::new();
-    collect_bounds(schema, root, &mut bounds, 0);
-    let range = if !bounds.is_empty() {
-        bounds.join(", ")
+    let bounds = schema::NumberRange::of(schema, root).and_then(|r| r.bounds());
+    let range = if let Some(bounds) = bounds {
+        bounds
     } else if base == "choice" {
         words
             .iter()
@@ -209,35 +208,6 @@ fn type_and_range(schema: &Value, root: &Value) -> (String, String) {
         "—".to_owned()
     };
     (kind, range)
-}
-
-fn collect_bounds(schema: &Value, root: &Value, out: &mut Vec<String>, depth: usize) {
-    if depth > 4 {
-        return;
-    }
-    let schema = resolved(schema, root);
-    let number = |key: &str| schema.get(key).and_then(Value::as_f64);
-    let text = |x: f64| schema::value_to_text(&Value::from(x));
-    for (key, sign) in [
-        ("minimum", "≥"),
-        ("exclusiveMinimum", ">"),
-        ("maximum", "≤"),
-        ("exclusiveMaximum", "<"),
-    ] {
-        if let Some(x) = number(key) {
-            let bound = format!("{sign} {}", text(x));
-            if !out.contains(&bound) {
-                out.push(bound);
-            }
-        }
-    }
-    for key in ["anyOf", "oneOf", "allOf"] {
-        if let Some(Value::Array(branches)) = schema.get(key) {
-            for branch in branches {
-                collect_bounds(branch, root, out, depth + 1);
-            }
-        }
-    }
 }
 
 /// A schema's own doc: its title and description, as one paragraph.

@@ -186,6 +186,9 @@ impl Catalog {
             .map(ConfigFile::constraints)
             .transpose()?
             .unwrap_or_default();
+        if let Some(file) = config {
+            file.check_tables(|name| self.has_method(name), || self.method_names())?;
+        }
         if let Some(stages) = config.map(ConfigFile::stages).transpose()?.flatten() {
             if kind == MethodKind::Surface {
                 return Err(Error::Config {
@@ -211,7 +214,11 @@ impl Catalog {
             let stages = stages
                 .into_iter()
                 .map(|stage| {
-                    let entry = self.method(kind, &stage.method)?;
+                    // At the stage's `method =` line, as everything else the file gives.
+                    let entry = self.method(kind, &stage.method).map_err(|e| Error::Config {
+                        origin: stage.origin.clone(),
+                        message: e.to_string(),
+                    })?;
                     Ok(Stage {
                         settings: entry.settings(&stage.parameters)?,
                         method: stage.method,

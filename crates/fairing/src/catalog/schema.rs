@@ -212,3 +212,201 @@ pub(super) fn meaning(schema: &Value, root: &Value) -> String {
         .or_else(|| direct(resolve(schema, root)))
         .unwrap_or_default()
 }
+
+/// The numbers a property takes, as its schema declares them: integers only or any number,
+/// and the bounds (`minimum`, `maximum`, `exclusiveMinimum`, `exclusiveMaximum`, on the
+/// property or on its number branch, `$ref`s followed). Declared once on the settings' fields
+/// (`#[schemars(range(min = 1))]`, or `#[schemars(extend("exclusiveMinimum" = 0))]`), read
+/// here to check every value given and to print the range.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct NumberRange {
+    /// Integers only (the schema takes `integer` and not `number`).
+    pub integer: bool,
+    /// The lower bound and whether it is excluded.
+    pub min: Option<(f64, bool)>,
+    /// The upper bound and whether it is excluded.
+    pub max: Option<(f64, bool)>,
+}
+
+impl NumberRange {
+    /// The range of a property, `None` when it takes no numbers.
+    pub fn of(schema: &Value, root: &Value) -> Option<NumberRange> {
+        let types = accepted_types(schema, root);
+        if !types.contains("integer") && !types.contains("number") {
+            return None;
+        }
+        let mut range = NumberRange {
+            integer: !types.contains("number"),
+            ..NumberRange::default()
+        };
+        collect_bounds(schema, root, &mut range, 0);
+        Some(range)
+    }
+
+    /// Whether `x` lies in the range (and is an integer where one is asked).
+    pub fn contains(&self, x: f64) -> bool {
+        let above = match self.min {
+            Some((m, true)) => x > m,
+            Some((m, false)) => x >= m,
+            None => true,
+        };
+        let below = match self.max {
+            Some((m, true)) => x < m,
+            Some((m, false)) => x <= m,
+            None => true,
+        };
+        x.is_finite() && above && below && (!self.integer || x.fract() == 0.0)
+    }
+
+    /// Whether a bound is declared.
+    pub fn is_bounded(&self) -> bool {
+        self.min.is_some() || self.max.is_some()
+    }
+
+    /// The range in words: `an integer ≥ 1`, `a number in (0, 1]`, `a number > 0`.
+    pub fn describe(&self) -> String {
+        let what = if self.integer { "an integer" } else { "a number" };
+        match self.bounds() {
+            Some(bounds) => format!("{what} {bounds}"),
+            None => what.to_owned(),
+        }
+    }
+
+    /// The bounds alone: `≥ 1`, `in (0, 1]`, `< 1`; `None` when unbounded.
+    pub fn bounds(&self) -> Option<String> {
+        let number = |x: f64| shortest(x);
+        match (self.min, self.max) {
+            (None, None) => None,
+            (Some((lo, lo_open)), None) => {
+                Some(format!("{} {}", if lo_open { ">" } else { "≥" }, number(lo)))
+            }
+            (None, Some((hi, hi_open))) => {
+                Some(format!("{} {}", if hi_open { "<" } else { "≤" }, number(hi)))
+            }
+            (Some((lo, lo_open)), Some((hi, hi_open))) => Some(format!(
+                "in {}{}, {}{}",
+                if lo_open { "(" } else { "[" },
+                number(lo),
+                number(hi),
+                if hi_open { ")" } else { "]" }
+            )),
+        }
+    }
+}
+
+fn collect_bounds(schema: &Value, root: &Value, range: &mut NumberRange, depth: usize) {
+    if depth > 8 {
+        return;
+    }
+    let schema = resolve(schema, root);
+    let bound = |key: &str| schema.get(key).and_then(Value::as_f64);
+    if let Some(m) = bound("minimum") {
+        range.min = Some((m, false));
+    }
+    if let Some(m) = bound("exclusiveMinimum") {
+        range.min = Some((m, true));
+    }
+    if let Some(m) = bound("maximum") {
+        range.max = Some((m, false));
+    }
+    if let Some(m) = bound("exclusiveMaximum") {
+        range.max = Some((m, true));
+    }
+    for key in ["anyOf", "oneOf", "allOf"] {
+        if let Some(Value::Array(branches)) = schema.get(key) {
+            for branch in branches {
+                collect_bounds(branch, root, range, depth + 1);
+            }
+        }
+    }
+}
+
+/// A number as the shortest text that reads back to it (`120`, `0.5`, `1e-12`).
+pub(super) fn shortest(x: f64) -> String {
+    if x.fract() == 0.0 && x.abs() < 1e15 {
+        format!("{}", x as i64)
+    } else {
+        // Rust's `Display` for f64 is the shortest round-trip form; `{:e}` is too, and
+        // shorter for very small or large numbers.
+        let plain = format!("{x}");
+        let exp = format!("{x:e}");
+        if exp.len() < plain.len() {
+            exp
+        } else {
+            plain
+        }
+    }
+}
+
+/// At most `limit` characters of `text` (an echoed value in a one-line message), with `…`
+/// where it was cut.
+pub(super) fn clip(text: &str, limit: usize) -> String {
+    let one_line: String = text
+        .chars()
+        .map(|c| if c.is_control() { ' ' } else { c })
+        .collect();
+    match one_line.char_indices().nth(limit) {
+        Some((at, _)) => format!("{}…", &one_line[..at]),
+        None => one_line,
+    }
+}
+
+/// Refuses a field of `settings` outside the range its schema declares, or NaN where a
+/// number is asked ([`Error::BadValue`](crate::Error::BadValue) naming the field): the
+/// settings' own `validate` calls it, so that a range is written once, on the field, and
+/// holds for a program that builds the settings directly as for `--set`. The schema is
+/// derived once per type. O(fields).
+pub fn check_declared_ranges<S: Serialize + schemars::JsonSchema + 'static>(
+    settings: &S,
+) -> crate::Result<()> {
+    let root = schema_of_type::<S>();
+    let value = serde_json::to_value(settings).unwrap_or_default();
+    for (name, property) in properties(&root) {
+        let Some(range) = NumberRange::of(&property, &root) else {
+            continue;
+        };
+        let bad = |message: String| crate::Error::BadValue {
+            name: name.clone(),
+            message,
+        };
+        match value.get(&name) {
+            // serde_json writes NaN as null.
+            Some(Value::Null) if !accepted_types(&property, &root).contains("null") => {
+                return Err(bad(format!("NaN is out of range: {}", range.describe())))
+            }
+            Some(Value::Number(n)) => {
+                let x = n.as_f64().unwrap_or(f64::NAN);
+                if !range.contains(x) {
+                    return Err(bad(format!(
+                        "{} is out of range: {}",
+                        shortest(x),
+                        range.describe()
+                    )));
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// The JSON Schema of `S`, derived once per type and kept.
+fn schema_of_type<S: schemars::JsonSchema + 'static>() -> std::sync::Arc<Value> {
+    use std::any::TypeId;
+    use std::collections::HashMap;
+    use std::sync::{Arc, Mutex, OnceLock};
+    static SCHEMAS: OnceLock<Mutex<HashMap<TypeId, Arc<Value>>>> = OnceLock::new();
+    let schemas = SCHEMAS.get_or_init(Default::default);
+    if let Some(found) = schemas
+        .lock()
+        .ok()
+        .and_then(|m| m.get(&TypeId::of::<S>()).cloned())
+    {
+        return found;
+    }
+    let schema = Arc::new(serde_json::to_value(schemars::schema_for!(S)).unwrap_or_default());
+    if let Ok(mut map) = schemas.lock() {
+        map.insert(TypeId::of::<S>(), schema.clone());
+    }
+    schema
+}

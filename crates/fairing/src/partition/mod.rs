@@ -59,13 +59,18 @@ pub struct PartitionSettings {
 impl Default for PartitionSettings {
     fn default() -> Self {
         Self {
-            limit: 2.0 * PI / 3.0,
+            limit: Self::DEFAULT_LIMIT_DEGREES * PI / 180.0,
             overlap: 5,
         }
     }
 }
 
 impl PartitionSettings {
+    /// The default turning-angle limit in degrees, 120 (2π/3 radians, the same bits): kept
+    /// in degrees so that the catalogue's `turning-limit` default is 120 exactly, not the
+    /// 119.99999999999999 that converting 2π/3 back gives.
+    pub const DEFAULT_LIMIT_DEGREES: f64 = 120.0;
+
     /// The paper's partition (Han §4.2.1–4.2.2): turning limit π, overlap 5.
     pub fn paper() -> Self {
         Self {

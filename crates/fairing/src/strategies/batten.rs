@@ -73,6 +73,7 @@ pub struct BattenSettings {
     /// (and within the constraints' band and radii, whichever is smaller).
     #[serde(with = "crate::catalog::value::unbounded")]
     #[schemars(with = "crate::catalog::value::BoundNumber")]
+    #[schemars(extend("minimum" = 0))]
     pub range: f64,
     /// Prescribed tangent directions, `INDEX:DX,DY[,DZ]` separated by ';'.
     ///

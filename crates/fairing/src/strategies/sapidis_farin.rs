@@ -128,6 +128,7 @@ pub struct SapidisFarinSettings {
     ///
     /// A relative stop (the jump's unit is 1/length²), not a distance: the command's
     /// `--tolerance` bounds how far points move. Called `tolerance` before.
+    #[schemars(range(min = 0))]
     pub jump_reduction: f64,
     /// Knots faired (removed and reinserted) at most.
     ///

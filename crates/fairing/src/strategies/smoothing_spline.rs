@@ -91,6 +91,7 @@ pub struct SmoothingSettings {
     /// `None` (written `auto`) lets `rule` choose it.
     #[serde(with = "crate::catalog::value::auto")]
     #[schemars(with = "crate::catalog::value::AutoNumber")]
+    #[schemars(extend("minimum" = 0, "maximum" = 1))]
     pub p: Option<f64>,
     /// How auto chooses p: gcv (generalised cross-validation) or trace (csaps's rule).
     ///

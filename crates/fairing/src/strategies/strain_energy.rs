@@ -82,6 +82,7 @@ pub struct StrainEnergySettings {
     ///
     /// |ΔE| ≤ tolerance · E, Zhang–Cheng step 2.5. Default 1e-6.
     #[serde(rename = "energy-tolerance")]
+    #[schemars(range(min = 0))]
     pub tolerance: f64,
     /// Explicit knots (one per point), overriding `parametrization`: lets several stages
     /// keep the same knots. Default none.
@@ -95,6 +96,7 @@ pub struct StrainEnergySettings {
     /// Default 1.
     #[serde(with = "crate::catalog::value::unbounded")]
     #[schemars(with = "crate::catalog::value::BoundNumber")]
+    #[schemars(extend("minimum" = 0))]
     pub radius_scale: f64,
     /// Replacement steps at most.
     ///

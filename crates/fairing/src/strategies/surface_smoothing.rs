@@ -59,6 +59,7 @@ pub struct SurfaceSmoothingSettings {
     /// `displacement` when that is given.
     #[serde(with = "crate::catalog::value::auto")]
     #[schemars(with = "crate::catalog::value::AutoNumber")]
+    #[schemars(extend("minimum" = 0, "maximum" = 1))]
     pub p: Option<f64>,
     /// Target S_d = Σ|ΔP_ij| to match by choosing the smoothing, or auto (no target).
     ///
@@ -66,6 +67,7 @@ pub struct SurfaceSmoothingSettings {
     /// run's termination says `displacement-unreachable`).
     #[serde(with = "crate::catalog::value::auto")]
     #[schemars(with = "crate::catalog::value::AutoNumber")]
+    #[schemars(extend("minimum" = 0))]
     pub displacement: Option<f64>,
     /// Closed directions: auto (where the last grid line repeats the first), open, u, v, both.
     pub closed: Closure,

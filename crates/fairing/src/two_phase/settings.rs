@@ -26,28 +26,33 @@ pub struct TwoPhaseSettings {
     /// Fraction of each Phase-1 displacement applied, in (0, 1].
     ///
     /// Fraction λ of the computed displacement applied in Phase 1 (Han §4.1 Case 1 Step 2).
+    #[schemars(range(max = 1), extend("exclusiveMinimum" = 0))]
     pub coarse_lambda: f64,
     /// Phase 2 Case 1: the neighbours move by -lambda times the centre's move.
     ///
     /// λ of Phase 2 (Han §4.1 Phase 2 Case 1 Steps 1–2): the neighbours of a small curve
     /// vibration move by γ_{i±1} = −λσ while γ_i = σ (a ratio of the pattern, not a damping:
     /// c̃_i reaches α exactly). 0.75 in the paper.
+    #[schemars(range(max = 1), extend("exclusiveMinimum" = 0))]
     pub fine_lambda: f64,
     /// Alpha rule: alpha = smaller neighbouring c / alpha-divisor.
     ///
     /// The divisor of Han's α rule, α = min(c̃_{i−1}, c̃_{i+1}) / `alpha_divisor` (5 in the
     /// paper; [`phase2`](super::phase2) says how "min" is read).
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub alpha_divisor: f64,
     /// Full passes (coarse then fine) at most, per function segment.
     ///
     /// Most full passes (one coarse and one fine pass each) a [`TwoPhase`](super::TwoPhase)
     /// stage makes.
+    #[schemars(range(min = 1))]
     pub max_passes: usize,
     /// Phase 2 Case 2 solved exactly only if its 2x2 system is this well posed.
     ///
     /// Not in the paper: Phase 2 Case 2's 2 × 2 system is solved exactly only when the sine of
     /// the angle between its rows is at least this; otherwise the well-posed mean-row rule of
     /// [`phase2`](super::phase2) is used (the printed system is singular for uniform spacing).
+    #[schemars(range(min = 0, max = 1))]
     pub pair_min_sine: f64,
     /// Stop after this many passes that reduce no count (0: never).
     ///
@@ -64,6 +69,7 @@ pub struct TwoPhaseSettings {
     /// out on noisy data, and late passes mostly shrink |e| of vibrations they do not remove.
     /// On the noisy sine of `examples/two_phase_runs.rs` 0.005 stops after a third of the
     /// passes, at a few per cent more sign changes than running on.
+    #[schemars(range(min = 0), extend("exclusiveMaximum" = 1))]
     pub min_gain: f64,
     /// Longest wrong-sign run of c fixed; > 2 turns on the long-run option (dense noisy data).
     ///
@@ -124,6 +130,7 @@ pub struct TwoPhaseSettings {
     /// (`docs/experiments/two_phase_judge.md`, section `end-run-max-deviance = 0.5`) erasing a true
     /// inflection does: at 0.5 the same rows beat csaps and more sines keep the clean curve's
     /// inflections and come nearer it.
+    #[schemars(range(min = 0))]
     pub end_run_max_deviance: f64,
     /// The data values y of the current run before the pre-pass (set by the strategy for a
     /// function; empty when unknown). Not a parameter.
@@ -141,6 +148,7 @@ pub struct TwoPhaseSettings {
     /// the smaller spacing h next to a moved point is skipped. The paper assumes "minor
     /// offsets" (§3.3); near-singular 2×2 systems otherwise move points by absurd amounts.
     /// The bound is in x units: for data whose y range dwarfs its x spacing, raise it.
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub max_move_factor: f64,
     /// Guard: a case may move a point this many noise estimates even where the spacing bound is smaller (0: spacing only).
     ///
@@ -155,6 +163,7 @@ pub struct TwoPhaseSettings {
     /// 0.01 on 2·10^4 points of a sine): the end-run case that removes the inflection the
     /// noisy, fixed end point leaves needs moves of about 8e-4 and was refused. 0 is the
     /// earlier rule; [`TwoPhaseSettings::paper`] has 0.
+    #[schemars(range(min = 0))]
     pub noise_moves: f64,
     /// The noise estimate σ̂ of the data of the current run (set by the strategy; not a
     /// parameter).
@@ -176,6 +185,7 @@ pub struct TwoPhaseSettings {
     /// Default 1, chosen over 0 with the judge (`docs/experiments/two_phase_judge.md`): one more row beats
     /// csaps at equal S_d, none is lost, and the leading edge above moves half as far; the
     /// cost is a real hull line whose ripple takes larger moves and keeps more inflections.
+    #[schemars(range(min = 0))]
     pub max_move_bound: f64,
     /// The data bound B of the current run (set by the strategy; not a parameter).
     #[serde(skip)]
@@ -201,6 +211,7 @@ pub struct TwoPhaseSettings {
     /// noise ends by "no case applies" instead of running `max_passes`; but it ends with more
     /// sign changes: on a noisy sine every floor tried left more inflections than the paper's
     /// rules reach in 50 passes, so the default is 0 (the paper).
+    #[schemars(range(min = 0), extend("exclusiveMaximum" = 1))]
     pub detection_floor: f64,
     /// Remove the data's noise first: jump-lsq-gcv (jump least squares, λ by GCV), jump-lsq (λ by discrepancy), gcv (cubic smoothing spline, p by GCV) or off (the paper).
     ///
@@ -224,12 +235,14 @@ pub struct TwoPhaseSettings {
     /// Default 1.4 (Kim and Gu's value): with the judge (`docs/experiments/two_phase_judge.md`) two-phase
     /// then beats csaps at equal S_d on every parametric row, with fewer inflections and
     /// vibrations than at 1.
+    #[schemars(range(min = 1))]
     pub curve_gcv_gamma: f64,
     /// Functions: the factor gamma >= 1 on the trace in the jump-lsq-gcv pre-pass's GCV (1: Craven and Wahba's GCV).
     ///
     /// As [`curve_gcv_gamma`](Self::curve_gcv_gamma), for the pre-pass of a function segment
     /// y(x) ([`denoise_by`](super::denoise_by)). Default 1: with the judge, no larger factor
     /// tried turns a function row without losing another (a real waterline).
+    #[schemars(range(min = 1))]
     pub function_gcv_gamma: f64,
     /// Functions: how the jump-lsq-gcv pre-pass chooses λ, auto (gml where its RMS displacement is within 1.2 σ̂, the noise estimate, else gcv), gcv (with function-gcv-gamma) or gml (generalised maximum likelihood, REML).
     ///
@@ -271,6 +284,7 @@ pub struct TwoPhaseSettings {
     /// points, nothing beyond.
     #[serde(with = "crate::catalog::value::auto_count")]
     #[schemars(with = "crate::catalog::value::AutoCount")]
+    #[schemars(extend("maximum" = 3))]
     pub curve_difference_order: Option<usize>,
     /// Functions: the end conditions of the jump-lsq pre-pass's spline, auto (each end natural or runout, chosen from the data by GCV), runout (s''' = 0 on the end spans) or natural (s'' = 0 at the ends).
     ///
@@ -296,6 +310,7 @@ pub struct TwoPhaseSettings {
     /// on the sines, which come nearer their clean curve.
     #[serde(with = "crate::catalog::value::auto_count")]
     #[schemars(with = "crate::catalog::value::AutoCount")]
+    #[schemars(extend("maximum" = 3))]
     pub function_difference_order: Option<usize>,
     /// Functions: the spacing exponent a of the jump-lsq pre-pass's penalty (rows weighed h̄^a), a number in [0, 16] or auto (8 or 0, whichever fits with the lowest GCV score).
     ///
@@ -312,6 +327,7 @@ pub struct TwoPhaseSettings {
     /// it changes only R140 upper, for the worse.
     #[serde(with = "crate::catalog::value::auto")]
     #[schemars(with = "crate::catalog::value::AutoNumber")]
+    #[schemars(extend("minimum" = 0, "maximum" = 16))]
     pub function_exponent: Option<f64>,
     /// Functions: the most points the noise pre-pass fits with one knot per point; beyond, it fits the means of bins of consecutive points (at least 4).
     ///
@@ -328,6 +344,7 @@ pub struct TwoPhaseSettings {
     /// [`MAX_PREPASS_POINTS`](super::MAX_PREPASS_POINTS) = 2 000, so no function row of the
     /// judge changes; on larger noisy sines two-phase then ends with the clean curve's
     /// inflections and nearer it, where one knot per point leaves thousands of vibrations.
+    #[schemars(range(min = 4))]
     pub function_prepass_points: usize,
     /// Arbitrary curves: the most points the noise pre-pass fits with one knot per point; beyond, it fits the means of bins of consecutive points (at least 4).
     ///
@@ -337,6 +354,7 @@ pub struct TwoPhaseSettings {
     /// keep their order. Default [`MAX_CURVE_PREPASS_POINTS`](super::MAX_CURVE_PREPASS_POINTS)
     /// = 2.5·10^4, lower than a function's: on noisy arcs and circles beyond it the bins end
     /// with fewer inflections, nearer the clean curve, in a fraction of the time.
+    #[schemars(range(min = 4))]
     pub curve_prepass_points: usize,
     /// Arbitrary curves: the pre-pass's points become the foot points of the data on its fitted curve (foot-point), after refits on those parameters (parameter-correction), or stay its values at the data's chord-length parameters (off).
     ///

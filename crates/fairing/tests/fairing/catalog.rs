@@ -111,7 +111,11 @@ fn set_text_is_read_by_the_parameter_type() {
     );
     assert!(e.to_string().contains("max-passes"), "{e}");
     let e = two_phase.settings(&sets(&[("coarse-lambda", "3")])).unwrap_err();
-    assert!(e.to_string().starts_with("--set: `coarse-lambda` = `3`"), "{e}");
+    assert!(
+        e.to_string()
+            .starts_with("--set: `two-phase`: coarse-lambda = 3 is out of range"),
+        "{e}"
+    );
     let e = smoothing.settings(&sets(&[("rule", "newton")])).unwrap_err();
     assert!(e.to_string().contains("gcv"), "{e}");
     // A config value given as a string is read like text; a typed one as it is.
@@ -124,7 +128,10 @@ fn set_text_is_read_by_the_parameter_type() {
     let mut given = ParameterMap::new();
     given.insert_json("max-iterations", serde_json::json!(-1), "c.toml:7");
     let e = strain.settings(&given).unwrap_err();
-    assert!(e.to_string().starts_with("c.toml:7: `max-iterations`"), "{e}");
+    assert_eq!(
+        e.to_string(),
+        "c.toml:7: `strain-energy`: max-iterations = -1 is out of range: an integer ≥ 0"
+    );
 }
 
 #[test]
@@ -146,9 +153,28 @@ fn unknown_names_are_refused_with_the_known_ones() {
     ] {
         assert!(text.contains(name), "{text}");
     }
+    // A surface method for a curve says what it fairs, not that it is unknown; and back.
     let e = catalog.method(MethodKind::Curve, "zhang-cheng").unwrap_err();
-    assert!(matches!(e, Error::UnknownMethod { .. }));
+    assert!(
+        matches!(
+            e,
+            Error::WrongKind {
+                kind: "curve",
+                fairs: "surface",
+                ..
+            }
+        ),
+        "{e:?}"
+    );
+    assert!(
+        e.to_string().starts_with("`zhang-cheng` is a surface method"),
+        "{e}"
+    );
     assert!(e.to_string().contains("two-phase"), "{e}");
+    let e = catalog.method(MethodKind::Surface, "two-phase").unwrap_err();
+    assert!(matches!(e, Error::WrongKind { fairs: "curve", .. }), "{e:?}");
+    let e = catalog.method(MethodKind::Curve, "wobble").unwrap_err();
+    assert!(matches!(e, Error::UnknownMethod { .. }), "{e:?}");
 }
 
 #[test]
@@ -692,4 +718,249 @@ fn two_phases_report_says_what_its_pre_pass_chose() {
     );
     let off = run("two-phase", &[("denoise", "off")], &sine, CurveKind::Function);
     assert!(off.extras["prepass"].is_null());
+}
+
+/// `--set` and config values are checked against the range the settings declare on the
+/// field (the schema's bounds), naming the method, the parameter, the value and the range;
+/// a fraction for an integer says so instead of serde's "invalid type".
+#[test]
+fn values_outside_the_declared_range_are_refused_with_the_range() {
+    let catalog = Catalog::builtin();
+    let two_phase = catalog.method(MethodKind::Curve, "two-phase").unwrap();
+    let e = two_phase.settings(&sets(&[("max-passes", "0")])).unwrap_err();
+    assert_eq!(
+        e,
+        Error::OutOfRange {
+            origin: "--set".into(),
+            method: "two-phase".into(),
+            setting: "max-passes".into(),
+            value: "0".into(),
+            allowed: "an integer ≥ 1".into(),
+        }
+    );
+    assert_eq!(
+        e.to_string(),
+        "--set: `two-phase`: max-passes = 0 is out of range: an integer ≥ 1"
+    );
+    let e = two_phase.settings(&sets(&[("max-passes", "2.5")])).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "--set: `two-phase`: max-passes = 2.5: expected an integer ≥ 1"
+    );
+    for (name, value, allowed) in [
+        ("coarse-lambda", "0", "a number in (0, 1]"),
+        ("turning-limit", "180.5", "a number in (0, 180]"),
+        ("min-gain", "1", "a number in [0, 1)"),
+        ("function-difference-order", "4", "an integer in [0, 3]"),
+        ("function-exponent", "-1", "a number in [0, 16]"),
+    ] {
+        let e = two_phase.settings(&sets(&[(name, value)])).unwrap_err();
+        assert!(
+            matches!(&e, Error::OutOfRange { setting, allowed: a, .. } if setting == name && a == allowed),
+            "{name}: {e}"
+        );
+    }
+    // The edges themselves, and `auto`, are taken.
+    for (name, value) in [
+        ("max-passes", "1"),
+        ("coarse-lambda", "1"),
+        ("turning-limit", "180"),
+        ("min-gain", "0"),
+        ("function-difference-order", "3"),
+        ("function-difference-order", "auto"),
+    ] {
+        two_phase
+            .settings(&sets(&[(name, value)]))
+            .unwrap_or_else(|e| panic!("{name} = {value}: {e}"));
+    }
+    // A config file's value is refused at its line; other methods' ranges too.
+    let file = ConfigFile::parse("c.toml", "# one\n[smoothing-spline]\np = 1.5\n").unwrap();
+    let e = catalog
+        .plan(
+            MethodKind::Curve,
+            Some("smoothing-spline"),
+            "two-phase",
+            Some(&file),
+            &ParameterMap::new(),
+        )
+        .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "c.toml:3: `smoothing-spline`: p = 1.5 is out of range: a number in [0, 1]"
+    );
+    for (method, name, value) in [
+        ("jump-lsq", "refits", "101"),
+        ("jump-lsq", "gcv-gamma", "0.5"),
+        ("batten", "range", "-1"),
+        ("strain-energy", "energy-tolerance", "-1"),
+    ] {
+        let entry = catalog.method(MethodKind::Curve, method).unwrap();
+        let e = entry.settings(&sets(&[(name, value)])).unwrap_err();
+        assert!(matches!(e, Error::OutOfRange { .. }), "{method} {name}: {e}");
+    }
+    let surface = catalog.method(MethodKind::Surface, "zhang-cheng").unwrap();
+    let e = surface.settings(&sets(&[("quantum-scale", "-2")])).unwrap_err();
+    assert!(matches!(e, Error::OutOfRange { .. }), "{e}");
+    // An echoed value is clipped: the message stays one short line.
+    let long = "9".repeat(100_000);
+    let e = catalog
+        .method(MethodKind::Curve, "batten")
+        .unwrap()
+        .settings(&sets(&[("range", &format!("x{long}"))]))
+        .unwrap_err();
+    assert!(e.to_string().len() < 400, "{} characters", e.to_string().len());
+    let e = catalog
+        .method(MethodKind::Curve, "batten")
+        .unwrap()
+        .settings(&sets(&[(&long, "1")]))
+        .unwrap_err();
+    assert!(e.to_string().len() < 600, "{} characters", e.to_string().len());
+    let e = catalog.method(MethodKind::Curve, &long).unwrap_err();
+    assert!(e.to_string().len() < 600, "{} characters", e.to_string().len());
+}
+
+/// Every declared range agrees with the settings' own checks: for every built-in method
+/// and every numeric parameter with a declared bound, the bound itself (when included) or
+/// a value just inside it is accepted, so that no declaration is looser or stricter than
+/// the method's `validate` at the edge.
+#[test]
+fn declared_ranges_agree_with_validation_at_their_edges() {
+    let catalog = Catalog::builtin();
+    let mut checked = 0;
+    for kind in [MethodKind::Curve, MethodKind::Surface] {
+        for entry in catalog.methods(kind) {
+            for parameter in entry.parameters() {
+                let Some(range) = fairing::catalog::NumberRange::of(&parameter.schema, entry.schema()) else {
+                    continue;
+                };
+                for (bound, open, inward) in [
+                    range.min.map(|(m, o)| (m, o, 1.0)),
+                    range.max.map(|(m, o)| (m, o, -1.0)),
+                ]
+                .into_iter()
+                .flatten()
+                {
+                    let step = if range.integer {
+                        1.0
+                    } else {
+                        1e-9 * bound.abs().max(1.0)
+                    };
+                    let inside = if open { bound + inward * step } else { bound };
+                    let outside = bound - inward * if open { 0.0 } else { step };
+                    let text = |x: f64| {
+                        if range.integer {
+                            format!("{}", x as i64)
+                        } else {
+                            format!("{x}")
+                        }
+                    };
+                    entry
+                        .settings(&sets(&[(&parameter.name, &text(inside))]))
+                        .unwrap_or_else(|e| panic!("{} {} = {}: {e}", entry.name(), parameter.name, inside));
+                    // Integers below 0 are read as such; the range still refuses them.
+                    let e = entry.settings(&sets(&[(&parameter.name, &text(outside))]));
+                    assert!(
+                        matches!(e, Err(Error::OutOfRange { .. })),
+                        "{} {} = {}: {e:?}",
+                        entry.name(),
+                        parameter.name,
+                        outside
+                    );
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert!(checked > 30, "{checked} bounds");
+}
+
+/// `fair methods` prints every default as the shortest text that reads back to it, and a
+/// default computed in other units is stored so that it prints as written (120, not
+/// 119.99999999999999).
+#[test]
+fn defaults_print_as_written() {
+    let catalog = Catalog::builtin();
+    let two_phase = catalog.method(MethodKind::Curve, "two-phase").unwrap();
+    assert_eq!(two_phase.parameter("turning-limit").unwrap().default, "120");
+    assert_eq!(
+        fairing::PartitionSettings::default().limit,
+        2.0 * std::f64::consts::PI / 3.0
+    );
+    for kind in [MethodKind::Curve, MethodKind::Surface] {
+        for entry in catalog.methods(kind) {
+            for p in entry.parameters() {
+                if let Some(x) = p.default_value.as_f64() {
+                    assert_eq!(
+                        p.default.parse::<f64>().ok(),
+                        Some(x),
+                        "{} {}",
+                        entry.name(),
+                        p.name
+                    );
+                    assert!(
+                        !p.default.contains("9999") && !p.default.contains("0000001"),
+                        "{} {} = {}",
+                        entry.name(),
+                        p.name,
+                        p.default
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// A config file that names no known method, in a stage or as a table, is refused at its
+/// line.
+#[test]
+fn config_method_names_are_checked_at_their_line() {
+    let catalog = Catalog::builtin();
+    let none = ParameterMap::new();
+    let file = ConfigFile::parse(
+        "p.toml",
+        "[[stage]]\nmethod = \"two-phase\"\n\n[[stage]]\nmethod = \"nope\"\n",
+    )
+    .unwrap();
+    let e = catalog
+        .plan(MethodKind::Curve, None, "two-phase", Some(&file), &none)
+        .unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with("p.toml:5 (stage 2): unknown curve method `nope`"),
+        "{e}"
+    );
+    let file = ConfigFile::parse("p.toml", "[[stage]]\nmethod = \"zhang-cheng\"\n").unwrap();
+    let e = catalog
+        .plan(MethodKind::Curve, None, "two-phase", Some(&file), &none)
+        .unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with("p.toml:2 (stage 1): `zhang-cheng` is a surface method"),
+        "{e}"
+    );
+    let file = ConfigFile::parse("t.toml", "p = 0.5\n\n[nope]\nx = 1\n").unwrap();
+    let e = catalog
+        .plan(
+            MethodKind::Curve,
+            Some("smoothing-spline"),
+            "two-phase",
+            Some(&file),
+            &none,
+        )
+        .unwrap_err();
+    assert!(
+        e.to_string().starts_with("t.toml:3: `[nope]` names no method"),
+        "{e}"
+    );
+    // A table of a method that does not run (or of the other kind) is kept for when it does.
+    let file = ConfigFile::parse("u.toml", "[zhang-cheng]\nenergy-tolerance = 1\n").unwrap();
+    catalog
+        .plan(
+            MethodKind::Curve,
+            Some("two-phase"),
+            "two-phase",
+            Some(&file),
+            &none,
+        )
+        .unwrap();
 }

@@ -238,6 +238,11 @@ fn the_paper_as_printed_makes_the_teapot_worse_which_the_rules_refuse() {
         .run(&net)
         .unwrap();
     assert!(guarded.refused_steps > 0);
+    // Every step was refused: the run says so, and which rule, rather than that it had
+    // nothing to do.
+    assert!(guarded.history.is_empty(), "{:?}", guarded.history);
+    assert_eq!(guarded.termination, fairing::TerminationReason::Refused);
+    assert_eq!(guarded.refusal, Some(Refusal::MaxZ));
 }
 
 #[test]

@@ -30,12 +30,15 @@ pub struct TwoPhaseCurveSettings {
     #[serde(flatten)]
     pub phases: TwoPhaseSettings,
     /// Parametric input: partition-fair-blend passes (Han 4.2.4).
+    #[schemars(range(min = 1))]
     pub segment_passes: usize,
     /// Parametric input: largest turning angle of a segment, degrees.
     ///
     /// In (0, 180]; 180 is Han §4.2.1 ([`PartitionSettings::limit`] in radians).
+    #[schemars(range(max = 180), extend("exclusiveMinimum" = 0))]
     pub turning_limit: f64,
     /// Parametric input: points shared by adjacent segments.
+    #[schemars(range(min = 1))]
     pub overlap: usize,
     /// Parametric input: true for a closed curve (last point joins the first).
     pub closed: bool,
@@ -51,7 +54,7 @@ impl Default for TwoPhaseCurveSettings {
         TwoPhaseCurveSettings {
             phases: TwoPhaseSettings::default(),
             segment_passes: SegmentedFairing::<TwoPhase>::DEFAULT_PASSES,
-            turning_limit: partition.limit.to_degrees(),
+            turning_limit: PartitionSettings::DEFAULT_LIMIT_DEGREES,
             overlap: partition.overlap,
             closed: false,
             curve_guard: SegmentedFairing::<TwoPhase>::DEFAULT_CURVE_GUARD,
@@ -69,22 +72,11 @@ impl TwoPhaseCurveSettings {
 }
 
 impl Settings for TwoPhaseCurveSettings {
+    /// The ranges declared on the fields (`turning-limit` in (0, 180], `segment-passes` ≥ 1,
+    /// the phases' own), then the phases' and the partition's checks.
     fn validate(&self) -> Result<()> {
+        crate::catalog::check_declared_ranges(self)?;
         self.phases.validate()?;
-        if !(self.turning_limit > 0.0 && self.turning_limit <= 180.0) {
-            return Err(Error::BadParameter {
-                name: "turning-limit",
-                value: self.turning_limit.to_string(),
-                reason: "must lie in (0, 180] degrees",
-            });
-        }
-        if self.segment_passes == 0 {
-            return Err(Error::BadParameter {
-                name: "segment-passes",
-                value: "0".into(),
-                reason: "must be at least 1",
-            });
-        }
         self.partition().validate().map_err(|e| match e {
             Error::BadParameter {
                 name: "limit",

@@ -284,6 +284,7 @@ pub struct SurfaceFairingSettings {
     pub one_point_per_step: bool,
     /// Stop when the network strain energy changes by at most this fraction in one step.
     #[serde(rename = "energy-tolerance")]
+    #[schemars(range(min = 0))]
     pub tolerance: f64,
     /// Step limit.
     pub max_steps: usize,
@@ -300,8 +301,10 @@ pub struct SurfaceFairingSettings {
     /// Scale of the automatic mode's restraining radii (1 = the paper's; inf = no regions).
     #[serde(with = "crate::catalog::value::unbounded")]
     #[schemars(with = "crate::catalog::value::BoundNumber")]
+    #[schemars(extend("minimum" = 0))]
     pub radius_scale: f64,
     /// Cap on the restraining radii, in quantisation steps of digitised data when it has one (0: no cap).
+    #[schemars(range(min = 0))]
     pub quantum_scale: f64,
     /// Refresh the knots from the points after every step (on, default), or keep the first (off, the paper).
     pub refresh_knots: bool,

@@ -363,6 +363,8 @@ pub(super) fn run(
     let mut steps = 0;
     let mut termination = TerminationReason::MaxIterations;
     let mut refusal = None;
+    // The rule that refused the last step not kept, whatever ended the run.
+    let mut last_rule = None;
     while steps < settings.max_steps {
         optim::cancel::checkpoint()?;
         if settings.objective == Objective::ThinPlate {
@@ -378,8 +380,12 @@ pub(super) fn run(
         let previous = run.accepted;
         match run.judge()? {
             Verdict::Accepted => boundary_pending = false,
-            Verdict::Pinned => continue,
-            Verdict::Refused(_) if boundary_pending => {
+            Verdict::Pinned => {
+                last_rule = Some(Refusal::MaxZ);
+                continue;
+            }
+            Verdict::Refused(rule) if boundary_pending => {
+                last_rule = Some(rule);
                 // Back at the input: go on without the boundary fairing.
                 boundary_pending = false;
                 boundary_steps = 0;
@@ -405,10 +411,25 @@ pub(super) fn run(
             break;
         }
     }
-    if boundary_pending && !matches!(run.judge()?, Verdict::Accepted) {
-        // Judged alone (no step was left): pinned lines do not help it; it is undone.
-        run.rebuild_accepted()?;
-        boundary_steps = 0;
+    let mut boundary_kept = false;
+    if boundary_pending {
+        match run.judge()? {
+            Verdict::Accepted => boundary_kept = true,
+            verdict => {
+                // Judged alone (no step was left): pinned lines do not help it; it is undone.
+                if let Verdict::Refused(rule) = verdict {
+                    last_rule = Some(rule);
+                }
+                run.rebuild_accepted()?;
+                boundary_steps = 0;
+            }
+        }
+    }
+    if history.is_empty() && !boundary_kept && run.refused_steps > 0 {
+        // Nothing was kept and the rules refused what was tried: the report says so, with
+        // the rule, rather than that the strategy found nothing to do.
+        termination = TerminationReason::Refused;
+        refusal = refusal.or(last_rule);
     }
 
     // The result, in the grid's layout: the surface built on the network's own points,

@@ -112,6 +112,7 @@ pub struct SurfaceJumpLsqSettings {
     /// Weight of the jump penalty (0: the input; larger: smoother), or auto (GCV).
     #[serde(with = "crate::catalog::value::auto")]
     #[schemars(with = "crate::catalog::value::AutoNumber")]
+    #[schemars(extend("minimum" = 0))]
     pub lambda: Option<f64>,
     /// Closed directions: auto (where the last grid line repeats the first), open, u, v, both.
     pub closed: Closure,
