@@ -283,6 +283,13 @@ impl SurfaceJumpLsq {
         let plain = BicubicSurfaceSettings::default()
             .with_parametrization(settings.parametrization)
             .with_topology(&topology);
+        if !settings.joins.is_empty() && (topology.closed_u || topology.closed_v || topology.poles.any()) {
+            return Err(Error::BadConstraint {
+                reason: "a join needs an open net without poles (this net closes up or has a pole; \
+                         fair it with closed = open, or without a join)"
+                    .into(),
+            });
+        }
         let prepared = settings
             .joins
             .iter()
@@ -293,7 +300,7 @@ impl SurfaceJumpLsq {
         let build = if prepared.is_empty() {
             plain.clone()
         } else {
-            check_joins(&prepared, &topology, settings, rows, columns)?;
+            check_joins(&prepared, settings, rows, columns)?;
             let (mut u_knots, mut v_knots) = plain.knots(&flat, rows, columns)?;
             if let Some(p) = prepared.iter().find(|p| join::across_u(p.edge)) {
                 v_knots = p.mapped_knots(&v_knots);
@@ -528,24 +535,16 @@ impl SurfaceJumpLsq {
     }
 }
 
-/// Refuses joins the solve cannot hold: on a net with a closed direction or a pole, two on
-/// one edge, g1/g2 joins across both directions, g1/g2 joins with fixed nodes or a tolerance
+/// Refuses joins the solve cannot hold (a net with a closed direction or a pole is refused
+/// before): two on one edge, g1/g2 joins across both directions, g1/g2 joins with fixed nodes or a tolerance
 /// band, a fixed node on a joined edge.
 fn check_joins(
     prepared: &[join::Prepared],
-    topology: &GridTopology,
     settings: &SurfaceJumpLsqSettings,
     rows: usize,
     columns: usize,
 ) -> Result<()> {
     let refuse = |reason: String| Err(Error::BadConstraint { reason });
-    if topology.closed_u || topology.closed_v || topology.poles.any() {
-        return refuse(
-            "a join needs an open net without poles (this net closes up or has a pole; \
-             fair it with --closed open, or without --join)"
-                .into(),
-        );
-    }
     for (k, p) in prepared.iter().enumerate() {
         if prepared[..k].iter().any(|q| q.edge == p.edge) {
             return refuse(format!("two joins on edge {}: one neighbour per edge", p.edge.name()));
