@@ -91,6 +91,12 @@ fn output_format(args: &FairArgs) -> Result<crate::output::OutputFormat> {
 
 /// Runs `fair curve`: one input, or a batch ([`batch`]).
 pub(crate) fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
+    if !args.joins.is_empty() {
+        return Err(Error::Argument {
+            option: "--join",
+            message: "holds a surface's edge to a neighbour; a curve has none (use --clamp-ends)".into(),
+        });
+    }
     let file = read_config(args)?;
     let cad = fair_door::cad::target(&args.cad_request(), false)?;
     if batch::is_batch(args) {

@@ -177,7 +177,7 @@ fn surface_join_g0_keeps_fixed_nodes_and_the_band() {
 
 fn refused(settings: SurfaceJumpLsqSettings, net: &[Vec<Vec3>]) -> String {
     match SurfaceJumpLsq::new(settings).run(net) {
-        Err(Error::BadConstraint { reason }) => reason,
+        Err(Error::Refused { reason, .. }) => reason,
         other => panic!("expected a refusal, got {other:?}"),
     }
 }

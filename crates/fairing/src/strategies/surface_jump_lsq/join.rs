@@ -220,7 +220,11 @@ pub(crate) struct Prepared {
 }
 
 fn refuse(reason: String) -> Error {
-    Error::BadConstraint { reason }
+    Error::Refused {
+        method: super::NAME.into(),
+        what: crate::Refusal::Join,
+        reason: format!("cannot hold the joins: {reason}"),
+    }
 }
 
 impl Prepared {

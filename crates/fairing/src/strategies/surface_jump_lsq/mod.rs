@@ -284,7 +284,9 @@ impl SurfaceJumpLsq {
             .with_parametrization(settings.parametrization)
             .with_topology(&topology);
         if !settings.joins.is_empty() && (topology.closed_u || topology.closed_v || topology.poles.any()) {
-            return Err(Error::BadConstraint {
+            return Err(Error::Refused {
+                method: NAME.into(),
+                what: crate::Refusal::Join,
                 reason: "a join needs an open net without poles (this net closes up or has a pole; \
                          fair it with closed = open, or without a join)"
                     .into(),
@@ -544,10 +546,29 @@ fn check_joins(
     rows: usize,
     columns: usize,
 ) -> Result<()> {
-    let refuse = |reason: String| Err(Error::BadConstraint { reason });
+    let refuse = |reason: String| {
+        Err(Error::Refused {
+            method: NAME.into(),
+            what: crate::Refusal::Join,
+            reason: format!("cannot hold the joins: {reason}"),
+        })
+    };
     for (k, p) in prepared.iter().enumerate() {
         if prepared[..k].iter().any(|q| q.edge == p.edge) {
             return refuse(format!("two joins on edge {}: one neighbour per edge", p.edge.name()));
+        }
+    }
+    for p in prepared {
+        for k in 0..p.edge_points.len() {
+            let node = join::edge_node(p.edge, k, rows, columns);
+            if settings.fixed.contains(&node) {
+                return refuse(format!(
+                    "fixed node ({}, {}) lies on the joined edge {}, which moves onto its neighbour",
+                    node.0,
+                    node.1,
+                    p.edge.name()
+                ));
+            }
         }
     }
     let tangent: Vec<&join::Prepared> = prepared.iter().filter(|p| p.holds_tangent()).collect();
@@ -564,19 +585,6 @@ fn check_joins(
                 p.continuity.name(),
                 p.edge.name()
             ));
-        }
-    }
-    for p in prepared {
-        for k in 0..p.edge_points.len() {
-            let node = join::edge_node(p.edge, k, rows, columns);
-            if settings.fixed.contains(&node) {
-                return refuse(format!(
-                    "fixed node ({}, {}) lies on the joined edge {}, which moves onto its neighbour",
-                    node.0,
-                    node.1,
-                    p.edge.name()
-                ));
-            }
         }
     }
     Ok(())
