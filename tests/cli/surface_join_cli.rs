@@ -6,7 +6,10 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn fair(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fair")).args(args).output().unwrap()
+    Command::new(env!("CARGO_BIN_EXE_fair"))
+        .args(args)
+        .output()
+        .unwrap()
 }
 
 /// Deterministic noise in [−1, 1].
@@ -24,8 +27,17 @@ fn write_half(dir: &Path, name: &str, x0: f64, x1: f64, columns: usize, seed: us
             let x = x0 + (x1 - x0) * i as f64 / 13.0;
             let y = j as f64 / (columns - 1) as f64;
             let z = 0.3 * (x - 0.4).powi(2) + 0.15 * (3.0 * y).sin() * (1.0 + x);
-            let p = [x + 0.003 * noise(i, j, seed), y + 0.003 * noise(i, j, seed + 1), z + 0.003 * noise(i, j, seed + 2)];
-            text.push_str(&format!("{i},{j},{},{},{}\n", p[0] * 10.0, p[1] * 10.0, p[2] * 10.0));
+            let p = [
+                x + 0.003 * noise(i, j, seed),
+                y + 0.003 * noise(i, j, seed + 1),
+                z + 0.003 * noise(i, j, seed + 2),
+            ];
+            text.push_str(&format!(
+                "{i},{j},{},{},{}\n",
+                p[0] * 10.0,
+                p[1] * 10.0,
+                p[2] * 10.0
+            ));
         }
     }
     let path = dir.join(name);
@@ -51,7 +63,15 @@ fn refused(out: &Output, expected: &str) {
 fn halves(dir: &Path) -> (PathBuf, PathBuf) {
     let raw = write_half(dir, "first-raw.csv", 0.0, 0.5, 17, 1);
     let first = dir.join("first.csv");
-    ok(&fair(&["surface", s(&raw), "--method", "jump-lsq", "-q", "-o", s(&first)]));
+    ok(&fair(&[
+        "surface",
+        s(&raw),
+        "--method",
+        "jump-lsq",
+        "-q",
+        "-o",
+        s(&first),
+    ]));
     (first, write_half(dir, "second.csv", 0.5, 1.0, 17, 11))
 }
 
@@ -66,12 +86,30 @@ fn surface_join_g1_to_a_grid_holds_the_tangent_plane_and_leaves_the_neighbour() 
     let bytes = std::fs::read(&first).unwrap();
     let (out, rep) = (dir.path().join("out.csv"), dir.path().join("out.json"));
     let join = format!("u0={}", s(&first));
-    ok(&fair(&["surface", s(&second), "--join", &join, "-q", "-o", s(&out), "--report", s(&rep)]));
-    assert_eq!(std::fs::read(&first).unwrap(), bytes, "the neighbour's file is untouched");
+    ok(&fair(&[
+        "surface",
+        s(&second),
+        "--join",
+        &join,
+        "-q",
+        "-o",
+        s(&out),
+        "--report",
+        s(&rep),
+    ]));
+    assert_eq!(
+        std::fs::read(&first).unwrap(),
+        bytes,
+        "the neighbour's file is untouched"
+    );
     let r = report(&rep);
     assert_eq!(r["method"], "jump-lsq");
     let j = &r["joins"][0];
-    assert_eq!((j["edge"].as_str(), j["continuity"].as_str()), (Some("u0"), Some("g1")), "{j}");
+    assert_eq!(
+        (j["edge"].as_str(), j["continuity"].as_str()),
+        (Some("u0"), Some("g1")),
+        "{j}"
+    );
     assert_eq!(j["neighbour_edge"], "u1");
     let (before, after) = (&j["before"], &j["after"]);
     assert!(before["angle_degrees"].as_f64().unwrap() > 0.5, "{j}");
@@ -102,11 +140,31 @@ fn surface_join_g1_to_a_step_surface() {
     let dir = crate::scratch_dir("fair-surface-join-step-");
     let (first, second) = halves(dir.path());
     let step = dir.path().join("first.step");
-    ok(&fair(&["surface", s(&first), "--method", "jump-lsq", "--set", "lambda=0", "-q", "-o", s(&step)]));
+    ok(&fair(&[
+        "surface",
+        s(&first),
+        "--method",
+        "jump-lsq",
+        "--set",
+        "lambda=0",
+        "-q",
+        "-o",
+        s(&step),
+    ]));
     let bytes = std::fs::read(&step).unwrap();
     let rep = dir.path().join("out.json");
     let join = format!("u0={}:g1", s(&step));
-    ok(&fair(&["surface", s(&second), "--join", &join, "-q", "-o", s(&dir.path().join("o.csv")), "--report", s(&rep)]));
+    ok(&fair(&[
+        "surface",
+        s(&second),
+        "--join",
+        &join,
+        "-q",
+        "-o",
+        s(&dir.path().join("o.csv")),
+        "--report",
+        s(&rep),
+    ]));
     assert_eq!(std::fs::read(&step).unwrap(), bytes);
     let j = &report(&rep)["joins"][0];
     assert!(j["before"]["angle_degrees"].as_f64().unwrap() > 0.5, "{j}");
@@ -121,11 +179,33 @@ fn surface_join_refusals_exit_2_with_the_reason() {
     let narrow = write_half(dir.path(), "narrow.csv", 0.0, 0.5, 12, 3);
     let join = |text: &str| format!("{text}={}", s(&first));
     let mismatch = format!("u0={}", s(&narrow));
-    refused(&fair(&["surface", s(&second), "--join", &mismatch]), "no edge of the neighbour");
-    refused(&fair(&["surface", s(&second), "--join", &join("x0")]), "not an edge");
-    refused(&fair(&["surface", s(&second), "--join", &join("u0"), "--method", "zhang-cheng"]), "holds no edge");
-    refused(&fair(&["surface", s(&second), "--join", &join("u0"), "--clamp-ends", "g0"]), "lies on the joined edge u0");
-    refused(&fair(&["surface", s(&second), "--join", &join("u0"), "--tolerance", "0.1"]), "tolerance band");
+    refused(
+        &fair(&["surface", s(&second), "--join", &mismatch]),
+        "no edge of the neighbour",
+    );
+    refused(
+        &fair(&["surface", s(&second), "--join", &join("x0")]),
+        "not an edge",
+    );
+    refused(
+        &fair(&[
+            "surface",
+            s(&second),
+            "--join",
+            &join("u0"),
+            "--method",
+            "zhang-cheng",
+        ]),
+        "holds no edge",
+    );
+    refused(
+        &fair(&["surface", s(&second), "--join", &join("u0"), "--clamp-ends", "g0"]),
+        "lies on the joined edge u0",
+    );
+    refused(
+        &fair(&["surface", s(&second), "--join", &join("u0"), "--tolerance", "0.1"]),
+        "tolerance band",
+    );
     let missing = format!("u0={}", s(&dir.path().join("missing.csv")));
     refused(&fair(&["surface", s(&second), "--join", &missing]), "missing.csv");
     refused(&fair(&["curve", s(&second), "--join", &join("u0")]), "--join");

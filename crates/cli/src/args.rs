@@ -417,8 +417,9 @@ pub(crate) fn parse_join(text: &str) -> Result<JoinArg, String> {
     let (edge, rest) = text
         .split_once('=')
         .ok_or_else(|| format!("`{text}` is not EDGE=FILE[:g0|g1|g2] (EDGE one of u0, u1, v0, v1)"))?;
-    let edge = JoinEdge::parse(edge.trim())
-        .ok_or_else(|| format!("`{edge}` is not an edge: u0, u1 (first, last row), v0, v1 (first, last column)"))?;
+    let edge = JoinEdge::parse(edge.trim()).ok_or_else(|| {
+        format!("`{edge}` is not an edge: u0, u1 (first, last row), v0, v1 (first, last column)")
+    })?;
     let (file, continuity) = match rest.rsplit_once(':') {
         Some((file, c)) if Continuity::parse(c).is_some() => (file, Continuity::parse(c).unwrap_or_default()),
         _ => (rest, Continuity::default()),

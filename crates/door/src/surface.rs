@@ -74,7 +74,9 @@ fn fair_grid(catalog: &Catalog, data: &GridData<'_>, request: &SurfaceRequest) -
     let whole = request
         .joins
         .iter()
-        .fold(constraints.constraints(constraints.tolerance), |c, j| c.with_join(j.clone()));
+        .fold(constraints.constraints(constraints.tolerance), |c, j| {
+            c.with_join(j.clone())
+        });
     let job = SurfaceJob {
         method: &plan.name(),
         grid: data.grid,

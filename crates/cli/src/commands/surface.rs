@@ -56,7 +56,9 @@ pub(crate) fn read_joins(args: &FairArgs, input: &SurfaceInput) -> Result<Vec<Jo
         .iter()
         .map(|j| {
             let lower = j.file.to_ascii_lowercase();
-            let cad = [".igs", ".iges", ".step", ".stp"].iter().any(|e| lower.ends_with(e));
+            let cad = [".igs", ".iges", ".step", ".stp"]
+                .iter()
+                .any(|e| lower.ends_with(e));
             let neighbour = if cad {
                 fair_door::cad::neighbour_net(&j.file, &grid, j.edge)?
             } else {

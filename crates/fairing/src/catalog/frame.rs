@@ -234,7 +234,11 @@ impl Frame {
             out = out.with_restraining_radii(r.iter().map(|&r| self.length_to_frame(r)).collect());
         }
         for join in constraints.joins() {
-            let neighbour = join.neighbour.iter().map(|row| self.points_to_frame(row)).collect();
+            let neighbour = join
+                .neighbour
+                .iter()
+                .map(|row| self.points_to_frame(row))
+                .collect();
             out = out.with_join(crate::strategies::Join {
                 neighbour,
                 ..join.clone()

@@ -685,7 +685,8 @@ impl MethodEntry {
                 reason: "takes no bad points".into(),
             });
         }
-        if !job.constraints.joins().is_empty() && self.info.name != crate::strategies::surface_jump_lsq::NAME {
+        if !job.constraints.joins().is_empty() && self.info.name != crate::strategies::surface_jump_lsq::NAME
+        {
             return Err(Error::Refused {
                 method: self.info.name.clone(),
                 what: Refusal::Join,

@@ -41,7 +41,8 @@ pub use surface::{
     SurfaceMode, SurfaceStep, SweepOrder,
 };
 pub use surface_jump_lsq::{
-    Continuity, Join, JoinEdge, JoinMeasure, JoinReport, SurfaceJumpLsq, SurfaceJumpLsqResult, SurfaceJumpLsqSettings,
+    Continuity, Join, JoinEdge, JoinMeasure, JoinReport, SurfaceJumpLsq, SurfaceJumpLsqResult,
+    SurfaceJumpLsqSettings,
 };
 pub use surface_smoothing::{
     smooth_grid, SurfaceSmoothing, SurfaceSmoothingResult, SurfaceSmoothingSettings,

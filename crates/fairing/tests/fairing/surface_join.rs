@@ -8,7 +8,11 @@ use fairing::Error;
 
 /// The smooth surface the patches sample.
 fn truth(x: f64, y: f64) -> Vec3 {
-    Vec3::new(x, y, 0.3 * (x - 0.4).powi(2) + 0.15 * (3.0 * y).sin() * (1.0 + x) + 0.1 * x * y)
+    Vec3::new(
+        x,
+        y,
+        0.3 * (x - 0.4).powi(2) + 0.15 * (3.0 * y).sin() * (1.0 + x) + 0.1 * x * y,
+    )
 }
 
 /// Deterministic noise in [−1, 1].
@@ -63,7 +67,11 @@ fn surface_join_g1_holds_the_tangent_plane_where_it_was_broken() {
     assert!(!report.reversed);
     let size = 1.0; // the patches span a unit square
 
-    assert!(report.before.gap > 1e-3, "the halves' noisy edges differ: {:?}", report.before);
+    assert!(
+        report.before.gap > 1e-3,
+        "the halves' noisy edges differ: {:?}",
+        report.before
+    );
     assert!(report.before.angle_degrees > 0.5, "{:?}", report.before);
     assert!(report.after.gap <= 1e-12 * size, "{:?}", report.after);
     assert!(report.after.angle_degrees <= 1e-9, "{:?}", report.after);
@@ -86,7 +94,10 @@ fn surface_join_g1_fit_still_nears_the_clean_surface() {
     let settings = SurfaceJumpLsqSettings::default().with_join(join(JoinEdge::U0, Continuity::G1, &first));
     let out = SurfaceJumpLsq::new(settings).run(&second).unwrap();
     let (before, after) = (rms(&second, &clean), rms(&out.surface.grid(), &clean));
-    assert!(after < 0.7 * before, "rms to the clean surface {before:e} → {after:e}");
+    assert!(
+        after < 0.7 * before,
+        "rms to the clean surface {before:e} → {after:e}"
+    );
 }
 
 #[test]
@@ -97,7 +108,10 @@ fn surface_join_g0_puts_the_edge_on_the_neighbours_bit_for_bit() {
     let grid = out.surface.grid();
     assert_eq!(grid[0], first[15], "the edge row is the neighbour's last row");
     let report = &out.joins[0];
-    assert!(report.before.gap > 1e-3 && report.after.gap <= 1e-12, "{report:?}");
+    assert!(
+        report.before.gap > 1e-3 && report.after.gap <= 1e-12,
+        "{report:?}"
+    );
 }
 
 #[test]
@@ -105,22 +119,37 @@ fn surface_join_g2_on_a_v_edge_to_a_reversed_neighbour() {
     // Split across y this time; the neighbour's rows and columns both run the other way, so
     // its edge meeting our v0 is its v0, reversed.
     let transpose = |g: &[Vec<Vec3>]| -> Vec<Vec<Vec3>> {
-        (0..g[0].len()).map(|j| g.iter().map(|r| r[j]).collect()).collect()
+        (0..g[0].len())
+            .map(|j| g.iter().map(|r| r[j]).collect())
+            .collect()
     };
     let swap = |g: Vec<Vec<Vec3>>| -> Vec<Vec<Vec3>> {
-        g.into_iter().map(|r| r.into_iter().map(|p| Vec3::new(p.y, p.x, p.z)).collect()).collect()
+        g.into_iter()
+            .map(|r| r.into_iter().map(|p| Vec3::new(p.y, p.x, p.z)).collect())
+            .collect()
     };
     // Patches over y ∈ [0, 0.5] and [0.5, 1] as nets with rows along x.
     let first = swap(transpose(&patch(18, 12, 0.0, 0.5, 0.003, 3)));
     let first = SurfaceJumpLsq::default().run(&first).unwrap().surface.grid();
-    let neighbour: Vec<Vec<Vec3>> = first.iter().rev().map(|r| r.iter().rev().copied().collect()).collect();
+    let neighbour: Vec<Vec<Vec3>> = first
+        .iter()
+        .rev()
+        .map(|r| r.iter().rev().copied().collect())
+        .collect();
     let second = swap(transpose(&patch(18, 12, 0.5, 1.0, 0.003, 21)));
     let settings =
         SurfaceJumpLsqSettings::default().with_join(join(JoinEdge::V0, Continuity::G2, &neighbour));
     let out = SurfaceJumpLsq::new(settings).run(&second).unwrap();
     let report = &out.joins[0];
-    assert_eq!((report.neighbour_edge, report.reversed), (JoinEdge::V0, true), "{report:?}");
-    assert!(report.before.angle_degrees > 0.5 && report.before.curvature_jump > 0.1, "{report:?}");
+    assert_eq!(
+        (report.neighbour_edge, report.reversed),
+        (JoinEdge::V0, true),
+        "{report:?}"
+    );
+    assert!(
+        report.before.angle_degrees > 0.5 && report.before.curvature_jump > 0.1,
+        "{report:?}"
+    );
     assert!(report.after.gap <= 1e-12, "{report:?}");
     assert!(report.after.angle_degrees <= 1e-9, "{report:?}");
     assert!(report.after.curvature_jump <= 1e-9, "{report:?}");
@@ -149,11 +178,16 @@ fn surface_join_a_middle_patch_held_g1_on_both_sides() {
     // Chord-length knots: the middle takes the first join's knots along the edge; the right
     // neighbour's differ a little, so across that edge the nodes meet exactly and the edge
     // curves and tangent planes nearly between them.
-    let out = SurfaceJumpLsq::new(both(SurfaceJumpLsqSettings::default())).run(&middle).unwrap();
+    let out = SurfaceJumpLsq::new(both(SurfaceJumpLsqSettings::default()))
+        .run(&middle)
+        .unwrap();
     assert!(out.joins[0].after.angle_degrees <= 1e-9, "{:?}", out.joins[0]);
     let second = &out.joins[1];
     assert!(second.after.gap <= 0.2 * second.before.gap, "{second:?}");
-    assert!(second.after.angle_degrees <= 0.02 * second.before.angle_degrees, "{second:?}");
+    assert!(
+        second.after.angle_degrees <= 0.02 * second.before.angle_degrees,
+        "{second:?}"
+    );
 }
 
 #[test]
@@ -190,7 +224,10 @@ fn surface_join_refusals_say_why() {
         SurfaceJumpLsqSettings::default().with_join(join(JoinEdge::U0, Continuity::G1, &short)),
         &second,
     );
-    assert!(reason.contains("21 nodes") && reason.contains("16 × 20"), "{reason}");
+    assert!(
+        reason.contains("21 nodes") && reason.contains("16 × 20"),
+        "{reason}"
+    );
     let reason = refused(
         SurfaceJumpLsqSettings::default()
             .with_join(join(JoinEdge::U0, Continuity::G1, &first))
@@ -224,7 +261,9 @@ fn surface_join_refusals_say_why() {
     let tube: Vec<Vec<Vec3>> = (0..13)
         .map(|i| {
             let a = std::f64::consts::TAU * (i % 12) as f64 / 12.0;
-            (0..21).map(|j| Vec3::new(a.cos(), a.sin(), j as f64 * 0.1)).collect()
+            (0..21)
+                .map(|j| Vec3::new(a.cos(), a.sin(), j as f64 * 0.1))
+                .collect()
         })
         .collect();
     let reason = refused(

@@ -123,7 +123,6 @@ impl JoinEdge {
             JoinEdge::V1 => (k, columns - 1),
         }
     }
-
 }
 
 /// The continuity a join holds.
@@ -241,7 +240,10 @@ impl Prepared {
             )));
         }
         if nb.iter().flatten().any(|p| !p.iter().all(|c| c.is_finite())) {
-            return Err(refuse(format!("join {}: a node of the neighbour {name} is not finite", join.edge.name())));
+            return Err(refuse(format!(
+                "join {}: a node of the neighbour {name} is not finite",
+                join.edge.name()
+            )));
         }
         let count = join.edge.count(rows, columns);
         let ours: Vec<Vec3> = (0..count)
@@ -374,8 +376,16 @@ impl Prepared {
     /// The join's measure for our surface `s` against the neighbour.
     pub(crate) fn measure(&self, s: &BicubicSplineSurface) -> JoinMeasure {
         let count = self.edge_points.len();
-        let ours_along = if self.edge.across_u() { s.v_knots() } else { s.u_knots() };
-        let ours_across = if self.edge.across_u() { s.u_knots() } else { s.v_knots() };
+        let ours_along = if self.edge.across_u() {
+            s.v_knots()
+        } else {
+            s.u_knots()
+        };
+        let ours_across = if self.edge.across_u() {
+            s.u_knots()
+        } else {
+            s.v_knots()
+        };
         let nb_along = if self.nb_edge.across_u() {
             self.surface.v_knots()
         } else {
@@ -412,7 +422,11 @@ impl Prepared {
                 let b = local(&self.surface, self.nb_edge.across_u(), n_edge, n_side, t_n);
                 let (Some(a), Some(b)) = (a, b) else { continue };
                 out.gap = out.gap.max((a.point - b.point).norm());
-                let n_b = if a.normal.dot(&b.normal) < 0.0 { -b.normal } else { b.normal };
+                let n_b = if a.normal.dot(&b.normal) < 0.0 {
+                    -b.normal
+                } else {
+                    b.normal
+                };
                 let angle = a.normal.cross(&n_b).norm().atan2(a.normal.dot(&n_b)).to_degrees();
                 out.angle_degrees = out.angle_degrees.max(angle);
                 let jump = (a.curvature(&a.normal) - b.curvature(&n_b)).abs();
@@ -460,7 +474,11 @@ impl Local {
 
 fn local(s: &BicubicSplineSurface, across_u: bool, edge: f64, side: Side, t: f64) -> Option<Local> {
     let last = if across_u { s.v_knots() } else { s.u_knots() };
-    let t_side = if t >= last[last.len() - 1] { Side::Left } else { Side::Right };
+    let t_side = if t >= last[last.len() - 1] {
+        Side::Left
+    } else {
+        Side::Right
+    };
     let p = |dc: usize, de: usize| {
         if across_u {
             s.partial_from(edge, t, dc, de, side, t_side)
@@ -583,8 +601,16 @@ impl Joined {
             (v_knots, free_cols, free_rows)
         };
         let across_count = across_knots.len();
-        let basis = if lines_are_columns { &spectral.u } else { &spectral.v };
-        let other_basis = if lines_are_columns { &spectral.v } else { &spectral.u };
+        let basis = if lines_are_columns {
+            &spectral.u
+        } else {
+            &spectral.v
+        };
+        let other_basis = if lines_are_columns {
+            &spectral.v
+        } else {
+            &spectral.u
+        };
         let mut c_hat = Vec::new();
         let mut t_hat = Vec::new();
         for p in held {
@@ -597,7 +623,11 @@ impl Joined {
                     other.iter().map(|&line| {
                         let mut t = targets[line][coord];
                         for &q in &held_lines {
-                            let node = if lines_are_columns { data(q, line) } else { data(line, q) };
+                            let node = if lines_are_columns {
+                                data(q, line)
+                            } else {
+                                data(line, q)
+                            };
                             t -= c[q] * node[coord];
                         }
                         t
@@ -634,7 +664,13 @@ impl Joined {
     }
 
     /// The Schur blocks W_l and W′_l of line l.
-    fn blocks(&self, spectral: &Spectral, lambda: f64, l: usize, along: usize) -> (DMatrix<f64>, DMatrix<f64>) {
+    fn blocks(
+        &self,
+        spectral: &Spectral,
+        lambda: f64,
+        l: usize,
+        along: usize,
+    ) -> (DMatrix<f64>, DMatrix<f64>) {
         let k = self.c_hat.len();
         let mut w = DMatrix::zeros(k, k);
         let mut w2 = DMatrix::zeros(k, k);
@@ -657,9 +693,17 @@ impl Joined {
         let k = self.c_hat.len();
         for l in 0..lines {
             let (w, _) = self.blocks(spectral, lambda, l, along);
-            let Some(lu) = w.clone().try_inverse() else { continue };
+            let Some(lu) = w.clone().try_inverse() else {
+                continue;
+            };
             for (coord, plane) in x.iter_mut().enumerate() {
-                let at = |p: &DMatrix<f64>, q: usize| if self.lines_are_columns { p[(q, l)] } else { p[(l, q)] };
+                let at = |p: &DMatrix<f64>, q: usize| {
+                    if self.lines_are_columns {
+                        p[(q, l)]
+                    } else {
+                        p[(l, q)]
+                    }
+                };
                 let r = DVector::from_fn(k, |a, _| {
                     (0..along).map(|q| self.c_hat[a][q] * at(plane, q)).sum::<f64>() - self.t_hat[a][coord][l]
                 });

@@ -406,7 +406,8 @@ impl SurfaceJumpLsq {
                     let mut x = spectral.solve_hat(&y_hat, c_hat.as_ref(), l);
                     joined.correct(&mut x, &spectral, l);
                     let rss = (0..3).map(|c| (&x[c] - &y_hat[c]).norm_squared()).sum::<f64>();
-                    let trace = spectral.rss_trace(&y_hat, None, l).1 - joined.trace_loss(&spectral, l, (nr, nc));
+                    let trace =
+                        spectral.rss_trace(&y_hat, None, l).1 - joined.trace_loss(&spectral, l, (nr, nc));
                     (rss, trace)
                 }
             };
@@ -555,7 +556,10 @@ fn check_joins(
     };
     for (k, p) in prepared.iter().enumerate() {
         if prepared[..k].iter().any(|q| q.edge == p.edge) {
-            return refuse(format!("two joins on edge {}: one neighbour per edge", p.edge.name()));
+            return refuse(format!(
+                "two joins on edge {}: one neighbour per edge",
+                p.edge.name()
+            ));
         }
     }
     for p in prepared {

@@ -352,10 +352,14 @@ fn end_derivative_is_the_natural_spline_end_tangent() {
     for at_end in [false, true] {
         let a = super::join::end_derivative(s.u_knots(), at_end);
         let i = if at_end { 6 } else { 0 };
+        #[allow(clippy::needless_range_loop)] // j indexes the columns of every row
         for j in 0..5 {
-            let d: Vec3 = (0..7).map(|r| grid[r][j] * a[r]).sum();
+            let d: Vec3 = grid.iter().zip(a.iter()).map(|(row, &w)| row[j] * w).sum();
             let t = s.u_tangent(i, j).unwrap();
-            assert!((d - t).norm() < 1e-12 * t.norm().max(1.0), "end {at_end} j {j}: {d:?} vs {t:?}");
+            assert!(
+                (d - t).norm() < 1e-12 * t.norm().max(1.0),
+                "end {at_end} j {j}: {d:?} vs {t:?}"
+            );
         }
     }
 }
