@@ -287,8 +287,8 @@ impl SurfaceJumpLsq {
             return Err(Error::Refused {
                 method: NAME.into(),
                 what: crate::Refusal::Join,
-                reason: "a join needs an open net without poles (this net closes up or has a pole; \
-                         fair it with closed = open, or without a join)"
+                reason: "cannot hold the joins: a join needs an open net without poles (this net \
+                         closes up or has a pole; fair it with closed = open, or without a join)"
                     .into(),
             });
         }
