@@ -24,6 +24,7 @@ mod pipeline_batch_cli;
 mod serve;
 mod strain_energy_cli;
 mod surface_cli;
+mod surface_join_cli;
 mod two_phase_cli;
 
 /// A fresh directory `$TMPDIR/<prefix>XXXXXX` for a test's files, removed with everything in it

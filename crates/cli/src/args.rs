@@ -138,6 +138,12 @@ pub(crate) struct FairArgs {
     /// Keep the end points (g0), also the end tangents (g1), also the end curvatures (g2).
     #[arg(long, value_enum, value_name = "G")]
     pub clamp_ends: Option<ClampEnds>,
+    /// Surfaces: hold an edge (u0, u1, v0, v1) of the faired net to a neighbour, e.g.
+    /// --join u0=bow.csv:g1 — FILE a grid in any format `fair surface` reads, or an IGES/STEP
+    /// surface; g0 positions, g1 (default) also the tangent plane, g2 also the curvature.
+    /// Repeatable, one per edge; the surface jump-lsq holds it (the method by default).
+    #[arg(long = "join", value_name = "EDGE=FILE[:G]", value_parser = parse_join)]
+    pub joins: Vec<JoinArg>,
     /// Write the faired points here (same format as INPUT; - for standard output).
     #[arg(short = 'o', long = "output", value_name = "OUT")]
     pub output: Option<String>,
@@ -391,6 +397,41 @@ pub(crate) fn parse_index_list(text: &str) -> Result<IndexList, String> {
         indices.push(index);
     }
     Ok(IndexList(indices))
+}
+
+/// One `--join`: the edge, the neighbour's file and the continuity.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct JoinArg {
+    /// The faired net's edge.
+    pub edge: fairing::strategies::JoinEdge,
+    /// The neighbour's file.
+    pub file: String,
+    /// What is held (g1 unless given).
+    pub continuity: fairing::strategies::Continuity,
+}
+
+/// Parses `--join EDGE=FILE[:g0|g1|g2]` (a trailing `:g0`/`:g1`/`:g2` is the continuity; any
+/// other colon belongs to the file name).
+pub(crate) fn parse_join(text: &str) -> Result<JoinArg, String> {
+    use fairing::strategies::{Continuity, JoinEdge};
+    let (edge, rest) = text
+        .split_once('=')
+        .ok_or_else(|| format!("`{text}` is not EDGE=FILE[:g0|g1|g2] (EDGE one of u0, u1, v0, v1)"))?;
+    let edge = JoinEdge::parse(edge.trim()).ok_or_else(|| {
+        format!("`{edge}` is not an edge: u0, u1 (first, last row), v0, v1 (first, last column)")
+    })?;
+    let (file, continuity) = match rest.rsplit_once(':') {
+        Some((file, c)) if Continuity::parse(c).is_some() => (file, Continuity::parse(c).unwrap_or_default()),
+        _ => (rest, Continuity::default()),
+    };
+    if file.is_empty() {
+        return Err(format!("`{text}` names no neighbour file"));
+    }
+    Ok(JoinArg {
+        edge,
+        file: file.to_owned(),
+        continuity,
+    })
 }
 
 /// Parses a tolerance: a finite number greater than 0.

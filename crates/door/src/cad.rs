@@ -547,6 +547,128 @@ pub fn export_surface(target: &CadTarget, record: &Value, grid: &Grid, name: &st
     })
 }
 
+/// Samples the first surface of the IGES or STEP file `path` into a net that meets edge
+/// `edge` of `grid` (a `--join` neighbour given as a CAD surface).
+///
+/// The CAD surface's boundary curve nearest to the edge's nodes is found (each of the four
+/// sampled at 256 parameters); each edge node is projected onto it (the nearest sample, then
+/// golden section between its neighbours), and the net's first row is the curve at those
+/// parameters, so it passes through the points of the CAD edge nearest to ours. Its other
+/// rows run at as many parameters, evenly spaced across the CAD surface, as `grid` has lines
+/// across the edge. The join is then held to this net's bicubic surface, which follows the
+/// CAD surface to its sampling. O(k · 256 + k · r) evaluations for k edge nodes and r rows.
+///
+/// Errors: the file cannot be read, holds no surface, or the surface is degenerate.
+pub fn neighbour_net(
+    path: &str,
+    grid: &[Vec<Vec3>],
+    edge: fairing::strategies::JoinEdge,
+) -> Result<Vec<Vec<Vec3>>> {
+    use curve_repr::Surface;
+    use fairing::strategies::JoinEdge;
+    let invalid = |message: String| Error::Invalid {
+        path: path.to_owned(),
+        message,
+    };
+    let model = match cad::read_path(path, None) {
+        Ok(model) => model,
+        Err(cad::Error::Io { message, .. }) => {
+            return Err(Error::Read {
+                path: path.to_owned(),
+                reason: message,
+            })
+        }
+        Err(e) => return Err(invalid(e.to_string())),
+    };
+    let surface = &model
+        .surfaces
+        .first()
+        .ok_or_else(|| invalid("holds no surface to join to".into()))?
+        .surface;
+    let (rows, columns) = (grid.len(), grid.first().map_or(0, Vec::len));
+    let ours: Vec<Vec3> = match edge {
+        JoinEdge::U0 => grid[0].clone(),
+        JoinEdge::U1 => grid[rows - 1].clone(),
+        JoinEdge::V0 => grid.iter().map(|r| r[0]).collect(),
+        JoinEdge::V1 => grid.iter().map(|r| r[columns - 1]).collect(),
+    };
+    let across = if matches!(edge, JoinEdge::U0 | JoinEdge::U1) {
+        rows
+    } else {
+        columns
+    };
+    let ((u0, u1), (v0, v1)) = surface.domain();
+    // A CAD edge: (fixed parameter is u?, its value, the other end of that parameter).
+    let edges = [(true, u0, u1), (true, u1, u0), (false, v0, v1), (false, v1, v0)];
+    let at = |fixed_u: bool, fixed: f64, t: f64| {
+        if fixed_u {
+            surface.eval(fixed, t)
+        } else {
+            surface.eval(t, fixed)
+        }
+    };
+    const SAMPLES: usize = 256;
+    let mut best: Option<(f64, usize)> = None;
+    for (e, &(fixed_u, fixed, _)) in edges.iter().enumerate() {
+        let (a, b) = if fixed_u { (v0, v1) } else { (u0, u1) };
+        let samples: Vec<Vec3> = (0..=SAMPLES)
+            .map(|k| at(fixed_u, fixed, a + (b - a) * k as f64 / SAMPLES as f64))
+            .collect();
+        let total: f64 = ours
+            .iter()
+            .map(|p| {
+                samples
+                    .iter()
+                    .map(|q| (p - q).norm())
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .sum();
+        if total.is_finite() && best.is_none_or(|(d, _)| total < d) {
+            best = Some((total, e));
+        }
+    }
+    let (_, e) = best.ok_or_else(|| invalid("its surface does not evaluate to finite points".into()))?;
+    let (fixed_u, fixed, opposite) = edges[e];
+    let (a, b) = if fixed_u { (v0, v1) } else { (u0, u1) };
+    let distance = |p: &Vec3, t: f64| (at(fixed_u, fixed, t) - p).norm();
+    let parameters: Vec<f64> = ours
+        .iter()
+        .map(|p| {
+            let step = (b - a) / SAMPLES as f64;
+            let k = (0..=SAMPLES)
+                .min_by(|&i, &j| {
+                    let (ti, tj) = (a + step * i as f64, a + step * j as f64);
+                    distance(p, ti).total_cmp(&distance(p, tj))
+                })
+                .unwrap_or(0);
+            let (mut lo, mut hi) = (
+                (a + step * k as f64 - step).max(a),
+                (a + step * k as f64 + step).min(b),
+            );
+            let ratio = 0.5 * (5f64.sqrt() - 1.0);
+            for _ in 0..60 {
+                let (c, d) = (hi - ratio * (hi - lo), lo + ratio * (hi - lo));
+                if distance(p, c) < distance(p, d) {
+                    hi = d;
+                } else {
+                    lo = c;
+                }
+            }
+            0.5 * (lo + hi)
+        })
+        .collect();
+    let net: Vec<Vec<Vec3>> = (0..across)
+        .map(|r| {
+            let s = fixed + (opposite - fixed) * r as f64 / (across - 1) as f64;
+            parameters.iter().map(|&t| at(fixed_u, s, t)).collect()
+        })
+        .collect();
+    if net.iter().flatten().any(|p| !p.iter().all(|c| c.is_finite())) {
+        return Err(invalid("its surface does not evaluate to finite points".into()));
+    }
+    Ok(net)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -241,6 +241,7 @@ impl Error {
                     Refusal::Fixed => "--fixed",
                     Refusal::Tolerance => "--tolerance",
                     Refusal::Kind => "--kind",
+                    Refusal::Join => "--join",
                     _ => "--set",
                 };
                 Error::Argument {

@@ -29,6 +29,8 @@ pub struct SurfaceRequest {
     pub config: Option<ConfigFile>,
     /// Fixed points, bad points, tolerance band, end clamp.
     pub constraints: ConstraintRequest,
+    /// Edges held to neighbours (the surface `jump-lsq` only; [`fairing::strategies::Join`]).
+    pub joins: Vec<fairing::strategies::Join>,
 }
 
 /// A faired grid: the grid, the measurements before and after and the report.
@@ -72,7 +74,12 @@ pub fn surface(catalog: &Catalog, data: &GridData<'_>, request: &SurfaceRequest)
 
 fn fair_grid(catalog: &Catalog, data: &GridData<'_>, request: &SurfaceRequest) -> Result<FairedSurface> {
     let (plan, constraints) = plan(catalog, data, request)?;
-    let whole = constraints.constraints(constraints.tolerance);
+    let whole = request
+        .joins
+        .iter()
+        .fold(constraints.constraints(constraints.tolerance), |c, j| {
+            c.with_join(j.clone())
+        });
     let job = SurfaceJob {
         method: &plan.name(),
         grid: data.grid,

@@ -88,6 +88,9 @@ pub struct Constraints {
     radii: Option<Vec<f64>>,
     tolerance: Option<f64>,
     end_clamp: EndClamp,
+    /// Surface edges held to neighbours (only the surface `jump-lsq` takes them).
+    #[serde(skip)]
+    joins: Vec<crate::strategies::Join>,
 }
 
 impl Constraints {
@@ -121,6 +124,18 @@ impl Constraints {
     pub fn with_end_clamp(mut self, clamp: EndClamp) -> Self {
         self.end_clamp = clamp;
         self
+    }
+
+    /// Holds an edge of a surface net to a neighbour (the surface `jump-lsq`'s joins; other
+    /// methods refuse them).
+    pub fn with_join(mut self, join: crate::strategies::Join) -> Self {
+        self.joins.push(join);
+        self
+    }
+
+    /// The surface joins.
+    pub fn joins(&self) -> &[crate::strategies::Join] {
+        &self.joins
     }
 
     /// The fixed points, increasing.

@@ -236,6 +236,8 @@ pub enum Refusal {
     Closed,
     /// A combination of parameters.
     Parameters,
+    /// A surface edge held to a neighbour (`--join`).
+    Join,
 }
 
 /// The crate's result type.

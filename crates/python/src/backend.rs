@@ -285,6 +285,7 @@ impl Options {
             settings,
             config: self.config.as_ref().map(|c| c.0.clone()),
             constraints,
+            ..Default::default()
         })
     }
 }

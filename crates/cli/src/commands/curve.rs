@@ -91,6 +91,12 @@ fn output_format(args: &FairArgs) -> Result<crate::output::OutputFormat> {
 
 /// Runs `fair curve`: one input, or a batch ([`batch`]).
 pub(crate) fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
+    if !args.joins.is_empty() {
+        return Err(Error::Argument {
+            option: "--join",
+            message: "holds a surface's edge to a neighbour; a curve has none (use --clamp-ends)".into(),
+        });
+    }
     let batch = batch::is_batch(args);
     // A batch's --plot (and a directory batch's -o) is a directory of files named per curve;
     // the files that can clash are a stream's -o and --report.

@@ -11,6 +11,7 @@ use fair_door::measure;
 use fair_door::report::Report;
 use fair_door::surface::SurfaceRequest;
 use fairing::catalog::{Catalog, ConfigFile};
+use fairing::strategies::Join;
 
 use crate::args::FairArgs;
 use crate::commands::{say, write_results};
@@ -30,14 +31,47 @@ pub(crate) struct FairedSurface {
     pub(crate) grid: Grid,
 }
 
-/// The door's request for a command line (and its config file).
-fn request(args: &FairArgs, file: Option<&ConfigFile>) -> SurfaceRequest {
+/// The door's request for a command line (and its config file), with the neighbours the
+/// joins name already read. With a join and neither --method nor --config, the method is the
+/// surface jump-lsq (the one that holds joins).
+fn request(args: &FairArgs, file: Option<&ConfigFile>, joins: &[Join]) -> SurfaceRequest {
+    let method = match (&args.method, file, joins.is_empty()) {
+        (None, None, false) => Some(fairing::strategies::surface_jump_lsq::NAME.to_owned()),
+        (method, _, _) => method.clone(),
+    };
     SurfaceRequest {
-        method: args.method.clone(),
+        method,
         settings: args.parameters(),
         config: file.cloned(),
         constraints: args.constraints(),
+        joins: joins.to_vec(),
     }
+}
+
+/// Reads the neighbours `--join` names: a grid file, or the first surface of an IGES/STEP
+/// file sampled into a net ([`fair_door::cad::neighbour_net`]) meeting `input`'s edge.
+pub(crate) fn read_joins(args: &FairArgs, input: &SurfaceInput) -> Result<Vec<Join>> {
+    let grid = input.grid.to_rows();
+    args.joins
+        .iter()
+        .map(|j| {
+            let lower = j.file.to_ascii_lowercase();
+            let cad = [".igs", ".iges", ".step", ".stp"]
+                .iter()
+                .any(|e| lower.ends_with(e));
+            let neighbour = if cad {
+                fair_door::cad::neighbour_net(&j.file, &grid, j.edge)?
+            } else {
+                input::read_surface(&j.file)?.grid.to_rows()
+            };
+            Ok(Join {
+                edge: j.edge,
+                continuity: j.continuity,
+                neighbour,
+                source: j.file.clone(),
+            })
+        })
+        .collect()
 }
 
 /// Fairs one surface input through the door and formats what `fair surface` writes.
@@ -47,7 +81,8 @@ pub(crate) fn process(
     args: &FairArgs,
     file: Option<&ConfigFile>,
 ) -> Result<FairedSurface> {
-    let faired = fair_door::surface(catalog, &input.data(), &request(args, file))?;
+    let joins = read_joins(args, input)?;
+    let faired = fair_door::surface(catalog, &input.data(), &request(args, file, &joins))?;
     let grid_text = crate::output::format_surface(input, &faired.grid)?;
     let plot = SurfacePlot {
         title: format!("{} — {}", input.source, faired.report.method),
@@ -88,8 +123,9 @@ pub(crate) fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
     let cad = fair_door::cad::target(&args.cad_request(), true)?;
     let input = input::read_surface(&args.input)?;
     if args.print_config {
+        let joins = read_joins(args, &input)?;
         let (plan, constraints) =
-            fair_door::surface::plan(catalog, &input.data(), &request(args, file.as_ref()))?;
+            fair_door::surface::plan(catalog, &input.data(), &request(args, file.as_ref(), &joins))?;
         // The methods check their values when they run (see `fair curve --print-config`).
         process(catalog, &input, args, file.as_ref())?;
         say(false, false, plan.render(catalog, &constraints).trim_end());

@@ -248,6 +248,7 @@ pub(crate) fn fair_surface(catalog: &Catalog, input: &SurfaceInput, job: &Job) -
         settings: parameters(job)?,
         config: None,
         constraints: constraints(job)?,
+        ..Default::default()
     };
     let faired = fair_door::surface(catalog, &input.data(), &request)?;
     faired.report.check_finite()?;

@@ -43,7 +43,7 @@ const MOVE_BOUNDS: [&str; 2] = ["range", "max-move"];
 /// Report fields of the built-in methods (in `extras`, at any depth) that are lengths or
 /// squared lengths, with their length power: mapped out of the frame. Other fields with units
 /// (energies, penalties, a smoothing parameter) stay the frame's numbers.
-const LENGTH_EXTRAS: [(&str, i32); 7] = [
+const LENGTH_EXTRAS: [(&str, i32); 9] = [
     ("sigma", 1),
     ("target_sd", 1),
     ("rms_displacement", 1),
@@ -51,6 +51,8 @@ const LENGTH_EXTRAS: [(&str, i32); 7] = [
     ("quantum", 1),
     ("displacement_sum", 1),
     ("gcv", 2),
+    ("gap", 1),
+    ("curvature_jump", -1),
 ];
 
 /// Data whose bounding-box centre is within this many extents (largest distance from it) of
@@ -230,6 +232,17 @@ impl Frame {
         }
         if let Some(r) = constraints.restraining_radii() {
             out = out.with_restraining_radii(r.iter().map(|&r| self.length_to_frame(r)).collect());
+        }
+        for join in constraints.joins() {
+            let neighbour = join
+                .neighbour
+                .iter()
+                .map(|row| self.points_to_frame(row))
+                .collect();
+            out = out.with_join(crate::strategies::Join {
+                neighbour,
+                ..join.clone()
+            });
         }
         out
     }

@@ -866,6 +866,14 @@ impl MethodEntry {
                 reason: "takes no bad points".into(),
             });
         }
+        if !job.constraints.joins().is_empty() && self.info.name != crate::strategies::surface_jump_lsq::NAME
+        {
+            return Err(Error::Refused {
+                method: self.info.name.clone(),
+                what: Refusal::Join,
+                reason: "holds no edge to a neighbour (joins are the surface jump-lsq's)".into(),
+            });
+        }
         check_coordinates(job.grid.points.iter().map(|p| vec![p.x, p.y, p.z]), "grid point")?;
         let frame = Frame::of(
             &job.grid

@@ -40,7 +40,10 @@ pub use surface::{
     Closure, Objective, Refusal, Region, SurfaceFairing, SurfaceFairingResult, SurfaceFairingSettings,
     SurfaceMode, SurfaceStep, SweepOrder,
 };
-pub use surface_jump_lsq::{SurfaceJumpLsq, SurfaceJumpLsqResult, SurfaceJumpLsqSettings};
+pub use surface_jump_lsq::{
+    Continuity, Join, JoinEdge, JoinMeasure, JoinReport, SurfaceJumpLsq, SurfaceJumpLsqResult,
+    SurfaceJumpLsqSettings,
+};
 pub use surface_smoothing::{
     smooth_grid, SurfaceSmoothing, SurfaceSmoothingResult, SurfaceSmoothingSettings,
 };

@@ -14,6 +14,7 @@ mod runtime_schema;
 mod sapidis_farin_data;
 mod strain_energy;
 mod surface;
+mod surface_join;
 mod surface_jump_lsq;
 mod two_phase;
 mod two_phase_curves;

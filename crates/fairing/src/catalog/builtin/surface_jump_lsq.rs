@@ -1,7 +1,8 @@
 //! `jump-lsq` (surfaces): least squares on the nodes with a penalty on the third-derivative
 //! jumps of the net's bicubic surface in both directions ([`SurfaceJumpLsq`]), λ by GCV.
 //! Seams closed, poles and fixed nodes held bit for bit, the tolerance band held; `g0`
-//! keeps the boundary. It takes no bad points (it fairs every node) and no restraining radii.
+//! keeps the boundary; joins (`--join`) hold edges to neighbours g0/g1/g2, reported under
+//! `joins`. It takes no bad points (it fairs every node) and no restraining radii.
 
 use crate::catalog::{Settings, SurfaceJob, SurfaceMethod, SurfaceRun};
 use crate::strategies::{SurfaceJumpLsq, SurfaceJumpLsqSettings};
@@ -56,6 +57,7 @@ impl SurfaceMethod for SurfaceJumpLsqMethod {
         let mut settings = settings.clone();
         settings.fixed = job.fixed_nodes();
         settings.max_distance = job.constraints.tolerance();
+        settings.joins = job.constraints.joins().to_vec();
         let result = SurfaceJumpLsq::new(settings.clone()).run(&grid.to_rows())?;
         let record = bicubic_record(&result.surface, settings.parametrization, &result.topology);
         let mut extras = std::collections::BTreeMap::new();
@@ -65,6 +67,9 @@ impl SurfaceMethod for SurfaceJumpLsqMethod {
         extras.insert("band_pins".into(), serde_json::json!(result.band_pins));
         extras.insert("cg_iterations".into(), serde_json::json!(result.cg_iterations));
         extras.insert("displacement_sum".into(), serde_json::json!(result.displacement));
+        if !result.joins.is_empty() {
+            extras.insert("joins".into(), serde_json::json!(result.joins));
+        }
         Ok(SurfaceRun {
             grid: crate::catalog::Grid {
                 rows: grid.rows,

@@ -74,6 +74,7 @@
 //! matrix products (criterion bench `surface_jump`). Each fixed node or band pin adds at most
 //! one conjugate-gradient iteration of two transforms.
 
+mod join;
 mod operator;
 mod spectral;
 #[cfg(test)]
@@ -88,6 +89,8 @@ use super::surface::Closure;
 use crate::state::strategy_error;
 use crate::{Error, Result};
 use spectral::{planes, Planes, Spectral};
+
+pub use join::{Continuity, Join, JoinEdge, JoinMeasure, JoinReport};
 
 /// The strategy's name, as `fair methods` lists it (a surface method).
 pub const NAME: &str = "jump-lsq";
@@ -126,6 +129,10 @@ pub struct SurfaceJumpLsqSettings {
     /// No node moves farther than this from where it started (`--tolerance`).
     #[serde(skip)]
     pub max_distance: Option<f64>,
+    /// Edges held to neighbours (`--join`; module `join`). Not a parameter of the catalogue.
+    #[serde(skip)]
+    #[schemars(skip)]
+    pub joins: Vec<Join>,
 }
 
 impl Default for SurfaceJumpLsqSettings {
@@ -137,6 +144,7 @@ impl Default for SurfaceJumpLsqSettings {
             guard: true,
             fixed: Vec::new(),
             max_distance: None,
+            joins: Vec::new(),
         }
     }
 }
@@ -195,6 +203,11 @@ impl SurfaceJumpLsqSettings {
         self.max_distance = Some(distance);
         self
     }
+    /// Adds an edge held to a neighbour.
+    pub fn with_join(mut self, join: Join) -> Self {
+        self.joins.push(join);
+        self
+    }
 }
 
 /// What [`SurfaceJumpLsq::run`] returns.
@@ -223,6 +236,8 @@ pub struct SurfaceJumpLsqResult {
     pub moved: Vec<(usize, usize)>,
     /// Time of the fairing itself.
     pub elapsed: Duration,
+    /// The joined edges, with their gaps, angles and curvature jumps before and after.
+    pub joins: Vec<JoinReport>,
 }
 
 /// Surface jump least squares; see the [module docs](self).
@@ -249,7 +264,7 @@ impl SurfaceJumpLsq {
     pub fn run(&self, grid: &[Vec<Vec3>]) -> Result<SurfaceJumpLsqResult> {
         let settings = &self.settings;
         settings.validate()?;
-        let start = std::time::Instant::now();
+        let started = std::time::Instant::now();
         let rows = grid.len();
         let columns = grid.first().map_or(0, Vec::len);
         if rows < 3 || columns < 3 {
@@ -266,10 +281,47 @@ impl SurfaceJumpLsq {
             return Err(strategy_error(NAME, "a grid point is not finite"));
         }
         let topology = settings.closed.topology(&flat, rows, columns);
-        let build = BicubicSurfaceSettings::default()
+        let plain = BicubicSurfaceSettings::default()
             .with_parametrization(settings.parametrization)
             .with_topology(&topology);
+        if !settings.joins.is_empty() && (topology.closed_u || topology.closed_v || topology.poles.any()) {
+            return Err(Error::Refused {
+                method: NAME.into(),
+                what: crate::Refusal::Join,
+                reason: "cannot hold the joins: a join needs an open net without poles (this net \
+                         closes up or has a pole; fair it with closed = open, or without a join)"
+                    .into(),
+            });
+        }
+        let prepared = settings
+            .joins
+            .iter()
+            .map(|j| join::Prepared::new(j, grid, settings.parametrization))
+            .collect::<Result<Vec<_>>>()?;
+        // With joins the faired net keeps its input's knots, the neighbour's along a joined
+        // edge (module `join`), so the constraints hold on the output's own surface.
+        let build = if prepared.is_empty() {
+            plain.clone()
+        } else {
+            check_joins(&prepared, settings, rows, columns)?;
+            let (mut u_knots, mut v_knots) = plain.knots(&flat, rows, columns)?;
+            if let Some(p) = prepared.iter().find(|p| join::across_u(p.edge)) {
+                v_knots = p.mapped_knots(&v_knots);
+            }
+            if let Some(p) = prepared.iter().find(|p| !join::across_u(p.edge)) {
+                u_knots = p.mapped_knots(&u_knots);
+            }
+            plain.clone().with_u_knots(u_knots).with_v_knots(v_knots)
+        };
         let input = BicubicSplineSurface::with_settings(grid, &build)?;
+        // The start: the input with every joined edge moved onto its neighbour's.
+        let mut start = flat.clone();
+        for p in &prepared {
+            for (k, &q) in p.edge_points.iter().enumerate() {
+                let (i, j) = join::edge_node(p.edge, k, rows, columns);
+                start[i * columns + j] = q;
+            }
+        }
         let (mu, nv) = (
             rows - usize::from(topology.closed_u),
             columns - usize::from(topology.closed_v),
@@ -294,11 +346,17 @@ impl SurfaceJumpLsq {
                 }
             }
         }
+        for p in &prepared {
+            for k in 0..p.edge_points.len() {
+                let (i, j) = join::edge_node(p.edge, k, rows, columns);
+                held[i * nv + j] = true;
+            }
+        }
         let held_row: Vec<bool> = (0..mu).map(|i| (0..nv).all(|j| held[i * nv + j])).collect();
         let held_col: Vec<bool> = (0..nv).map(|j| (0..mu).all(|i| held[i * nv + j])).collect();
         let free_rows: Vec<usize> = (0..mu).filter(|&i| !held_row[i]).collect();
         let free_cols: Vec<usize> = (0..nv).filter(|&j| !held_col[j]).collect();
-        let data = |i: usize, j: usize| flat[i * columns + j];
+        let data = |i: usize, j: usize| start[i * columns + j];
 
         let mut out_distinct: Vec<Vec3> = (0..mu * nv).map(|k| data(k / nv, k % nv)).collect();
         let mut lambda_used = settings.lambda.unwrap_or(0.0);
@@ -334,12 +392,32 @@ impl SurfaceJumpLsq {
             let y_hat = spectral.forward(&y);
             let c_hat = coupling.as_ref().map(|c| spectral.forward(c));
             let n_free = (nr * nc) as f64;
+            let joined = join::Joined::new(
+                &prepared,
+                input.u_knots(),
+                input.v_knots(),
+                &free_rows,
+                &free_cols,
+                &data,
+                &spectral,
+            );
+            let rss_trace = |l: f64| match &joined {
+                None => spectral.rss_trace(&y_hat, c_hat.as_ref(), l),
+                Some(joined) => {
+                    let mut x = spectral.solve_hat(&y_hat, c_hat.as_ref(), l);
+                    joined.correct(&mut x, &spectral, l);
+                    let rss = (0..3).map(|c| (&x[c] - &y_hat[c]).norm_squared()).sum::<f64>();
+                    let trace =
+                        spectral.rss_trace(&y_hat, None, l).1 - joined.trace_loss(&spectral, l, (nr, nc));
+                    (rss, trace)
+                }
+            };
             let lambda = match settings.lambda {
                 Some(l) => l,
                 None => {
                     let score = |log_l: f64| {
                         let l = 10f64.powf(log_l);
-                        let (rss, trace) = spectral.rss_trace(&y_hat, c_hat.as_ref(), l);
+                        let (rss, trace) = rss_trace(l);
                         let denom = 1.0 - trace / n_free;
                         if denom <= 0.0 {
                             f64::INFINITY
@@ -360,6 +438,7 @@ impl SurfaceJumpLsq {
                 y_hat: &y_hat,
                 coupling: coupling.as_ref(),
                 c_hat: c_hat.as_ref(),
+                joined: joined.as_ref(),
             };
             let mut scattered: Vec<(usize, usize, Vec3)> = Vec::new();
             for (a, &i) in free_rows.iter().enumerate() {
@@ -369,7 +448,7 @@ impl SurfaceJumpLsq {
                     }
                 }
             }
-            let before = judge(&flat, rows, columns, &build)?;
+            let before = judge(&start, rows, columns, &build)?;
             let mut trial = lambda;
             let mut accepted = None;
             for _ in 0..=GUARD_RETRIES {
@@ -397,11 +476,25 @@ impl SurfaceJumpLsq {
                 refused += 1;
                 trial *= GUARD_FACTOR;
             }
+            if accepted.is_none() && joined.is_some() {
+                // Every fit refused: the start moved least to hold the joins (λ = 0).
+                let (x, _, _) = system.solve(0.0, &scattered, None);
+                let mut candidate = out_distinct.clone();
+                for (a, &i) in free_rows.iter().enumerate() {
+                    for (b, &j) in free_cols.iter().enumerate() {
+                        let k = i * nv + j;
+                        if !held[k] {
+                            candidate[k] = y_at(&x, a, b);
+                        }
+                    }
+                }
+                accepted = Some((0.0, candidate, 0));
+            }
             if let Some((l, candidate, pins)) = accepted {
                 lambda_used = l;
                 out_distinct = candidate;
                 band_pins = pins;
-                dof = spectral.rss_trace(&y_hat, c_hat.as_ref(), l).1;
+                dof = rss_trace(l).1;
             } else {
                 lambda_used = 0.0;
                 dof = n_free;
@@ -420,6 +513,15 @@ impl SurfaceJumpLsq {
             .map(|k| (k / columns, k % columns))
             .collect();
         let surface = BicubicSplineSurface::from_flat(points, rows, columns, &build)?;
+        let joins = if prepared.is_empty() {
+            Vec::new()
+        } else {
+            let own = BicubicSplineSurface::with_settings(grid, &plain)?;
+            prepared
+                .iter()
+                .map(|p| p.report(p.measure(&own), p.measure(&surface)))
+                .collect()
+        };
         Ok(SurfaceJumpLsqResult {
             surface,
             lambda: lambda_used,
@@ -431,9 +533,66 @@ impl SurfaceJumpLsq {
             refused,
             topology,
             moved,
-            elapsed: start.elapsed(),
+            elapsed: started.elapsed(),
+            joins,
         })
     }
+}
+
+/// Refuses joins the solve cannot hold (a net with a closed direction or a pole is refused
+/// before): two on one edge, g1/g2 joins across both directions, g1/g2 joins with fixed nodes or a tolerance
+/// band, a fixed node on a joined edge.
+fn check_joins(
+    prepared: &[join::Prepared],
+    settings: &SurfaceJumpLsqSettings,
+    rows: usize,
+    columns: usize,
+) -> Result<()> {
+    let refuse = |reason: String| {
+        Err(Error::Refused {
+            method: NAME.into(),
+            what: crate::Refusal::Join,
+            reason: format!("cannot hold the joins: {reason}"),
+        })
+    };
+    for (k, p) in prepared.iter().enumerate() {
+        if prepared[..k].iter().any(|q| q.edge == p.edge) {
+            return refuse(format!(
+                "two joins on edge {}: one neighbour per edge",
+                p.edge.name()
+            ));
+        }
+    }
+    for p in prepared {
+        for k in 0..p.edge_points.len() {
+            let node = join::edge_node(p.edge, k, rows, columns);
+            if settings.fixed.contains(&node) {
+                return refuse(format!(
+                    "fixed node ({}, {}) lies on the joined edge {}, which moves onto its neighbour",
+                    node.0,
+                    node.1,
+                    p.edge.name()
+                ));
+            }
+        }
+    }
+    let tangent: Vec<&join::Prepared> = prepared.iter().filter(|p| p.holds_tangent()).collect();
+    if tangent.iter().any(|p| join::across_u(p.edge)) && tangent.iter().any(|p| !join::across_u(p.edge)) {
+        return refuse(
+            "g1/g2 joins on a u edge and a v edge together are not supported (hold one of them g0)".into(),
+        );
+    }
+    if let Some(p) = tangent.first() {
+        if !settings.fixed.is_empty() || settings.max_distance.is_some() {
+            return refuse(format!(
+                "a {} join (edge {}) cannot be combined with fixed nodes or a tolerance band \
+                 (a g0 join can)",
+                p.continuity.name(),
+                p.edge.name()
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The node `fitted` kept within `band` of its input `start` (projected onto the band's
@@ -484,6 +643,7 @@ struct Block<'a> {
     y_hat: &'a Planes,
     coupling: Option<&'a Planes>,
     c_hat: Option<&'a Planes>,
+    joined: Option<&'a join::Joined>,
 }
 
 impl Block<'_> {
@@ -495,7 +655,7 @@ impl Block<'_> {
         scattered: &[(usize, usize, Vec3)],
         band: Option<f64>,
     ) -> (Planes, usize, usize) {
-        let x_hat = self.spectral.solve_hat(self.y_hat, self.c_hat, lambda);
+        let x_hat = self.solve_hat(lambda);
         let mut x = self.spectral.back(&x_hat);
         let rhs: Planes = match self.coupling {
             Some(c) => std::array::from_fn(|k| &self.y[k] - &c[k] * lambda),
@@ -535,6 +695,15 @@ impl Block<'_> {
             }
         }
         (x, band_pins, iterations)
+    }
+
+    /// X̂ at λ with the joins' constraints.
+    fn solve_hat(&self, lambda: f64) -> Planes {
+        let mut x_hat = self.spectral.solve_hat(self.y_hat, self.c_hat, lambda);
+        if let Some(joined) = self.joined {
+            joined.correct(&mut x_hat, self.spectral, lambda);
+        }
+        x_hat
     }
 
     /// X + λ (K_u X + X K_v).

@@ -335,3 +335,31 @@ fn poles_stay_one_point() {
         assert_eq!(result.surface.points()[j], apex);
     }
 }
+
+#[test]
+fn end_derivative_is_the_natural_spline_end_tangent() {
+    let grid: Vec<Vec<Vec3>> = (0..7)
+        .map(|i| {
+            (0..5)
+                .map(|j| {
+                    let (x, y) = (i as f64 * 0.3 + 0.02 * (i * i) as f64, j as f64);
+                    Vec3::new(x, y, (x * 1.3).sin() + 0.1 * y * x * x)
+                })
+                .collect()
+        })
+        .collect();
+    let s = BicubicSplineSurface::new(&grid).unwrap();
+    for at_end in [false, true] {
+        let a = super::join::end_derivative(s.u_knots(), at_end);
+        let i = if at_end { 6 } else { 0 };
+        #[allow(clippy::needless_range_loop)] // j indexes the columns of every row
+        for j in 0..5 {
+            let d: Vec3 = grid.iter().zip(a.iter()).map(|(row, &w)| row[j] * w).sum();
+            let t = s.u_tangent(i, j).unwrap();
+            assert!(
+                (d - t).norm() < 1e-12 * t.norm().max(1.0),
+                "end {at_end} j {j}: {d:?} vs {t:?}"
+            );
+        }
+    }
+}
