@@ -14,27 +14,9 @@ use curve_repr::{
 
 use crate::{Error, Result, Units};
 
-/// How the faired points were measured, which decides how a rebuild counts curvature.
-#[derive(
-    Clone,
-    Copy,
-    Debug,
-    Default,
-    PartialEq,
-    Eq,
-    Hash,
-    serde::Serialize,
-    serde::Deserialize,
-    schemars::JsonSchema,
-)]
-#[serde(rename_all = "kebab-case")]
-pub enum CurveKind {
-    /// A function y(x): the curve's parameter is x, curvature counted as Han's x–c polyline.
-    Function,
-    /// A parametric curve in 2D or 3D.
-    #[default]
-    Parametric,
-}
+/// How the faired points were measured, which decides how a rebuild counts curvature (the
+/// one kind of the whole library, from `curve-repr`).
+pub use curve_repr::CurveKind;
 
 /// An exact B-spline (or NURBS) curve for a CAD file, with the data points it passes through.
 #[derive(Clone, Debug, PartialEq)]

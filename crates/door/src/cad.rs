@@ -12,7 +12,7 @@
 //! says which (`representation`), with the deviation and the curvature counts of what was
 //! written.
 
-use cad::{CadCurve, CadSettings, CadSurface, CurveKind as CadKind, Format, Shape, WriteOptions};
+use cad::{CadCurve, CadSettings, CadSurface, Format, Shape, WriteOptions};
 use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings, CubicPieces, NurbsCurve, Vec3, Vector};
 use serde_json::{json, Value};
 
@@ -257,7 +257,7 @@ fn natural_tangents<const D: usize>(t: &[f64], y: &[Vector<D>], m: &[Vector<D>])
 /// when the record is of another kind or does not fit the points.
 fn method_curve<const D: usize>(record: &Value, points: &[Vector<D>]) -> Option<CadCurve> {
     let by_x = record.get("parametrization").and_then(Value::as_str) == Some("x");
-    let as_function = |c: CadCurve| if by_x { c.with_kind(CadKind::Function) } else { c };
+    let as_function = |c: CadCurve| if by_x { c.with_kind(CurveKind::Function) } else { c };
     match record.get("type")?.as_str()? {
         "nurbs" => {
             let degree = usize::try_from(record.get("degree")?.as_u64()?).ok()?;
@@ -332,8 +332,8 @@ fn deviation(curve: &CadCurve) -> f64 {
         .map(|(q, &t)| {
             let p = curve.curve.point(t);
             match curve.kind {
-                CadKind::Function => (q.y - p.y).abs(),
-                CadKind::Parametric => (q - p).norm(),
+                CurveKind::Function => (q.y - p.y).abs(),
+                CurveKind::Parametric => (q - p).norm(),
             }
         })
         .fold(0.0, f64::max)
@@ -354,7 +354,7 @@ pub fn faired_curve(record: &Value, faired: &CurvePoints, kind: CurveKind) -> Re
         let scale = cad::model::size(&lifted).max(f64::MIN_POSITIVE);
         let own = method_curve(record, points).filter(|c| {
             c.points.len() == points.len()
-                && deviation(&c.clone().with_kind(CadKind::Parametric)) <= ON_CURVE * scale
+                && deviation(&c.clone().with_kind(CurveKind::Parametric)) <= ON_CURVE * scale
         });
         let name = record.get("type").and_then(Value::as_str).unwrap_or("");
         match own {

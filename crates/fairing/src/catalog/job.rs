@@ -11,25 +11,8 @@ use serde::{Deserialize, Serialize};
 use super::Catalog;
 use crate::{Constraints, FairingResult};
 
-/// How a curve's points are read: a function y(x) or a parametric curve.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum CurveKind {
-    /// A function y(x): planar points, x strictly increasing; methods keep x.
-    Function,
-    /// A parametric curve in 2D or 3D.
-    Parametric,
-}
-
-impl CurveKind {
-    /// `function` or `parametric`.
-    pub fn name(self) -> &'static str {
-        match self {
-            CurveKind::Function => "function",
-            CurveKind::Parametric => "parametric",
-        }
-    }
-}
+/// How a curve's points are read (one type for the catalogue, the measures and CAD output).
+pub use curve_repr::CurveKind;
 
 /// The points of a curve, planar or spatial.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
