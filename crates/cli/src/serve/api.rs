@@ -29,7 +29,7 @@ use std::collections::BTreeMap;
 use serde::Deserialize;
 use serde_json::{json, Value};
 
-use super::datasets::{Datasets, Refusal};
+use super::datasets::{Datasets, Unavailable};
 use super::drawing;
 use super::engine::{self, Job, JobConstraints};
 use super::http::{Request, Response};
@@ -373,20 +373,20 @@ fn dataset(encoded: &str, context: &Context) -> Response {
     };
     let (entry, source) = match context.datasets.read(&name, context.max_upload) {
         Ok(found) => found,
-        Err(Refusal::Outside(name)) => {
+        Err(Unavailable::Outside(name)) => {
             return Response::error(
                 400,
                 format!("`{name}` is outside the data folders; GET /api/datasets lists what can be read"),
             )
         }
-        Err(Refusal::Unknown(name)) => {
+        Err(Unavailable::Unknown(name)) => {
             return Response::error(
                 404,
                 format!("no data set `{name}` (GET /api/datasets lists them)"),
             )
         }
-        Err(Refusal::TooLarge(message)) => return Response::error(413, message),
-        Err(Refusal::Unreadable(error)) => return failure(error),
+        Err(Unavailable::TooLarge(message)) => return Response::error(413, message),
+        Err(Unavailable::Unreadable(error)) => return failure(error),
     };
     match load_text(&context.catalog, &source, KindChoice::Auto, false) {
         Ok(mut value) => {

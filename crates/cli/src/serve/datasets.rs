@@ -58,7 +58,7 @@ impl Dataset {
 
 /// Why a data set cannot be given.
 #[derive(Debug)]
-pub(crate) enum Refusal {
+pub(crate) enum Unavailable {
     /// The name reaches outside the data folders (400).
     Outside(String),
     /// No data set has this name (404).
@@ -147,27 +147,31 @@ impl Datasets {
     }
 
     /// The data set called `name`, its text read now (at most `limit` bytes).
-    pub(crate) fn read(&self, name: &str, limit: usize) -> std::result::Result<(&Dataset, Source), Refusal> {
+    pub(crate) fn read(
+        &self,
+        name: &str,
+        limit: usize,
+    ) -> std::result::Result<(&Dataset, Source), Unavailable> {
         if outside(name) {
-            return Err(Refusal::Outside(name.to_string()));
+            return Err(Unavailable::Outside(name.to_string()));
         }
         let entry = self
             .entries
             .iter()
             .find(|e| e.name == name)
-            .ok_or_else(|| Refusal::Unknown(name.to_string()))?;
+            .ok_or_else(|| Unavailable::Unknown(name.to_string()))?;
         let path = match &entry.origin {
             Origin::Embedded(text) => return Ok((entry, Source::from_text(&entry.name, text))),
             Origin::File(path) => path.clone(),
             Origin::InFolder(path, root) => {
                 let real = path.canonicalize().map_err(|e| {
-                    Refusal::Unreadable(Error::Read {
+                    Unavailable::Unreadable(Error::Read {
                         path: entry.name.clone(),
                         reason: fair_door::error::io_reason(&e),
                     })
                 })?;
                 if !real.starts_with(root) {
-                    return Err(Refusal::Outside(name.to_string()));
+                    return Err(Unavailable::Outside(name.to_string()));
                 }
                 real
             }
@@ -175,25 +179,25 @@ impl Datasets {
         // A regular file only: a FIFO or device put in a listed file's place would block the
         // reader (or never end).
         let metadata = std::fs::metadata(&path).map_err(|e| {
-            Refusal::Unreadable(Error::Read {
+            Unavailable::Unreadable(Error::Read {
                 path: entry.name.clone(),
                 reason: crate::input::io_reason(&e),
             })
         })?;
         if !metadata.is_file() {
-            return Err(Refusal::Unreadable(Error::Read {
+            return Err(Unavailable::Unreadable(Error::Read {
                 path: entry.name.clone(),
                 reason: "not a regular file".into(),
             }));
         }
         let size = metadata.len();
         if size > limit as u64 {
-            return Err(Refusal::TooLarge(format!(
+            return Err(Unavailable::TooLarge(format!(
                 "{name}: {size} bytes, more than the limit of {limit} (fair serve --max-upload)"
             )));
         }
         let mut source = Source::read(&path.display().to_string()).map_err(|e| {
-            Refusal::Unreadable(match e {
+            Unavailable::Unreadable(match e {
                 Error::Read { reason, .. } => Error::Read {
                     path: entry.name.clone(),
                     reason,
@@ -314,15 +318,15 @@ mod tests {
         assert_eq!(source.name, "curves/a.csv");
         assert!(matches!(
             sets.read("curves/a.csv", 5),
-            Err(Refusal::TooLarge(m)) if m == "curves/a.csv: 12 bytes, more than the limit of 5 (fair serve --max-upload)"
+            Err(Unavailable::TooLarge(m)) if m == "curves/a.csv: 12 bytes, more than the limit of 5 (fair serve --max-upload)"
         ));
         assert!(matches!(
             sets.read("curves/notes.md", 1000),
-            Err(Refusal::Unknown(_))
+            Err(Unavailable::Unknown(_))
         ));
         assert!(matches!(
             sets.read("curves/../single.csv", 1000),
-            Err(Refusal::Outside(_))
+            Err(Unavailable::Outside(_))
         ));
         let (embedded, source) = sets.read(DATASETS[0].name, 0).unwrap();
         assert_eq!(embedded.origin_name(), "embedded");

@@ -37,7 +37,7 @@ pub use smoothing_spline::{
 };
 pub use strain_energy::{Mode, Replacement, StrainEnergy, StrainEnergySettings};
 pub use surface::{
-    Closure, Objective, Refusal, Region, SurfaceFairing, SurfaceFairingResult, SurfaceFairingSettings,
+    Closure, Objective, RefusalRule, Region, SurfaceFairing, SurfaceFairingResult, SurfaceFairingSettings,
     SurfaceMode, SurfaceStep, SweepOrder,
 };
 pub use surface_jump_lsq::{

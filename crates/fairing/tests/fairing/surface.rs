@@ -4,7 +4,7 @@
 use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings, GridTopology, Vec3};
 use fairing::catalog::{Catalog, Grid, MethodKind, ParameterMap, SurfaceJob};
 use fairing::strategies::{
-    smooth_grid, Closure, Refusal, SurfaceFairing, SurfaceFairingSettings, SurfaceSmoothing,
+    smooth_grid, Closure, RefusalRule, SurfaceFairing, SurfaceFairingSettings, SurfaceSmoothing,
     SurfaceSmoothingSettings,
 };
 use fairing::Constraints;
@@ -242,7 +242,7 @@ fn the_paper_as_printed_makes_the_teapot_worse_which_the_rules_refuse() {
     // nothing to do.
     assert!(guarded.history.is_empty(), "{:?}", guarded.history);
     assert_eq!(guarded.termination, fairing::TerminationReason::Refused);
-    assert_eq!(guarded.refusal, Some(Refusal::MaxZ));
+    assert_eq!(guarded.refusal, Some(RefusalRule::MaxZ));
 }
 
 #[test]
@@ -251,7 +251,7 @@ fn the_max_z_rule_ends_a_kjellander_run_on_the_teapot() {
     let result = SurfaceFairing::new(SurfaceFairingSettings::kjellander())
         .run(&net)
         .unwrap();
-    assert_eq!(result.refusal, Some(Refusal::MaxZ));
+    assert_eq!(result.refusal, Some(RefusalRule::MaxZ));
     let last = result.history.last().copied().unwrap_or(result.start);
     assert!(last.max_z <= result.start.max_z * (1.0 + 1e-12));
 }
@@ -264,7 +264,7 @@ fn the_energy_rule_ends_a_kjellander_run_on_the_hull() {
     let result = SurfaceFairing::new(SurfaceFairingSettings::kjellander())
         .run(&net)
         .unwrap();
-    assert_eq!(result.refusal, Some(Refusal::Energy));
+    assert_eq!(result.refusal, Some(RefusalRule::Energy));
     for pair in std::iter::once(result.start)
         .chain(result.history.iter().copied())
         .collect::<Vec<_>>()

@@ -237,7 +237,7 @@ pub enum SweepOrder {
     Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
 )]
 #[serde(rename_all = "kebab-case")]
-pub enum Refusal {
+pub enum RefusalRule {
     /// The largest z_ij over the output's knots would rise.
     MaxZ,
     /// The network strain energy over the output's knots would rise.
@@ -246,13 +246,13 @@ pub enum Refusal {
     ThinPlateEnergy,
 }
 
-impl Refusal {
+impl RefusalRule {
     /// `max-z`, `energy` or `thin-plate-energy`.
     pub fn name(self) -> &'static str {
         match self {
-            Refusal::MaxZ => "max-z",
-            Refusal::Energy => "energy",
-            Refusal::ThinPlateEnergy => "thin-plate-energy",
+            RefusalRule::MaxZ => "max-z",
+            RefusalRule::Energy => "energy",
+            RefusalRule::ThinPlateEnergy => "thin-plate-energy",
         }
     }
 }
@@ -536,7 +536,7 @@ pub struct SurfaceFairingResult {
     /// Why the run stopped (`StrategyDone` also when a refusal ended it, see `refusal`).
     pub termination: TerminationReason,
     /// The rule that refused the last step tried, when a refusal ended the run.
-    pub refusal: Option<Refusal>,
+    pub refusal: Option<RefusalRule>,
     /// Steps (and retries) refused by the rules, and the boundary fairing if it was undone.
     pub refused_steps: usize,
     /// Moves not made (nor their half or quarter) because they would have raised the network

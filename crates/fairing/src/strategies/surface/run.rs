@@ -13,7 +13,7 @@ use super::closed_form::{fixed_tangent_targets, limit_target, limit_targets};
 use super::network::{prefetch, Network};
 use super::queue::{LazyQueue, SweepQueue};
 use super::{
-    boundary, group_bad_points, singular, thin_plate, NodeMove, Objective, Refusal, Region,
+    boundary, group_bad_points, singular, thin_plate, NodeMove, Objective, RefusalRule, Region,
     SurfaceFairingResult, SurfaceFairingSettings, SurfaceMode, SurfaceStep, SweepOrder,
 };
 use crate::strategies::Replacement;
@@ -130,16 +130,16 @@ struct Measure {
 
 impl Measure {
     /// The first rule `self` breaks against the accepted `before`, if any.
-    fn worse_than(&self, before: &Measure) -> Option<Refusal> {
+    fn worse_than(&self, before: &Measure) -> Option<RefusalRule> {
         let rises = |new: f64, old: f64| new > old + SLACK * old.abs();
         if rises(self.max_z, before.max_z) {
-            return Some(Refusal::MaxZ);
+            return Some(RefusalRule::MaxZ);
         }
         if rises(self.energy, before.energy) {
-            return Some(Refusal::Energy);
+            return Some(RefusalRule::Energy);
         }
         match (self.thin_plate, before.thin_plate) {
-            (Some(new), Some(old)) if rises(new, old) => Some(Refusal::ThinPlateEnergy),
+            (Some(new), Some(old)) if rises(new, old) => Some(RefusalRule::ThinPlateEnergy),
             _ => None,
         }
     }
@@ -170,7 +170,7 @@ enum Verdict {
     /// z are pinned: the step is to be made again without them.
     Pinned,
     /// The step (and its shorter retries) is undone; the rule that refused it.
-    Refused(Refusal),
+    Refused(RefusalRule),
 }
 
 /// State of one run.
@@ -381,7 +381,7 @@ pub(super) fn run(
         match run.judge()? {
             Verdict::Accepted => boundary_pending = false,
             Verdict::Pinned => {
-                last_rule = Some(Refusal::MaxZ);
+                last_rule = Some(RefusalRule::MaxZ);
                 continue;
             }
             Verdict::Refused(rule) if boundary_pending => {
@@ -1071,7 +1071,7 @@ impl Run<'_> {
         } else {
             None
         };
-        if rule == Some(Refusal::MaxZ) && self.pin()? {
+        if rule == Some(RefusalRule::MaxZ) && self.pin()? {
             self.refused_steps += 1;
             self.rebuild_accepted()?;
             return Ok(Verdict::Pinned);
@@ -1236,22 +1236,22 @@ mod rules {
         );
         assert_eq!(
             measure(2.1, 4.0, Some(6.0)).worse_than(&before),
-            Some(Refusal::MaxZ)
+            Some(RefusalRule::MaxZ)
         );
         assert_eq!(
             measure(1.0, 5.1, Some(6.0)).worse_than(&before),
-            Some(Refusal::Energy)
+            Some(RefusalRule::Energy)
         );
         assert_eq!(
             measure(1.0, 4.0, Some(7.1)).worse_than(&before),
-            Some(Refusal::ThinPlateEnergy)
+            Some(RefusalRule::ThinPlateEnergy)
         );
         // The network objective has no thin-plate energy to judge.
         assert_eq!(measure(1.0, 4.0, None).worse_than(&measure(2.0, 5.0, None)), None);
         // Max z is judged first.
         assert_eq!(
             measure(2.1, 5.1, Some(7.1)).worse_than(&before),
-            Some(Refusal::MaxZ)
+            Some(RefusalRule::MaxZ)
         );
     }
 }
