@@ -249,38 +249,6 @@ impl Catalog {
         })
     }
 
-    /// Checks what running `plan` would refuse, without running: bad points no stage takes,
-    /// and every stage's own refusals (kinds, dimensions, end clamps).
-    pub fn check_curve_plan(
-        &self,
-        plan: &Plan,
-        points: &CurvePoints,
-        kind: CurveKind,
-        constraints: &PlanConstraints,
-    ) -> Result<()> {
-        self.refuse_bad_points(plan, constraints)?;
-        let whole = constraints.constraints(constraints.tolerance);
-        for stage in &plan.stages {
-            let entry = self.method(MethodKind::Curve, &stage.method)?;
-            let job = CurveJob {
-                method: entry.name(),
-                points,
-                kind,
-                constraints: &whole,
-                bad_points: if entry.takes_bad_points() {
-                    &constraints.bad_points
-                } else {
-                    &[]
-                },
-                catalog: self,
-            };
-            entry
-                .check_curve(&stage.settings, &job)
-                .map_err(|e| super::method::parameter_error(e, &stage.given))?;
-        }
-        Ok(())
-    }
-
     fn refuse_bad_points(&self, plan: &Plan, constraints: &PlanConstraints) -> Result<()> {
         if constraints.bad_points.is_empty() || plan.takes_bad_points(self) {
             return Ok(());

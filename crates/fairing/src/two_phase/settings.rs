@@ -482,11 +482,6 @@ impl TwoPhaseSettings {
         self.coarse_lambda = lambda;
         self
     }
-    /// Sets the Phase-2 λ.
-    pub fn with_fine_lambda(mut self, lambda: f64) -> Self {
-        self.fine_lambda = lambda;
-        self
-    }
     /// Sets the α-rule divisor (> 0).
     pub fn with_alpha_divisor(mut self, divisor: f64) -> Self {
         self.alpha_divisor = divisor;
@@ -522,28 +517,11 @@ impl TwoPhaseSettings {
         self.max_move_factor = factor;
         self
     }
-    /// Sets the noise widening of the move-size guard (≥ 0; 0: spacing only).
-    pub fn with_noise_moves(mut self, moves: f64) -> Self {
-        self.noise_moves = moves;
-        self
-    }
     /// Sets the cap of a case's move in data bounds (≥ 0; 0: off).
     pub fn with_max_move_bound(mut self, bounds: f64) -> Self {
         self.max_move_bound = bounds;
         self
     }
-    /// Sets the recount window of the local guard.
-    pub fn with_guard_window(mut self, window: usize) -> Self {
-        self.guard_window = window;
-        self
-    }
-
-    /// Sets the detection floor (in [0, 1); 0: the paper).
-    pub fn with_detection_floor(mut self, floor: f64) -> Self {
-        self.detection_floor = floor;
-        self
-    }
-
     /// Sets the noise pre-pass.
     pub fn with_denoise(mut self, denoise: Denoise) -> Self {
         self.denoise = denoise;
@@ -553,12 +531,6 @@ impl TwoPhaseSettings {
     /// Sets whether the pre-pass moves a function segment's end points.
     pub fn with_ends(mut self, ends: Ends) -> Self {
         self.ends = ends;
-        self
-    }
-
-    /// Sets the factor γ on the trace of an arbitrary curve's `jump-lsq-gcv` pre-pass (≥ 1).
-    pub fn with_curve_gcv_gamma(mut self, gamma: f64) -> Self {
-        self.curve_gcv_gamma = gamma;
         self
     }
 
@@ -575,37 +547,12 @@ impl TwoPhaseSettings {
         self
     }
 
-    /// Sets the most points an arbitrary curve's pre-pass fits with one knot per point (≥ 4;
-    /// beyond, bin means).
-    pub fn with_curve_prepass_points(mut self, points: usize) -> Self {
-        self.curve_prepass_points = points;
-        self
-    }
-
-    /// Sets how a function segment's `jump-lsq-gcv` pre-pass chooses λ.
-    pub fn with_function_prepass_rule(mut self, rule: PrepassRule) -> Self {
-        self.function_prepass_rule = rule;
-        self
-    }
-
-    /// Sets how an arbitrary curve's `jump-lsq-gcv` pre-pass chooses λ.
-    pub fn with_curve_prepass_rule(mut self, rule: PrepassRule) -> Self {
-        self.curve_prepass_rule = rule;
-        self
-    }
-
     /// Sets the end conditions of an open curve's jump-lsq pre-pass.
     pub fn with_curve_ends(mut self, ends: CurveEnds) -> Self {
         self.curve_ends = ends;
         self
     }
 
-    /// Sets the difference order of an arbitrary curve's pre-pass penalty (`None`: GCV's
-    /// choice).
-    pub fn with_curve_difference_order(mut self, order: Option<usize>) -> Self {
-        self.curve_difference_order = order;
-        self
-    }
     /// Sets the end conditions of a function's pre-pass spline.
     pub fn with_function_ends(mut self, ends: FunctionEnds) -> Self {
         self.function_ends = ends;
@@ -615,12 +562,6 @@ impl TwoPhaseSettings {
     /// Sets the difference order of a function's pre-pass penalty (`None`: GCV's choice).
     pub fn with_function_difference_order(mut self, order: Option<usize>) -> Self {
         self.function_difference_order = order;
-        self
-    }
-
-    /// Sets the spacing exponent of a function's pre-pass penalty (`None`: GCV's choice).
-    pub fn with_function_exponent(mut self, exponent: Option<f64>) -> Self {
-        self.function_exponent = exponent;
         self
     }
 
@@ -640,12 +581,6 @@ impl TwoPhaseSettings {
     /// Sets the data-consistency bound of a function's end-run moves (in σ̂²; 0: off).
     pub fn with_end_run_max_deviance(mut self, deviance: f64) -> Self {
         self.end_run_max_deviance = deviance;
-        self
-    }
-
-    /// Sets the projection of the curve pre-pass's points.
-    pub fn with_project(mut self, project: Projection) -> Self {
-        self.project = project;
         self
     }
 
