@@ -485,7 +485,7 @@ fn inspect(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
 fn fair_curve(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
     let body: CurveBody = parse_body(body)?;
     let kind = kind_of(body.kind.as_deref())?;
-    limits::curve_work(body.points.0.len(), body.method.as_deref(), &body.params)?;
+    limits::curve_work(catalog, body.points.0.len(), body.method.as_deref(), &body.params)?;
     limits::iterations(&body.params)?;
     let name = body.name.unwrap_or_else(|| "points".into());
     let input = engine::curve_input(&name, curve_points(&body.points.0)?);
@@ -654,7 +654,7 @@ fn cad_file(catalog: &fairing::catalog::Catalog, body: &[u8]) -> Answer {
         (stem, made)
     } else {
         let kind = kind_of(body.kind.as_deref())?;
-        limits::curve_work(body.points.0.len(), body.method.as_deref(), &body.params)?;
+        limits::curve_work(catalog, body.points.0.len(), body.method.as_deref(), &body.params)?;
         let input = engine::curve_input(&name, curve_points(&body.points.0)?);
         let (points, record, kind, method) = if body.fair {
             let job = Job {

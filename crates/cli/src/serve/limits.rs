@@ -14,6 +14,7 @@
 use std::collections::BTreeMap;
 use std::fmt;
 
+use fairing::catalog::{Catalog, MethodKind};
 use serde::de::{Deserialize, Deserializer, SeqAccess, Visitor};
 use serde_json::Value;
 
@@ -113,22 +114,30 @@ pub(crate) fn curve_points(count: usize) -> Result<(), Response> {
 /// `auto` with a criterion L-BFGS cannot take) is checked against [`MAX_SIMPLEX_POINTS`]
 /// (413 past it), every other method against [`MAX_CURVE_POINTS`] only.
 pub(crate) fn curve_work(
+    catalog: &Catalog,
     count: usize,
     method: Option<&str>,
     params: &BTreeMap<String, Value>,
 ) -> Result<(), Response> {
     curve_points(count)?;
-    let text = |name: &str, default: &str| -> String {
-        match params.get(name) {
+    let Some(entry) = method
+        .map(str::trim)
+        .filter(|m| *m == "nurbs-weights")
+        .and_then(|m| catalog.method(MethodKind::Curve, m).ok())
+    else {
+        return Ok(());
+    };
+    // A setting as given, else the method's own default (the catalogue's, written once).
+    let text = |name: &str| -> String {
+        match params.get(name).or_else(|| entry.defaults().get(name)) {
             Some(Value::String(s)) => s.trim().to_ascii_lowercase(),
-            _ => default.to_string(),
+            _ => String::new(),
         }
     };
-    let simplex = method.is_some_and(|m| m.trim() == "nurbs-weights")
-        && text("law", "bernstein") == "per-point"
-        && match text("solver", "auto").as_str() {
+    let simplex = text("law") == "per-point"
+        && match text("solver").as_str() {
             "nelder-mead" => true,
-            "auto" => optim::SmoothCriterion::from_name(&text("criterion", "ek")).is_none(),
+            "auto" => optim::SmoothCriterion::from_name(&text("criterion")).is_none(),
             _ => false,
         };
     if simplex && count > MAX_SIMPLEX_POINTS {
@@ -211,15 +220,27 @@ mod tests {
                 .collect()
         };
         let simplex = params(&[("law", "per-point"), ("solver", "nelder-mead")]);
-        assert!(curve_work(MAX_SIMPLEX_POINTS, Some("nurbs-weights"), &simplex).is_ok());
-        let r = curve_work(MAX_SIMPLEX_POINTS + 1, Some("nurbs-weights"), &simplex).unwrap_err();
+        assert!(curve_work(
+            &Catalog::builtin(),
+            MAX_SIMPLEX_POINTS,
+            Some("nurbs-weights"),
+            &simplex
+        )
+        .is_ok());
+        let r = curve_work(
+            &Catalog::builtin(),
+            MAX_SIMPLEX_POINTS + 1,
+            Some("nurbs-weights"),
+            &simplex,
+        )
+        .unwrap_err();
         assert_eq!(r.status, 413);
         assert!(String::from_utf8_lossy(&r.body).contains("2000"));
         let e3 = params(&[("law", "per-point"), ("criterion", "e3")]);
-        assert!(curve_work(5_000, Some("nurbs-weights"), &e3).is_err());
+        assert!(curve_work(&Catalog::builtin(), 5_000, Some("nurbs-weights"), &e3).is_err());
         let lbfgs = params(&[("law", "per-point")]);
-        assert!(curve_work(5_000, Some("nurbs-weights"), &lbfgs).is_ok());
-        assert!(curve_work(5_000, Some("two-phase"), &simplex).is_ok());
+        assert!(curve_work(&Catalog::builtin(), 5_000, Some("nurbs-weights"), &lbfgs).is_ok());
+        assert!(curve_work(&Catalog::builtin(), 5_000, Some("two-phase"), &simplex).is_ok());
         assert!(surface_nodes(300, 300).is_ok());
         assert_eq!(surface_nodes(301, 300).unwrap_err().status, 413);
         assert_eq!(surface_nodes(usize::MAX, 2).unwrap_err().status, 413);
