@@ -5,11 +5,11 @@
 //! as `fair curve` runs it: the [`TwoPhase`] strategy in a [`Pipeline`].
 //!
 //! Run: `cargo run --release --example two_phase_runs [n] [all|paper] [σ]` (defaults n = 100000,
-//! all, σ = 0.01; with `paper`, only the default and the paper's settings with and without
-//! `min_gain`: the timing of one full fairing at large n)
+//! all, σ = 0.01; with `paper`, only the default and the paper's settings: the timing of one
+//! full fairing at large n)
 
 use curve_repr::Vec2;
-use fairing::two_phase::{CountGuard, TwoPhase, TwoPhaseSettings};
+use fairing::two_phase::{CountGuard, MoveCap, TwoPhase, TwoPhaseSettings};
 use fairing::Pipeline;
 use fairness::xc::XcPolyline;
 use rand::SeedableRng;
@@ -59,15 +59,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let variants = [
         ("default (pre-pass, then phases)", TwoPhaseSettings::default()),
         ("paper (max_run 2)", paper.clone()),
-        ("paper, min_gain 0.005", paper.clone().with_min_gain(0.005)),
         ("paper + max_run 64", paper.clone().with_max_run(64)),
         (
-            "paper + max_run 64, min_gain 0.005",
-            paper.clone().with_max_run(64).with_min_gain(0.005),
-        ),
-        (
-            "paper + max_run 64, max_move_factor 0.2",
-            paper.clone().with_max_run(64).with_max_move_factor(0.2),
+            "paper + max_run 64, move cap data",
+            paper.clone().with_max_run(64).with_move_cap(MoveCap::Data),
         ),
         (
             "paper + max_run 64, guard off",
@@ -76,7 +71,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     ];
     let paper_only = std::env::args().nth(2).as_deref() == Some("paper");
     let points: Vec<Vec2> = x.iter().zip(&y).map(|(&x, &y)| Vec2::new(x, y)).collect();
-    for (name, settings) in variants.into_iter().take(if paper_only { 3 } else { usize::MAX }) {
+    for (name, settings) in variants.into_iter().take(if paper_only { 2 } else { usize::MAX }) {
         let start = std::time::Instant::now();
         let result = Pipeline::new(TwoPhase::new(settings.clone()))
             .with_max_iterations(settings.max_passes)

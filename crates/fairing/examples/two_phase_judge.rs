@@ -31,17 +31,11 @@
 //! Run: `cargo run --release -p fairing --example two_phase_judge -- [OUT_DIR] [SEEDS]`
 //! (default `out/two_phase_judge`, seeds 1). For measurements, environment variables override
 //! the default variant's settings: `HAN_DENOISE` (`off`, `gcv`, `jump-lsq`, `jump-lsq-gcv`),
-//! `HAN_MAX_RUN`, `HAN_LIMIT` (turning limit in degrees), `HAN_MMF` (`max-move-factor`),
-//! `HAN_PASSES` (`max-passes`), `HAN_NOISE_MOVES`, `HAN_CURVE_GUARD` (`off`, `pass`, `local`;
-//! the paper variant always runs `off`), `HAN_ENDS` (`keep`, `free`), `HAN_PROJECT` (`project`:
-//! `off`, `foot-point`, `parameter-correction`), `HAN_CURVE_GCV_GAMMA` and `HAN_FUNCTION_GCV_GAMMA`
-//! (`curve-gcv-gamma`, `function-gcv-gamma`), `HAN_CURVE_ENDS` (`curve-ends`: `runout`,
-//! `natural`), `HAN_FUNCTION_ENDS` (`function-ends`: `auto`, `runout`, `natural`), `HAN_CURVE_END_RUNS` and `HAN_FUNCTION_END_RUNS` (`true`, `false`),
-//! `HAN_END_RUN_MAX_DEVIANCE` (`end-run-max-deviance`), `HAN_FUNCTION_PREPASS_RULE` and
-//! `HAN_CURVE_PREPASS_RULE` (`function-prepass-rule`, `curve-prepass-rule`: `gcv`, `gml`, `auto`),
-//! `HAN_FUNCTION_DIFFERENCE_ORDER` and `HAN_CURVE_DIFFERENCE_ORDER` (`function-difference-order`,
-//! `curve-difference-order`: `0` to `3`, `auto`), `HAN_FUNCTION_EXPONENT` (`function-exponent`: a
-//! number in [0, 16], `auto`).
+//! `HAN_MAX_RUN`, `HAN_LIMIT` (turning limit in degrees), `HAN_PASSES` (`max-passes`),
+//! `HAN_MOVE_CAP` (`move-cap`: `spacing`, `data`), `HAN_CURVE_GUARD` (`off`, `pass`, `local`;
+//! the paper variant always runs `off`). The pre-pass's own settings are constants of the
+//! library (`TwoPhaseSettings::function_prepass`, `curve_prepass`): to measure another
+//! pre-pass, run it as its own stage.
 
 use std::f64::consts::PI;
 use std::fmt::Write as _;
@@ -254,14 +248,6 @@ fn fair(
     Ok(result.points)
 }
 
-/// A difference order as the environment gives it: `0` to `3`, or `auto` (`None`).
-fn difference_order(value: &str) -> Result<Option<usize>, std::num::ParseIntError> {
-    match value {
-        "auto" => Ok(None),
-        order => order.parse().map(Some),
-    }
-}
-
 fn main() -> Result<(), Error> {
     let mut args = std::env::args().skip(1);
     let out = PathBuf::from(args.next().unwrap_or_else(|| "out/two_phase_judge".into()));
@@ -275,40 +261,12 @@ fn main() -> Result<(), Error> {
         match key.as_str() {
             "HAN_MAX_RUN" => tuned.max_run = value.parse()?,
             "HAN_LIMIT" => tuned_partition.limit = value.parse::<f64>()?.to_radians(),
-            "HAN_MMF" => tuned.max_move_factor = value.parse()?,
             "HAN_DENOISE" => {
                 tuned.denoise = serde_json::from_value(serde_json::Value::String(value))?;
             }
             "HAN_PASSES" => tuned.max_passes = value.parse()?,
-            "HAN_NOISE_MOVES" => tuned.noise_moves = value.parse()?,
-            "HAN_CURVE_GCV_GAMMA" => tuned.curve_gcv_gamma = value.parse()?,
-            "HAN_FUNCTION_GCV_GAMMA" => tuned.function_gcv_gamma = value.parse()?,
-            "HAN_MAX_MOVE_BOUND" => tuned.max_move_bound = value.parse()?,
-            "HAN_CURVE_END_RUNS" => tuned.curve_end_runs = value.parse()?,
-            "HAN_FUNCTION_END_RUNS" => tuned.function_end_runs = value.parse()?,
-            "HAN_END_RUN_MAX_DEVIANCE" => tuned.end_run_max_deviance = value.parse()?,
-            "HAN_FUNCTION_PREPASS_RULE" => {
-                tuned.function_prepass_rule = serde_json::from_value(serde_json::Value::String(value))?;
-            }
-            "HAN_CURVE_PREPASS_RULE" => {
-                tuned.curve_prepass_rule = serde_json::from_value(serde_json::Value::String(value))?;
-            }
-            "HAN_FUNCTION_DIFFERENCE_ORDER" => tuned.function_difference_order = difference_order(&value)?,
-            "HAN_CURVE_DIFFERENCE_ORDER" => tuned.curve_difference_order = difference_order(&value)?,
-            "HAN_FUNCTION_EXPONENT" => {
-                tuned.function_exponent = (value != "auto").then(|| value.parse()).transpose()?;
-            }
-            "HAN_CURVE_ENDS" => {
-                tuned.curve_ends = serde_json::from_value(serde_json::Value::String(value))?;
-            }
-            "HAN_FUNCTION_ENDS" => {
-                tuned.function_ends = serde_json::from_value(serde_json::Value::String(value))?;
-            }
-            "HAN_ENDS" => {
-                tuned.ends = serde_json::from_value(serde_json::Value::String(value))?;
-            }
-            "HAN_PROJECT" => {
-                tuned.project = serde_json::from_value(serde_json::Value::String(value))?;
+            "HAN_MOVE_CAP" => {
+                tuned.move_cap = serde_json::from_value(serde_json::Value::String(value))?;
             }
             "HAN_CURVE_GUARD" => {
                 tuned_guard = serde_json::from_value(serde_json::Value::String(value))?;

@@ -4,8 +4,6 @@
 //! - `two_phase_full_fairing`: one full fairing, [`fair_function`] with the default settings
 //!   (coarse and fine passes alternating until no case applies or 50 passes), n = 10^3 … 10^6
 //!   (10^6 takes ~17 s per iteration: the 10 samples take about three minutes);
-//! - `two_phase_full_fairing_min_gain`: the same with `min_gain` = 0.005 (stop after a pass
-//!   that removes less than 0.5 % of the sign changes), n = 10^3 … 10^6;
 //! - `two_phase_one_full_pass`: one coarse and one fine pass on the raw noisy data (the
 //!   busiest pass), n = 10^3 … 10^6;
 //! - `two_phase_binned_prepass`: the noise pre-pass of a function with two-phase's default
@@ -15,7 +13,7 @@
 
 use criterion::{criterion_group, BatchSize, BenchmarkId, Criterion, SamplingMode, Throughput};
 use curve_repr::{EndCondition, SplineFunction};
-use fairing::two_phase::{denoise_by, fair_function, full_pass, Limits, Prepass, TwoPhaseSettings};
+use fairing::two_phase::{denoise_by, fair_function, full_pass, Limits, TwoPhaseSettings};
 use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
 
@@ -67,12 +65,8 @@ fn group(c: &mut Criterion, name: &str, run: &dyn Fn(&mut SplineFunction)) {
 
 fn bench(c: &mut Criterion) {
     let paper = TwoPhaseSettings::default();
-    let min_gain = TwoPhaseSettings::default().with_min_gain(0.005);
     group(c, "two_phase_full_fairing", &|spline| {
         fair_function(spline, &paper, &|_| true).expect("fairing");
-    });
-    group(c, "two_phase_full_fairing_min_gain", &|spline| {
-        fair_function(spline, &min_gain, &|_| true).expect("fairing");
     });
     group(c, "two_phase_one_full_pass", &|spline| {
         full_pass(spline, &paper, &|_| true).expect("pass");
@@ -94,9 +88,7 @@ fn dense_segment(n: usize) -> (Vec<f64>, Vec<f64>) {
 
 fn bench_prepass(c: &mut Criterion) {
     let settings = TwoPhaseSettings::default();
-    let prepass = Prepass::new(settings.function_prepass_rule, settings.function_gcv_gamma)
-        .with_function_ends(settings.function_ends)
-        .with_max_points(settings.function_prepass_points);
+    let prepass = TwoPhaseSettings::function_prepass();
     let none = |_: usize| false;
     let free = |_: usize| f64::INFINITY;
     let limits = Limits {

@@ -1,6 +1,5 @@
 //! Consecutive points averaged in bins, so that the noise pre-pass of a function segment or
-//! an arbitrary curve with more points than its limit (`function-prepass-points`,
-//! [`MAX_PREPASS_POINTS`] by default, and `curve-prepass-points`,
+//! an arbitrary curve with more points than its limit ([`MAX_PREPASS_POINTS`] for a function,
 //! [`MAX_CURVE_PREPASS_POINTS`]) is fitted where double precision can fit it ([`super::denoise_by`], [`super::denoise_curve_by`]).
 //!
 //! **Why.** Both pre-pass smoothers solve a banded system with one knot per point. The cubic

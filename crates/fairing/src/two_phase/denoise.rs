@@ -15,8 +15,7 @@
 //! differences of the interpolating spline's third-derivative jumps, Zhang–Cheng's z_i / Han's
 //! e_i) with λ by generalised cross-validation, on the kind's own spline (parabolic runout
 //! over x for a function, as the phases use; over chord length for an open curve, with the
-//! ends [`TwoPhaseSettings::curve_ends`](super::TwoPhaseSettings::curve_ends) says (runout by
-//! default); periodic for a closed one without a corner). The kept points are its fixed points (bit for
+//! ends [`TwoPhaseSettings::curve_prepass`](super::TwoPhaseSettings::curve_prepass) sets (runout); periodic for a closed one without a corner). The kept points are its fixed points (bit for
 //! bit), the allowed distances its restraining radii (held by its pins). Its penalty is zero
 //! on any cubic and small where the third derivative varies slowly, so at the same residual it
 //! bends a smooth curve less than the cubic smoothing spline, whose penalty ∫s″² flattens
@@ -103,8 +102,8 @@ pub enum Denoise {
 }
 
 /// How the `jump-lsq-gcv` pre-pass chooses jump-lsq's λ
-/// ([`TwoPhaseSettings::function_prepass_rule`](super::TwoPhaseSettings::function_prepass_rule),
-/// [`TwoPhaseSettings::curve_prepass_rule`](super::TwoPhaseSettings::curve_prepass_rule)).
+/// ([`TwoPhaseSettings::function_prepass`](super::TwoPhaseSettings::function_prepass),
+/// [`TwoPhaseSettings::curve_prepass`](super::TwoPhaseSettings::curve_prepass)).
 #[derive(
     Clone,
     Copy,
@@ -503,9 +502,9 @@ pub fn denoise(mode: Denoise, x: &[f64], y: &[f64], limits: &Limits<'_>) -> Resu
 }
 
 /// [`denoise`] with `jump-lsq-gcv`'s λ rule `prepass` (GCV with its factor γ, or GML;
-/// [`TwoPhaseSettings::function_prepass_rule`](super::TwoPhaseSettings::function_prepass_rule)).
+/// [`TwoPhaseSettings::function_prepass`](super::TwoPhaseSettings::function_prepass)).
 /// Beyond `prepass.max_points` points
-/// ([`TwoPhaseSettings::function_prepass_points`](super::TwoPhaseSettings::function_prepass_points))
+/// ([`TwoPhaseSettings::function_prepass`](super::TwoPhaseSettings::function_prepass))
 /// it fits bin means ([`bins`](super::bins)).
 ///
 /// Errors: as [`denoise`]; γ below 1.
@@ -724,13 +723,13 @@ pub struct CurvePrepass {
     /// The smoother (`denoise`).
     pub mode: Denoise,
     /// `jump-lsq-gcv`'s λ rule and the most points fitted with one knot per point
-    /// ([`TwoPhaseSettings::curve_prepass_points`](super::TwoPhaseSettings::curve_prepass_points)).
+    /// ([`TwoPhaseSettings::curve_prepass`](super::TwoPhaseSettings::curve_prepass)).
     pub prepass: Prepass,
     /// The jump-lsq variants' end conditions of an open fit
-    /// ([`TwoPhaseSettings::curve_ends`](super::TwoPhaseSettings::curve_ends); the cubic
+    /// ([`TwoPhaseSettings::curve_prepass`](super::TwoPhaseSettings::curve_prepass); the cubic
     /// smoothing spline always has natural ends).
     pub ends: CurveEnds,
-    /// What becomes of the fit's points ([`TwoPhaseSettings::project`](super::TwoPhaseSettings::project)).
+    /// What becomes of the fit's points ([`TwoPhaseSettings::curve_prepass`](super::TwoPhaseSettings::curve_prepass)).
     pub projection: Projection,
 }
 
@@ -808,13 +807,13 @@ pub fn denoise_curve(
 
 /// [`denoise_curve`] with the fit's `rules` ([`CurvePrepass`]): `jump-lsq-gcv`'s λ rule
 /// `rules.prepass` (GCV with the factor γ on its trace,
-/// [`TwoPhaseSettings::curve_gcv_gamma`](super::TwoPhaseSettings::curve_gcv_gamma), or GML,
-/// [`TwoPhaseSettings::curve_prepass_rule`](super::TwoPhaseSettings::curve_prepass_rule);
+/// [`TwoPhaseSettings::curve_prepass`](super::TwoPhaseSettings::curve_prepass), or GML,
+/// [`TwoPhaseSettings::curve_prepass`](super::TwoPhaseSettings::curve_prepass);
 /// [`denoise_curve`] has GCV with γ = 1) and the jump-lsq variants' end conditions of an open
-/// fit `rules.ends` ([`TwoPhaseSettings::curve_ends`](super::TwoPhaseSettings::curve_ends);
+/// fit `rules.ends` ([`TwoPhaseSettings::curve_prepass`](super::TwoPhaseSettings::curve_prepass);
 /// [`denoise_curve`] has natural ends; the cubic smoothing spline always has). Beyond
 /// `rules.prepass.max_points` points
-/// ([`TwoPhaseSettings::curve_prepass_points`](super::TwoPhaseSettings::curve_prepass_points))
+/// ([`TwoPhaseSettings::curve_prepass`](super::TwoPhaseSettings::curve_prepass))
 /// it fits bin means ([`bins`](super::bins)).
 ///
 /// Errors: as [`denoise_curve`]; γ below 1.

@@ -27,7 +27,7 @@ use curve_repr::{Curve, HermiteSpline, Vec2};
 
 /// Whether the noise pre-pass of an arbitrary curve replaces its fit's values by the foot
 /// points of the data on the fitted curve
-/// ([`TwoPhaseSettings::project`](super::TwoPhaseSettings::project)).
+/// ([`TwoPhaseSettings::curve_prepass`](super::TwoPhaseSettings::curve_prepass), foot-point).
 #[derive(
     Clone,
     Copy,
@@ -47,7 +47,7 @@ pub enum Projection {
     Off,
     /// Each free point becomes the foot point of its data point on the fitted curve, searched
     /// near its own parameter ([module doc](self)). The default (measured in
-    /// [`TwoPhaseSettings::project`](super::TwoPhaseSettings::project)).
+    /// [`TwoPhaseSettings::curve_prepass`](super::TwoPhaseSettings::curve_prepass)).
     #[default]
     FootPoint,
     /// Hoschek's parameter correction: the curve is refitted on the foot-point parameters of

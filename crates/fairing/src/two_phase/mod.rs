@@ -1,6 +1,7 @@
 //! Han et al.'s coarse-to-fine fairing of a function segment (Han et al. §4.1).
 //!
-//! - [`TwoPhaseSettings`]: λ of both phases, the α rule, passes, guards, the long-run option.
+//! - [`TwoPhaseSettings`]: λ of both phases, the α rule, passes, the long-run option, the
+//!   pre-pass, the move cap and the count guards.
 //! - [`phase1`]: Phase 1, coarse fairing of curvature vibrations (small, medium, large;
 //!   interior and end cases), [`coarse_pass`].
 //! - [`phase2`]: Phase 2, fine fairing of inflections (small and large curve vibrations,
@@ -31,7 +32,8 @@ pub use denoise::{
 pub use foot_point::{foot_points, FootPoint, Projection};
 pub use phase1::{coarse_pass, counts, detect, displacement, e_at, Case, CaseKind, PassReport};
 pub use phase2::{detect_fine, end_y_change, fine_displacement, fine_pass, zero_level};
-pub use settings::{CountGuard, Ends, TwoPhaseSettings};
+pub use settings::{CountGuard, MoveCap, TwoPhaseSettings};
+pub(crate) use settings::{Rules, RunData, END_RUN_MAX_DEVIANCE, GUARD_WINDOW, PAIR_MIN_SINE};
 
 use curve_repr::{EndCondition, SplineFunction, Vec2};
 
@@ -51,20 +53,20 @@ use crate::{
 /// marked `reverted`), so a full pass never raises Infl_num. On noise, Phase 1 turns short
 /// wrong-sign runs of c into runs that the absorption can take, adding inflections on the way
 /// that Phase 2 then removes; guarding every coarse move stops that (see
-/// [`phase2`]). O(n · guard_window), twice for a redone pass.
+/// [`phase2`]). O(n · guard window), twice for a redone pass.
 pub fn full_pass(
     spline: &mut SplineFunction,
     settings: &TwoPhaseSettings,
     movable: &dyn Fn(usize) -> bool,
 ) -> Result<(PassReport, PassReport)> {
-    full_pass_from(spline, settings, movable, None)
+    full_pass_from(spline, &Rules::direct(settings), movable, None)
 }
 
 /// [`full_pass`] given the spline's [`counts`] if the caller knows them (the last pass's fine
 /// [`PassReport::counts`]).
 fn full_pass_from(
     spline: &mut SplineFunction,
-    settings: &TwoPhaseSettings,
+    settings: &Rules,
     movable: &dyn Fn(usize) -> bool,
     known: Option<(usize, usize)>,
 ) -> Result<(PassReport, PassReport)> {
@@ -75,7 +77,10 @@ fn full_pass_from(
     }
     let start = known.unwrap_or_else(|| counts(spline));
     let saved = spline.y().to_vec();
-    let open = settings.clone().with_count_guard(CountGuard::Off);
+    let open = Rules {
+        settings: settings.settings.clone().with_count_guard(CountGuard::Off),
+        run: settings.run.clone(),
+    };
     let coarse = phase1::coarse_pass_from(spline, &open, movable, Some(start))?;
     let fine = phase2::fine_pass_from(spline, settings, movable, Some(coarse.counts))?;
     if fine.counts.1 <= start.1 {
@@ -98,101 +103,40 @@ fn full_pass_from(
     Ok((coarse, fine))
 }
 
-/// Fairs a function segment in place: [`full_pass`]es until one applies no case, after
-/// `max_passes`, (if `stall_passes` > 0) after `stall_passes` consecutive passes that
-/// reduced neither count, or (if `min_gain` > 0) after a pass that lowered the sum of the
-/// counts by less than that fraction; returns the number of passes made. Phase 2's end-run
-/// case as [`TwoPhaseSettings::function_end_runs`] says.
-/// O(max_passes · n · guard_window).
+/// Fairs a function segment in place: [`full_pass`]es until one applies no case or after
+/// `max_passes`; returns the number of passes made. O(max_passes · n · guard window).
 pub fn fair_function(
     spline: &mut SplineFunction,
     settings: &TwoPhaseSettings,
     movable: &dyn Fn(usize) -> bool,
 ) -> Result<usize> {
-    fair_spline(spline, settings, settings.function_end_runs, movable)
+    fair_spline(spline, &Rules::direct(settings), movable)
 }
 
-/// [`fair_function`] with Phase 2's end-run case on or off (`end_runs`: the function's or
-/// the arbitrary curve's setting).
-fn fair_spline(
-    spline: &mut SplineFunction,
-    settings: &TwoPhaseSettings,
-    end_runs: bool,
-    movable: &dyn Fn(usize) -> bool,
-) -> Result<usize> {
-    settings.validate()?;
-    let settings = &TwoPhaseSettings {
-        end_runs,
-        ..settings.clone()
-    };
+/// [`fair_function`] with the run's data.
+fn fair_spline(spline: &mut SplineFunction, rules: &Rules, movable: &dyn Fn(usize) -> bool) -> Result<usize> {
+    rules.validate()?;
     let mut now = counts(spline);
-    let mut stall = Stall::new(now);
-    for pass in 1..=settings.max_passes {
+    for pass in 1..=rules.max_passes {
         optim::cancel::checkpoint()?;
-        let (coarse, fine) = full_pass_from(spline, settings, movable, Some(now))?;
+        let (coarse, fine) = full_pass_from(spline, rules, movable, Some(now))?;
         now = fine.counts;
-        if (coarse.moves.is_empty() && fine.moves.is_empty()) || stall.stop(now, settings) {
+        if coarse.moves.is_empty() && fine.moves.is_empty() {
             return Ok(pass);
         }
     }
-    Ok(settings.max_passes)
-}
-
-/// The bookkeeping of `stall_passes` and `min_gain`: the lowest counts seen, the passes since
-/// either fell, and the counts after the last pass.
-#[derive(Clone, Copy, Debug, Default)]
-struct Stall {
-    best: (usize, usize),
-    stalled: usize,
-    last: (usize, usize),
-}
-
-impl Stall {
-    fn new(now: (usize, usize)) -> Self {
-        Stall {
-            best: now,
-            stalled: 0,
-            last: now,
-        }
-    }
-
-    /// After a pass: whether `stall_passes` (> 0) passes in a row reduced neither count, or
-    /// the pass lowered their sum by less than `min_gain` (> 0) of it; `now`: the counts after
-    /// the pass. O(1).
-    fn stop(&mut self, now: (usize, usize), settings: &TwoPhaseSettings) -> bool {
-        let limit = settings.stall_passes;
-        if limit == 0 && settings.min_gain <= 0.0 {
-            return false;
-        }
-        let (before, after) = (self.last.0 + self.last.1, now.0 + now.1);
-        self.last = now;
-        let small_gain = settings.min_gain > 0.0
-            && (before.saturating_sub(after) as f64) < settings.min_gain * before as f64;
-        if limit == 0 {
-            return small_gain;
-        }
-        if now.0 < self.best.0 || now.1 < self.best.1 {
-            self.stalled = 0;
-        } else {
-            self.stalled += 1;
-        }
-        self.best = (self.best.0.min(now.0), self.best.1.min(now.1));
-        self.stalled >= limit || small_gain
-    }
+    Ok(rules.max_passes)
 }
 
 /// Han's two-phase fairing of a function segment: points are (x, y) with x strictly
 /// increasing, only y moves, the spline is [`SplineFunction`] with parabolic runout (Han's end
 /// condition). Each [`step`](FairingStrategy::step) is one [`full_pass`] (coarse, then fine);
-/// the stage is done when a pass applies no case, after `max_passes` passes, or when
-/// `stall_passes` (if > 0) passes in a row reduced neither count.
+/// the stage is done when a pass applies no case or after `max_passes` passes.
 ///
 /// With λ < 1 the small case shrinks |e| geometrically and keeps finding work, so on noisy
 /// data the stage usually runs all `max_passes`; use
 /// [`Pipeline::with_tolerance`](crate::Pipeline::with_tolerance)`(0.0)` to stop once a pass
-/// leaves the vibration count (the reported criterion) unchanged, or a
-/// [`TwoPhaseSettings::detection_floor`] > 0 so that the shrinking cases stop being found
-/// (fewer passes, more sign changes left: measured in its doc).
+/// leaves the vibration count (the reported criterion) unchanged.
 ///
 /// As a [`SegmentFairer`] it runs [`fair_function`] on each segment of a
 /// [`SegmentedFairing`](crate::SegmentedFairing) (the `fixed` flags are honoured; the
@@ -201,14 +145,13 @@ impl Stall {
 /// Constraints: fixed points, radii and tolerance are honoured through
 /// [`FairingState::move_point`] (a shortened move is read back into the spline); G1/G2 end
 /// clamps are rejected with `ConstraintUnsupported`. The phases never move the end points
-/// (Han §3.3); the noise pre-pass moves them with [`Ends::Free`] (the default,
-/// [`TwoPhaseSettings::ends`]) unless they are fixed or clamped (`G0`).
+/// (Han §3.3); the noise pre-pass ([`TwoPhaseSettings::denoise`]) fits them unless they are
+/// fixed or clamped (`G0`).
 #[derive(Clone, Debug, Default)]
 pub struct TwoPhase {
-    settings: TwoPhaseSettings,
+    rules: Rules,
     spline: Option<SplineFunction>,
     passes: usize,
-    stall: Stall,
     /// The spline's (vibrations, inflections) after the last pass.
     counts: Option<(usize, usize)>,
     /// What the noise pre-pass of the last run did (a function's, or the whole curve's).
@@ -219,10 +162,9 @@ impl TwoPhase {
     /// A strategy with the given settings.
     pub fn new(settings: TwoPhaseSettings) -> Self {
         TwoPhase {
-            settings,
+            rules: Rules::direct(&settings),
             spline: None,
             passes: 0,
-            stall: Stall::default(),
             counts: None,
             prepass: None,
         }
@@ -239,7 +181,7 @@ impl TwoPhase {
 
     /// The settings.
     pub fn settings(&self) -> &TwoPhaseSettings {
-        &self.settings
+        &self.rules.settings
     }
 }
 
@@ -259,7 +201,7 @@ impl FairingStrategy<2> for TwoPhase {
     }
 
     fn init(&mut self, state: &mut FairingState<2>) -> Result<()> {
-        self.settings.validate()?;
+        self.rules.validate()?;
         if state.is_closed() {
             return Err(Error::refused(
                 "two-phase",
@@ -270,29 +212,21 @@ impl FairingStrategy<2> for TwoPhase {
         // σ̂ and the data bound B from one noise estimate.
         let bound =
             crate::displacement::data_bound_as(state.points(), crate::displacement::NoiseModel::Vertical);
-        self.settings.noise = bound.noise;
-        self.settings.noise_bound = bound.bound;
-        self.settings.end_runs = self.settings.function_end_runs;
         let (x, y): (Vec<f64>, Vec<f64>) = state.points().iter().map(|p| (p.x, p.y)).unzip();
-        let n = x.len();
-        self.settings.data = std::sync::Arc::from(y.clone());
-        let free = self.settings.ends == Ends::Free;
-        let keep = |k: usize| (!free && (k == 0 || k + 1 >= n)) || !state.is_movable(k);
+        self.rules.run = RunData {
+            noise: bound.noise,
+            bound: bound.bound,
+            data: std::sync::Arc::from(y.clone()),
+        };
+        let keep = |k: usize| !state.is_movable(k);
         let allowed = |k: usize| state.constraints().allowed_distance(k);
         let limits = Limits {
             keep: &keep,
             allowed: &allowed,
         };
         let (smooth, prepass) = denoise_reported(
-            self.settings.denoise,
-            Prepass::new(
-                self.settings.function_prepass_rule,
-                self.settings.function_gcv_gamma,
-            )
-            .with_function_ends(self.settings.function_ends)
-            .with_difference_order(self.settings.function_difference_order)
-            .with_exponent(self.settings.function_exponent)
-            .with_max_points(self.settings.function_prepass_points),
+            self.rules.denoise,
+            TwoPhaseSettings::function_prepass(),
             &x,
             &y,
             &limits,
@@ -306,7 +240,6 @@ impl FairingStrategy<2> for TwoPhase {
         let spline = spline_of(state.points())?;
         let now = counts(&spline);
         state.criterion = Some(now.0 as f64);
-        self.stall = Stall::new(now);
         self.counts = Some(now);
         self.spline = Some(spline);
         self.passes = 0;
@@ -314,12 +247,12 @@ impl FairingStrategy<2> for TwoPhase {
     }
 
     fn step(&mut self, state: &mut FairingState<2>) -> Result<StepOutcome> {
-        let settings = self.settings.clone();
+        let rules = &self.rules;
         let Some(spline) = self.spline.as_mut() else {
             return Err(strategy_error("two-phase", "step before init"));
         };
         let movable = |k: usize| state.is_movable(k);
-        let (coarse, fine) = full_pass_from(spline, &settings, &movable, self.counts)?;
+        let (coarse, fine) = full_pass_from(spline, rules, &movable, self.counts)?;
         let mut now = fine.counts;
         // Write the moves into the state; read back what the constraints allowed.
         let mut corrections = Vec::new();
@@ -350,9 +283,7 @@ impl FairingStrategy<2> for TwoPhase {
         self.passes += 1;
         let criterion = Some(now.0 as f64);
         state.criterion = criterion;
-        let stalled = self.stall.stop(now, &settings);
-        if (coarse.moves.is_empty() && fine.moves.is_empty()) || stalled || self.passes >= settings.max_passes
-        {
+        if (coarse.moves.is_empty() && fine.moves.is_empty()) || self.passes >= self.rules.max_passes {
             Ok(StepOutcome::done(criterion))
         } else {
             Ok(StepOutcome::running(criterion))
@@ -369,14 +300,14 @@ impl SegmentFairer for TwoPhase {
         5
     }
 
-    /// With [`Ends::Free`] the noise pre-pass fits an open curve's end points too.
+    /// With a noise pre-pass an open curve's end points are fitted too.
     fn prepares_ends(&self) -> bool {
-        self.settings.ends == Ends::Free && self.settings.denoise != Denoise::Off
+        self.rules.denoise != Denoise::Off
     }
 
-    /// The noise pre-pass ([`TwoPhaseSettings::denoise`], projected as
-    /// [`TwoPhaseSettings::project`] says) on the whole curve ([`denoise_curve`]), the `kept`
-    /// points interpolated, the `allowed` distances honoured.
+    /// The noise pre-pass ([`TwoPhaseSettings::denoise`], the points projected to their
+    /// foot points) on the whole curve ([`denoise_curve`]), the `kept` points interpolated,
+    /// the `allowed` distances honoured.
     fn prepare(
         &mut self,
         points: &[Vec2],
@@ -385,10 +316,13 @@ impl SegmentFairer for TwoPhase {
         allowed: &[f64],
     ) -> Result<Option<Vec<Vec2>>> {
         let bound = crate::displacement::data_bound(points);
-        self.settings.noise = bound.noise;
-        self.settings.noise_bound = bound.bound;
+        self.rules.run = RunData {
+            noise: bound.noise,
+            bound: bound.bound,
+            data: std::sync::Arc::from(Vec::new()),
+        };
         self.prepass = None;
-        if self.settings.denoise == Denoise::Off {
+        if self.rules.denoise == Denoise::Off {
             return Ok(None);
         }
         let keep = |k: usize| kept.get(k).copied().unwrap_or(true);
@@ -397,30 +331,18 @@ impl SegmentFairer for TwoPhase {
             keep: &keep,
             allowed: &allowed,
         };
-        let rules = CurvePrepass::new(self.settings.denoise, self.settings.project)
-            .with_prepass(
-                Prepass::new(self.settings.curve_prepass_rule, self.settings.curve_gcv_gamma)
-                    .with_max_points(self.settings.curve_prepass_points)
-                    .with_difference_order(self.settings.curve_difference_order),
-            )
-            .with_ends(self.settings.curve_ends);
+        let rules = self.rules.curve_prepass();
         let (values, prepass) = denoise_curve_reported(&rules, points, closed, &limits)?;
         self.prepass = prepass;
         Ok(Some(values))
     }
 
-    /// Runs Han's passes on the segment as [`fair_function`] does, with the arbitrary curve's
-    /// end-run setting ([`TwoPhaseSettings::curve_end_runs`]); points with `fixed[j]` never
-    /// move.
+    /// Runs Han's passes on the segment as [`fair_function`] does, with the curve's σ̂ and
+    /// data bound; points with `fixed[j]` never move.
     fn fair(&mut self, x: &[f64], y: &mut [f64], fixed: &[bool]) -> Result<()> {
         let mut spline = SplineFunction::new(x, y, EndCondition::ParabolicRunout)?;
         let movable = |k: usize| !fixed.get(k).copied().unwrap_or(true);
-        fair_spline(
-            &mut spline,
-            &self.settings,
-            self.settings.curve_end_runs,
-            &movable,
-        )?;
+        fair_spline(&mut spline, &self.rules, &movable)?;
         for (out, &v) in y.iter_mut().zip(spline.y()) {
             *out = v;
         }

@@ -32,8 +32,8 @@
 //! - λ scales every case (the paper prints it for Case 1 only).
 //!
 //! Guards (not in the paper, see [`TwoPhaseSettings`]): a case whose |γ| exceeds
-//! `max_move_factor` × the smaller spacing next to the moved point is skipped; a move that
-//! would increase the inflection or vibration count within `guard_window` points is refused
+//! [`MAX_MOVE_FACTOR`](super::settings::MAX_MOVE_FACTOR) × the smaller spacing next to the moved point is skipped; a move that
+//! would increase the inflection or vibration count within [`GUARD_WINDOW`] points is refused
 //! (judged before it is made, on c as the windowed update would leave it; counted by sign,
 //! without docs/CONTRACT.md's drop level, so that a move is never credited for pushing a sign change
 //! below it; recounted only where a sign changed); and a pass that increased either global
@@ -48,7 +48,7 @@ use fairness::sign::sign_changes;
 use fairness::sign::{opposite_signs, same_signs};
 use fairness::xc::e_sensitivity;
 
-use super::{CountGuard, TwoPhaseSettings};
+use super::{CountGuard, Rules, TwoPhaseSettings, END_RUN_MAX_DEVIANCE, GUARD_WINDOW};
 use crate::state::strategy_error;
 use crate::Result;
 
@@ -107,7 +107,7 @@ pub struct PassReport {
     /// local count.
     pub undone_by_count_guard: usize,
     /// Of `skipped`: the moves the data refused
-    /// ([`TwoPhaseSettings::end_run_max_deviance`]).
+    /// ([`END_RUN_MAX_DEVIANCE`]).
     pub refused_by_data: usize,
     /// The pass increased a global count and was undone whole.
     pub reverted: bool,
@@ -145,25 +145,18 @@ pub(super) fn e_fast(c: &[f64], inverse: &[f64], k: usize) -> f64 {
 /// case at (i, i + 1) is not reported when a medium or large pattern starts at i + 1: the
 /// sweep reaches it next and the specific rule handles it. O(1).
 pub fn detect(spline: &SplineFunction, i: usize) -> Option<Case> {
-    detect_above(spline, i, 0.0)
+    detect_by(spline.x().len(), i, &|k| e_at(spline, k))
 }
 
-/// [`detect`] with the e values of magnitude ≤ `zero` read as 0 (no sign: they start and
-/// join no case; [`TwoPhaseSettings::detection_floor`]). `zero` = 0 is [`detect`]. O(1).
-pub(super) fn detect_above(spline: &SplineFunction, i: usize, zero: f64) -> Option<Case> {
-    detect_by(spline.x().len(), i, zero, &|k| e_at(spline, k))
-}
-
-/// [`detect_above`] on a segment of n points whose e values `e(k)` gives (k interior). O(1).
-fn detect_by(n: usize, i: usize, zero: f64, e: &impl Fn(usize) -> f64) -> Option<Case> {
-    let e_at = |k: usize| floored(e(k), zero);
-    if let Some(case) = detect_specific(n, i, zero, e) {
+/// [`detect`] on a segment of n points whose e values `e(k)` gives (k interior). O(1).
+fn detect_by(n: usize, i: usize, e: &impl Fn(usize) -> f64) -> Option<Case> {
+    if let Some(case) = detect_specific(n, i, e) {
         return Some(case);
     }
     if n < 4 || i < 1 || i + 2 > n - 1 {
         return None;
     }
-    if opposite_signs(e_at(i), e_at(i + 1)) && detect_specific(n, i + 1, zero, e).is_none() {
+    if opposite_signs(e(i), e(i + 1)) && detect_specific(n, i + 1, e).is_none() {
         return Some(Case {
             kind: CaseKind::Small,
             first: i,
@@ -173,33 +166,14 @@ fn detect_by(n: usize, i: usize, zero: f64, e: &impl Fn(usize) -> f64) -> Option
     None
 }
 
-/// v, or 0 when |v| ≤ zero.
-fn floored(v: f64, zero: f64) -> f64 {
-    if v.abs() <= zero {
-        0.0
-    } else {
-        v
-    }
-}
-
-/// The level below which Phase 1 reads an e value as zero in a pass:
-/// `detection_floor` · max |e| (0 when the floor is 0). O(n).
-pub(super) fn e_floor(spline: &SplineFunction, floor: f64) -> f64 {
-    if floor <= 0.0 {
-        return 0.0;
-    }
-    let n = spline.x().len();
-    floor * (1..n.saturating_sub(1)).fold(0.0f64, |m, k| m.max(e_at(spline, k).abs()))
-}
-
 /// The medium and large patterns at i (Cases 2–3, interior and ends). O(1).
-fn detect_specific(n: usize, i: usize, zero: f64, e_raw: &impl Fn(usize) -> f64) -> Option<Case> {
+fn detect_specific(n: usize, i: usize, e_raw: &impl Fn(usize) -> f64) -> Option<Case> {
     if n < 4 || i < 1 || i > n - 2 {
         return None;
     }
     let e = |k: isize| -> Option<f64> {
         if k >= 1 && (k as usize) <= n - 2 {
-            Some(floored(e_raw(k as usize), zero))
+            Some(e_raw(k as usize))
         } else {
             None
         }
@@ -427,8 +401,8 @@ fn count_change_with_zeros(before: &[f64], after: &[f64]) -> isize {
 /// Entries kept on each side of a moved point by the windowed updates inside a pass
 /// ([`SplineFunction::set_y_within`]): the neglected part is below 2 · 2^−20 ≈ 2e-6 of the
 /// move's effect for the most uneven knots and 0.27^20 ≈ 3e-12 on uniform ones. Inside a pass
-/// c is read only to detect cases and by the local guard (whose window is `guard_window` + 2 =
-/// 18 points by default, inside this one; a larger `guard_window` reads values that the
+/// c is read only to detect cases and by the local guard (whose window is [`GUARD_WINDOW`] + 2 =
+/// 18 points, inside this one; a larger window would read values that the
 /// truncated updates left stale). The truncation can change a decision inside a pass (which
 /// case is found, whether the guard undoes it), never a promise: every pass ends with an
 /// exact rebuild and the exact global count guard.
@@ -474,7 +448,7 @@ pub fn counts(spline: &SplineFunction) -> (usize, usize) {
 
 /// One coarse pass of Phase 1 over the whole segment (module doc): sweeps i = 1 … n − 2,
 /// applies each detected case whose points are all `movable` and interior, with the guards of
-/// [`TwoPhaseSettings`]. O(n · guard_window).
+/// [`TwoPhaseSettings`]. O(n · guard window).
 ///
 /// Errors: bad settings; a failing spline update (the spline is then restored).
 pub fn coarse_pass(
@@ -482,39 +456,25 @@ pub fn coarse_pass(
     settings: &TwoPhaseSettings,
     movable: &dyn Fn(usize) -> bool,
 ) -> Result<PassReport> {
-    coarse_pass_from(spline, settings, movable, None)
+    coarse_pass_from(spline, &Rules::direct(settings), movable, None)
 }
 
 /// [`coarse_pass`] given the spline's [`counts`] if the caller knows them (the last pass's
-/// [`PassReport::counts`]). O(n · guard_window).
+/// [`PassReport::counts`]). O(n · guard window).
 pub(super) fn coarse_pass_from(
     spline: &mut SplineFunction,
-    settings: &TwoPhaseSettings,
+    settings: &Rules,
     movable: &dyn Fn(usize) -> bool,
     known: Option<(usize, usize)>,
 ) -> Result<PassReport> {
     settings.validate()?;
     let lambda = settings.coarse_lambda;
-    let zero = e_floor(spline, settings.detection_floor);
     let find = |spline: &SplineFunction, inverse: &[f64], i: usize| {
         let c = spline.c();
-        let case = detect_by(c.len(), i, zero, &|k| e_fast(c, inverse, k))?;
+        let case = detect_by(c.len(), i, &|k| e_fast(c, inverse, k))?;
         Some((case, displacement(spline, case, lambda).map(Proposal::from)))
     };
     guarded_pass(spline, settings, movable, 1, false, known, &find)
-}
-
-/// The largest |γ| a case may move a point whose smaller neighbouring spacing is `h`: the
-/// spacing bound `max_move_factor` · h widened to `noise_moves` · σ̂, capped at
-/// `max_move_bound` · B when both are positive ([`TwoPhaseSettings`]). O(1).
-pub(super) fn move_limit(settings: &TwoPhaseSettings, h: f64) -> f64 {
-    let limit = (settings.max_move_factor * h).max(settings.noise_moves * settings.noise);
-    let cap = settings.max_move_bound * settings.noise_bound;
-    if cap > 0.0 {
-        limit.min(cap)
-    } else {
-        limit
-    }
 }
 
 /// A detector for [`guarded_pass`]: the case starting at point i (if any) and its moves
@@ -540,15 +500,15 @@ impl From<Vec<(usize, f64)>> for Proposal {
     }
 }
 
-/// Whether the data refuse a move ([`TwoPhaseSettings::end_run_max_deviance`]): an end-run
-/// case whose moves (point, γ) would raise the residual sum of squares against the data,
+/// Whether the data refuse a move ([`END_RUN_MAX_DEVIANCE`]): an end-run case whose moves
+/// (point, γ) would raise the residual sum of squares against the data,
 /// Σ (y_k + γ_k − d_k)² − Σ (y_k − d_k)² over the moved points, by more than
-/// `end_run_max_deviance` · σ̂². Off when the data or σ̂ are unknown (arbitrary curves'
+/// [`END_RUN_MAX_DEVIANCE`] · σ̂². Off when the data or σ̂ are unknown (arbitrary curves'
 /// segments, a direct [`fair_function`](super::fair_function)). O(m log m), m the moves.
-fn refused_by_data(settings: &TwoPhaseSettings, y: &[f64], kind: CaseKind, moves: &[(usize, f64)]) -> bool {
-    let limit = settings.end_run_max_deviance;
-    let data = &settings.data;
-    let sigma = settings.noise;
+fn refused_by_data(settings: &Rules, y: &[f64], kind: CaseKind, moves: &[(usize, f64)]) -> bool {
+    let limit = END_RUN_MAX_DEVIANCE;
+    let data = &settings.run.data;
+    let sigma = settings.run.noise;
     if kind != CaseKind::EndRun || limit <= 0.0 || data.len() != y.len() || !sigma.is_finite() || sigma <= 0.0
     {
         return false;
@@ -580,10 +540,10 @@ fn refused_by_data(settings: &TwoPhaseSettings, y: &[f64], kind: CaseKind, moves
 /// (the long-run option's fine pass) one that increases the inflections, whatever it does to
 /// the vibrations (ranking ties by vibrations measured worse: 1835 against 1291 inflections
 /// left on the 10^4-point segment of `examples/two_phase_runs.rs`).
-/// O(n · guard_window) plus the finder's cost.
+/// O(n · guard window) plus the finder's cost.
 pub(super) fn guarded_pass(
     spline: &mut SplineFunction,
-    settings: &TwoPhaseSettings,
+    settings: &Rules,
     movable: &dyn Fn(usize) -> bool,
     start: usize,
     inflections_first: bool,
@@ -627,7 +587,7 @@ pub(super) fn guarded_pass(
                     && k + 1 < n
                     && movable(k)
                     && g.is_finite()
-                    && g.abs() <= move_limit(settings, (x[k] - x[k - 1]).min(x[k + 1] - x[k]))
+                    && g.abs() <= settings.move_limit((x[k] - x[k - 1]).min(x[k + 1] - x[k]))
             });
         if !allowed {
             report.skipped += 1;
@@ -641,8 +601,8 @@ pub(super) fn guarded_pass(
         let (Some(lo), Some(hi)) = (moves.iter().map(|m| m.0).min(), moves.iter().map(|m| m.0).max()) else {
             continue;
         };
-        let lo = lo.saturating_sub(settings.guard_window + 2);
-        let hi = (hi + settings.guard_window + 2).min(n - 1);
+        let lo = lo.saturating_sub(GUARD_WINDOW + 2);
+        let hi = (hi + GUARD_WINDOW + 2).min(n - 1);
         let guard = settings.count_guard == CountGuard::Local;
         let split = if guard {
             window_values(spline.c(), 0, n, &inverse, lo, hi, &mut before)
@@ -725,7 +685,7 @@ pub(super) fn guarded_pass(
 
 #[cfg(test)]
 mod tests {
-    use super::{changes, count_change, count_change_with_zeros, detect, detect_above, e_at, CaseKind};
+    use super::{changes, count_change, count_change_with_zeros};
     use curve_repr::{EndCondition, SplineFunction};
     use fairness::sign::sign_changes;
 
@@ -740,9 +700,9 @@ mod tests {
         (x, y)
     }
 
-    /// The moves of five full passes on [`leading_edge`] with `max_move_bound` = `cap`, B and
-    /// σ̂ set as the strategy sets them.
-    fn leading_edge_moves(cap: f64) -> (Vec<(usize, f64)>, f64) {
+    /// The moves of five full passes on [`leading_edge`] with the move cap `cap`, B and σ̂
+    /// set as the strategy sets them.
+    fn leading_edge_moves(cap: super::super::MoveCap) -> (Vec<(usize, f64)>, f64) {
         use crate::displacement::{data_bound_as, NoiseModel};
         let (x, y) = leading_edge();
         let points: Vec<curve_repr::Vec2> = x
@@ -751,57 +711,43 @@ mod tests {
             .map(|(&a, &b)| curve_repr::Vec2::new(a, b))
             .collect();
         let bound = data_bound_as(&points, NoiseModel::Vertical);
-        let mut settings = super::TwoPhaseSettings::default().with_max_move_bound(cap);
-        settings.noise = bound.noise;
-        settings.noise_bound = bound.bound;
+        let rules = super::super::Rules {
+            settings: super::TwoPhaseSettings::default().with_move_cap(cap),
+            run: super::super::RunData {
+                noise: bound.noise,
+                bound: bound.bound,
+                data: std::sync::Arc::from(y.clone()),
+            },
+        };
         let mut spline = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap();
         let mut moves = Vec::new();
         for _ in 0..5 {
-            let (coarse, fine) = super::super::full_pass(&mut spline, &settings, &|_| true).unwrap();
+            let (coarse, fine) = super::super::full_pass_from(&mut spline, &rules, &|_| true, None).unwrap();
             moves.extend(coarse.moves.into_iter().chain(fine.moves));
         }
         (moves, bound.bound)
     }
 
-    /// `max_move_bound` (TwoPhaseSettings): on the exact points of a steep leading edge the
-    /// spacing bound (in x units) lets Phase 1 move y near the tip by many data bounds B (the
-    /// interpolating spline's c rings there); with the cap at 1 every move stays within B, and
-    /// 0 (the paper's value) is the rule without the cap, move for move.
+    /// `move-cap` ([`MoveCap`](super::super::MoveCap)): on the exact points of a steep leading
+    /// edge the spacing bound (in x units, the paper's reading) lets Phase 1 move y near the
+    /// tip by many data bounds B (the interpolating spline's c rings there); with the data cap
+    /// every move stays within B.
     #[test]
     fn the_data_bound_caps_each_move_on_a_steep_leading_edge() {
-        let (uncapped, bound) = leading_edge_moves(0.0);
+        use super::super::MoveCap;
+        let (uncapped, bound) = leading_edge_moves(MoveCap::Spacing);
         assert!(bound > 0.0);
         assert!(
             uncapped.iter().any(|m| m.1.abs() > 10.0 * bound),
             "{uncapped:?} against B = {bound}"
         );
-        let (capped, _) = leading_edge_moves(1.0);
+        let (capped, _) = leading_edge_moves(MoveCap::Data);
         assert!(!capped.is_empty());
         assert!(
             capped.iter().all(|m| m.1.abs() <= bound),
             "{capped:?} against B = {bound}"
         );
-        assert_eq!(leading_edge_moves(f64::MAX).0, uncapped);
-        assert_eq!(super::TwoPhaseSettings::paper().max_move_bound, 0.0);
-    }
-
-    #[test]
-    fn the_detection_floor_reads_small_e_as_zero() {
-        // A spike at point 5 of a straight line: e_5 differs in sign from e_4 and e_6.
-        let x: Vec<f64> = (0..12).map(f64::from).collect();
-        let mut y: Vec<f64> = x.iter().map(|t| 0.3 * t).collect();
-        y[5] += 0.1;
-        let spline = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap();
-        assert_eq!(detect(&spline, 5).map(|c| c.kind), Some(CaseKind::Medium));
-        let e5 = e_at(&spline, 5).abs();
-        let smallest = (4..=6)
-            .map(|k| e_at(&spline, k).abs())
-            .fold(f64::INFINITY, f64::min);
-        assert_eq!(
-            detect_above(&spline, 5, 0.99 * smallest).map(|c| c.kind),
-            Some(CaseKind::Medium)
-        );
-        assert!(detect_above(&spline, 5, 1.01 * e5).is_none_or(|c| c.first != 5));
+        assert_eq!(super::TwoPhaseSettings::paper().move_cap, MoveCap::Spacing);
     }
 
     /// The guard's count change equals the difference of two plain by-sign counts (exact

@@ -32,7 +32,7 @@
 //! the system has no solution unless c_i = c_{i+1}; for mildly non-uniform spacing (x_k =
 //! k + 0.3 sin k) the sine of the angle between its rows is ≈ 0.01 and the solution moves
 //! points by absurd amounts. We solve it exactly only when that sine is at least
-//! `pair_min_sine` (default 0.05, not in the paper). Otherwise we fix the ratio τ/σ: the
+//! [`PAIR_MIN_SINE`] (0.05, not in the paper). Otherwise we fix the ratio τ/σ: the
 //! pattern is the bump of the long-run rule below over the pair and its two neighbours,
 //! γ_j = σ w_j for j = i − 1 … i + 2, which on uniform knots is the paper's ansatz with
 //! τ = 2σ/3 (w = 0.64, 0.96, 0.96, 0.64), and σ is the smallest that brings *both* c̃_i and
@@ -77,7 +77,7 @@
 //! On dense noisy sines (`examples/two_phase_runs.rs`) the option leaves about the clean
 //! curve's inflection count where the paper's rules leave many times it, and fewer
 //! vibrations. The price is distance: with the default size guard the points end about as far
-//! from the clean curve as the noise, and a smaller one (`max_move_factor` 0.2) ends closer.
+//! from the clean curve as the noise.
 //! It is meant for dense noisy data: on the sparse real curves of `examples/han_tables.rs` it
 //! moves the points much farther than the paper's rules. Without the count guards it ends
 //! several times farther from the truth with about as many inflections. The measured table
@@ -91,7 +91,7 @@
 use curve_repr::{EndCondition, SplineFunction};
 
 use super::phase1::{guarded_pass, Case, CaseKind, PassReport, Proposal};
-use super::TwoPhaseSettings;
+use super::{Rules, TwoPhaseSettings, PAIR_MIN_SINE};
 use crate::Result;
 
 /// The level below which a c value counts as zero: 1e-12 · max |c| (docs/CONTRACT.md). O(n).
@@ -113,11 +113,11 @@ fn sign(v: f64, zero: f64) -> i8 {
 /// `max_run` points (2 is the paper). O(n) for the zero level; the pass uses an O(max_run)
 /// version.
 pub fn detect_fine(spline: &SplineFunction, i: usize, max_run: usize) -> Option<Case> {
-    detect_with(spline, i, max_run, true, zero_level(spline))
+    detect_with(spline, i, max_run, zero_level(spline))
 }
 
-/// [`detect_fine`] at the zero level `zero`, the end-run case taken only if `end_runs`.
-fn detect_with(spline: &SplineFunction, i: usize, max_run: usize, end_runs: bool, zero: f64) -> Option<Case> {
+/// [`detect_fine`] at the zero level `zero`.
+fn detect_with(spline: &SplineFunction, i: usize, max_run: usize, zero: f64) -> Option<Case> {
     let c = spline.c();
     let n = c.len();
     if n < 5 {
@@ -148,7 +148,7 @@ fn detect_with(spline: &SplineFunction, i: usize, max_run: usize, end_runs: bool
     // Beyond the paper (long-run option): a wrong-sign run at an end that the paper's end
     // case does not take, of up to `max_run` points and no longer than the run of the other
     // sign next to it (of two alternating runs, the shorter is taken for the noise).
-    let end_run = end_runs && max_run > 2 && len <= max_run && len + 3 <= n;
+    let end_run = max_run > 2 && len <= max_run && len + 3 <= n;
     let run_of = |mut k: usize, step: isize| {
         let mut length = 0;
         while length < len && sg(k) == -s {
@@ -336,7 +336,7 @@ fn fine_with(
         return absorb_at_end(spline, case, settings, zero);
     }
     let plan = plan(spline, case, settings.fine_lambda)?;
-    let first = solve(spline, &plan, 0.0, settings.pair_min_sine)?;
+    let first = solve(spline, &plan, 0.0, PAIR_MIN_SINE)?;
     // Neighbours after the α = 0 move (Eq. 13); α rule if none changed sign.
     let c = spline.c();
     let mut smallest = f64::INFINITY;
@@ -352,7 +352,7 @@ fn fine_with(
         smallest = smallest.min(predicted.abs());
     }
     let alpha = plan.goal * smallest / settings.alpha_divisor;
-    solve(spline, &plan, alpha, settings.pair_min_sine).map(Proposal::from)
+    solve(spline, &plan, alpha, PAIR_MIN_SINE).map(Proposal::from)
 }
 
 /// The long-run option's move (module doc, "Runs of more than two points"): the wrong-sign
@@ -598,7 +598,7 @@ fn flank_factors(left: (f64, f64), right: (f64, f64), run: (f64, f64)) -> Option
 }
 
 /// One fine pass of Phase 2 over the whole segment (module doc), with the guards of
-/// [`TwoPhaseSettings`]. O(n · guard_window) (O(n · max_run²) with long runs).
+/// [`TwoPhaseSettings`]. O(n · guard window) (O(n · max_run²) with long runs).
 ///
 /// Errors: bad settings; a failing spline update.
 pub fn fine_pass(
@@ -606,20 +606,20 @@ pub fn fine_pass(
     settings: &TwoPhaseSettings,
     movable: &dyn Fn(usize) -> bool,
 ) -> Result<PassReport> {
-    fine_pass_from(spline, settings, movable, None)
+    fine_pass_from(spline, &Rules::direct(settings), movable, None)
 }
 
 /// [`fine_pass`] given the spline's [`counts`](super::counts) if the caller knows them.
 pub(super) fn fine_pass_from(
     spline: &mut SplineFunction,
-    settings: &TwoPhaseSettings,
+    settings: &Rules,
     movable: &dyn Fn(usize) -> bool,
     known: Option<(usize, usize)>,
 ) -> Result<PassReport> {
     settings.validate()?;
-    let zero = zero_level(spline).max(settings.detection_floor * 1e12 * zero_level(spline));
+    let zero = zero_level(spline);
     let find = |spline: &SplineFunction, _: &[f64], i: usize| {
-        let case = detect_with(spline, i, settings.max_run, settings.end_runs, zero)?;
+        let case = detect_with(spline, i, settings.max_run, zero)?;
         Some((case, fine_with(spline, case, settings, zero)))
     };
     guarded_pass(spline, settings, movable, 0, settings.max_run > 2, known, &find)

@@ -559,14 +559,11 @@ fn a_surface_plan_prints_as_its_method_table_and_reads_back() {
 /// a function (200 points, σ = 0.01) it reports one `function` fit with the rule, λ,
 /// difference order, end conditions and noise estimate of jump-lsq run alone with the
 /// pre-pass's own choices (`rule`, `difference-order`, `function-ends` all `auto`) on the same
-/// points, and with `function-exponent = auto` on unevenly spaced x (where GCV takes a = 0) the
-/// same with jump-lsq's `exponent = auto`; on a noisy open arc one `open` fit equal in the same way to jump-lsq run alone
+/// points; on a noisy open arc one `open` fit equal in the same way to jump-lsq run alone
 /// with the curve pre-pass's choices (`rule = gcv`, `gcv-gamma` 1.4, `curve-ends = runout`,
 /// `difference-order = auto`); on a noisy closed ellipse one `periodic` fit; on the same
 /// ellipse with a corner, the `corner` and `through-corner` fits. With `denoise = gcv` it names
-/// the cubic smoothing spline and has no jump-lsq report. Beyond `function-prepass-points` it
-/// gives the bins fitted, and their fit's order is 1, as the binned pre-pass fixes it. With
-/// `denoise = off` it is null.
+/// the cubic smoothing spline and has no jump-lsq report. With `denoise = off` it is null.
 #[test]
 fn two_phases_report_says_what_its_pre_pass_chose() {
     use rand::SeedableRng;
@@ -652,36 +649,6 @@ fn two_phases_report_says_what_its_pre_pass_chose() {
     );
     same(&prepass["fits"][0], &alone);
     assert_eq!(prepass["fits"][0]["jump_lsq"]["exponent"], 8.0);
-    // `function-exponent = auto` on x spaced in a ratio of 2: jump-lsq's `exponent = auto`.
-    let warped: Vec<Vec2> = sine
-        .iter()
-        .map(|p| {
-            let tau = 2.0 * std::f64::consts::PI;
-            let u = p.x / 19.9;
-            let x = 19.9 * (u + (tau * u).sin() / (3.0 * tau));
-            Vec2::new(x, p.y - (p.x / 2.0).sin() + (x / 2.0).sin())
-        })
-        .collect();
-    let function = run(
-        "two-phase",
-        &[("function-exponent", "auto")],
-        &warped,
-        CurveKind::Function,
-    );
-    let alone = run(
-        "jump-lsq",
-        &[
-            ("rule", "auto"),
-            ("difference-order", "auto"),
-            ("function-ends", "auto"),
-            ("exponent", "auto"),
-        ],
-        &warped,
-        CurveKind::Function,
-    );
-    same(&function.extras["prepass"]["fits"][0], &alone);
-    // There GCV took a = 0, so the pre-pass did not fall back to the default 8 unasked.
-    assert_eq!(alone.extras["exponent"], 0.0, "{}", alone.extras["exponent"]);
 
     let open = run("two-phase", &[], &arc, CurveKind::Parametric);
     assert_eq!(roles(&open), ["open"], "{}", open.extras["prepass"]);
@@ -704,18 +671,6 @@ fn two_phases_report_says_what_its_pre_pass_chose() {
     let cubic = run("two-phase", &[("denoise", "gcv")], &sine, CurveKind::Function);
     assert_eq!(cubic.extras["prepass"]["fits"][0]["smoother"], "smoothing-spline");
     assert!(cubic.extras["prepass"]["fits"][0]["jump_lsq"].is_null());
-    let binned = run(
-        "two-phase",
-        &[("function-prepass-points", "50")],
-        &sine,
-        CurveKind::Function,
-    );
-    let bins = binned.extras["prepass"]["bins"].as_u64().unwrap();
-    assert!((50..=200).contains(&bins), "{bins} bins");
-    assert_eq!(
-        binned.extras["prepass"]["fits"][0]["jump_lsq"]["difference_order"],
-        1
-    );
     let off = run("two-phase", &[("denoise", "off")], &sine, CurveKind::Function);
     assert!(off.extras["prepass"].is_null());
 }
@@ -750,9 +705,7 @@ fn values_outside_the_declared_range_are_refused_with_the_range() {
     for (name, value, allowed) in [
         ("coarse-lambda", "0", "a number in (0, 1]"),
         ("turning-limit", "180.5", "a number in (0, 180]"),
-        ("min-gain", "1", "a number in [0, 1)"),
-        ("function-difference-order", "4", "an integer in [0, 3]"),
-        ("function-exponent", "-1", "a number in [0, 16]"),
+        ("fine-lambda", "1.5", "a number in (0, 1]"),
     ] {
         let e = two_phase.settings(&sets(&[(name, value)])).unwrap_err();
         assert!(
@@ -765,9 +718,7 @@ fn values_outside_the_declared_range_are_refused_with_the_range() {
         ("max-passes", "1"),
         ("coarse-lambda", "1"),
         ("turning-limit", "180"),
-        ("min-gain", "0"),
-        ("function-difference-order", "3"),
-        ("function-difference-order", "auto"),
+        ("fine-lambda", "1"),
     ] {
         two_phase
             .settings(&sets(&[(name, value)]))

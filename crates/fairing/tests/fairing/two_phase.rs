@@ -254,9 +254,9 @@ fn bad_settings_are_rejected() {
     for s in [
         TwoPhaseSettings::paper().with_coarse_lambda(0.0),
         TwoPhaseSettings::paper().with_coarse_lambda(f64::NAN),
-        TwoPhaseSettings::paper().with_max_move_factor(-1.0),
-        TwoPhaseSettings::paper().with_max_move_bound(-1.0),
-        TwoPhaseSettings::paper().with_max_move_bound(f64::NAN),
+        TwoPhaseSettings::paper().with_alpha_divisor(0.0),
+        TwoPhaseSettings::paper().with_alpha_divisor(f64::INFINITY),
+        TwoPhaseSettings::paper().with_max_passes(0),
     ] {
         assert!(matches!(
             coarse_pass(&mut spline, &s, &|_| true),
@@ -340,15 +340,17 @@ fn printed_medium_end_pattern_is_the_interior_case() {
     assert_eq!(detect(&spline, 2).map(|c| c.kind), Some(CaseKind::Medium));
 }
 
-/// The size guard: with a bound far below the needed moves nothing moves and the cases are
-/// counted as skipped.
+/// The size guard: with patterns whose moves are far beyond half the spacing nothing moves
+/// and the cases are counted as skipped.
 #[test]
 fn move_guard_skips_large_moves() {
     let x = knots(12);
     for (e, ..) in patterns() {
-        let y = y_with_e(&x, &e);
+        // The same pattern a million times taller: the same cases, moves a million times
+        // larger, the spacing unchanged.
+        let y: Vec<f64> = y_with_e(&x, &e).iter().map(|v| v * 1e6).collect();
         let mut spline = SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap();
-        let settings = TwoPhaseSettings::paper().with_max_move_factor(1e-9);
+        let settings = TwoPhaseSettings::paper();
         let report = coarse_pass(&mut spline, &settings, &|_| true).unwrap();
         assert!(report.moves.is_empty());
         assert!(report.skipped > 0);

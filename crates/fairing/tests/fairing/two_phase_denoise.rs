@@ -7,8 +7,8 @@ use std::f64::consts::PI;
 use curve_repr::Vec2;
 use fairing::strategies::CurveEnds;
 use fairing::two_phase::{
-    denoise, denoise_by, denoise_curve, denoise_curve_by, CurvePrepass, Denoise, Ends, Limits, Prepass,
-    Projection, TwoPhase, TwoPhaseSettings,
+    denoise, denoise_by, denoise_curve, denoise_curve_by, CurvePrepass, Denoise, Limits, Prepass, Projection,
+    TwoPhase, TwoPhaseSettings,
 };
 use fairing::{Constraints, EndClamp, Pipeline};
 use fairness::XcPolyline;
@@ -105,13 +105,6 @@ fn a_function_beyond_the_prepass_limit_is_fitted_on_bins_that_resolve_it() {
             "sin({wave}x): RMS to the clean curve {after}"
         );
     }
-    let refused = TwoPhaseSettings::default()
-        .with_function_prepass_points(3)
-        .validate();
-    assert!(
-        refused.is_err_and(|e| e.to_string().contains("function_prepass_points")),
-        "a limit of 3 points is refused by name"
-    );
 }
 
 /// Beyond its default limit (2 000 points) a function's pre-pass fits bin means and reads
@@ -125,8 +118,9 @@ fn a_function_beyond_the_prepass_limit_is_fitted_on_bins_that_resolve_it() {
 fn a_binned_function_is_read_back_with_the_clean_curves_vibrations() {
     let (n, sigma) = (10_000, 0.01);
     let settings = TwoPhaseSettings::default();
+    let prepass = TwoPhaseSettings::function_prepass();
     assert!(
-        n > settings.function_prepass_points,
+        n > prepass.max_points,
         "the default limit does not bin {n} points"
     );
     let x: Vec<f64> = (0..n).map(|k| 20.0 * k as f64 / (n - 1) as f64).collect();
@@ -138,9 +132,6 @@ fn a_binned_function_is_read_back_with_the_clean_curves_vibrations() {
         keep: &none,
         allowed: &free,
     };
-    let prepass = Prepass::new(settings.function_prepass_rule, settings.function_gcv_gamma)
-        .with_function_ends(settings.function_ends)
-        .with_max_points(settings.function_prepass_points);
     let smooth = denoise_by(settings.denoise, prepass, &x, &y, &limits).unwrap();
     let (fitted, truth) = (
         XcPolyline::of_points(&x, &smooth).unwrap(),
@@ -224,8 +215,8 @@ fn a_curve_beyond_the_prepass_limit_is_fitted_on_bins_and_keeps_its_order() {
 #[test]
 fn a_dense_noisy_arc_is_binned_by_default_and_its_fit_has_no_inflection() {
     let (n, sigma) = (30_000, 0.01);
-    let settings = TwoPhaseSettings::default();
-    let limit = settings.curve_prepass_points;
+    let rules = TwoPhaseSettings::default().curve_prepass();
+    let limit = rules.prepass.max_points;
     assert!(n > limit, "the default limit {limit} does not bin {n} points");
     let clean: Vec<Vec2> = (0..n)
         .map(|k| {
@@ -241,11 +232,6 @@ fn a_dense_noisy_arc_is_binned_by_default_and_its_fit_has_no_inflection() {
         keep: &keep,
         allowed: &free,
     };
-    let rules = CurvePrepass::new(settings.denoise, settings.project)
-        .with_prepass(
-            Prepass::new(settings.curve_prepass_rule, settings.curve_gcv_gamma).with_max_points(limit),
-        )
-        .with_ends(settings.curve_ends);
     let faired = denoise_curve_by(&rules, &points, false, &limits).unwrap();
     let turns: Vec<f64> = faired
         .windows(3)
@@ -506,11 +492,10 @@ fn free_ends_bring_a_noisy_end_point_nearer_the_clean_curve() {
     let default = two_phase(&points, TwoPhaseSettings::default(), Constraints::default());
     let kept = two_phase(
         &points,
-        TwoPhaseSettings::default().with_ends(Ends::Keep),
-        Constraints::default(),
+        TwoPhaseSettings::default(),
+        Constraints::default().with_end_clamp(EndClamp::G0),
     );
-    assert_eq!(TwoPhaseSettings::default().ends, Ends::Free);
-    assert_eq!(kept[n - 1], points[n - 1], "ends = keep moved the end point");
+    assert_eq!(kept[n - 1], points[n - 1], "a G0 clamp moved the end point");
     let (free_end, kept_end) = ((default[n - 1].y - clean[n - 1]).abs(), 0.05);
     assert!(free_end < 0.5 * kept_end, "end point error {free_end}");
     let (free_tail, kept_tail) = (end_error(&default), end_error(&kept));
@@ -528,9 +513,7 @@ fn free_ends_still_keep_clamped_ends_and_fixed_points_bit_for_bit() {
     let (points, _) = sine_with_a_bad_end();
     let n = points.len();
     for mode in [Denoise::Gcv, Denoise::JumpLsq, Denoise::JumpLsqGcv] {
-        let settings = TwoPhaseSettings::default()
-            .with_ends(Ends::Free)
-            .with_denoise(mode);
+        let settings = TwoPhaseSettings::default().with_denoise(mode);
         let clamped = two_phase(
             &points,
             settings.clone(),
@@ -553,16 +536,14 @@ fn free_ends_still_keep_clamped_ends_and_fixed_points_bit_for_bit() {
     }
 }
 
-/// `curve-gcv-gamma` and `function-gcv-gamma` (the factor γ on the trace of `jump-lsq-gcv`'s
-/// GCV): γ = 1 is [`denoise`] and [`denoise_curve`] bit for bit; the curves' default (> 1)
-/// smooths more, on a function and on a curve; the other pre-passes ignore it; γ below 1 is
-/// refused with an error.
+/// The factor γ on the trace of `jump-lsq-gcv`'s GCV: γ = 1 is [`denoise`] and
+/// [`denoise_curve`] bit for bit; the curves' pre-pass's (> 1) smooths more, on a function and
+/// on a curve; the other pre-passes ignore it; γ below 1 is refused with an error.
 #[test]
 fn gcv_gamma_of_the_pre_pass() {
-    let defaults = TwoPhaseSettings::default();
-    let gamma = defaults.curve_gcv_gamma;
+    let gamma = TwoPhaseSettings::default().curve_prepass().prepass.gcv_gamma;
     assert!(gamma > 1.0, "{gamma}");
-    assert_eq!(defaults.function_gcv_gamma, 1.0);
+    assert_eq!(TwoPhaseSettings::function_prepass().gcv_gamma, 1.0);
     let n = 200;
     let x: Vec<f64> = (0..n).map(|k| 0.1 * k as f64).collect();
     let y: Vec<f64> = x
@@ -620,22 +601,6 @@ fn gcv_gamma_of_the_pre_pass() {
         shift(&plain)
     );
     assert!(denoise_by(mode, Prepass::gcv(0.5), &x, &y, &limits).is_err());
-    let points: Vec<Vec2> = x.iter().zip(&y).map(|(&x, &y)| Vec2::new(x, y)).collect();
-    let refused = Pipeline::new(TwoPhase::new(
-        TwoPhaseSettings::default().with_function_gcv_gamma(0.5),
-    ))
-    .run(points);
-    assert!(
-        matches!(
-            refused,
-            Err(fairing::Error::BadParameter {
-                name: "function_gcv_gamma",
-                ..
-            })
-        ),
-        "{:?}",
-        refused.err()
-    );
 }
 
 /// The function pre-pass when jump-lsq's λ stops at its precision limit under GCV: it keeps
@@ -824,7 +789,7 @@ fn a_limited_curve_fit_is_weighed_against_the_cubic_over_windowed_chords() {
     use fairing::strategies::smoothing_spline::fit_parametric;
     use fairing::strategies::{SmoothingRule, SmoothingSettings};
     let (sigma, radius) = (0.01, 2.0);
-    let gamma = TwoPhaseSettings::default().curve_gcv_gamma;
+    let gamma = TwoPhaseSettings::default().curve_prepass().prepass.gcv_gamma;
     let mut winners = Vec::new();
     for (n, uneven) in [(500, false), (2_000, false), (2_000, true)] {
         let e = noise(if uneven { 17 } else { 13 }, 2 * n, sigma);
@@ -909,7 +874,11 @@ fn a_limited_periodic_fit_is_kept_where_gcv_scores_it_lower() {
             Vec2::new(radius * t.cos() + e[2 * k], radius * t.sin() + e[2 * k + 1])
         })
         .collect();
-    let case = limited_curve(&noisy, true, TwoPhaseSettings::default().curve_gcv_gamma);
+    let case = limited_curve(
+        &noisy,
+        true,
+        TwoPhaseSettings::default().curve_prepass().prepass.gcv_gamma,
+    );
     assert!(case.jump.report.lambda_limited, "{:?}", case.jump.report);
     let (v_jump, v_cubic) = (case.jump.report.gcv.unwrap(), case.v_cubic);
     assert!(v_jump <= v_cubic, "jump {v_jump:e}, cubic {v_cubic:e}");
@@ -961,10 +930,7 @@ fn third_difference_sigma(values: &[f64]) -> f64 {
 fn the_auto_rule_keeps_gmls_fit_within_the_noise_and_gcvs_beyond() {
     use fairing::strategies::{FunctionEnds, AUTO_NOISE_FACTOR};
     use fairing::two_phase::PrepassRule;
-    assert_eq!(
-        TwoPhaseSettings::default().function_prepass_rule,
-        PrepassRule::Auto
-    );
+    assert_eq!(TwoPhaseSettings::function_prepass().rule, PrepassRule::Auto);
     let none = |_: usize| false;
     let free = |_: usize| f64::INFINITY;
     let limits = Limits {

@@ -7,7 +7,9 @@
 use std::f64::consts::PI;
 
 use curve_repr::{EndCondition, SplineFunction, Vec2};
-use fairing::two_phase::{detect_fine, fine_displacement, Case, CaseKind, Ends, TwoPhase, TwoPhaseSettings};
+use fairing::two_phase::{
+    detect_fine, fine_displacement, Case, CaseKind, MoveCap, TwoPhase, TwoPhaseSettings,
+};
 use fairing::{curve_counts, partition, CurveGuard, PartitionSettings, Pipeline, SegmentedFairing};
 use fairness::xc::XcPolyline;
 
@@ -176,16 +178,6 @@ fn a_dent_at_the_curve_end_is_removed() {
     assert!(inflections(&paper) > 0, "the paper's rules leave the end dent");
     let default = faired(&points, TwoPhaseSettings::default(), PartitionSettings::default());
     assert_eq!(inflections(&default), 0);
-    // With `ends` = `keep` (the paper's end rule; the default's pre-pass fits the ends) the
-    // dent goes as well and the curve's end points never move.
-    let kept = faired(
-        &points,
-        TwoPhaseSettings::default().with_ends(Ends::Keep),
-        PartitionSettings::default(),
-    );
-    assert_eq!(inflections(&kept), 0);
-    assert_eq!(kept[0], points[0], "the curve's end point moved");
-    assert_eq!(kept[60], points[60]);
 }
 
 #[test]
@@ -211,7 +203,7 @@ fn a_dent_at_a_segment_join_is_removed() {
     // dent is filled, not moved elsewhere; every point ends near the arc.
     let unguarded = Pipeline::new(
         SegmentedFairing::new(TwoPhase::new(
-            TwoPhaseSettings::default().with_max_move_bound(0.0),
+            TwoPhaseSettings::default().with_move_cap(MoveCap::Spacing),
         ))
         .with_passes(SegmentedFairing::<TwoPhase>::DEFAULT_PASSES)
         .with_curve_guard(CurveGuard::Off),
@@ -338,85 +330,15 @@ fn runout_spline(p: &[Vec2]) -> SplineFunction {
     SplineFunction::new(&x, &y, EndCondition::ParabolicRunout).unwrap()
 }
 
-/// y = sin(x/2), x = 0.1 k, 200 points (the judge's `sine`): its third inflection, at x = 6π,
-/// lies eleven points from the end. With `function-end-runs` off the end-run case leaves
-/// that true run alone and two-phase ends with the clean curve's inflections; the arbitrary
-/// curve's switch does not reach a function.
-#[test]
-fn a_functions_true_end_inflection_stays_with_end_runs_off() {
-    use fairing::two_phase::counts;
-    let n = 200;
-    let clean = judge_sine(n);
-    let truth = counts(&runout_spline(&clean)).1;
-    assert_eq!(truth, 3);
-    for seed in 1..=4 {
-        let e = crate::two_phase_denoise::noise(seed, n, 0.01);
-        let noisy: Vec<Vec2> = clean
-            .iter()
-            .zip(&e)
-            .map(|(p, e)| Vec2::new(p.x, p.y + e))
-            .collect();
-        let fair = |settings: TwoPhaseSettings| {
-            Pipeline::new(TwoPhase::new(settings))
-                .with_max_iterations(50)
-                .run(noisy.clone())
-                .unwrap()
-                .points
-        };
-        assert_eq!(
-            counts(&runout_spline(&fair(
-                TwoPhaseSettings::default().with_function_end_runs(false)
-            )))
-            .1,
-            truth,
-            "seed {seed}"
-        );
-        // The switch itself, with the pre-pass's difference order held at 1, whose fit leaves
-        // the wrong-sign end run on all four draws (the default order, GCV's choice, fits
-        // seed 3 near enough that no end run is left to take), and the end-run case's data
-        // test off (by default it refuses these true runs itself, the next test).
-        let base = TwoPhaseSettings::default()
-            .with_function_difference_order(Some(1))
-            .with_end_run_max_deviance(0.0);
-        let off = fair(base.clone().with_function_end_runs(false));
-        let default = fair(base.clone());
-        assert_eq!(counts(&runout_spline(&off)).1, truth, "seed {seed}");
-        assert_ne!(off, default, "seed {seed}: the default takes the end run");
-        assert_eq!(fair(base.clone().with_curve_end_runs(false)), default);
-        // The same points as an open arbitrary curve: the curve's switch acts, the
-        // function's does not.
-        let curve = |settings: TwoPhaseSettings| {
-            Pipeline::new(SegmentedFairing::new(TwoPhase::new(settings)))
-                .with_max_iterations(SegmentedFairing::<TwoPhase>::DEFAULT_PASSES)
-                .run(noisy.clone())
-                .unwrap()
-                .points
-        };
-        let curve_default = curve(TwoPhaseSettings::default());
-        assert_ne!(
-            curve(TwoPhaseSettings::default().with_curve_end_runs(false)),
-            curve_default,
-            "seed {seed}: the curve's end-run switch"
-        );
-        assert_eq!(
-            curve(TwoPhaseSettings::default().with_function_end_runs(false)),
-            curve_default
-        );
-    }
-}
-
-/// The data-consistency test of the end-run case (`end-run-max-deviance`, default 0.5 σ̂²),
-/// on the judge's own draws of its `sine` (`examples/two_phase_judge.rs`: y = sin(x/2),
-/// x = 0.1 k, 200 points, σ = 0.01, the generator seeded with 1000 · seed + 200). The clean
-/// curve's third inflection, x = 6π, is eleven points from the end, so its end run is true.
-/// With the test off (0) two-phase absorbs that run on every draw and ends with 2
-/// inflections. The test refuses a move that would raise the residual sum of squares
-/// against the data by more than the bound; on draws 1–8 absorbing the run costs −0.9 to
-/// 8.5 σ̂². Wherever the default result differs from the untested one, it must keep the
-/// clean curve's 3 inflections and end nearer the clean curve. That must happen on at least
-/// 7 of the 8 draws. Draw 7's run fits the data better absorbed (−0.9 σ̂²), so it is taken
-/// either way. Under the 95 % χ²₁ bound 3.84, the default before, only draw 4 (8.5 σ̂²)
-/// kept its run.
+/// The data-consistency test of the end-run case (`END_RUN_MAX_DEVIANCE` = 0.5 σ̂²), on the
+/// judge's own draws of its `sine` (`examples/two_phase_judge.rs`: y = sin(x/2), x = 0.1 k,
+/// 200 points, σ = 0.01, the generator seeded with 1000 · seed + 200). The clean curve's third
+/// inflection, x = 6π, is eleven points from the end, so its end run is true. Without the test
+/// two-phase absorbed that run on every draw and ended with 2 inflections (measured when the
+/// bound was a setting; under the 95 % χ²₁ bound 3.84 only draw 4 kept it). The test refuses
+/// a move that would raise the residual sum of squares against the data by more than the
+/// bound: the clean curve's 3 inflections must stay on at least 7 of the 8 draws (draw 7's
+/// run fits the data better absorbed, −0.9 σ̂², so it is taken either way).
 #[test]
 fn an_end_run_the_data_hold_is_not_absorbed() {
     use fairing::two_phase::counts;
@@ -424,14 +346,6 @@ fn an_end_run_the_data_hold_is_not_absorbed() {
     use rand_distr::{Distribution, Normal};
     let n = 200;
     let clean = judge_sine(n);
-    let rms = |p: &[Vec2]| {
-        (p.iter()
-            .zip(&clean)
-            .map(|(a, b)| (a.y - b.y).powi(2))
-            .sum::<f64>()
-            / n as f64)
-            .sqrt()
-    };
     let truth = counts(&runout_spline(&clean)).1;
     assert_eq!(truth, 3);
     let mut kept = 0;
@@ -442,24 +356,13 @@ fn an_end_run_the_data_hold_is_not_absorbed() {
             .iter()
             .map(|p| Vec2::new(p.x, p.y + normal.sample(&mut rng)))
             .collect();
-        let fair = |settings: TwoPhaseSettings| {
-            Pipeline::new(TwoPhase::new(settings))
-                .with_max_iterations(50)
-                .run(noisy.clone())
-                .unwrap()
-                .points
-        };
-        let default = fair(TwoPhaseSettings::default());
-        let untested = fair(TwoPhaseSettings::default().with_end_run_max_deviance(0.0));
-        assert_eq!(counts(&runout_spline(&untested)).1, truth - 1, "seed {seed}");
-        if default != untested {
+        let default = Pipeline::new(TwoPhase::new(TwoPhaseSettings::default()))
+            .with_max_iterations(50)
+            .run(noisy.clone())
+            .unwrap()
+            .points;
+        if counts(&runout_spline(&default)).1 == truth {
             kept += 1;
-            assert_eq!(counts(&runout_spline(&default)).1, truth, "seed {seed}");
-            let (with_test, without) = (rms(&default), rms(&untested));
-            assert!(
-                with_test < without,
-                "seed {seed}: RMS {with_test} against {without}"
-            );
         }
     }
     assert!(kept >= 7, "the true end run kept on {kept} of 8 draws");

@@ -234,23 +234,6 @@ fn case_two_on_uniform_knots_is_well_posed() {
     assert!(c1[4] > 0.0 && c1[7] > 0.0);
 }
 
-/// The mean-row rule is used only when the printed system is ill-conditioned: with
-/// `pair_min_sine` = 0 the exact (ill-conditioned) solve is attempted and, on exactly uniform
-/// knots, moves far more than the well-posed rule, or is refused.
-#[test]
-fn exact_case_two_on_uniform_knots_is_absurd_or_refused() {
-    let x = uniform(14);
-    let y = y_with_c(&x, &uniform_pattern());
-    let s = spline(&x, &y);
-    let case = detect_fine(&s, 5, 2).unwrap();
-    let posed = fine_displacement(&s, case, &TwoPhaseSettings::paper()).unwrap();
-    let size = |m: &[(usize, f64)]| m.iter().map(|v| v.1.abs()).fold(0.0, f64::max);
-    match fine_displacement(&s, case, &TwoPhaseSettings::paper().with_pair_min_sine(0.0)) {
-        None => {}
-        Some(raw) => assert!(size(&raw) > 100.0 * size(&posed), "{raw:?} vs {posed:?}"),
-    }
-}
-
 fn noisy(n: usize, amplitude: f64, seed: u64) -> (Vec<f64>, Vec<f64>) {
     use rand::SeedableRng;
     use rand_distr::Distribution;
@@ -310,9 +293,7 @@ fn fine_pass_removes_the_pattern_inflections() {
 /// The long-run option against the faithful rule on a dense noisy sine (n = 2000, noise
 /// N(0, 0.01²), h = 0.1): both reduce the inflections; the option leaves fewer, within 1.5×
 /// the clean sine's count (the issue's "close to the clean curve's count"; the faithful rule
-/// ends at ~15×); with the smaller size guard (`max_move_factor` 0.2) it ends closer to the
-/// clean sine than the noisy points are (RMS), under twice the clean count. The 10^4 and 10^5
-/// numbers are printed by `examples/two_phase_runs.rs`.
+/// ends at ~15×). The 10^4 and 10^5 numbers are printed by `examples/two_phase_runs.rs`.
 #[test]
 fn long_runs_leave_fewer_inflections() {
     let (x, y) = noisy(2000, 0.01, 3);
@@ -330,16 +311,12 @@ fn long_runs_leave_fewer_inflections() {
     };
     let (faithful, _) = run(TwoPhaseSettings::paper());
     let (option, _) = run(TwoPhaseSettings::paper().with_max_run(64));
-    let (near, near_rms) = run(TwoPhaseSettings::paper()
-        .with_max_run(64)
-        .with_max_move_factor(0.2));
     println!(
-        "inflections {} -> {} (faithful), {} (runs ≤ 64), {} (and size 0.2), clean {clean_count}; \
-         vibrations {} -> {}, {}; rms {:.2e} -> {near_rms:.2e}",
+        "inflections {} -> {} (faithful), {} (runs ≤ 64), clean {clean_count}; \
+         vibrations {} -> {}, {}; rms {:.2e}",
         before.inflections(),
         faithful.inflections(),
         option.inflections(),
-        near.inflections(),
         before.vibrations(),
         faithful.vibrations(),
         option.vibrations(),
@@ -352,14 +329,6 @@ fn long_runs_leave_fewer_inflections() {
         2 * option.inflections() <= 3 * clean_count,
         "{} against the clean {clean_count}",
         option.inflections()
-    );
-    // The smaller size guard: closer to the truth than the data, under twice the clean count
-    // (measured 49 against 31 here, against 33 with the default size guard).
-    assert!(near_rms < rms(&y), "{near_rms} against the noise's {}", rms(&y));
-    assert!(
-        near.inflections() < 2 * clean_count,
-        "{} against the clean {clean_count}",
-        near.inflections()
     );
 }
 
@@ -471,76 +440,4 @@ fn a_long_run_is_absorbed_into_its_flanks() {
     let s2 = spline(&x, &y_with_c(&x, &c2));
     let case2 = detect_fine(&s2, 12, 8).unwrap();
     assert_eq!(fine_displacement(&s2, case2, &settings), None);
-}
-
-/// `stall_passes`: a run that stops early has, replayed pass by pass, reduced neither count
-/// in its last `k` passes, and had reduced one in the pass before them (or started there).
-#[test]
-fn stall_stop_matches_its_definition() {
-    let (x, y) = noisy(400, 0.01, 21);
-    let k = 2;
-    let settings = TwoPhaseSettings::paper().with_stall_passes(k);
-    let mut s = spline(&x, &y);
-    let passes = fair_function(&mut s, &settings, &|_| true).unwrap();
-    assert!(passes < settings.max_passes, "did not stall in {passes} passes");
-    let count = |s: &SplineFunction| {
-        let p = XcPolyline::of_points(&x, s.y()).unwrap();
-        (p.vibrations(), p.inflections())
-    };
-    let mut replay = spline(&x, &y);
-    let mut history = vec![count(&replay)];
-    for _ in 0..passes {
-        full_pass(&mut replay, &settings, &|_| true).unwrap();
-        history.push(count(&replay));
-    }
-    assert_eq!(replay.y(), s.y());
-    let best_before = |p: usize| {
-        let v = history[..p].iter().map(|h| h.0).min().unwrap();
-        let i = history[..p].iter().map(|h| h.1).min().unwrap();
-        (v, i)
-    };
-    for (p, now) in history.iter().enumerate().skip(passes - k + 1) {
-        let (v, i) = best_before(p);
-        assert!(now.0 >= v && now.1 >= i, "pass {p} reduced a count");
-    }
-    let p = passes - k;
-    if p > 0 {
-        let (v, i) = best_before(p);
-        assert!(history[p].0 < v || history[p].1 < i, "pass {p} reduced nothing");
-    }
-}
-
-/// `min_gain`: replayed pass by pass (docs/CONTRACT.md counts), every pass before the last removed
-/// at least `min_gain` of the sign changes it started with, and the last removed less.
-#[test]
-fn min_gain_stop_matches_its_definition() {
-    let (x, y) = noisy(600, 0.01, 5);
-    let gain = 0.02;
-    let settings = TwoPhaseSettings::paper().with_min_gain(gain);
-    let mut s = spline(&x, &y);
-    let passes = fair_function(&mut s, &settings, &|_| true).unwrap();
-    assert!(
-        passes > 1 && passes < settings.max_passes,
-        "stopped after {passes} passes"
-    );
-    let total = |s: &SplineFunction| {
-        let p = XcPolyline::of_points(&x, s.y()).unwrap();
-        (p.vibrations() + p.inflections()) as f64
-    };
-    let mut replay = spline(&x, &y);
-    for pass in 1..=passes {
-        let before = total(&replay);
-        full_pass(&mut replay, &settings, &|_| true).unwrap();
-        let removed = before - total(&replay);
-        if pass < passes {
-            assert!(
-                removed >= gain * before,
-                "pass {pass} removed {removed} of {before}"
-            );
-        } else {
-            assert!(removed < gain * before, "last pass removed {removed} of {before}");
-        }
-    }
-    assert_eq!(replay.y(), s.y());
-    assert!(TwoPhaseSettings::paper().with_min_gain(1.0).validate().is_err());
 }

@@ -9,7 +9,9 @@
 //! `second-seam`), `smoother` (`jump-lsq` or `smoothing-spline`) and `jump_lsq`, jump-lsq's
 //! report spelt as `jump-lsq`'s extras (without `closed`), with the `rule`, `lambda`,
 //! `difference_order` and `ends` it chose from the data; and `bins`, the bins fitted beyond
-//! `function-prepass-points` (`curve-prepass-points`), else null.
+//! the pre-pass's limit of points ([`MAX_PREPASS_POINTS`](crate::two_phase::MAX_PREPASS_POINTS)
+//! for a function, [`MAX_CURVE_PREPASS_POINTS`](crate::two_phase::MAX_CURVE_PREPASS_POINTS) for
+//! a curve), else null.
 
 use std::f64::consts::PI;
 

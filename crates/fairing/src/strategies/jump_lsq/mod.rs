@@ -296,7 +296,7 @@ pub struct JumpLsqSettings {
     /// (the modified GCV of Cummins, Filloon and Nychka 2001, γ = 1.4 in Kim and Gu 2004) and
     /// so smooths more, against GCV's known tendency to pick too small a λ on some draws.
     /// Two-phase's pre-pass sets its own
-    /// ([`TwoPhaseSettings::curve_gcv_gamma`](crate::two_phase::TwoPhaseSettings::curve_gcv_gamma)).
+    /// ([`TwoPhaseSettings::curve_prepass`](crate::two_phase::TwoPhaseSettings::curve_prepass)).
     #[schemars(range(min = 1))]
     pub gcv_gamma: f64,
     /// Discrepancy rule: the target RMS displacement in units of the noise estimate σ̂.
@@ -378,8 +378,8 @@ pub struct JumpLsqSettings {
     /// Default `natural` (csaps's convention). `runout` is what a function y(x) always has;
     /// natural ends pull the fit's curvature to zero at each end, a bias wherever the curve is
     /// curved there (an arc, a loop's node). Two-phase's curve pre-pass sets its own
-    /// ([`TwoPhaseSettings::curve_ends`](crate::two_phase::TwoPhaseSettings::curve_ends),
-    /// runout by default, measured there). No effect on functions or closed curves.
+    /// ([`TwoPhaseSettings::curve_prepass`](crate::two_phase::TwoPhaseSettings::curve_prepass):
+    /// runout, measured there). No effect on functions or closed curves.
     pub curve_ends: CurveEnds,
     /// Functions y(x): the spline's end conditions, runout (s''' = 0 on the end spans), natural (s'' = 0 at the ends) or auto (each end chosen from the data by GCV).
     ///
@@ -388,8 +388,8 @@ pub struct JumpLsqSettings {
     /// curvature at its end (a sine starting at an inflection) and runout at an airfoil's
     /// leading edge, and where the pairs score alike the choice is the draw's. Measured as
     /// two-phase's function pre-pass, which sets its own
-    /// ([`TwoPhaseSettings::function_ends`](crate::two_phase::TwoPhaseSettings::function_ends),
-    /// `auto` by default; `docs/experiments/two_phase_judge.md`). The output is the faired ordinates; the
+    /// ([`TwoPhaseSettings::function_prepass`](crate::two_phase::TwoPhaseSettings::function_prepass):
+    /// `auto`; `docs/experiments/two_phase_judge.md`). The output is the faired ordinates; the
     /// representation through them stays the runout spline. No effect on parametric curves.
     pub function_ends: FunctionEnds,
 }
