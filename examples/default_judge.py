@@ -29,7 +29,7 @@ noise level.
 
 Usage:
   python examples/default_judge.py --split tuning|test --fair PATH/TO/fair --out DIR
-      [--method M] [--set NAME=VALUE …] [--peers DIR] [--jobs 2] [--dense] [--only FAMILY,…]
+      [--method M] [--set NAME=VALUE …] [--corners auto|none] [--peers DIR] [--jobs 2] [--dense] [--only FAMILY,…]
   python examples/default_judge.py --table DIR/results.jsonl [DIR2/results.jsonl …]
 """
 import argparse
@@ -206,6 +206,8 @@ def judge_one(case, a, folder):
         cmd += ["-m", a.method]
     for s in a.set or []:
         cmd += ["--set", s]
+    if a.corners:
+        cmd += ["--corners", a.corners]
     row = dict(case, sigma=sigma, n=len(noisy) - case["closed"])
     if a.reuse and os.path.exists(f("faired.csv")):
         run = subprocess.CompletedProcess(cmd, 0, "", "")
@@ -216,7 +218,7 @@ def judge_one(case, a, folder):
         return row
     try:
         rep = json.load(open(f("report.json")))
-        row["report"] = {k: rep.get(k) for k in ("warnings",)}
+        row["report"] = {k: rep.get(k) for k in ("warnings", "corners")}
         row["strategy"] = rep.get("strategy") or rep.get("stages")
     except Exception:  # noqa: BLE001 - the report is extra information
         pass
@@ -419,6 +421,7 @@ def main():
     ap.add_argument("--out")
     ap.add_argument("--method")
     ap.add_argument("--set", action="append")
+    ap.add_argument("--corners", help="the command's --corners (auto, none or indices)")
     ap.add_argument("--peers", default=os.environ.get("FAIR_PEERS", "/work/shared/peers"))
     ap.add_argument("--python", default=sys.executable)
     ap.add_argument("--jobs", type=int, default=2)

@@ -269,3 +269,37 @@ fn a_3d_curve_keeps_fixed_points_and_the_band_and_a_closed_polygon_stays_closed(
     );
     assert_eq!(out.status.code(), Some(2));
 }
+
+/// `--corners` on the closed R140 airfoil (`data/airfoil_r140/r140.csv`, its sharp trailing
+/// edge first and last): by default the trailing edge is found, kept bit for bit, the chord
+/// keeps its length and the curve stays closed; with `--corners none` the fit rounds the edge
+/// (the point moves); a malformed list and an index past the last point exit 2 naming
+/// `--corners`.
+#[test]
+fn the_trailing_edge_stays_a_corner() {
+    let input = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/airfoil_r140/r140.csv");
+    let points = read_rows(&input);
+    let n = points.len();
+    let (result, faired, report) = fair(&input, &[], "corners");
+    assert!(
+        result.status.success(),
+        "{}",
+        String::from_utf8_lossy(&result.stderr)
+    );
+    let corners = report["corners"].as_array().expect("corners in the report");
+    assert!(corners.contains(&serde_json::json!(0)), "{corners:?}");
+    assert_eq!(faired[0], points[0], "the trailing edge moved");
+    assert_eq!(faired[n - 1], faired[0], "the curve was opened");
+    let (_, rounded, report) = fair(&input, &["--corners", "none"], "no-corners");
+    assert!(report["corners"].is_null(), "{}", report["corners"]);
+    assert_ne!(rounded[0], points[0], "without corners the edge is kept anyway");
+    for bad in ["1;2", &format!("{n}")] {
+        let (result, ..) = fair(&input, &["--corners", bad], "bad");
+        assert_eq!(result.status.code(), Some(2), "--corners {bad}");
+        assert!(
+            String::from_utf8_lossy(&result.stderr).contains("--corners"),
+            "{}",
+            String::from_utf8_lossy(&result.stderr)
+        );
+    }
+}

@@ -138,6 +138,11 @@ pub(crate) struct FairArgs {
     /// Keep the end points (g0), also the end tangents (g1), also the end curvatures (g2).
     #[arg(long, value_enum, value_name = "G")]
     pub clamp_ends: Option<ClampEnds>,
+    /// Curves: points kept as corners (G0 breaks, each piece between them faired alone):
+    /// auto (detected: a turn of 45° or more at every reach; the default), none, or indices
+    /// from 0, e.g. 0,57.
+    #[arg(long, value_name = "auto|none|LIST", value_parser = parse_corners)]
+    pub corners: Option<fairing::corners::Corners>,
     /// Surfaces: hold an edge (u0, u1, v0, v1) of the faired net to a neighbour, e.g.
     /// --join u0=bow.csv:g1 — FILE a grid in any format `fair surface` reads, or an IGES/STEP
     /// surface; g0 positions, g1 (default) also the tangent plane, g2 also the curvature.
@@ -238,13 +243,14 @@ impl FairArgs {
         )
     }
 
-    /// `--fixed`, `--points`, `--tolerance`, `--clamp-ends` as the door takes them.
+    /// `--fixed`, `--points`, `--tolerance`, `--clamp-ends`, `--corners` as the door takes them.
     pub(crate) fn constraints(&self) -> fair_door::ConstraintRequest {
         fair_door::ConstraintRequest {
             fixed: self.fixed.as_ref().map(|l| l.0.clone()),
             bad_points: self.points.as_ref().map(|l| l.0.clone()),
             tolerance: self.tolerance,
             clamp_ends: self.clamp_ends.map(Into::into),
+            corners: self.corners.clone(),
         }
     }
 
@@ -435,6 +441,17 @@ pub(crate) fn parse_join(text: &str) -> Result<JoinArg, String> {
 }
 
 /// Parses a tolerance: a finite number greater than 0.
+/// `--corners`: `auto`, `none`, or point indices (from 0) separated by commas.
+pub(crate) fn parse_corners(text: &str) -> Result<fairing::corners::Corners, String> {
+    match text.trim() {
+        "auto" => Ok(fairing::corners::Corners::Auto),
+        "none" => Ok(fairing::corners::Corners::None),
+        _ => parse_index_list(text)
+            .map(|list| fairing::corners::Corners::At(list.0))
+            .map_err(|e| format!("{e}; or auto, or none")),
+    }
+}
+
 pub(crate) fn parse_tolerance(text: &str) -> Result<f64, String> {
     match text.trim().parse::<f64>() {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(v),

@@ -5,6 +5,7 @@
 //! and no point may be both fixed and named bad. The command line wins over the config file.
 
 use fairing::catalog::{ConfigConstraints, PlanConstraints};
+use fairing::corners::Corners;
 use fairing::EndClamp;
 
 use crate::error::{Error, Result};
@@ -21,6 +22,8 @@ pub struct ConstraintRequest {
     pub tolerance: Option<f64>,
     /// The end condition kept (`--clamp-ends`).
     pub clamp_ends: Option<EndClamp>,
+    /// The corners kept as G0 breaks (`--corners`; detected when not given).
+    pub corners: Option<Corners>,
 }
 
 /// Reads the request, falling back on a config file's `[constraints]` for what it does not
@@ -69,6 +72,7 @@ pub fn resolve(
         bad_points,
         tolerance: request.tolerance.or(config.tolerance),
         clamp,
+        corners: request.corners.clone().unwrap_or_default(),
     })
 }
 
@@ -84,6 +88,7 @@ mod tests {
             bad_points: Some(vec![4]),
             tolerance: Some(0.1),
             clamp_ends: None,
+            corners: None,
         };
         let c = resolve(&request, &none, 8).unwrap();
         assert_eq!(c.fixed, vec![2, 7]);

@@ -21,6 +21,7 @@ extern crate self as fairing;
 
 pub mod catalog;
 pub mod constraints;
+pub mod corners;
 pub mod displacement;
 pub mod error;
 pub mod observer;

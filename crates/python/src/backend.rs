@@ -255,6 +255,7 @@ impl Options {
             bad_points: index_list("points_to_fix", &self.bad_points)?,
             tolerance: self.tolerance,
             clamp_ends: clamp_argument(self.clamp_ends.as_deref())?,
+            corners: None,
         })
     }
 

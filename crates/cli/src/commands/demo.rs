@@ -36,6 +36,7 @@ fn run_args(input: String, method: &str, out: &std::path::Path, stem: &str) -> F
         points: None,
         tolerance: None,
         clamp_ends: None,
+        corners: None,
         joins: Vec::new(),
         output: Some(out.join(format!("{stem}.csv")).display().to_string()),
         report: Some(out.join(format!("{stem}.json"))),

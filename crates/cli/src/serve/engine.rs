@@ -185,6 +185,7 @@ fn constraints(job: &Job) -> Result<ConstraintRequest> {
         bad_points: list("--points", &job.constraints.points)?,
         tolerance: job.constraints.tolerance,
         clamp_ends: job.constraints.clamp_ends,
+        corners: None,
     })
 }
 

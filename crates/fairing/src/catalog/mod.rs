@@ -33,6 +33,7 @@
 pub mod builtin;
 mod config;
 pub mod contract;
+mod corner_split;
 mod criteria;
 mod frame;
 pub use frame::LARGEST as LARGEST_COORDINATE;

@@ -21,6 +21,7 @@ use super::config::{toml_text, ConfigConstraints, ConfigFile};
 use super::job::{CurveJob, CurveKind, CurvePoints, CurveRun, Represented, SurfaceJob, SurfaceRun};
 use super::parameters::ParameterMap;
 use super::{Catalog, MethodKind};
+use crate::corners::Corners;
 use crate::displacement::{unasked_move_as, NoiseModel};
 use crate::{Constraints, EndClamp, Error, Result};
 
@@ -151,6 +152,9 @@ pub struct PlanConstraints {
     pub tolerance: Option<f64>,
     /// What the ends keep.
     pub clamp: EndClamp,
+    /// Where the curve has corners, kept as G0 breaks ([`crate::corners`]; detected by
+    /// default).
+    pub corners: Corners,
 }
 
 impl PlanConstraints {
@@ -279,6 +283,11 @@ impl Catalog {
     /// read vertically for a function ([`NoiseModel::Vertical`]) and normal to the curve
     /// otherwise, and decimal step, or a wider `--tolerance`), and whether it `exceeds` it.
     /// O(n).
+    ///
+    /// A curve with corners ([`PlanConstraints::corners`]: detected by default) runs the plan
+    /// piece by piece between them, each corner fixed, so that every method keeps it as a G0
+    /// break; the extras then have `corners` and `pieces` (module `corner_split`). O(n log n)
+    /// for the detection.
     pub fn run_curve_plan(
         &self,
         plan: &Plan,
@@ -286,7 +295,16 @@ impl Catalog {
         kind: CurveKind,
         constraints: &PlanConstraints,
     ) -> Result<CurveRun> {
-        let mut run = self.run_curve_stages(plan, points, kind, constraints)?;
+        let (corners, closed) = super::corner_split::corners_of(plan, points, kind, constraints)?;
+        let mut run = if corners.is_empty() {
+            self.run_curve_stages(plan, points, kind, constraints)?
+        } else {
+            let stages =
+                |catalog: &Catalog, plan: &Plan, piece: &CurvePoints, constraints: &PlanConstraints| {
+                    catalog.run_curve_stages(plan, piece, kind, constraints)
+                };
+            super::corner_split::run_pieces(self, plan, points, constraints, &corners, closed, &stages)?
+        };
         // A function's methods move y only, and its noise is read in y.
         let model = match kind {
             CurveKind::Function => NoiseModel::Vertical,

@@ -244,6 +244,7 @@ fn a_config_pipeline_is_planned_and_run_by_the_library() {
         bad_points: vec![],
         tolerance: Some(5e-4),
         clamp: fairing::EndClamp::None,
+        corners: fairing::corners::Corners::Auto,
     };
     for kind in [CurveKind::Function, CurveKind::Parametric] {
         let input = CurvePoints::Planar(points.clone());

@@ -219,3 +219,147 @@ fn every_curve_method_keeps_a_repeated_first_point_closed() {
         }
     }
 }
+
+/// A closed teardrop: a noisy arc of radius 1 round the origin from 40° to 320° closed by two
+/// straight edges to a sharp tip at (2, 0) (a turn of about 100°), the tip first and repeated
+/// last; `n` points on the arc, 8 on each edge.
+fn teardrop(seed: u64, n: usize) -> Vec<Vec2> {
+    let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
+    let mut noise = || 0.002 * (rng.random::<f64>() - 0.5);
+    let tip = Vec2::new(2.0, 0.0);
+    let (start, end) = (40f64.to_radians(), 320f64.to_radians());
+    let at = |t: f64| Vec2::new(t.cos(), t.sin());
+    let mut points = vec![tip];
+    for k in 1..8 {
+        let w = k as f64 / 8.0;
+        let p = tip * (1.0 - w) + at(start) * w;
+        points.push(Vec2::new(p.x + noise(), p.y + noise()));
+    }
+    for k in 0..n {
+        let t = start + (end - start) * k as f64 / (n - 1) as f64;
+        let p = at(t);
+        points.push(Vec2::new(p.x + noise(), p.y + noise()));
+    }
+    for k in 1..8 {
+        let w = k as f64 / 8.0;
+        let p = at(end) * (1.0 - w) + tip * w;
+        points.push(Vec2::new(p.x + noise(), p.y + noise()));
+    }
+    points.push(tip);
+    points
+}
+
+/// Corners stay corners (issue 44): on a closed teardrop every curve method run through the
+/// catalogue's plan keeps the detected tip bit for bit and the curve closed (or refuses, naming
+/// the closed curve), and the report names the corner; with `--corners none` the default
+/// method rounds the tip, moving it inwards.
+#[test]
+fn every_curve_method_keeps_a_detected_corner() {
+    use fairing::catalog::{Plan, PlanConstraints, Stage};
+    use fairing::corners::Corners;
+    let catalog = catalog();
+    let points = teardrop(3, 60);
+    let n = points.len();
+    let input = CurvePoints::Planar(points.clone());
+    let plan_of = |name: &str| Plan {
+        kind: MethodKind::Curve,
+        stages: vec![Stage {
+            method: name.to_owned(),
+            given: ParameterMap::new(),
+            settings: quick(&catalog, MethodKind::Curve, name),
+        }],
+        constraints: Default::default(),
+    };
+    for entry in catalog.methods(MethodKind::Curve) {
+        let name = entry.name();
+        let run = catalog.run_curve_plan(
+            &plan_of(name),
+            &input,
+            CurveKind::Parametric,
+            &PlanConstraints::default(),
+        );
+        match run {
+            Ok(run) => {
+                let CurvePoints::Planar(faired) = &run.points else {
+                    panic!("{name}: the dimension changed");
+                };
+                assert_eq!(run.extras["corners"], serde_json::json!([0]), "{name}");
+                assert_eq!(faired[0], points[0], "{name}: the tip moved");
+                assert_eq!(faired[n - 1], faired[0], "{name}: the curve was opened");
+            }
+            Err(e) => {
+                let message = e.to_string();
+                assert!(message.contains("closed"), "{name}: `{message}`");
+            }
+        }
+    }
+    let none = PlanConstraints {
+        corners: Corners::None,
+        ..PlanConstraints::default()
+    };
+    let rounded = catalog
+        .run_curve_plan(&plan_of("jump-lsq"), &input, CurveKind::Parametric, &none)
+        .unwrap();
+    let CurvePoints::Planar(rounded) = rounded.points else {
+        panic!("dimension")
+    };
+    assert!(rounded[0].x < 2.0 - 1e-3, "the tip at {:?}", rounded[0]);
+}
+
+/// A function with a knuckle (a V of slopes −1 and +1 plus a gentle parabola, noisy): every
+/// method that fairs functions keeps the knuckle point, the two pieces are faired apart, and
+/// declared corners past the last point are refused naming `--corners`.
+#[test]
+fn a_functions_knuckle_is_kept_and_declared_corners_are_checked() {
+    use fairing::catalog::{Plan, PlanConstraints, Stage};
+    use fairing::corners::Corners;
+    let catalog = catalog();
+    let mut rng = rand::rngs::StdRng::seed_from_u64(11);
+    let points: Vec<Vec2> = (0..61)
+        .map(|k| {
+            let x = k as f64 / 60.0;
+            Vec2::new(
+                x,
+                (x - 0.5).abs() + 0.3 * x * x + 0.002 * (rng.random::<f64>() - 0.5),
+            )
+        })
+        .collect();
+    let input = CurvePoints::Planar(points.clone());
+    let plan_of = |name: &str| Plan {
+        kind: MethodKind::Curve,
+        stages: vec![Stage {
+            method: name.to_owned(),
+            given: ParameterMap::new(),
+            settings: quick(&catalog, MethodKind::Curve, name),
+        }],
+        constraints: Default::default(),
+    };
+    for entry in catalog.methods(MethodKind::Curve) {
+        let name = entry.name();
+        let Ok(run) = catalog.run_curve_plan(
+            &plan_of(name),
+            &input,
+            CurveKind::Function,
+            &PlanConstraints::default(),
+        ) else {
+            continue;
+        };
+        assert_eq!(run.extras["corners"], serde_json::json!([30]), "{name}");
+        assert_eq!(run.extras["pieces"].as_array().map(Vec::len), Some(2), "{name}");
+        let CurvePoints::Planar(faired) = &run.points else {
+            panic!("{name}: the dimension changed");
+        };
+        assert_eq!(faired[30], points[30], "{name}: the knuckle moved");
+    }
+    let past = PlanConstraints {
+        corners: Corners::At(vec![61]),
+        ..PlanConstraints::default()
+    };
+    let e = catalog
+        .run_curve_plan(&plan_of("jump-lsq"), &input, CurveKind::Function, &past)
+        .unwrap_err();
+    assert!(
+        e.to_string().contains("--corners") && e.to_string().contains("61"),
+        "{e}"
+    );
+}

@@ -46,8 +46,19 @@ pub(super) fn repeats_first(points: &CurvePoints) -> bool {
     }
 }
 
+/// Whether a parametric job's points are a closed polygon: the last point repeats the first,
+/// unless both are fixed (a curve opened at a corner, [`crate::corners`], runs from the corner
+/// round to the same point).
+pub(super) fn closes(job: &CurveJob) -> bool {
+    let n = job.points.len();
+    let fixed = job.constraints.fixed();
+    job.kind == CurveKind::Parametric
+        && repeats_first(job.points)
+        && !(fixed.contains(&0) && fixed.contains(&(n - 1)))
+}
+
 fn is_closed(settings: &JumpLsqSettings, job: &CurveJob) -> bool {
-    settings.closed || (job.kind == CurveKind::Parametric && repeats_first(job.points))
+    settings.closed || closes(job)
 }
 
 impl CurveMethod for JumpLsqMethod {

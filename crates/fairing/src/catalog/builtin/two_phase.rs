@@ -18,7 +18,7 @@ use std::f64::consts::PI;
 use curve_repr::{EndCondition, SplineFunction, Vec2};
 use serde::{Deserialize, Serialize};
 
-use super::jump_lsq::{repeats_first, without_repeat};
+use super::jump_lsq::{closes, without_repeat};
 use crate::catalog::{CurveJob, CurveKind, CurveMethod, CurvePoints, CurveRun, Settings};
 use crate::two_phase::{PrepassReport, TwoPhase, TwoPhaseSettings};
 use crate::{CurveGuard, EndClamp, Error, PartitionSettings, Pipeline, Refusal, Result, SegmentedFairing};
@@ -144,7 +144,7 @@ impl CurveMethod for TwoPhaseMethod {
     /// A parametric polygon whose last point repeats its first is closed (as for jump-lsq):
     /// faired without the repeat, which is written back equal to the faired first point.
     fn run(&self, settings: &TwoPhaseCurveSettings, job: &CurveJob) -> Result<CurveRun> {
-        if job.kind == CurveKind::Parametric && repeats_first(job.points) {
+        if closes(job) {
             let Some(points) = job.points.as_dimension::<2>() else {
                 return Err(Error::Refused {
                     method: job.method.to_owned(),
@@ -219,7 +219,7 @@ impl CurveMethod for TwoPhaseMethod {
 
 /// `closed = true`, or a parametric polygon whose last point repeats its first.
 fn is_closed(settings: &TwoPhaseCurveSettings, job: &CurveJob) -> bool {
-    settings.closed || (job.kind == CurveKind::Parametric && repeats_first(job.points))
+    settings.closed || closes(job)
 }
 
 /// The report's `prepass` (module doc): null where the pre-pass did nothing.

@@ -1,0 +1,206 @@
+//! Running a plan piece by piece between a curve's corners ([`crate::corners`]): every method
+//! keeps a corner as a G0 break because it never sees across it.
+//!
+//! An open curve (or a function) with corners c_1 < … < c_k is split into the pieces
+//! [0, c_1], [c_1, c_2], …, [c_k, n − 1]; a closed one into the pieces between consecutive
+//! corners round the loop (one corner: one piece from the corner round to itself). Each piece
+//! runs the whole plan as an open curve with its corner ends fixed, the run's fixed points and
+//! tolerance, and the end clamp at the curve's own ends; a piece of fewer than
+//! [`MIN_PIECE_POINTS`] points (a straight trailing edge, a short chine segment) is kept as
+//! read. The pieces' points are joined, a closed input's repeated first point kept equal to
+//! the first. Cost: the plan's on each piece, so about its cost on the whole curve.
+
+use serde_json::{json, Value};
+
+use super::job::{CurveKind, CurvePoints, CurveRun};
+use super::plan::{Plan, PlanConstraints};
+use super::Catalog;
+use crate::corners::{detect, Corners};
+use crate::{EndClamp, Error, Result};
+
+/// The fewest points a piece between corners must have to be faired.
+pub(super) const MIN_PIECE_POINTS: usize = 6;
+
+/// Whether a parametric curve's last point repeats its first (a closed polygon).
+fn repeats_first(rows: &[Vec<f64>]) -> bool {
+    rows.len() > 4 && rows.first() == rows.last()
+}
+
+/// Whether the plan fairs the curve as closed: a repeated first point, or `closed = true` in
+/// a stage's settings.
+fn closed(plan: &Plan, rows: &[Vec<f64>], kind: CurveKind) -> bool {
+    kind == CurveKind::Parametric
+        && (repeats_first(rows)
+            || plan
+                .stages
+                .iter()
+                .any(|s| s.settings.get("closed") == Some(&Value::Bool(true))))
+}
+
+/// The corners `constraints.corners` names for these points (indices of the input; a closed
+/// input's repeated last point is its first), or none where the run cannot split: bad points
+/// (`--points`) or a G1/G2 end clamp with `auto` (declared corners are then refused).
+pub(super) fn corners_of(
+    plan: &Plan,
+    points: &CurvePoints,
+    kind: CurveKind,
+    constraints: &PlanConstraints,
+) -> Result<(Vec<usize>, bool)> {
+    let rows = points.rows();
+    let closed = closed(plan, &rows, kind);
+    let unique = if closed && repeats_first(&rows) {
+        rows.len() - 1
+    } else {
+        rows.len()
+    };
+    let blocked = if !constraints.bad_points.is_empty() {
+        Some("bad points (--points) are given")
+    } else if matches!(constraints.clamp, EndClamp::G1 | EndClamp::G2) {
+        Some("the ends are clamped g1 or g2")
+    } else {
+        None
+    };
+    let corners = match &constraints.corners {
+        Corners::None => Vec::new(),
+        Corners::Auto if blocked.is_some() => Vec::new(),
+        Corners::Auto => match points {
+            CurvePoints::Planar(p) => detect(&p[..unique], closed),
+            CurvePoints::Spatial(p) => detect(&p[..unique], closed),
+        },
+        Corners::At(at) => {
+            if let Some(why) = blocked {
+                return Err(Error::Config {
+                    origin: "--corners".into(),
+                    message: format!("corners cannot be kept when {why}"),
+                });
+            }
+            if let Some(&bad) = at.iter().find(|&&i| i >= rows.len()) {
+                return Err(Error::Config {
+                    origin: "--corners".into(),
+                    message: format!(
+                        "index {bad} is past the last point ({} points, indices 0 to {})",
+                        rows.len(),
+                        rows.len().saturating_sub(1)
+                    ),
+                });
+            }
+            let mut at: Vec<usize> = at.iter().map(|&i| if i == unique { 0 } else { i }).collect();
+            if !closed {
+                // A curve's own ends are no corners.
+                at.retain(|&i| i > 0 && i + 1 < rows.len());
+            }
+            at.sort_unstable();
+            at.dedup();
+            at
+        }
+    };
+    Ok((corners, closed))
+}
+
+/// Runs `plan` piece by piece between `corners` (module docs); `run` runs the plan on one
+/// piece. The extras: `corners`, and `pieces`, each piece's first and last input index and its
+/// run's termination, iterations and extras (or `kept` for a piece too short to fair).
+pub(super) fn run_pieces(
+    catalog: &Catalog,
+    plan: &Plan,
+    points: &CurvePoints,
+    constraints: &PlanConstraints,
+    corners: &[usize],
+    closed: bool,
+    run: &dyn Fn(&Catalog, &Plan, &CurvePoints, &PlanConstraints) -> Result<CurveRun>,
+) -> Result<CurveRun> {
+    let rows = points.rows();
+    let dimension = points.dimension();
+    let n = rows.len();
+    let unique = if closed && repeats_first(&rows) { n - 1 } else { n };
+    // Each piece as a run of input indices (a closed curve's wrap past its last point).
+    let mut ranges: Vec<Vec<usize>> = Vec::new();
+    if closed {
+        for (j, &start) in corners.iter().enumerate() {
+            let end = corners.get(j + 1).copied().unwrap_or(corners[0] + unique);
+            ranges.push((start..=end).map(|i| i % unique).collect());
+        }
+    } else {
+        let mut cuts = vec![0];
+        cuts.extend_from_slice(corners);
+        cuts.push(n - 1);
+        for w in cuts.windows(2) {
+            ranges.push((w[0]..=w[1]).collect());
+        }
+    }
+    // Pieces of open curves open: a stage's `closed = true` does not hold for a piece.
+    let mut open_plan = plan.clone();
+    for stage in &mut open_plan.stages {
+        if let Some(closed) = stage.settings.get_mut("closed") {
+            *closed = Value::Bool(false);
+        }
+    }
+    let mut out = rows.clone();
+    let (mut iterations, mut elapsed_ms) = (0usize, 0.0);
+    let mut termination = String::from("strategy-done");
+    let mut records = Vec::with_capacity(ranges.len());
+    for range in &ranges {
+        let (first, last) = (range[0], *range.last().unwrap_or(&range[0]));
+        if range.len() < MIN_PIECE_POINTS {
+            records.push(json!({ "first": first, "last": last, "kept": "too few points to fair" }));
+            continue;
+        }
+        let piece_rows: Vec<Vec<f64>> = range.iter().map(|&i| rows[i].clone()).collect();
+        let piece = CurvePoints::from_rows(dimension, &piece_rows).ok_or_else(|| Error::Strategy {
+            strategy: plan.name(),
+            reason: "a piece between corners has points of another dimension".into(),
+        })?;
+        let is_corner = |i: usize| corners.contains(&i);
+        let mut fixed: Vec<usize> = range
+            .iter()
+            .enumerate()
+            .filter(|&(k, &i)| {
+                constraints.fixed.contains(&i) || ((k == 0 || k + 1 == range.len()) && is_corner(i))
+            })
+            .map(|(k, _)| k)
+            .collect();
+        fixed.dedup();
+        // The end clamp holds at the curve's own ends; at a corner the end is fixed anyway.
+        let piece_constraints = PlanConstraints {
+            fixed,
+            bad_points: Vec::new(),
+            tolerance: constraints.tolerance,
+            clamp: constraints.clamp,
+            corners: Corners::None,
+        };
+        let piece_run = run(catalog, &open_plan, &piece, &piece_constraints)?;
+        for (k, row) in piece_run.points.rows().into_iter().enumerate() {
+            out[range[k]] = row;
+        }
+        iterations = iterations.max(piece_run.iterations);
+        elapsed_ms += piece_run.elapsed_ms;
+        termination = piece_run.termination.clone();
+        records.push(json!({
+            "first": first,
+            "last": last,
+            "iterations": piece_run.iterations,
+            "termination": piece_run.termination,
+            "extras": piece_run.extras,
+        }));
+    }
+    if unique < n {
+        out[n - 1] = out[0].clone();
+    }
+    let faired = CurvePoints::from_rows(dimension, &out).ok_or_else(|| Error::Strategy {
+        strategy: plan.name(),
+        reason: "the pieces between corners joined into points of another dimension".into(),
+    })?;
+    let mut extras = std::collections::BTreeMap::new();
+    extras.insert("corners".to_owned(), json!(corners));
+    extras.insert("pieces".to_owned(), Value::Array(records));
+    Ok(CurveRun {
+        moved: points.differences(&faired),
+        points: faired,
+        iterations,
+        elapsed_ms,
+        termination,
+        curve: Value::Null,
+        extras,
+        represented: None,
+    })
+}
