@@ -98,8 +98,9 @@ pub(super) fn corners_of(
 }
 
 /// Runs `plan` piece by piece between `corners` (module docs); `run` runs the plan on one
-/// piece. The extras: `corners`, and `pieces`, each piece's first and last input index and its
-/// run's termination, iterations and extras (or `kept` for a piece too short to fair).
+/// piece. The extras: `corners`; `pieces`, each piece's first and last input index and its
+/// run's termination, iterations and extras (or `kept` for a piece too short to fair); and
+/// `warnings`, the pieces' own, each naming its piece.
 pub(super) fn run_pieces(
     catalog: &Catalog,
     plan: &Plan,
@@ -139,6 +140,7 @@ pub(super) fn run_pieces(
     let (mut iterations, mut elapsed_ms) = (0usize, 0.0);
     let mut termination = String::from("strategy-done");
     let mut records = Vec::with_capacity(ranges.len());
+    let mut warnings: Vec<String> = Vec::new();
     for range in &ranges {
         let (first, last) = (range[0], *range.last().unwrap_or(&range[0]));
         if range.len() < MIN_PIECE_POINTS {
@@ -175,6 +177,13 @@ pub(super) fn run_pieces(
         iterations = iterations.max(piece_run.iterations);
         elapsed_ms += piece_run.elapsed_ms;
         termination = piece_run.termination.clone();
+        if let Some(said) = piece_run.extras.get("warnings").and_then(Value::as_array) {
+            warnings.extend(
+                said.iter()
+                    .filter_map(Value::as_str)
+                    .map(|w| format!("the piece from point {first} to {last}: {w}")),
+            );
+        }
         records.push(json!({
             "first": first,
             "last": last,
@@ -193,6 +202,9 @@ pub(super) fn run_pieces(
     let mut extras = std::collections::BTreeMap::new();
     extras.insert("corners".to_owned(), json!(corners));
     extras.insert("pieces".to_owned(), Value::Array(records));
+    if !warnings.is_empty() {
+        extras.insert("warnings".to_owned(), json!(warnings));
+    }
     Ok(CurveRun {
         moved: points.differences(&faired),
         points: faired,
