@@ -1,6 +1,7 @@
 //! The automatic choice of how much to smooth, shared by the methods that smooth (jump-lsq's
-//! `rule = auto`, its default; two-phase's pre-pass through jump-lsq; a surface method may
-//! call [`choose`] with its own fits).
+//! `rule = auto`, its default; two-phase's pre-pass through jump-lsq; smoothing-spline's
+//! `rule = auto` with its own GML and GCV criteria; a surface method may call [`choose`] with
+//! its own fits).
 //!
 //! A smoother with one weight λ on its penalty is fitted by two likelihood-type criteria,
 //! and one of the fits is kept by comparing how far each moved the data with the data's
