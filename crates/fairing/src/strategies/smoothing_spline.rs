@@ -226,8 +226,8 @@ struct Choice {
 struct Minimum {
     p: f64,
     value: f64,
-    /// The criterion still fell (or could not be evaluated) one grid step beyond the
-    /// minimum: p is at the search's or the arithmetic's limit, not at a minimum.
+    /// p is at the search's or the arithmetic's limit, not at an interior minimum
+    /// ([`Reinsch::minimise`] says when).
     limited: bool,
 }
 
