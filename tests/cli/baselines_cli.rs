@@ -77,7 +77,12 @@ fn helix(dir: &Path, tag: &str) -> PathBuf {
 #[test]
 fn smoothing_spline_gcv_keeps_fixed_points_and_reports_p() {
     let input = airfoil();
-    let (out, rows, report) = fair(&input, "smoothing-spline", &["--fixed", "3,9"], "ss-gcv");
+    let (out, rows, report) = fair(
+        &input,
+        "smoothing-spline",
+        &["--fixed", "3,9", "--set", "rule=gcv"],
+        "ss-gcv",
+    );
     assert_ok(&out);
     let original = read_rows(&input);
     assert_eq!(rows.len(), original.len());

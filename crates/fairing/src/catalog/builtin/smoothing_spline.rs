@@ -5,6 +5,10 @@
 //! coordinate by coordinate over its chord-length parameters. A closed polygon given with
 //! its first point repeated at the end keeps both copies where they are, so that it stays
 //! closed (the fit is not periodic).
+//!
+//! The report's `p` is the smoothing parameter used and `rule` the rule that chose it: under
+//! the default `rule = auto` the criterion whose fit was kept (`gml` or `gcv`), with the
+//! noise estimate σ̂ that refereed as `sigma` (jump-lsq's name); `gcv` is GCV's score when GCV chose p.
 
 use curve_repr::Vector;
 use fairness::curvature::CurvatureForm;
@@ -89,6 +93,8 @@ where
     run.extras.insert("p".into(), spline.p().into());
     run.extras.insert("rule".into(), spline.rule().name().into());
     run.extras.insert("gcv".into(), serde_json::json!(spline.gcv()));
+    run.extras
+        .insert("sigma".into(), serde_json::json!(spline.sigma_hat()));
     run.extras
         .insert("bending_energy".into(), spline.bending_energy().into());
     run.extras.insert("reweights".into(), strategy.reweights().into());

@@ -87,6 +87,11 @@ impl Ldlt {
         Some(Ldlt { d, l1, l2 })
     }
 
+    /// ln det A = Σ ln d_i (det L = 1). O(m).
+    pub(super) fn log_det(&self) -> f64 {
+        self.d.iter().map(|d| d.ln()).sum()
+    }
+
     /// Solves A x = `rhs` in place (forward, diagonal, backward substitution). O(m).
     pub(super) fn solve_in_place<T: Field>(&self, rhs: &mut [T]) {
         let m = self.d.len().min(rhs.len());
@@ -202,6 +207,8 @@ mod tests {
             }
             let trace = z.trace_product(&band);
             assert!((trace - m as f64).abs() < 1e-11, "tr(A⁻¹A) = {trace}");
+            let det = a.determinant();
+            assert!((ldlt.log_det() - det.ln()).abs() < 1e-12 * (1.0 + det.ln().abs()));
         }
     }
 
