@@ -72,7 +72,11 @@ pub fn resolve(
         bad_points,
         tolerance: request.tolerance.or(config.tolerance),
         clamp,
-        corners: request.corners.clone().unwrap_or_default(),
+        corners: request
+            .corners
+            .clone()
+            .or_else(|| config.corners.clone())
+            .unwrap_or_default(),
     })
 }
 
@@ -116,6 +120,7 @@ mod tests {
             points: None,
             tolerance: Some(0.5),
             clamp_ends: Some(EndClamp::G2),
+            corners: Some(Corners::None),
         };
         let request = ConstraintRequest {
             tolerance: Some(0.25),
@@ -126,5 +131,10 @@ mod tests {
         assert_eq!(c.fixed, vec![1]);
         assert_eq!(c.tolerance, Some(0.25));
         assert_eq!(c.clamp, EndClamp::G0);
+        assert_eq!(
+            c.corners,
+            Corners::None,
+            "the config's corners when the request has none"
+        );
     }
 }

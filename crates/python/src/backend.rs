@@ -195,6 +195,8 @@ pub struct Options {
     pub config: Option<Config>,
     /// The curve is a closed loop (its last point joins its first).
     pub closed: bool,
+    /// `--corners` (`None`: detected).
+    pub corners: Option<fairing::corners::Corners>,
 }
 
 impl Options {
@@ -255,7 +257,7 @@ impl Options {
             bad_points: index_list("points_to_fix", &self.bad_points)?,
             tolerance: self.tolerance,
             clamp_ends: clamp_argument(self.clamp_ends.as_deref())?,
-            corners: None,
+            corners: self.corners.clone(),
         })
     }
 

@@ -224,7 +224,7 @@ impl PyCatalog {
     }
 
     /// Fair a curve with this catalogue's methods: the arguments of `fairspline.curve`.
-    #[pyo3(signature = (points, method=None, kind=None, params=None, fixed=None, points_to_fix=None, tolerance=None, clamp_ends=None, closed=false))]
+    #[pyo3(signature = (points, method=None, kind=None, params=None, fixed=None, points_to_fix=None, tolerance=None, clamp_ends=None, closed=false, corners=None))]
     #[allow(clippy::too_many_arguments)]
     fn curve(
         &self,
@@ -238,9 +238,10 @@ impl PyCatalog {
         tolerance: Option<f64>,
         clamp_ends: Option<String>,
         closed: bool,
+        corners: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<FairedCurve> {
         let coordinates = curve_points(points)?;
-        let options = options(
+        let mut options = options(
             method,
             kind,
             params,
@@ -251,6 +252,7 @@ impl PyCatalog {
             closed,
             None,
         )?;
+        options.corners = crate::corners_argument(corners)?;
         run_curve(py, &self.catalog, Some(&self.sink), &coordinates, &options)
     }
 

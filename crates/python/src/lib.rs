@@ -395,20 +395,42 @@ pub(crate) fn options(
         clamp_ends,
         config: None,
         closed,
+        corners: None,
     })
+}
+
+/// `corners=`: `None` or `"auto"` (detected), `"none"`, or a sequence of point indices.
+pub(crate) fn corners_argument(
+    value: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Option<fairing::corners::Corners>> {
+    use fairing::corners::Corners;
+    let Some(value) = value.filter(|v| !v.is_none()) else {
+        return Ok(None);
+    };
+    if let Ok(text) = value.extract::<String>() {
+        return match text.as_str() {
+            "auto" => Ok(Some(Corners::Auto)),
+            "none" => Ok(Some(Corners::None)),
+            other => Err(PyValueError::new_err(format!(
+                "corners: `{other}` is not auto, none or a sequence of point indices"
+            ))),
+        };
+    }
+    Ok(indices_argument(Some(value), "corners", None)?.map(Corners::At))
 }
 
 /// Fair a curve, as `fair curve` does.
 ///
 /// points: an (n, 2) or (n, 3) array of float64 (other real dtypes are converted).
-/// method: a curve method of `fairspline.methods()`; default two-phase for a function y(x),
-///     strain-energy for a parametric curve.
+/// method: a curve method of `fairspline.methods()`; default jump-lsq.
 /// kind: "function", "parametric" or "auto" (None): a function when x increases strictly.
 /// params: the method's parameters, {"name": value} (what `--set name=value` takes).
 /// fixed: indices of points that must not move.
 /// points_to_fix: indices of the bad points, for the interactive methods (`--points`).
 /// tolerance: no point moves farther than this.
 /// clamp_ends: "g0" (end points), "g1" (and tangents), "g2" (and curvatures).
+/// corners: "auto" (None: detected), "none", or indices of points kept as corners (G0 breaks;
+///     each piece between two corners is faired alone), as `--corners`.
 /// closed: the points are a closed loop (the last joins the first). Methods with a `closed`
 ///     parameter (two-phase) get closed=true; the others get the loop as the command takes a
 ///     closed curve, its first point repeated at the end (the report, the command's for that
@@ -418,7 +440,7 @@ pub(crate) fn options(
 /// Raises ValueError for bad input (the command's message), RuntimeError if the framework
 /// itself fails. The GIL is released while the curve is faired.
 #[pyfunction]
-#[pyo3(signature = (points, method=None, kind=None, params=None, fixed=None, points_to_fix=None, tolerance=None, clamp_ends=None, closed=false))]
+#[pyo3(signature = (points, method=None, kind=None, params=None, fixed=None, points_to_fix=None, tolerance=None, clamp_ends=None, closed=false, corners=None))]
 #[allow(clippy::too_many_arguments)]
 fn curve(
     py: Python<'_>,
@@ -431,9 +453,10 @@ fn curve(
     tolerance: Option<f64>,
     clamp_ends: Option<String>,
     closed: bool,
+    corners: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<FairedCurve> {
     let coordinates = curve_points(points)?;
-    let options = options(
+    let mut options = options(
         method,
         kind,
         params,
@@ -444,6 +467,7 @@ fn curve(
         closed,
         None,
     )?;
+    options.corners = corners_argument(corners)?;
     run_curve(py, backend::catalog(), None, &coordinates, &options)
 }
 

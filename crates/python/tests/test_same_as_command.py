@@ -103,6 +103,23 @@ def test_parameters_and_constraints(fair_bin, tmp_path, method, source, params, 
     assert_same(fairspline.curve(read_points(source), method=method, params=params, **options), command)
 
 
+def test_corners_are_the_commands(fair_bin, tmp_path):
+    """corners= is `--corners`: detected by default (R140's trailing edge, kept bit for bit),
+    "none", and a list give the command's result."""
+    source = DATA / "airfoil_r140" / "r140.csv"
+    points = read_points(source)
+    default = fairspline.curve(points)
+    assert default.report["corners"] == [0]
+    assert same_bits(default.points[0], points[0])
+    assert_same(default, command_curve(fair_bin, tmp_path, source))
+    for given, flag in [("none", "none"), ([0, 46], "0,46")]:
+        command = command_curve(fair_bin, tmp_path, source, "--corners", flag)
+        assert isinstance(command, tuple), command.stderr
+        assert_same(fairspline.curve(points, corners=given), command)
+    with pytest.raises(ValueError, match="corners"):
+        fairspline.curve(points, corners="sometimes")
+
+
 def test_closed_two_phase_is_the_closed_parameter(fair_bin, tmp_path):
     command = command_curve(fair_bin, tmp_path, CONTOUR, "--method", "two-phase", "--set", "closed=true")
     assert isinstance(command, tuple), command.stderr

@@ -6,7 +6,7 @@
 //! - tables named after a method (`[smoothing-spline]`): parameters of that method only
 //!   (they win over the top level);
 //! - a `[constraints]` table: `fixed = [2, 5]`, `points = [4]`, `tolerance = 0.01`,
-//!   `clamp-ends = "g0"`;
+//!   `clamp-ends = "g0"`, `corners = "none"` (or `"auto"`, or `[0, 57]`);
 //! - an array of `[[stage]]` tables, each with a `method` and that method's parameters: a
 //!   pipeline; the stages run in order, each on the points the previous one produced.
 //!
@@ -58,6 +58,8 @@ pub struct ConfigConstraints {
     pub tolerance: Option<f64>,
     /// `clamp-ends = "g0" | "g1" | "g2"`.
     pub clamp_ends: Option<EndClamp>,
+    /// `corners = "auto" | "none" | [i, j, ...]`.
+    pub corners: Option<crate::corners::Corners>,
 }
 
 /// One stage of a pipeline as the file gives it.
@@ -359,9 +361,30 @@ impl ConfigFile {
                         _ => return Err(bad("`clamp-ends` must be \"g0\", \"g1\" or \"g2\"".into())),
                     });
                 }
+                "corners" => {
+                    use crate::corners::Corners;
+                    let list = || {
+                        value.as_array().and_then(|a| {
+                            a.iter()
+                                .map(|v| v.as_integer().and_then(|i| usize::try_from(i).ok()))
+                                .collect::<Option<Vec<usize>>>()
+                        })
+                    };
+                    out.corners = Some(match (value.as_str(), list()) {
+                        (Some("auto"), _) => Corners::Auto,
+                        (Some("none"), _) => Corners::None,
+                        (None, Some(at)) => Corners::At(at),
+                        _ => {
+                            return Err(bad(
+                                "`corners` must be \"auto\", \"none\" or a list of point indices from 0"
+                                    .into(),
+                            ))
+                        }
+                    });
+                }
                 _ => {
                     return Err(bad(format!(
-                        "`{key}` is not a constraint (known: fixed, points, tolerance, clamp-ends)"
+                        "`{key}` is not a constraint (known: fixed, points, tolerance, clamp-ends, corners)"
                     )))
                 }
             }
@@ -458,6 +481,16 @@ mod tests {
         assert_eq!(constraints.fixed, Some(vec![0, 4]));
         assert_eq!(constraints.tolerance, Some(0.25));
         assert_eq!(constraints.clamp_ends, Some(EndClamp::G0));
+        let corners = |text: &str| {
+            ConfigFile::parse("c.toml", &format!("[constraints]\ncorners = {text}\n"))
+                .and_then(|f| f.constraints())
+                .map(|c| c.corners)
+        };
+        use crate::corners::Corners;
+        assert_eq!(corners("\"none\"").unwrap(), Some(Corners::None));
+        assert_eq!(corners("[0, 57]").unwrap(), Some(Corners::At(vec![0, 57])));
+        let e = corners("\"often\"").unwrap_err().to_string();
+        assert!(e.contains("c.toml:2") && e.contains("corners"), "{e}");
         // Top-level scalars stay parameters; stage and constraints tables are not.
         let values = file.method_values("two-phase").unwrap();
         assert_eq!(values.len(), 1);

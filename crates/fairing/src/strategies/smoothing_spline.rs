@@ -643,26 +643,27 @@ impl<const D: usize> SmoothingSpline<D> {
                 match settings.rule {
                     SmoothingRule::Auto | SmoothingRule::Given => {
                         let sigma_hat = noise(y, first);
-                        let chosen = choose_cross_validation_first(sigma_hat, |criterion| -> Result<RuleFit<Self>> {
-                            let (choice, limited) = by(match criterion {
-                                Criterion::Likelihood => SmoothingRule::Gml,
-                                Criterion::CrossValidation => SmoothingRule::Gcv,
+                        let chosen =
+                            choose_cross_validation_first(sigma_hat, |criterion| -> Result<RuleFit<Self>> {
+                                let (choice, limited) = by(match criterion {
+                                    Criterion::Likelihood => SmoothingRule::Gml,
+                                    Criterion::CrossValidation => SmoothingRule::Gcv,
+                                })?;
+                                let fit = Self::solve_at(
+                                    t,
+                                    y,
+                                    &reinsch,
+                                    Choice {
+                                        sigma_hat: Some(sigma_hat),
+                                        ..choice
+                                    },
+                                )?;
+                                Ok(RuleFit {
+                                    rms_displacement: fit.rms_displacement(y, &reinsch.sigma, first),
+                                    fit,
+                                    limited,
+                                })
                             })?;
-                            let fit = Self::solve_at(
-                                t,
-                                y,
-                                &reinsch,
-                                Choice {
-                                    sigma_hat: Some(sigma_hat),
-                                    ..choice
-                                },
-                            )?;
-                            Ok(RuleFit {
-                                rms_displacement: fit.rms_displacement(y, &reinsch.sigma, first),
-                                fit,
-                                limited,
-                            })
-                        })?;
                         return Ok(chosen.fit);
                     }
                     rule => by(rule)?.0,

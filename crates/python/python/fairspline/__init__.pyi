@@ -11,6 +11,7 @@ __version__: str
 ArrayLike = npt.ArrayLike
 Kind = Literal["auto", "function", "parametric"]
 Clamp = Literal["g0", "g1", "g2"]
+Corners = Union[Literal["auto", "none"], Sequence[int]]
 ParamValue = Union[bool, int, float, str]
 GridIndex = Union[int, tuple[int, int]]
 
@@ -93,12 +94,12 @@ def curve(
     tolerance: float | None = None,
     clamp_ends: Clamp | None = None,
     closed: bool = False,
+    corners: Corners | None = None,
 ) -> FairedCurve:
     """Fair a curve, as `fair curve` does.
 
     points: (n, 2) or (n, 3) array (float64; integer and float32 arrays are converted).
-    method: a curve method of `methods()`; default two-phase for a function y(x),
-        strain-energy for a parametric curve.
+    method: a curve method of `methods()`; default jump-lsq.
     kind: "function", "parametric" or "auto"/None (function when x increases strictly).
     params: the method's parameters, {name: value}, as `--set name=value`.
     fixed: indices of points that must not move (`--fixed`).
@@ -106,6 +107,7 @@ def curve(
     tolerance: no point moves farther than this (`--tolerance`).
     clamp_ends: "g0", "g1" or "g2" (`--clamp-ends`).
     closed: the points are a closed loop (last joins first).
+    corners: "auto"/None (detected), "none", or indices kept as corners (`--corners`).
 
     Raises ValueError for bad input, with the framework's message.
     """
@@ -272,6 +274,7 @@ class Catalog:
         tolerance: float | None = None,
         clamp_ends: Clamp | None = None,
         closed: bool = False,
+        corners: Corners | None = None,
     ) -> FairedCurve:
         """Fair a curve with this catalogue's methods (the arguments of `fairspline.curve`)."""
     def inspect(self, points: ArrayLike, kind: Kind | None = None) -> dict[str, Any]:
