@@ -157,6 +157,7 @@ mod envelope;
 mod lambda;
 mod noise;
 mod qr;
+mod reduced;
 mod system;
 #[cfg(test)]
 mod tests;
@@ -597,6 +598,12 @@ pub struct JumpLsqReport {
     pub penalty_before: f64,
     /// The same of the output, on its own knots.
     pub penalty_after: f64,
+    /// The knots of the reduced basis where the fit was made on bin means (more points than
+    /// the fit with one knot per point resolves in double precision: the `reduced` module),
+    /// `None` with one knot per point. λ, `rule`, `gcv`, `trace`, `target-sd` and `solves`
+    /// are then the fit's on those bins; σ̂, the displacement, the pins and the penalties are
+    /// the points'.
+    pub knots: Option<usize>,
 }
 
 /// The faired points and the report of one run of [`fair`].
@@ -938,7 +945,7 @@ fn choose_model<const D: usize>(
                 .with_rule(LambdaRule::Gcv);
             scored.lambda = None;
             scored.target_sd = None;
-            let Ok(fit) = fair_from(
+            let Ok(fit) = fair_per_point(
                 points,
                 original,
                 constraints,
@@ -969,8 +976,39 @@ fn choose_model<const D: usize>(
     })
 }
 
-/// [`fair`], on `given` knots in one round when they are given ([`fair_on_knots`]).
+/// [`fair`], on `given` knots in one round when they are given ([`fair_on_knots`]); beyond
+/// `reduced::REDUCED_ABOVE` points with λ chosen by a rule, on the reduced basis (the
+/// `reduced` module).
 fn fair_from<const D: usize>(
+    points: &[Vector<D>],
+    original: &[Vector<D>],
+    constraints: &Constraints,
+    domain: CurveDomain,
+    closed: bool,
+    settings: &JumpLsqSettings,
+    given: Option<Knots>,
+) -> Result<Faired<D>> {
+    if reduced::applies(points.len(), settings, given.is_some()) {
+        return reduced::fair(points, original, constraints, domain, closed, settings);
+    }
+    fair_per_point(points, original, constraints, domain, closed, settings, given)
+}
+
+/// [`fair`] with one knot per point at any size: two-phase's pre-pass, which bins large
+/// inputs itself. O(n) per solve.
+pub(crate) fn fair_one_knot_per_point<const D: usize>(
+    points: &[Vector<D>],
+    original: &[Vector<D>],
+    constraints: &Constraints,
+    domain: CurveDomain,
+    closed: bool,
+    settings: &JumpLsqSettings,
+) -> Result<Faired<D>> {
+    fair_per_point(points, original, constraints, domain, closed, settings, None)
+}
+
+/// [`fair_from`] with one knot per point (the method of the module docs).
+fn fair_per_point<const D: usize>(
     points: &[Vector<D>],
     original: &[Vector<D>],
     constraints: &Constraints,
@@ -1003,7 +1041,7 @@ fn fair_from<const D: usize>(
             .clone()
             .with_difference_order(order)
             .with_exponent(exponent);
-        let mut fit = fair_from(points, original, constraints, domain, closed, &fixed, given)?;
+        let mut fit = fair_per_point(points, original, constraints, domain, closed, &fixed, given)?;
         fit.report.solves += solves;
         return Ok(fit);
     }
@@ -1018,7 +1056,7 @@ fn fair_from<const D: usize>(
                 Criterion::CrossValidation => LambdaRule::Gcv,
             };
             let by = settings.clone().with_rule(rule);
-            let fit = fair_from(points, original, constraints, domain, closed, &by, given.clone())?;
+            let fit = fair_per_point(points, original, constraints, domain, closed, &by, given.clone())?;
             Ok(RuleFit {
                 rms_displacement: fit.report.rms_displacement,
                 limited: fit.report.lambda_limited,
@@ -1170,6 +1208,7 @@ fn fair_from<const D: usize>(
         exponent: penalty.exponent,
         penalty_before: f64::NAN,
         penalty_after: 0.0,
+        knots: None,
     };
     let mut last_knots = Vec::new();
     let mut last_period = None;
