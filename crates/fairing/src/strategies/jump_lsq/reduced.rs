@@ -5,7 +5,7 @@
 //! differences of large coefficients, and the λ a rule asks for on dense noisy data grows
 //! far faster than n (the `lambda` module's precision limit): on the speed peer's noisy sine
 //! (sin(x/2) on [0, 4π], σ = 0.01) λ stopped at its limit from 10^3 points on, and the fit
-//! kept 2 inflections at 2·10^3 points, 101 at 10^4, 1 038 at 10^5 and 10 472 at 10^6, where
+//! kept 2 inflections at 2·10^3 points, 101 at 10^4, 1 038 at 10^5 and 10 476 at 10^6, where
 //! the clean curve has 1. The limit is the ratio of the smoothing bandwidth to the knot
 //! spacing, not n itself: on the means of 10^3 or 2·10^3 bins of the same 10^6 points the
 //! rule's λ is not limited and the fit keeps the clean curve's inflection
@@ -30,15 +30,15 @@
 //! [`POINTS_PER_KNOT`] points a bin, at most [`REDUCED_ABOVE`] bins), keeping the last fit
 //! that was not limited where finer bins are. The report's `knots` gives the bins fitted.
 //!
-//! **Constraints.** The ends of an open curve and every point that may not move (fixed
-//! points, clamped ends, a zero allowed distance) are bins of their own: their means are the
-//! points themselves, fixed in the fit on the bins, and the output keeps them bit for bit;
-//! the ends being knots, every input parameter lies within the spline's span. A bin may move
-//! as far as its most bound point (its restraining radius in the fit on the bins), and a
-//! point the read-back leaves outside its own ball (the tolerance band, a restraining radius)
-//! is pinned to the ball's surface (counted in `pinned`). G1 and G2 end clamps are refused:
-//! their targets are the derivatives at the ends of the spline through the original points,
-//! which at this density are the noise's.
+//! **Constraints.** Every point that may not move (fixed points, clamped ends, a zero
+//! allowed distance) is a bin of its own: its mean is the point itself, fixed in the fit on
+//! the bins, and the output keeps it bit for bit. An open curve's first and last points lie
+//! half a bin beyond the end knots (the bins' means): they are read from the end spans'
+//! polynomials. A bin may move as far as its most bound point (its restraining radius in the
+//! fit on the bins), and a point the read-back leaves outside its own ball (the tolerance
+//! band, a restraining radius) is pinned to the ball's surface (counted in `pinned`). G1 and
+//! G2 end clamps are refused: their targets are the derivatives at the ends of the spline
+//! through the original points, which at this density are the noise's.
 //!
 //! **Where it applies**: more than [`REDUCED_ABOVE`] points, λ chosen by a rule (neither
 //! `lambda` nor `target-sd` given: their values are meant for the points, not for bin
