@@ -19,6 +19,7 @@
 // inside this crate too.
 extern crate self as fairing;
 
+mod bins;
 pub mod catalog;
 pub mod constraints;
 pub mod corners;

@@ -2,8 +2,10 @@
 //!
 //! Data as the speed peer's (`speed.py`): a noisy function segment, x with uniform random
 //! steps in [0.5, 1.5]·4π/n, y = sin(x/2) + noise of standard deviation 0.01. Cases: one
-//! solve at a given λ; λ by the discrepancy rule (the default); by GCV (to 10^5); and a 3D
-//! parametric curve with the default rule and refits. At 10^3 points also two-phase's
+//! solve at a given λ (one knot per point at every size); λ by the default rule (`auto`; the
+//! case keeps its old name `discrepancy`); by GCV (to 10^5); and a 3D parametric curve with the
+//! default rule and refits. Beyond 10^4 points the rules' cases fit on jump-lsq's reduced basis
+//! (bin means, read back at every point), so their time per point falls there. At 10^3 points also two-phase's
 //! function pre-pass settings (`rule = auto`, `function-ends = auto`), with d = 1 and with
 //! `difference-order = auto` (the order chosen by GCV, up to 2000 points only), and with
 //! `exponent = auto` too (the six pairs (d, a) of the joint search: these steps are uneven).

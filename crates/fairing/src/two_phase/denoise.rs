@@ -465,7 +465,7 @@ fn jump_fit_scored<const D: usize>(
     let settings = settings.clone().with_closed(closed);
     let faired = match given {
         Some(knots) => jump_lsq::fair_on_knots(data, data, &constraints, knots, closed, &settings)?,
-        None => jump_lsq::fair(data, data, &constraints, domain, closed, &settings)?,
+        None => jump_lsq::fair_one_knot_per_point(data, data, &constraints, domain, closed, &settings)?,
     };
     let (limited, gcv, dof) = (
         faired.report.lambda_limited,

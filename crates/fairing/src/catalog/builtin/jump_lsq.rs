@@ -11,6 +11,8 @@
 //! `runout`, `natural` or `periodic`; `function-ends` = `auto` reports its choice),
 //! `difference_order` (the penalty's d; `difference-order` = `auto` reports its choice),
 //! `exponent` (the penalty's spacing exponent a; `exponent` = `auto` reports its choice),
+//! `knots` (beyond 10^4 points with λ chosen by a rule: the bins of the reduced basis the
+//! fit was made on, its λ and `rule` theirs; `null` with one knot per point),
 //! `warnings` (what kept the run from doing its job: λ at its precision limit, a degenerate
 //! σ̂, no point moved; the command prints them on standard error).
 
@@ -238,5 +240,6 @@ pub(super) fn report_fields(report: &JumpLsqReport) -> Vec<(&'static str, serde_
         ("ends", json!(report.ends)),
         ("difference_order", json!(report.difference_order)),
         ("exponent", json!(report.exponent)),
+        ("knots", json!(report.knots)),
     ]
 }

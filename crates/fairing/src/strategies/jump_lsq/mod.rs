@@ -134,6 +134,18 @@
 //! λ. The order is chosen first (with the ends chosen for each order), then λ by the
 //! settings' rule.
 //!
+//! # Dense data: the reduced basis
+//!
+//! Beyond 10^4 points, where λ is chosen by a rule (neither `lambda` nor `target-sd` given), the
+//! fit is made on bin means of consecutive points instead, with one knot per bin (a P-spline, Eilers
+//! & Marx 1996), and the output is that spline evaluated at every input point's parameter
+//! (the `reduced` module). With one knot per point the rule's λ stops at the precision limit on
+//! dense noisy data (from 10^3 points of the speed peer's noisy sine on); on the bins it does not,
+//! and the fit keeps the clean curve's inflections (`docs/experiments/speed.md`). Fixed points and
+//! clamped ends are bins of their own and kept bit for bit, the tolerance band and radii are held
+//! point by point (pins at the ball's surface); G1/G2 end clamps are refused there. The report's
+//! `knots` gives the bins (`None`: one knot per point).
+//!
 //! # Parametric curves
 //!
 //! With the knots fixed J is linear in P and each solve is one linear system. The chord-length
@@ -144,7 +156,8 @@
 //!
 //! # Costs
 //!
-//! O(n) time and memory per solve (end rows add 2e rows of five unknowns): assembly O(n·(4 + d)²), factorisation O(n·(5 + d)²) (four
+//! O(n) time and memory per solve (end rows add 2e rows of five unknowns; on the reduced basis
+//! O(m) per solve on m bins, plus O(n) for the bins, the read-back and the penalties): assembly O(n·(4 + d)²), factorisation O(n·(5 + d)²) (four
 //! times that for closed curves), a discrepancy search one QR solve when λ stops at the
 //! precision limit (dense noisy data; the normal equations are then never assembled), else
 //! 3–9 solves, GCV about 60 solves with selected inverses; the parametric kind repeats the
@@ -157,6 +170,7 @@ mod envelope;
 mod lambda;
 mod noise;
 mod qr;
+mod reduced;
 mod system;
 #[cfg(test)]
 mod tests;
@@ -597,6 +611,12 @@ pub struct JumpLsqReport {
     pub penalty_before: f64,
     /// The same of the output, on its own knots.
     pub penalty_after: f64,
+    /// The knots of the reduced basis where the fit was made on bin means (more points than
+    /// the fit with one knot per point resolves in double precision: the `reduced` module),
+    /// `None` with one knot per point. λ, `rule`, `gcv`, `trace`, `target-sd` and `solves`
+    /// are then the fit's on those bins; σ̂, the displacement, the pins and the penalties are
+    /// the points'.
+    pub knots: Option<usize>,
 }
 
 /// The faired points and the report of one run of [`fair`].
@@ -607,7 +627,8 @@ pub struct Faired<const D: usize> {
     /// What was chosen and measured.
     pub report: JumpLsqReport,
     /// The knots of the last solve: the output's spline for the end clamps (the output's own
-    /// chord-length knots differ slightly for the parametric kind).
+    /// chord-length knots differ slightly for the parametric kind). On the reduced basis
+    /// (`report.knots` given) the bins' knots, fewer than the points.
     pub knots: Vec<f64>,
     /// The period of the last solve's knots for a closed curve (its closing knot is
     /// `knots[0] + period`), `None` for an open one.
@@ -794,11 +815,12 @@ fn check_kind<const D: usize>(domain: CurveDomain, closed: bool) -> Result<()> {
 /// Fairs `points` (the stage's input) with `settings`, honouring `constraints` against
 /// `original` (the pipeline's input, from which the tolerance band, radii and end clamps are
 /// measured). The library entry point of the method; [`JumpLsq`] is the same as a
-/// [`FairingStrategy`]. O(n) per solve (module docs).
+/// [`FairingStrategy`]. O(n) per solve (module docs). Beyond 10^4 points with λ chosen by a
+/// rule the fit is made on the reduced basis (module docs, "Dense data").
 ///
 /// Errors: bad settings, too few points (4), x not increasing (function kind), repeated
 /// consecutive points (parametric kind), a closed function or a closed curve with end clamps,
-/// constraints that leave the system singular.
+/// constraints that leave the system singular; on the reduced basis a G1 or G2 end clamp.
 pub fn fair<const D: usize>(
     points: &[Vector<D>],
     original: &[Vector<D>],
@@ -938,7 +960,7 @@ fn choose_model<const D: usize>(
                 .with_rule(LambdaRule::Gcv);
             scored.lambda = None;
             scored.target_sd = None;
-            let Ok(fit) = fair_from(
+            let Ok(fit) = fair_per_point(
                 points,
                 original,
                 constraints,
@@ -969,8 +991,39 @@ fn choose_model<const D: usize>(
     })
 }
 
-/// [`fair`], on `given` knots in one round when they are given ([`fair_on_knots`]).
+/// [`fair`], on `given` knots in one round when they are given ([`fair_on_knots`]); beyond
+/// `reduced::REDUCED_ABOVE` points with λ chosen by a rule, on the reduced basis (the
+/// `reduced` module).
 fn fair_from<const D: usize>(
+    points: &[Vector<D>],
+    original: &[Vector<D>],
+    constraints: &Constraints,
+    domain: CurveDomain,
+    closed: bool,
+    settings: &JumpLsqSettings,
+    given: Option<Knots>,
+) -> Result<Faired<D>> {
+    if reduced::applies(points.len(), settings, given.is_some()) {
+        return reduced::fair(points, original, constraints, domain, closed, settings);
+    }
+    fair_per_point(points, original, constraints, domain, closed, settings, given)
+}
+
+/// [`fair`] with one knot per point at any size: two-phase's pre-pass, which bins large
+/// inputs itself. O(n) per solve.
+pub(crate) fn fair_one_knot_per_point<const D: usize>(
+    points: &[Vector<D>],
+    original: &[Vector<D>],
+    constraints: &Constraints,
+    domain: CurveDomain,
+    closed: bool,
+    settings: &JumpLsqSettings,
+) -> Result<Faired<D>> {
+    fair_per_point(points, original, constraints, domain, closed, settings, None)
+}
+
+/// [`fair_from`] with one knot per point (the method of the module docs).
+fn fair_per_point<const D: usize>(
     points: &[Vector<D>],
     original: &[Vector<D>],
     constraints: &Constraints,
@@ -1003,7 +1056,7 @@ fn fair_from<const D: usize>(
             .clone()
             .with_difference_order(order)
             .with_exponent(exponent);
-        let mut fit = fair_from(points, original, constraints, domain, closed, &fixed, given)?;
+        let mut fit = fair_per_point(points, original, constraints, domain, closed, &fixed, given)?;
         fit.report.solves += solves;
         return Ok(fit);
     }
@@ -1018,7 +1071,7 @@ fn fair_from<const D: usize>(
                 Criterion::CrossValidation => LambdaRule::Gcv,
             };
             let by = settings.clone().with_rule(rule);
-            let fit = fair_from(points, original, constraints, domain, closed, &by, given.clone())?;
+            let fit = fair_per_point(points, original, constraints, domain, closed, &by, given.clone())?;
             Ok(RuleFit {
                 rms_displacement: fit.report.rms_displacement,
                 limited: fit.report.lambda_limited,
@@ -1170,6 +1223,7 @@ fn fair_from<const D: usize>(
         exponent: penalty.exponent,
         penalty_before: f64::NAN,
         penalty_after: 0.0,
+        knots: None,
     };
     let mut last_knots = Vec::new();
     let mut last_period = None;

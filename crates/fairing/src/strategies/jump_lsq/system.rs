@@ -370,6 +370,15 @@ impl Space {
         self.value_form(k).apply(gamma)
     }
 
+    /// The value s(u) at a parameter u of span k (open: k < n − 1; closed: k < n, u taken
+    /// within the span's own period) for unknowns `gamma`: the four B-splines of the span
+    /// at u, reduced to γ as at a knot. Reads the spline between its knots (the reduced
+    /// basis evaluates its fit on bins at every input point). O(1).
+    pub(super) fn value_on_span<const D: usize>(&self, k: usize, u: f64, gamma: &[Vector<D>]) -> Vector<D> {
+        let ders = cubic_ders(&self.knots.window(k), u);
+        self.reduce(k as isize, &ders[0]).apply(gamma)
+    }
+
     /// The derivative of `order` (1 or 2) at the start (`at_end` false) or end of an open
     /// curve.
     pub(super) fn end_derivative_form(&self, order: usize, at_end: bool) -> Form {
