@@ -220,6 +220,19 @@ fn every_curve_method_keeps_a_repeated_first_point_closed() {
     }
 }
 
+/// A one-stage plan of a curve method with [`quick`]'s settings.
+fn quick_plan(catalog: &Catalog, name: &str) -> fairing::catalog::Plan {
+    fairing::catalog::Plan {
+        kind: MethodKind::Curve,
+        stages: vec![fairing::catalog::Stage {
+            method: name.to_owned(),
+            given: ParameterMap::new(),
+            settings: quick(catalog, MethodKind::Curve, name),
+        }],
+        constraints: Default::default(),
+    }
+}
+
 /// A closed teardrop: a noisy arc of radius 1 round the origin from 40° to 320° closed by two
 /// straight edges to a sharp tip at (2, 0) (a turn of about 100°), the tip first and repeated
 /// last; `n` points on the arc, 8 on each edge.
@@ -255,21 +268,13 @@ fn teardrop(seed: u64, n: usize) -> Vec<Vec2> {
 /// method rounds the tip, moving it inwards.
 #[test]
 fn every_curve_method_keeps_a_detected_corner() {
-    use fairing::catalog::{Plan, PlanConstraints, Stage};
+    use fairing::catalog::PlanConstraints;
     use fairing::corners::Corners;
     let catalog = catalog();
     let points = teardrop(3, 60);
     let n = points.len();
     let input = CurvePoints::Planar(points.clone());
-    let plan_of = |name: &str| Plan {
-        kind: MethodKind::Curve,
-        stages: vec![Stage {
-            method: name.to_owned(),
-            given: ParameterMap::new(),
-            settings: quick(&catalog, MethodKind::Curve, name),
-        }],
-        constraints: Default::default(),
-    };
+    let plan_of = |name: &str| quick_plan(&catalog, name);
     for entry in catalog.methods(MethodKind::Curve) {
         let name = entry.name();
         let run = catalog.run_curve_plan(
@@ -311,7 +316,7 @@ fn every_curve_method_keeps_a_detected_corner() {
 /// declared corners past the last point are refused naming `--corners`.
 #[test]
 fn a_functions_knuckle_is_kept_and_declared_corners_are_checked() {
-    use fairing::catalog::{Plan, PlanConstraints, Stage};
+    use fairing::catalog::PlanConstraints;
     use fairing::corners::Corners;
     let catalog = catalog();
     let mut rng = rand::rngs::StdRng::seed_from_u64(11);
@@ -325,15 +330,7 @@ fn a_functions_knuckle_is_kept_and_declared_corners_are_checked() {
         })
         .collect();
     let input = CurvePoints::Planar(points.clone());
-    let plan_of = |name: &str| Plan {
-        kind: MethodKind::Curve,
-        stages: vec![Stage {
-            method: name.to_owned(),
-            given: ParameterMap::new(),
-            settings: quick(&catalog, MethodKind::Curve, name),
-        }],
-        constraints: Default::default(),
-    };
+    let plan_of = |name: &str| quick_plan(&catalog, name);
     for entry in catalog.methods(MethodKind::Curve) {
         let name = entry.name();
         let Ok(run) = catalog.run_curve_plan(

@@ -1009,6 +1009,26 @@ fn fair_from<const D: usize>(
     fair_per_point(points, original, constraints, domain, closed, settings, given)
 }
 
+/// The checks every entry point makes of its input: `original` as long as `points`, finite
+/// coordinates, constraints that name existing points. O(n).
+pub(super) fn check_input<const D: usize>(
+    points: &[Vector<D>],
+    original: &[Vector<D>],
+    constraints: &Constraints,
+) -> Result<()> {
+    let n = points.len();
+    if original.len() != n {
+        return Err(curve_repr::Error::LengthMismatch {
+            what: "original points",
+            expected: n,
+            got: original.len(),
+        }
+        .into());
+    }
+    curve_repr::vector::check_finite(points)?;
+    constraints.validate(n)
+}
+
 /// [`fair`] with one knot per point at any size: two-phase's pre-pass, which bins large
 /// inputs itself. O(n) per solve.
 pub(crate) fn fair_one_knot_per_point<const D: usize>(
@@ -1084,16 +1104,7 @@ fn fair_per_point<const D: usize>(
     }
     check_kind::<D>(domain, closed)?;
     let n = points.len();
-    if original.len() != n {
-        return Err(curve_repr::Error::LengthMismatch {
-            what: "original points",
-            expected: n,
-            got: original.len(),
-        }
-        .into());
-    }
-    curve_repr::vector::check_finite(points)?;
-    constraints.validate(n)?;
+    check_input(points, original, constraints)?;
     let clamp = constraints.end_clamp();
     if closed && clamp != EndClamp::None {
         return Err(Error::ConstraintUnsupported {

@@ -99,16 +99,7 @@ pub(super) fn fair<const D: usize>(
     settings.validate()?;
     check_kind::<D>(domain, closed)?;
     let n = points.len();
-    if original.len() != n {
-        return Err(curve_repr::Error::LengthMismatch {
-            what: "original points",
-            expected: n,
-            got: original.len(),
-        }
-        .into());
-    }
-    curve_repr::vector::check_finite(points)?;
-    constraints.validate(n)?;
+    super::check_input(points, original, constraints)?;
     let clamp = constraints.end_clamp();
     if clamp.order().is_some_and(|order| order >= 1) {
         return Err(Error::ConstraintUnsupported {
