@@ -153,12 +153,14 @@ pub(super) fn run_pieces(
             reason: "a piece between corners has points of another dimension".into(),
         })?;
         let is_corner = |i: usize| corners.contains(&i);
+        // A closed input's repeated last point is its first: fixing either fixes both.
+        let is_fixed = |i: usize| {
+            constraints.fixed.contains(&i) || (i == 0 && unique < n && constraints.fixed.contains(&(n - 1)))
+        };
         let mut fixed: Vec<usize> = range
             .iter()
             .enumerate()
-            .filter(|&(k, &i)| {
-                constraints.fixed.contains(&i) || ((k == 0 || k + 1 == range.len()) && is_corner(i))
-            })
+            .filter(|&(k, &i)| is_fixed(i) || ((k == 0 || k + 1 == range.len()) && is_corner(i)))
             .map(|(k, _)| k)
             .collect();
         fixed.dedup();

@@ -360,3 +360,41 @@ fn a_functions_knuckle_is_kept_and_declared_corners_are_checked() {
         "{e}"
     );
 }
+
+/// A closed teardrop whose repeated last point is the one fixed: the pieces between corners
+/// keep it (and so the first point) bit for bit, for every method that fairs the curve.
+#[test]
+fn a_fixed_repeated_point_stays_fixed_when_the_curve_is_split_at_corners() {
+    use fairing::catalog::PlanConstraints;
+    let catalog = catalog();
+    let mut points = teardrop(5, 40);
+    let n = points.len();
+    // Move the only corner off the seam: rotate so that the tip is interior, and repeat.
+    points.pop();
+    points.rotate_left(10);
+    points.push(points[0]);
+    let input = CurvePoints::Planar(points.clone());
+    let fixed_last = PlanConstraints {
+        fixed: vec![n - 1],
+        ..PlanConstraints::default()
+    };
+    for name in ["jump-lsq", "two-phase", "smoothing-spline"] {
+        let run = catalog
+            .run_curve_plan(
+                &quick_plan(&catalog, name),
+                &input,
+                CurveKind::Parametric,
+                &fixed_last,
+            )
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        let CurvePoints::Planar(faired) = &run.points else {
+            panic!("{name}: the dimension changed");
+        };
+        assert!(
+            run.extras["corners"].as_array().is_some_and(|c| !c.is_empty()),
+            "{name}"
+        );
+        assert_eq!(faired[n - 1], points[n - 1], "{name}: the fixed point moved");
+        assert_eq!(faired[0], points[0], "{name}: its first copy moved");
+    }
+}
