@@ -73,14 +73,14 @@ pub fn noise<const D: usize>(points: &[Vector<D>], closed: bool) -> f64 {
         .sqrt()
 }
 
-/// The median distance between consecutive points (0 for fewer than two). O(n log n).
+/// The median distance between consecutive points (0 for fewer than two). O(n).
 fn median_spacing<const D: usize>(points: &[Vector<D>]) -> f64 {
     let mut chords: Vec<f64> = points.windows(2).map(|w| (w[1] - w[0]).norm()).collect();
     if chords.is_empty() {
         return 0.0;
     }
-    chords.sort_by(f64::total_cmp);
-    chords[chords.len() / 2]
+    let middle = chords.len() / 2;
+    *chords.select_nth_unstable_by(middle, f64::total_cmp).1
 }
 
 /// The reaches over which [`detect`] measures a turn on a curve of `n` points: 1, 2, 3, then
@@ -181,11 +181,21 @@ pub fn detect<const D: usize>(points: &[Vector<D>], closed: bool) -> Vec<usize> 
         let d = a.abs_diff(b);
         (if closed { d.min(n - d) } else { d }) <= 3
     };
+    // `turns` is sorted by index, so a candidate within three points of another is within three
+    // places of it in `turns` (or, closed, among the first and last three places): O(k).
+    let k = turns.len();
     let mut out: Vec<usize> = Vec::new();
-    for &(i, t) in &turns {
-        let beaten = turns
-            .iter()
-            .any(|&(j, u)| j != i && near(i, j) && (u > t || (u == t && j < i)));
+    for (place, &(i, t)) in turns.iter().enumerate() {
+        let around = place.saturating_sub(3)..(place + 4).min(k);
+        let wrap = if closed {
+            (0..3.min(k)).chain(k.saturating_sub(3)..k)
+        } else {
+            (0..0).chain(0..0)
+        };
+        let beaten = around.chain(wrap).any(|q| {
+            let (j, u) = turns[q];
+            j != i && near(i, j) && (u > t || (u == t && j < i))
+        });
         if !beaten {
             out.push(i);
         }
