@@ -45,8 +45,8 @@
 //!
 //! Bins are equal in size to within one point in each run between kept points (a run of L
 //! points makes ⌈L/m⌉ bins), so the smoothers' unit weights stand (the means' variances
-//! differ by at most a factor (m+1)/m). The partition itself ([`crate::bins`]) is shared with
-//! jump-lsq's reduced basis, which fits its own spline on bin means beyond 10^4 points (the
+//! differ by at most a factor (m+1)/m). The partition itself (the crate's private `bins`
+//! module) is shared with jump-lsq's reduced basis, which fits its own spline on bin means beyond 10^4 points (the
 //! pre-pass calls jump-lsq with one knot per point, on its own bins). Building them is O(n),
 //! reading back O(n + n_bins) for a function (one sorted sweep of the quintic) and
 //! O(n log n_bins) for a curve.

@@ -32,8 +32,10 @@ pub use denoise::{
 pub use foot_point::{foot_points, FootPoint, Projection};
 pub use phase1::{coarse_pass, counts, detect, displacement, e_at, Case, CaseKind, PassReport};
 pub use phase2::{detect_fine, end_y_change, fine_displacement, fine_pass, zero_level};
-pub use settings::{CountGuard, MoveCap, TwoPhaseSettings};
-pub(crate) use settings::{Rules, RunData, END_RUN_MAX_DEVIANCE, GUARD_WINDOW, PAIR_MIN_SINE};
+pub use settings::{
+    CountGuard, MoveCap, TwoPhaseSettings, END_RUN_MAX_DEVIANCE, GUARD_WINDOW, MAX_MOVE_FACTOR, PAIR_MIN_SINE,
+};
+pub(crate) use settings::{Rules, RunData};
 
 use curve_repr::{EndCondition, SplineFunction, Vec2};
 

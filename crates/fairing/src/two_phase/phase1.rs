@@ -32,7 +32,7 @@
 //! - λ scales every case (the paper prints it for Case 1 only).
 //!
 //! Guards (not in the paper, see [`TwoPhaseSettings`]): a case whose |γ| exceeds
-//! [`MAX_MOVE_FACTOR`](super::settings::MAX_MOVE_FACTOR) × the smaller spacing next to the moved point is skipped; a move that
+//! [`MAX_MOVE_FACTOR`](super::MAX_MOVE_FACTOR) × the smaller spacing next to the moved point is skipped; a move that
 //! would increase the inflection or vibration count within [`GUARD_WINDOW`] points is refused
 //! (judged before it is made, on c as the windowed update would leave it; counted by sign,
 //! without docs/CONTRACT.md's drop level, so that a move is never credited for pushing a sign change

@@ -23,16 +23,16 @@ use crate::{Error, Result};
 /// A case whose displacement |γ| exceeds this times the smaller spacing next to a moved point
 /// is skipped (not in the paper, which assumes "minor offsets", §3.3: near-singular 2 × 2
 /// systems otherwise move points by absurd amounts). In x units.
-pub(crate) const MAX_MOVE_FACTOR: f64 = 0.5;
+pub const MAX_MOVE_FACTOR: f64 = 0.5;
 
 /// Phase 2 Case 2's 2 × 2 system is solved exactly only when the sine of the angle between
 /// its rows is at least this; otherwise the well-posed mean-row rule of
 /// [`phase2`](super::phase2) is used (the printed system is singular for uniform spacing).
-pub(crate) const PAIR_MIN_SINE: f64 = 0.05;
+pub const PAIR_MIN_SINE: f64 = 0.05;
 
 /// Points on each side of a case over which inflections and vibrations are recounted by the
 /// local count guard ([`CountGuard::Local`]).
-pub(crate) const GUARD_WINDOW: usize = 16;
+pub const GUARD_WINDOW: usize = 16;
 
 /// A function's end-run move ([`CaseKind::EndRun`](super::CaseKind::EndRun)) is refused when
 /// it raises the residual sum of squares against the data before the pre-pass by more than
@@ -40,7 +40,7 @@ pub(crate) const GUARD_WINDOW: usize = 16;
 /// 95 % point of χ² with one degree of freedom) lets the data fail to tell a true end
 /// inflection from noise, and then erasing the true one costs more: with the judge 0.5 keeps
 /// more sines' clean inflections at the same rows beaten.
-pub(crate) const END_RUN_MAX_DEVIANCE: f64 = 0.5;
+pub const END_RUN_MAX_DEVIANCE: f64 = 0.5;
 
 /// Settings of [`TwoPhase`](super::TwoPhase) and [`coarse_pass`](super::coarse_pass): the
 /// parameters of the catalogue's `two-phase` (with the arbitrary-curve options of
