@@ -56,7 +56,7 @@ fn the_function_pre_pass_keeps_kept_points_bit_for_bit_and_nears_the_clean_curve
     assert_eq!(denoise(Denoise::Off, &x, &y, &limits).unwrap(), y);
 }
 
-/// Beyond its limit of points (`function-prepass-points`, 2 000 by default) a function's
+/// Beyond its limit of points (`MAX_PREPASS_POINTS`, 2 000) a function's
 /// pre-pass fits the means of bins of consecutive points (`two_phase::bins`): 2 000 bins
 /// first, four times as many while the fit keeps more than one degree of freedom per 20 bins,
 /// up to `MAX_BINS` and one bin per point. Here the limit is 6 000 on 24 000 points. On
@@ -148,7 +148,7 @@ fn a_binned_function_is_read_back_with_the_clean_curves_vibrations() {
     assert!(after < 0.1 * sigma, "RMS to the clean curve {after}");
 }
 
-/// Beyond its limit (`curve-prepass-points`) an arbitrary curve's pre-pass fits bin means
+/// Beyond its limit (`MAX_CURVE_PREPASS_POINTS`) an arbitrary curve's pre-pass fits bin means
 /// too, and reads each point back at a parameter between its bin's centre and the next, so
 /// the points keep their order along the curve: on data as dense as their noise (here σ =
 /// 0.01, spacings 1.2e-3 and 3.1e-3) the noise alone would scramble it. Open (a noisy arc of
@@ -209,7 +209,7 @@ fn a_curve_beyond_the_prepass_limit_is_fitted_on_bins_and_keeps_its_order() {
 /// Two-phase's default curve pre-pass bins a noisy arc of 3·10^4 points (radius 2 over 270°,
 /// σ = 0.01 per coordinate, ends free): the fit has no inflection (the sign of the turn
 /// between consecutive chords never changes) and lies within 0.1σ of the circle. With one
-/// knot per point (`curve-prepass-points` = 10^5, the limit before) this draw's fit turned
+/// knot per point (a limit of 10^5 points, the limit before) this draw's fit turned
 /// its sign once (checked, 57 s in a debug build; of the draws tried, seeds 21 and 41 had
 /// none, and the command's pre-pass left 1, 1 and 2 on three Gaussian draws).
 #[test]
@@ -915,7 +915,7 @@ fn third_difference_sigma(values: &[f64]) -> f64 {
     1.4826 * median(&mut spread) / 20f64.sqrt()
 }
 
-/// `function-prepass-rule` = `auto` (`PrepassRule::Auto`, the default) against its defining
+/// The function pre-pass's rule `auto` (`PrepassRule::Auto`) against its defining
 /// condition: the GML fit, bit for bit, where that fit moves the points by at most
 /// `AUTO_NOISE_FACTOR` σ̂ (RMS; σ̂ recomputed here from the third differences), else the GCV
 /// fit, bit for bit. Both branches are taken: 200 points of a noisy sin(x/2) (32 draws, all
