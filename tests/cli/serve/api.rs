@@ -213,6 +213,18 @@ fn curve_cases() -> Vec<Case> {
             args: vec![],
         },
         Case {
+            dataset: "gunnerus-wl03",
+            file: WL03,
+            body: json!({ "constraints": { "corners": "none" } }),
+            args: vec!["--corners", "none"],
+        },
+        Case {
+            dataset: "gunnerus-wl03",
+            file: WL03,
+            body: json!({ "constraints": { "corners": [20, 40] } }),
+            args: vec!["--corners", "20,40"],
+        },
+        Case {
             dataset: "ua2-180-upper",
             file: "data/airfoil_ua2-180/ua2-180_upper.csv",
             body: json!({
@@ -418,6 +430,12 @@ fn bad_requests_are_4xx_with_a_message_and_the_server_lives_on() {
             with(json!({ "constraints": { "clamp-ends": "g7" } })),
             400,
             "g0, g1, g2",
+        ),
+        (
+            "/api/curve",
+            with(json!({ "constraints": { "corners": "often" } })),
+            400,
+            "constraints.corners",
         ),
         (
             "/api/curve",

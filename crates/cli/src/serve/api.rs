@@ -39,6 +39,7 @@ use crate::input::{self, looks_like_surface, CurvePoints, Grid, Source};
 use curve_repr::Vec3;
 use fair_door::error::Error;
 use fair_door::KindChoice;
+use fairing::corners::Corners;
 use fairing::EndClamp;
 
 /// What every request may use: the methods, the data sets and the body limit.
@@ -187,6 +188,8 @@ struct ConstraintsBody {
     tolerance: Option<f64>,
     #[serde(alias = "clamp_ends")]
     clamp_ends: Option<String>,
+    /// `"auto"`, `"none"` or point indices, as `--corners`.
+    corners: Option<serde_json::Value>,
 }
 
 impl ConstraintsBody {
@@ -203,11 +206,25 @@ impl ConstraintsBody {
                 ))
             }
         };
+        let corners = match &self.corners {
+            None => None,
+            Some(serde_json::Value::String(word)) if word == "auto" => Some(Corners::Auto),
+            Some(serde_json::Value::String(word)) if word == "none" => Some(Corners::None),
+            Some(value) => Some(Corners::At(
+                serde_json::from_value::<Vec<usize>>(value.clone()).map_err(|_| {
+                    Response::error(
+                        400,
+                        "constraints.corners: not auto, none or a list of point indices from 0",
+                    )
+                })?,
+            )),
+        };
         Ok(JobConstraints {
             fixed: self.fixed,
             points: self.points,
             tolerance: self.tolerance,
             clamp_ends,
+            corners,
         })
     }
 }

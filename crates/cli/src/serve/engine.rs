@@ -45,6 +45,8 @@ pub(crate) struct JobConstraints {
     pub(crate) tolerance: Option<f64>,
     /// What is kept at the ends.
     pub(crate) clamp_ends: Option<EndClamp>,
+    /// The corners kept (`None`: detected).
+    pub(crate) corners: Option<fairing::corners::Corners>,
 }
 
 /// A faired curve.
@@ -185,7 +187,7 @@ fn constraints(job: &Job) -> Result<ConstraintRequest> {
         bad_points: list("--points", &job.constraints.points)?,
         tolerance: job.constraints.tolerance,
         clamp_ends: job.constraints.clamp_ends,
-        corners: None,
+        corners: job.constraints.corners.clone(),
     })
 }
 
