@@ -290,6 +290,30 @@ fn the_trailing_edge_stays_a_corner() {
     assert!(corners.contains(&serde_json::json!(0)), "{corners:?}");
     assert_eq!(faired[0], points[0], "the trailing edge moved");
     assert_eq!(faired[n - 1], faired[0], "the curve was opened");
+    // The report's curve (and so a CAD file) breaks there: one Ferguson segment per span, the
+    // first leaving the edge and the last arriving at it in directions far apart.
+    let segments = report["curve"]["segments"].as_array().expect("Ferguson segments");
+    assert_eq!(report["curve"]["type"], "ferguson");
+    assert_eq!(segments.len(), n - 1);
+    let coefficient = |s: &serde_json::Value, k: usize| -> Vec<f64> {
+        s[k].as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect()
+    };
+    let leaving = coefficient(&segments[0], 1);
+    let last = &segments[n - 2];
+    // P'(1) = a1 + 2 a2 + 3 a3.
+    let arriving: Vec<f64> = (0..2)
+        .map(|c| coefficient(last, 1)[c] + 2.0 * coefficient(last, 2)[c] + 3.0 * coefficient(last, 3)[c])
+        .collect();
+    let cosine = (leaving[0] * arriving[0] + leaving[1] * arriving[1])
+        / (leaving[0].hypot(leaving[1]) * arriving[0].hypot(arriving[1]));
+    assert!(
+        cosine < 0.0,
+        "the edge is smooth in the report's curve: cos = {cosine}"
+    );
     let (_, rounded, report) = fair(&input, &["--corners", "none"], "no-corners");
     assert!(report["corners"].is_null(), "{}", report["corners"]);
     assert_ne!(rounded[0], points[0], "without corners the edge is kept anyway");

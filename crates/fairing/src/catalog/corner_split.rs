@@ -98,13 +98,17 @@ pub(super) fn corners_of(
 }
 
 /// Runs `plan` piece by piece between `corners` (module docs); `run` runs the plan on one
-/// piece. The extras: `corners`; `pieces`, each piece's first and last input index and its
+/// piece. The run's `curve` is the measured spline of each piece between its corners, as
+/// Ferguson segments (null where that cannot be written: a closed curve given without its
+/// repeated point, whose closing span has no segment). The extras: `corners`; `pieces`, each piece's first and last input index and its
 /// run's termination, iterations and extras (or `kept` for a piece too short to fair); and
 /// `warnings`, the pieces' own, each naming its piece.
+#[allow(clippy::too_many_arguments)]
 pub(super) fn run_pieces(
     catalog: &Catalog,
     plan: &Plan,
     points: &CurvePoints,
+    kind: CurveKind,
     constraints: &PlanConstraints,
     corners: &[usize],
     closed: bool,
@@ -173,8 +177,19 @@ pub(super) fn run_pieces(
             corners: Corners::None,
         };
         let piece_run = run(catalog, &open_plan, &piece, &piece_constraints)?;
-        for (k, row) in piece_run.points.rows().into_iter().enumerate() {
-            out[range[k]] = row;
+        let rows = piece_run.points.rows();
+        if rows.len() != range.len() {
+            return Err(Error::Strategy {
+                strategy: plan.name(),
+                reason: format!(
+                    "returned {} points for the {} of the piece from point {first} to {last}",
+                    rows.len(),
+                    range.len()
+                ),
+            });
+        }
+        for (&i, row) in range.iter().zip(rows) {
+            out[i] = row;
         }
         iterations = iterations.max(piece_run.iterations);
         elapsed_ms += piece_run.elapsed_ms;
@@ -201,6 +216,7 @@ pub(super) fn run_pieces(
         strategy: plan.name(),
         reason: "the pieces between corners joined into points of another dimension".into(),
     })?;
+    let curve = pieces_record(&faired, kind, &ranges, n).unwrap_or(Value::Null);
     let mut extras = std::collections::BTreeMap::new();
     extras.insert("corners".to_owned(), json!(corners));
     extras.insert("pieces".to_owned(), Value::Array(records));
@@ -213,8 +229,57 @@ pub(super) fn run_pieces(
         iterations,
         elapsed_ms,
         termination,
-        curve: Value::Null,
+        curve,
         extras,
         represented: None,
     })
+}
+
+/// The faired curve as the pieces' measured splines (the report's definitions: a function's
+/// spline with parabolic runout ends, a parametric curve's natural spline over chord lengths),
+/// one Ferguson segment per span of the input, in order: each span's cubic in the power basis
+/// over t ∈ [0, 1] from its Taylor coefficients at the span's start (exact for a cubic), so the
+/// curve breaks at the corners (G0) and is C² within each piece. `None` when a piece's spline
+/// cannot be built or a span has no place among the input's n − 1 (a closed curve given
+/// without its repeated point). O(n).
+fn pieces_record(faired: &CurvePoints, kind: CurveKind, ranges: &[Vec<usize>], n: usize) -> Option<Value> {
+    let rows = faired.rows();
+    let dimension = faired.dimension();
+    let mut segments: Vec<Option<Value>> = vec![None; n.checked_sub(1)?];
+    for range in ranges {
+        let piece_rows: Vec<Vec<f64>> = range.iter().map(|&i| rows[i].clone()).collect();
+        let piece = CurvePoints::from_rows(dimension, &piece_rows)?;
+        let curve = super::measured_curve(kind, &piece).ok()?;
+        let spans: Vec<Vec<Vec<f64>>> = match dimension {
+            2 => taylor_spans::<2>(curve.as_dimension::<2>()?),
+            3 => taylor_spans::<3>(curve.as_dimension::<3>()?),
+            _ => return None,
+        };
+        if spans.len() + 1 != range.len() {
+            return None;
+        }
+        for (k, span) in spans.into_iter().enumerate() {
+            *segments.get_mut(range[k])? = Some(json!(span));
+        }
+    }
+    let segments: Vec<Value> = segments.into_iter().collect::<Option<_>>()?;
+    Some(json!({ "type": "ferguson", "degree": 3, "segments": segments }))
+}
+
+/// Each span of `curve` between consecutive breaks as power-basis coefficients over
+/// t ∈ [0, 1]: P(b + t h) = a_0 + a_1 t + a_2 t² + a_3 t³, a_k = P^(k)(b⁺) h^k / k!.
+fn taylor_spans<const D: usize>(curve: &(dyn curve_repr::Curve<D> + Send + Sync)) -> Vec<Vec<Vec<f64>>> {
+    let breaks = curve.breaks();
+    breaks
+        .windows(2)
+        .map(|w| {
+            let (b, h) = (w[0], w[1] - w[0]);
+            let jet = curve.jet(b, curve_repr::Side::Right);
+            let scale = [1.0, h, h * h / 2.0, h * h * h / 6.0];
+            jet.iter()
+                .zip(scale)
+                .map(|(v, f)| v.iter().map(|c| c * f).collect())
+                .collect()
+        })
+        .collect()
 }

@@ -303,7 +303,7 @@ impl Catalog {
                 |catalog: &Catalog, plan: &Plan, piece: &CurvePoints, constraints: &PlanConstraints| {
                     catalog.run_curve_stages(plan, piece, kind, constraints)
                 };
-            super::corner_split::run_pieces(self, plan, points, constraints, &corners, closed, &stages)?
+            super::corner_split::run_pieces(self, plan, points, kind, constraints, &corners, closed, &stages)?
         };
         // A function's methods move y only, and its noise is read in y.
         let model = match kind {
