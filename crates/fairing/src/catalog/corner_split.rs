@@ -98,7 +98,8 @@ pub(super) fn corners_of(
 }
 
 /// Runs `plan` piece by piece between `corners` (module docs); `run` runs the plan on one
-/// piece. The run's `curve` is the measured spline of each piece between its corners, as
+/// piece. `None` when a piece's result is the method's own representation of points it does
+/// not move (nurbs-weights): such a method runs on the whole curve. The run's `curve` is the measured spline of each piece between its corners, as
 /// Ferguson segments (null where that cannot be written: a closed curve given without its
 /// repeated point, whose closing span has no segment). The extras: `corners`; `pieces`, each piece's first and last input index and its
 /// run's termination, iterations and extras (or `kept` for a piece too short to fair); and
@@ -113,7 +114,7 @@ pub(super) fn run_pieces(
     corners: &[usize],
     closed: bool,
     run: &dyn Fn(&Catalog, &Plan, &CurvePoints, &PlanConstraints) -> Result<CurveRun>,
-) -> Result<CurveRun> {
+) -> Result<Option<CurveRun>> {
     let rows = points.rows();
     let dimension = points.dimension();
     let n = rows.len();
@@ -177,6 +178,11 @@ pub(super) fn run_pieces(
             corners: Corners::None,
         };
         let piece_run = run(catalog, &open_plan, &piece, &piece_constraints)?;
+        if piece_run.represented.is_some() {
+            // The result is the method's own curve over points it does not move (nurbs-weights'
+            // weights): pieces of it are no result of the whole; the caller runs the curve whole.
+            return Ok(None);
+        }
         let rows = piece_run.points.rows();
         if rows.len() != range.len() {
             return Err(Error::Strategy {
@@ -223,7 +229,7 @@ pub(super) fn run_pieces(
     if !warnings.is_empty() {
         extras.insert("warnings".to_owned(), json!(warnings));
     }
-    Ok(CurveRun {
+    Ok(Some(CurveRun {
         moved: points.differences(&faired),
         points: faired,
         iterations,
@@ -232,7 +238,7 @@ pub(super) fn run_pieces(
         curve,
         extras,
         represented: None,
-    })
+    }))
 }
 
 /// The faired curve as the pieces' measured splines (the report's definitions: a function's

@@ -296,14 +296,18 @@ impl Catalog {
         constraints: &PlanConstraints,
     ) -> Result<CurveRun> {
         let (corners, closed) = super::corner_split::corners_of(plan, points, kind, constraints)?;
-        let mut run = if corners.is_empty() {
-            self.run_curve_stages(plan, points, kind, constraints)?
+        let split = if corners.is_empty() {
+            None
         } else {
             let stages =
                 |catalog: &Catalog, plan: &Plan, piece: &CurvePoints, constraints: &PlanConstraints| {
                     catalog.run_curve_stages(plan, piece, kind, constraints)
                 };
             super::corner_split::run_pieces(self, plan, points, kind, constraints, &corners, closed, &stages)?
+        };
+        let mut run = match split {
+            Some(run) => run,
+            None => self.run_curve_stages(plan, points, kind, constraints)?,
         };
         // A function's methods move y only, and its noise is read in y.
         let model = match kind {
