@@ -99,11 +99,13 @@ pub(super) fn corners_of(
 
 /// Runs `plan` piece by piece between `corners` (module docs); `run` runs the plan on one
 /// piece. `None` when a piece's result is the method's own representation of points it does
-/// not move (nurbs-weights): such a method runs on the whole curve. The run's `curve` is the measured spline of each piece between its corners, as
-/// Ferguson segments (null where that cannot be written: a closed curve given without its
-/// repeated point, whose closing span has no segment). The extras: `corners`; `pieces`, each piece's first and last input index and its
-/// run's termination, iterations and extras (or `kept` for a piece too short to fair); and
-/// `warnings`, the pieces' own, each naming its piece.
+/// not move (nurbs-weights): such a method runs on the whole curve.
+///
+/// The run's `curve` is the measured spline of each piece between its corners, as Ferguson
+/// segments (null where that cannot be written: a closed curve given without its repeated
+/// point, whose closing span has no segment). The extras: `corners`; `pieces`, each piece's
+/// first and last input index and its run's termination, iterations and extras (or `kept` for
+/// a piece too short to fair); and `warnings`, the pieces' own, each naming its piece.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn run_pieces(
     catalog: &Catalog,
