@@ -60,17 +60,11 @@ pub const MAX_NEIGHBOUR_TURN: f64 = 0.5;
 /// corners unless they are declared.
 pub const MAX_NOISE_TO_SPACING: f64 = 0.1;
 
-/// The noise σ̂ of the points: the third differences' estimate of each coordinate
+/// The noise σ̂ of the points: jump-lsq's, the third differences' estimate of each coordinate
 /// ([`difference_noise`](crate::smoothing::difference_noise)), root of the sum of squares.
 /// O(n).
 pub fn noise<const D: usize>(points: &[Vector<D>], closed: bool) -> f64 {
-    (0..D)
-        .map(|d| {
-            let values: Vec<f64> = points.iter().map(|p| p[d]).collect();
-            crate::smoothing::difference_noise(&values, closed).powi(2)
-        })
-        .sum::<f64>()
-        .sqrt()
+    crate::strategies::jump_lsq::curve_noise(points, [true; D], closed)
 }
 
 /// The median distance between consecutive points (0 for fewer than two). O(n).
@@ -81,6 +75,18 @@ fn median_spacing<const D: usize>(points: &[Vector<D>]) -> f64 {
     }
     let middle = chords.len() / 2;
     *chords.select_nth_unstable_by(middle, f64::total_cmp).1
+}
+
+impl Corners {
+    /// `Auto` or `None` by the word every front end takes for them (`auto`, `none`); `None`
+    /// for any other word (a front end then reads a list of indices).
+    pub fn named(word: &str) -> Option<Corners> {
+        match word {
+            "auto" => Some(Corners::Auto),
+            "none" => Some(Corners::None),
+            _ => None,
+        }
+    }
 }
 
 /// The reaches over which [`detect`] measures a turn on a curve of `n` points: 1, 2, 3, then

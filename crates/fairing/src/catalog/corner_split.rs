@@ -12,6 +12,7 @@
 
 use serde_json::{json, Value};
 
+use super::builtin::repeats_first;
 use super::job::{CurveKind, CurvePoints, CurveRun};
 use super::plan::{Plan, PlanConstraints};
 use super::Catalog;
@@ -21,16 +22,11 @@ use crate::{EndClamp, Error, Result};
 /// The fewest points a piece between corners must have to be faired.
 pub(super) const MIN_PIECE_POINTS: usize = 6;
 
-/// Whether a parametric curve's last point repeats its first (a closed polygon).
-fn repeats_first(rows: &[Vec<f64>]) -> bool {
-    rows.len() > 4 && rows.first() == rows.last()
-}
-
 /// Whether the plan fairs the curve as closed: a repeated first point, or `closed = true` in
 /// a stage's settings.
-fn closed(plan: &Plan, rows: &[Vec<f64>], kind: CurveKind) -> bool {
+fn closed(plan: &Plan, points: &CurvePoints, kind: CurveKind) -> bool {
     kind == CurveKind::Parametric
-        && (repeats_first(rows)
+        && (repeats_first(points)
             || plan
                 .stages
                 .iter()
@@ -46,13 +42,9 @@ pub(super) fn corners_of(
     kind: CurveKind,
     constraints: &PlanConstraints,
 ) -> Result<(Vec<usize>, bool)> {
-    let rows = points.rows();
-    let closed = closed(plan, &rows, kind);
-    let unique = if closed && repeats_first(&rows) {
-        rows.len() - 1
-    } else {
-        rows.len()
-    };
+    let n = points.len();
+    let closed = closed(plan, points, kind);
+    let unique = if closed && repeats_first(points) { n - 1 } else { n };
     let blocked = if !constraints.bad_points.is_empty() {
         Some("bad points (--points) are given")
     } else if matches!(constraints.clamp, EndClamp::G1 | EndClamp::G2) {
@@ -74,20 +66,19 @@ pub(super) fn corners_of(
                     message: format!("corners cannot be kept when {why}"),
                 });
             }
-            if let Some(&bad) = at.iter().find(|&&i| i >= rows.len()) {
+            if let Some(&bad) = at.iter().find(|&&i| i >= n) {
                 return Err(Error::Config {
                     origin: "--corners".into(),
                     message: format!(
-                        "index {bad} is past the last point ({} points, indices 0 to {})",
-                        rows.len(),
-                        rows.len().saturating_sub(1)
+                        "index {bad} is past the last point ({n} points, indices 0 to {})",
+                        n.saturating_sub(1)
                     ),
                 });
             }
             let mut at: Vec<usize> = at.iter().map(|&i| if i == unique { 0 } else { i }).collect();
             if !closed {
                 // A curve's own ends are no corners.
-                at.retain(|&i| i > 0 && i + 1 < rows.len());
+                at.retain(|&i| i > 0 && i + 1 < n);
             }
             at.sort_unstable();
             at.dedup();
@@ -120,7 +111,7 @@ pub(super) fn run_pieces(
     let rows = points.rows();
     let dimension = points.dimension();
     let n = rows.len();
-    let unique = if closed && repeats_first(&rows) { n - 1 } else { n };
+    let unique = if closed && repeats_first(points) { n - 1 } else { n };
     // Each piece as a run of input indices (a closed curve's wrap past its last point).
     let mut ranges: Vec<Vec<usize>> = Vec::new();
     if closed {

@@ -38,7 +38,7 @@ pub struct JumpLsqMethod;
 
 /// Whether the job's points are a closed polygon with its first point repeated at the end
 /// (two-phase reads a closed curve the same way).
-pub(super) fn repeats_first(points: &CurvePoints) -> bool {
+pub(in crate::catalog) fn repeats_first(points: &CurvePoints) -> bool {
     fn repeated<const D: usize>(p: &[Vector<D>]) -> bool {
         p.len() > 4 && p.first() == p.last()
     }

@@ -9,6 +9,7 @@
 
 mod batten;
 mod jump_lsq;
+pub(in crate::catalog) use jump_lsq::repeats_first;
 mod nurbs_weights;
 mod sapidis_farin;
 mod smoothing_spline;

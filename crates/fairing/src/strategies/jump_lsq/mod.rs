@@ -175,7 +175,7 @@ mod system;
 #[cfg(test)]
 mod tests;
 
-pub(crate) use noise::coordinate_noise;
+pub(crate) use noise::{coordinate_noise, noise as curve_noise};
 
 use curve_repr::{Parametrization, Vector};
 use serde::{Deserialize, Serialize};
