@@ -443,10 +443,9 @@ pub(crate) fn parse_join(text: &str) -> Result<JoinArg, String> {
 /// Parses a tolerance: a finite number greater than 0.
 /// `--corners`: `auto`, `none`, or point indices (from 0) separated by commas.
 pub(crate) fn parse_corners(text: &str) -> Result<fairing::corners::Corners, String> {
-    match text.trim() {
-        "auto" => Ok(fairing::corners::Corners::Auto),
-        "none" => Ok(fairing::corners::Corners::None),
-        _ => parse_index_list(text)
+    match fairing::corners::Corners::named(text.trim()) {
+        Some(corners) => Ok(corners),
+        None => parse_index_list(text)
             .map(|list| fairing::corners::Corners::At(list.0))
             .map_err(|e| format!("{e}; or auto, or none")),
     }

@@ -408,13 +408,11 @@ pub(crate) fn corners_argument(
         return Ok(None);
     };
     if let Ok(text) = value.extract::<String>() {
-        return match text.as_str() {
-            "auto" => Ok(Some(Corners::Auto)),
-            "none" => Ok(Some(Corners::None)),
-            other => Err(PyValueError::new_err(format!(
-                "corners: `{other}` is not auto, none or a sequence of point indices"
-            ))),
-        };
+        return Corners::named(&text).map(Some).ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "corners: `{text}` is not auto, none or a sequence of point indices"
+            ))
+        });
     }
     Ok(indices_argument(Some(value), "corners", None)?.map(Corners::At))
 }

@@ -208,16 +208,22 @@ impl ConstraintsBody {
         };
         let corners = match &self.corners {
             None => None,
-            Some(serde_json::Value::String(word)) if word == "auto" => Some(Corners::Auto),
-            Some(serde_json::Value::String(word)) if word == "none" => Some(Corners::None),
-            Some(value) => Some(Corners::At(
-                serde_json::from_value::<Vec<usize>>(value.clone()).map_err(|_| {
-                    Response::error(
-                        400,
-                        "constraints.corners: not auto, none or a list of point indices from 0",
-                    )
-                })?,
-            )),
+            Some(value) => Some(
+                value
+                    .as_str()
+                    .and_then(Corners::named)
+                    .or_else(|| {
+                        serde_json::from_value::<Vec<usize>>(value.clone())
+                            .ok()
+                            .map(Corners::At)
+                    })
+                    .ok_or_else(|| {
+                        Response::error(
+                            400,
+                            "constraints.corners: not auto, none or a list of point indices from 0",
+                        )
+                    })?,
+            ),
         };
         Ok(JobConstraints {
             fixed: self.fixed,

@@ -370,9 +370,8 @@ impl ConfigFile {
                                 .collect::<Option<Vec<usize>>>()
                         })
                     };
-                    out.corners = Some(match (value.as_str(), list()) {
-                        (Some("auto"), _) => Corners::Auto,
-                        (Some("none"), _) => Corners::None,
+                    out.corners = Some(match (value.as_str().map(Corners::named), list()) {
+                        (Some(Some(named)), _) => named,
                         (None, Some(at)) => Corners::At(at),
                         _ => {
                             return Err(bad(
