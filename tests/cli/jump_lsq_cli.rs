@@ -302,6 +302,25 @@ fn the_trailing_edge_stays_a_corner() {
             .map(|v| v.as_f64().unwrap())
             .collect()
     };
+    // Each segment is its span of the pieces' splines: P(0) = a0 the span's first faired point,
+    // P(1) = a0 + a1 + a2 + a3 the next.
+    for (k, segment) in segments.iter().enumerate() {
+        let end: Vec<f64> = (0..2)
+            .map(|c| (0..4).map(|j| coefficient(segment, j)[c]).sum())
+            .collect();
+        for c in 0..2 {
+            assert_eq!(
+                coefficient(segment, 0)[c],
+                faired[k][c],
+                "segment {k} starts off its point"
+            );
+            assert!(
+                (end[c] - faired[k + 1][c]).abs() < 1e-12,
+                "segment {k} ends at {end:?}, not {:?}",
+                faired[k + 1]
+            );
+        }
+    }
     let leaving = coefficient(&segments[0], 1);
     let last = &segments[n - 2];
     // P'(1) = a1 + 2 a2 + 3 a3.
