@@ -26,7 +26,7 @@
 //! [--noise-scale F] [--set NAME=VALUE]…` (default `out/jump_lsq`; `--seed` draws fresh noise
 //! (and jitter) for every synthetic curve, the strophoid included, default 17 with Fig. 5's
 //! strophoid; `--noise-scale` multiplies every synthetic noise level; `--set` takes the
-//! settings' names, e.g. `--set noise-factor=1`, `--set rule=gcv`, `--set exponent=6`).
+//! settings' names, e.g. `--set rule=discrepancy`, `--set rule=gcv`, `--set exponent=6`).
 
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};

@@ -6,9 +6,9 @@
 //! the selected inverse for GCV).
 //!
 //! - **Discrepancy** (Morozov): the λ whose residual sum of squares RSS(λ) equals
-//!   n_f · target² (the RMS displacement of the n_f free points equals the target, by default
-//!   `noise-factor` · σ̂). RSS grows monotonically with λ, so the root is unique; it is found
-//!   by Newton's method on f(ρ) = ln RSS(e^ρ) − ln(n_f target²), with
+//!   n_f · target² (the RMS displacement of the n_f free points equals the target: σ̂ for the
+//!   rule, `target-sd` where given). RSS grows monotonically with λ, so the root is unique;
+//!   it is found by Newton's method on f(ρ) = ln RSS(e^ρ) − ln(n_f target²), with
 //!   dRSS/dλ = 2 Σ_k w_k (y_k(λ) − y⁰_k)·dy_k/dλ and dγ/dλ = −K⁻¹[Bγ; 0] (one more solve with
 //!   the same factor), safeguarded by bisection once the root is bracketed. The search first
 //!   tries λ_max (in the range of the Givens QR, below): dense noisy data puts the root there
@@ -18,10 +18,11 @@
 //! - **GCV** (Craven & Wahba 1979): minimise V(λ) = (RSS/(n_f·c)) / (1 − γ tr A(λ)/n_f)² over
 //!   log λ, c the number of smoothed coordinates and tr A(λ) the trace of the influence
 //!   matrix (the same for every coordinate), read in O(n) from the selected inverse of the
-//!   factor ([`super::envelope::Ldlt::selected_inverse`]); γ = `gcv-gamma`, 1 by default
-//!   (above 1 the modified GCV, which smooths more). A grid of half decades, then a
-//!   golden-section search in the best cell; a parametric refit searches only within two
-//!   decades of the previous round's λ (further while V still falls at the window's edge).
+//!   factor ([`super::envelope::Ldlt::selected_inverse`]); γ = 1 for the method, 1.4 in
+//!   two-phase's curve pre-pass (above 1 the modified GCV, which smooths more). A grid of
+//!   half decades, then a golden-section search in the best cell; a parametric refit
+//!   searches only within two decades of the previous round's λ (further while V still
+//!   falls at the window's edge).
 //! - **GML** (Wahba 1985; the restricted likelihood, REML): minimise
 //!   ln(RSS + λ(P − P_min)) + [ln det K(λ) − (q − m′) ln λ]/(n_f − m′) over log λ ([`gml`]
 //!   derives it), ln det K from the pivots of the same factorisation (no selected inverse);

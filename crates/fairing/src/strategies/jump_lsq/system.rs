@@ -84,31 +84,19 @@ impl Form {
     }
 }
 
-/// The penalty's shape: Σ_rows (h̄^(a/2) h_med³ Δ^d J)², and on open curves the end rows
-/// Σ_ends ω_e (h̄^(a/2) h_med³ J_i)² over the first and last `end_jumps` jumps
-/// ([`Space::penalty_row`]).
+/// The penalty's shape: Σ_rows (h̄^(a/2) h_med³ Δ^d J)² ([`Space::penalty_row`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Penalty {
     /// The difference order d (0 to 3).
     pub order: usize,
     /// The spacing exponent a.
     pub exponent: f64,
-    /// Open curves: how many jumps at each end are penalised themselves (Δ⁰), besides their
-    /// differences (0: none, the penalty of Δ^d J alone).
-    pub end_jumps: usize,
-    /// The factor ω_e on the weight of those end rows.
-    pub end_weight: f64,
 }
 
 impl Penalty {
-    /// The penalty of Δ^d J alone (no end rows).
+    /// The penalty of Δ^d J with the spacing exponent a.
     pub(super) fn differences(order: usize, exponent: f64) -> Self {
-        Penalty {
-            order,
-            exponent,
-            end_jumps: 0,
-            end_weight: 0.0,
-        }
+        Penalty { order, exponent }
     }
 }
 
@@ -416,29 +404,13 @@ impl Space {
         }
     }
 
-    /// The number of end rows at each end of an open curve: `end_jumps`, at most the n − 2
-    /// jumps there are, none on a closed curve or with a zero end weight.
-    fn end_rows(&self) -> usize {
-        if self.is_closed() || self.penalty.end_weight <= 0.0 {
-            0
-        } else {
-            self.penalty.end_jumps.min(self.len() - 2)
-        }
-    }
-
-    /// The number of rows Δ^d J: n − 2 − d open (none if negative), n closed.
-    fn difference_rows(&self) -> usize {
+    /// The number of penalty rows Δ^d J: n − 2 − d open (none if negative), n closed.
+    pub(super) fn penalty_rows(&self) -> usize {
         if self.is_closed() {
             self.len()
         } else {
             (self.len() - 2).saturating_sub(self.penalty.order)
         }
-    }
-
-    /// The number of penalty rows: the rows Δ^d J (n − 2 − d open, none if negative; n
-    /// closed) and on open curves 2e end rows (e = `end_jumps`, at most n − 2).
-    pub(super) fn penalty_rows(&self) -> usize {
-        self.difference_rows() + 2 * self.end_rows()
     }
 
     /// The dimension m of the penalty's null space: the splines of the space with every
@@ -447,7 +419,7 @@ impl Space {
     /// below the cubic's (jumps all zero): lines (2) for the natural spline, parabolas (3)
     /// for the runout spline (s‴ = 0 on the end spans and no jump: one parabola), lines (2)
     /// for mixed ends (one parabola with s″ = 0 at an end). With d ≥ 1
-    /// and no end rows this is d + 2 for both: jumps that are polynomials of degree < d in the
+    /// this is d + 2 for both: jumps that are polynomials of degree < d in the
     /// knot index (d dimensions; the runout spline's last span asks Σ J_i = 0, one fewer)
     /// plus the cubic's (natural 2, runout 3). Closed curves: 1 (the constants: a periodic
     /// spline without jumps is one periodic cubic, and Δ^d J = 0 around the loop with
@@ -459,35 +431,6 @@ impl Space {
             Ends::Open(End::Runout, End::Runout) => n.saturating_sub(self.penalty_rows()).max(3).min(n),
             Ends::Open(..) => n.saturating_sub(self.penalty_rows()).max(2).min(n),
         }
-    }
-
-    /// Penalty row `row` as a form over γ and its weight. In order of their first unknown
-    /// (which keeps the QR's rotations within the band, [`System`]): on open curves first the
-    /// e start rows J_1 … J_e, then the rows Δ^d J, then the e end rows J_{n−1−e} … J_{n−2}.
-    ///
-    /// A row Δ^d J over J_a … J_{a+d} (a = its index among them + 1 open, the index closed)
-    /// weighs h̄^a h_med⁶, h̄ the mean length of the d + 2 spans it spans relative to the
-    /// median spacing. An end row J_i is the row of order 0 at a = i, its weight ω_e h̄^a
-    /// h_med⁶ over the two spans beside knot i (module docs of [`super`]).
-    #[inline]
-    pub(super) fn penalty_row(&self, row: usize) -> (Form, f64) {
-        let e = self.end_rows();
-        if e == 0 {
-            return self.difference_row(row);
-        }
-        let differences = self.difference_rows();
-        let jump = if row < e {
-            row + 1
-        } else if row < e + differences {
-            return self.difference_row(row - e);
-        } else {
-            self.len() - 1 - e + (row - e - differences)
-        };
-        let t = self.knots.values();
-        let c = self.difference_of_jumps::<0>(jump as isize);
-        let mean = (t[jump + 1] - t[jump - 1]) / (2.0 * self.h_median);
-        let weight = self.penalty.end_weight * self.row_weight(mean);
-        (self.reduce(jump as isize - 1, &c[..5]), weight)
     }
 
     /// h̄^a h_med⁶ for a row whose spans have mean length `mean` (relative to the median).
@@ -503,11 +446,12 @@ impl Space {
         power * scale * scale
     }
 
-    /// Row `row` of Δ^d J: the form over J_a … J_{a+d} (a = row + 1 open, a = row closed)
-    /// and its weight (h̄^a h_med⁶ with h̄ the mean length of the d + 2 spans it spans,
-    /// relative to the median spacing).
+    /// Penalty row `row`, the row of Δ^d J over J_a … J_{a+d} (a = row + 1 open, a = row
+    /// closed), as a form over γ and its weight h̄^a h_med⁶, h̄ the mean length of the d + 2
+    /// spans it spans relative to the median spacing. The rows are in order of their first
+    /// unknown, which keeps the QR's rotations within the band ([`System`]).
     #[inline]
-    fn difference_row(&self, row: usize) -> (Form, f64) {
+    pub(super) fn penalty_row(&self, row: usize) -> (Form, f64) {
         let d = self.penalty.order;
         let a = if self.is_closed() {
             row as isize
@@ -548,9 +492,7 @@ impl Space {
     #[inline]
     pub(super) fn penalty_extent(&self, row: usize) -> (usize, usize) {
         let d = self.penalty.order;
-        let e = self.end_rows();
-        if !self.is_closed() && row >= e && row - e > 1 && row - e + 4 + d < self.len() {
-            let row = row - e;
+        if !self.is_closed() && row > 1 && row + 4 + d < self.len() {
             return (row - 1, row + 3 + d);
         }
         let form = self.penalty_row(row).0;

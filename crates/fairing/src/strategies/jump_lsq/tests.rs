@@ -126,28 +126,6 @@ impl Dense {
         out
     }
 
-    /// The end rows (ω h̄^a h_med⁶)^½ J_i over the first and last `count` jumps of an open
-    /// curve (2·count × n), h̄ the mean of the two spans beside knot i over the median
-    /// spacing, weights computed from the knots directly.
-    fn end_rows(&self, count: usize, exponent: f64, factor: f64) -> DMatrix<f64> {
-        let n = self.jump.ncols();
-        let jumps = self.jump.nrows();
-        let mut spacing: Vec<f64> = self.t.windows(2).map(|w| w[1] - w[0]).collect();
-        spacing.sort_by(f64::total_cmp);
-        let h_med = spacing[spacing.len() / 2];
-        let knots: Vec<usize> = (1..=count).chain(n - 1 - count..=n - 2).collect();
-        let mut out = DMatrix::zeros(knots.len(), n);
-        for (r, &i) in knots.iter().enumerate() {
-            let mean = (self.t[i + 1] - self.t[i - 1]) / (2.0 * h_med);
-            let weight = (factor * mean.powf(exponent) * h_med.powi(6)).sqrt();
-            assert!(i - 1 < jumps);
-            for k in 0..n {
-                out[(r, k)] = weight * self.jump[(i - 1, k)];
-            }
-        }
-        out
-    }
-
     /// The derivative of `order` at the start or end as a row over the data.
     fn end_derivative(&self, order: usize, at_end: bool) -> DVector<f64> {
         let n = self.splines.len();
@@ -872,14 +850,10 @@ fn dense_noise_beyond_the_precision_limit_takes_one_qr_trial_and_a_target_below_
 fn extents_are_those_of_the_forms() {
     // The short cuts for a form's first and last unknown (used by the QR's merged path, open
     // curves only) agree with the forms themselves, at the ends (end substitutions) and
-    // inside, for every difference order, both open end conditions and 0 to 3 end rows.
+    // inside, for every difference order and both open end conditions.
     let xs: Vec<f64> = (0..14).map(|i| i as f64 + 0.3 * ((i * 5) as f64).sin()).collect();
-    for (order, end_jumps) in (0..=3).flat_map(|d| (0..=3).map(move |e| (d, e))) {
-        let penalty = Penalty {
-            end_jumps,
-            end_weight: 1.0,
-            ..Penalty::differences(order, 8.0)
-        };
+    for order in 0..=3 {
+        let penalty = Penalty::differences(order, 8.0);
         for ends in [Ends::RUNOUT, Ends::NATURAL] {
             let space = Space::new(Knots::open(xs.clone()), ends, penalty).unwrap();
             let m = space.len();
@@ -955,149 +929,6 @@ fn given_knots_are_the_solves_knots_and_bad_ones_are_refused() {
     assert!(fair_on_knots(&points, &points, &Constraints::default(), &knots, true, &settings).is_err());
 }
 
-#[test]
-fn end_rows_equal_the_dense_solve() {
-    // The end rows J_1 … J_e and J_{n−1−e} … J_{n−2} (weight ω_e h̄^a h_med⁶) stacked under
-    // Δ^d J: the banded solve equals the dense one built from the project's splines, for
-    // both open end conditions.
-    let points = wavy(40);
-    let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
-    let free = vec![true; points.len()];
-    let helix = helix(36);
-    let t = Parametrization::ChordLength.parameters(&helix).unwrap();
-    let cases: [(Vec<f64>, HermiteEnds<1>, CurveDomain); 2] = [
-        (x, HermiteEnds::ParabolicRunout, CurveDomain::Function),
-        (t, HermiteEnds::Natural, CurveDomain::Parametric),
-    ];
-    for (knots, ends, domain) in cases {
-        let dense = Dense::new(knots, ends);
-        for (end_jumps, factor) in [(1, 1.0), (2, 1.0), (3, 50.0)] {
-            let differences = dense.penalty(1, 8.0);
-            let rows = dense.end_rows(end_jumps, 8.0, factor);
-            let mut penalty = DMatrix::zeros(differences.nrows() + rows.nrows(), differences.ncols());
-            penalty
-                .view_mut((0, 0), differences.shape())
-                .copy_from(&differences);
-            penalty
-                .view_mut((differences.nrows(), 0), rows.shape())
-                .copy_from(&rows);
-            for lambda in [1e-2, 1.0, 100.0] {
-                let settings = JumpLsqSettings::default()
-                    .with_lambda(lambda)
-                    .with_refits(0)
-                    .with_end_jumps(end_jumps)
-                    .with_end_weight(factor);
-                let what = format!("{domain:?} e {end_jumps} ω {factor} λ {lambda}");
-                if domain == CurveDomain::Function {
-                    let faired = fair(
-                        &points,
-                        &points,
-                        &Constraints::default(),
-                        domain,
-                        false,
-                        &settings,
-                    )
-                    .unwrap();
-                    let expected = dense_solve(&penalty, lambda, &free, &as_matrix(&points, 1..2), &[]);
-                    assert_close(&as_matrix(&faired.points, 1..2), &expected, 1e-9, &what);
-                } else {
-                    let faired =
-                        fair(&helix, &helix, &Constraints::default(), domain, false, &settings).unwrap();
-                    let expected = dense_solve(&penalty, lambda, &free, &as_matrix(&helix, 0..3), &[]);
-                    assert_close(&as_matrix(&faired.points, 0..3), &expected, 1e-9, &what);
-                }
-            }
-        }
-    }
-}
-
-#[test]
-fn a_spline_whose_end_jumps_vanish_has_no_end_penalty() {
-    // Project noisy data onto the splines whose first and last two jumps are zero (the null
-    // space of the dense end rows): their penalty with end-jumps = 2 is that of Δ J alone;
-    // the data themselves, whose end jumps are not zero, pay more.
-    let points = wavy(30);
-    let n = points.len();
-    let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
-    let dense = Dense::new(x.clone(), HermiteEnds::ParabolicRunout);
-    let e = dense.end_rows(2, 0.0, 1.0);
-    let y = DVector::from_fn(n, |i, _| points[i][1]);
-    let projected = &y - e.transpose() * (&e * e.transpose()).lu().solve(&(&e * &y)).unwrap();
-    assert!(
-        (&e * &projected).amax() < 1e-9 * (&e * &y).amax(),
-        "end jumps not removed"
-    );
-    let curve =
-        |v: &DVector<f64>| -> Vec<Vector<2>> { (0..n).map(|i| Vector::<2>::new(x[i], v[i])).collect() };
-    let with_rows = JumpLsqSettings::default().with_end_jumps(2).with_end_weight(3.0);
-    let without = JumpLsqSettings::default().with_end_jumps(0);
-    let penalty =
-        |p: &[Vector<2>], s: &JumpLsqSettings| jump_penalty(p, CurveDomain::Function, false, s).unwrap();
-    let smooth = curve(&projected);
-    let (a, b) = (penalty(&smooth, &with_rows), penalty(&smooth, &without));
-    assert!(
-        b > 0.0 && (a - b).abs() <= 1e-9 * b,
-        "zero end jumps: {a} against {b}"
-    );
-    let (a, b) = (penalty(&points, &with_rows), penalty(&points, &without));
-    assert!(a > b * (1.0 + 1e-6), "the data's end jumps: {a} against {b}");
-    // A weight of 0 is the penalty of Δ J alone, whatever the count.
-    let off = JumpLsqSettings::default().with_end_jumps(3).with_end_weight(0.0);
-    assert_eq!(penalty(&points, &off), b);
-}
-
-#[test]
-fn end_rows_keep_fixed_points_and_a_g0_clamp_bit_for_bit() {
-    let points = helix(30);
-    let n = points.len();
-    let constraints = Constraints::default()
-        .with_fixed([5, 17])
-        .with_end_clamp(EndClamp::G0);
-    // A parametric curve at a given λ, and a function with λ by GCV.
-    let settings = JumpLsqSettings::default().with_end_jumps(2).with_lambda(10.0);
-    let faired = fair(
-        &points,
-        &points,
-        &constraints,
-        CurveDomain::Parametric,
-        false,
-        &settings,
-    )
-    .unwrap();
-    for k in [0, 5, 17, n - 1] {
-        let bits = |p: &Vector<3>| p.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
-        assert_eq!(bits(&faired.points[k]), bits(&points[k]), "point {k}");
-    }
-    assert_ne!(faired.points[1], points[1], "nothing moved");
-    let points = wavy(30);
-    let settings = JumpLsqSettings::default()
-        .with_end_jumps(2)
-        .with_rule(LambdaRule::Gcv);
-    let faired = fair(
-        &points,
-        &points,
-        &constraints,
-        CurveDomain::Function,
-        false,
-        &settings,
-    )
-    .unwrap();
-    for k in [0, 5, 17, n - 1] {
-        assert_eq!(faired.points[k][1].to_bits(), points[k][1].to_bits(), "point {k}");
-    }
-}
-
-#[test]
-fn end_settings_out_of_range_are_refused() {
-    for settings in [
-        JumpLsqSettings::default().with_end_jumps(4),
-        JumpLsqSettings::default().with_end_weight(-1.0),
-        JumpLsqSettings::default().with_end_weight(f64::NAN),
-    ] {
-        assert!(matches!(settings.validate(), Err(Error::BadParameter { .. })));
-    }
-}
-
 /// The rank of `m` (singular values above 1e-9 of the largest).
 fn dense_rank(m: &DMatrix<f64>) -> usize {
     let svd = m.clone().svd(false, false);
@@ -1111,7 +942,7 @@ fn dense_rank(m: &DMatrix<f64>) -> usize {
 #[test]
 fn penalty_nullity_is_the_dense_null_space() {
     // m = n − rank of the value-space penalty rows (N is invertible: the same in γ), for
-    // both open end conditions with and without end rows, and the closed spline.
+    // both open end conditions, and the closed spline.
     let points = wavy(30);
     let x: Vec<f64> = points.iter().map(|p| p[0]).collect();
     let n = x.len();
@@ -1121,30 +952,14 @@ fn penalty_nullity_is_the_dense_null_space() {
     ] {
         let dense = Dense::new(x.clone(), dense_ends);
         for order in 0..=3 {
-            for end_jumps in [0, 1, 2] {
-                let mut penalty = dense.penalty(order, 8.0);
-                if end_jumps > 0 {
-                    let rows = dense.end_rows(end_jumps, 8.0, 1.0);
-                    let mut stacked = DMatrix::zeros(penalty.nrows() + rows.nrows(), n);
-                    stacked.view_mut((0, 0), penalty.shape()).copy_from(&penalty);
-                    stacked
-                        .view_mut((penalty.nrows(), 0), rows.shape())
-                        .copy_from(&rows);
-                    penalty = stacked;
-                }
-                let shape = Penalty {
-                    order,
-                    exponent: 8.0,
-                    end_jumps,
-                    end_weight: 1.0,
-                };
-                let space = Space::new(Knots::open(x.clone()), ends, shape).unwrap();
-                assert_eq!(
-                    space.penalty_nullity(),
-                    n - dense_rank(&penalty),
-                    "{ends:?} d {order} end jumps {end_jumps}"
-                );
-            }
+            let penalty = dense.penalty(order, 8.0);
+            let shape = Penalty::differences(order, 8.0);
+            let space = Space::new(Knots::open(x.clone()), ends, shape).unwrap();
+            assert_eq!(
+                space.penalty_nullity(),
+                n - dense_rank(&penalty),
+                "{ends:?} d {order}"
+            );
         }
     }
     let points = ellipse(30);
@@ -1933,5 +1748,32 @@ fn a_refits_gcv_search_near_the_previous_lambda_finds_the_full_searchs_choice() 
                 full.evaluations
             );
         }
+    }
+}
+
+/// GCV's trace factor γ (not a setting; two-phase's curve pre-pass sets 1.4): γ = 1 is
+/// Craven and Wahba's rule, the default, bit for bit; a larger γ charges each degree of
+/// freedom more, so λ and the displacement grow with it.
+#[test]
+fn a_larger_gcv_gamma_smooths_more() {
+    let noisy: Vec<Vector<2>> = (0..300)
+        .map(|i| {
+            let x = i as f64 * 0.06;
+            Vector::<2>::new(x, x.sin() + 0.01 * (((i * 7919) % 101) as f64 / 50.0 - 1.0) * 1.7)
+        })
+        .collect();
+    let gcv = JumpLsqSettings::default().with_rule(LambdaRule::Gcv);
+    assert_eq!(gcv.gcv_gamma, 1.0);
+    let plain = fair_function(&noisy, &gcv);
+    assert_eq!(
+        fair_function(&noisy, &gcv.clone().with_gcv_gamma(1.0)).points,
+        plain.points
+    );
+    let (mut lambda, mut moved) = (plain.report.lambda, plain.report.rms_displacement);
+    for gamma in [1.2, 1.4, 2.0] {
+        let r = fair_function(&noisy, &gcv.clone().with_gcv_gamma(gamma)).report;
+        assert!(r.lambda > lambda, "γ {gamma}: λ {} after {lambda}", r.lambda);
+        assert!(r.rms_displacement > moved, "γ {gamma}: {r:?}");
+        (lambda, moved) = (r.lambda, r.rms_displacement);
     }
 }
