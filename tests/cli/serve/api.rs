@@ -43,6 +43,73 @@ fn page_and_assets_are_served_from_the_binary_only() {
     assert!(!html.contains("http://") && !html.contains("https://"));
 }
 
+/// The page's corners control: a field `corners` (with the words `auto` and `none` offered)
+/// whose value the page's `constraints()` sends as `constraints.corners`, as `--corners`
+/// takes it: empty sends nothing (the default), `auto` and `none` as words, else the point
+/// indices. Where node is on the PATH, the page's own parsing runs on typed values and the
+/// API takes what it builds (a word outside auto/none is refused with the API's message).
+#[test]
+fn the_page_sends_the_corners_control_as_constraints_corners() {
+    let server = Served::start(&[]);
+    let html = String::from_utf8(get(&server.address, "/").body).unwrap();
+    assert!(html.contains(r#"<input id="corners""#), "no corners field");
+    assert!(
+        html.contains(r#"<option value="auto">"#) && html.contains(r#"<option value="none">"#),
+        "the words are not offered"
+    );
+    let script = String::from_utf8(get(&server.address, "/app.js").body).unwrap();
+    let start = script.find("function constraints(").expect("constraints()");
+    let body = &script[start..start + script[start..].find("\n  }\n").unwrap()];
+    assert!(
+        body.contains(r#"cornersOf($("corners").value)"#) && body.contains("c.corners = corners"),
+        "constraints() does not send the field: {body}"
+    );
+    let Some(node) = std::env::var_os("PATH").and_then(|paths| {
+        std::env::split_paths(&paths)
+            .map(|dir| dir.join("node"))
+            .find(|path| path.is_file())
+    }) else {
+        eprintln!("skipping the page's corner parsing: node is not on the PATH");
+        return;
+    };
+    let start = script.find("function cornersOf(").expect("cornersOf()");
+    let function = &script[start..start + script[start..].find("\n  }\n").unwrap() + 4];
+    let typed = ["", "  ", "auto", " None ", "20, 40", "20 40,", "often"];
+    let program = format!(
+        "{function}\nconsole.log(JSON.stringify({}.map(cornersOf)));",
+        serde_json::to_string(&typed).unwrap()
+    );
+    let out = std::process::Command::new(node)
+        .args(["-e", &program])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let sent: Vec<Value> = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(
+        sent,
+        [
+            Value::Null,
+            Value::Null,
+            json!("auto"),
+            json!("none"),
+            json!([20, 40]),
+            json!([20, 40]),
+            json!(["often"]),
+        ]
+    );
+    let points = get(&server.address, "/api/datasets/gunnerus-wl03").json()["points"].clone();
+    for corners in &sent[2..] {
+        let body = json!({ "points": points, "constraints": { "corners": corners } });
+        let reply = post(&server.address, "/api/curve", &body.to_string());
+        if corners == &json!(["often"]) {
+            assert_eq!(reply.status, 400, "{corners}");
+            assert!(reply.error().contains("constraints.corners"), "{}", reply.error());
+        } else {
+            assert_eq!(reply.status, 200, "{corners}: {}", reply.error());
+        }
+    }
+}
+
 #[test]
 fn methods_are_the_catalogue_with_defaults() {
     let server = Served::start(&[]);
@@ -217,6 +284,12 @@ fn curve_cases() -> Vec<Case> {
             file: WL03,
             body: json!({ "constraints": { "corners": "none" } }),
             args: vec!["--corners", "none"],
+        },
+        Case {
+            dataset: "gunnerus-wl03",
+            file: WL03,
+            body: json!({ "constraints": { "corners": "auto" } }),
+            args: vec!["--corners", "auto"],
         },
         Case {
             dataset: "gunnerus-wl03",

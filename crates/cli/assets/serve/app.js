@@ -136,7 +136,19 @@
     if (tolerance !== "") c.tolerance = Number(tolerance);
     const clamp = $("clamp-ends").value;
     if (clamp) c["clamp-ends"] = clamp;
+    const corners = cornersOf($("corners").value);
+    if (corners !== null) c.corners = corners;
     return c;
+  }
+
+  // The corners field as `constraints.corners` (`--corners`): empty is the default (not
+  // sent), `auto` or `none` as written, else point indices separated by commas or spaces
+  // (anything else is sent as it reads, for the server to refuse with its message).
+  function cornersOf(text) {
+    const t = text.trim().toLowerCase();
+    if (t === "") return null;
+    if (t === "auto" || t === "none") return t;
+    return t.split(/[\s,]+/).filter((s) => s !== "").map((s) => (/^\d+$/.test(s) ? Number(s) : s));
   }
 
   async function fair(method, params, withPoints, label) {
@@ -152,6 +164,7 @@
       };
       let value;
       if (entry.type === "surface") {
+        delete body.constraints.corners; // a curve's constraint
         body.rows = entry.rows;
         body.columns = entry.columns;
         value = await api("/api/surface", body);
@@ -909,6 +922,7 @@
     history: () => state.history.map((e) => e.label),
     index: () => state.index,
     selection: () => ({ bad: state.bad.slice(), fixed: state.fixed.slice() }),
+    constraints: () => constraints(true),
   };
 
   start();

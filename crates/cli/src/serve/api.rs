@@ -13,7 +13,7 @@
 //!
 //! <a id="loaded"></a>A loaded curve or surface is `{"name", "type": "curve" | "surface",
 //! "points", ("rows", "columns" for a surface), "report", "drawing"}`, the report being
-//! `fair inspect`'s. `constraints` is `{"fixed", "points", "tolerance", "clamp-ends"}`, the
+//! `fair inspect`'s. `constraints` is `{"fixed", "points", "tolerance", "clamp-ends", "corners"}`, the
 //! names of a config file's `[constraints]`; `params` maps parameter names to values (`fair
 //! methods` lists them). Point indices count from 0; a grid's row by row (k = i · columns + j).
 //! The `drawing`s are described in [`super::drawing`].
