@@ -61,7 +61,8 @@ impl SurfaceMethod for SurfaceJumpLsqMethod {
         let result = SurfaceJumpLsq::new(settings.clone()).run(&grid.to_rows())?;
         let record = bicubic_record(&result.surface, settings.parametrization, &result.topology);
         let mut extras = std::collections::BTreeMap::new();
-        extras.insert("lambda".into(), serde_json::json!(result.lambda));
+        extras.insert("lambda_u".into(), serde_json::json!(result.lambda_u));
+        extras.insert("lambda_v".into(), serde_json::json!(result.lambda_v));
         extras.insert("gcv".into(), serde_json::json!(result.gcv));
         extras.insert("dof".into(), serde_json::json!(result.dof));
         extras.insert("band_pins".into(), serde_json::json!(result.band_pins));
