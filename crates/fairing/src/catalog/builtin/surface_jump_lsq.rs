@@ -1,5 +1,5 @@
 //! `jump-lsq` (surfaces): least squares on the nodes with a penalty on the third-derivative
-//! jumps of the net's bicubic surface in both directions ([`SurfaceJumpLsq`]), λ by GCV.
+//! jumps of the net's bicubic surface in both directions ([`SurfaceJumpLsq`]), λ_u and λ_v by GCV.
 //! Seams closed, poles and fixed nodes held bit for bit, the tolerance band held; `g0`
 //! keeps the boundary; joins (`--join`) hold edges to neighbours g0/g1/g2, reported under
 //! `joins`. It takes no bad points (it fairs every node) and no restraining radii.

@@ -99,7 +99,7 @@ use nalgebra::DMatrix;
 use super::surface::Closure;
 use crate::state::strategy_error;
 use crate::{Error, Result};
-use spectral::{planes, Coupling, Planes, Spectral, Weights};
+use spectral::{planes, Coupling, Energies, Planes, Spectral, Weights};
 
 pub use join::{Continuity, Join, JoinEdge, JoinMeasure, JoinReport};
 
@@ -428,14 +428,14 @@ impl SurfaceJumpLsq {
                 &data,
                 &spectral,
             );
+            let energies = Energies::new(&y_hat, c_hat.as_ref());
             let rss_trace = |w: Weights| match &joined {
-                None => spectral.rss_trace(&y_hat, c_hat.as_ref(), w),
+                None => spectral.rss_trace(&energies, w),
                 Some(joined) => {
                     let mut x = spectral.solve_hat(&y_hat, c_hat.as_ref(), w);
                     joined.correct(&mut x, &spectral, w);
                     let rss = (0..3).map(|c| (&x[c] - &y_hat[c]).norm_squared()).sum::<f64>();
-                    let trace =
-                        spectral.rss_trace(&y_hat, None, w).1 - joined.trace_loss(&spectral, w, (nr, nc));
+                    let trace = spectral.trace(w) - joined.trace_loss(&spectral, w, (nr, nc));
                     (rss, trace)
                 }
             };

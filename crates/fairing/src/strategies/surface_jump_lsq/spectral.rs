@@ -130,27 +130,71 @@ impl Spectral {
         out
     }
 
+    /// The trace of the smoother at the weights `w`, Σ_ab 1/(1 + λ_u μ_a + λ_v ν_b) (per
+    /// coordinate).
+    pub(super) fn trace(&self, w: Weights) -> f64 {
+        let mut trace = 0.0;
+        for &nu in &self.nu {
+            for &mu in &self.mu {
+                trace += 1.0 / (1.0 + w.u * mu + w.v * nu);
+            }
+        }
+        trace
+    }
+
     /// (RSS, trace of the smoother) at the weights `w`: RSS = Σ |X̂ − Ŷ|² over the three
-    /// planes, the trace Σ_ab 1/(1 + λ_u μ_a + λ_v ν_b) (per coordinate). O(|R|·|C|).
-    pub(super) fn rss_trace(&self, y: &Planes, coupling: Option<&Coupling>, w: Weights) -> (f64, f64) {
-        let (rows, cols) = y[0].shape();
+    /// planes, from the data's [`Energies`]; the trace as [`trace`](Self::trace). O(|R|·|C|).
+    pub(super) fn rss_trace(&self, e: &Energies, w: Weights) -> (f64, f64) {
+        let (rows, cols) = e.yy.shape();
         let mut rss = 0.0;
         let mut trace = 0.0;
         for b in 0..cols {
             for a in 0..rows {
-                let s = self.s(a, b, w);
+                let s = w.u * self.mu[a] + w.v * self.nu[b];
                 let g = 1.0 / (1.0 + s);
                 trace += g;
-                for c in 0..3 {
-                    let yv = y[c][(a, b)];
-                    let cv = coupling.map_or(0.0, |cp| cp.at(c, a, b, w));
-                    // X̂ − Ŷ = −(s Ŷ + λ_u B̂u + λ_v B̂v) / (1 + s)
-                    let r = (s * yv + cv) * g;
-                    rss += r * r;
+                // X̂ − Ŷ = −(s Ŷ + λ_u B̂u + λ_v B̂v) / (1 + s), squared and summed over the
+                // coordinates.
+                let mut r2 = s * s * e.yy[(a, b)];
+                if let Some([yu, yv, uu, uv, vv]) = &e.cross {
+                    r2 += 2.0 * s * (w.u * yu[(a, b)] + w.v * yv[(a, b)])
+                        + w.u * w.u * uu[(a, b)]
+                        + 2.0 * w.u * w.v * uv[(a, b)]
+                        + w.v * w.v * vv[(a, b)];
                 }
+                rss += g * g * r2;
             }
         }
         (rss, trace)
+    }
+}
+
+/// The transformed data's energies per spectral entry, summed over the three coordinates:
+/// Σ_c Ŷ², and with a coupling Σ_c Ŷ B̂u, Σ_c Ŷ B̂v, Σ_c B̂u², Σ_c B̂u B̂v, Σ_c B̂v². The RSS at
+/// any weights is then one term per entry ([`Spectral::rss_trace`]).
+pub(crate) struct Energies {
+    yy: DMatrix<f64>,
+    cross: Option<[DMatrix<f64>; 5]>,
+}
+
+impl Energies {
+    pub(crate) fn new(y: &Planes, coupling: Option<&Coupling>) -> Self {
+        let (rows, cols) = y[0].shape();
+        let sum = |f: &dyn Fn(usize, usize, usize) -> f64| {
+            DMatrix::from_fn(rows, cols, |a, b| (0..3).map(|c| f(c, a, b)).sum())
+        };
+        Self {
+            yy: sum(&|c, a, b| y[c][(a, b)] * y[c][(a, b)]),
+            cross: coupling.map(|k| {
+                [
+                    sum(&|c, a, b| y[c][(a, b)] * k.u[c][(a, b)]),
+                    sum(&|c, a, b| y[c][(a, b)] * k.v[c][(a, b)]),
+                    sum(&|c, a, b| k.u[c][(a, b)] * k.u[c][(a, b)]),
+                    sum(&|c, a, b| k.u[c][(a, b)] * k.v[c][(a, b)]),
+                    sum(&|c, a, b| k.v[c][(a, b)] * k.v[c][(a, b)]),
+                ]
+            }),
+        }
     }
 }
 

@@ -398,7 +398,11 @@ fn two_weights_solve_their_normal_equations() {
         let g = gradient_pair(&grid, out, w);
         for (k, gk) in g.iter().enumerate() {
             if !fixed.contains(&(k / 8, k % 8)) {
-                assert!(gk.norm() < 1e-9, "fixed {fixed:?}, node {k}: gradient {}", gk.norm());
+                assert!(
+                    gk.norm() < 1e-9,
+                    "fixed {fixed:?}, node {k}: gradient {}",
+                    gk.norm()
+                );
             }
         }
     }
@@ -462,5 +466,40 @@ fn gcv_smooths_the_straight_direction_harder() {
             result.lambda_u,
             result.lambda_v
         );
+    }
+}
+
+#[test]
+fn gcv_rss_and_trace_are_those_of_the_solve() {
+    // The score's RSS (from the energies) is |X̂ − Ŷ|² of the spectral solve with a coupling,
+    // and its trace is tr (I + λ_u I⊗K_u + λ_v K_v⊗I)⁻¹, built densely.
+    use super::spectral::{Coupling, Energies, Planes, Spectral};
+    let (m, n) = (5, 4);
+    let du = DMatrix::from_fn(3, m, |i, j| ((i * 7 + j * 3) as f64).sin());
+    let dv = DMatrix::from_fn(2, n, |i, j| ((i * 5 + j * 2 + 1) as f64).cos());
+    let (ku, kv) = (du.transpose() * &du, dv.transpose() * &dv);
+    let spectral = Spectral::new(ku.clone(), kv.clone());
+    let plane = |k: usize| -> Planes {
+        std::array::from_fn(|c| DMatrix::from_fn(m, n, |a, b| ((a * 5 + b * 3 + c * 11 + k) as f64).cos()))
+    };
+    let y = plane(0);
+    let coupling = Coupling {
+        u: plane(1),
+        v: plane(2),
+    };
+    for w in [Weights { u: 0.3, v: 7.0 }, Weights { u: 1e3, v: 1e-3 }] {
+        let x = spectral.solve_hat(&y, Some(&coupling), w);
+        let rss: f64 = (0..3).map(|c| (&x[c] - &y[c]).norm_squared()).sum();
+        let (score_rss, trace) = spectral.rss_trace(&Energies::new(&y, Some(&coupling)), w);
+        assert!(
+            (score_rss - rss).abs() <= 1e-12 * rss,
+            "{score_rss} against {rss}"
+        );
+        let a = DMatrix::identity(m * n, m * n)
+            + DMatrix::<f64>::identity(n, n).kronecker(&ku) * w.u
+            + kv.kronecker(&DMatrix::<f64>::identity(m, m)) * w.v;
+        let dense = a.try_inverse().unwrap().trace();
+        assert!((trace - dense).abs() <= 1e-10 * dense, "{trace} against {dense}");
+        assert!((spectral.trace(w) - dense).abs() <= 1e-10 * dense);
     }
 }
