@@ -69,7 +69,7 @@
 //! Stat. Comput. 12:383) on the block, V(λ_u, λ_v) = (RSS/3N) / (1 − tr A/N)², N the free
 //! nodes and A the smoother of one coordinate, whose eigenvalues in the two eigenbases are
 //! 1/(1 + λ_u μ_a + λ_v ν_b). RSS and tr A are sums over the spectral entries, O(N) per pair.
-//! The search, in log₁₀ λ over [−8, 12] in each direction ([`minimise_log_pair`]): the
+//! The search, in log₁₀ λ over [−8, 12] in each direction (`minimise_log_pair`): the
 //! one-weight minimum on the diagonal λ_u = λ_v (a scan in steps of 1/4 refined by golden
 //! section), a scan of the square in steps of 1, and from the best of these coordinate
 //! descent, each step a scan of ±1 around the current value refined by golden section.
