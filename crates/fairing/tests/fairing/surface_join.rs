@@ -75,7 +75,12 @@ fn surface_join_g1_holds_the_tangent_plane_where_it_was_broken() {
     assert!(report.before.angle_degrees > 0.5, "{:?}", report.before);
     assert!(report.after.gap <= 1e-12 * size, "{:?}", report.after);
     assert!(report.after.angle_degrees <= 1e-9, "{:?}", report.after);
-    assert!(out.lambda > 0.0, "the fit was kept (λ = {})", out.lambda);
+    assert!(
+        out.lambda_u > 0.0 && out.lambda_v > 0.0,
+        "the fit was kept (λ_u = {}, λ_v = {})",
+        out.lambda_u,
+        out.lambda_v
+    );
 }
 
 fn rms(a: &[Vec<Vec3>], b: &[Vec<Vec3>]) -> f64 {

@@ -65,7 +65,8 @@ fn g0_keeps_the_boundary_bit_for_bit_and_the_interior_nears_the_truth() {
         rms(&pick(&out.grid.points), &pick(&clean.points)),
     );
     assert!(after < 0.8 * before, "RMS to the clean net {before} -> {after}");
-    assert!(out.extras["lambda"].as_f64().unwrap() > 0.0);
+    assert!(out.extras["lambda_u"].as_f64().unwrap() > 0.0);
+    assert!(out.extras["lambda_v"].as_f64().unwrap() > 0.0);
 }
 
 #[test]

@@ -165,7 +165,7 @@ pub fn register(catalog: &mut Catalog) {
         MethodInfo::new(
             "jump-lsq",
             "least squares on the nodes with a penalty on the bicubic surface's third-derivative \
-             jumps across its knot lines in both directions, λ by GCV",
+             jumps across its knot lines in both directions, one weight per direction, both by GCV",
         )
         .with_paper(
             "Zhang & Cheng Eq. 17/26 as a global objective, tensor form of the curve jump-lsq (this project)",

@@ -1,5 +1,5 @@
 //! `jump-lsq` (surfaces): least squares on the nodes with a penalty on the third-derivative
-//! jumps of the net's bicubic surface in both directions ([`SurfaceJumpLsq`]), λ by GCV.
+//! jumps of the net's bicubic surface in both directions ([`SurfaceJumpLsq`]), λ_u and λ_v by GCV.
 //! Seams closed, poles and fixed nodes held bit for bit, the tolerance band held; `g0`
 //! keeps the boundary; joins (`--join`) hold edges to neighbours g0/g1/g2, reported under
 //! `joins`. It takes no bad points (it fairs every node) and no restraining radii.
@@ -61,7 +61,8 @@ impl SurfaceMethod for SurfaceJumpLsqMethod {
         let result = SurfaceJumpLsq::new(settings.clone()).run(&grid.to_rows())?;
         let record = bicubic_record(&result.surface, settings.parametrization, &result.topology);
         let mut extras = std::collections::BTreeMap::new();
-        extras.insert("lambda".into(), serde_json::json!(result.lambda));
+        extras.insert("lambda_u".into(), serde_json::json!(result.lambda_u));
+        extras.insert("lambda_v".into(), serde_json::json!(result.lambda_v));
         extras.insert("gcv".into(), serde_json::json!(result.gcv));
         extras.insert("dof".into(), serde_json::json!(result.dof));
         extras.insert("band_pins".into(), serde_json::json!(result.band_pins));

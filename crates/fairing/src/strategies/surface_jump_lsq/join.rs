@@ -33,7 +33,7 @@
 //! g1 constraints on the block, c_kᵀ X[:, b] = τ_k,b for each free line b across the edge
 //! (k over the g1 joins across that direction, at most two), enter by Lagrange
 //! multipliers: X = X₀ − A⁻¹ Σ_k c_k μ_kᵀ, A the Kronecker-sum operator. In the eigenbases
-//! (X̂ = UᵀXV, ĉ = Uᵀc, τ̂ = Vᵀτ, g_ab = 1/(1 + λ s_ab)) the Schur complement is block
+//! (X̂ = UᵀXV, ĉ = Uᵀc, τ̂ = Vᵀτ, g_ab = 1/(1 + λ_u μ_a + λ_v ν_b)) the Schur complement is block
 //! diagonal, one k × k block per eigenvector b:
 //!
 //! ```text
@@ -57,7 +57,7 @@
 use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings, Parametrization, Side, Surface, Vec3};
 use nalgebra::{DMatrix, DVector};
 
-use super::spectral::{Planes, Spectral};
+use super::spectral::{Planes, Spectral, Weights};
 
 use crate::{Error, Result};
 
@@ -645,13 +645,13 @@ impl Joined {
     }
 
     /// g_ab at the entry (q along the constrained direction, l the line).
-    fn g(&self, spectral: &Spectral, lambda: f64, q: usize, l: usize) -> f64 {
+    fn g(&self, spectral: &Spectral, w: Weights, q: usize, l: usize) -> f64 {
         let s = if self.lines_are_columns {
-            spectral.s(q, l)
+            spectral.s(q, l, w)
         } else {
-            spectral.s(l, q)
+            spectral.s(l, q, w)
         };
-        1.0 / (1.0 + lambda * s)
+        1.0 / (1.0 + s)
     }
 
     fn lines(&self, x: &Planes) -> (usize, usize) {
@@ -667,7 +667,7 @@ impl Joined {
     fn blocks(
         &self,
         spectral: &Spectral,
-        lambda: f64,
+        weights: Weights,
         l: usize,
         along: usize,
     ) -> (DMatrix<f64>, DMatrix<f64>) {
@@ -675,7 +675,7 @@ impl Joined {
         let mut w = DMatrix::zeros(k, k);
         let mut w2 = DMatrix::zeros(k, k);
         for q in 0..along {
-            let g = self.g(spectral, lambda, q, l);
+            let g = self.g(spectral, weights, q, l);
             for a in 0..k {
                 for b in 0..k {
                     let cc = self.c_hat[a][q] * self.c_hat[b][q];
@@ -687,13 +687,13 @@ impl Joined {
         (w, w2)
     }
 
-    /// Corrects the unconstrained X̂₀ (at λ) to the constrained X̂. O(m·n).
-    pub(crate) fn correct(&self, x: &mut Planes, spectral: &Spectral, lambda: f64) {
+    /// Corrects the unconstrained X̂₀ (at the weights `w`) to the constrained X̂. O(m·n).
+    pub(crate) fn correct(&self, x: &mut Planes, spectral: &Spectral, w: Weights) {
         let (lines, along) = self.lines(x);
         let k = self.c_hat.len();
         for l in 0..lines {
-            let (w, _) = self.blocks(spectral, lambda, l, along);
-            let Some(lu) = w.clone().try_inverse() else {
+            let (block, _) = self.blocks(spectral, w, l, along);
+            let Some(lu) = block.try_inverse() else {
                 continue;
             };
             for (coord, plane) in x.iter_mut().enumerate() {
@@ -709,7 +709,7 @@ impl Joined {
                 });
                 let mu = &lu * r;
                 for q in 0..along {
-                    let g = self.g(spectral, lambda, q, l);
+                    let g = self.g(spectral, w, q, l);
                     let d: f64 = (0..k).map(|a| self.c_hat[a][q] * mu[a]).sum();
                     let entry = if self.lines_are_columns {
                         &mut plane[(q, l)]
@@ -722,8 +722,8 @@ impl Joined {
         }
     }
 
-    /// What the constraints take from the smoother's trace at λ: Σ_l tr(W_l⁻¹ W′_l).
-    pub(crate) fn trace_loss(&self, spectral: &Spectral, lambda: f64, shape: (usize, usize)) -> f64 {
+    /// What the constraints take from the smoother's trace at the weights `w`: Σ_l tr(W_l⁻¹ W′_l).
+    pub(crate) fn trace_loss(&self, spectral: &Spectral, w: Weights, shape: (usize, usize)) -> f64 {
         let (lines, along) = if self.lines_are_columns {
             (shape.1, shape.0)
         } else {
@@ -731,8 +731,8 @@ impl Joined {
         };
         (0..lines)
             .map(|l| {
-                let (w, w2) = self.blocks(spectral, lambda, l, along);
-                w.try_inverse().map_or(0.0, |inv| (inv * w2).trace())
+                let (block, block2) = self.blocks(spectral, w, l, along);
+                block.try_inverse().map_or(0.0, |inv| (inv * block2).trace())
             })
             .sum()
     }

@@ -1,7 +1,7 @@
 //! `jump-lsq` for surfaces: least squares on the grid nodes with a penalty on the
 //! third-derivative jumps of the bicubic spline surface across its knot lines, in both
 //! directions — the tensor form of the curve method ([`JumpLsq`](super::JumpLsq)), with λ
-//! chosen by generalised cross-validation.
+//! weights λ_u, λ_v, one per direction, chosen jointly by generalised cross-validation.
 //!
 //! # The method
 //!
@@ -13,23 +13,28 @@
 //! The method finds the net P minimising
 //!
 //! ```text
-//! Σ_ij |P_ij − P⁰_ij|²  +  λ ( Σ_j Σ_i |h̄ᵘ_i³ J^u_ij(P)|²  +  Σ_i Σ_j |h̄ᵛ_j³ J^v_ij(P)|² ),
+//! Σ_ij |P_ij − P⁰_ij|²  +  λ_u Σ_j Σ_i |h̄ᵘ_i³ J^u_ij(P)|²  +  λ_v Σ_i Σ_j |h̄ᵛ_j³ J^v_ij(P)|²,
 //! ```
 //!
 //! h̄ the mean of the two knot steps at the knot (so each jump term has the units of the
-//! points and λ is scale-free). J^u is linear in each column of P alone, J^u = D_u P, and
-//! J^v = P D_vᵀ (module `operator`), so the normal equations are
+//! points and the weights are scale-free). J^u is linear in each column of P alone,
+//! J^u = D_u P, and J^v = P D_vᵀ (module `operator`), so the normal equations are
 //!
 //! ```text
-//! P + λ (K_u P + P K_v) = P⁰,    K = DᵀD,
+//! P + λ_u K_u P + λ_v P K_v = P⁰,    K = DᵀD,
 //! ```
 //!
 //! a Kronecker sum, solved exactly in the eigenbases of K_u and K_v (module `spectral`). The
 //! penalty's null space is the surfaces with no jump anywhere: along an open direction a
 //! natural cubic spline with no jump is one cubic with zero second derivative at both ends,
-//! a line, so as λ → ∞ the net tends to the least-squares bilinear surface
+//! a line, so as λ_u = λ_v → ∞ the net tends to the least-squares bilinear surface
 //! a + b u + c v + d u v over the knots (one bicubic polynomial patch with no
-//! third-derivative jump across any knot line); at λ = 0 it is the input.
+//! third-derivative jump across any knot line); at λ_u = λ_v = 0 it is the input.
+//!
+//! Two weights rather than one because a surface's two directions need not be alike: a
+//! helicoidal strip is straight along its rulings and helical across them, a hull is long
+//! and gently curved along its length and turns tightly round the bilge. One λ smooths the
+//! straight direction too little or the curved one too much.
 //!
 //! # Held nodes, seams, the tolerance band
 //!
@@ -55,21 +60,27 @@
 //! As Zhang–Cheng's runs judge a step ([`SurfaceFairing`](super::SurfaceFairing)'s module
 //! docs), the fit is judged over the knots the output has: if its largest z_ij (Eq. 26) or
 //! its network strain energy is higher than the input's, it is refused and the fit at a tenth
-//! of λ tried, at most [`GUARD_RETRIES`] times; then the input is returned unchanged. A fair
+//! of both weights tried, at most [`GUARD_RETRIES`] times; then the input is returned unchanged. A fair
 //! net (the teapot's) is thus never made worse.
 //!
-//! # Choosing λ
+//! # Choosing λ_u and λ_v
 //!
-//! GCV (Craven & Wahba 1979) on the block, V(λ) = (RSS/3N) / (1 − tr A(λ)/N)², N the free
-//! nodes and A the smoother of one coordinate (the curve method's `rule = gcv`). RSS
-//! and tr A are sums over the spectral entries (O(N) per λ): V is scanned on a grid of
-//! log₁₀ λ from −8 to 12 in steps of 1/4 and the best bracket refined by golden section.
-//! Scattered fixed nodes are treated as data in the score.
+//! GCV (Craven & Wahba 1979; for several smoothing parameters Gu & Wahba 1991, SIAM J. Sci.
+//! Stat. Comput. 12:383) on the block, V(λ_u, λ_v) = (RSS/3N) / (1 − tr A/N)², N the free
+//! nodes and A the smoother of one coordinate, whose eigenvalues in the two eigenbases are
+//! 1/(1 + λ_u μ_a + λ_v ν_b). RSS and tr A are sums over the spectral entries, O(N) per pair.
+//! The search, in log₁₀ λ over [−8, 12] in each direction (`minimise_log_pair`): the
+//! one-weight minimum on the diagonal λ_u = λ_v (a scan in steps of 1/4 refined by golden
+//! section), a scan of the square in steps of 1, and from the best of these coordinate
+//! descent, each step a scan of ±1 around the current value refined by golden section.
+//! A score whose denominator is not positive (the interpolating end) is infinite, and the
+//! range stops at 10⁻⁸, as for one weight. Scattered fixed nodes are treated as data in the
+//! score. A given `lambda` sets both weights and skips the search.
 //!
 //! # Cost
 //!
 //! Building the jump operators O(m² + n²), their eigendecompositions O(m³ + n³), the
-//! transforms of the data and back O(m·n·(m + n)), the λ search O(m·n) per trial (about 100).
+//! transforms of the data and back O(m·n·(m + n)), the search O(m·n) per trial (about 700).
 //! Not linear in the nodes: O(N^1.5) on a square net of N nodes, dominated by dense
 //! matrix products (criterion bench `surface_jump`). Each fixed node or band pin adds at most
 //! one conjugate-gradient iteration of two transforms.
@@ -88,7 +99,7 @@ use nalgebra::DMatrix;
 use super::surface::Closure;
 use crate::state::strategy_error;
 use crate::{Error, Result};
-use spectral::{planes, Planes, Spectral};
+use spectral::{planes, Coupling, Energies, Planes, Spectral, Weights};
 
 pub use join::{Continuity, Join, JoinEdge, JoinMeasure, JoinReport};
 
@@ -98,21 +109,24 @@ pub const NAME: &str = "jump-lsq";
 /// Rounds of pinning nodes on the tolerance band before the remaining ones are projected.
 pub const BAND_ROUNDS: usize = 10;
 
-/// Retries of a fit the refusal rule turns down, each at λ × [`GUARD_FACTOR`].
+/// Retries of a fit the refusal rule turns down, each at both weights × [`GUARD_FACTOR`].
 pub const GUARD_RETRIES: usize = 6;
 
-/// The factor on λ of a retry.
+/// The factor on the weights of a retry.
 pub const GUARD_FACTOR: f64 = 0.1;
 
 /// Conjugate-gradient iterations at most per constrained solve.
 const CG_ITERATIONS: usize = 500;
+
+/// The range of log₁₀ λ searched by GCV, in each direction.
+const LOG_LAMBDA_RANGE: (f64, f64) = (-8.0, 12.0);
 
 /// Settings of [`SurfaceJumpLsq`]: the parameters of the catalogue's surface `jump-lsq`.
 /// Default: λ by GCV, closures detected, chord-length knots, fits judged.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields, rename_all = "kebab-case")]
 pub struct SurfaceJumpLsqSettings {
-    /// Weight of the jump penalty (0: the input; larger: smoother), or auto (GCV).
+    /// Weight of the jump penalty in both directions (0: the input; larger: smoother), or auto (one weight per direction, chosen together by GCV).
     #[serde(with = "crate::catalog::value::auto")]
     #[schemars(with = "crate::catalog::value::AutoNumber")]
     #[schemars(extend("minimum" = 0))]
@@ -215,11 +229,13 @@ impl SurfaceJumpLsqSettings {
 pub struct SurfaceJumpLsqResult {
     /// The faired net's bicubic surface (knots averaged from the faired points).
     pub surface: BicubicSplineSurface,
-    /// λ used.
-    pub lambda: f64,
-    /// The GCV score at λ (None when λ was given or nothing was free).
+    /// λ_u used, the weight on the jumps across the u knot lines (along the u-lines).
+    pub lambda_u: f64,
+    /// λ_v used, the weight on the jumps across the v knot lines.
+    pub lambda_v: f64,
+    /// The GCV score at (λ_u, λ_v) (None when λ was given or nothing was free).
     pub gcv: Option<f64>,
-    /// Effective degrees of freedom per coordinate, tr A(λ), of the free block.
+    /// Effective degrees of freedom per coordinate, tr A(λ_u, λ_v), of the free block.
     pub dof: f64,
     /// S_d = Σ|ΔP_ij| over every node (both copies of a seam node).
     pub displacement: f64,
@@ -227,8 +243,8 @@ pub struct SurfaceJumpLsqResult {
     pub band_pins: usize,
     /// Conjugate-gradient iterations (fixed nodes and band pins).
     pub cg_iterations: usize,
-    /// Fits the refusal rule turned down (each retried at a tenth of λ; after
-    /// [`GUARD_RETRIES`] retries the input is returned, λ reported as 0).
+    /// Fits the refusal rule turned down (each retried at a tenth of both weights; after
+    /// [`GUARD_RETRIES`] retries the input is returned, the weights reported as 0).
     pub refused: usize,
     /// The closures and poles used.
     pub topology: GridTopology,
@@ -262,6 +278,11 @@ impl SurfaceJumpLsq {
     /// Errors: a bad setting, a ragged or too small grid, coinciding grid lines, a fixed node
     /// outside the grid, a closed direction whose last line does not repeat its first.
     pub fn run(&self, grid: &[Vec<Vec3>]) -> Result<SurfaceJumpLsqResult> {
+        self.fit(grid, self.settings.lambda.map(Weights::both))
+    }
+
+    /// [`run`](Self::run) with the weights given (`None`: by GCV), `settings.lambda` ignored.
+    pub(crate) fn fit(&self, grid: &[Vec<Vec3>], given: Option<Weights>) -> Result<SurfaceJumpLsqResult> {
         let settings = &self.settings;
         settings.validate()?;
         let started = std::time::Instant::now();
@@ -359,13 +380,13 @@ impl SurfaceJumpLsq {
         let data = |i: usize, j: usize| start[i * columns + j];
 
         let mut out_distinct: Vec<Vec3> = (0..mu * nv).map(|k| data(k / nv, k % nv)).collect();
-        let mut lambda_used = settings.lambda.unwrap_or(0.0);
+        let mut lambda_used = given.unwrap_or(Weights::both(0.0));
         let mut gcv_score = None;
         let mut dof = 0.0;
         let mut band_pins = 0;
         let mut cg_iterations = 0;
         let mut refused = 0;
-        if !free_rows.is_empty() && !free_cols.is_empty() && settings.lambda != Some(0.0) {
+        if !free_rows.is_empty() && !free_cols.is_empty() && given != Some(Weights::both(0.0)) {
             let du = operator::jump_matrix(input.u_knots(), topology.closed_u)?;
             let dv = operator::jump_matrix(input.v_knots(), topology.closed_v)?;
             let (ku_full, kv_full) = (operator::gram(&du), operator::gram(&dv));
@@ -378,19 +399,25 @@ impl SurfaceJumpLsq {
             let held_cols: Vec<usize> = (0..nv).filter(|&j| held_col[j]).collect();
             let (nr, nc) = (free_rows.len(), free_cols.len());
             let y = planes(nr, nc, |a, b| data(free_rows[a], free_cols[b]));
-            // Coupling to the held lines: K_u[R, Rh] P⁰[Rh, C] + P⁰[R, Ch] K_v[Ch, C].
-            let coupling: Option<Planes> = if held_rows.is_empty() && held_cols.is_empty() {
+            // Coupling to the held lines: K_u[R, Rh] P⁰[Rh, C] and P⁰[R, Ch] K_v[Ch, C].
+            let coupling: Option<Coupling> = if held_rows.is_empty() && held_cols.is_empty() {
                 None
             } else {
                 let kuh = sub(&ku_full, &free_rows, &held_rows);
                 let kvh = sub(&kv_full, &held_cols, &free_cols);
                 let ph = planes(held_rows.len(), nc, |a, b| data(held_rows[a], free_cols[b]));
                 let pv = planes(nr, held_cols.len(), |a, b| data(free_rows[a], held_cols[b]));
-                Some(std::array::from_fn(|c| &kuh * &ph[c] + &pv[c] * &kvh))
+                Some(Coupling {
+                    u: std::array::from_fn(|c| &kuh * &ph[c]),
+                    v: std::array::from_fn(|c| &pv[c] * &kvh),
+                })
             };
             let spectral = Spectral::new(ku.clone(), kv.clone());
             let y_hat = spectral.forward(&y);
-            let c_hat = coupling.as_ref().map(|c| spectral.forward(c));
+            let c_hat = coupling.as_ref().map(|c| Coupling {
+                u: spectral.forward(&c.u),
+                v: spectral.forward(&c.v),
+            });
             let n_free = (nr * nc) as f64;
             let joined = join::Joined::new(
                 &prepared,
@@ -401,23 +428,25 @@ impl SurfaceJumpLsq {
                 &data,
                 &spectral,
             );
-            let rss_trace = |l: f64| match &joined {
-                None => spectral.rss_trace(&y_hat, c_hat.as_ref(), l),
+            let energies = Energies::new(&y_hat, c_hat.as_ref());
+            let rss_trace = |w: Weights| match &joined {
+                None => spectral.rss_trace(&energies, w),
                 Some(joined) => {
-                    let mut x = spectral.solve_hat(&y_hat, c_hat.as_ref(), l);
-                    joined.correct(&mut x, &spectral, l);
+                    let mut x = spectral.solve_hat(&y_hat, c_hat.as_ref(), w);
+                    joined.correct(&mut x, &spectral, w);
                     let rss = (0..3).map(|c| (&x[c] - &y_hat[c]).norm_squared()).sum::<f64>();
-                    let trace =
-                        spectral.rss_trace(&y_hat, None, l).1 - joined.trace_loss(&spectral, l, (nr, nc));
+                    let trace = spectral.trace(w) - joined.trace_loss(&spectral, w, (nr, nc));
                     (rss, trace)
                 }
             };
-            let lambda = match settings.lambda {
-                Some(l) => l,
+            let lambda = match given {
+                Some(w) => w,
                 None => {
-                    let score = |log_l: f64| {
-                        let l = 10f64.powf(log_l);
-                        let (rss, trace) = rss_trace(l);
+                    let score = |log_u: f64, log_v: f64| {
+                        let (rss, trace) = rss_trace(Weights {
+                            u: 10f64.powf(log_u),
+                            v: 10f64.powf(log_v),
+                        });
                         let denom = 1.0 - trace / n_free;
                         if denom <= 0.0 {
                             f64::INFINITY
@@ -425,9 +454,12 @@ impl SurfaceJumpLsq {
                             (rss / (3.0 * n_free)) / (denom * denom)
                         }
                     };
-                    let (l, v) = minimise_log(score, -8.0, 12.0, 0.25);
-                    gcv_score = Some(v);
-                    10f64.powf(l)
+                    let ((u, v), value) = minimise_log_pair(score, LOG_LAMBDA_RANGE);
+                    gcv_score = Some(value);
+                    Weights {
+                        u: 10f64.powf(u),
+                        v: 10f64.powf(v),
+                    }
                 }
             };
             let system = Block {
@@ -474,11 +506,11 @@ impl SurfaceJumpLsq {
                     break;
                 }
                 refused += 1;
-                trial *= GUARD_FACTOR;
+                trial = trial.scaled(GUARD_FACTOR);
             }
             if accepted.is_none() && joined.is_some() {
                 // Every fit refused: the start moved least to hold the joins (λ = 0).
-                let (x, _, _) = system.solve(0.0, &scattered, None);
+                let (x, _, _) = system.solve(Weights::both(0.0), &scattered, None);
                 let mut candidate = out_distinct.clone();
                 for (a, &i) in free_rows.iter().enumerate() {
                     for (b, &j) in free_cols.iter().enumerate() {
@@ -488,7 +520,7 @@ impl SurfaceJumpLsq {
                         }
                     }
                 }
-                accepted = Some((0.0, candidate, 0));
+                accepted = Some((Weights::both(0.0), candidate, 0));
             }
             if let Some((l, candidate, pins)) = accepted {
                 lambda_used = l;
@@ -496,7 +528,7 @@ impl SurfaceJumpLsq {
                 band_pins = pins;
                 dof = rss_trace(l).1;
             } else {
-                lambda_used = 0.0;
+                lambda_used = Weights::both(0.0);
                 dof = n_free;
             }
         }
@@ -504,7 +536,10 @@ impl SurfaceJumpLsq {
         if points.iter().any(|p| !p.iter().all(|c| c.is_finite())) {
             return Err(strategy_error(
                 NAME,
-                format!("the fit at λ = {lambda_used} is not finite"),
+                format!(
+                    "the fit at λ_u = {}, λ_v = {} is not finite",
+                    lambda_used.u, lambda_used.v
+                ),
             ));
         }
         let displacement = flat.iter().zip(&points).map(|(p, q)| (p - q).norm()).sum();
@@ -524,7 +559,8 @@ impl SurfaceJumpLsq {
         };
         Ok(SurfaceJumpLsqResult {
             surface,
-            lambda: lambda_used,
+            lambda_u: lambda_used.u,
+            lambda_v: lambda_used.v,
             gcv: gcv_score,
             dof,
             displacement,
@@ -641,24 +677,28 @@ struct Block<'a> {
     kv: &'a DMatrix<f64>,
     y: &'a Planes,
     y_hat: &'a Planes,
-    coupling: Option<&'a Planes>,
-    c_hat: Option<&'a Planes>,
+    coupling: Option<&'a Coupling>,
+    c_hat: Option<&'a Coupling>,
     joined: Option<&'a join::Joined>,
 }
 
 impl Block<'_> {
-    /// The block's solution at λ with the `scattered` nodes held and the tolerance band kept
-    /// by pinning (module docs). Returns the solution, the band pins and the CG iterations.
+    /// The block's solution at the weights with the `scattered` nodes held and the tolerance
+    /// band kept by pinning (module docs). Returns the solution, the band pins and the CG
+    /// iterations.
     fn solve(
         &self,
-        lambda: f64,
+        lambda: Weights,
         scattered: &[(usize, usize, Vec3)],
         band: Option<f64>,
     ) -> (Planes, usize, usize) {
         let x_hat = self.solve_hat(lambda);
         let mut x = self.spectral.back(&x_hat);
         let rhs: Planes = match self.coupling {
-            Some(c) => std::array::from_fn(|k| &self.y[k] - &c[k] * lambda),
+            Some(c) => {
+                let b = c.combined(lambda);
+                std::array::from_fn(|k| &self.y[k] - &b[k])
+            }
             None => self.y.clone(),
         };
         let mut pinned = scattered.to_vec();
@@ -697,8 +737,8 @@ impl Block<'_> {
         (x, band_pins, iterations)
     }
 
-    /// X̂ at λ with the joins' constraints.
-    fn solve_hat(&self, lambda: f64) -> Planes {
+    /// X̂ at the weights with the joins' constraints.
+    fn solve_hat(&self, lambda: Weights) -> Planes {
         let mut x_hat = self.spectral.solve_hat(self.y_hat, self.c_hat, lambda);
         if let Some(joined) = self.joined {
             joined.correct(&mut x_hat, self.spectral, lambda);
@@ -706,13 +746,13 @@ impl Block<'_> {
         x_hat
     }
 
-    /// X + λ (K_u X + X K_v).
-    fn apply(&self, x: &Planes, lambda: f64) -> Planes {
-        std::array::from_fn(|c| &x[c] + (self.ku * &x[c] + &x[c] * self.kv) * lambda)
+    /// X + λ_u K_u X + λ_v X K_v.
+    fn apply(&self, x: &Planes, lambda: Weights) -> Planes {
+        std::array::from_fn(|c| &x[c] + (self.ku * &x[c]) * lambda.u + (&x[c] * self.kv) * lambda.v)
     }
 
     /// The exact inverse, through the eigenbases.
-    fn inverse(&self, r: &Planes, lambda: f64) -> Planes {
+    fn inverse(&self, r: &Planes, lambda: Weights) -> Planes {
         let hat = self.spectral.forward(r);
         self.spectral.back(&self.spectral.solve_hat(&hat, None, lambda))
     }
@@ -725,7 +765,7 @@ impl Block<'_> {
         x: &mut Planes,
         rhs: &Planes,
         pinned: &[(usize, usize, Vec3)],
-        lambda: f64,
+        lambda: Weights,
     ) -> usize {
         let mask = |p: &mut Planes| {
             for &(a, b, _) in pinned {
@@ -819,3 +859,44 @@ fn minimise_log(f: impl Fn(f64) -> f64, lo: f64, hi: f64, step: f64) -> (f64, f6
         best
     }
 }
+
+/// The minimum of `f(log₁₀ λ_u, log₁₀ λ_v)` over the square `range`²: the one-weight minimum
+/// on the diagonal ([`minimise_log`] in steps of 1/4), a scan of the square in steps of 1, then
+/// from the best of these coordinate descent, each step [`minimise_log`] over ±1 around the
+/// current value in steps of 1/4, until a round moves neither by more than 10⁻³ (at most
+/// [`DESCENT_ROUNDS`] rounds). Never returns a value above the diagonal's minimum. Returns
+/// ((log λ_u, log λ_v), value). About 700 evaluations.
+fn minimise_log_pair(f: impl Fn(f64, f64) -> f64, range: (f64, f64)) -> ((f64, f64), f64) {
+    let (lo, hi) = range;
+    let (d, dv) = minimise_log(|x| f(x, x), lo, hi, 0.25);
+    let mut best = ((d, d), dv);
+    let count = (hi - lo).round() as usize;
+    for a in 0..=count {
+        for b in 0..=count {
+            let (x, y) = (lo + a as f64, lo + b as f64);
+            let v = f(x, y);
+            if v < best.1 {
+                best = ((x, y), v);
+            }
+        }
+    }
+    for _ in 0..DESCENT_ROUNDS {
+        let ((x, y), _) = best;
+        let (nx, vx) = minimise_log(|t| f(t, y), (x - 1.0).max(lo), (x + 1.0).min(hi), 0.25);
+        if vx < best.1 {
+            best = ((nx, y), vx);
+        }
+        let x1 = best.0 .0;
+        let (ny, vy) = minimise_log(|t| f(x1, t), (y - 1.0).max(lo), (y + 1.0).min(hi), 0.25);
+        if vy < best.1 {
+            best = ((x1, ny), vy);
+        }
+        if (best.0 .0 - x).abs() < 1e-3 && (best.0 .1 - y).abs() < 1e-3 {
+            break;
+        }
+    }
+    best
+}
+
+/// Rounds of coordinate descent at most in [`minimise_log_pair`].
+const DESCENT_ROUNDS: usize = 8;

@@ -5,15 +5,15 @@
 //! docs of [`super`]) are, coordinate by coordinate,
 //!
 //! ```text
-//! X + λ (K_u X + X K_v) = Y − λ B,
+//! X + λ_u K_u X + λ_v X K_v = Y − (λ_u B_u + λ_v B_v),
 //! ```
 //!
 //! K_u = K[R, R] and K_v = K[C, C] the principal submatrices of the two Gram matrices, Y the
-//! data of the block and B the coupling to the held lines. With K_u = U diag(μ) Uᵀ and
-//! K_v = V diag(ν) Vᵀ, X̂ = Uᵀ X V solves the system entry by entry:
-//! X̂_ab = (Ŷ_ab − λ B̂_ab) / (1 + λ (μ_a + ν_b)). The residual and the trace of the smoother
-//! are sums over the same entries, so a GCV score costs O(|R|·|C|) per λ once Ŷ and B̂ are
-//! known. Cost: the two eigendecompositions O(|R|³ + |C|³), a transform O(|R|·|C|·(|R| + |C|)).
+//! data of the block and B_u, B_v the coupling to the held rows and columns. With
+//! K_u = U diag(μ) Uᵀ and K_v = V diag(ν) Vᵀ, X̂ = Uᵀ X V solves the system entry by entry:
+//! X̂_ab = (Ŷ_ab − λ_u B̂u_ab − λ_v B̂v_ab) / (1 + λ_u μ_a + λ_v ν_b). The residual and the
+//! trace of the smoother are sums over the same entries, so a GCV score costs O(|R|·|C|) per
+//! pair (λ_u, λ_v) once Ŷ and B̂ are known. Cost: the two eigendecompositions O(|R|³ + |C|³), a transform O(|R|·|C|·(|R| + |C|)).
 
 use nalgebra::{DMatrix, SymmetricEigen};
 
@@ -32,6 +32,47 @@ pub(crate) struct Spectral {
 
 /// Three coordinate planes of a block, each |R| × |C|.
 pub(crate) type Planes = [DMatrix<f64>; 3];
+
+/// The penalty weights of the two directions, λ_u on the u-jumps and λ_v on the v-jumps.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Weights {
+    pub u: f64,
+    pub v: f64,
+}
+
+impl Weights {
+    /// One weight on both directions.
+    pub(crate) fn both(lambda: f64) -> Self {
+        Self { u: lambda, v: lambda }
+    }
+
+    /// Both weights times `factor`.
+    pub(crate) fn scaled(self, factor: f64) -> Self {
+        Self {
+            u: self.u * factor,
+            v: self.v * factor,
+        }
+    }
+}
+
+/// The coupling of the block to the held lines, split by direction: B_u = K_u[R, Rh] P⁰[Rh, C]
+/// (held rows) and B_v = P⁰[R, Ch] K_v[Ch, C] (held columns).
+pub(crate) struct Coupling {
+    pub u: Planes,
+    pub v: Planes,
+}
+
+impl Coupling {
+    /// λ_u B_u + λ_v B_v at one entry of plane `c`.
+    pub(crate) fn at(&self, c: usize, a: usize, b: usize, w: Weights) -> f64 {
+        w.u * self.u[c][(a, b)] + w.v * self.v[c][(a, b)]
+    }
+
+    /// λ_u B_u + λ_v B_v.
+    pub(crate) fn combined(&self, w: Weights) -> Planes {
+        std::array::from_fn(|c| &self.u[c] * w.u + &self.v[c] * w.v)
+    }
+}
 
 impl Spectral {
     pub(super) fn new(ku: DMatrix<f64>, kv: DMatrix<f64>) -> Self {
@@ -67,48 +108,93 @@ impl Spectral {
         x.clone().map(|p| &self.u * p * &vt)
     }
 
-    /// s_ab = μ_a + ν_b.
-    pub(super) fn s(&self, a: usize, b: usize) -> f64 {
-        self.mu[a] + self.nu[b]
+    /// s_ab = λ_u μ_a + λ_v ν_b, the entry's penalty eigenvalue.
+    pub(super) fn s(&self, a: usize, b: usize, w: Weights) -> f64 {
+        w.u * self.mu[a] + w.v * self.nu[b]
     }
 
-    /// X̂ at λ.
-    pub(super) fn solve_hat(&self, y: &Planes, coupling: Option<&Planes>, lambda: f64) -> Planes {
+    /// X̂ at the weights `w`.
+    pub(super) fn solve_hat(&self, y: &Planes, coupling: Option<&Coupling>, w: Weights) -> Planes {
         let mut out = y.clone();
         for (c, plane) in out.iter_mut().enumerate() {
             for b in 0..plane.ncols() {
                 for a in 0..plane.nrows() {
                     let mut rhs = plane[(a, b)];
                     if let Some(cp) = coupling {
-                        rhs -= lambda * cp[c][(a, b)];
+                        rhs -= cp.at(c, a, b, w);
                     }
-                    plane[(a, b)] = rhs / (1.0 + lambda * self.s(a, b));
+                    plane[(a, b)] = rhs / (1.0 + self.s(a, b, w));
                 }
             }
         }
         out
     }
 
-    /// (RSS, trace of the smoother) at λ: RSS = Σ |X̂ − Ŷ|² over the three planes, the
-    /// trace Σ_ab 1/(1 + λ s_ab) (per coordinate).
-    pub(super) fn rss_trace(&self, y: &Planes, coupling: Option<&Planes>, lambda: f64) -> (f64, f64) {
-        let (rows, cols) = y[0].shape();
+    /// The trace of the smoother at the weights `w`, Σ_ab 1/(1 + λ_u μ_a + λ_v ν_b) (per
+    /// coordinate).
+    pub(super) fn trace(&self, w: Weights) -> f64 {
+        let mut trace = 0.0;
+        for &nu in &self.nu {
+            for &mu in &self.mu {
+                trace += 1.0 / (1.0 + w.u * mu + w.v * nu);
+            }
+        }
+        trace
+    }
+
+    /// (RSS, trace of the smoother) at the weights `w`: RSS = Σ |X̂ − Ŷ|² over the three
+    /// planes, from the data's [`Energies`]; the trace as [`trace`](Self::trace). O(|R|·|C|).
+    pub(super) fn rss_trace(&self, e: &Energies, w: Weights) -> (f64, f64) {
+        let (rows, cols) = e.yy.shape();
         let mut rss = 0.0;
         let mut trace = 0.0;
         for b in 0..cols {
             for a in 0..rows {
-                let g = 1.0 / (1.0 + lambda * self.s(a, b));
+                let s = w.u * self.mu[a] + w.v * self.nu[b];
+                let g = 1.0 / (1.0 + s);
                 trace += g;
-                for c in 0..3 {
-                    let yv = y[c][(a, b)];
-                    let cv = coupling.map_or(0.0, |cp| cp[c][(a, b)]);
-                    // X̂ − Ŷ = −λ (s Ŷ + B̂) / (1 + λ s)
-                    let r = lambda * (self.s(a, b) * yv + cv) * g;
-                    rss += r * r;
+                // X̂ − Ŷ = −(s Ŷ + λ_u B̂u + λ_v B̂v) / (1 + s), squared and summed over the
+                // coordinates.
+                let mut r2 = s * s * e.yy[(a, b)];
+                if let Some([yu, yv, uu, uv, vv]) = &e.cross {
+                    r2 += 2.0 * s * (w.u * yu[(a, b)] + w.v * yv[(a, b)])
+                        + w.u * w.u * uu[(a, b)]
+                        + 2.0 * w.u * w.v * uv[(a, b)]
+                        + w.v * w.v * vv[(a, b)];
                 }
+                rss += g * g * r2;
             }
         }
         (rss, trace)
+    }
+}
+
+/// The transformed data's energies per spectral entry, summed over the three coordinates:
+/// Σ_c Ŷ², and with a coupling Σ_c Ŷ B̂u, Σ_c Ŷ B̂v, Σ_c B̂u², Σ_c B̂u B̂v, Σ_c B̂v². The RSS at
+/// any weights is then one term per entry ([`Spectral::rss_trace`]).
+pub(crate) struct Energies {
+    yy: DMatrix<f64>,
+    cross: Option<[DMatrix<f64>; 5]>,
+}
+
+impl Energies {
+    pub(crate) fn new(y: &Planes, coupling: Option<&Coupling>) -> Self {
+        let (rows, cols) = y[0].shape();
+        let sum = |f: &dyn Fn(usize, usize, usize) -> f64| {
+            DMatrix::from_fn(rows, cols, |a, b| (0..3).map(|c| f(c, a, b)).sum())
+        };
+        Self {
+            yy: sum(&|c, a, b| y[c][(a, b)] * y[c][(a, b)]),
+            cross: coupling.map(|k| {
+                [
+                    sum(&|c, a, b| y[c][(a, b)] * k.u[c][(a, b)]),
+                    sum(&|c, a, b| y[c][(a, b)] * k.v[c][(a, b)]),
+                    sum(&|c, a, b| k.u[c][(a, b)] * k.u[c][(a, b)]),
+                    sum(&|c, a, b| k.u[c][(a, b)] * k.v[c][(a, b)]),
+                    sum(&|c, a, b| k.v[c][(a, b)] * k.v[c][(a, b)]),
+                ]
+            }),
+        }
     }
 }
 

@@ -4,6 +4,7 @@ use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings, Vec3};
 use nalgebra::{DMatrix, DVector};
 
 use super::operator::{gram, jump_matrix};
+use super::spectral::Weights;
 use super::{SurfaceJumpLsq, SurfaceJumpLsqSettings};
 use crate::strategies::surface::Closure;
 
@@ -189,6 +190,12 @@ fn huge_lambda_gives_the_least_squares_bilinear_surface_without_jumps() {
 
 /// The gradient of the objective at the free nodes, from the jump matrices directly.
 fn gradient(grid: &[Vec<Vec3>], out: &[Vec3], lambda: f64) -> Vec<Vec3> {
+    gradient_pair(grid, out, Weights::both(lambda))
+}
+
+/// The gradient of Σ|P − P⁰|² + λ_u |D_u P|² + λ_v |P D_vᵀ|² (halved), dense:
+/// (P − P⁰) + λ_u K_u P + λ_v P K_v.
+fn gradient_pair(grid: &[Vec<Vec3>], out: &[Vec3], w: Weights) -> Vec<Vec3> {
     let input = BicubicSplineSurface::new(grid).unwrap();
     let (rows, columns) = (grid.len(), grid[0].len());
     let ku = gram(&jump_matrix(input.u_knots(), false).unwrap());
@@ -197,7 +204,7 @@ fn gradient(grid: &[Vec<Vec3>], out: &[Vec3], lambda: f64) -> Vec<Vec3> {
     for c in 0..3 {
         let p = DMatrix::from_fn(rows, columns, |i, j| out[i * columns + j][c]);
         let p0 = DMatrix::from_fn(rows, columns, |i, j| grid[i][j][c]);
-        let grad = (&p - &p0) + (&ku * &p + &p * &kv) * lambda;
+        let grad = (&p - &p0) + (&ku * &p) * w.u + (&p * &kv) * w.v;
         for k in 0..rows * columns {
             g[k][c] = grad[(k / columns, k % columns)];
         }
@@ -315,7 +322,7 @@ fn seam_stays_closed_and_gcv_moves_toward_the_clean_tube() {
             .sqrt()
     };
     let flat: Vec<Vec3> = grid.iter().flatten().copied().collect();
-    assert!(result.gcv.is_some() && result.lambda > 0.0);
+    assert!(result.gcv.is_some() && result.lambda_u > 0.0 && result.lambda_v > 0.0);
     assert!(rms(out) < rms(&flat), "{} against {}", rms(out), rms(&flat));
 }
 
@@ -361,5 +368,138 @@ fn end_derivative_is_the_natural_spline_end_tangent() {
                 "end {at_end} j {j}: {d:?} vs {t:?}"
             );
         }
+    }
+}
+
+#[test]
+fn two_weights_solve_their_normal_equations() {
+    // (I + λ_u K_u ⊕ λ_v K_v) P = P⁰ at the free nodes, checked densely: on a free net, with
+    // the boundary lines held (the coupling to held rows and held columns, split by
+    // direction) and with scattered fixed nodes (the conjugate-gradient correction).
+    let grid = noisy(9, 8, 0.05);
+    let w = Weights { u: 0.3, v: 7.0 };
+    let boundary: Vec<(usize, usize)> = (0..9)
+        .flat_map(|i| (0..8).map(move |j| (i, j)))
+        .filter(|&(i, j)| i == 0 || j == 0 || i == 8 || j == 7)
+        .collect();
+    for fixed in [Vec::new(), boundary, vec![(2, 3), (6, 1), (0, 7)]] {
+        let result = SurfaceJumpLsq::new(
+            SurfaceJumpLsqSettings::default()
+                .with_guard(false)
+                .with_fixed(fixed.clone()),
+        )
+        .fit(&grid, Some(w))
+        .unwrap();
+        assert_eq!((result.lambda_u, result.lambda_v), (w.u, w.v));
+        let out = result.surface.points();
+        for &(i, j) in &fixed {
+            assert_eq!(out[i * 8 + j], grid[i][j]);
+        }
+        let g = gradient_pair(&grid, out, w);
+        for (k, gk) in g.iter().enumerate() {
+            if !fixed.contains(&(k / 8, k % 8)) {
+                assert!(
+                    gk.norm() < 1e-9,
+                    "fixed {fixed:?}, node {k}: gradient {}",
+                    gk.norm()
+                );
+            }
+        }
+    }
+    // The two weights are not one: swapping them changes the fit.
+    let swapped = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default().with_guard(false))
+        .fit(&grid, Some(Weights { u: w.v, v: w.u }))
+        .unwrap();
+    let g = gradient_pair(&grid, swapped.surface.points(), w);
+    assert!(g.iter().any(|gk| gk.norm() > 1e-6));
+}
+
+/// A net wavy along u (i) and straight along v (j), noisy on every coordinate.
+fn ruled(rows: usize, columns: usize, amplitude: f64, seed: u64) -> Vec<Vec<Vec3>> {
+    let mut state = seed;
+    let mut noise = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    (0..rows)
+        .map(|i| {
+            (0..columns)
+                .map(|j| {
+                    let (x, y) = (i as f64 / (rows - 1) as f64, j as f64 / (columns - 1) as f64);
+                    let z = 0.15 * (std::f64::consts::TAU * 1.5 * x).sin();
+                    Vec3::new(x, y, z) + Vec3::new(noise(), noise(), noise()) * amplitude
+                })
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn gcv_smooths_the_straight_direction_harder() {
+    // Every v-line (constant i) is straight: its jumps across the v knot lines are noise
+    // alone, so GCV's λ_v must be far larger than its λ_u, the u-lines being sine waves.
+    // The transposed net must give the transposed pair.
+    for seed in [0x2545_f491_4f6c_dd1d_u64, 0x9e37_79b9_7f4a_7c15] {
+        let grid = ruled(30, 30, 0.01, seed);
+        let run = |g: &[Vec<Vec3>]| {
+            SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default().with_guard(false))
+                .run(g)
+                .unwrap()
+        };
+        let result = run(&grid);
+        assert!(
+            result.lambda_v > 100.0 * result.lambda_u,
+            "λ_u {} λ_v {}",
+            result.lambda_u,
+            result.lambda_v
+        );
+        let transposed: Vec<Vec<Vec3>> = (0..30).map(|j| (0..30).map(|i| grid[i][j]).collect()).collect();
+        let t = run(&transposed);
+        let close = |a: f64, b: f64| (a.log10() - b.log10()).abs() < 0.05;
+        assert!(
+            close(t.lambda_u, result.lambda_v) && close(t.lambda_v, result.lambda_u),
+            "({}, {}) against ({}, {})",
+            t.lambda_u,
+            t.lambda_v,
+            result.lambda_u,
+            result.lambda_v
+        );
+    }
+}
+
+#[test]
+fn gcv_rss_and_trace_are_those_of_the_solve() {
+    // The score's RSS (from the energies) is |X̂ − Ŷ|² of the spectral solve with a coupling,
+    // and its trace is tr (I + λ_u I⊗K_u + λ_v K_v⊗I)⁻¹, built densely.
+    use super::spectral::{Coupling, Energies, Planes, Spectral};
+    let (m, n) = (5, 4);
+    let du = DMatrix::from_fn(3, m, |i, j| ((i * 7 + j * 3) as f64).sin());
+    let dv = DMatrix::from_fn(2, n, |i, j| ((i * 5 + j * 2 + 1) as f64).cos());
+    let (ku, kv) = (du.transpose() * &du, dv.transpose() * &dv);
+    let spectral = Spectral::new(ku.clone(), kv.clone());
+    let plane = |k: usize| -> Planes {
+        std::array::from_fn(|c| DMatrix::from_fn(m, n, |a, b| ((a * 5 + b * 3 + c * 11 + k) as f64).cos()))
+    };
+    let y = plane(0);
+    let coupling = Coupling {
+        u: plane(1),
+        v: plane(2),
+    };
+    for w in [Weights { u: 0.3, v: 7.0 }, Weights { u: 1e3, v: 1e-3 }] {
+        let x = spectral.solve_hat(&y, Some(&coupling), w);
+        let rss: f64 = (0..3).map(|c| (&x[c] - &y[c]).norm_squared()).sum();
+        let (score_rss, trace) = spectral.rss_trace(&Energies::new(&y, Some(&coupling)), w);
+        assert!(
+            (score_rss - rss).abs() <= 1e-12 * rss,
+            "{score_rss} against {rss}"
+        );
+        let a = DMatrix::identity(m * n, m * n)
+            + DMatrix::<f64>::identity(n, n).kronecker(&ku) * w.u
+            + kv.kronecker(&DMatrix::<f64>::identity(m, m)) * w.v;
+        let dense = a.try_inverse().unwrap().trace();
+        assert!((trace - dense).abs() <= 1e-10 * dense, "{trace} against {dense}");
+        assert!((spectral.trace(w) - dense).abs() <= 1e-10 * dense);
     }
 }
