@@ -401,8 +401,9 @@ def table(paths):
         rows = [json.loads(line) for line in open(path)]
         print(f"\n{path}\n")
         print("| family | noise | cases | refused | beats both | beats csaps | median RMS / "
-              "csaps-GCV | RMS / input (geo. mean) | farther than input (peers not) |")
-        print("|---|---|---|---|---|---|---|---|---|")
+              "csaps-GCV | RMS / input (geo. mean) | farther than input (peers not) | "
+              "> 2× clean inflections |")
+        print("|---|---|---|---|---|---|---|---|---|---|")
         fams = list(dict.fromkeys(r["family"] for r in rows))
         for fam in fams:
             fr = [r for r in rows if r["family"] == fam]
