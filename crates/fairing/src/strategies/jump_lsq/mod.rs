@@ -12,8 +12,8 @@
 //!
 //! where J_i = s‴(t_i+) − s‴(t_i−) is the jump of the third derivative of the interpolating
 //! cubic spline s through P at knot i (Zhang–Cheng Eq. 17's z_i as a signed vector, and
-//! 6 e_i in Han et al.'s notation), Δ^d the d-th difference along the knots (default d = 1;
-//! the issue proposed 2, which measured worse, see the settings), h̄_r the mean length of
+//! 6 e_i in Han et al.'s notation), Δ^d the d-th difference along the knots (d = 1, 2 or
+//! 3, by default the one of least GCV score, see the settings), h̄_r the mean length of
 //! the d + 2 spans that row r's jumps separate, relative to the median spacing h_med, and a
 //! the spacing exponent (default 8). The factor h_med³ gives J the
 //! units of the points, so λ is dimensionless and scale-free: multiplying all coordinates
