@@ -73,6 +73,12 @@
 //! one-weight minimum on the diagonal λ_u = λ_v (a scan in steps of 1/4 refined by golden
 //! section), a scan of the square in steps of 1, and from the best of these coordinate
 //! descent, each step a scan of ±1 around the current value refined by golden section.
+//! Last, on a plain block (no held lines or nodes, joins or band), the limit λ → ∞ in either
+//! direction is scored (`with_limits`, at a weight of 10³⁰) and taken if no worse: where a
+//! direction's lines are straight in the data (a helicoid's rulings) the score falls or stays
+//! flat up to the range's top. At the limit those lines are projected exactly onto the
+//! penalty's null space (`straighten`: least-squares lines a + b t, or the mean on a closed
+//! direction), which the eigenbasis solve gives only to the accuracy of its null vectors.
 //! A score whose denominator is not positive (the interpolating end) is infinite, and the
 //! range stops at 10⁻⁸, as for one weight. Scattered fixed nodes are treated as data in the
 //! score. A given `lambda` sets both weights and skips the search.
@@ -120,6 +126,12 @@ const CG_ITERATIONS: usize = 500;
 
 /// The range of log₁₀ λ searched by GCV, in each direction.
 const LOG_LAMBDA_RANGE: (f64, f64) = (-8.0, 12.0);
+
+/// log₁₀ of the weight that stands for λ → ∞ in one direction (its lines fitted by the
+/// penalty's null space, straight lines on an open direction): GCV's last candidates, one per
+/// direction. At 10³⁰ every mode outside the (exactly zeroed) null space is damped below
+/// 10⁻¹⁵ on nets of up to ~200 lines; the squares in the score stay far from overflow.
+const LOG_LAMBDA_LIMIT: f64 = 30.0;
 
 /// Settings of [`SurfaceJumpLsq`]: the parameters of the catalogue's surface `jump-lsq`.
 /// Default: λ by GCV, closures detected, chord-length knots, fits judged.
@@ -439,6 +451,15 @@ impl SurfaceJumpLsq {
                     (rss, trace)
                 }
             };
+            // The limits (λ → ∞ in one direction, [`with_limits`]) are tried only on a plain
+            // block: no held lines or nodes, joins or band, so that the limit's solution is
+            // the exact projection of [`straighten`].
+            let limits_allowed = joined.is_none()
+                && coupling.is_none()
+                && settings.max_distance.is_none()
+                && free_rows
+                    .iter()
+                    .all(|&i| free_cols.iter().all(|&j| !held[i * nv + j]));
             let lambda = match given {
                 Some(w) => w,
                 None => {
@@ -454,7 +475,12 @@ impl SurfaceJumpLsq {
                             (rss / (3.0 * n_free)) / (denom * denom)
                         }
                     };
-                    let ((u, v), value) = minimise_log_pair(score, LOG_LAMBDA_RANGE);
+                    let found = minimise_log_pair(score, LOG_LAMBDA_RANGE);
+                    let ((u, v), value) = if limits_allowed {
+                        with_limits(score, found)
+                    } else {
+                        found
+                    };
                     gcv_score = Some(value);
                     Weights {
                         u: 10f64.powf(u),
@@ -484,8 +510,16 @@ impl SurfaceJumpLsq {
             let mut trial = lambda;
             let mut accepted = None;
             for _ in 0..=GUARD_RETRIES {
-                let (x, pins, iterations) = system.solve(trial, &scattered, settings.max_distance);
+                let (mut x, pins, iterations) = system.solve(trial, &scattered, settings.max_distance);
                 cg_iterations += iterations;
+                if limits_allowed {
+                    straighten(
+                        &mut x,
+                        trial,
+                        (&input.u_knots()[..mu], topology.closed_u),
+                        (&input.v_knots()[..nv], topology.closed_v),
+                    );
+                }
                 let mut candidate = out_distinct.clone();
                 for (a, &i) in free_rows.iter().enumerate() {
                     for (b, &j) in free_cols.iter().enumerate() {
@@ -896,6 +930,70 @@ fn minimise_log_pair(f: impl Fn(f64, f64) -> f64, range: (f64, f64)) -> ((f64, f
         }
     }
     best
+}
+
+/// GCV's candidates at the limit: the pair `best` with either weight replaced by
+/// 10^[`LOG_LAMBDA_LIMIT`] (λ → ∞ in that direction), each taken if its score is no higher.
+/// The score of a direction whose lines are straight in the data falls or stays flat up to
+/// the searched range's top, where a 10¹² weight still leaves the lowest non-null mode of a
+/// noisy line (damped only ~10⁴-fold on a 60-line net): a faint planar wiggle with an
+/// inflection. Two evaluations.
+fn with_limits(f: impl Fn(f64, f64) -> f64, best: ((f64, f64), f64)) -> ((f64, f64), f64) {
+    let ((x, y), _) = best;
+    let mut best = best;
+    for candidate in [(LOG_LAMBDA_LIMIT, y), (x, LOG_LAMBDA_LIMIT)] {
+        let value = f(candidate.0, candidate.1);
+        if value <= best.1 {
+            best = (candidate, value);
+        }
+    }
+    best
+}
+
+/// A weight at least this large is the limit λ → ∞ ([`LOG_LAMBDA_LIMIT`], after the refusal
+/// rule's retries at a tenth each).
+const LIMIT_WEIGHT: f64 = 1e20;
+
+/// At the limit λ → ∞ in a direction the solution's lines along it are the orthogonal
+/// projections of the finite-weight solution onto the penalty's null space: on an open
+/// direction the least-squares line a + b t over the sites t (the knots), on a closed one the
+/// mean. The eigenbasis solve gives that only to the accuracy of the computed null vectors
+/// (round-off over the gap to the lowest non-null eigenvalue, ~10⁻⁷ on a 60-line net, enough
+/// for a line to keep a planar wiggle with an inflection); this makes the lines straight to
+/// round-off. Exact for the plain block (no coupling, held nodes or band), where the limit's
+/// solution is Π_u Y S_v (or Y S_u Π_v, or Π_u Y Π_v). O(m·n) per direction.
+fn straighten(x: &mut Planes, w: Weights, u: (&[f64], bool), v: (&[f64], bool)) {
+    for plane in x.iter_mut() {
+        let (rows, cols) = plane.shape();
+        if w.u >= LIMIT_WEIGHT && rows == u.0.len() {
+            for b in 0..cols {
+                let mut line: Vec<f64> = plane.column(b).iter().copied().collect();
+                project_line(&mut line, u.0, u.1);
+                plane.column_mut(b).iter_mut().zip(line).for_each(|(p, q)| *p = q);
+            }
+        }
+        if w.v >= LIMIT_WEIGHT && cols == v.0.len() {
+            for a in 0..rows {
+                let mut line: Vec<f64> = plane.row(a).iter().copied().collect();
+                project_line(&mut line, v.0, v.1);
+                plane.row_mut(a).iter_mut().zip(line).for_each(|(p, q)| *p = q);
+            }
+        }
+    }
+}
+
+/// The values of one line replaced by their least-squares fit a + b t over the sites (the
+/// mean on a closed line).
+fn project_line(values: &mut [f64], sites: &[f64], closed: bool) {
+    let n = sites.len() as f64;
+    let tm = sites.iter().sum::<f64>() / n;
+    let mean = values.iter().sum::<f64>() / n;
+    let stt: f64 = sites.iter().map(|t| (t - tm) * (t - tm)).sum();
+    let sty: f64 = sites.iter().zip(values.iter()).map(|(t, y)| (t - tm) * y).sum();
+    let slope = if closed || stt <= 0.0 { 0.0 } else { sty / stt };
+    for (y, t) in values.iter_mut().zip(sites) {
+        *y = mean + slope * (t - tm);
+    }
 }
 
 /// Rounds of coordinate descent at most in [`minimise_log_pair`].
