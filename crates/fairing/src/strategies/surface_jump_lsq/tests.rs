@@ -8,9 +8,16 @@ use super::spectral::Weights;
 use super::{SurfaceJumpLsq, SurfaceJumpLsqSettings};
 use crate::strategies::surface::Closure;
 
-/// A smooth open net with a deterministic pseudo-noise on every coordinate.
-fn noisy(rows: usize, columns: usize, amplitude: f64) -> Vec<Vec<Vec3>> {
-    let mut state = 0x2545_f491_4f6c_dd1d_u64;
+/// A net of `rows` × `columns` nodes of `surface(x, y)` over x, y ∈ [0, 1], each coordinate
+/// moved by a deterministic pseudo-noise (xorshift from `seed`) in [−amplitude/2, amplitude/2).
+fn noisy_net(
+    rows: usize,
+    columns: usize,
+    amplitude: f64,
+    seed: u64,
+    surface: impl Fn(f64, f64) -> Vec3,
+) -> Vec<Vec<Vec3>> {
+    let mut state = seed;
     let mut noise = move || {
         state ^= state << 13;
         state ^= state >> 7;
@@ -21,16 +28,20 @@ fn noisy(rows: usize, columns: usize, amplitude: f64) -> Vec<Vec<Vec3>> {
         .map(|i| {
             (0..columns)
                 .map(|j| {
-                    let (x, y) = (
-                        i as f64 / (rows - 1) as f64,
-                        j as f64 / (columns - 1) as f64 * 1.3,
-                    );
-                    let z = 0.3 * (2.0 * x).sin() * (1.5 * y).cos() + 0.1 * x * x;
-                    Vec3::new(x, y, z) + Vec3::new(noise(), noise(), noise()) * amplitude
+                    let (x, y) = (i as f64 / (rows - 1) as f64, j as f64 / (columns - 1) as f64);
+                    surface(x, y) + Vec3::new(noise(), noise(), noise()) * amplitude
                 })
                 .collect()
         })
         .collect()
+}
+
+/// A smooth open net with a deterministic pseudo-noise on every coordinate.
+fn noisy(rows: usize, columns: usize, amplitude: f64) -> Vec<Vec<Vec3>> {
+    noisy_net(rows, columns, amplitude, 0x2545_f491_4f6c_dd1d, |x, y| {
+        let y = y * 1.3;
+        Vec3::new(x, y, 0.3 * (2.0 * x).sin() * (1.5 * y).cos() + 0.1 * x * x)
+    })
 }
 
 /// A net closed in v (a tube), the last column repeating the first.
@@ -416,24 +427,9 @@ fn two_weights_solve_their_normal_equations() {
 
 /// A net wavy along u (i) and straight along v (j), noisy on every coordinate.
 fn ruled(rows: usize, columns: usize, amplitude: f64, seed: u64) -> Vec<Vec<Vec3>> {
-    let mut state = seed;
-    let mut noise = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
-    (0..rows)
-        .map(|i| {
-            (0..columns)
-                .map(|j| {
-                    let (x, y) = (i as f64 / (rows - 1) as f64, j as f64 / (columns - 1) as f64);
-                    let z = 0.15 * (std::f64::consts::TAU * 1.5 * x).sin();
-                    Vec3::new(x, y, z) + Vec3::new(noise(), noise(), noise()) * amplitude
-                })
-                .collect()
-        })
-        .collect()
+    noisy_net(rows, columns, amplitude, seed, |x, y| {
+        Vec3::new(x, y, 0.15 * (std::f64::consts::TAU * 1.5 * x).sin())
+    })
 }
 
 #[test]
