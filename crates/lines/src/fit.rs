@@ -196,6 +196,17 @@ impl Straight {
         }
     }
 
+    /// The reduced coefficients of full ones that are straight in u (s_0 = 0, s_last = 1).
+    fn unknowns(&self, c: &[f64]) -> Vec<f64> {
+        let nx = c.len() / self.nu;
+        let mut p = Vec::with_capacity(2 * nx);
+        for i in 0..nx {
+            let (a, b) = (c[i * self.nu], c[i * self.nu + self.nu - 1]);
+            p.extend([a, b - a]);
+        }
+        p
+    }
+
     /// The full coefficients of the reduced ones.
     fn expand(&self, p: &[f64]) -> Vec<f64> {
         let nx = p.len() / 2;
@@ -318,14 +329,25 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64, straight:
                 atb[i] += w * v * o.target;
             }
         }
-        // a tiny ridge keeps coefficients without data (outside the hull) determined
+        // a tiny ridge keeps coefficients without data (outside the hull) determined; it pulls
+        // toward the previous outer iteration's spline, not toward zero: a pull toward zero,
+        // scaled with λ to keep the factorisation definite, shrank every value by up to 1e-2
+        // of itself at λ = 10⁸ (a chine's heights 0.3–2 steps low, a Wigley hull's half-breadths
+        // 0.3 step narrow); toward the previous iterate the shrinkage of the first fit fades
+        // by that factor per iteration
+        let prev: Vec<f64> = match &reduce {
+            Some(r) => r.unknowns(&s.c),
+            None => s.c.clone(),
+        };
         let solve = |lam: f64| -> Option<Vec<f64>> {
             let mut m = ata.clone();
             m.add_scaled(&pen, lam);
+            let ridge = 1e-10 * (1.0 + lam);
             for row in m.a.iter_mut() {
-                row[0] += 1e-10 * (1.0 + lam);
+                row[0] += ridge;
             }
-            m.solve(&atb).map(expand)
+            let rhs: Vec<f64> = atb.iter().zip(&prev).map(|(b, p)| b + ridge * p).collect();
+            m.solve(&rhs).map(expand)
         };
         let rms_move = |c: &[f64]| -> f64 {
             let (mut num, mut den) = (0.0, 0.0);
@@ -422,4 +444,29 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64, straight:
         met,
         straight: reduce.is_some(),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn offsets_on_a_line_far_from_zero_are_fitted_without_shrinkage() {
+        // exact offsets in the penalty's null space: the discrepancy principle takes the
+        // largest λ, and the ridge that keeps the system definite must not pull the values
+        // toward zero there
+        let obs: Vec<Obs> = (0..16)
+            .map(|k| {
+                let x = 15.0 * k as f64;
+                Obs::new((x, 0.0), 1000.0 + 2.0 * x, true, false)
+            })
+            .collect();
+        let f = fit(Knots::uniform(0.0, 225.0, 15), None, &obs, 0.0625, false).unwrap();
+        assert!(f.lambda > 1e6, "{}", f.lambda);
+        for o in &obs {
+            let v = f.spline.eval(o.at.0, 0.0).0;
+            // a millionth of the value (a pull toward zero at λ = 10⁸ left 10⁻²)
+            assert!((v - o.target).abs() < 1e-3, "{} -> {v}", o.target);
+        }
+    }
 }
