@@ -378,7 +378,7 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
             let curved = fit(kx.clone(), Some(ku.clone()), &obs, tol, false)
                 .ok_or_else(|| Error::Fit(format!("the {name} system is singular")))?;
             // the straight-section limit (λ → ∞ across the girth) is taken when the offsets
-            // allow it: it reaches the discrepancy target and rejects no more offsets
+            // allow it: it reaches the discrepancy target and rejects the same offsets
             let stf = fit(kx, Some(ku), &obs, tol, true);
             let f = match stf {
                 Some(st) if st.met && same_rejections(&st, &curved) => st,
