@@ -99,26 +99,122 @@ impl Spline {
     /// The penalty: jumps of the third derivative across every interior knot line, along x and
     /// along u, each weighted by its knot spacing cubed (jump-lsq's measure on a tensor
     /// product: the jump of ∂³S/∂x³ across x = ξ is a spline in u whose coefficients are the
-    /// rows below). Returned as a banded matrix Σ r rᵀ.
-    fn penalty(&self, bw: usize) -> Band {
+    /// rows below). Returned as the rows r of Σ r rᵀ.
+    fn penalty_rows(&self) -> Vec<Vec<(usize, f64)>> {
         let nu = self.nu();
-        let n = self.kx.count() * nu;
-        let mut p = Band::zeros(n, bw);
+        let mut out = Vec::new();
         for jr in self.kx.jumps() {
             for j in 0..nu {
-                let row: Vec<(usize, f64)> = jr.iter().map(|&(i, w)| (i * nu + j, w)).collect();
-                p.add_outer(&row, 1.0);
+                out.push(jr.iter().map(|&(i, w)| (i * nu + j, w)).collect());
             }
         }
         if let Some(ku) = &self.ku {
             for jr in ku.jumps() {
                 for i in 0..self.kx.count() {
-                    let row: Vec<(usize, f64)> = jr.iter().map(|&(j, w)| (i * nu + j, w)).collect();
-                    p.add_outer(&row, 1.0);
+                    out.push(jr.iter().map(|&(j, w)| (i * nu + j, w)).collect());
                 }
             }
         }
+        out
+    }
+}
+
+/// The straight-section limit of a surface: v = a(x) + b(x)·s(u), straight in u at every x, with
+/// s the u domain mapped onto [0, 1]. A spline is linear in u exactly when its coefficients are
+/// a linear function of the u knots' Greville abscissae, c_ij = a_i + b_i s_j, so the fit's
+/// unknowns become (a_i, b_i) and every row over c is mapped onto them. This is the limit
+/// λ_u → ∞ of a u penalty whose null space is the straight lines (the curvature's), the
+/// per-direction limit of the surface method `surface_jump_lsq`: the third-derivative jumps
+/// along u vanish on it and drop out.
+#[derive(Clone, Debug)]
+struct Straight {
+    nu: usize,
+    /// s_j: the Greville abscissa of coefficient j in [0, 1].
+    s: Vec<f64>,
+    /// The u domain mapped onto [0, 1].
+    range: (f64, f64),
+}
+
+impl Straight {
+    fn new(ku: &Knots) -> Self {
+        let t = &ku.t;
+        let nu = ku.count();
+        let g: Vec<f64> = (0..nu).map(|j| (t[j + 1] + t[j + 2] + t[j + 3]) / 3.0).collect();
+        let (a, b) = (t[0], t[t.len() - 1]);
+        Self {
+            nu,
+            s: g.iter().map(|x| (x - a) / (b - a)).collect(),
+            range: (a, b),
+        }
+    }
+
+    /// A row over the full coefficients as a row over (a_i, b_i) (index 2i, 2i + 1).
+    fn map(&self, row: &[(usize, f64)]) -> Vec<(usize, f64)> {
+        let mut out: Vec<(usize, f64)> = Vec::with_capacity(8);
+        for &(k, w) in row {
+            let (i, j) = (k / self.nu, k % self.nu);
+            for (idx, v) in [(2 * i, w), (2 * i + 1, w * self.s[j])] {
+                match out.iter_mut().find(|e| e.0 == idx) {
+                    Some(e) => e.1 += v,
+                    None => out.push((idx, v)),
+                }
+            }
+        }
+        out
+    }
+
+    /// The penalty at the straight limit: across each x knot line ξ the jump of ∂³v/∂x³ is
+    /// a line in s, J_a + s·J_b, and its square is averaged over the girth the offsets cover
+    /// near ξ (those within a span of it; the whole region where none are), exactly, by
+    /// two-point Gauss, and scaled by the count of u coefficients to keep the full penalty's
+    /// magnitude. Over the region's whole rectangle instead, a section line that narrows
+    /// towards an end (a bottom below a chine that closes in at the bow, extrapolated across the
+    /// full beam) would be penalised where there is no hull.
+    fn penalty(&self, kx: &Knots, obs: &[Obs], pen: &mut Band) {
+        let t = &kx.t;
+        let (u0, u1) = (self.range.0, self.range.1);
+        for (k, jr) in kx.jumps().into_iter().enumerate() {
+            let s = 4 + k;
+            let (lo, hi) = (t[s - 1], t[s + 1]);
+            let (mut a, mut b) = (f64::MAX, f64::MIN);
+            for o in obs.iter().filter(|o| o.at.0 >= lo && o.at.0 <= hi) {
+                let v = (o.at.1 - u0) / (u1 - u0);
+                a = a.min(v);
+                b = b.max(v);
+            }
+            if a > b {
+                (a, b) = (0.0, 1.0);
+            }
+            let (m, h) = (0.5 * (a + b), 0.5 * (b - a) / 3f64.sqrt());
+            for g in [m - h, m + h] {
+                let row: Vec<(usize, f64)> = jr
+                    .iter()
+                    .flat_map(|&(i, w)| [(2 * i, w), (2 * i + 1, w * g)])
+                    .collect();
+                pen.add_outer(&row, 0.5 * self.nu as f64);
+            }
+        }
+    }
+
+    /// The reduced coefficients of full ones that are straight in u (s_0 = 0, s_last = 1).
+    fn unknowns(&self, c: &[f64]) -> Vec<f64> {
+        let nx = c.len() / self.nu;
+        let mut p = Vec::with_capacity(2 * nx);
+        for i in 0..nx {
+            let (a, b) = (c[i * self.nu], c[i * self.nu + self.nu - 1]);
+            p.extend([a, b - a]);
+        }
         p
+    }
+
+    /// The full coefficients of the reduced ones.
+    fn expand(&self, p: &[f64]) -> Vec<f64> {
+        let nx = p.len() / 2;
+        let mut c = Vec::with_capacity(nx * self.nu);
+        for i in 0..nx {
+            c.extend(self.s.iter().map(|s| p[2 * i] + p[2 * i + 1] * s));
+        }
+        c
     }
 }
 
@@ -133,6 +229,10 @@ pub(crate) struct Fit {
     #[allow(dead_code)]
     pub moves: Vec<f64>,
     pub iterations: usize,
+    /// The discrepancy target was reached (some λ moves the offsets by at most tol/√3 RMS).
+    pub met: bool,
+    /// Fitted at the straight-section limit ([`Straight`]).
+    pub straight: bool,
 }
 
 /// Smallest gain: a residual is converted into a move of the offset's measured coordinates by
@@ -166,22 +266,52 @@ impl Fit {
 
 /// Fits `obs` by a spline on knots (kx, ku) with tolerance `tol` per offset (half the rounding
 /// step by default). Observations with `hold` are fitted with a large weight and never
-/// rejected. Returns None when the system is singular (too few offsets).
-pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64) -> Option<Fit> {
+/// rejected. `straight` (two variables only): the straight-section limit ([`Straight`]).
+/// Returns None when the system is singular (too few offsets).
+pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64, straight: bool) -> Option<Fit> {
+    let reduce = if straight {
+        ku.as_ref().map(Straight::new)
+    } else {
+        None
+    };
     let nu = ku.as_ref().map_or(1, Knots::count);
-    let n = kx.count() * nu;
+    let full = kx.count() * nu;
+    // the unknowns: the coefficients, or (a_i, b_i) at the straight limit
+    let (n, nun) = match &reduce {
+        Some(_) => (kx.count() * 2, 2),
+        None => (full, nu),
+    };
     // a jump row spans five consecutive x coefficients
-    let bw = 4 * nu + 4;
+    let bw = 4 * nun + 4;
     let mut s = Spline {
         kx,
         ku,
-        c: vec![0.0; n],
+        c: vec![0.0; full],
     };
     let rows: Vec<Vec<(usize, f64)>> = obs.iter().map(|o| s.row(o.at.0, o.at.1, 0)).collect();
-    let pen = s.penalty(bw);
+    let unknown_rows: Vec<Vec<(usize, f64)>> = match &reduce {
+        Some(r) => rows.iter().map(|row| r.map(row)).collect(),
+        None => rows.clone(),
+    };
+    let mut pen = Band::zeros(n, bw);
+    match &reduce {
+        Some(r) => r.penalty(&s.kx, obs, &mut pen),
+        None => {
+            for row in s.penalty_rows() {
+                pen.add_outer(&row, 1.0);
+            }
+        }
+    }
+    let expand = |p: Vec<f64>| -> Vec<f64> {
+        match &reduce {
+            Some(r) => r.expand(&p),
+            None => p,
+        }
+    };
     let mut gain = vec![1.0; obs.len()];
     let mut robust = vec![1.0; obs.len()];
     let mut lambda: f64 = 1.0;
+    let mut met = false;
     let mut moves = vec![0.0; obs.len()];
     let mut it = 0;
     let target = tol / 3f64.sqrt();
@@ -189,7 +319,7 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64) -> Option
         it = outer + 1;
         let mut ata = Band::zeros(n, bw);
         let mut atb = vec![0.0; n];
-        for (k, (r, o)) in rows.iter().zip(obs).enumerate() {
+        for (k, (r, o)) in unknown_rows.iter().zip(obs).enumerate() {
             let w = robust[k] / (gain[k] * gain[k]) * if o.held { HELD } else { 1.0 };
             if w == 0.0 {
                 continue;
@@ -199,14 +329,25 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64) -> Option
                 atb[i] += w * v * o.target;
             }
         }
-        // a tiny ridge keeps coefficients without data (outside the hull) determined
+        // a tiny ridge keeps coefficients without data (outside the hull) determined; it pulls
+        // toward the previous outer iteration's spline, not toward zero: a pull toward zero,
+        // scaled with λ to keep the factorisation definite, shrank every value by up to 1e-2
+        // of itself at λ = 10⁸ (a chine's heights 0.3–2 steps low, a Wigley hull's half-breadths
+        // 0.3 step narrow); toward the previous iterate the shrinkage of the first fit fades
+        // by that factor per iteration
+        let prev: Vec<f64> = match &reduce {
+            Some(r) => r.unknowns(&s.c),
+            None => s.c.clone(),
+        };
         let solve = |lam: f64| -> Option<Vec<f64>> {
             let mut m = ata.clone();
             m.add_scaled(&pen, lam);
+            let ridge = 1e-10 * (1.0 + lam);
             for row in m.a.iter_mut() {
-                row[0] += 1e-10 * (1.0 + lam);
+                row[0] += ridge;
             }
-            m.solve(&atb)
+            let rhs: Vec<f64> = atb.iter().zip(&prev).map(|(b, p)| b + ridge * p).collect();
+            m.solve(&rhs).map(expand)
         };
         let rms_move = |c: &[f64]| -> f64 {
             let (mut num, mut den) = (0.0, 0.0);
@@ -260,6 +401,7 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64) -> Option
             None => (lo, solve(10f64.powf(lo))?),
         };
         lambda = 10f64.powf(l);
+        met = rms_move(&c) <= goal * (1.0 + 1e-9);
         s.c = c;
         // new gains and moves; the robust scale: the tolerance, or the moves' own spread
         // (1.4826 × their median absolute value) where that is larger (a table noisier than
@@ -299,5 +441,32 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64) -> Option
         weight: robust,
         moves,
         iterations: it,
+        met,
+        straight: reduce.is_some(),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn offsets_on_a_line_far_from_zero_are_fitted_without_shrinkage() {
+        // exact offsets in the penalty's null space: the discrepancy principle takes the
+        // largest λ, and the ridge that keeps the system definite must not pull the values
+        // toward zero there
+        let obs: Vec<Obs> = (0..16)
+            .map(|k| {
+                let x = 15.0 * k as f64;
+                Obs::new((x, 0.0), 1000.0 + 2.0 * x, true, false)
+            })
+            .collect();
+        let f = fit(Knots::uniform(0.0, 225.0, 15), None, &obs, 0.0625, false).unwrap();
+        assert!(f.lambda > 1e6, "{}", f.lambda);
+        for o in &obs {
+            let v = f.spline.eval(o.at.0, 0.0).0;
+            // a millionth of the value (a pull toward zero at λ = 10⁸ left 10⁻²)
+            assert!((v - o.target).abs() < 1e-3, "{} -> {v}", o.target);
+        }
+    }
 }

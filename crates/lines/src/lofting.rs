@@ -205,12 +205,17 @@ pub struct Faired {
 /// Fairs a table: the hull is fitted to every waterline, buttock and (non-knuckle) edge offset
 /// at once, and every such offset is cut back from it. A knuckle edge (the first, when there are
 /// several) is faired alone first and splits the hull into two regions holding its faired
-/// points: y(x, z) above it, z(x, y) below it. Knuckle edges, profile-only and plan-only lines,
+/// points: y(x, z) above it, z(x, y) below it. Each region is fitted twice, with its sections
+/// free and at the straight-section limit (straight across the girth at every x, as a V bottom
+/// or flared topsides are); the limit is taken when it reaches the same discrepancy target and
+/// rejects the same offsets. An offset cut from one region onto the other's side of the knuckle
+/// is cut from the other. Knuckle edges, profile-only and plan-only lines,
 /// and every line of a table without waterlines or buttocks are faired alone (y(x) and z(x),
 /// the same penalty and tolerance). Offsets on the centreline (y = 0 of a waterline) are held.
 /// Fails with [`Error::Setting`] for a non-positive step or tolerance and [`Error::Fit`] when
 /// fewer than 8 offsets lie on the hull. O(n·bw²) per solve, with n the surface's coefficients
-/// and bw its band (4·nu + 4); about 100 solves.
+/// and bw its band (4·nu + 4); about 100 solves, and as many at the straight limit, whose
+/// system has two unknowns per x coefficient.
 pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
     settings.validate()?;
     let step = settings.step.unwrap_or(table.step);
@@ -261,7 +266,7 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                 .iter()
                 .map(|&i| Obs::new((t.cells[i].x, 0.0), t.cells[i].get_index(coord), true, false))
                 .collect();
-            let Some(f) = fit(Knots::uniform(x0, x1, pts.len() - 1), None, &obs, tol) else {
+            let Some(f) = fit(Knots::uniform(x0, x1, pts.len() - 1), None, &obs, tol, false) else {
                 continue;
             };
             for (k, &i) in pts.iter().enumerate() {
@@ -284,6 +289,7 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
         // each holding the knuckle's faired points
         let mut regions: Vec<(String, Coord, Vec<usize>, Vec<usize>)> = Vec::new();
         let mut band: Vec<usize> = Vec::new();
+        let mut region_cells: Vec<Vec<usize>> = Vec::new();
         match &knuckle_fit {
             Some((kl, zk)) => {
                 let (xa, xb) = (zk.kx.t[0], zk.kx.t[zk.kx.t.len() - 1]);
@@ -369,8 +375,15 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                 o.held = true;
                 obs.push(o);
             }
-            let f = fit(kx, Some(ku), &obs, tol)
+            let curved = fit(kx.clone(), Some(ku.clone()), &obs, tol, false)
                 .ok_or_else(|| Error::Fit(format!("the {name} system is singular")))?;
+            // the straight-section limit (λ → ∞ across the girth) is taken when the offsets
+            // allow it: it reaches the discrepancy target and rejects the same offsets
+            let stf = fit(kx, Some(ku), &obs, tol, true);
+            let f = match stf {
+                Some(st) if st.met && same_rejections(&st, &curved) => st,
+                _ => curved,
+            };
             let h = Hull {
                 s: f.spline.clone(),
                 value,
@@ -407,6 +420,36 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
             }
             fits.push((h.region.clone(), f));
             hulls.push(h);
+            region_cells.push(cells);
+        }
+        // the knuckle bounds both regions: an offset cut from one region onto the other's side
+        // of the knuckle (the extension of the topsides below a chine, where an offset near the
+        // chine, or a wrong one, was assigned above it) is cut from the other region instead
+        if let (Some((_, zk)), 2) = (&knuckle_fit, hulls.len()) {
+            let (xa, xb) = (zk.kx.t[0], zk.kx.t[zk.kx.t.len() - 1]);
+            let kz = |x: f64| zk.eval(x.clamp(xa, xb), 0.0).0;
+            let side = |h: &Hull, p: &[f64; 3]| {
+                let d = p[2] - kz(p[0]);
+                if h.value == Coord::Y {
+                    d >= -tol
+                } else {
+                    d <= tol
+                }
+            };
+            for (r, cells) in region_cells.iter().enumerate() {
+                for &i in cells {
+                    if sources[i] != Source::Hull || side(&hulls[r], &values[i]) {
+                        continue;
+                    }
+                    let c = &t.cells[i];
+                    let other = &hulls[1 - r];
+                    if let Some(p) = cut(other, c.x, c.y, c.z, t.lines[c.line].kind) {
+                        if side(other, &p) {
+                            values[i] = p;
+                        }
+                    }
+                }
+            }
         }
         for &i in &band {
             let c = &t.cells[i];
@@ -536,6 +579,14 @@ pub(crate) fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
         .map(|(p, q)| (p - q) * (p - q))
         .sum::<f64>()
         .sqrt()
+}
+
+/// Two fits of the same offsets reject the same ones.
+fn same_rejections(a: &Fit, b: &Fit) -> bool {
+    a.weight
+        .iter()
+        .zip(&b.weight)
+        .all(|(p, q)| (*p == 0.0) == (*q == 0.0))
 }
 
 pub(crate) fn fit_summary(f: &Fit) -> (f64, usize, usize) {

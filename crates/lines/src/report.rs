@@ -129,6 +129,9 @@ pub struct HullFit {
     pub iterations: usize,
     /// Offsets the robust fit rejected.
     pub rejected: usize,
+    /// The region's sections are straight across the girth (the limit of the smoothing across
+    /// it, taken where the offsets allow it).
+    pub straight: bool,
 }
 
 fn opt(v: f64) -> Option<f64> {
@@ -290,6 +293,7 @@ pub(crate) fn build_report(
                     lambda,
                     iterations,
                     rejected,
+                    straight: f.straight,
                 }
             })
             .collect(),

@@ -183,3 +183,77 @@ fn a_run_of_offsets_the_hull_cannot_follow_is_held_and_a_lone_one_restored() {
         f.values[lone]
     );
 }
+
+#[test]
+fn straight_sections_in_the_offsets_give_straight_faired_sections() {
+    // the hard-chine form's topsides are straight flared lines at every station: the region
+    // above the chine takes the straight-section limit and its faired sections are lines
+    let (_d, t) = table(&generate::hard_chine(0.0, 0, 7));
+    let f = fair(&t, &Settings::default()).unwrap();
+    let above = f.hulls.iter().position(|h| h.region() == "above chine").unwrap();
+    assert!(f.report.hull_fit[above].straight, "{:?}", f.report.hull_fit);
+    let h = &f.hulls[above];
+    let ((x0, x1), (u0, u1)) = h.domain();
+    for k in 0..=20 {
+        let x = x0 + (x1 - x0) * k as f64 / 20.0;
+        let (a, m, b) = (h.eval(x, u0).0, h.eval(x, 0.5 * (u0 + u1)).0, h.eval(x, u1).0);
+        assert!((m - 0.5 * (a + b)).abs() < 1e-9, "x {x}: {a} {m} {b}");
+    }
+    // the faired waterline offsets above the chine at a station lie on one line
+    let chine = t.lines.iter().position(|l| l.label == "chine").unwrap();
+    for ci in t.line_cells(chine) {
+        let (si, zc) = (t.cells[ci].station_index, t.cells[ci].z);
+        let p: Vec<[f64; 3]> = (0..t.cells.len())
+            .filter(|&i| {
+                let c = &t.cells[i];
+                c.station_index == si && t.lines[c.line].kind == Kind::Waterline && c.z > zc + 1.0
+            })
+            .map(|i| f.values[i])
+            .collect();
+        for w in p.windows(3) {
+            let cross = (w[1][1] - w[0][1]) * (w[2][2] - w[0][2]) - (w[1][2] - w[0][2]) * (w[2][1] - w[0][1]);
+            assert!(cross.abs() < 1e-7, "station {si}: {w:?}");
+        }
+    }
+    // a round-bilge hull is not straight across the girth: its sections stay curved
+    let (_d, t) = table(&generate::wigley(0.0, 0, 7));
+    let f = fair(&t, &Settings::default()).unwrap();
+    assert!(!f.report.hull_fit[0].straight);
+}
+
+#[test]
+fn an_offset_cut_across_the_chine_is_cut_from_the_region_on_its_side() {
+    // seed 1 plants an error in a buttock offset just below the chine that lifts it above: the
+    // region above would cut it from the topsides' extension below the chine
+    let g = generate::hard_chine(0.0, 3, 1);
+    let (_d, t) = table(&g);
+    let f = fair(&t, &Settings::default()).unwrap();
+    let chine = t.lines.iter().position(|l| l.label == "chine").unwrap();
+    let planted: serde_json::Value = serde_json::from_str(&g.planted).unwrap();
+    for e in planted["errors"].as_array().unwrap() {
+        let cell = &e["cells"][0];
+        let i = t
+            .cells
+            .iter()
+            .position(|c| {
+                t.lines[c.line].label == cell["line"].as_str().unwrap()
+                    && c.station_index == cell["station_index"].as_i64().unwrap()
+            })
+            .unwrap();
+        let c = &t.cells[i];
+        assert!(f.flagged[i], "planted error {e} not flagged");
+        let tr = match t.lines[c.line].kind {
+            Kind::Waterline => [c.x, generate::chine_form_y(c.x, c.z).unwrap(), c.z],
+            _ => [c.x, c.y, generate::chine_form_z(c.x, c.y).unwrap()],
+        };
+        let off = (0..3).map(|k| (f.values[i][k] - tr[k]).abs()).fold(0.0, f64::max);
+        assert!(off < generate::STEP, "{e}: {:?} vs {tr:?}", f.values[i]);
+        // and it lies on its own side of the faired chine
+        let kc = t
+            .line_cells(chine)
+            .into_iter()
+            .find(|&k| t.cells[k].station_index == c.station_index)
+            .unwrap();
+        assert_eq!(tr[2] < f.values[kc][2], f.values[i][2] < f.values[kc][2], "{e}");
+    }
+}
