@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Noisy nets with clean twins (`python nets.py tuning|test OUT_DIR`) for judging surface fairing (issue 46).
+"""Noisy nets with clean twins (`python nets.py tuning|test|fresh-tuning|fresh-test OUT_DIR`, or
+`python nets.py --draws D1,D2,... OUT_DIR`) for judging surface fairing (issue 46).
 
 Families: bump (panels with Gaussian bumps), helicoid (helicoidal strips), height60 (60 x 60
 height fields), tube (closed in v), wigley (Wigley hull halves), aniso (height fields on
@@ -8,7 +9,11 @@ project's data/surface_utah_teapot). Noise: isotropic Gaussian, sigma = LEVEL x 
 bounding-box diagonal, LEVEL in 0.5, 1, 2; the repeated seam line copied from the first.
 
 The split is fixed here, before any tuning: TUNING draws use seeds 1000 + k, TEST draws
-5000 + k; a draw's seed sets both the shape's parameters and the noise.
+5000 + k; a draw's seed sets both the shape's parameters and the noise. After the test draws
+had been looked at while tuning, they joined the tuning data with two fresh draws
+(FRESH_TUNING_DRAWS), and a fresh test split (FRESH_TEST_DRAWS) was fixed before that tuning.
+A net is a function of its family, level and draw alone, so every split's nets are the same
+whichever split (or --draws list) writes them.
 """
 import os
 import sys
@@ -19,6 +24,10 @@ LEVELS = [0.5, 1.0, 2.0]
 BASE = 0.002
 TUNING_DRAWS = [1000]
 TEST_DRAWS = [5000, 5001, 5002]
+FRESH_TUNING_DRAWS = [1001, 1002]
+FRESH_TEST_DRAWS = [7000, 7001, 7002]
+SPLITS = {"tuning": TUNING_DRAWS, "test": TEST_DRAWS,
+          "fresh-tuning": FRESH_TUNING_DRAWS, "fresh-test": FRESH_TEST_DRAWS}
 HERE = os.path.dirname(os.path.abspath(__file__))
 TEAPOT = os.environ.get("TEAPOT", os.path.join(HERE, "..", "..", "data", "surface_utah_teapot", "teapot_patches.csv"))
 
@@ -133,7 +142,7 @@ def write(path, G):
 
 
 def cases(split):
-    draws = TUNING_DRAWS if split == "tuning" else TEST_DRAWS
+    draws = split if isinstance(split, list) else SPLITS[split]
     for fam in FAMILIES:
         for level in LEVELS:
             for d in draws:
@@ -142,7 +151,10 @@ def cases(split):
 
 
 if __name__ == "__main__":
-    split, out = sys.argv[1], sys.argv[2]
+    if sys.argv[1] == "--draws":
+        split, out = [int(d) for d in sys.argv[2].split(",")], sys.argv[3]
+    else:
+        split, out = sys.argv[1], sys.argv[2]
     os.makedirs(out, exist_ok=True)
     for name, fam, level, seed in cases(split):
         clean, noisy = make(fam, level, seed)

@@ -74,10 +74,17 @@
 //! section), a scan of the square in steps of 1, and from the best of these coordinate
 //! descent, each step a scan of ±1 around the current value refined by golden section.
 //! Last, on a plain block (no held lines or nodes, joins or band), the limit λ → ∞ in either
-//! direction is scored (`with_limits`, at a weight of 10³⁰) and taken if no worse: where a
-//! direction's lines are straight in the data (a helicoid's rulings) the score falls or stays
-//! flat up to the range's top. At the limit those lines are projected exactly onto the
-//! penalty's null space (`straighten`: least-squares lines a + b t, or the mean on a closed
+//! direction is scored (`with_limits`, at a weight of 10³⁰) and taken if the data cannot tell
+//! it from the minimum: if its score is within a quarter of a standard error of the minimum's
+//! (a one-standard-error rule, narrowed; the standard error that of the residual sum of squares
+//! the limit adds if the lines are straight, from the degrees of freedom it drops). Where a
+//! direction's lines are straight in the data (a helicoid's rulings) the score falls, stays
+//! flat up to the range's top, or has a shallow minimum at a large finite weight that keeps a
+//! faint wiggle with an inflection on many lines. A direction whose lines curve gently under
+//! heavy noise (a hull's waterlines) can score within one standard error of its limit, and
+//! straightening it puts the net farther from the truth than its input, hence the narrower
+//! margin (its factor chosen on the tuning nets, `docs/experiments/surface-fairing.md`). At
+//! the limit those lines are projected exactly onto the penalty's null space (`straighten`: least-squares lines a + b t, or the mean on a closed
 //! direction), which the eigenbasis solve gives only to the accuracy of its null vectors.
 //! A score whose denominator is not positive (the interpolating end) is infinite, and the
 //! range stops at 10⁻⁸, as for one weight. Scattered fixed nodes are treated as data in the
@@ -477,7 +484,18 @@ impl SurfaceJumpLsq {
                     };
                     let found = minimise_log_pair(score, LOG_LAMBDA_RANGE);
                     let ((u, v), value) = if limits_allowed {
-                        with_limits(score, found)
+                        with_limits(
+                            score,
+                            |lu: f64, lv: f64| {
+                                rss_trace(Weights {
+                                    u: 10f64.powf(lu),
+                                    v: 10f64.powf(lv),
+                                })
+                                .1
+                            },
+                            n_free,
+                            found,
+                        )
                     } else {
                         found
                     };
@@ -933,22 +951,46 @@ fn minimise_log_pair(f: impl Fn(f64, f64) -> f64, range: (f64, f64)) -> ((f64, f
 }
 
 /// GCV's candidates at the limit: the pair `best` with either weight replaced by
-/// 10^[`LOG_LAMBDA_LIMIT`] (λ → ∞ in that direction), each taken if its score is no higher.
-/// The score of a direction whose lines are straight in the data falls or stays flat up to
-/// the searched range's top, where a 10¹² weight still leaves the lowest non-null mode of a
-/// noisy line (damped only ~10⁴-fold on a 60-line net): a faint planar wiggle with an
-/// inflection. Two evaluations.
-fn with_limits(f: impl Fn(f64, f64) -> f64, best: ((f64, f64), f64)) -> ((f64, f64), f64) {
-    let ((x, y), _) = best;
-    let mut best = best;
+/// 10^[`LOG_LAMBDA_LIMIT`] (λ → ∞ in that direction), the lower-scoring of those within the
+/// parsimony margin of `best`'s score taken. The score of a direction whose lines are straight
+/// in the data falls or stays nearly flat up to the searched range's top, where a 10¹² weight
+/// still leaves the lowest non-null mode of a noisy line (damped only ~10⁴-fold on a 60-line
+/// net): a faint planar wiggle with an inflection; below the top the minimum keeps a few
+/// effective degrees of freedom of curvature along those lines, each a chance of a wiggle.
+///
+/// The margin (the one-standard-error rule of Breiman et al. 1984, *Classification and
+/// Regression Trees*, and Hastie, Tibshirani & Friedman, *The Elements of Statistical
+/// Learning*, §7.10, narrowed by [`LIMIT_SE_FACTOR`]): `trace(log λ_u, log λ_v)` is tr A per coordinate, `n_free` the
+/// nodes. If the direction's lines are straight, the residual sum of squares the limit adds
+/// is about σ² χ² with 3 Δtr degrees of freedom (three coordinates, Δtr = tr A(best) −
+/// tr A(limit)), standard deviation σ² √(6 Δtr), while the score's RSS is about
+/// 3 σ² (N − tr A): a relative standard error s = √(6 Δtr) / (3 (N − tr A)). The limit is taken
+/// when its score is at most `best`'s × (1 + [`LIMIT_SE_FACTOR`] · s): the data cannot tell
+/// the straight lines from the fitted ones, so the simpler model wins. Δtr = 0 (a minimum at
+/// the range's top) leaves the plain rule, no worse. Four evaluations.
+fn with_limits(
+    f: impl Fn(f64, f64) -> f64,
+    trace: impl Fn(f64, f64) -> f64,
+    n_free: f64,
+    best: ((f64, f64), f64),
+) -> ((f64, f64), f64) {
+    let ((x, y), minimum) = best;
+    let tr_best = trace(x, y);
+    let mut taken: Option<((f64, f64), f64)> = None;
     for candidate in [(LOG_LAMBDA_LIMIT, y), (x, LOG_LAMBDA_LIMIT)] {
         let value = f(candidate.0, candidate.1);
-        if value <= best.1 {
-            best = (candidate, value);
+        let dropped = (tr_best - trace(candidate.0, candidate.1)).max(0.0);
+        let se = (6.0 * dropped).sqrt() / (3.0 * (n_free - tr_best));
+        if value <= minimum * (1.0 + LIMIT_SE_FACTOR * se) && taken.is_none_or(|t| value < t.1) {
+            taken = Some((candidate, value));
         }
     }
-    best
+    taken.unwrap_or(best)
 }
+
+/// The parsimony margin of [`with_limits`] in standard errors of the score (chosen on the
+/// tuning nets, `docs/experiments/surface-fairing.md`).
+const LIMIT_SE_FACTOR: f64 = 0.25;
 
 /// A weight at least this large is the limit λ → ∞ ([`LOG_LAMBDA_LIMIT`], after the refusal
 /// rule's retries at a tenth each).

@@ -521,3 +521,113 @@ fn a_weight_at_the_limit_makes_the_lines_straight() {
         }
     }
 }
+
+#[test]
+fn the_limit_is_taken_within_the_parsimony_margin_only() {
+    // with_limits against its defining condition: a direction's limit is taken when its score
+    // is at most the minimum's × (1 + LIMIT_SE_FACTOR · √(6 Δtr) / (3 (N − tr))), and not
+    // above; of two such limits the lower-scoring one.
+    use super::{with_limits, LIMIT_SE_FACTOR, LOG_LAMBDA_LIMIT};
+    let (n, tr_best, dropped): (f64, f64, f64) = (1200.0, 30.0, 4.0);
+    let se = (6.0 * dropped).sqrt() / (3.0 * (n - tr_best));
+    let best = ((7.0, 1.0), 2.0);
+    let trace = |u: f64, v: f64| {
+        if u >= LOG_LAMBDA_LIMIT || v >= LOG_LAMBDA_LIMIT {
+            tr_best - dropped
+        } else {
+            tr_best
+        }
+    };
+    for (factor_u, factor_v, expect) in [
+        (0.99, 5.0, (LOG_LAMBDA_LIMIT, 1.0)),
+        (1.01, 5.0, (7.0, 1.0)),
+        (5.0, 0.99, (7.0, LOG_LAMBDA_LIMIT)),
+        (0.5, 0.2, (7.0, LOG_LAMBDA_LIMIT)),
+        (-1.0, 0.2, (LOG_LAMBDA_LIMIT, 1.0)),
+    ] {
+        let score = |u: f64, v: f64| {
+            let factor = if u >= LOG_LAMBDA_LIMIT {
+                factor_u
+            } else if v >= LOG_LAMBDA_LIMIT {
+                factor_v
+            } else {
+                0.0
+            };
+            best.1 * (1.0 + factor * LIMIT_SE_FACTOR * se)
+        };
+        let (taken, _) = with_limits(score, trace, n, best);
+        assert_eq!(taken, expect, "factors ({factor_u}, {factor_v})");
+    }
+    // No degrees of freedom dropped (a minimum at the range's top): only a score no worse.
+    let flat = |_: f64, _: f64| tr_best;
+    let worse = |u: f64, _: f64| {
+        if u >= LOG_LAMBDA_LIMIT {
+            2.0 * (1.0 + 1e-12)
+        } else {
+            3.0
+        }
+    };
+    assert_eq!(with_limits(worse, flat, n, best).0, (7.0, 1.0));
+    let same = |u: f64, _: f64| if u >= LOG_LAMBDA_LIMIT { 2.0 } else { 3.0 };
+    assert_eq!(with_limits(same, flat, n, best).0, (LOG_LAMBDA_LIMIT, 1.0));
+}
+
+#[test]
+fn lines_straight_in_the_data_come_out_straight_within_the_margin() {
+    // A net straight along v plus noise, on eight seeds: the v-lines come out straight to
+    // round-off, the wavy u-lines smoothed at a finite λ_u. (On other seeds GCV's minimum is
+    // at a finite λ_v ~10⁸ more than the margin below the limit's score, and is kept.)
+    for k in 1..=8u64 {
+        let seed = 0x9e37_79b9_7f4a_7c15u64.wrapping_mul(k) | 1;
+        let grid = ruled(30, 60, 0.01, seed);
+        let result = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default().with_guard(false))
+            .run(&grid)
+            .unwrap();
+        assert!(
+            result.lambda_v >= super::LIMIT_WEIGHT,
+            "seed {seed:x}: λ_v {}",
+            result.lambda_v
+        );
+        assert!(result.lambda_u < 1e12, "seed {seed:x}: λ_u {}", result.lambda_u);
+        for i in 0..30 {
+            let line: Vec<Vec3> = (0..60).map(|j| result.surface.point(i, j).unwrap()).collect();
+            let chord = line[59] - line[0];
+            for p in &line {
+                let off = (*p - line[0]).cross(&chord).norm() / chord.norm_squared();
+                assert!(off < 1e-13, "seed {seed:x}, line {i}: relative offset {off}");
+            }
+        }
+    }
+}
+
+#[test]
+fn gently_curved_directions_are_not_straightened() {
+    // Curved in both directions (the smooth test net), and a hull-like net whose lines along u
+    // are shallow parabolas under noise of a tenth of their rise: neither direction is taken
+    // to the limit.
+    let hull = |seed| {
+        noisy_net(41, 16, 0.004, seed, |x, y| {
+            Vec3::new(
+                x,
+                0.05 * (1.0 - (2.0 * x - 1.0).powi(2)) * (1.0 - y * y),
+                0.07 * y,
+            )
+        })
+    };
+    let nets = [
+        noisy(30, 30, 0.01),
+        hull(0x2545_f491_4f6c_dd1d),
+        hull(0x9e37_79b9_7f4a_7c15),
+    ];
+    for (k, grid) in nets.iter().enumerate() {
+        let result = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default().with_guard(false))
+            .run(grid)
+            .unwrap();
+        assert!(
+            result.lambda_u < 1e12 && result.lambda_v < 1e12,
+            "net {k}: λ_u {} λ_v {}",
+            result.lambda_u,
+            result.lambda_v
+        );
+    }
+}
