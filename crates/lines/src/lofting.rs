@@ -412,7 +412,7 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                             if kind == Kind::Buttock || on_centreline(kind, c.y) {
                                 c.y
                             } else {
-                                p[1]
+                                half_breadth(p[1])
                             },
                             if kind == Kind::Waterline { c.z } else { p[2] },
                         ];
@@ -576,7 +576,7 @@ fn cut(h: &Hull, x: f64, y: f64, z: f64, kind: Kind) -> Option<[f64; 3]> {
         if kind == Kind::Buttock || on_centreline(kind, y) {
             y
         } else {
-            p[1]
+            half_breadth(p[1])
         },
         if kind == Kind::Waterline { z } else { p[2] },
     ])
@@ -590,6 +590,18 @@ fn cut(h: &Hull, x: f64, y: f64, z: f64, kind: Kind) -> Option<[f64; 3]> {
 /// projection (see docs/experiments/lines-plan.md).
 fn on_centreline(kind: Kind, y: f64) -> bool {
     kind == Kind::Edge && y == 0.0
+}
+
+/// A half-breadth cut from the hull, never below the centreline: where a region's section at
+/// the forefoot lies above a low waterline at y = 0 (the plane misses the hull there), the
+/// waterline's cut continues the section's extension across the centreline to a negative
+/// half-breadth; the waterline ends on the centreline instead.
+fn half_breadth(y: f64) -> f64 {
+    if y < 0.0 {
+        0.0
+    } else {
+        y
+    }
 }
 
 /// Distance between two cells' values, missing coordinates ignored.

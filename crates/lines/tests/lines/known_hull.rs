@@ -286,3 +286,23 @@ fn a_keel_offset_stays_on_the_centreline() {
         }
     }
 }
+
+#[test]
+fn no_faired_half_breadth_is_negative() {
+    // a noisy table (faired at its noise) whose bottom, at the first station, lies above the
+    // low waterline at y = 0: the waterline ends on the centreline, not beyond it
+    let (_d, t) = table(&generate::hard_chine(1.5, 0, 101));
+    let settings = Settings {
+        tolerance: Some(1.5 * generate::STEP * 3f64.sqrt()),
+        ..Settings::default()
+    };
+    let f = fair(&t, &settings).unwrap();
+    for (i, v) in f.values.iter().enumerate() {
+        assert!(
+            v[1] >= 0.0 || v[1].is_nan(),
+            "{} at x {}: {v:?}",
+            t.lines[t.cells[i].line].label,
+            v[0]
+        );
+    }
+}
