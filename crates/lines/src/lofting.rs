@@ -211,7 +211,8 @@ pub struct Faired {
 /// rejects the same offsets. An offset cut from one region onto the other's side of the knuckle
 /// is cut from the other. Knuckle edges, profile-only and plan-only lines,
 /// and every line of a table without waterlines or buttocks are faired alone (y(x) and z(x),
-/// the same penalty and tolerance). Offsets on the centreline (y = 0 of a waterline) are held.
+/// the same penalty and tolerance). Offsets on the centreline (y = 0 of a waterline) are held;
+/// an edge offset on it (a keel, stem or rabbet) is projected and keeps y = 0.
 /// Fails with [`Error::Setting`] for a non-positive step or tolerance and [`Error::Fit`] when
 /// fewer than 8 offsets lie on the hull. O(n·bw²) per solve, with n the surface's coefficients
 /// and bw its band (4·nu + 4); about 100 solves, and as many at the straight limit, whose
@@ -405,9 +406,14 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                 match new {
                     Some(p) => {
                         // the plane coordinate of a waterline / buttock stays exact
+                        // (and a centreline edge's y = 0: see `on_centreline`)
                         values[i] = [
                             c.x,
-                            if kind == Kind::Buttock { c.y } else { p[1] },
+                            if kind == Kind::Buttock || on_centreline(kind, c.y) {
+                                c.y
+                            } else {
+                                half_breadth(p[1])
+                            },
                             if kind == Kind::Waterline { c.z } else { p[2] },
                         ];
                     }
@@ -551,7 +557,8 @@ fn hold_feature_runs(
 const KNUCKLE_BAND: f64 = 2.0;
 
 /// The offset (x, y, z) of a line of family `kind` cut from hull region `h`: a waterline keeps
-/// its z, a buttock its y, an edge point is projected; None where the section misses it.
+/// its z, a buttock its y, an edge point is projected (one on the centreline keeps y = 0, see
+/// [`on_centreline`]); None where the section misses it.
 fn cut(h: &Hull, x: f64, y: f64, z: f64, kind: Kind) -> Option<[f64; 3]> {
     let (u, v) = h.uv(y, z);
     let (my, mz) = (kind != Kind::Buttock, kind != Kind::Waterline);
@@ -566,9 +573,35 @@ fn cut(h: &Hull, x: f64, y: f64, z: f64, kind: Kind) -> Option<[f64; 3]> {
     };
     Some([
         x,
-        if kind == Kind::Buttock { y } else { p[1] },
+        if kind == Kind::Buttock || on_centreline(kind, y) {
+            y
+        } else {
+            half_breadth(p[1])
+        },
         if kind == Kind::Waterline { z } else { p[2] },
     ])
+}
+
+/// An edge offset at y = 0 lies on the centreline (a keel, stem or rabbet: the hull's plane of
+/// symmetry), so its faired y stays exactly 0. It is still projected in the body plan (its
+/// height is the projection's), so it lies off the region's surface by the projection's y:
+/// cut at y = 0 instead, it would take the surface's own height there, which near the forefoot
+/// of a V bottom, where the sections steepen fast along x, is further from the keel than the
+/// projection (see docs/experiments/lines-plan.md).
+fn on_centreline(kind: Kind, y: f64) -> bool {
+    kind == Kind::Edge && y == 0.0
+}
+
+/// A half-breadth cut from the hull, never below the centreline: where a region's section at
+/// the forefoot lies above a low waterline at y = 0 (the plane misses the hull there), the
+/// waterline's cut continues the section's extension across the centreline to a negative
+/// half-breadth; the waterline ends on the centreline instead.
+fn half_breadth(y: f64) -> f64 {
+    if y < 0.0 {
+        0.0
+    } else {
+        y
+    }
 }
 
 /// Distance between two cells' values, missing coordinates ignored.

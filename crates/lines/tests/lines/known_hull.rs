@@ -257,3 +257,52 @@ fn an_offset_cut_across_the_chine_is_cut_from_the_region_on_its_side() {
         assert_eq!(tr[2] < f.values[kc][2], f.values[i][2] < f.values[kc][2], "{e}");
     }
 }
+
+#[test]
+fn a_keel_offset_stays_on_the_centreline() {
+    // a keel (any edge offset at y = 0) lies in the hull's plane of symmetry: its faired y is
+    // exactly 0 on every kind of table; on the rounded one its height is within a step of the
+    // truth (the first station's, at the forefoot, was pushed 0.126 in off the centreline)
+    for (g, rounded) in [
+        (generate::hard_chine(0.0, 0, 1), true),
+        (generate::hard_chine(1.5, 0, 2), false),
+        (generate::hard_chine(0.0, 3, 3), false),
+    ] {
+        let (_d, t) = table(&g);
+        let f = fair(&t, &Settings::default()).unwrap();
+        let keel = t.lines.iter().position(|l| l.label == "keel").unwrap();
+        for i in t.line_cells(keel) {
+            let v = f.values[i];
+            assert_eq!(v[1].to_bits(), 0f64.to_bits(), "keel at x {}: {v:?}", v[0]);
+            if rounded {
+                let z = generate::chine_form_z(v[0], 0.0).unwrap();
+                assert!(
+                    (v[2] - z).abs() < generate::STEP,
+                    "keel at x {}: {} vs {z}",
+                    v[0],
+                    v[2]
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn no_faired_half_breadth_is_negative() {
+    // a noisy table (faired at its noise) whose bottom, at the first station, lies above the
+    // low waterline at y = 0: the waterline ends on the centreline, not beyond it
+    let (_d, t) = table(&generate::hard_chine(1.5, 0, 101));
+    let settings = Settings {
+        tolerance: Some(1.5 * generate::STEP * 3f64.sqrt()),
+        ..Settings::default()
+    };
+    let f = fair(&t, &settings).unwrap();
+    for (i, v) in f.values.iter().enumerate() {
+        assert!(
+            v[1] >= 0.0 || v[1].is_nan(),
+            "{} at x {}: {v:?}",
+            t.lines[t.cells[i].line].label,
+            v[0]
+        );
+    }
+}
