@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 use crate::fit::{fit, Fit, Obs, Spline};
 use crate::report::{build_report, Report};
-use crate::spline::Knots;
+use crate::spline::{Band, Knots};
 use crate::table::{Coord, Kind, Table};
 
 /// How a table is faired.
@@ -44,12 +44,21 @@ impl Settings {
 
 /// One smooth region of the hull: v = S(x, u), a bicubic B-spline on clamped uniform knots,
 /// with v the half-breadth y and u the height z (topsides, a round-bilge hull), or v the height
-/// z and u the half-breadth y (the bottom below a chine, nearly flat athwartships).
+/// z and u the fraction y / y_k(x) of the way out from the centreline to the knuckle (the
+/// bottom below a chine, nearly flat athwartships). The fraction and not y itself: the
+/// bottom's half-breadth shrinks toward the bow, where the chine closes in on the keel, so in
+/// (x, y) its domain is a wedge and its sections steepen as 1 / y_k(x), which a tensor-product
+/// spline follows poorly (the forefoot sat 2.4 rounding steps high on the hard-chine tables);
+/// in (x, u) the domain is a rectangle and a V bottom is z = a(x) + b(x)·u with a, b the keel's
+/// and the chine's heights (see docs/experiments/lines-plan.md). y_k is a cubic spline on the
+/// region's x knots, so the surface stays a bicubic B-spline in (x, u).
 #[derive(Clone, Debug)]
 pub struct Hull {
     pub(crate) s: Spline,
     value: Coord,
     region: String,
+    /// y_k(x), the length of one unit of u, when u is a fraction (on the knots `s.kx`).
+    pub(crate) scale: Option<Spline>,
 }
 
 impl Hull {
@@ -72,9 +81,15 @@ impl Hull {
     pub fn point(&self, x: f64, u: f64) -> [f64; 3] {
         let v = self.eval(x, u).0;
         match self.value {
-            Coord::Z => [x, u, v],
+            Coord::Z => [x, u * self.u_scale(x), v],
             _ => [x, v, u],
         }
+    }
+
+    /// The length of one unit of u at x: 1, or the knuckle's half-breadth y_k(x) where u is
+    /// the fraction of the way out to it.
+    pub fn u_scale(&self, x: f64) -> f64 {
+        self.scale.as_ref().map_or(1.0, |s| s.eval(x, 0.0).0)
     }
 
     /// The x and u domain: ((x0, x1), (u0, u1)).
@@ -140,12 +155,14 @@ impl Hull {
     }
 
     /// The point of the section at x nearest (v0, u0) in the body plan, as (v, u) (Newton on
-    /// the foot-point condition from u0, the second derivative dropped).
+    /// the foot-point condition from u0, the second derivative dropped; distances in length,
+    /// u scaled by [`Hull::u_scale`]).
     pub fn project(&self, x: f64, v0: f64, u0: f64) -> (f64, f64) {
+        let g2 = self.u_scale(x).powi(2);
         let mut u = u0;
         for _ in 0..30 {
             let (v, _, vu) = self.eval(x, u);
-            let step = ((u - u0) + (v - v0) * vu) / (1.0 + vu * vu);
+            let step = (g2 * (u - u0) + (v - v0) * vu) / (g2 + vu * vu);
             u -= step;
             if step.abs() < 1e-12 * (1.0 + u.abs()) {
                 break;
@@ -158,10 +175,10 @@ impl Hull {
         &self.s
     }
 
-    /// (u, v) of a point (y, z).
-    fn uv(&self, y: f64, z: f64) -> (f64, f64) {
+    /// (u, v) of a point (x, y, z).
+    fn uv(&self, x: f64, y: f64, z: f64) -> (f64, f64) {
         match self.value {
-            Coord::Z => (y, z),
+            Coord::Z => (y / self.u_scale(x), z),
             _ => (z, y),
         }
     }
@@ -244,6 +261,7 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
     let use_hull = t.has_redundant_views();
     // lines faired alone (knuckles first: the hull's regions are split along them)
     let mut knuckle_fit: Option<(usize, Spline)> = None;
+    let mut knuckle_y: Option<(usize, Spline)> = None;
     for (li, l) in t.lines.iter().enumerate() {
         let alone = !use_hull || l.knuckle || matches!(l.kind, Kind::Profile | Kind::Plan);
         if !alone {
@@ -279,6 +297,9 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
             }
             if use_hull && l.knuckle && coord == 2 && knuckle_fit.is_none() {
                 knuckle_fit = Some((li, f.spline.clone()));
+            }
+            if use_hull && l.knuckle && coord == 1 && knuckle_y.is_none() {
+                knuckle_y = Some((li, f.spline.clone()));
             }
         }
     }
@@ -322,24 +343,43 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
             if cells.len() < 8 {
                 continue;
             }
-            let uv = |y: f64, z: f64| if value == Coord::Z { (y, z) } else { (z, y) };
-            let (mut x0, mut x1, mut u0, mut u1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
             let pts: Vec<(f64, f64, f64)> = cells
                 .iter()
                 .map(|&i| (t.cells[i].x, t.cells[i].y, t.cells[i].z))
                 .chain(held.iter().map(|&i| (values[i][0], values[i][1], values[i][2])))
                 .collect();
-            for &(x, y, z) in &pts {
-                let (u, _) = uv(y, z);
+            let (mut x0, mut x1) = (f64::MAX, f64::MIN);
+            for &(x, _, _) in &pts {
                 x0 = x0.min(x);
                 x1 = x1.max(x);
-                u0 = u0.min(u);
-                u1 = u1.max(u);
             }
-            if x1 <= x0 || u1 <= u0 {
+            if x1 <= x0 {
                 continue;
             }
             let xs = t.stations.len().max(2) - 1;
+            let kx = Knots::uniform(x0, x1, xs.min(80));
+            // below a knuckle, u is the fraction of the way out to it (see `Hull`)
+            let scale = match (&knuckle_fit, &knuckle_y, value) {
+                (Some((kl, _)), Some((yl, yk)), Coord::Z) if kl == yl => knuckle_scale(&kx, yk, 4.0 * step),
+                _ => None,
+            };
+            let g = |x: f64| scale.as_ref().map_or(1.0, |s| s.eval(x, 0.0).0);
+            let uv = |x: f64, y: f64, z: f64| {
+                if value == Coord::Z {
+                    (y / g(x), z)
+                } else {
+                    (z, y)
+                }
+            };
+            let (mut u0, mut u1) = (f64::MAX, f64::MIN);
+            for &(x, y, z) in &pts {
+                let (u, _) = uv(x, y, z);
+                u0 = u0.min(u);
+                u1 = u1.max(u);
+            }
+            if u1 <= u0 {
+                continue;
+            }
             // knots: one span per station interval and per plane of the u family (tried on
             // Block Island and the Wigley tuning tables: twice as many in either direction
             // follow the disagreeing offsets of Block Island instead of agreeing them)
@@ -357,23 +397,25 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
             planes.sort_by(f64::total_cmp);
             planes.dedup();
             let us = planes.len().clamp(3, 40);
-            let kx = Knots::uniform(x0, x1, xs.min(80));
             let ku = Knots::uniform(u0, u1, us);
             let mut obs: Vec<Obs> = cells
                 .iter()
                 .map(|&i| {
                     let c = &t.cells[i];
                     let kind = t.lines[c.line].kind;
-                    let (u, v) = uv(c.y, c.z);
+                    let (u, v) = uv(c.x, c.y, c.z);
                     let (my, mz) = (kind != Kind::Buttock, kind != Kind::Waterline);
                     let (mu, mv) = if value == Coord::Z { (my, mz) } else { (mz, my) };
-                    Obs::new((c.x, u), v, mv, mu)
+                    let mut o = Obs::new((c.x, u), v, mv, mu);
+                    o.u_scale = g(c.x);
+                    o
                 })
                 .collect();
             for &i in &held {
-                let (u, v) = uv(values[i][1], values[i][2]);
+                let (u, v) = uv(values[i][0], values[i][1], values[i][2]);
                 let mut o = Obs::new((values[i][0], u), v, true, true);
                 o.held = true;
+                o.u_scale = g(values[i][0]);
                 obs.push(o);
             }
             let curved = fit(kx.clone(), Some(ku.clone()), &obs, tol, false)
@@ -389,11 +431,12 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                 s: f.spline.clone(),
                 value,
                 region: name,
+                scale,
             };
             for (k, &i) in cells.iter().enumerate() {
                 let c = &t.cells[i];
                 let kind = t.lines[c.line].kind;
-                let (u, v) = h.uv(c.y, c.z);
+                let (u, v) = h.uv(c.x, c.y, c.z);
                 let (mu, mv) = (obs[k].free_u, obs[k].free_v);
                 let new = if mv && !mu {
                     Some(h.point(c.x, u))
@@ -552,6 +595,36 @@ fn hold_feature_runs(
     }
 }
 
+/// The knuckle's half-breadth y_k(x) as a cubic spline on the knots `kx` (least squares to
+/// the knuckle's faired spline `yk`, clamped to its ends, at eight points per span), the scale
+/// of the bottom's u (see [`Hull`]); None where it comes within `min` of the centreline, as a
+/// chine running into the stem does (the fraction is then undefined there).
+fn knuckle_scale(kx: &Knots, yk: &Spline, min: f64) -> Option<Spline> {
+    let (xa, xb) = (yk.kx.t[0], yk.kx.t[yk.kx.t.len() - 1]);
+    let n = kx.count();
+    let mut s = Spline {
+        kx: kx.clone(),
+        ku: None,
+        c: vec![0.0; n],
+    };
+    let (x0, x1) = (kx.t[0], kx.t[kx.t.len() - 1]);
+    let m = 8 * (n - 3);
+    let mut ata = Band::zeros(n, 3);
+    let mut atb = vec![0.0; n];
+    for k in 0..=m {
+        let x = x0 + (x1 - x0) * k as f64 / m as f64;
+        let y = yk.eval(x.clamp(xa, xb), 0.0).0;
+        let r = s.row(x, 0.0, 0);
+        ata.add_outer(&r, 1.0);
+        for &(i, w) in &r {
+            atb[i] += w * y;
+        }
+    }
+    s.c = ata.solve(&atb)?;
+    let low = (0..=m).any(|k| s.eval(x0 + (x1 - x0) * k as f64 / m as f64, 0.0).0 <= min);
+    (!low).then_some(s)
+}
+
 /// Offsets within this many rounding steps of a knuckle's height are cut from the region that
 /// moves them least instead of being assigned to one by their (rounded) height.
 const KNUCKLE_BAND: f64 = 2.0;
@@ -560,7 +633,7 @@ const KNUCKLE_BAND: f64 = 2.0;
 /// its z, a buttock its y, an edge point is projected (one on the centreline keeps y = 0, see
 /// [`on_centreline`]); None where the section misses it.
 fn cut(h: &Hull, x: f64, y: f64, z: f64, kind: Kind) -> Option<[f64; 3]> {
-    let (u, v) = h.uv(y, z);
+    let (u, v) = h.uv(x, y, z);
     let (my, mz) = (kind != Kind::Buttock, kind != Kind::Waterline);
     let (mu, mv) = if h.value == Coord::Z { (my, mz) } else { (mz, my) };
     let p = if mv && !mu {

@@ -173,7 +173,8 @@ fn units(u: Option<&str>) -> Units {
 
 /// The hull's surfaces as a CAD model: each bicubic B-spline v = S(x, u) written exactly as a
 /// B-spline surface with control points at the Greville abscissae (x̄ᵢ, ūⱼ) and value cᵢⱼ (a
-/// polynomial function surface is its own control net there). Each spans the bounding box of
+/// polynomial function surface is its own control net there; where u is a fraction of the
+/// knuckle's half-breadth y_k(x) = Σ dᵢ Nᵢ(x), the net's y is ūⱼ·dᵢ). Each spans the bounding box of
 /// its offsets, so it runs past the stem, keel, sheer or knuckle where the hull has no offsets.
 /// The unit is the table's (millimetres when unknown).
 pub fn hull_model(f: &Faired) -> Result<CadModel> {
@@ -209,7 +210,10 @@ pub fn hull_model(f: &Faired) -> Result<CadModel> {
                     .map(|(j, &u)| {
                         let v = s.c[i * nu + j];
                         if h.value() == Coord::Z {
-                            Vec3::new(x, u, v)
+                            // y = u·y_k(x): the product of a linear function of u and a cubic
+                            // spline on the same x knots, whose control net is ūⱼ·dᵢ
+                            let d = h.scale.as_ref().map_or(1.0, |k| k.c[i]);
+                            Vec3::new(x, u * d, v)
                         } else {
                             Vec3::new(x, v, u)
                         }

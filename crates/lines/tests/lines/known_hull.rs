@@ -306,3 +306,59 @@ fn no_faired_half_breadth_is_negative() {
         );
     }
 }
+
+#[test]
+fn the_bottom_is_parametrised_by_the_fraction_of_the_way_out_to_the_chine() {
+    // the exact hard-chine form: its bottom z = z_k(x) + (z_c(x) − z_k(x))·y / y_c(x) is
+    // straight in the fraction u = y / y_c(x), with cubic coefficients in x, so the region's
+    // straight limit reproduces it, the forefoot included, where the chine closes in on the
+    // keel (in (x, y) its slope there varies as 1 / y_c(x))
+    let mut g = generate::hard_chine(0.0, 0, 7);
+    g.table = g.truth.clone();
+    let (_d, t) = table(&g);
+    let s = Settings {
+        step: Some(0.125),
+        ..Settings::default()
+    };
+    let f = fair(&t, &s).unwrap();
+    let (k, bottom) = f
+        .hulls
+        .iter()
+        .enumerate()
+        .find(|(_, h)| h.value() == fair_lines::Coord::Z)
+        .unwrap();
+    assert!(f.report.hull_fit[k].straight, "{:?}", f.report.hull_fit);
+    let chine = t.lines.iter().position(|l| l.label == "chine").unwrap();
+    let keel = t.lines.iter().position(|l| l.label == "keel").unwrap();
+    let cells = |l: usize| -> Vec<&fair_lines::Cell> { t.cells.iter().filter(|c| c.line == l).collect() };
+    for c in cells(chine) {
+        // u = 1 is the chine: the scale is its half-breadth, the height its height
+        let p = bottom.point(c.x, 1.0);
+        assert!(
+            (p[1] - c.y).abs() < 0.01,
+            "chine y at x {}: {} vs {}",
+            c.x,
+            p[1],
+            c.y
+        );
+        assert!(
+            (p[2] - c.z).abs() < 0.01,
+            "chine z at x {}: {} vs {}",
+            c.x,
+            p[2],
+            c.z
+        );
+    }
+    for c in cells(keel) {
+        // u = 0 is the centreline, at the keel's height (the forefoot's first station too)
+        let p = bottom.point(c.x, 0.0);
+        assert_eq!(p[1], 0.0);
+        assert!(
+            (p[2] - c.z).abs() < 0.01,
+            "keel z at x {}: {} vs {}",
+            c.x,
+            p[2],
+            c.z
+        );
+    }
+}
