@@ -631,3 +631,68 @@ fn gently_curved_directions_are_not_straightened() {
         );
     }
 }
+
+#[test]
+fn differenced_penalty_annihilates_lines_and_jumps_polynomial_below_its_order() {
+    // Δ^d D y = 0 for the lines a + b t (D's null space) at every order, and for a y whose
+    // jumps D y are a polynomial of degree below d in the knot index.
+    let knots: Vec<f64> = (0..12).map(|k| k as f64 + 0.3 * ((k * 7) % 5) as f64).collect();
+    let d = jump_matrix(&knots, false).unwrap();
+    let line = DVector::from_iterator(knots.len(), knots.iter().map(|t| 2.0 - 0.5 * t));
+    for order in 0..=3 {
+        let dd = super::operator::differenced(&d, order).unwrap();
+        assert_eq!(dd.nrows(), d.nrows() - order);
+        assert!((&dd * &line).amax() < 1e-9, "order {order}: a line is penalised");
+    }
+    // A y with constant jumps (least squares through D's rows, D full row rank): Δ¹ of them
+    // vanishes, the jumps themselves do not.
+    let target = DVector::from_element(d.nrows(), 1.0);
+    let y = d.clone().svd(true, true).solve(&target, 1e-12).unwrap();
+    assert!((&d * &y - &target).amax() < 1e-8);
+    let first = super::operator::differenced(&d, 1).unwrap();
+    assert!((&first * &y).amax() < 1e-8);
+    assert!(super::operator::differenced(&d, d.nrows()).is_none());
+}
+
+#[test]
+fn chosen_orders_score_lowest_among_all_pairs() {
+    // The pair of difference orders kept has the least GCV minimum among all pairs (no
+    // limit taken on this curved net).
+    let grid = noisy(14, 11, 0.02);
+    let flat: Vec<Vec3> = grid.iter().flatten().copied().collect();
+    let surface = BicubicSplineSurface::with_settings(&grid, &BicubicSurfaceSettings::default()).unwrap();
+    let (ju, jv) = (
+        jump_matrix(surface.u_knots(), false).unwrap(),
+        jump_matrix(surface.v_knots(), false).unwrap(),
+    );
+    let y = super::spectral::planes(14, 11, |a, b| flat[a * 11 + b]);
+    let chosen = super::choose_orders((&ju, false), (&jv, false), &y);
+    let n = (14 * 11) as f64;
+    let mut least = f64::INFINITY;
+    for du in super::ORDERS {
+        for dv in super::ORDERS {
+            let (a, b) = (
+                super::operator::differenced(&ju, du).unwrap(),
+                super::operator::differenced(&jv, dv).unwrap(),
+            );
+            let s = super::spectral::Spectral::new(gram(&a), gram(&b));
+            let e = super::spectral::Energies::new(&s.forward(&y), None);
+            let (_, v) = super::minimise_log_pair(
+                |lu, lv| {
+                    let (rss, tr) = s.rss_trace(
+                        &e,
+                        Weights {
+                            u: 10f64.powf(lu),
+                            v: 10f64.powf(lv),
+                        },
+                    );
+                    super::gcv(rss, tr, n)
+                },
+                super::LOG_LAMBDA_RANGE,
+            );
+            least = least.min(v);
+        }
+    }
+    assert!(chosen.weights.u < super::LIMIT_WEIGHT && chosen.weights.v < super::LIMIT_WEIGHT);
+    assert_eq!(chosen.score, least);
+}
