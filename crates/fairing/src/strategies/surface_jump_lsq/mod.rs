@@ -406,29 +406,8 @@ impl SurfaceJumpLsq {
         let mut cg_iterations = 0;
         let mut refused = 0;
         if !free_rows.is_empty() && !free_cols.is_empty() && given != Some(Weights::both(0.0)) {
-            let (jump_u, jump_v) = (
-                operator::jump_matrix(input.u_knots(), topology.closed_u)?,
-                operator::jump_matrix(input.v_knots(), topology.closed_v)?,
-            );
-            // The penalty's difference order per direction, with the weights, by GCV on a
-            // plain block (`choose_orders`); elsewhere, and for a given λ, the jumps themselves.
-            let plain_block = given.is_none()
-                && prepared.is_empty()
-                && settings.max_distance.is_none()
-                && held.iter().all(|&h| !h);
-            let chosen = if plain_block {
-                let y = planes(mu, nv, data);
-                Some(choose_orders(
-                    (&jump_u, topology.closed_u),
-                    (&jump_v, topology.closed_v),
-                    &y,
-                ))
-            } else {
-                None
-            };
-            let (order_u, order_v) = chosen.as_ref().map_or((0, 0), |c| c.orders);
-            let du = operator::differenced(&jump_u, order_u).expect("a chosen order leaves a row");
-            let dv = operator::differenced(&jump_v, order_v).expect("a chosen order leaves a row");
+            let du = operator::jump_matrix(input.u_knots(), topology.closed_u)?;
+            let dv = operator::jump_matrix(input.v_knots(), topology.closed_v)?;
             let (ku_full, kv_full) = (operator::gram(&du), operator::gram(&dv));
             let sub = |k: &DMatrix<f64>, a: &[usize], b: &[usize]| {
                 DMatrix::from_fn(a.len(), b.len(), |r, c| k[(a[r], b[c])])
@@ -488,19 +467,20 @@ impl SurfaceJumpLsq {
                 && free_rows
                     .iter()
                     .all(|&i| free_cols.iter().all(|&j| !held[i * nv + j]));
-            let lambda = match (given, &chosen) {
-                (Some(w), _) => w,
-                (None, Some(c)) => {
-                    gcv_score = Some(c.score);
-                    c.weights
-                }
-                (None, None) => {
+            let lambda = match given {
+                Some(w) => w,
+                None => {
                     let score = |log_u: f64, log_v: f64| {
                         let (rss, trace) = rss_trace(Weights {
                             u: 10f64.powf(log_u),
                             v: 10f64.powf(log_v),
                         });
-                        gcv(rss, trace, n_free)
+                        let denom = 1.0 - trace / n_free;
+                        if denom <= 0.0 {
+                            f64::INFINITY
+                        } else {
+                            (rss / (3.0 * n_free)) / (denom * denom)
+                        }
                     };
                     let found = minimise_log_pair(score, LOG_LAMBDA_RANGE);
                     let ((u, v), value) = if limits_allowed {
@@ -551,10 +531,6 @@ impl SurfaceJumpLsq {
                 let (mut x, pins, iterations) = system.solve(trial, &scattered, settings.max_distance);
                 cg_iterations += iterations;
                 if limits_allowed {
-                    debug_assert!(
-                        (trial.u < LIMIT_WEIGHT || order_u == 0) && (trial.v < LIMIT_WEIGHT || order_v == 0),
-                        "the limit is taken only on the jumps themselves"
-                    );
                     straighten(
                         &mut x,
                         trial,
@@ -1059,115 +1035,6 @@ fn project_line(values: &mut [f64], sites: &[f64], closed: bool) {
     let slope = if closed || stt <= 0.0 { 0.0 } else { sty / stt };
     for (y, t) in values.iter_mut().zip(sites) {
         *y = mean + slope * (t - tm);
-    }
-}
-
-/// The GCV score V = (RSS/3N) / (1 − tr A/N)² (infinite where the denominator is not
-/// positive, the interpolating end).
-fn gcv(rss: f64, trace: f64, n: f64) -> f64 {
-    let denom = 1.0 - trace / n;
-    if denom <= 0.0 {
-        f64::INFINITY
-    } else {
-        (rss / (3.0 * n)) / (denom * denom)
-    }
-}
-
-/// The difference orders d tried on an open direction (the penalty on Δ^d of the jumps; 0 the
-/// jumps themselves, 1..3 the curve method's `difference-order`). A closed direction keeps 0.
-const ORDERS: [usize; 4] = [0, 1, 2, 3];
-
-/// A minimum of GCV: ((log₁₀ λ_u, log₁₀ λ_v), score).
-type Found = ((f64, f64), f64);
-
-/// What [`choose_orders`] chose: the difference order of each direction, the weights and
-/// their GCV score.
-struct Chosen {
-    orders: (usize, usize),
-    weights: Weights,
-    score: f64,
-}
-
-/// The penalty's difference order per direction, (d_u, d_v), with its weights, on a plain
-/// block (every node free): for each pair of [`ORDERS`] (only 0 on a closed direction) the
-/// penalty λ_u |Δ^{d_u} D_u P|² + λ_v |P (Δ^{d_v} D_v)ᵀ|², whose normal equations are the same
-/// Kronecker sum with K = (Δ^d D)ᵀ(Δ^d D), is searched by GCV ([`minimise_log_pair`]) and the
-/// pair of least score kept: the candidates are linear smoothers of the same data, which V
-/// compares as it compares weights (as the curve method's `difference-order = auto`). Then the
-/// limits ([`with_limits`]): λ_u → ∞ is scored with d_u = 0 (its lines straight, the null
-/// space [`straighten`] projects onto exactly) at the kept λ_v and d_v, likewise λ_v → ∞;
-/// a direction taken to its limit has order 0. Cost: per pair two eigendecompositions, a
-/// transform of the data and a search (about 700 O(N) scores), at most 16 pairs.
-fn choose_orders(u: (&DMatrix<f64>, bool), v: (&DMatrix<f64>, bool), y: &Planes) -> Chosen {
-    let orders = |closed: bool| if closed { &ORDERS[..1] } else { &ORDERS[..] };
-    let n = (y[0].nrows() * y[0].ncols()) as f64;
-    let mut systems: Vec<((usize, usize), Spectral, Energies)> = Vec::new();
-    for &du in orders(u.1) {
-        for &dv in orders(v.1) {
-            let (Some(a), Some(b)) = (operator::differenced(u.0, du), operator::differenced(v.0, dv)) else {
-                continue;
-            };
-            let spectral = Spectral::new(operator::gram(&a), operator::gram(&b));
-            let energies = Energies::new(&spectral.forward(y), None);
-            systems.push(((du, dv), spectral, energies));
-        }
-    }
-    let rss_trace = |k: usize, lu: f64, lv: f64| {
-        systems[k].1.rss_trace(
-            &systems[k].2,
-            Weights {
-                u: 10f64.powf(lu),
-                v: 10f64.powf(lv),
-            },
-        )
-    };
-    let score = |k: usize, lu: f64, lv: f64| {
-        let (rss, trace) = rss_trace(k, lu, lv);
-        gcv(rss, trace, n)
-    };
-    let mut best: Option<(usize, Found)> = None;
-    for k in 0..systems.len() {
-        let found = minimise_log_pair(|lu, lv| score(k, lu, lv), LOG_LAMBDA_RANGE);
-        if best.is_none_or(|b| found.1 < b.1 .1) {
-            best = Some((k, found));
-        }
-    }
-    let (k, found) = best.expect("order 0 is always a candidate");
-    let (du, dv) = systems[k].0;
-    let index = |orders: (usize, usize)| {
-        systems
-            .iter()
-            .position(|s| s.0 == orders)
-            .expect("order 0 is a candidate")
-    };
-    let (ku0, kv0) = (index((0, dv)), index((du, 0)));
-    // The system a pair of log weights is scored in: a limit with that direction's order 0.
-    let at = |lu: f64, lv: f64| {
-        if lu >= LOG_LAMBDA_LIMIT {
-            ku0
-        } else if lv >= LOG_LAMBDA_LIMIT {
-            kv0
-        } else {
-            k
-        }
-    };
-    let ((lu, lv), value) = with_limits(
-        |lu, lv| score(at(lu, lv), lu, lv),
-        |lu, lv| rss_trace(at(lu, lv), lu, lv).1,
-        n,
-        found,
-    );
-    let orders = (
-        if lu >= LOG_LAMBDA_LIMIT { 0 } else { du },
-        if lv >= LOG_LAMBDA_LIMIT { 0 } else { dv },
-    );
-    Chosen {
-        orders,
-        weights: Weights {
-            u: 10f64.powf(lu),
-            v: 10f64.powf(lv),
-        },
-        score: value,
     }
 }
 

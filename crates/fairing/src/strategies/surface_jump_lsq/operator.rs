@@ -126,20 +126,3 @@ pub(crate) fn gram(d: &DMatrix<f64>) -> DMatrix<f64> {
     let k = d.transpose() * d;
     (&k + k.transpose()) * 0.5
 }
-
-/// Δ^order D: the `order`-th differences of the rows of D (consecutive jumps along the
-/// direction), the jump operator of the curve method's `difference-order` = d (order 0 is D).
-/// Its null space is the lines whose jumps are a polynomial of degree below `order` in the
-/// knot index: the straight lines (D's null space) and `order` more dimensions. `None` when
-/// D has too few rows for the differences to leave one.
-pub(crate) fn differenced(d: &DMatrix<f64>, order: usize) -> Option<DMatrix<f64>> {
-    if d.nrows() <= order {
-        return None;
-    }
-    let mut out = d.clone();
-    for _ in 0..order {
-        let rows = out.nrows() - 1;
-        out = DMatrix::from_fn(rows, out.ncols(), |r, c| out[(r + 1, c)] - out[(r, c)]);
-    }
-    Some(out)
-}
