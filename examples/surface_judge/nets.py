@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Noisy nets with clean twins (`python nets.py tuning|test|fresh-tuning|fresh-test OUT_DIR`, or
+"""Noisy nets with clean twins (`python nets.py tuning|test|fresh-tuning|fresh-test|final-test OUT_DIR`, or
 `python nets.py --draws D1,D2,... OUT_DIR`) for judging surface fairing (issue 46).
 
 Families: bump (panels with Gaussian bumps), helicoid (helicoidal strips), height60 (60 x 60
@@ -12,6 +12,8 @@ The split is fixed here, before any tuning: TUNING draws use seeds 1000 + k, TES
 5000 + k; a draw's seed sets both the shape's parameters and the noise. After the test draws
 had been looked at while tuning, they joined the tuning data with two fresh draws
 (FRESH_TUNING_DRAWS), and a fresh test split (FRESH_TEST_DRAWS) was fixed before that tuning.
+After that split had been run, every draw above became tuning data and FINAL_TEST_DRAWS were
+fixed before the next tuning (the penalty's difference order).
 A net is a function of its family, level and draw alone, so every split's nets are the same
 whichever split (or --draws list) writes them.
 """
@@ -26,8 +28,10 @@ TUNING_DRAWS = [1000]
 TEST_DRAWS = [5000, 5001, 5002]
 FRESH_TUNING_DRAWS = [1001, 1002]
 FRESH_TEST_DRAWS = [7000, 7001, 7002]
+FINAL_TEST_DRAWS = [8000, 8001, 8002]
 SPLITS = {"tuning": TUNING_DRAWS, "test": TEST_DRAWS,
-          "fresh-tuning": FRESH_TUNING_DRAWS, "fresh-test": FRESH_TEST_DRAWS}
+          "fresh-tuning": FRESH_TUNING_DRAWS, "fresh-test": FRESH_TEST_DRAWS,
+          "final-test": FINAL_TEST_DRAWS}
 HERE = os.path.dirname(os.path.abspath(__file__))
 TEAPOT = os.environ.get("TEAPOT", os.path.join(HERE, "..", "..", "data", "surface_utah_teapot", "teapot_patches.csv"))
 
