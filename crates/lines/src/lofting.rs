@@ -222,7 +222,7 @@ pub struct Faired {
 /// Fairs a table: the hull is fitted to every waterline, buttock and (non-knuckle) edge offset
 /// at once, and every such offset is cut back from it. A knuckle edge (the first, when there are
 /// several) is faired alone first and splits the hull into two regions holding its faired
-/// points: y(x, z) above it, z(x, y) below it. Each region is fitted twice, with its sections
+/// points: y(x, z) above it, z(x, y / y_k(x)) below it ([`Hull`]). Each region is fitted twice, with its sections
 /// free and at the straight-section limit (straight across the girth at every x, as a V bottom
 /// or flared topsides are); the limit is taken when it reaches the same discrepancy target and
 /// rejects the same offsets. An offset cut from one region onto the other's side of the knuckle
