@@ -8,6 +8,28 @@ fn table(g: &generate::Generated) -> (tempfile::TempDir, fair_lines::Table) {
     (dir, t)
 }
 
+/// The generator's planted errors, each with the index of its (first) cell in the table.
+fn planted_cells(g: &generate::Generated, t: &fair_lines::Table) -> Vec<(serde_json::Value, usize)> {
+    let planted: serde_json::Value = serde_json::from_str(&g.planted).unwrap();
+    planted["errors"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| {
+            let cell = &e["cells"][0];
+            let i = t
+                .cells
+                .iter()
+                .position(|c| {
+                    t.lines[c.line].label == cell["line"].as_str().unwrap()
+                        && c.station_index == cell["station_index"].as_i64().unwrap()
+                })
+                .unwrap();
+            (e.clone(), i)
+        })
+        .collect()
+}
+
 fn truth(t: &fair_lines::Table, i: usize) -> [f64; 3] {
     let c = &t.cells[i];
     match t.lines[c.line].kind {
@@ -38,17 +60,7 @@ fn planted_errors_are_flagged_and_pulled_toward_the_truth() {
     let g = generate::wigley(0.0, 3, 11);
     let (_d, t) = table(&g);
     let f = fair(&t, &Settings::default()).unwrap();
-    let planted: serde_json::Value = serde_json::from_str(&g.planted).unwrap();
-    for e in planted["errors"].as_array().unwrap() {
-        let cell = &e["cells"][0];
-        let i = t
-            .cells
-            .iter()
-            .position(|c| {
-                t.lines[c.line].label == cell["line"].as_str().unwrap()
-                    && c.station_index == cell["station_index"].as_i64().unwrap()
-            })
-            .unwrap();
+    for (e, i) in planted_cells(&g, &t) {
         assert!(f.flagged[i], "planted error {e} not flagged");
         let tr = truth(&t, i);
         let before = (0..3)
@@ -229,17 +241,7 @@ fn an_offset_cut_across_the_chine_is_cut_from_the_region_on_its_side() {
     let (_d, t) = table(&g);
     let f = fair(&t, &Settings::default()).unwrap();
     let chine = t.lines.iter().position(|l| l.label == "chine").unwrap();
-    let planted: serde_json::Value = serde_json::from_str(&g.planted).unwrap();
-    for e in planted["errors"].as_array().unwrap() {
-        let cell = &e["cells"][0];
-        let i = t
-            .cells
-            .iter()
-            .position(|c| {
-                t.lines[c.line].label == cell["line"].as_str().unwrap()
-                    && c.station_index == cell["station_index"].as_i64().unwrap()
-            })
-            .unwrap();
+    for (e, i) in planted_cells(&g, &t) {
         let c = &t.cells[i];
         assert!(f.flagged[i], "planted error {e} not flagged");
         let tr = match t.lines[c.line].kind {
