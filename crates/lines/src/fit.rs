@@ -383,15 +383,17 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64, straight:
         // near the previous λ does not, its fit searches the whole range below (a window's
         // edge, not the offsets, decided it otherwise: the hard-chine bottom missed the
         // target by 0.3 % at the window's edge, 10³ above the λ that meets it)
-        if reduce.is_some() && outer >= STIFF && lo > -8.0 {
-            if let Some(c) = solve(10f64.powf(lo)) {
-                if rms_move(&c) > goal {
-                    hi = lo;
-                    lo = -8.0;
-                }
-            }
+        let mut at_lo = solve(10f64.powf(lo));
+        if reduce.is_some()
+            && outer >= STIFF
+            && lo > -8.0
+            && at_lo.as_ref().is_some_and(|c| rms_move(c) > goal)
+        {
+            hi = lo;
+            lo = -8.0;
+            at_lo = solve(10f64.powf(lo));
         }
-        if let Some(c) = solve(10f64.powf(lo)) {
+        if let Some(c) = at_lo {
             if rms_move(&c) > goal {
                 best = Some((lo, c));
                 hi = lo;
