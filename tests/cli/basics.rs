@@ -209,6 +209,13 @@ fn help_version_and_methods_succeed() {
     ] {
         assert!(methods.contains(name), "{name} missing from\n{methods}");
     }
+    // The default method of each kind of input is named (the door's constants).
+    assert!(
+        methods.contains(
+            "defaults: jump-lsq for functions, jump-lsq for parametric curves, jump-lsq for surfaces"
+        ),
+        "{methods}"
+    );
 }
 
 /// An output path that cannot be written is found before anything is written: a bad

@@ -105,8 +105,8 @@ pub(crate) struct FairArgs {
     /// Input file, or - for standard input.
     #[arg(value_name = "INPUT")]
     pub input: String,
-    /// Fairing method (`fair methods` lists the catalogue's); default jump-lsq for curves of
-    /// both kinds, zhang-cheng for surfaces.
+    /// Fairing method (`fair methods` lists the catalogue's and names the default for each
+    /// kind of input).
     #[arg(long, short = 'm', value_name = "M")]
     pub method: Option<String>,
     /// How to read the points (curves only).
