@@ -191,7 +191,8 @@ pub enum Source {
     /// Cut from the hull surface.
     Hull,
     /// The line faired alone (a knuckle, a profile-only or plan-only line, a table without
-    /// redundant views).
+    /// redundant views; a knuckle's heights above a bottom parametrised by the fraction of the
+    /// way out to it are the bottom's edge, see [`fair`]).
     Line,
     /// Kept as read (on the centreline, too few cells to fair, or a run of offsets along a line
     /// that the hull rejects and the crossing lines of the other views do not contradict: a
@@ -223,7 +224,12 @@ pub struct Faired {
 /// Fairs a table: the hull is fitted to every waterline, buttock and (non-knuckle) edge offset
 /// at once, and every such offset is cut back from it. A knuckle edge (the first, when there are
 /// several) is faired alone first and splits the hull into two regions holding its faired
-/// points: y(x, z) above it, z(x, y / y_k(x)) below it ([`Hull`]). Each region is fitted twice, with its sections
+/// points: y(x, z) above it, z(x, y / y_k(x)) below it ([`Hull`]). Below it its heights as read
+/// are offsets of the bottom's edge (u = 1), fitted with the bottom's waterlines and buttocks,
+/// and the knuckle's height is the bottom's edge there: near a nearly flat bottom (a waterline
+/// meeting it close to the chine) a height error of the knuckle faired alone becomes many times
+/// that in the waterline's half-breadth. The region above holds the knuckle at those heights.
+/// Each region is fitted twice, with its sections
 /// free and at the straight-section limit (straight across the girth at every x, as a V bottom
 /// or flared topsides are); the limit is taken when it reaches the same discrepancy target and
 /// rejects the same offsets. An offset cut from one region onto the other's side of the knuckle
@@ -335,8 +341,9 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                     .partition(|&&i| t.cells[i].z >= kz(t.cells[i].x));
                 band = near;
                 let name = &t.lines[*kl].label;
-                regions.push((format!("above {name}"), Coord::Y, above, held.clone()));
-                regions.push((format!("below {name}"), Coord::Z, below, held));
+                // below first: its fit gives the knuckle's heights that the region above holds
+                regions.push((format!("below {name}"), Coord::Z, below, held.clone()));
+                regions.push((format!("above {name}"), Coord::Y, above, held));
             }
             None => regions.push(("hull".into(), Coord::Y, idx.clone(), Vec::new())),
         }
@@ -412,10 +419,19 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                     o
                 })
                 .collect();
+            // below a knuckle parametrised by the fraction (u = 1 on the knuckle), the knuckle's
+            // heights as read are offsets of the bottom's edge, weighed with the rest (measured
+            // in z; its half-breadths, faired alone, are the scale of u)
+            let soft = scale.is_some();
             for &i in &held {
-                let (u, v) = uv(values[i][0], values[i][1], values[i][2]);
-                let mut o = Obs::new((values[i][0], u), v, true, true);
-                o.held = true;
+                let z = if soft { t.cells[i].z } else { values[i][2] };
+                let (u, v) = uv(values[i][0], values[i][1], z);
+                let mut o = if soft {
+                    Obs::new((values[i][0], u), v, true, false)
+                } else {
+                    Obs::new((values[i][0], u), v, true, true)
+                };
+                o.held = !soft;
                 o.u_scale = g(values[i][0]);
                 obs.push(o);
             }
@@ -468,9 +484,25 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                     rejected[i] = true;
                 }
             }
+            // the knuckle's height is the bottom's edge (the region above, fitted next, holds it)
+            if soft {
+                for (k, &i) in held.iter().enumerate() {
+                    let (u, _) = h.uv(values[i][0], values[i][1], values[i][2]);
+                    values[i][2] = h.eval(values[i][0], u).0;
+                    if f.weight[cells.len() + k] == 0.0 {
+                        rejected[i] = true;
+                    }
+                }
+            }
             fits.push((h.region.clone(), f));
             hulls.push(h);
             region_cells.push(cells);
+        }
+        // back to the order above, below
+        if knuckle_fit.is_some() {
+            hulls.reverse();
+            fits.reverse();
+            region_cells.reverse();
         }
         // the knuckle bounds both regions: an offset cut from one region onto the other's side
         // of the knuckle (the extension of the topsides below a chine, where an offset near the

@@ -427,3 +427,31 @@ fn the_bottom_is_parametrised_by_the_fraction_of_the_way_out_to_the_chine() {
         );
     }
 }
+
+#[test]
+fn the_chine_height_below_is_the_bottoms_edge_weighed_with_the_waterlines() {
+    // a noisy table faired at its noise (tuning seed 8): at the stern the low waterline WL2
+    // (z = 10) meets the nearly flat bottom (slope dz/dy = 0.25) just below the chine, so a
+    // height error of the chine becomes four times that in WL2's half-breadth. Faired alone, the
+    // chine's last heights sat 2.3 steps high and WL2 at the last station 9.3 steps in; with the
+    // chine's heights as offsets of the bottom's edge, the waterlines there correct them.
+    let (_d, t) = table(&generate::hard_chine(1.5, 0, 8));
+    let settings = Settings {
+        tolerance: Some(1.5 * generate::STEP * 3f64.sqrt()),
+        ..Settings::default()
+    };
+    let f = fair(&t, &settings).unwrap();
+    for (i, c) in t.cells.iter().enumerate() {
+        let label = &t.lines[c.line].label;
+        if label != "WL2" || c.station_index < 12 {
+            continue;
+        }
+        let truth = generate::chine_form_y(c.x, c.z).unwrap();
+        let off = (f.values[i][1] - truth).abs() / generate::STEP;
+        assert!(
+            off <= 3.0,
+            "{label} at station {}: {off} steps off",
+            c.station_index
+        );
+    }
+}
