@@ -191,8 +191,9 @@ pub enum Source {
     /// Cut from the hull surface.
     Hull,
     /// The line faired alone (a knuckle, a profile-only or plan-only line, a table without
-    /// redundant views; a knuckle's heights above a bottom parametrised by the fraction of the
-    /// way out to it are the bottom's edge, see [`fair`]).
+    /// redundant views). A knuckle's half-breadths are faired alone; its heights too, except
+    /// above a bottom parametrised by the fraction of the way out to it, where they are the
+    /// bottom's edge (see [`fair`]).
     Line,
     /// Kept as read (on the centreline, too few cells to fair, or a run of offsets along a line
     /// that the hull rejects and the crossing lines of the other views do not contradict: a
@@ -229,9 +230,8 @@ pub struct Faired {
 /// and the knuckle's height is the bottom's edge there: near a nearly flat bottom (a waterline
 /// meeting it close to the chine) a height error of the knuckle faired alone becomes many times
 /// that in the waterline's half-breadth. The region above holds the knuckle at those heights.
-/// Each region is fitted twice, with its sections
-/// free and at the straight-section limit (straight across the girth at every x, as a V bottom
-/// or flared topsides are); the limit is taken when it reaches the same discrepancy target and
+/// Each region is fitted twice, with its sections free and at the straight-section limit
+/// (straight across the girth at every x, as a V bottom or flared topsides are); the limit is taken when it reaches the same discrepancy target and
 /// rejects the same offsets. An offset cut from one region onto the other's side of the knuckle
 /// is cut from the other. Knuckle edges, profile-only and plan-only lines,
 /// and every line of a table without waterlines or buttocks are faired alone (y(x) and z(x),
