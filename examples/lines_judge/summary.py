@@ -20,7 +20,7 @@ for form in forms:
                 continue
             jp = f"{d}/judge.json"
             args = J + [f"{d}/table.csv", f"{d}/faired.csv", "--truth", f"{d}/truth.csv", "--json", jp]
-            if tag == "planted":
+            if tag in ("planted", "adjacent"):
                 args += ["--planted", f"{d}/planted.json"]
             subprocess.run(args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
             r = json.load(open(jp))
@@ -35,7 +35,7 @@ for form in forms:
             kk = r["knuckles_kept"]
             kn = f"{kk['min_ratio']:.3f}/{kk['median_ratio']:.3f}" if kk.get("n") else "-"
             pl = ""
-            if tag == "planted":
+            if tag in ("planted", "adjacent"):
                 rep = json.load(open(f"{d}/report.json"))
                 fl = {(o["line"], o["station_index"]) for o in rep["offsets"] if o["flagged"]}
                 pe = json.load(open(f"{d}/planted.json"))["errors"]

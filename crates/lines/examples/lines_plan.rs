@@ -72,15 +72,24 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     // tables with a known hull: seeds 1-3 were looked at while choosing defaults, 101-103 not;
     // seeds after the directory replace both (more tuning tables of every kind)
+    // `--adjacent` among them: only the tables with a pair of planted errors on neighbouring
+    // stations of one line (see `plant_pair`), for those seeds
+    let adjacent = std::env::args().skip(2).any(|a| a == "--adjacent");
     let extra: Vec<u64> = std::env::args()
         .skip(2)
+        .filter(|a| a != "--adjacent")
         .map(|a| a.parse().map_err(|e| format!("seed {a}: {e}")))
         .collect::<Result<_, _>>()?;
-    for (tag, noise, planted, default_seeds) in [
-        ("rounded", 0.0, 0, [1u64, 101]),
-        ("noisy", 1.5, 0, [2, 102]),
-        ("planted", 0.0, 3, [3, 103]),
-    ] {
+    let kinds: &[(&str, f64, usize, [u64; 2])] = if adjacent {
+        &[("adjacent", 0.0, 0, [3, 103])]
+    } else {
+        &[
+            ("rounded", 0.0, 0, [1u64, 101]),
+            ("noisy", 1.5, 0, [2, 102]),
+            ("planted", 0.0, 3, [3, 103]),
+        ]
+    };
+    for &(tag, noise, planted, default_seeds) in kinds {
         let seeds = if extra.is_empty() {
             default_seeds.to_vec()
         } else {
@@ -91,6 +100,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 generate::wigley(noise, planted, seed)
             } else {
                 generate::hard_chine(noise, planted, seed)
+            };
+            let g = if tag == "adjacent" {
+                plant_pair(&g, seed)
+            } else {
+                g
             };
             let dir = out.join(format!("{form}_{tag}_{seed}"));
             std::fs::create_dir_all(&dir)?;
@@ -117,4 +131,70 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     Ok(())
+}
+
+/// The rounded table `g` (no planted errors) with two transcription errors on neighbouring
+/// interior stations (3-11 and the next) of one waterline or buttock, and one more on another
+/// line at a station at least two away from them, each 6 to 16 steps off with its own sign, as
+/// the generator plants its lone ones (tables to tune the rule that tells a run of wrong
+/// offsets from a feature; the generator's own seeds plant such a pair only by chance).
+fn plant_pair(g: &generate::Generated, seed: u64) -> generate::Generated {
+    let mut state = seed.wrapping_mul(0x2545_F491_4F6C_DD1D) | 1;
+    let mut unit = move || {
+        state ^= state >> 12;
+        state ^= state << 25;
+        state ^= state >> 27;
+        (state.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut rows: Vec<Vec<String>> = g
+        .table
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(String::from).collect())
+        .collect();
+    // (row, line, station) of the cells a transcription error may hit
+    let ok: Vec<(usize, String, i64)> = rows
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| r[6] == "buttock" || (r[6] == "waterline" && r[4] != "0"))
+        .map(|(k, r)| (k, r[0].clone(), r[1].parse().unwrap()))
+        .collect();
+    let find = |line: &str, si: i64| ok.iter().find(|c| c.1 == line && c.2 == si).map(|c| c.0);
+    let mut errors: Vec<(usize, String, i64)> = Vec::new();
+    while errors.is_empty() {
+        let c = &ok[(unit() * ok.len() as f64) as usize % ok.len()];
+        if (3..=11).contains(&c.2) {
+            if let Some(next) = find(&c.1, c.2 + 1) {
+                errors.push(c.clone());
+                errors.push((next, c.1.clone(), c.2 + 1));
+            }
+        }
+    }
+    let (pl, ps) = (errors[0].1.clone(), errors[0].2);
+    while errors.len() < 3 {
+        let c = &ok[(unit() * ok.len() as f64) as usize % ok.len()];
+        if c.1 != pl && (3..=12).contains(&c.2) && (c.2 < ps - 1 || c.2 > ps + 2) {
+            errors.push(c.clone());
+        }
+    }
+    let mut json = Vec::new();
+    for (id, (k, line, si)) in errors.iter().enumerate() {
+        let steps = (6.0 + 10.0 * unit()).round() * if unit() < 0.5 { -1.0 } else { 1.0 };
+        let field = if rows[*k][6] == "waterline" { 4 } else { 5 };
+        let v: f64 = rows[*k][field].parse().unwrap();
+        rows[*k][field] = format!("{}", v + steps * generate::STEP);
+        json.push(format!(
+            r#"{{"id": {id}, "type": "transcription", "cells": [{{"line": "{line}", "station_index": {si}, "field": "{}"}}]}}"#,
+            if field == 4 { "half_breadth" } else { "height" }
+        ));
+    }
+    let mut table = g.table.lines().next().unwrap().to_string() + "\n";
+    for r in rows {
+        table += &(r.join(",") + "\n");
+    }
+    generate::Generated {
+        table,
+        truth: g.truth.clone(),
+        planted: format!("{{\"errors\": [{}]}}\n", json.join(", ")),
+    }
 }

@@ -191,10 +191,13 @@ pub enum Source {
     /// Cut from the hull surface.
     Hull,
     /// The line faired alone (a knuckle, a profile-only or plan-only line, a table without
-    /// redundant views).
+    /// redundant views). A knuckle's half-breadths are faired alone; its heights too, except
+    /// above a bottom parametrised by the fraction of the way out to it, where they are the
+    /// bottom's edge (see [`fair`]).
     Line,
     /// Kept as read (on the centreline, too few cells to fair, or a run of offsets along a line
-    /// that the hull rejects: a feature such as a skeg, not a transcription error).
+    /// that the hull rejects and the crossing lines of the other views do not contradict: a
+    /// feature such as a skeg, not a transcription error).
     Held,
 }
 
@@ -222,9 +225,13 @@ pub struct Faired {
 /// Fairs a table: the hull is fitted to every waterline, buttock and (non-knuckle) edge offset
 /// at once, and every such offset is cut back from it. A knuckle edge (the first, when there are
 /// several) is faired alone first and splits the hull into two regions holding its faired
-/// points: y(x, z) above it, z(x, y / y_k(x)) below it ([`Hull`]). Each region is fitted twice, with its sections
-/// free and at the straight-section limit (straight across the girth at every x, as a V bottom
-/// or flared topsides are); the limit is taken when it reaches the same discrepancy target and
+/// points: y(x, z) above it, z(x, y / y_k(x)) below it ([`Hull`]). Below it its heights as read
+/// are offsets of the bottom's edge (u = 1), fitted with the bottom's waterlines and buttocks,
+/// and the knuckle's height is the bottom's edge there: near a nearly flat bottom (a waterline
+/// meeting it close to the chine) a height error of the knuckle faired alone becomes many times
+/// that in the waterline's half-breadth. The region above holds the knuckle at those heights.
+/// Each region is fitted twice, with its sections free and at the straight-section limit
+/// (straight across the girth at every x, as a V bottom or flared topsides are); the limit is taken when it reaches the same discrepancy target and
 /// rejects the same offsets. An offset cut from one region onto the other's side of the knuckle
 /// is cut from the other. Knuckle edges, profile-only and plan-only lines,
 /// and every line of a table without waterlines or buttocks are faired alone (y(x) and z(x),
@@ -334,8 +341,9 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                     .partition(|&&i| t.cells[i].z >= kz(t.cells[i].x));
                 band = near;
                 let name = &t.lines[*kl].label;
-                regions.push((format!("above {name}"), Coord::Y, above, held.clone()));
-                regions.push((format!("below {name}"), Coord::Z, below, held));
+                // below first: its fit gives the knuckle's heights that the region above holds
+                regions.push((format!("below {name}"), Coord::Z, below, held.clone()));
+                regions.push((format!("above {name}"), Coord::Y, above, held));
             }
             None => regions.push(("hull".into(), Coord::Y, idx.clone(), Vec::new())),
         }
@@ -411,10 +419,19 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                     o
                 })
                 .collect();
+            // below a knuckle parametrised by the fraction (u = 1 on the knuckle), the knuckle's
+            // heights as read are offsets of the bottom's edge, weighed with the rest (measured
+            // in z; its half-breadths, faired alone, are the scale of u)
+            let soft = scale.is_some();
             for &i in &held {
-                let (u, v) = uv(values[i][0], values[i][1], values[i][2]);
-                let mut o = Obs::new((values[i][0], u), v, true, true);
-                o.held = true;
+                let z = if soft { t.cells[i].z } else { values[i][2] };
+                let (u, v) = uv(values[i][0], values[i][1], z);
+                let mut o = if soft {
+                    Obs::new((values[i][0], u), v, true, false)
+                } else {
+                    Obs::new((values[i][0], u), v, true, true)
+                };
+                o.held = !soft;
                 o.u_scale = g(values[i][0]);
                 obs.push(o);
             }
@@ -467,9 +484,25 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                     rejected[i] = true;
                 }
             }
+            // the knuckle's height is the bottom's edge (the region above, fitted next, holds it)
+            if soft {
+                for (k, &i) in held.iter().enumerate() {
+                    let (u, _) = h.uv(values[i][0], values[i][1], values[i][2]);
+                    values[i][2] = h.eval(values[i][0], u).0;
+                    if f.weight[cells.len() + k] == 0.0 {
+                        rejected[i] = true;
+                    }
+                }
+            }
             fits.push((h.region.clone(), f));
             hulls.push(h);
             region_cells.push(cells);
+        }
+        // back to the order above, below
+        if knuckle_fit.is_some() {
+            hulls.reverse();
+            fits.reverse();
+            region_cells.reverse();
         }
         // the knuckle bounds both regions: an offset cut from one region onto the other's side
         // of the knuckle (the extension of the topsides below a chine, where an offset near the
@@ -551,11 +584,15 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
 /// [`Source::Held`]) and stay flagged. Two: the planted errors of the generator's tables are
 /// isolated, and Gunnerus's skeg and PX121's flat-of-bottom edge, which their data notes call
 /// real features, are runs of two to five. Six tolerances and not three steps: on a noisy table
-/// faired at its noise, two neighbouring noisy offsets can each move three steps.
+/// faired at its noise, two neighbouring noisy offsets can each move three steps. A run that
+/// the crossing lines of the other views refute ([`refuted`]) is not held: two wrong offsets
+/// can be neighbours too (planted table 602).
 const FEATURE_RUN: usize = 2;
 
-/// Holds runs of [`FEATURE_RUN`] or more suspect hull offsets along a line (see there): their
-/// value is the input's again and they are marked rejected (flagged).
+/// Holds runs of [`FEATURE_RUN`] or more suspect hull offsets along a line (see there) unless
+/// the crossing lines refute them: their value is the input's again and they are marked
+/// rejected (flagged). A refuted run keeps the hull's value, which the robust fit reached
+/// without it (its offsets are rejected, or moved beyond six tolerances and weighted down).
 fn hold_feature_runs(
     t: &Table,
     values: &mut [[f64; 3]],
@@ -581,7 +618,7 @@ fn hold_feature_runs(
             while e + 1 < cells.len() && suspect(cells[e + 1], values) {
                 e += 1;
             }
-            if e + 1 - k >= FEATURE_RUN {
+            if e + 1 - k >= FEATURE_RUN && !refuted(t, &cells[k..=e], values, sources, rejected, tol) {
                 hold.extend_from_slice(&cells[k..=e]);
             }
             k = e + 1;
@@ -593,6 +630,73 @@ fn hold_feature_runs(
         sources[i] = Source::Held;
         rejected[i] = true;
     }
+}
+
+/// A crossing offset departs from the hull when the fit rejects it or moves it beyond this
+/// many tolerances (half the rejection line of six).
+const CORROBORATE: f64 = 3.0;
+
+/// Whether a run of suspect offsets along a line is refuted as a feature by the crossing lines
+/// of the other views: a feature of the hull (a skeg, the edge of a flat of bottom) is one in
+/// every view, so the lines crossing the run's stations near it (the waterlines bracketing a
+/// buttock offset's height, the buttocks bracketing a waterline offset's half-breadth, both for
+/// an edge) depart from the smooth hull there too; a run of wrong offsets is in one view only
+/// and the crossing lines agree with the hull. Refuted: the run's stations have such crossing
+/// offsets and none of them departs (rejected, or moved beyond [`CORROBORATE`] tolerances).
+/// A table whose other views do not cross the run (a waterline grid) cannot refute it.
+fn refuted(
+    t: &Table,
+    run: &[usize],
+    values: &[[f64; 3]],
+    sources: &[Source],
+    rejected: &[bool],
+    tol: f64,
+) -> bool {
+    let mut crossing = 0;
+    let mut worst: f64 = 0.0;
+    for &i in run {
+        let c = &t.cells[i];
+        let families: &[(Kind, usize)] = match t.lines[c.line].kind {
+            Kind::Waterline => &[(Kind::Buttock, 1)],
+            Kind::Buttock => &[(Kind::Waterline, 2)],
+            Kind::Edge => &[(Kind::Waterline, 2), (Kind::Buttock, 1)],
+            _ => &[],
+        };
+        for &(kind, coord) in families {
+            let at = c.get_index(coord);
+            // the nearest crossing offset of the family below and above the cell on its station
+            let mut below: Option<(f64, usize)> = None;
+            let mut above: Option<(f64, usize)> = None;
+            for (j, d) in t.cells.iter().enumerate() {
+                if d.station_index != c.station_index
+                    || !d.on_station
+                    || t.lines[d.line].kind != kind
+                    || sources[j] != Source::Hull
+                    || !d.get_index(coord).is_finite()
+                {
+                    continue;
+                }
+                let v = d.get_index(coord);
+                if v <= at && below.is_none_or(|(b, _)| v > b) {
+                    below = Some((v, j));
+                }
+                if v >= at && above.is_none_or(|(a, _)| v < a) {
+                    above = Some((v, j));
+                }
+            }
+            for (_, j) in below.into_iter().chain(above) {
+                crossing += 1;
+                let d = &t.cells[j];
+                let m = if rejected[j] {
+                    f64::INFINITY
+                } else {
+                    dist(&[d.x, d.y, d.z], &values[j]) / tol
+                };
+                worst = worst.max(m);
+            }
+        }
+    }
+    crossing > 0 && worst <= CORROBORATE
 }
 
 /// The knuckle's half-breadth y_k(x) as a cubic spline on the knots `kx` (least squares to

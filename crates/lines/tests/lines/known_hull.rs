@@ -160,8 +160,12 @@ fn a_chine_is_kept_as_a_knuckle_between_two_regions() {
 #[test]
 fn a_run_of_offsets_the_hull_cannot_follow_is_held_and_a_lone_one_restored() {
     let (_d, mut t) = table(&generate::wigley(0.0, 0, 7));
-    // a feature on one waterline (three neighbouring stations 12 steps out, like a skeg) and one
-    // transcription error on another waterline at a station far from it
+    // a feature of the hull (like a skeg): at three neighbouring stations the hull bulges by
+    // 12 steps at WL4's height, fading to nothing at WL3 and WL5, in every view: WL4 moves out
+    // and the buttocks crossing that band move with it. And one transcription error on another
+    // waterline at a station far from it.
+    let (z0, h, a) = (generate::D / 2.0, generate::D / 8.0, 12.0 * generate::STEP);
+    let bump = |z: f64| a * (1.0 - (z - z0).abs() / h).max(0.0);
     let wls: Vec<usize> = (0..t.lines.len())
         .filter(|&l| t.lines[l].kind == Kind::Waterline)
         .collect();
@@ -172,11 +176,41 @@ fn a_run_of_offsets_the_hull_cannot_follow_is_held_and_a_lone_one_restored() {
         v.sort_by(|&a, &b| t.cells[a].x.total_cmp(&t.cells[b].x));
         v
     };
-    let (a, b) = (on(wls[wls.len() / 2]), on(wls[wls.len() / 2 + 1]));
-    let run = [a[a.len() / 2 - 4], a[a.len() / 2 - 3], a[a.len() / 2 - 2]];
+    let wl4 = *wls.iter().find(|&&l| t.lines[l].plane == Some(z0)).unwrap();
+    let a4 = on(wl4);
+    let run = [a4[a4.len() / 2 - 4], a4[a4.len() / 2 - 3], a4[a4.len() / 2 - 2]];
+    let b = on(wls[wls.len() / 2 + 1]);
     let lone = b[b.len() / 2 + 3];
+    let stations: Vec<i64> = run.iter().map(|&i| t.cells[i].station_index).collect();
+    let round = |v: f64| (v / generate::STEP).round() * generate::STEP;
+    let mut crossing = Vec::new();
+    for i in 0..t.cells.len() {
+        let c = &t.cells[i];
+        if !stations.contains(&c.station_index) || t.lines[c.line].kind != Kind::Buttock {
+            continue;
+        }
+        // the bulging hull's height at the buttock's half-breadth (bisection: y rises with z)
+        let (mut lo, mut hi) = (0.0, generate::D);
+        for _ in 0..60 {
+            let m = 0.5 * (lo + hi);
+            if generate::wigley_y(c.x, m) + bump(m) < c.y {
+                lo = m;
+            } else {
+                hi = m;
+            }
+        }
+        let z = round(0.5 * (lo + hi));
+        if z != c.z {
+            t.cells[i].z = z;
+            crossing.push(i);
+        }
+    }
+    assert!(
+        crossing.len() >= 3,
+        "the feature crosses the buttocks: {crossing:?}"
+    );
     for &i in &run {
-        t.cells[i].y += 12.0 * generate::STEP;
+        t.cells[i].y = round(generate::wigley_y(t.cells[i].x, z0) + a);
     }
     t.cells[lone].y -= 12.0 * generate::STEP;
     let f = fair(&t, &Settings::default()).unwrap();
@@ -194,6 +228,35 @@ fn a_run_of_offsets_the_hull_cannot_follow_is_held_and_a_lone_one_restored() {
         "{:?} {tr:?}",
         f.values[lone]
     );
+}
+
+#[test]
+fn a_pair_of_wrong_offsets_in_one_view_is_restored_not_held() {
+    // two transcription errors on neighbouring stations of one buttock (as on planted table
+    // 602): a run of suspect offsets, but the waterlines crossing there agree with the smooth
+    // hull, so it is no feature of the hull: both are flagged and restored within a step
+    let g = generate::hard_chine(0.0, 0, 7);
+    let (_d, mut t) = table(&g);
+    let bt = t.lines.iter().position(|l| l.label == "BT2").unwrap();
+    let cells: Vec<usize> = t
+        .line_cells(bt)
+        .into_iter()
+        .filter(|&i| [5, 6].contains(&t.cells[i].station_index))
+        .collect();
+    assert_eq!(cells.len(), 2);
+    let (_d2, exact) = table(&generate::Generated {
+        table: g.truth.clone(),
+        ..g.clone()
+    });
+    t.cells[cells[0]].z += 11.0 * generate::STEP;
+    t.cells[cells[1]].z -= 9.0 * generate::STEP;
+    let f = fair(&t, &Settings::default()).unwrap();
+    for &i in &cells {
+        assert!(f.flagged[i], "{:?}", t.cells[i]);
+        assert_eq!(f.sources[i], Source::Hull, "{:?}", t.cells[i]);
+        let off = (f.values[i][2] - exact.cells[i].z).abs() / generate::STEP;
+        assert!(off <= 1.0, "{:?}: {off} steps off the truth", t.cells[i]);
+    }
 }
 
 #[test]
@@ -361,6 +424,34 @@ fn the_bottom_is_parametrised_by_the_fraction_of_the_way_out_to_the_chine() {
             c.x,
             p[2],
             c.z
+        );
+    }
+}
+
+#[test]
+fn the_chine_height_below_is_the_bottoms_edge_weighed_with_the_waterlines() {
+    // a noisy table faired at its noise (tuning seed 8): at the stern the low waterline WL2
+    // (z = 10) meets the nearly flat bottom (slope dz/dy = 0.25) just below the chine, so a
+    // height error of the chine becomes four times that in WL2's half-breadth. Faired alone, the
+    // chine's last heights sat 2.3 steps high and WL2 at the last station 9.3 steps in; with the
+    // chine's heights as offsets of the bottom's edge, the waterlines there correct them.
+    let (_d, t) = table(&generate::hard_chine(1.5, 0, 8));
+    let settings = Settings {
+        tolerance: Some(1.5 * generate::STEP * 3f64.sqrt()),
+        ..Settings::default()
+    };
+    let f = fair(&t, &settings).unwrap();
+    for (i, c) in t.cells.iter().enumerate() {
+        let label = &t.lines[c.line].label;
+        if label != "WL2" || c.station_index < 12 {
+            continue;
+        }
+        let truth = generate::chine_form_y(c.x, c.z).unwrap();
+        let off = (f.values[i][1] - truth).abs() / generate::STEP;
+        assert!(
+            off <= 3.0,
+            "{label} at station {}: {off} steps off",
+            c.station_index
         );
     }
 }
