@@ -722,6 +722,7 @@ fn reduced_basis_with_held_ends_is_the_exact_method_on_every_site() {
 }
 
 #[test]
+#[allow(clippy::needless_range_loop)] // (j, c) name the line and coordinate compared
 fn a_reduced_fit_is_a_spline_on_its_knots_and_its_score_is_its_residual() {
     // On 40 knots of 160 sites: each u-line of the fit is the natural cubic spline through its
     // values at the knots (it lies in the reduced space), and the GCV score reported is
