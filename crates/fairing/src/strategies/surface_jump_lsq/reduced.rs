@@ -46,6 +46,7 @@
 //! L⁻¹K'L⁻ᵀ and its eigendecomposition; memory O(m + M²). Each transform of an m × n block
 //! O(m·n + M²·n). Linear in the nodes for a fixed M.
 
+use faer::linalg::solvers::Solve;
 use nalgebra::DMatrix;
 
 use crate::state::strategy_error;
@@ -160,33 +161,32 @@ impl Reduced {
                 }
             }
         }
-        let qg = &qm * &g;
-        let ntn_full = &p + &qg + qg.transpose() + g.transpose() * (&r * &g);
+        // Q and R have a few entries a row (neighbouring knots): sparse products, O(M²).
+        let qg = sparse_times(&qm, &g);
+        let ntn_full = &p + &qg + qg.transpose() + g.transpose() * sparse_times(&r, &g);
         let sub = |a: &DMatrix<f64>, rs: &[usize], cs: &[usize]| {
             DMatrix::from_fn(rs.len(), cs.len(), |i, j| a[(rs[i], cs[j])])
         };
         let ntn = sub(&ntn_full, &free, &free);
-        let ntn = (&ntn + ntn.transpose()) * 0.5;
         let k_full = gram(&jump_matrix(&tau, closed)?);
         let k_free = sub(&k_full, &free, &free);
         let k_held = sub(&k_full, &free, &held);
-        let l = ntn
-            .cholesky()
-            .ok_or_else(|| strategy_error(NAME, "the reduced basis's Gram matrix is singular"))?
-            .l();
+        // faer's blocked Cholesky and triangular solves (nalgebra's are unblocked, several
+        // times slower at M in the hundreds).
+        let singular = || strategy_error(NAME, "the reduced basis's Gram matrix is singular");
+        let f = free.len();
+        let llt = to_faer(&ntn).llt(faer::Side::Lower).map_err(|_| singular())?;
+        let l = llt.L();
         // L⁻¹ K' L⁻ᵀ = L⁻¹ (L⁻¹ K')ᵀ, K' symmetric.
-        let lk = l
-            .solve_lower_triangular(&k_free)
-            .ok_or_else(|| strategy_error(NAME, "the reduced basis's Gram matrix is singular"))?;
-        let kt = l
-            .solve_lower_triangular(&lk.transpose())
-            .ok_or_else(|| strategy_error(NAME, "the reduced basis's Gram matrix is singular"))?;
-        let kt = (&kt + kt.transpose()) * 0.5;
+        let mut lk = to_faer(&k_free);
+        l.solve_lower_triangular_in_place(&mut lk);
+        let mut kt = lk.transpose().to_owned();
+        l.solve_lower_triangular_in_place(&mut kt);
+        let kt = DMatrix::from_fn(f, f, |i, j| 0.5 * (kt[(i, j)] + kt[(j, i)]));
         let (mu, u) = symmetric_eigen(&kt);
-        let w = l
-            .transpose()
-            .solve_upper_triangular(&u)
-            .ok_or_else(|| strategy_error(NAME, "the reduced basis's Gram matrix is singular"))?;
+        let mut w = to_faer(&u);
+        l.transpose().solve_upper_triangular_in_place(&mut w);
+        let w = DMatrix::from_fn(f, f, |i, j| w[(i, j)]);
         Ok((
             Self {
                 sites: rows.len(),
@@ -325,13 +325,37 @@ fn moments(tau: &[f64], closed: bool) -> Result<DMatrix<f64>> {
         b[(r, k)] -= 6.0 / hk + 6.0 / hp;
         b[(r, p)] += 6.0 / hp;
     }
-    let solved = a
-        .cholesky()
-        .ok_or_else(|| strategy_error(NAME, "singular spline moment system"))?
-        .solve(&b);
+    let llt = to_faer(&a)
+        .llt(faer::Side::Lower)
+        .map_err(|_| strategy_error(NAME, "singular spline moment system"))?;
+    let mut solved = to_faer(&b);
+    llt.solve_in_place(&mut solved);
     let mut g = DMatrix::<f64>::zeros(n, n);
     for r in 0..size {
-        g.row_mut(r + lo).copy_from(&solved.row(r));
+        for c in 0..n {
+            g[(r + lo, c)] = solved[(r, c)];
+        }
     }
     Ok(g)
+}
+
+/// A nalgebra matrix as faer's.
+fn to_faer(a: &DMatrix<f64>) -> faer::Mat<f64> {
+    faer::Mat::from_fn(a.nrows(), a.ncols(), |i, j| a[(i, j)])
+}
+
+/// `a b` for a sparse `a` (a few entries a row): O(entries of a × columns of b).
+fn sparse_times(a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
+    let mut out = DMatrix::<f64>::zeros(a.nrows(), b.ncols());
+    for j in 0..a.ncols() {
+        for i in 0..a.nrows() {
+            let v = a[(i, j)];
+            if v != 0.0 {
+                for c in 0..b.ncols() {
+                    out[(i, c)] += v * b[(j, c)];
+                }
+            }
+        }
+    }
+    out
 }
