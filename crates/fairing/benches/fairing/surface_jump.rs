@@ -1,7 +1,9 @@
 //! Surface jump least squares (`jump-lsq` for surfaces, issue 46) on whole noisy nets of
 //! 50², 200² and 1000² nodes, λ by GCV, default settings; criterion's throughput in nodes.
 //! Issue 46's targets: 200² well under 1 s, 1000² in seconds. Group `surface_jump_join`: the
-//! same nets with edge u0 held g1 to a neighbour net (50², 200²).
+//! same nets with edge u0 held g1 to a neighbour net (50², 200²). Group `surface_jump_strip`:
+//! long strips of 4000 × 20 and 50 000 × 20 nodes (a scanned strip; the long direction on
+//! the reduced basis), which should cost in proportion to their nodes.
 
 use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
 use curve_repr::Vec3;
@@ -37,6 +39,26 @@ fn shifted_net(size: usize, back: usize) -> Vec<Vec<Vec3>> {
         .collect()
 }
 
+/// A strip of `length` × `width` nodes, z = sin 3u cos 2v over u ∈ [0, 4], v ∈ [0, 1]
+/// (x = 10u, y = v), with ±0.002 hashed noise on z.
+fn strip(length: usize, width: usize) -> Vec<Vec<Vec3>> {
+    (0..length)
+        .map(|i| {
+            (0..width)
+                .map(|j| {
+                    let (u, v) = (
+                        4.0 * i as f64 / (length - 1) as f64,
+                        j as f64 / (width - 1) as f64,
+                    );
+                    let noise =
+                        0.002 * (((i * 7919 + j * 104_729) as f64 * 12.9898).sin() * 43_758.545_3).fract();
+                    Vec3::new(10.0 * u, v, (3.0 * u).sin() * (2.0 * v).cos() + noise)
+                })
+                .collect()
+        })
+        .collect()
+}
+
 fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("surface_jump");
     group.sample_size(10);
@@ -44,6 +66,20 @@ fn bench(c: &mut Criterion) {
         let net = noisy_net(size);
         group.throughput(Throughput::Elements((size * size) as u64));
         group.bench_with_input(BenchmarkId::from_parameter(size), &net, |b, net| {
+            b.iter(|| {
+                SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default())
+                    .run(net)
+                    .unwrap()
+            })
+        });
+    }
+    group.finish();
+    let mut group = c.benchmark_group("surface_jump_strip");
+    group.sample_size(10);
+    for length in sizes(&[4000usize, 50_000]) {
+        let net = strip(length, 20);
+        group.throughput(Throughput::Elements((length * 20) as u64));
+        group.bench_with_input(BenchmarkId::from_parameter(length), &net, |b, net| {
             b.iter(|| {
                 SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default())
                     .run(net)

@@ -634,8 +634,8 @@ impl Joined {
                     }),
                 )
             });
-            c_hat.push(basis.transpose() * c_free);
-            t_hat.push(tau.map(|t| other_basis.transpose() * t));
+            c_hat.push(basis.t_vector(&c_free));
+            t_hat.push(tau.map(|t| other_basis.t_vector(&t)));
         }
         Some(Self {
             lines_are_columns,

@@ -90,16 +90,36 @@
 //! range stops at 10⁻⁸, as for one weight. Scattered fixed nodes are treated as data in the
 //! score. A given `lambda` sets both weights and skips the search.
 //!
+//! # Long directions: a reduced basis
+//!
+//! A direction of more than `M_MAX` (800) sites is not solved exactly: its lines become
+//! cubic splines on `M_MAX` knots, a subset of its sites spread by count, with the exact
+//! method's end conditions (natural on an open direction, periodic on a closed one) and the
+//! same scaled jumps across those knots penalised (module `reduced`, a P-spline along the
+//! direction). Its problem is then the generalised eigenproblem of the reduced penalty and
+//! the data's Gram matrix NᵀN, whose eigenvectors are again an orthonormal basis of the
+//! reduced space at the sites; the entrywise solve, GCV's RSS and trace as spectral sums (the
+//! RSS with the data's part outside the reduced space), the limits and the search are
+//! unchanged. With its knots at every site it is the exact method (tested to round-off). The
+//! reduced path serves plain blocks and held ends of an open direction (a boundary under
+//! `g0`, a pole row: the spline's end value is the held value) when the other direction is
+//! exact; joins, scattered fixed nodes, the tolerance band, held interior lines, held lines
+//! of a closed direction, and held lines with both directions long are solved exactly, at
+//! the exact path's cost below.
+//!
 //! # Cost
 //!
-//! Building the jump operators O(m² + n²), their eigendecompositions O(m³ + n³), the
-//! transforms of the data and back O(m·n·(m + n)), the search O(m·n) per trial (about 700).
-//! Not linear in the nodes: O(N^1.5) on a square net of N nodes, dominated by dense
-//! matrix products (criterion bench `surface_jump`). Each fixed node or band pin adds at most
-//! one conjugate-gradient iteration of two transforms.
+//! Exact path: building the jump operators O(m² + n²), their eigendecompositions O(m³ + n³)
+//! (faer's), the transforms of the data and back O(m·n·(m + n)), the search O(m·n) per trial
+//! (about 700): O(N^1.5) on a square net of N nodes. With a long direction reduced (m > M_MAX):
+//! O(m + M_MAX³) to build its basis and O(m·n + M_MAX²·n) per transform, so a net of N nodes
+//! costs O(N) for a fixed M_MAX, time and memory (criterion bench `surface_jump`, its long
+//! strip). Each fixed node or band pin adds at most one conjugate-gradient iteration of two
+//! transforms.
 
 mod join;
 mod operator;
+mod reduced;
 mod spectral;
 #[cfg(test)]
 mod tests;
@@ -279,12 +299,48 @@ pub struct SurfaceJumpLsqResult {
 #[derive(Clone, Debug, Default)]
 pub struct SurfaceJumpLsq {
     settings: SurfaceJumpLsqSettings,
+    reduction: Reduction,
+}
+
+/// Sites along a direction above which its lines take a reduced basis (module `reduced`) of
+/// this many knots. Its cost is that of the exact path at M_MAX sites (O(M_MAX³) once, the
+/// eigendecomposition ~0.2 s at 800, then O(M_MAX²) per line transformed); above it the exact
+/// path's O(m³) time and O(m²) memory dominate a run (2.4 s for the eigendecomposition alone
+/// at 2000 sites, ~20 s at 4000). 800 knots keep a detail of 1/400 of the direction's length,
+/// finer than a smoothing fit keeps along a scanned strip or a hull's length.
+const M_MAX: usize = 800;
+
+/// When a direction is reduced: more than `above` sites; and to how many knots.
+#[derive(Clone, Copy, Debug)]
+struct Reduction {
+    above: usize,
+    knots: usize,
+}
+
+impl Default for Reduction {
+    fn default() -> Self {
+        Self {
+            above: M_MAX,
+            knots: M_MAX,
+        }
+    }
 }
 
 impl SurfaceJumpLsq {
     /// A run with these settings.
     pub fn new(settings: SurfaceJumpLsqSettings) -> Self {
-        Self { settings }
+        Self {
+            settings,
+            reduction: Reduction::default(),
+        }
+    }
+
+    /// Reduces a direction of more than `above` sites to `knots` knots (tests: `knots` at least
+    /// the sites gives the exact space through the reduced path).
+    #[cfg(test)]
+    pub(crate) fn with_reduction(mut self, above: usize, knots: usize) -> Self {
+        self.reduction = Reduction { above, knots };
+        self
     }
 
     /// The settings.
@@ -406,36 +462,154 @@ impl SurfaceJumpLsq {
         let mut cg_iterations = 0;
         let mut refused = 0;
         if !free_rows.is_empty() && !free_cols.is_empty() && given != Some(Weights::both(0.0)) {
-            let du = operator::jump_matrix(input.u_knots(), topology.closed_u)?;
-            let dv = operator::jump_matrix(input.v_knots(), topology.closed_v)?;
-            let (ku_full, kv_full) = (operator::gram(&du), operator::gram(&dv));
-            let sub = |k: &DMatrix<f64>, a: &[usize], b: &[usize]| {
-                DMatrix::from_fn(a.len(), b.len(), |r, c| k[(a[r], b[c])])
-            };
-            let ku = sub(&ku_full, &free_rows, &free_rows);
-            let kv = sub(&kv_full, &free_cols, &free_cols);
             let held_rows: Vec<usize> = (0..mu).filter(|&i| held_row[i]).collect();
             let held_cols: Vec<usize> = (0..nv).filter(|&j| held_col[j]).collect();
             let (nr, nc) = (free_rows.len(), free_cols.len());
-            let y = planes(nr, nc, |a, b| data(free_rows[a], free_cols[b]));
-            // Coupling to the held lines: K_u[R, Rh] P⁰[Rh, C] and P⁰[R, Ch] K_v[Ch, C].
-            let coupling: Option<Coupling> = if held_rows.is_empty() && held_cols.is_empty() {
+            let mut y = planes(nr, nc, |a, b| data(free_rows[a], free_cols[b]));
+            // A direction longer than the reduction's threshold takes the reduced basis (module
+            // `reduced`) where the block is one it serves: no joins, band or scattered fixed
+            // nodes, and held lines of that direction only at the ends of an open direction.
+            let scattered_held = free_rows
+                .iter()
+                .any(|&i| free_cols.iter().any(|&j| held[i * nv + j]));
+            let simple = prepared.is_empty() && settings.max_distance.is_none() && !scattered_held;
+            let reducible = |count: usize, closed: bool, held: &[usize]| {
+                simple
+                    && count > self.reduction.above
+                    && if closed {
+                        held.is_empty()
+                    } else {
+                        held.iter().all(|&i| i == 0 || i + 1 == count) && count - held.len() >= 2
+                    }
+            };
+            let (mut reduce_u, mut reduce_v) = (
+                reducible(mu, topology.closed_u, &held_rows),
+                reducible(nv, topology.closed_v, &held_cols),
+            );
+            // A reduced direction's held ends shift the data by lines that the other direction's
+            // penalty must see at the sites (below); with both directions reduced that shift is
+            // in neither basis, so such a net is solved exactly.
+            if reduce_u && reduce_v && !(held_rows.is_empty() && held_cols.is_empty()) {
+                (reduce_u, reduce_v) = (false, false);
+            }
+            let sub = |k: &DMatrix<f64>, a: &[usize], b: &[usize]| {
+                DMatrix::from_fn(a.len(), b.len(), |r, c| k[(a[r], b[c])])
+            };
+            // Each direction: its basis and eigenvalues, and its coupling to its held lines
+            // (K[R, Rh] P⁰[Rh, C] exactly; K'[free, held] c_held in a reduced basis, whose held
+            // ends also shift the data by N[:, held] c_held); the exact K of the block kept for
+            // the constrained solves.
+            let mut ku = None;
+            let mut kv = None;
+            let (u_part, coupling_u) = if reduce_u {
+                let (basis, values) = reduced::Reduced::new(
+                    input.u_knots(),
+                    topology.closed_u,
+                    self.reduction.knots,
+                    (held_row[0], held_row[mu - 1]),
+                )?;
+                let coupling = if held_rows.is_empty() {
+                    None
+                } else {
+                    let mut k_part: Vec<DMatrix<f64>> = Vec::new();
+                    for (c, plane) in y.iter_mut().enumerate() {
+                        let ends =
+                            DMatrix::from_fn(held_rows.len(), nc, |a, b| data(held_rows[a], free_cols[b])[c]);
+                        let (n_part, k) = basis.held_parts(&ends);
+                        *plane -= n_part;
+                        k_part.push(k);
+                    }
+                    Some(k_part)
+                };
+                ((spectral::Basis::Reduced(basis), values), coupling)
+            } else {
+                let ku_full = operator::gram(&operator::jump_matrix(input.u_knots(), topology.closed_u)?);
+                let k = sub(&ku_full, &free_rows, &free_rows);
+                let coupling = (!held_rows.is_empty()).then(|| {
+                    let kuh = sub(&ku_full, &free_rows, &held_rows);
+                    let ph = planes(held_rows.len(), nc, |a, b| data(held_rows[a], free_cols[b]));
+                    ph.iter().map(|p| &kuh * p).collect::<Vec<_>>()
+                });
+                let (values, vectors) = spectral::symmetric_eigen(&k);
+                ku = Some(k);
+                ((spectral::Basis::Exact(vectors), values), coupling)
+            };
+            let (v_part, coupling_v) = if reduce_v {
+                let (basis, values) = reduced::Reduced::new(
+                    input.v_knots(),
+                    topology.closed_v,
+                    self.reduction.knots,
+                    (held_col[0], held_col[nv - 1]),
+                )?;
+                let coupling = if held_cols.is_empty() {
+                    None
+                } else {
+                    let mut k_part: Vec<DMatrix<f64>> = Vec::new();
+                    for (c, plane) in y.iter_mut().enumerate() {
+                        let ends =
+                            DMatrix::from_fn(held_cols.len(), nr, |a, b| data(free_rows[b], held_cols[a])[c]);
+                        let (n_part, _) = basis.held_parts(&ends);
+                        *plane -= n_part.transpose();
+                        k_part.push(basis.held_coupling_right(&ends.transpose()));
+                    }
+                    Some(k_part)
+                };
+                ((spectral::Basis::Reduced(basis), values), coupling)
+            } else {
+                let kv_full = operator::gram(&operator::jump_matrix(input.v_knots(), topology.closed_v)?);
+                let k = sub(&kv_full, &free_cols, &free_cols);
+                let coupling = (!held_cols.is_empty()).then(|| {
+                    let kvh = sub(&kv_full, &held_cols, &free_cols);
+                    let pv = planes(nr, held_cols.len(), |a, b| data(free_rows[a], held_cols[b]));
+                    pv.iter().map(|p| p * &kvh).collect::<Vec<_>>()
+                });
+                let (values, vectors) = spectral::symmetric_eigen(&k);
+                kv = Some(k);
+                ((spectral::Basis::Exact(vectors), values), coupling)
+            };
+            // Held ends of a reduced direction shifted the block's data by their lines' values
+            // S; the solution gets the shift back, and the other (exact) direction's penalty
+            // on X = Z + S adds λ S K (or λ K S) to the right-hand side: a coupling at the sites.
+            let shift: Option<Planes> =
+                ((reduce_u && !held_rows.is_empty()) || (reduce_v && !held_cols.is_empty())).then(|| {
+                    let original = planes(nr, nc, |a, b| data(free_rows[a], free_cols[b]));
+                    std::array::from_fn(|c| &original[c] - &y[c])
+                });
+            let (mut coupling_u, mut coupling_v) = (coupling_u, coupling_v);
+            if let Some(shift) = &shift {
+                let zeros = || vec![DMatrix::zeros(nr, nc); 3];
+                if let Some(kv) = &kv {
+                    let part = coupling_v.get_or_insert_with(zeros);
+                    for (p, s) in part.iter_mut().zip(shift) {
+                        *p += s * kv;
+                    }
+                }
+                if let Some(ku) = &ku {
+                    let part = coupling_u.get_or_insert_with(zeros);
+                    for (p, s) in part.iter_mut().zip(shift) {
+                        *p += ku * s;
+                    }
+                }
+            }
+            let coupling: Option<Coupling> = if coupling_u.is_none() && coupling_v.is_none() {
                 None
             } else {
-                let kuh = sub(&ku_full, &free_rows, &held_rows);
-                let kvh = sub(&kv_full, &held_cols, &free_cols);
-                let ph = planes(held_rows.len(), nc, |a, b| data(held_rows[a], free_cols[b]));
-                let pv = planes(nr, held_cols.len(), |a, b| data(free_rows[a], held_cols[b]));
+                let zeros = |r: usize, c: usize| -> Planes { std::array::from_fn(|_| DMatrix::zeros(r, c)) };
+                let to_planes = |v: Vec<DMatrix<f64>>| -> Planes {
+                    let mut it = v.into_iter();
+                    std::array::from_fn(|_| it.next().unwrap_or_else(|| DMatrix::zeros(0, 0)))
+                };
                 Some(Coupling {
-                    u: std::array::from_fn(|c| &kuh * &ph[c]),
-                    v: std::array::from_fn(|c| &pv[c] * &kvh),
+                    u: coupling_u.map_or_else(|| zeros(nr, nc), to_planes),
+                    v: coupling_v.map_or_else(|| zeros(nr, nc), to_planes),
                 })
             };
-            let spectral = Spectral::new(ku.clone(), kv.clone());
+            let spectral = Spectral::from_parts(u_part, v_part);
             let y_hat = spectral.forward(&y);
+            // A reduced coupling lies in its basis's coefficients, not at the sites.
             let c_hat = coupling.as_ref().map(|c| Coupling {
-                u: spectral.forward(&c.u),
-                v: spectral.forward(&c.v),
+                u: spectral.forward_with(&c.u, !reduce_u, true),
+                v: spectral.forward_with(&c.v, true, !reduce_v),
             });
             let n_free = (nr * nc) as f64;
             let joined = join::Joined::new(
@@ -447,7 +621,11 @@ impl SurfaceJumpLsq {
                 &data,
                 &spectral,
             );
-            let energies = Energies::new(&y_hat, c_hat.as_ref());
+            let mut energies = Energies::new(&y_hat, c_hat.as_ref());
+            if spectral.is_reduced() {
+                let inside = spectral.back(&y_hat);
+                energies = energies.with_outside((0..3).map(|c| (&y[c] - &inside[c]).norm_squared()).sum());
+            }
             let rss_trace = |w: Weights| match &joined {
                 None => spectral.rss_trace(&energies, w),
                 Some(joined) => {
@@ -508,8 +686,8 @@ impl SurfaceJumpLsq {
             };
             let system = Block {
                 spectral: &spectral,
-                ku: &ku,
-                kv: &kv,
+                operators: ku.as_ref().zip(kv.as_ref()),
+                shift: shift.as_ref(),
                 y: &y,
                 y_hat: &y_hat,
                 coupling: coupling.as_ref(),
@@ -725,8 +903,11 @@ fn y_at(p: &Planes, a: usize, b: usize) -> Vec3 {
 /// The block's system: its operator, data and coupling to the held lines.
 struct Block<'a> {
     spectral: &'a Spectral,
-    ku: &'a DMatrix<f64>,
-    kv: &'a DMatrix<f64>,
+    /// The exact K_u and K_v of the block (for the constrained solves; `None` when a direction
+    /// is reduced, which has no fixed nodes or band to hold).
+    operators: Option<(&'a DMatrix<f64>, &'a DMatrix<f64>)>,
+    /// The data's shift by a reduced direction's held ends, added back to the solution.
+    shift: Option<&'a Planes>,
     y: &'a Planes,
     y_hat: &'a Planes,
     coupling: Option<&'a Coupling>,
@@ -746,15 +927,28 @@ impl Block<'_> {
     ) -> (Planes, usize, usize) {
         let x_hat = self.solve_hat(lambda);
         let mut x = self.spectral.back(&x_hat);
-        let rhs: Planes = match self.coupling {
-            Some(c) => {
-                let b = c.combined(lambda);
-                std::array::from_fn(|k| &self.y[k] - &b[k])
+        if let Some(shift) = self.shift {
+            for (p, s) in x.iter_mut().zip(shift) {
+                *p += s;
             }
-            None => self.y.clone(),
+        }
+        // The right-hand side at the sites, for the constrained solves only (a reduced block,
+        // whose coupling may lie in a reduced basis's coefficients, has none).
+        let rhs = || -> Planes {
+            match self.coupling {
+                Some(c) => {
+                    let b = c.combined(lambda);
+                    std::array::from_fn(|k| &self.y[k] - &b[k])
+                }
+                None => self.y.clone(),
+            }
         };
         let mut pinned = scattered.to_vec();
         let mut iterations = 0;
+        if pinned.is_empty() && band.is_none() {
+            return (x, 0, 0);
+        }
+        let rhs = rhs();
         if !pinned.is_empty() {
             iterations += self.constrained(&mut x, &rhs, &pinned, lambda);
         }
@@ -800,7 +994,13 @@ impl Block<'_> {
 
     /// X + λ_u K_u X + λ_v X K_v.
     fn apply(&self, x: &Planes, lambda: Weights) -> Planes {
-        std::array::from_fn(|c| &x[c] + (self.ku * &x[c]) * lambda.u + (&x[c] * self.kv) * lambda.v)
+        match self.operators {
+            Some((ku, kv)) => {
+                std::array::from_fn(|c| &x[c] + (ku * &x[c]) * lambda.u + (&x[c] * kv) * lambda.v)
+            }
+            // A reduced block has no pins (fixed nodes or band); never reached.
+            None => x.clone(),
+        }
     }
 
     /// The exact inverse, through the eigenbases.

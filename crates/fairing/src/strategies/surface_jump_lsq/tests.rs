@@ -631,3 +631,262 @@ fn gently_curved_directions_are_not_straightened() {
         );
     }
 }
+
+/// The largest distance between two nets' nodes over the largest move of `a` from `input`.
+fn relative_gap(a: &[Vec3], b: &[Vec3], input: &[Vec3]) -> f64 {
+    let gap = a.iter().zip(b).map(|(p, q)| (p - q).norm()).fold(0.0, f64::max);
+    let moved = a
+        .iter()
+        .zip(input)
+        .map(|(p, q)| (p - q).norm())
+        .fold(0.0, f64::max);
+    gap / moved
+}
+
+/// The exact path's and the reduced path's fits of `grid` with knots at every site (both
+/// directions reduced), at the weights `w` (`None`: by GCV).
+fn exact_and_all_knots(
+    grid: &[Vec<Vec3>],
+    settings: SurfaceJumpLsqSettings,
+    w: Option<Weights>,
+) -> (super::SurfaceJumpLsqResult, super::SurfaceJumpLsqResult) {
+    let settings = settings.with_guard(false);
+    let exact = SurfaceJumpLsq::new(settings.clone()).fit(grid, w).unwrap();
+    let reduced = SurfaceJumpLsq::new(settings)
+        .with_reduction(0, usize::MAX)
+        .fit(grid, w)
+        .unwrap();
+    (exact, reduced)
+}
+
+#[test]
+fn reduced_basis_on_every_site_is_the_exact_method() {
+    // With its knots at all the sites the reduced space is the exact one (N = I), so the
+    // reduced path's fit, GCV score and weights are the exact path's to round-off: on an
+    // open net, a tube (closed in v), and at given weights as well as by GCV.
+    let cases = [
+        noisy(23, 11, 0.03),
+        tube(17, 13, 0.03),
+        noisy_net(19, 9, 0.02, 7, |x, y| Vec3::new(x, y, (3.0 * x).sin() * y)),
+    ];
+    for grid in &cases {
+        let flat: Vec<Vec3> = grid.iter().flatten().copied().collect();
+        for w in [
+            Some(Weights { u: 0.3, v: 20.0 }),
+            Some(Weights { u: 1e4, v: 1e-3 }),
+            None,
+        ] {
+            let (exact, reduced) = exact_and_all_knots(grid, SurfaceJumpLsqSettings::default(), w);
+            let gap = relative_gap(exact.surface.points(), reduced.surface.points(), &flat);
+            assert!(gap < 1e-9, "{w:?}: gap {gap}");
+            assert!(
+                (exact.dof - reduced.dof).abs() < 1e-8 * exact.dof,
+                "{} {}",
+                exact.dof,
+                reduced.dof
+            );
+            if w.is_none() {
+                let (a, b) = (exact.gcv.unwrap(), reduced.gcv.unwrap());
+                assert!((a - b).abs() < 1e-8 * a, "gcv {a} against {b}");
+                assert!((exact.lambda_u.log10() - reduced.lambda_u.log10()).abs() < 1e-4);
+                assert!((exact.lambda_v.log10() - reduced.lambda_v.log10()).abs() < 1e-4);
+            }
+        }
+    }
+}
+
+/// The nodes of the grid's boundary (its first and last rows and columns): `g0`.
+fn boundary(rows: usize, columns: usize) -> Vec<(usize, usize)> {
+    (0..rows)
+        .flat_map(|i| (0..columns).map(move |j| (i, j)))
+        .filter(|&(i, j)| i == 0 || j == 0 || i + 1 == rows || j + 1 == columns)
+        .collect()
+}
+
+#[test]
+fn reduced_basis_with_held_ends_is_the_exact_method_on_every_site() {
+    // Held boundary lines (g0) in a reduced direction are its clamped end coefficients: with
+    // knots at every site the fit is the exact path's, and the held nodes are the input's bit
+    // for bit.
+    let grid = noisy(21, 10, 0.03);
+    let settings = SurfaceJumpLsqSettings::default().with_fixed(boundary(21, 10));
+    let flat: Vec<Vec3> = grid.iter().flatten().copied().collect();
+    for w in [Some(Weights { u: 2.0, v: 0.05 }), None] {
+        let (exact, reduced) = exact_and_all_knots(&grid, settings.clone(), w);
+        let gap = relative_gap(exact.surface.points(), reduced.surface.points(), &flat);
+        assert!(gap < 1e-9, "{w:?}: gap {gap}");
+        for (i, j) in boundary(21, 10) {
+            assert_eq!(reduced.surface.points()[i * 10 + j], grid[i][j]);
+        }
+    }
+}
+
+#[test]
+#[allow(clippy::needless_range_loop)] // (j, c) name the line and coordinate compared
+fn a_reduced_fit_is_a_spline_on_its_knots_and_its_score_is_its_residual() {
+    // On 40 knots of 160 sites: each u-line of the fit is the natural cubic spline through its
+    // values at the knots (it lies in the reduced space), and the GCV score reported is
+    // (RSS/3N)/(1 − tr/N)² with the RSS of the output itself, the data outside the reduced
+    // space included.
+    let (rows, columns) = (160, 6);
+    let grid = noisy_net(rows, columns, 0.02, 11, |x, y| {
+        Vec3::new(4.0 * x, y, 0.2 * (9.0 * x).sin() * (1.0 + y))
+    });
+    let result = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default().with_guard(false))
+        .with_reduction(100, 40)
+        .run(&grid)
+        .unwrap();
+    let flat: Vec<Vec3> = grid.iter().flatten().copied().collect();
+    let out = result.surface.points();
+    let n = (rows * columns) as f64;
+    let rss: f64 = out.iter().zip(&flat).map(|(p, q)| (p - q).norm_squared()).sum();
+    let expected = (rss / (3.0 * n)) / (1.0 - result.dof / n).powi(2);
+    let gcv = result.gcv.unwrap();
+    assert!(
+        (gcv - expected).abs() < 1e-6 * expected,
+        "{gcv} against {expected}"
+    );
+    // The input's chord-length knots (the fit's own differ).
+    let input = BicubicSplineSurface::new(&grid).unwrap();
+    let sites = input.u_knots();
+    let knot_sites = super::reduced::knot_sites(rows, 40, false);
+    let tau: Vec<f64> = knot_sites.iter().map(|&i| sites[i]).collect();
+    for j in 0..columns {
+        for c in 0..3 {
+            let values: Vec<f64> = knot_sites.iter().map(|&i| out[i * columns + j][c]).collect();
+            let spline = natural_spline(&tau, &values);
+            for (i, &t) in sites.iter().enumerate() {
+                let off = (spline(t) - out[i * columns + j][c]).abs();
+                assert!(off < 1e-9, "site {i}, line {j}: {off}");
+            }
+        }
+    }
+}
+
+/// The natural cubic spline through (τ_k, c_k), by its moments (dense solve).
+fn natural_spline(tau: &[f64], c: &[f64]) -> impl Fn(f64) -> f64 {
+    let n = tau.len();
+    let h: Vec<f64> = tau.windows(2).map(|w| w[1] - w[0]).collect();
+    let mut a = DMatrix::<f64>::identity(n, n);
+    let mut r = DVector::<f64>::zeros(n);
+    for k in 1..n - 1 {
+        a[(k, k - 1)] = h[k - 1];
+        a[(k, k)] = 2.0 * (h[k - 1] + h[k]);
+        a[(k, k + 1)] = h[k];
+        r[k] = 6.0 * ((c[k + 1] - c[k]) / h[k] - (c[k] - c[k - 1]) / h[k - 1]);
+    }
+    let m = a.lu().solve(&r).unwrap();
+    let (tau, c) = (tau.to_vec(), c.to_vec());
+    move |t: f64| {
+        let k = tau.windows(2).position(|w| t <= w[1]).unwrap_or(n - 2);
+        let hk = tau[k + 1] - tau[k];
+        let a = (tau[k + 1] - t) / hk;
+        let b = (t - tau[k]) / hk;
+        a * c[k] + b * c[k + 1] + ((a * a * a - a) * m[k] + (b * b * b - b) * m[k + 1]) * hk * hk / 6.0
+    }
+}
+
+#[test]
+fn a_reduced_fit_solves_its_normal_equations() {
+    // u reduced to M knots, v exact: the fit's knot values C minimise
+    // |N C − Y|² + λ_u tr(Cᵀ K' C) + λ_v tr(N C K_v Cᵀ Nᵀ), solved here densely:
+    // [(I ⊗ NᵀN) + λ_u (I ⊗ K') + λ_v (K_v ⊗ NᵀN)] vec C = (I ⊗ Nᵀ) vec Y.
+    let (rows, columns, count) = (90, 6, 25);
+    let grid = noisy(rows, columns, 0.03);
+    let input = BicubicSplineSurface::new(&grid).unwrap();
+    let sites = input.u_knots().to_vec();
+    let knot_sites = super::reduced::knot_sites(rows, count, false);
+    let tau: Vec<f64> = knot_sites.iter().map(|&i| sites[i]).collect();
+    let n = DMatrix::from_fn(rows, count, |i, k| {
+        let e: Vec<f64> = (0..count).map(|q| f64::from(u8::from(q == k))).collect();
+        natural_spline(&tau, &e)(sites[i])
+    });
+    let ntn = n.transpose() * &n;
+    let kp = gram(&jump_matrix(&tau, false).unwrap());
+    let kv = gram(&jump_matrix(input.v_knots(), false).unwrap());
+    let id = DMatrix::<f64>::identity(columns, columns);
+    for w in [Weights { u: 0.5, v: 3.0 }, Weights { u: 1e3, v: 1e-2 }] {
+        let result = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default().with_guard(false))
+            .with_reduction(50, count)
+            .fit(&grid, Some(w))
+            .unwrap();
+        let out = result.surface.points();
+        let a = id.kronecker(&ntn) + id.kronecker(&kp) * w.u + kv.kronecker(&ntn) * w.v;
+        let lu = a.lu();
+        for c in 0..3 {
+            let y = DMatrix::from_fn(rows, columns, |i, j| grid[i][j][c]);
+            let rhs = n.transpose() * &y;
+            let vec_c = lu.solve(&DVector::from_column_slice(rhs.as_slice())).unwrap();
+            let x = &n * DMatrix::from_column_slice(count, columns, vec_c.as_slice());
+            for i in 0..rows {
+                for j in 0..columns {
+                    let gap = (x[(i, j)] - out[i * columns + j][c]).abs();
+                    assert!(gap < 1e-9, "{w:?} ({i}, {j}) coordinate {c}: {gap}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn a_reduced_fit_with_held_boundary_solves_its_normal_equations() {
+    // g0 on a net whose u-direction is reduced (v exact): the held nodes stay bit for bit, the
+    // u-lines' end coefficients are the held ends, and the free knot values C minimise
+    // Σ_{R×C} |X − Y|² + λ_u Σ_j |D' c_j|² + λ_v Σ_i |D_v X[i, :]|² (whole rows, the held
+    // columns included), X = N_RF C + N_RE P⁰_E: solved here densely.
+    let (rows, columns, count) = (80, 7, 21);
+    let grid = noisy(rows, columns, 0.03);
+    let input = BicubicSplineSurface::new(&grid).unwrap();
+    let sites = input.u_knots().to_vec();
+    let knot_sites = super::reduced::knot_sites(rows, count, false);
+    let tau: Vec<f64> = knot_sites.iter().map(|&i| sites[i]).collect();
+    let n_full = DMatrix::from_fn(rows, count, |i, k| {
+        let e: Vec<f64> = (0..count).map(|q| f64::from(u8::from(q == k))).collect();
+        natural_spline(&tau, &e)(sites[i])
+    });
+    let (r, c) = (rows - 2, columns - 2);
+    let f = count - 2;
+    let n_rf = n_full.view((1, 1), (r, f)).into_owned();
+    let n_re = DMatrix::from_fn(r, 2, |i, e| n_full[(i + 1, if e == 0 { 0 } else { count - 1 })]);
+    let kp = gram(&jump_matrix(&tau, false).unwrap());
+    let kp_ff = kp.view((1, 1), (f, f)).into_owned();
+    let kp_fe = DMatrix::from_fn(f, 2, |i, e| kp[(i + 1, if e == 0 { 0 } else { count - 1 })]);
+    let kv = gram(&jump_matrix(input.v_knots(), false).unwrap());
+    let kv_cc = kv.view((1, 1), (c, c)).into_owned();
+    let kv_hc = DMatrix::from_fn(2, c, |h, j| kv[(if h == 0 { 0 } else { columns - 1 }, j + 1)]);
+    let a = n_rf.transpose() * &n_rf;
+    let id = DMatrix::<f64>::identity(c, c);
+    for w in [Weights { u: 0.5, v: 3.0 }, Weights { u: 1e3, v: 1e-2 }] {
+        let result = SurfaceJumpLsq::new(
+            SurfaceJumpLsqSettings::default()
+                .with_guard(false)
+                .with_fixed(boundary(rows, columns)),
+        )
+        .with_reduction(50, count)
+        .fit(&grid, Some(w))
+        .unwrap();
+        let out = result.surface.points();
+        for (i, j) in boundary(rows, columns) {
+            assert_eq!(out[i * columns + j], grid[i][j]);
+        }
+        let system = id.kronecker(&a) + id.kronecker(&kp_ff) * w.u + kv_cc.kronecker(&a) * w.v;
+        let lu = system.lu();
+        for k in 0..3 {
+            let y = DMatrix::from_fn(r, c, |i, j| grid[i + 1][j + 1][k]);
+            let ends = DMatrix::from_fn(2, c, |e, j| grid[if e == 0 { 0 } else { rows - 1 }][j + 1][k]);
+            let sides = DMatrix::from_fn(r, 2, |i, h| grid[i + 1][if h == 0 { 0 } else { columns - 1 }][k]);
+            let shift = &n_re * &ends;
+            let rhs = n_rf.transpose() * (&y - &shift)
+                - &kp_fe * &ends * w.u
+                - n_rf.transpose() * (&shift * &kv_cc + &sides * &kv_hc) * w.v;
+            let vec_c = lu.solve(&DVector::from_column_slice(rhs.as_slice())).unwrap();
+            let x = &n_rf * DMatrix::from_column_slice(f, c, vec_c.as_slice()) + &shift;
+            for i in 0..r {
+                for j in 0..c {
+                    let gap = (x[(i, j)] - out[(i + 1) * columns + j + 1][k]).abs();
+                    assert!(gap < 1e-9, "{w:?} ({i}, {j}) coordinate {k}: {gap}");
+                }
+            }
+        }
+    }
+}
