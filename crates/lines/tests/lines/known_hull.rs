@@ -455,3 +455,24 @@ fn the_chine_height_below_is_the_bottoms_edge_weighed_with_the_waterlines() {
         );
     }
 }
+
+#[test]
+fn noisy_straight_sections_are_faired_straight() {
+    // the hard-chine form's sections are straight on both sides of the chine; on noisy tables
+    // (tuning seeds 10 and 701, faired at their noise) the straight limit missed the
+    // discrepancy target by 1-16 % (the topsides pinned to the chine's half-breadths faired
+    // alone, 1-3 steps off), the curved fits were taken and the faired stations had 20 and 27
+    // inflections (the truth none)
+    for seed in [10, 701] {
+        let (_d, t) = table(&generate::hard_chine(1.5, 0, seed));
+        let settings = Settings {
+            tolerance: Some(1.5 * generate::STEP * 3f64.sqrt()),
+            ..Settings::default()
+        };
+        let f = fair(&t, &settings).unwrap();
+        assert_eq!(f.report.hull_fit.len(), 2);
+        for h in &f.report.hull_fit {
+            assert!(h.straight, "seed {seed}: {:?}", f.report.hull_fit);
+        }
+    }
+}
