@@ -598,13 +598,38 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                 }
             }
         }
+        // an offset near the knuckle is cut from the region that moves it least; a cut that
+        // lies on its own region's side of the knuckle as the regions meet there (the bottom out
+        // to its edge, u <= 1; the topsides above the bottom's edge) is preferred when it moves
+        // the offset at most a rounding step more: a buttock through the chine at a station, cut
+        // from the topsides' extension a fraction of a step below the chine, moved least by a
+        // hundredth of a step and left the buttock with a hook and four inflections there
+        let bottom = hulls.iter().find(|h| h.scale.is_some());
+        let own_side = |h: &Hull, p: &[f64; 3]| match (h.value, bottom) {
+            (Coord::Z, _) if h.scale.is_some() => p[1] <= h.u_scale(p[0]) * (1.0 + 1e-9),
+            (Coord::Y, Some(b)) => {
+                let ((x0, x1), _) = b.domain();
+                p[2] >= b.eval(p[0].clamp(x0, x1), 1.0).0 - 1e-9 * (1.0 + p[2].abs())
+            }
+            _ => true,
+        };
         for &i in &band {
             let c = &t.cells[i];
             let kind = t.lines[c.line].kind;
-            let best = hulls
+            let here = [c.x, c.y, c.z];
+            let cuts: Vec<(bool, f64, [f64; 3])> = hulls
                 .iter()
-                .filter_map(|h| cut(h, c.x, c.y, c.z, kind))
-                .min_by(|a, b| dist(&[c.x, c.y, c.z], a).total_cmp(&dist(&[c.x, c.y, c.z], b)));
+                .filter_map(|h| cut(h, c.x, c.y, c.z, kind).map(|p| (own_side(h, &p), dist(&here, &p), p)))
+                .collect();
+            let least = cuts.iter().map(|q| q.1).fold(f64::INFINITY, f64::min);
+            let best = cuts
+                .iter()
+                .min_by(|a, b| {
+                    let pa = !(a.0 && a.1 <= least + step);
+                    let pb = !(b.0 && b.1 <= least + step);
+                    pa.cmp(&pb).then(a.1.total_cmp(&b.1))
+                })
+                .map(|q| q.2);
             match best {
                 Some(p) => {
                     values[i] = p;

@@ -476,3 +476,25 @@ fn noisy_straight_sections_are_faired_straight() {
         }
     }
 }
+
+#[test]
+fn a_buttock_through_the_chine_is_cut_from_the_bottom() {
+    // BT4 (y = 32) meets the chine exactly at station 7; planted seed 2's faired chine passes
+    // a few thousandths outside it there, so the offset lies on the bottom, but the topsides'
+    // extension below the chine moved it a hundredth of a step less, and BT4 took a hook with
+    // four inflections there
+    let (_d, t) = table(&generate::hard_chine(0.0, 3, 2));
+    let f = fair(&t, &Settings::default()).unwrap();
+    let below = f.hulls.iter().find(|h| h.region() == "below chine").unwrap();
+    let i = (0..t.cells.len())
+        .find(|&i| t.lines[t.cells[i].line].label == "BT4" && t.cells[i].station_index == 7)
+        .unwrap();
+    let [x, y, z] = f.values[i];
+    let u = y / below.u_scale(x);
+    assert!(u <= 1.0, "{u}");
+    let on = below.eval(x, u).0;
+    assert!(
+        (z - on).abs() < 1e-6,
+        "BT4 at station 7: z {z}, the bottom's {on}"
+    );
+}
