@@ -497,7 +497,11 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                     let kind = t.lines[c.line].kind;
                     let (u, v) = h.uv(c.x, c.y, c.z);
                     let (mu, mv) = (obs[k].free_u, obs[k].free_v);
-                    let new = if mv && !mu {
+                    // below a knuckle, u = 0 is the centreline: a keel offset is cut there
+                    // (see `on_centreline`)
+                    let new = if h.scale.is_some() && on_centreline(kind, c.y) {
+                        Some(h.point(c.x, 0.0))
+                    } else if mv && !mu {
                         Some(h.point(c.x, u))
                     } else if mu && !mv {
                         h.solve_arg(c.x, v, u).map(|u2| h.point(c.x, u2))
@@ -849,11 +853,14 @@ fn cut(h: &Hull, x: f64, y: f64, z: f64, kind: Kind) -> Option<[f64; 3]> {
 }
 
 /// An edge offset at y = 0 lies on the centreline (a keel, stem or rabbet: the hull's plane of
-/// symmetry), so its faired y stays exactly 0. It is still projected in the body plan (its
-/// height is the projection's), so it lies off the region's surface by the projection's y:
-/// cut at y = 0 instead, it would take the surface's own height there, which near the forefoot
-/// of a V bottom, where the sections steepen fast along x, is further from the keel than the
-/// projection (see docs/experiments/lines-plan.md).
+/// symmetry), so its faired y stays exactly 0. On a region y(x, z) it is still projected in the
+/// body plan (its height is the projection's), so it lies off the region's surface by the
+/// projection's y: cut at y = 0 instead, it would take the surface's own height there, which
+/// near the forefoot of a V bottom, where the sections steepen fast along x, is further from
+/// the keel than the projection (see docs/experiments/lines-plan.md). On a bottom below a
+/// knuckle, parametrised by the fraction of the way out to it, it is cut at u = 0: there the
+/// bottom's sections are straight on noisy tables, and the projected keel sat up to a step off
+/// the line through the bottom's other offsets, an inflection at most bottom stations.
 fn on_centreline(kind: Kind, y: f64) -> bool {
     kind == Kind::Edge && y == 0.0
 }

@@ -498,3 +498,24 @@ fn a_buttock_through_the_chine_is_cut_from_the_bottom() {
         "BT4 at station 7: z {z}, the bottom's {on}"
     );
 }
+
+#[test]
+fn the_keel_below_a_chine_is_on_the_bottoms_centreline() {
+    // noisy seed 1 (faired at its noise): the keel, projected onto the straight bottom's
+    // sections and set back to y = 0, sat 0.6 step off the line through station 3's other
+    // bottom offsets (an inflection at most bottom stations); cut at u = 0 it is on the surface
+    let (_d, t) = table(&generate::hard_chine(1.5, 0, 1));
+    let settings = Settings {
+        tolerance: Some(1.5 * generate::STEP * 3f64.sqrt()),
+        ..Settings::default()
+    };
+    let f = fair(&t, &settings).unwrap();
+    let below = f.hulls.iter().find(|h| h.region() == "below chine").unwrap();
+    let keel = t.lines.iter().position(|l| l.label == "keel").unwrap();
+    for i in t.line_cells(keel) {
+        let [x, y, z] = f.values[i];
+        assert_eq!(y, 0.0);
+        let on = below.eval(x, 0.0).0;
+        assert!((z - on).abs() < 1e-9, "keel at x {x}: z {z}, the bottom's {on}");
+    }
+}
