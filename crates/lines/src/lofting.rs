@@ -243,7 +243,8 @@ pub struct Faired {
 /// is cut from the other. Knuckle edges, profile-only and plan-only lines,
 /// and every line of a table without waterlines or buttocks are faired alone (y(x) and z(x),
 /// the same penalty and tolerance). Offsets on the centreline (y = 0 of a waterline) are held;
-/// an edge offset on it (a keel, stem or rabbet) is projected and keeps y = 0.
+/// an edge offset on it (a keel, stem or rabbet) keeps y = 0, projected onto the hull, or cut
+/// at the centreline of a bottom below a knuckle.
 /// Fails with [`Error::Setting`] for a non-positive step or tolerance and [`Error::Fit`] when
 /// fewer than 8 offsets lie on the hull. O(n·bw²) per solve, with n the surface's coefficients
 /// and bw its band (4·nu + 4); about 100 solves, and as many at the straight limit, whose
