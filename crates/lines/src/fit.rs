@@ -271,8 +271,17 @@ impl Fit {
 /// Fits `obs` by a spline on knots (kx, ku) with tolerance `tol` per offset (half the rounding
 /// step by default). Observations with `hold` are fitted with a large weight and never
 /// rejected. `straight` (two variables only): the straight-section limit ([`Straight`]).
+/// `slack` (≥ 1) widens the discrepancy target of the final fits by that factor (1: the plain
+/// target; see [`parsimony_slack`]).
 /// Returns None when the system is singular (too few offsets).
-pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64, straight: bool) -> Option<Fit> {
+pub(crate) fn fit(
+    kx: Knots,
+    ku: Option<Knots>,
+    obs: &[Obs],
+    tol: f64,
+    straight: bool,
+    slack: f64,
+) -> Option<Fit> {
     let reduce = if straight {
         ku.as_ref().map(Straight::new)
     } else {
@@ -371,7 +380,11 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64, straight:
         // the first two fits are stiffer (four times the move): an offset in conflict with a
         // neighbour at the same point then stands out against the fair trend of all the others
         // instead of sharing the conflict with it
-        let goal = if outer < STIFF { 4.0 * target } else { target };
+        let goal = if outer < STIFF {
+            4.0 * target
+        } else {
+            slack * target
+        };
         // after the first fit, λ is searched near the previous one (the weights change little)
         let (mut lo, mut hi) = if outer == 0 {
             (-8.0f64, 8.0f64)
@@ -464,6 +477,17 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64, straight:
     })
 }
 
+/// The discrepancy target's slack for a simpler model (the straight-section limit): the RMS
+/// move of n offsets whose errors have the target's spread is itself uncertain, its square's
+/// relative standard error √(2/n) (a χ² with n degrees of freedom), so a model that misses
+/// the target by less than that cannot be told from one that meets it (the one-standard-error
+/// rule, Breiman et al. 1984; Hastie, Tibshirani & Friedman, *The Elements of Statistical
+/// Learning*, §7.10). Returned as the factor on the RMS: √(1 + √(2/n)), n the offsets not held.
+pub(crate) fn parsimony_slack(obs: &[Obs]) -> f64 {
+    let n = obs.iter().filter(|o| !o.held).count().max(1) as f64;
+    (1.0 + (2.0 / n).sqrt()).sqrt()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -479,7 +503,7 @@ mod tests {
                 Obs::new((x, 0.0), 1000.0 + 2.0 * x, true, false)
             })
             .collect();
-        let f = fit(Knots::uniform(0.0, 225.0, 15), None, &obs, 0.0625, false).unwrap();
+        let f = fit(Knots::uniform(0.0, 225.0, 15), None, &obs, 0.0625, false, 1.0).unwrap();
         assert!(f.lambda > 1e6, "{}", f.lambda);
         for o in &obs {
             let v = f.spline.eval(o.at.0, 0.0).0;

@@ -4,7 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
-use crate::fit::{fit, Fit, Obs, Spline};
+use crate::fit::{fit, parsimony_slack, Fit, Obs, Spline};
 use crate::report::{build_report, Report};
 use crate::spline::{Band, Knots};
 use crate::table::{Coord, Kind, Table};
@@ -229,18 +229,27 @@ pub struct Faired {
 /// are offsets of the bottom's edge (u = 1), fitted with the bottom's waterlines and buttocks,
 /// and the knuckle's height is the bottom's edge there: near a nearly flat bottom (a waterline
 /// meeting it close to the chine) a height error of the knuckle faired alone becomes many times
-/// that in the waterline's half-breadth. The region above holds the knuckle at those heights.
+/// that in the waterline's half-breadth. Likewise its half-breadths as read are offsets of the
+/// topsides' lower edge: the region above is fitted with them (at the bottom's edge heights),
+/// and both regions are fitted again with the knuckle's half-breadths the topsides give there
+/// (the bottom's scale of u), the region above then holding the knuckle's points. Faired alone
+/// from sixteen noisy offsets, the chine's half-breadths were 1-3 steps off, and the straight
+/// topsides pinned to them could not meet the discrepancy target.
 /// Each region is fitted twice, with its sections free and at the straight-section limit
-/// (straight across the girth at every x, as a V bottom or flared topsides are); the limit is taken when it reaches the same discrepancy target and
-/// rejects the same offsets. An offset cut from one region onto the other's side of the knuckle
+/// (straight across the girth at every x, as a V bottom or flared topsides are); the limit, the
+/// simpler model, is fitted to the discrepancy target widened by its standard error
+/// (`parsimony_slack`) and taken when it reaches it and rejects the same offsets. An offset
+/// cut from one region onto the other's side of the knuckle
 /// is cut from the other. Knuckle edges, profile-only and plan-only lines,
 /// and every line of a table without waterlines or buttocks are faired alone (y(x) and z(x),
 /// the same penalty and tolerance). Offsets on the centreline (y = 0 of a waterline) are held;
-/// an edge offset on it (a keel, stem or rabbet) is projected and keeps y = 0.
+/// an edge offset on it (a keel, stem or rabbet) keeps y = 0, projected onto the hull, or cut
+/// at the centreline of a bottom below a knuckle.
 /// Fails with [`Error::Setting`] for a non-positive step or tolerance and [`Error::Fit`] when
 /// fewer than 8 offsets lie on the hull. O(n·bw²) per solve, with n the surface's coefficients
 /// and bw its band (4·nu + 4); about 100 solves, and as many at the straight limit, whose
-/// system has two unknowns per x coefficient.
+/// system has two unknowns per x coefficient; twice that with a knuckle whose half-breadths are
+/// the bottom's scale.
 pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
     settings.validate()?;
     let step = settings.step.unwrap_or(table.step);
@@ -292,7 +301,7 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                 .iter()
                 .map(|&i| Obs::new((t.cells[i].x, 0.0), t.cells[i].get_index(coord), true, false))
                 .collect();
-            let Some(f) = fit(Knots::uniform(x0, x1, pts.len() - 1), None, &obs, tol, false) else {
+            let Some(f) = fit(Knots::uniform(x0, x1, pts.len() - 1), None, &obs, tol, false, 1.0) else {
                 continue;
             };
             for (k, &i) in pts.iter().enumerate() {
@@ -347,156 +356,217 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
             }
             None => regions.push(("hull".into(), Coord::Y, idx.clone(), Vec::new())),
         }
-        for (name, value, cells, held) in regions {
-            if cells.len() < 8 {
-                continue;
-            }
-            let pts: Vec<(f64, f64, f64)> = cells
-                .iter()
-                .map(|&i| (t.cells[i].x, t.cells[i].y, t.cells[i].z))
-                .chain(held.iter().map(|&i| (values[i][0], values[i][1], values[i][2])))
-                .collect();
-            let (mut x0, mut x1) = (f64::MAX, f64::MIN);
-            for &(x, _, _) in &pts {
-                x0 = x0.min(x);
-                x1 = x1.max(x);
-            }
-            if x1 <= x0 {
-                continue;
-            }
-            let xs = t.stations.len().max(2) - 1;
-            let kx = Knots::uniform(x0, x1, xs.min(80));
-            // below a knuckle, u is the fraction of the way out to it (see `Hull`)
-            let scale = match (&knuckle_fit, &knuckle_y, value) {
-                (Some((kl, _)), Some((yl, yk)), Coord::Z) if kl == yl => knuckle_scale(&kx, yk, 4.0 * step),
-                _ => None,
-            };
-            let g = |x: f64| scale.as_ref().map_or(1.0, |s| s.eval(x, 0.0).0);
-            let uv = |x: f64, y: f64, z: f64| {
-                if value == Coord::Z {
-                    (y / g(x), z)
-                } else {
-                    (z, y)
+        let snapshot = (values.clone(), rejected.clone(), sources.clone());
+        // the knuckle's half-breadths the bottom's u is scaled by, from the topsides' fit
+        let mut rescale: Option<Spline> = None;
+        for pass in 0..2 {
+            if pass == 1 {
+                if rescale.is_none() {
+                    break;
                 }
-            };
-            let (mut u0, mut u1) = (f64::MAX, f64::MIN);
-            for &(x, y, z) in &pts {
-                let (u, _) = uv(x, y, z);
-                u0 = u0.min(u);
-                u1 = u1.max(u);
+                (values, rejected, sources) = snapshot.clone();
+                if let (Some(r), Some(region)) = (&rescale, regions.first()) {
+                    for &i in &region.3 {
+                        values[i][1] = r.eval(values[i][0], 0.0).0;
+                    }
+                }
+                hulls.clear();
+                fits.clear();
+                region_cells.clear();
             }
-            if u1 <= u0 {
-                continue;
-            }
-            // knots: one span per station interval and per plane of the u family (tried on
-            // Block Island and the Wigley tuning tables: twice as many in either direction
-            // follow the disagreeing offsets of Block Island instead of agreeing them)
-            let family = if value == Coord::Z {
-                Kind::Buttock
-            } else {
-                Kind::Waterline
-            };
-            let mut planes: Vec<f64> = t
-                .lines
-                .iter()
-                .filter(|l| l.kind == family)
-                .filter_map(|l| l.plane)
-                .collect();
-            planes.sort_by(f64::total_cmp);
-            planes.dedup();
-            let us = planes.len().clamp(3, 40);
-            let ku = Knots::uniform(u0, u1, us);
-            let mut obs: Vec<Obs> = cells
-                .iter()
-                .map(|&i| {
+            let mut below_soft = false;
+            for (name, value, cells, held) in regions.iter().cloned() {
+                if cells.len() < 8 {
+                    continue;
+                }
+                let pts: Vec<(f64, f64, f64)> = cells
+                    .iter()
+                    .map(|&i| (t.cells[i].x, t.cells[i].y, t.cells[i].z))
+                    .chain(held.iter().map(|&i| (values[i][0], values[i][1], values[i][2])))
+                    .collect();
+                let (mut x0, mut x1) = (f64::MAX, f64::MIN);
+                for &(x, _, _) in &pts {
+                    x0 = x0.min(x);
+                    x1 = x1.max(x);
+                }
+                if x1 <= x0 {
+                    continue;
+                }
+                let xs = t.stations.len().max(2) - 1;
+                let kx = Knots::uniform(x0, x1, xs.min(80));
+                // below a knuckle, u is the fraction of the way out to it (see `Hull`)
+                let scale = match (&knuckle_fit, &knuckle_y, value) {
+                    (Some((kl, _)), Some((yl, yk)), Coord::Z) if kl == yl => match &rescale {
+                        Some(r) => Some(r.clone()),
+                        None => {
+                            let (xa, xb) = (yk.kx.t[0], yk.kx.t[yk.kx.t.len() - 1]);
+                            knuckle_scale(&kx, |x| yk.eval(x.clamp(xa, xb), 0.0).0, 4.0 * step)
+                        }
+                    },
+                    _ => None,
+                };
+                if value == Coord::Z {
+                    below_soft = scale.is_some();
+                }
+                // above a knuckle whose heights are the bottom's edge, its half-breadths as read are
+                // offsets of the topsides' lower edge (at those heights)
+                let soft_y = pass == 0 && value == Coord::Y && below_soft;
+                let g = |x: f64| scale.as_ref().map_or(1.0, |s| s.eval(x, 0.0).0);
+                let uv = |x: f64, y: f64, z: f64| {
+                    if value == Coord::Z {
+                        (y / g(x), z)
+                    } else {
+                        (z, y)
+                    }
+                };
+                let (mut u0, mut u1) = (f64::MAX, f64::MIN);
+                for &(x, y, z) in &pts {
+                    let (u, _) = uv(x, y, z);
+                    u0 = u0.min(u);
+                    u1 = u1.max(u);
+                }
+                if u1 <= u0 {
+                    continue;
+                }
+                // knots: one span per station interval and per plane of the u family (tried on
+                // Block Island and the Wigley tuning tables: twice as many in either direction
+                // follow the disagreeing offsets of Block Island instead of agreeing them)
+                let family = if value == Coord::Z {
+                    Kind::Buttock
+                } else {
+                    Kind::Waterline
+                };
+                let mut planes: Vec<f64> = t
+                    .lines
+                    .iter()
+                    .filter(|l| l.kind == family)
+                    .filter_map(|l| l.plane)
+                    .collect();
+                planes.sort_by(f64::total_cmp);
+                planes.dedup();
+                let us = planes.len().clamp(3, 40);
+                let ku = Knots::uniform(u0, u1, us);
+                let mut obs: Vec<Obs> = cells
+                    .iter()
+                    .map(|&i| {
+                        let c = &t.cells[i];
+                        let kind = t.lines[c.line].kind;
+                        let (u, v) = uv(c.x, c.y, c.z);
+                        let (my, mz) = (kind != Kind::Buttock, kind != Kind::Waterline);
+                        let (mu, mv) = if value == Coord::Z { (my, mz) } else { (mz, my) };
+                        let mut o = Obs::new((c.x, u), v, mv, mu);
+                        o.u_scale = g(c.x);
+                        o
+                    })
+                    .collect();
+                // below a knuckle parametrised by the fraction (u = 1 on the knuckle), the knuckle's
+                // heights as read are offsets of the bottom's edge, weighed with the rest (measured
+                // in z; its half-breadths, faired alone and then from the topsides, are the scale of u)
+                let soft = scale.is_some();
+                for &i in &held {
+                    let z = if soft { t.cells[i].z } else { values[i][2] };
+                    let y = if soft_y { t.cells[i].y } else { values[i][1] };
+                    let (u, v) = uv(values[i][0], y, z);
+                    let mut o = if soft || soft_y {
+                        Obs::new((values[i][0], u), v, true, false)
+                    } else {
+                        Obs::new((values[i][0], u), v, true, true)
+                    };
+                    o.held = !(soft || soft_y);
+                    o.u_scale = g(values[i][0]);
+                    obs.push(o);
+                }
+                let curved = fit(kx.clone(), Some(ku.clone()), &obs, tol, false, 1.0)
+                    .ok_or_else(|| Error::Fit(format!("the {name} system is singular")))?;
+                // the straight-section limit (λ → ∞ across the girth) is taken when the offsets
+                // allow it: it reaches the discrepancy target and rejects the same offsets
+                // the straight-section limit (λ → ∞ across the girth) is the simpler model: it is
+                // given the target's slack (`parsimony_slack`), which its x smoothing also follows
+                let stf = fit(kx, Some(ku), &obs, tol, true, parsimony_slack(&obs));
+                let f = match stf {
+                    Some(st) if st.met && same_rejections(&st, &curved) => st,
+                    _ => curved,
+                };
+                let h = Hull {
+                    s: f.spline.clone(),
+                    value,
+                    region: name,
+                    scale,
+                };
+                for (k, &i) in cells.iter().enumerate() {
                     let c = &t.cells[i];
                     let kind = t.lines[c.line].kind;
-                    let (u, v) = uv(c.x, c.y, c.z);
-                    let (my, mz) = (kind != Kind::Buttock, kind != Kind::Waterline);
-                    let (mu, mv) = if value == Coord::Z { (my, mz) } else { (mz, my) };
-                    let mut o = Obs::new((c.x, u), v, mv, mu);
-                    o.u_scale = g(c.x);
-                    o
-                })
-                .collect();
-            // below a knuckle parametrised by the fraction (u = 1 on the knuckle), the knuckle's
-            // heights as read are offsets of the bottom's edge, weighed with the rest (measured
-            // in z; its half-breadths, faired alone, are the scale of u)
-            let soft = scale.is_some();
-            for &i in &held {
-                let z = if soft { t.cells[i].z } else { values[i][2] };
-                let (u, v) = uv(values[i][0], values[i][1], z);
-                let mut o = if soft {
-                    Obs::new((values[i][0], u), v, true, false)
-                } else {
-                    Obs::new((values[i][0], u), v, true, true)
-                };
-                o.held = !soft;
-                o.u_scale = g(values[i][0]);
-                obs.push(o);
-            }
-            let curved = fit(kx.clone(), Some(ku.clone()), &obs, tol, false)
-                .ok_or_else(|| Error::Fit(format!("the {name} system is singular")))?;
-            // the straight-section limit (λ → ∞ across the girth) is taken when the offsets
-            // allow it: it reaches the discrepancy target and rejects the same offsets
-            let stf = fit(kx, Some(ku), &obs, tol, true);
-            let f = match stf {
-                Some(st) if st.met && same_rejections(&st, &curved) => st,
-                _ => curved,
-            };
-            let h = Hull {
-                s: f.spline.clone(),
-                value,
-                region: name,
-                scale,
-            };
-            for (k, &i) in cells.iter().enumerate() {
-                let c = &t.cells[i];
-                let kind = t.lines[c.line].kind;
-                let (u, v) = h.uv(c.x, c.y, c.z);
-                let (mu, mv) = (obs[k].free_u, obs[k].free_v);
-                let new = if mv && !mu {
-                    Some(h.point(c.x, u))
-                } else if mu && !mv {
-                    h.solve_arg(c.x, v, u).map(|u2| h.point(c.x, u2))
-                } else {
-                    let (_, u2) = h.project(c.x, v, u);
-                    Some(h.point(c.x, u2))
-                };
-                match new {
-                    Some(p) => {
-                        // the plane coordinate of a waterline / buttock stays exact
-                        // (and a centreline edge's y = 0: see `on_centreline`)
-                        values[i] = [
-                            c.x,
-                            if kind == Kind::Buttock || on_centreline(kind, c.y) {
-                                c.y
-                            } else {
-                                half_breadth(p[1])
-                            },
-                            if kind == Kind::Waterline { c.z } else { p[2] },
-                        ];
+                    let (u, v) = h.uv(c.x, c.y, c.z);
+                    let (mu, mv) = (obs[k].free_u, obs[k].free_v);
+                    // below a knuckle, u = 0 is the centreline: a keel offset is cut there
+                    // (see `on_centreline`)
+                    let new = if h.scale.is_some() && on_centreline(kind, c.y) {
+                        Some(h.point(c.x, 0.0))
+                    } else if mv && !mu {
+                        Some(h.point(c.x, u))
+                    } else if mu && !mv {
+                        h.solve_arg(c.x, v, u).map(|u2| h.point(c.x, u2))
+                    } else {
+                        let (_, u2) = h.project(c.x, v, u);
+                        Some(h.point(c.x, u2))
+                    };
+                    match new {
+                        Some(p) => {
+                            // the plane coordinate of a waterline / buttock stays exact
+                            // (and a centreline edge's y = 0: see `on_centreline`)
+                            values[i] = [
+                                c.x,
+                                if kind == Kind::Buttock || on_centreline(kind, c.y) {
+                                    c.y
+                                } else {
+                                    half_breadth(p[1])
+                                },
+                                if kind == Kind::Waterline { c.z } else { p[2] },
+                            ];
+                        }
+                        None => rejected[i] = true,
                     }
-                    None => rejected[i] = true,
-                }
-                sources[i] = Source::Hull;
-                if f.weight[k] == 0.0 {
-                    rejected[i] = true;
-                }
-            }
-            // the knuckle's height is the bottom's edge (the region above, fitted next, holds it)
-            if soft {
-                for (k, &i) in held.iter().enumerate() {
-                    let (u, _) = h.uv(values[i][0], values[i][1], values[i][2]);
-                    values[i][2] = h.eval(values[i][0], u).0;
-                    if f.weight[cells.len() + k] == 0.0 {
+                    sources[i] = Source::Hull;
+                    if f.weight[k] == 0.0 {
                         rejected[i] = true;
                     }
                 }
+                // the knuckle's height is the bottom's edge (the region above, fitted next, holds it)
+                if soft {
+                    for (k, &i) in held.iter().enumerate() {
+                        let (u, _) = h.uv(values[i][0], values[i][1], values[i][2]);
+                        values[i][2] = h.eval(values[i][0], u).0;
+                        if f.weight[cells.len() + k] == 0.0 {
+                            rejected[i] = true;
+                        }
+                    }
+                }
+                if soft_y {
+                    for (k, &i) in held.iter().enumerate() {
+                        values[i][1] = half_breadth(h.eval(values[i][0], values[i][2]).0);
+                        if f.weight[cells.len() + k] == 0.0 {
+                            rejected[i] = true;
+                        }
+                    }
+                }
+                fits.push((h.region.clone(), f));
+                hulls.push(h);
+                region_cells.push(cells);
             }
-            fits.push((h.region.clone(), f));
-            hulls.push(h);
-            region_cells.push(cells);
+            if pass == 0 && below_soft && hulls.len() == 2 {
+                // the knuckle's half-breadth along x: the topsides' at the bottom's edge
+                let (below, above) = (&hulls[0], &hulls[1]);
+                let ((bx0, bx1), _) = below.domain();
+                let ((ax0, ax1), _) = above.domain();
+                let (y0, y1) = (bx0.max(ax0), bx1.min(ax1));
+                if y1 > y0 {
+                    let y = |x: f64| {
+                        let x = x.clamp(y0, y1);
+                        above.eval(x, below.eval(x, 1.0).0).0
+                    };
+                    rescale = knuckle_scale(&below.s.kx, y, 4.0 * step);
+                }
+            }
         }
         // back to the order above, below
         if knuckle_fit.is_some() {
@@ -533,13 +603,38 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                 }
             }
         }
+        // an offset near the knuckle is cut from the region that moves it least; a cut that
+        // lies on its own region's side of the knuckle as the regions meet there (the bottom out
+        // to its edge, u <= 1; the topsides above the bottom's edge) is preferred when it moves
+        // the offset at most a rounding step more: a buttock through the chine at a station, cut
+        // from the topsides' extension a fraction of a step below the chine, moved least by a
+        // hundredth of a step and left the buttock with a hook and four inflections there
+        let bottom = hulls.iter().find(|h| h.scale.is_some());
+        let own_side = |h: &Hull, p: &[f64; 3]| match (h.value, bottom) {
+            (Coord::Z, _) if h.scale.is_some() => p[1] <= h.u_scale(p[0]) * (1.0 + 1e-9),
+            (Coord::Y, Some(b)) => {
+                let ((x0, x1), _) = b.domain();
+                p[2] >= b.eval(p[0].clamp(x0, x1), 1.0).0 - 1e-9 * (1.0 + p[2].abs())
+            }
+            _ => true,
+        };
         for &i in &band {
             let c = &t.cells[i];
             let kind = t.lines[c.line].kind;
-            let best = hulls
+            let here = [c.x, c.y, c.z];
+            let cuts: Vec<(bool, f64, [f64; 3])> = hulls
                 .iter()
-                .filter_map(|h| cut(h, c.x, c.y, c.z, kind))
-                .min_by(|a, b| dist(&[c.x, c.y, c.z], a).total_cmp(&dist(&[c.x, c.y, c.z], b)));
+                .filter_map(|h| cut(h, c.x, c.y, c.z, kind).map(|p| (own_side(h, &p), dist(&here, &p), p)))
+                .collect();
+            let least = cuts.iter().map(|q| q.1).fold(f64::INFINITY, f64::min);
+            let best = cuts
+                .iter()
+                .min_by(|a, b| {
+                    let pa = !(a.0 && a.1 <= least + step);
+                    let pb = !(b.0 && b.1 <= least + step);
+                    pa.cmp(&pb).then(a.1.total_cmp(&b.1))
+                })
+                .map(|q| q.2);
             match best {
                 Some(p) => {
                     values[i] = p;
@@ -703,8 +798,7 @@ fn refuted(
 /// the knuckle's faired spline `yk`, clamped to its ends, at eight points per span), the scale
 /// of the bottom's u (see [`Hull`]); None where it comes within `min` of the centreline, as a
 /// chine running into the stem does (the fraction is then undefined there).
-fn knuckle_scale(kx: &Knots, yk: &Spline, min: f64) -> Option<Spline> {
-    let (xa, xb) = (yk.kx.t[0], yk.kx.t[yk.kx.t.len() - 1]);
+fn knuckle_scale(kx: &Knots, yk: impl Fn(f64) -> f64, min: f64) -> Option<Spline> {
     let n = kx.count();
     let mut s = Spline {
         kx: kx.clone(),
@@ -717,7 +811,7 @@ fn knuckle_scale(kx: &Knots, yk: &Spline, min: f64) -> Option<Spline> {
     let mut atb = vec![0.0; n];
     for k in 0..=m {
         let x = x0 + (x1 - x0) * k as f64 / m as f64;
-        let y = yk.eval(x.clamp(xa, xb), 0.0).0;
+        let y = yk(x);
         let r = s.row(x, 0.0, 0);
         ata.add_outer(&r, 1.0);
         for &(i, w) in &r {
@@ -760,11 +854,14 @@ fn cut(h: &Hull, x: f64, y: f64, z: f64, kind: Kind) -> Option<[f64; 3]> {
 }
 
 /// An edge offset at y = 0 lies on the centreline (a keel, stem or rabbet: the hull's plane of
-/// symmetry), so its faired y stays exactly 0. It is still projected in the body plan (its
-/// height is the projection's), so it lies off the region's surface by the projection's y:
-/// cut at y = 0 instead, it would take the surface's own height there, which near the forefoot
-/// of a V bottom, where the sections steepen fast along x, is further from the keel than the
-/// projection (see docs/experiments/lines-plan.md).
+/// symmetry), so its faired y stays exactly 0. On a region y(x, z) it is still projected in the
+/// body plan (its height is the projection's), so it lies off the region's surface by the
+/// projection's y: cut at y = 0 instead, it would take the surface's own height there, which
+/// near the forefoot of a V bottom, where the sections steepen fast along x, is further from
+/// the keel than the projection (see docs/experiments/lines-plan.md). On a bottom below a
+/// knuckle, parametrised by the fraction of the way out to it, it is cut at u = 0: there the
+/// bottom's sections are straight on noisy tables, and the projected keel sat up to a step off
+/// the line through the bottom's other offsets, an inflection at most bottom stations.
 fn on_centreline(kind: Kind, y: f64) -> bool {
     kind == Kind::Edge && y == 0.0
 }
