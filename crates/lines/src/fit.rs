@@ -493,6 +493,30 @@ mod tests {
     use super::*;
 
     #[test]
+    fn the_parsimony_slack_is_one_standard_error_of_the_squared_rms() {
+        // the defining condition: for n errors of the target's spread, the squared RMS over
+        // the target's square has standard deviation slack² − 1 (sampled here, 20 000 draws)
+        let mut rng = crate::generate::Rng(0x9E37_79B9_7F4A_7C15);
+        for n in [12usize, 72, 400] {
+            let obs: Vec<Obs> = (0..n)
+                .map(|k| Obs::new((k as f64, 0.0), 0.0, true, false))
+                .collect();
+            let slack = parsimony_slack(&obs);
+            let draws: Vec<f64> = (0..20_000)
+                .map(|_| (0..n).map(|_| rng.normal().powi(2)).sum::<f64>() / n as f64)
+                .collect();
+            let mean = draws.iter().sum::<f64>() / draws.len() as f64;
+            let sd =
+                (draws.iter().map(|r| (r - mean).powi(2)).sum::<f64>() / (draws.len() - 1) as f64).sqrt();
+            let want = slack * slack - 1.0;
+            assert!(
+                (sd / want - 1.0).abs() < 0.03,
+                "n {n}: sampled sd {sd}, slack² − 1 = {want}"
+            );
+        }
+    }
+
+    #[test]
     fn offsets_on_a_line_far_from_zero_are_fitted_without_shrinkage() {
         // exact offsets in the penalty's null space: the discrepancy principle takes the
         // largest λ, and the ridge that keeps the system definite must not pull the values

@@ -479,9 +479,9 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                 let curved = fit(kx.clone(), Some(ku.clone()), &obs, tol, false, 1.0)
                     .ok_or_else(|| Error::Fit(format!("the {name} system is singular")))?;
                 // the straight-section limit (λ → ∞ across the girth) is taken when the offsets
-                // allow it: it reaches the discrepancy target and rejects the same offsets
-                // the straight-section limit (λ → ∞ across the girth) is the simpler model: it is
-                // given the target's slack (`parsimony_slack`), which its x smoothing also follows
+                // allow it: it reaches the discrepancy target and rejects the same offsets; as
+                // the simpler model it is given the target's slack (`parsimony_slack`), which its
+                // x smoothing also follows
                 let stf = fit(kx, Some(ku), &obs, tol, true, parsimony_slack(&obs));
                 let f = match stf {
                     Some(st) if st.met && same_rejections(&st, &curved) => st,
