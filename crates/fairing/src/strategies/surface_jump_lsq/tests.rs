@@ -645,15 +645,18 @@ fn relative_gap(a: &[Vec3], b: &[Vec3], input: &[Vec3]) -> f64 {
 
 /// The exact path's and the reduced path's fits of `grid` with knots at every site (both
 /// directions reduced), at the weights `w` (`None`: by GCV).
+/// The exact fit and the reduced path's with knots at every site, for the directions of more
+/// than `above` sites.
 fn exact_and_all_knots(
     grid: &[Vec<Vec3>],
     settings: SurfaceJumpLsqSettings,
     w: Option<Weights>,
+    above: usize,
 ) -> (super::SurfaceJumpLsqResult, super::SurfaceJumpLsqResult) {
     let settings = settings.with_guard(false);
     let exact = SurfaceJumpLsq::new(settings.clone()).fit(grid, w).unwrap();
     let reduced = SurfaceJumpLsq::new(settings)
-        .with_reduction(0, usize::MAX)
+        .with_reduction(above, usize::MAX)
         .fit(grid, w)
         .unwrap();
     (exact, reduced)
@@ -676,7 +679,7 @@ fn reduced_basis_on_every_site_is_the_exact_method() {
             Some(Weights { u: 1e4, v: 1e-3 }),
             None,
         ] {
-            let (exact, reduced) = exact_and_all_knots(grid, SurfaceJumpLsqSettings::default(), w);
+            let (exact, reduced) = exact_and_all_knots(grid, SurfaceJumpLsqSettings::default(), w, 0);
             let gap = relative_gap(exact.surface.points(), reduced.surface.points(), &flat);
             assert!(gap < 1e-9, "{w:?}: gap {gap}");
             assert!(
@@ -707,16 +710,19 @@ fn boundary(rows: usize, columns: usize) -> Vec<(usize, usize)> {
 fn reduced_basis_with_held_ends_is_the_exact_method_on_every_site() {
     // Held boundary lines (g0) in a reduced direction are its clamped end coefficients: with
     // knots at every site the fit is the exact path's, and the held nodes are the input's bit
-    // for bit.
-    let grid = noisy(21, 10, 0.03);
-    let settings = SurfaceJumpLsqSettings::default().with_fixed(boundary(21, 10));
-    let flat: Vec<Vec3> = grid.iter().flatten().copied().collect();
-    for w in [Some(Weights { u: 2.0, v: 0.05 }), None] {
-        let (exact, reduced) = exact_and_all_knots(&grid, settings.clone(), w);
-        let gap = relative_gap(exact.surface.points(), reduced.surface.points(), &flat);
-        assert!(gap < 1e-9, "{w:?}: gap {gap}");
-        for (i, j) in boundary(21, 10) {
-            assert_eq!(reduced.surface.points()[i * 10 + j], grid[i][j]);
+    // for bit. One direction reduced at a time (u on 21 × 10, v on 10 × 21; with both reduced
+    // and held lines the net is solved exactly).
+    for (rows, columns) in [(21, 10), (10, 21)] {
+        let grid = noisy(rows, columns, 0.03);
+        let settings = SurfaceJumpLsqSettings::default().with_fixed(boundary(rows, columns));
+        let flat: Vec<Vec3> = grid.iter().flatten().copied().collect();
+        for w in [Some(Weights { u: 2.0, v: 0.05 }), None] {
+            let (exact, reduced) = exact_and_all_knots(&grid, settings.clone(), w, 15);
+            let gap = relative_gap(exact.surface.points(), reduced.surface.points(), &flat);
+            assert!(gap < 1e-9, "{rows} x {columns}, {w:?}: gap {gap}");
+            for (i, j) in boundary(rows, columns) {
+                assert_eq!(reduced.surface.points()[i * columns + j], grid[i][j]);
+            }
         }
     }
 }
