@@ -508,19 +508,11 @@ impl SurfaceJumpLsq {
                     self.reduction.knots,
                     (held_row[0], held_row[mu - 1]),
                 )?;
-                let coupling = if held_rows.is_empty() {
-                    None
-                } else {
-                    let mut k_part: Vec<DMatrix<f64>> = Vec::new();
-                    for (c, plane) in y.iter_mut().enumerate() {
-                        let ends =
-                            DMatrix::from_fn(held_rows.len(), nc, |a, b| data(held_rows[a], free_cols[b])[c]);
-                        let (n_part, k) = basis.held_parts(&ends);
-                        *plane -= n_part;
-                        k_part.push(k);
-                    }
-                    Some(k_part)
-                };
+                let coupling = (!held_rows.is_empty()).then(|| {
+                    reduced_held_ends(&basis, &mut y, false, |c| {
+                        DMatrix::from_fn(held_rows.len(), nc, |a, b| data(held_rows[a], free_cols[b])[c])
+                    })
+                });
                 ((spectral::Basis::Reduced(basis), values), coupling)
             } else {
                 let ku_full = operator::gram(&operator::jump_matrix(input.u_knots(), topology.closed_u)?);
@@ -541,19 +533,11 @@ impl SurfaceJumpLsq {
                     self.reduction.knots,
                     (held_col[0], held_col[nv - 1]),
                 )?;
-                let coupling = if held_cols.is_empty() {
-                    None
-                } else {
-                    let mut k_part: Vec<DMatrix<f64>> = Vec::new();
-                    for (c, plane) in y.iter_mut().enumerate() {
-                        let ends =
-                            DMatrix::from_fn(held_cols.len(), nr, |a, b| data(free_rows[b], held_cols[a])[c]);
-                        let (n_part, _) = basis.held_parts(&ends);
-                        *plane -= n_part.transpose();
-                        k_part.push(basis.held_coupling_right(&ends.transpose()));
-                    }
-                    Some(k_part)
-                };
+                let coupling = (!held_cols.is_empty()).then(|| {
+                    reduced_held_ends(&basis, &mut y, true, |c| {
+                        DMatrix::from_fn(held_cols.len(), nr, |a, b| data(free_rows[b], held_cols[a])[c])
+                    })
+                });
                 ((spectral::Basis::Reduced(basis), values), coupling)
             } else {
                 let kv_full = operator::gram(&operator::jump_matrix(input.v_knots(), topology.closed_v)?);
@@ -898,6 +882,31 @@ fn judge(points: &[Vec3], rows: usize, columns: usize, build: &BicubicSurfaceSet
 
 fn y_at(p: &Planes, a: usize, b: usize) -> Vec3 {
     Vec3::new(p[0][(a, b)], p[1][(a, b)], p[2][(a, b)])
+}
+
+/// A reduced direction's held end lines (`ends(c)`: held lines × the other direction's free
+/// sites, coordinate c): shifts the block's data by their values N[:, held] c_held and returns
+/// the penalty's coupling K'[free, held] c_held per coordinate (module `reduced`). The v
+/// direction's lines are the block's rows, so its parts are transposed (`along_v`).
+fn reduced_held_ends(
+    basis: &reduced::Reduced,
+    y: &mut Planes,
+    along_v: bool,
+    ends: impl Fn(usize) -> DMatrix<f64>,
+) -> Vec<DMatrix<f64>> {
+    y.iter_mut()
+        .enumerate()
+        .map(|(c, plane)| {
+            let (n_part, k) = basis.held_parts(&ends(c));
+            if along_v {
+                *plane -= n_part.transpose();
+                k.transpose()
+            } else {
+                *plane -= n_part;
+                k
+            }
+        })
+        .collect()
 }
 
 /// The block's system: its operator, data and coupling to the held lines.

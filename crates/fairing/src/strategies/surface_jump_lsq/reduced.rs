@@ -288,12 +288,6 @@ impl Reduced {
         }
         (self.n_apply(&full), &self.k_held * ends)
     }
-
-    /// K'[held, free] on the right: `ends` (k × held) times it, the coupling of a reduced
-    /// direction along the rows (the exact path's `P⁰[R, Ch] K[Ch, C]`).
-    pub(crate) fn held_coupling_right(&self, ends: &DMatrix<f64>) -> DMatrix<f64> {
-        ends * self.k_held.transpose()
-    }
 }
 
 /// G (knots × knots): the moments s″(τ_k) of the natural (periodic) cubic spline with values
