@@ -575,6 +575,12 @@ impl SurfaceJumpLsq {
                     }
                 }
             }
+            // Where a coupling part lies: a reduced direction's own held ends give one in its
+            // basis's coefficients; a part that is absent is zeros at the sites.
+            let (u_at_sites, v_at_sites) = (
+                !reduce_u || coupling_u.is_none(),
+                !reduce_v || coupling_v.is_none(),
+            );
             let coupling: Option<Coupling> = if coupling_u.is_none() && coupling_v.is_none() {
                 None
             } else {
@@ -590,10 +596,9 @@ impl SurfaceJumpLsq {
             };
             let spectral = Spectral::from_parts(u_part, v_part);
             let y_hat = spectral.forward(&y);
-            // A reduced coupling lies in its basis's coefficients, not at the sites.
             let c_hat = coupling.as_ref().map(|c| Coupling {
-                u: spectral.forward_with(&c.u, !reduce_u, true),
-                v: spectral.forward_with(&c.v, true, !reduce_v),
+                u: spectral.forward_with(&c.u, u_at_sites, true),
+                v: spectral.forward_with(&c.v, true, v_at_sites),
             });
             let n_free = (nr * nc) as f64;
             let joined = join::Joined::new(

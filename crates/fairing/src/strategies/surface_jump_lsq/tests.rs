@@ -896,3 +896,61 @@ fn a_reduced_fit_with_held_boundary_solves_its_normal_equations() {
         }
     }
 }
+
+#[test]
+fn a_reduced_direction_beside_held_lines_of_the_other_is_the_exact_method() {
+    // A long u direction reduced, its own lines free, while the v direction (exact) holds its
+    // edge lines: the coupling of the held v lines lies at the sites, the u direction has none.
+    // With knots at every site the fit is the exact path's; the held nodes stay bit for bit.
+    let (rows, columns) = (21, 10);
+    let grid = noisy(rows, columns, 0.03);
+    let held: Vec<(usize, usize)> = (0..rows).flat_map(|i| [(i, 0), (i, columns - 1)]).collect();
+    let settings = SurfaceJumpLsqSettings::default().with_fixed(held.clone());
+    let flat: Vec<Vec3> = grid.iter().flatten().copied().collect();
+    for w in [Some(Weights { u: 2.0, v: 0.05 }), None] {
+        let (exact, reduced) = exact_and_all_knots(&grid, settings.clone(), w, 15);
+        let gap = relative_gap(exact.surface.points(), reduced.surface.points(), &flat);
+        assert!(gap < 1e-9, "{w:?}: gap {gap}");
+        for &(i, j) in &held {
+            assert_eq!(reduced.surface.points()[i * columns + j], grid[i][j]);
+        }
+    }
+}
+
+#[test]
+#[allow(clippy::needless_range_loop)] // (j, c) name the line and coordinate compared
+fn a_reduced_direction_on_fewer_knots_beside_held_lines_of_the_other_is_on_its_knots() {
+    // 40 u sites on 12 knots, the v edges held: the run succeeds (the u direction's empty
+    // coupling was once taken as coefficients, 12 rows against 40), the held nodes stay bit for
+    // bit, and each free u-line of the fit is the natural cubic spline through its values at
+    // the knots.
+    let (rows, columns, count) = (40, 10, 12);
+    let grid = noisy(rows, columns, 0.03);
+    let held: Vec<(usize, usize)> = (0..rows).flat_map(|i| [(i, 0), (i, columns - 1)]).collect();
+    let result = SurfaceJumpLsq::new(
+        SurfaceJumpLsqSettings::default()
+            .with_fixed(held.clone())
+            .with_guard(false),
+    )
+    .with_reduction(15, count)
+    .fit(&grid, None)
+    .unwrap();
+    let out = result.surface.points();
+    for &(i, j) in &held {
+        assert_eq!(out[i * columns + j], grid[i][j]);
+    }
+    let input = BicubicSplineSurface::new(&grid).unwrap();
+    let sites = input.u_knots();
+    let knot_sites = super::reduced::knot_sites(rows, count, false);
+    let tau: Vec<f64> = knot_sites.iter().map(|&i| sites[i]).collect();
+    for j in 1..columns - 1 {
+        for c in 0..3 {
+            let values: Vec<f64> = knot_sites.iter().map(|&i| out[i * columns + j][c]).collect();
+            let spline = natural_spline(&tau, &values);
+            for (i, &t) in sites.iter().enumerate() {
+                let off = (spline(t) - out[i * columns + j][c]).abs();
+                assert!(off < 1e-9, "site {i}, line {j}: {off}");
+            }
+        }
+    }
+}
