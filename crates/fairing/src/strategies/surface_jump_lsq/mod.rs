@@ -492,65 +492,27 @@ impl SurfaceJumpLsq {
             if reduce_u && reduce_v && !(held_rows.is_empty() && held_cols.is_empty()) {
                 (reduce_u, reduce_v) = (false, false);
             }
-            let sub = |k: &DMatrix<f64>, a: &[usize], b: &[usize]| {
-                DMatrix::from_fn(a.len(), b.len(), |r, c| k[(a[r], b[c])])
-            };
-            // Each direction: its basis and eigenvalues, and its coupling to its held lines
-            // (K[R, Rh] P⁰[Rh, C] exactly; K'[free, held] c_held in a reduced basis, whose held
-            // ends also shift the data by N[:, held] c_held); the exact K of the block kept for
-            // the constrained solves.
-            let mut ku = None;
-            let mut kv = None;
-            let (u_part, coupling_u) = if reduce_u {
-                let (basis, values) = reduced::Reduced::new(
-                    input.u_knots(),
-                    topology.closed_u,
-                    self.reduction.knots,
-                    (held_row[0], held_row[mu - 1]),
-                )?;
-                let coupling = (!held_rows.is_empty()).then(|| {
-                    reduced_held_ends(&basis, &mut y, false, |c| {
-                        DMatrix::from_fn(held_rows.len(), nc, |a, b| data(held_rows[a], free_cols[b])[c])
-                    })
-                });
-                ((spectral::Basis::Reduced(basis), values), coupling)
-            } else {
-                let ku_full = operator::gram(&operator::jump_matrix(input.u_knots(), topology.closed_u)?);
-                let k = sub(&ku_full, &free_rows, &free_rows);
-                let coupling = (!held_rows.is_empty()).then(|| {
-                    let kuh = sub(&ku_full, &free_rows, &held_rows);
-                    let ph = planes(held_rows.len(), nc, |a, b| data(held_rows[a], free_cols[b]));
-                    ph.iter().map(|p| &kuh * p).collect::<Vec<_>>()
-                });
-                let (values, vectors) = spectral::symmetric_eigen(&k);
-                ku = Some(k);
-                ((spectral::Basis::Exact(vectors), values), coupling)
-            };
-            let (v_part, coupling_v) = if reduce_v {
-                let (basis, values) = reduced::Reduced::new(
-                    input.v_knots(),
-                    topology.closed_v,
-                    self.reduction.knots,
-                    (held_col[0], held_col[nv - 1]),
-                )?;
-                let coupling = (!held_cols.is_empty()).then(|| {
-                    reduced_held_ends(&basis, &mut y, true, |c| {
-                        DMatrix::from_fn(held_cols.len(), nr, |a, b| data(free_rows[b], held_cols[a])[c])
-                    })
-                });
-                ((spectral::Basis::Reduced(basis), values), coupling)
-            } else {
-                let kv_full = operator::gram(&operator::jump_matrix(input.v_knots(), topology.closed_v)?);
-                let k = sub(&kv_full, &free_cols, &free_cols);
-                let coupling = (!held_cols.is_empty()).then(|| {
-                    let kvh = sub(&kv_full, &held_cols, &free_cols);
-                    let pv = planes(nr, held_cols.len(), |a, b| data(free_rows[a], held_cols[b]));
-                    pv.iter().map(|p| p * &kvh).collect::<Vec<_>>()
-                });
-                let (values, vectors) = spectral::symmetric_eigen(&k);
-                kv = Some(k);
-                ((spectral::Basis::Exact(vectors), values), coupling)
-            };
+            // Each direction's basis, coupling to its held lines and exact K (`direction_part`).
+            let (u_part, coupling_u, ku) = direction_part(
+                input.u_knots(),
+                topology.closed_u,
+                reduce_u.then_some(self.reduction.knots),
+                (held_row[0], held_row[mu - 1]),
+                (&free_rows, &held_rows),
+                false,
+                &mut y,
+                |c| DMatrix::from_fn(held_rows.len(), nc, |a, b| data(held_rows[a], free_cols[b])[c]),
+            )?;
+            let (v_part, coupling_v, kv) = direction_part(
+                input.v_knots(),
+                topology.closed_v,
+                reduce_v.then_some(self.reduction.knots),
+                (held_col[0], held_col[nv - 1]),
+                (&free_cols, &held_cols),
+                true,
+                &mut y,
+                |c| DMatrix::from_fn(held_cols.len(), nr, |a, b| data(free_rows[b], held_cols[a])[c]),
+            )?;
             // Held ends of a reduced direction shifted the block's data by their lines' values
             // S; the solution gets the shift back, and the other (exact) direction's penalty
             // on X = Z + S adds λ S K (or λ K S) to the right-hand side: a coupling at the sites.
@@ -889,29 +851,58 @@ fn y_at(p: &Planes, a: usize, b: usize) -> Vec3 {
     Vec3::new(p[0][(a, b)], p[1][(a, b)], p[2][(a, b)])
 }
 
-/// A reduced direction's held end lines (`ends(c)`: held lines × the other direction's free
-/// sites, coordinate c): shifts the block's data by their values N[:, held] c_held and returns
-/// the penalty's coupling K'[free, held] c_held per coordinate (module `reduced`). The v
-/// direction's lines are the block's rows, so its parts are transposed (`along_v`).
-fn reduced_held_ends(
-    basis: &reduced::Reduced,
-    y: &mut Planes,
+/// The rows (`a`) and columns (`b`) of `k`.
+fn submatrix(k: &DMatrix<f64>, a: &[usize], b: &[usize]) -> DMatrix<f64> {
+    DMatrix::from_fn(a.len(), b.len(), |r, c| k[(a[r], b[c])])
+}
+
+/// One direction of a block, u and v alike: its basis and eigenvalues (the exact eigenbasis of
+/// K over its free lines, or with `reduce` = Some(knots) the reduced basis of module
+/// `reduced`), its coupling to its held lines per coordinate, and its exact K over the free
+/// lines (None when reduced). `lines` = (free, held) line indices; `ends(c)` the held lines'
+/// coordinate c over the other direction's free sites (held × other). Exactly the coupling is
+/// K[free, held] ends(c); in a reduced basis K'[free, held] c_held, and the held ends shift
+/// the data `y` by N[:, held] c_held. The v direction's lines are the block's columns, so its
+/// parts are transposed (`along_v`).
+#[allow(clippy::too_many_arguments, clippy::type_complexity)]
+fn direction_part(
+    knots: &[f64],
+    closed: bool,
+    reduce: Option<usize>,
+    held_ends: (bool, bool),
+    lines: (&[usize], &[usize]),
     along_v: bool,
+    y: &mut Planes,
     ends: impl Fn(usize) -> DMatrix<f64>,
-) -> Vec<DMatrix<f64>> {
-    y.iter_mut()
-        .enumerate()
-        .map(|(c, plane)| {
-            let (n_part, k) = basis.held_parts(&ends(c));
-            if along_v {
-                *plane -= n_part.transpose();
-                k.transpose()
-            } else {
-                *plane -= n_part;
-                k
-            }
-        })
-        .collect()
+) -> Result<(
+    (spectral::Basis, Vec<f64>),
+    Option<Vec<DMatrix<f64>>>,
+    Option<DMatrix<f64>>,
+)> {
+    let (free, held) = lines;
+    let oriented = |m: DMatrix<f64>| if along_v { m.transpose() } else { m };
+    if let Some(count) = reduce {
+        let (basis, values) = reduced::Reduced::new(knots, closed, count, held_ends)?;
+        let coupling = (!held.is_empty()).then(|| {
+            y.iter_mut()
+                .enumerate()
+                .map(|(c, plane)| {
+                    let (n_part, k) = basis.held_parts(&ends(c));
+                    *plane -= oriented(n_part);
+                    oriented(k)
+                })
+                .collect()
+        });
+        return Ok(((spectral::Basis::Reduced(basis), values), coupling, None));
+    }
+    let k_full = operator::gram(&operator::jump_matrix(knots, closed)?);
+    let k = submatrix(&k_full, free, free);
+    let coupling = (!held.is_empty()).then(|| {
+        let k_held = submatrix(&k_full, free, held);
+        (0..3).map(|c| oriented(&k_held * ends(c))).collect()
+    });
+    let (values, vectors) = spectral::symmetric_eigen(&k);
+    Ok(((spectral::Basis::Exact(vectors), values), coupling, Some(k)))
 }
 
 /// The block's system: its operator, data and coupling to the held lines.
