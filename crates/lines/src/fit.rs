@@ -237,6 +237,8 @@ pub(crate) struct Fit {
     pub met: bool,
     /// Fitted at the straight-section limit ([`Straight`]).
     pub straight: bool,
+    /// λ is GCV's, not the discrepancy's (the straight limit's final fit, see [`fit`]).
+    pub by_gcv: bool,
 }
 
 /// Smallest gain: a residual is converted into a move of the offset's measured coordinates by
@@ -272,7 +274,16 @@ impl Fit {
 /// step by default). Observations with `hold` are fitted with a large weight and never
 /// rejected. `straight` (two variables only): the straight-section limit ([`Straight`]).
 /// `slack` (≥ 1) widens the discrepancy target of the final fits by that factor (1: the plain
-/// target; see [`parsimony_slack`]).
+/// target; see [`parsimony_slack`]). `gcv`: at the straight limit, once the discrepancy has met
+/// its target and settled the weights, the x smoothing is raised to the minimiser of GCV,
+/// V(λ) = n·RSS(λ) / (n − tr H(λ))² (Craven & Wahba 1979; n the offsets fitted, H the weighted
+/// hat matrix over them), on a grid of quarter decades from the discrepancy's λ up: the
+/// discrepancy takes the tolerance as the offsets' error, and where they are noisier (a noisy
+/// table's RMS error is only near its declared value) it spends the x freedom, the only
+/// freedom the straight limit leaves, on wiggles along the waterlines; GCV reads the error
+/// from the offsets. Never below the discrepancy's λ, so a table as accurate as declared keeps
+/// its fit. Each grid point costs one factorisation and one solve per offset, O(n·N·bw), N the
+/// unknowns (2 per x coefficient).
 /// Returns None when the system is singular (too few offsets).
 pub(crate) fn fit(
     kx: Knots,
@@ -281,6 +292,7 @@ pub(crate) fn fit(
     tol: f64,
     straight: bool,
     slack: f64,
+    gcv: bool,
 ) -> Option<Fit> {
     let reduce = if straight {
         ku.as_ref().map(Straight::new)
@@ -325,11 +337,14 @@ pub(crate) fn fit(
     let mut robust = vec![1.0; obs.len()];
     let mut lambda: f64 = 1.0;
     let mut met = false;
+    let mut by_gcv = false;
     let mut moves = vec![0.0; obs.len()];
     let mut it = 0;
     let target = tol / 3f64.sqrt();
     for outer in 0..OUTER {
         it = outer + 1;
+        // this iteration's weights, which its system and its measure of the moves use
+        let (gain_fit, robust_fit) = (gain.clone(), robust.clone());
         let mut ata = Band::zeros(n, bw);
         let mut atb = vec![0.0; n];
         for (k, (r, o)) in unknown_rows.iter().zip(obs).enumerate() {
@@ -352,7 +367,7 @@ pub(crate) fn fit(
             Some(r) => r.unknowns(&s.c),
             None => s.c.clone(),
         };
-        let solve = |lam: f64| -> Option<Vec<f64>> {
+        let system = |lam: f64| -> (Band, Vec<f64>) {
             let mut m = ata.clone();
             m.add_scaled(&pen, lam);
             let ridge = 1e-10 * (1.0 + lam);
@@ -360,6 +375,10 @@ pub(crate) fn fit(
                 row[0] += ridge;
             }
             let rhs: Vec<f64> = atb.iter().zip(&prev).map(|(b, p)| b + ridge * p).collect();
+            (m, rhs)
+        };
+        let solve = |lam: f64| -> Option<Vec<f64>> {
+            let (m, rhs) = system(lam);
             m.solve(&rhs).map(expand)
         };
         let rms_move = |c: &[f64]| -> f64 {
@@ -369,9 +388,9 @@ pub(crate) fn fit(
                     continue;
                 }
                 let v: f64 = r.iter().map(|&(i, w)| c[i] * w).sum();
-                let m = (v - obs[k].target) / gain[k];
-                num += robust[k] * m * m;
-                den += robust[k];
+                let m = (v - obs[k].target) / gain_fit[k];
+                num += robust_fit[k] * m * m;
+                den += robust_fit[k];
             }
             (num / den.max(1e-300)).sqrt()
         };
@@ -431,8 +450,8 @@ pub(crate) fn fit(
             Some(b) => b,
             None => (lo, solve(10f64.powf(lo))?),
         };
-        lambda = 10f64.powf(l);
         met = rms_move(&c) <= goal * (1.0 + 1e-9);
+        lambda = 10f64.powf(l);
         s.c = c;
         // new gains and moves; the robust scale: the tolerance, or the moves' own spread
         // (1.4826 × their median absolute value) where that is larger (a table noisier than
@@ -462,7 +481,52 @@ pub(crate) fn fit(
             }
             robust[k] = w;
         }
-        if !changed && outer > STIFF {
+        let last = (!changed && outer > STIFF) || outer + 1 == OUTER;
+        // at the straight-section limit only the smoothing along x is left: where the offsets
+        // are noisier than the tolerance declares, the discrepancy spends it on wiggles along
+        // the waterlines; there the final fit's x smoothing is GCV's (Craven & Wahba 1979),
+        // searched above the discrepancy's, with the weights and rejections the discrepancy
+        // decided
+        if last && gcv && met && reduce.is_some() {
+            let active: Vec<(&[(usize, f64)], f64)> = unknown_rows
+                .iter()
+                .enumerate()
+                .filter(|&(k, _)| !obs[k].held && robust_fit[k] > 0.0)
+                .map(|(k, r)| (r.as_slice(), robust_fit[k] / (gain_fit[k] * gain_fit[k])))
+                .collect();
+            let count = active.len() as f64;
+            let score = |lg: f64| -> Option<(f64, Vec<f64>)> {
+                let (m, _) = system(10f64.powf(lg));
+                let tr = m.quadratic_trace(&active)?;
+                let c = solve(10f64.powf(lg))?;
+                let rms = rms_move(&c);
+                (count - tr > 0.5).then(|| (count * rms * rms / ((count - tr) * (count - tr)), c))
+            };
+            let l0 = lambda.log10();
+            let mut pick: Option<(f64, Vec<f64>)> = None;
+            let mut best_score = score(l0).map_or(f64::INFINITY, |s| s.0);
+            let mut lg = l0 + 0.25;
+            while lg <= 8.0 {
+                if let Some((v, c2)) = score(lg) {
+                    if v < best_score {
+                        best_score = v;
+                        pick = Some((lg, c2));
+                    }
+                }
+                lg += 0.25;
+            }
+            if let Some((lg, c2)) = pick {
+                lambda = 10f64.powf(lg);
+                by_gcv = true;
+                s.c = c2;
+                for (k, (r, o)) in rows.iter().zip(obs).enumerate() {
+                    gain[k] = Fit::gain(&s, o);
+                    let v: f64 = r.iter().map(|&(i, w)| s.c[i] * w).sum();
+                    moves[k] = (v - o.target) / gain[k];
+                }
+            }
+        }
+        if last {
             break;
         }
     }
@@ -474,6 +538,7 @@ pub(crate) fn fit(
         iterations: it,
         met,
         straight: reduce.is_some(),
+        by_gcv,
     })
 }
 
@@ -527,7 +592,16 @@ mod tests {
                 Obs::new((x, 0.0), 1000.0 + 2.0 * x, true, false)
             })
             .collect();
-        let f = fit(Knots::uniform(0.0, 225.0, 15), None, &obs, 0.0625, false, 1.0).unwrap();
+        let f = fit(
+            Knots::uniform(0.0, 225.0, 15),
+            None,
+            &obs,
+            0.0625,
+            false,
+            1.0,
+            false,
+        )
+        .unwrap();
         assert!(f.lambda > 1e6, "{}", f.lambda);
         for o in &obs {
             let v = f.spline.eval(o.at.0, 0.0).0;

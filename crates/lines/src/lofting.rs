@@ -301,7 +301,15 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                 .iter()
                 .map(|&i| Obs::new((t.cells[i].x, 0.0), t.cells[i].get_index(coord), true, false))
                 .collect();
-            let Some(f) = fit(Knots::uniform(x0, x1, pts.len() - 1), None, &obs, tol, false, 1.0) else {
+            let Some(f) = fit(
+                Knots::uniform(x0, x1, pts.len() - 1),
+                None,
+                &obs,
+                tol,
+                false,
+                1.0,
+                false,
+            ) else {
                 continue;
             };
             for (k, &i) in pts.iter().enumerate() {
@@ -476,13 +484,16 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                     o.u_scale = g(values[i][0]);
                     obs.push(o);
                 }
-                let curved = fit(kx.clone(), Some(ku.clone()), &obs, tol, false, 1.0)
+                let curved = fit(kx.clone(), Some(ku.clone()), &obs, tol, false, 1.0, false)
                     .ok_or_else(|| Error::Fit(format!("the {name} system is singular")))?;
                 // the straight-section limit (λ → ∞ across the girth) is taken when the offsets
                 // allow it: it reaches the discrepancy target and rejects the same offsets; as
                 // the simpler model it is given the target's slack (`parsimony_slack`), which its
                 // x smoothing also follows
-                let stf = fit(kx, Some(ku), &obs, tol, true, parsimony_slack(&obs));
+                // (its x smoothing GCV's where that is smoother, on the final pass only: a region
+                // fitted again with the knuckle's half-breadths first gives them as they are)
+                let interim = pass == 0 && below_soft;
+                let stf = fit(kx, Some(ku), &obs, tol, true, parsimony_slack(&obs), !interim);
                 let f = match stf {
                     Some(st) if st.met && same_rejections(&st, &curved) => st,
                     _ => curved,

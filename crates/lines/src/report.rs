@@ -123,8 +123,11 @@ pub struct Report {
 pub struct HullFit {
     /// The region ("hull", "above chine", "below chine").
     pub region: String,
-    /// Smoothing weight chosen by the discrepancy principle.
+    /// Smoothing weight: the discrepancy principle's, or GCV's where `lambda_rule` says so.
     pub lambda: f64,
+    /// Which rule chose `lambda`: "discrepancy", or "gcv" (the x smoothing of a straight-section
+    /// region whose offsets are noisier than the tolerance, where GCV's is the smoother).
+    pub lambda_rule: String,
     /// Outer (reweighting) iterations.
     pub iterations: usize,
     /// Offsets the robust fit rejected.
@@ -294,6 +297,7 @@ pub(crate) fn build_report(
                     iterations,
                     rejected,
                     straight: f.straight,
+                    lambda_rule: if f.by_gcv { "gcv" } else { "discrepancy" }.into(),
                 }
             })
             .collect(),

