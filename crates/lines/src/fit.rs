@@ -239,6 +239,13 @@ pub(crate) struct Fit {
     pub straight: bool,
     /// λ is GCV's, not the discrepancy's (the straight limit's final fit, see [`fit`]).
     pub by_gcv: bool,
+    /// The robust scale of the moves in the final fit (the tolerance, or 1.4826 × their median
+    /// absolute value where larger): a move beyond [`REJECT`] of them rejects an offset.
+    pub scale: f64,
+    /// Per offset of `how.probe`: its deleted move, the move it would have were it left out of
+    /// the fit, m_k / (1 − h_kk) with h_kk its leverage (the hat matrix's diagonal entry): a
+    /// wrong offset that a flexible fit bends to has a small move and a large deleted one.
+    pub deleted_moves: Vec<(usize, f64)>,
 }
 
 /// Smallest gain: a residual is converted into a move of the offset's measured coordinates by
@@ -270,11 +277,35 @@ impl Fit {
     }
 }
 
+/// How [`fit`] fits: the plain fit is `How::default()`.
+#[derive(Clone, Debug)]
+pub(crate) struct How<'a> {
+    /// Two variables only: the straight-section limit ([`Straight`]).
+    pub straight: bool,
+    /// ≥ 1: the discrepancy target of the final fits widened by this factor ([`parsimony_slack`]).
+    pub slack: f64,
+    /// At the straight limit, the final x smoothing GCV's where that is smoother (see [`fit`]).
+    pub gcv: bool,
+    /// Offsets whose deleted (leave-one-out) moves the fit reports ([`Fit::deleted_moves`]).
+    pub probe: &'a [usize],
+}
+
+impl Default for How<'_> {
+    fn default() -> Self {
+        Self {
+            straight: false,
+            slack: 1.0,
+            gcv: false,
+            probe: &[],
+        }
+    }
+}
+
 /// Fits `obs` by a spline on knots (kx, ku) with tolerance `tol` per offset (half the rounding
 /// step by default). Observations with `hold` are fitted with a large weight and never
-/// rejected. `straight` (two variables only): the straight-section limit ([`Straight`]).
-/// `slack` (≥ 1) widens the discrepancy target of the final fits by that factor (1: the plain
-/// target; see [`parsimony_slack`]). `gcv`: at the straight limit, once the discrepancy has met
+/// rejected. `how.straight` (two variables only): the straight-section limit ([`Straight`]).
+/// `how.slack` (≥ 1) widens the discrepancy target of the final fits by that factor (1: the plain
+/// target; see [`parsimony_slack`]). `how.gcv`: at the straight limit, once the discrepancy has met
 /// its target and settled the weights, the x smoothing is raised to the minimiser of GCV,
 /// V(λ) = n·RSS(λ) / (n − tr H(λ))² (Craven & Wahba 1979; n the offsets fitted, H the weighted
 /// hat matrix over them), on a grid of quarter decades from the discrepancy's λ up: the
@@ -285,15 +316,8 @@ impl Fit {
 /// its fit. Each grid point costs one factorisation and one solve per offset, O(n·N·bw), N the
 /// unknowns (2 per x coefficient).
 /// Returns None when the system is singular (too few offsets).
-pub(crate) fn fit(
-    kx: Knots,
-    ku: Option<Knots>,
-    obs: &[Obs],
-    tol: f64,
-    straight: bool,
-    slack: f64,
-    gcv: bool,
-) -> Option<Fit> {
+pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64, how: &How) -> Option<Fit> {
+    let (straight, slack, gcv) = (how.straight, how.slack, how.gcv);
     let reduce = if straight {
         ku.as_ref().map(Straight::new)
     } else {
@@ -338,6 +362,8 @@ pub(crate) fn fit(
     let mut lambda: f64 = 1.0;
     let mut met = false;
     let mut by_gcv = false;
+    let mut scale = tol;
+    let mut deleted_moves = Vec::new();
     let mut moves = vec![0.0; obs.len()];
     let mut it = 0;
     let target = tol / 3f64.sqrt();
@@ -463,7 +489,7 @@ pub(crate) fn fit(
         }
         let mut abs: Vec<f64> = moves.iter().map(|m| m.abs()).collect();
         abs.sort_by(f64::total_cmp);
-        let scale = tol.max(1.4826 * abs[abs.len() / 2]);
+        scale = tol.max(1.4826 * abs[abs.len() / 2]);
         let mut changed = false;
         for k in 0..obs.len() {
             let a = moves[k].abs() / scale;
@@ -527,6 +553,19 @@ pub(crate) fn fit(
             }
         }
         if last {
+            // the probed offsets' leverages in this fit's system (its weights), one solve each
+            if !how.probe.is_empty() && !by_gcv {
+                let (m, _) = system(lambda);
+                for &k in how.probe {
+                    let w = robust_fit[k] / (gain_fit[k] * gain_fit[k]);
+                    let h = if obs[k].held || w == 0.0 {
+                        0.0
+                    } else {
+                        m.quadratic_trace(&[(unknown_rows[k].as_slice(), w)])?
+                    };
+                    deleted_moves.push((k, moves[k] / (1.0 - h).max(1e-12)));
+                }
+            }
             break;
         }
     }
@@ -539,6 +578,8 @@ pub(crate) fn fit(
         met,
         straight: reduce.is_some(),
         by_gcv,
+        scale,
+        deleted_moves,
     })
 }
 
@@ -597,9 +638,7 @@ mod tests {
             None,
             &obs,
             0.0625,
-            false,
-            1.0,
-            false,
+            &How::default(),
         )
         .unwrap();
         assert!(f.lambda > 1e6, "{}", f.lambda);

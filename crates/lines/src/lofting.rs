@@ -4,7 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
-use crate::fit::{fit, parsimony_slack, Fit, Obs, Spline};
+use crate::fit::{fit, parsimony_slack, Fit, How, Obs, Spline, REJECT};
 use crate::report::{build_report, Report};
 use crate::spline::{Band, Knots};
 use crate::table::{Coord, Kind, Table};
@@ -306,9 +306,7 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                 None,
                 &obs,
                 tol,
-                false,
-                1.0,
-                false,
+                &How::default(),
             ) else {
                 continue;
             };
@@ -484,18 +482,34 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                     o.u_scale = g(values[i][0]);
                     obs.push(o);
                 }
-                let curved = fit(kx.clone(), Some(ku.clone()), &obs, tol, false, 1.0, false)
-                    .ok_or_else(|| Error::Fit(format!("the {name} system is singular")))?;
                 // the straight-section limit (λ → ∞ across the girth) is taken when the offsets
-                // allow it: it reaches the discrepancy target and rejects the same offsets; as
-                // the simpler model it is given the target's slack (`parsimony_slack`), which its
-                // x smoothing also follows
-                // (its x smoothing GCV's where that is smoother, on the final pass only: a region
-                // fitted again with the knuckle's half-breadths first gives them as they are)
+                // allow it: it reaches the discrepancy target and rejects what the curved fit
+                // rejects, and each offset it rejects beyond those the curved fit only kept by
+                // bending to it (its deleted move there is a rejection too: a wrong offset, not
+                // a curved section); as the simpler model it is given the target's slack
+                // (`parsimony_slack`), which its x smoothing also follows, and its x smoothing
+                // is GCV's where that is smoother, on the final pass only (a region fitted again
+                // with the knuckle's half-breadths first gives them as they are)
                 let interim = pass == 0 && below_soft;
-                let stf = fit(kx, Some(ku), &obs, tol, true, parsimony_slack(&obs), !interim);
+                let straight_how = How {
+                    straight: true,
+                    slack: parsimony_slack(&obs),
+                    gcv: !interim,
+                    ..How::default()
+                };
+                let stf = fit(kx.clone(), Some(ku.clone()), &obs, tol, &straight_how);
+                let only_straight: Vec<usize> = stf
+                    .as_ref()
+                    .map(|st| (0..obs.len()).filter(|&k| st.weight[k] == 0.0).collect())
+                    .unwrap_or_default();
+                let curved_how = How {
+                    probe: &only_straight,
+                    ..How::default()
+                };
+                let curved = fit(kx, Some(ku), &obs, tol, &curved_how)
+                    .ok_or_else(|| Error::Fit(format!("the {name} system is singular")))?;
                 let f = match stf {
-                    Some(st) if st.met && same_rejections(&st, &curved) => st,
+                    Some(st) if st.met && straight_rejections_hold(&st, &curved) => st,
                     _ => curved,
                 };
                 let h = Hull {
@@ -899,12 +913,16 @@ pub(crate) fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
         .sqrt()
 }
 
-/// Two fits of the same offsets reject the same ones.
-fn same_rejections(a: &Fit, b: &Fit) -> bool {
-    a.weight
-        .iter()
-        .zip(&b.weight)
-        .all(|(p, q)| (*p == 0.0) == (*q == 0.0))
+/// The straight limit's rejections stand: it rejects every offset the curved fit rejects, and
+/// each further one it rejects has a deleted move in the curved fit beyond the rejection
+/// threshold (the curved fit kept it only by bending to it).
+fn straight_rejections_hold(straight: &Fit, curved: &Fit) -> bool {
+    let deleted = |k: usize| curved.deleted_moves.iter().find(|d| d.0 == k).map(|d| d.1);
+    (0..straight.weight.len()).all(|k| match (straight.weight[k] == 0.0, curved.weight[k] == 0.0) {
+        (false, true) => false,
+        (true, false) => deleted(k).is_some_and(|m| m.abs() > REJECT * curved.scale),
+        _ => true,
+    })
 }
 
 pub(crate) fn fit_summary(f: &Fit) -> (f64, usize, usize) {

@@ -480,6 +480,53 @@ mod tests {
     }
 
     #[test]
+    fn a_deleted_residual_is_the_residual_over_one_minus_the_leverage() {
+        // penalised weighted least squares, M = Σ w_k r_k r_kᵀ + λ P: leaving offset k out
+        // (M − w_k r_k r_kᵀ, its term dropped from the right side) leaves a residual at it of
+        // e_k / (1 − h_kk), h_kk = w_k r_kᵀ M⁻¹ r_k, the identity `Fit::deleted_moves` uses
+        let (n, bw) = (8, 3);
+        let rows: Vec<Vec<(usize, f64)>> = (0..14)
+            .map(|k| {
+                let i0 = (k * 5) % (n - bw);
+                (i0..=i0 + bw)
+                    .map(|i| (i, 0.5 + ((k * 3 + i * 7) % 9) as f64 / 5.0))
+                    .collect()
+            })
+            .collect();
+        let w: Vec<f64> = (0..rows.len()).map(|k| 1.0 + (k % 4) as f64 / 2.0).collect();
+        let y: Vec<f64> = (0..rows.len()).map(|k| ((k * 13) % 7) as f64 - 3.0).collect();
+        let system = |skip: Option<usize>| {
+            let mut m = Band::zeros(n, bw);
+            let mut b = vec![0.0; n];
+            for (k, r) in rows.iter().enumerate().filter(|(k, _)| Some(*k) != skip) {
+                m.add_outer(r, w[k]);
+                for &(i, v) in r {
+                    b[i] += w[k] * v * y[k];
+                }
+            }
+            for i in 0..n.saturating_sub(2) {
+                // second differences of the coefficients, λ = 0.7
+                m.add_outer(&[(i, 1.0), (i + 1, -2.0), (i + 2, 1.0)], 0.7);
+            }
+            (m, b)
+        };
+        let value = |c: &[f64], r: &[(usize, f64)]| r.iter().map(|&(i, v)| v * c[i]).sum::<f64>();
+        let (m, b) = system(None);
+        let c = m.solve(&b).unwrap();
+        for k in [0, 5, 13] {
+            let e = y[k] - value(&c, &rows[k]);
+            let h = m.quadratic_trace(&[(rows[k].as_slice(), w[k])]).unwrap();
+            let (m2, b2) = system(Some(k));
+            let c2 = m2.solve(&b2).unwrap();
+            let deleted = y[k] - value(&c2, &rows[k]);
+            assert!(
+                (deleted - e / (1.0 - h)).abs() < 1e-9 * (1.0 + deleted.abs()),
+                "{k}: {deleted} {e} {h}"
+            );
+        }
+    }
+
+    #[test]
     fn the_banded_solver_solves() {
         // a tridiagonal SPD system with a known solution
         let n = 6;

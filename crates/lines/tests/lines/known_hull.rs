@@ -524,6 +524,35 @@ fn topsides_noisier_than_declared_are_smoothed_along_x_by_gcv() {
 }
 
 #[test]
+fn a_wrong_offset_a_curved_fit_bends_to_does_not_keep_the_sections_curved() {
+    // planted tuning seed 502: BT4 at station 6 is 8.5 steps high, where the topsides are
+    // nearly parallel to the buttock's plane (flare 0.15); the straight topsides reject it,
+    // the curved fit kept it by bending (a move of 1.1 tolerances, its deleted move beyond the
+    // rejection threshold), and the two fits' rejections differed, so the curved one was
+    // taken: WL5–WL6 moved a step toward it, BT4 stayed 7.9 steps off the truth, unflagged
+    let g = generate::hard_chine(0.0, 3, 502);
+    let (_d, t) = table(&g);
+    let f = fair(&t, &Settings::default()).unwrap();
+    assert!(
+        f.report.hull_fit.iter().all(|h| h.straight),
+        "{:?}",
+        f.report.hull_fit
+    );
+    let i = t
+        .cells
+        .iter()
+        .position(|c| t.lines[c.line].label == "BT4" && c.station_index == 6)
+        .unwrap();
+    let truth = generate::chine_form_z(t.cells[i].x, t.cells[i].y).unwrap();
+    assert!(f.flagged[i]);
+    assert!(
+        (f.values[i][2] - truth).abs() <= generate::STEP,
+        "{} against {truth}",
+        f.values[i][2]
+    );
+}
+
+#[test]
 fn a_buttock_through_the_chine_is_cut_from_the_bottom() {
     // BT4 (y = 32) meets the chine exactly at station 7; planted seed 2's faired chine passes
     // a few thousandths outside it there, so the offset lies on the bottom, but the topsides'
