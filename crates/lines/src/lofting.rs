@@ -238,9 +238,11 @@ pub struct Faired {
 /// Each region is fitted twice, with its sections free and at the straight-section limit
 /// (straight across the girth at every x, as a V bottom or flared topsides are); the limit, the
 /// simpler model, is fitted to the discrepancy target widened by its standard error
-/// (`parsimony_slack`) and taken when it reaches it and rejects the same offsets. An offset
-/// cut from one region onto the other's side of the knuckle
-/// is cut from the other. Knuckle edges, profile-only and plan-only lines,
+/// (`parsimony_slack`) and taken when it reaches it, rejects every offset the free fit rejects,
+/// and any further offset it rejects is one the free fit only kept by bending to it (its
+/// deleted move there is beyond the rejection threshold); its smoothing along x is GCV's where
+/// that is smoother (offsets noisier than the tolerance). An offset cut from one region onto
+/// the other's side of the knuckle is cut from the other. Knuckle edges, profile-only and plan-only lines,
 /// and every line of a table without waterlines or buttocks are faired alone (y(x) and z(x),
 /// the same penalty and tolerance). Offsets on the centreline (y = 0 of a waterline) are held;
 /// an edge offset on it (a keel, stem or rabbet) keeps y = 0, projected onto the hull, or cut
