@@ -645,6 +645,25 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
             }
             _ => true,
         };
+        // a rejected offset was given its region by its wrong value: where it is cut near the
+        // knuckle it is cut as the band's offsets are (a buttock offset at the chine planted a
+        // step high went to the topsides, whose extension a fraction of a step below the chine
+        // cut it, and the buttock took a hook with four inflections there)
+        if let (Some((_, zk)), 2) = (&knuckle_fit, hulls.len()) {
+            let (xa, xb) = (zk.kx.t[0], zk.kx.t[zk.kx.t.len() - 1]);
+            let kz = |x: f64| zk.eval(x.clamp(xa, xb), 0.0).0;
+            for cells in &region_cells {
+                for &i in cells {
+                    if rejected[i]
+                        && sources[i] == Source::Hull
+                        && (values[i][2] - kz(values[i][0])).abs() <= KNUCKLE_BAND * step
+                        && !band.contains(&i)
+                    {
+                        band.push(i);
+                    }
+                }
+            }
+        }
         for &i in &band {
             let c = &t.cells[i];
             let kind = t.lines[c.line].kind;
@@ -654,11 +673,14 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                 .filter_map(|h| cut(h, c.x, c.y, c.z, kind).map(|p| (own_side(h, &p), dist(&here, &p), p)))
                 .collect();
             let least = cuts.iter().map(|q| q.1).fold(f64::INFINITY, f64::min);
+            // a rejected offset's value is wrong, and so is the move it measures: its cut is
+            // the one on its region's side, whatever it moves
+            let window = if rejected[i] { f64::INFINITY } else { step };
             let best = cuts
                 .iter()
                 .min_by(|a, b| {
-                    let pa = !(a.0 && a.1 <= least + step);
-                    let pb = !(b.0 && b.1 <= least + step);
+                    let pa = !(a.0 && a.1 <= least + window);
+                    let pb = !(b.0 && b.1 <= least + window);
                     pa.cmp(&pb).then(a.1.total_cmp(&b.1))
                 })
                 .map(|q| q.2);

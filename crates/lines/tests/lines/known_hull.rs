@@ -553,6 +553,31 @@ fn a_wrong_offset_a_curved_fit_bends_to_does_not_keep_the_sections_curved() {
 }
 
 #[test]
+fn a_rejected_offset_near_the_chine_is_cut_on_the_hulls_side_of_it() {
+    // planted seed 903: BT4 at station 7 (y = 32, on the chine at z = 13.5) planted 8 steps
+    // high went to the topsides by its wrong value, and was cut from the topsides' extension
+    // 0.45 step below the chine (a hook of four inflections in BT4); planted seed 1009: BT3 at
+    // station 4, planted 12.5 steps low, cut from the topsides' extension 6 steps off when the
+    // cut nearest its wrong value was taken. Both are restored within a quarter step
+    for (seed, line, station) in [(903, "BT4", 7), (1009, "BT3", 4)] {
+        let (_d, t) = table(&generate::hard_chine(0.0, 3, seed));
+        let f = fair(&t, &Settings::default()).unwrap();
+        let i = t
+            .cells
+            .iter()
+            .position(|c| t.lines[c.line].label == line && c.station_index == station)
+            .unwrap();
+        let truth = generate::chine_form_z(t.cells[i].x, t.cells[i].y).unwrap();
+        assert!(f.flagged[i], "seed {seed}");
+        assert!(
+            (f.values[i][2] - truth).abs() <= 0.25 * generate::STEP,
+            "seed {seed}: {} against {truth}",
+            f.values[i][2]
+        );
+    }
+}
+
+#[test]
 fn a_buttock_through_the_chine_is_cut_from_the_bottom() {
     // BT4 (y = 32) meets the chine exactly at station 7; planted seed 2's faired chine passes
     // a few thousandths outside it there, so the offset lies on the bottom, but the topsides'
