@@ -242,9 +242,10 @@ pub struct Faired {
 /// and any further offset it rejects is one the free fit only kept by bending to it (its
 /// deleted move there is beyond the rejection threshold); its smoothing along x is GCV's where
 /// that is smoother (offsets noisier than the tolerance). An offset cut from one region onto
-/// the other's side of the knuckle is cut from the other. Knuckle edges, profile-only and plan-only lines,
-/// and every line of a table without waterlines or buttocks are faired alone (y(x) and z(x),
-/// the same penalty and tolerance). Offsets on the centreline (y = 0 of a waterline) are held;
+/// the other's side of the knuckle is cut from the other. Knuckle edges, profile-only and
+/// plan-only lines, and every line of a table without waterlines or buttocks are faired alone
+/// (y(x) and z(x), the same penalty and tolerance). Offsets on the centreline (y = 0 of a waterline) are held
+/// (below a knuckle they are cut from the bottom, the bottom's half-breadth at their height);
 /// an edge offset on it (a keel, stem or rabbet) keeps y = 0, projected onto the hull, or cut
 /// at the centreline of a bottom below a knuckle.
 /// Fails with [`Error::Setting`] for a non-positive step or tolerance and [`Error::Fit`] when
@@ -690,6 +691,24 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                     sources[i] = Source::Hull;
                 }
                 None => rejected[i] = true,
+            }
+        }
+        // a waterline's half-breadth of 0 below a knuckle is where the waterline meets the
+        // centreline, or a half-breadth rounded to 0: cut from the bottom like the rest, it is the
+        // bottom's own half-breadth at that height (0 where the plane passes below the keel).
+        // Kept as read, it made the station's bottom step along the centreline from the faired
+        // keel up to it (noisy hard-chine tables: an inflection at the bow's first station)
+        if let Some(b) = hulls.iter().find(|h| h.scale.is_some()) {
+            let ((x0, x1), _) = b.domain();
+            for i in 0..n {
+                let c = &t.cells[i];
+                if t.lines[c.line].kind != Kind::Waterline || c.y != 0.0 || c.x < x0 || c.x > x1 {
+                    continue;
+                }
+                if let Some(p) = cut(b, c.x, c.y, c.z, Kind::Waterline) {
+                    values[i] = p;
+                    sources[i] = Source::Hull;
+                }
             }
         }
         if hulls.is_empty() {

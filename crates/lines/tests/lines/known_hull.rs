@@ -578,6 +578,40 @@ fn a_rejected_offset_near_the_chine_is_cut_on_the_hulls_side_of_it() {
 }
 
 #[test]
+fn a_waterline_on_the_centreline_below_a_chine_is_cut_from_the_bottom() {
+    // noisy tuning seed 1, station 0: WL2's half-breadth reads 0 (the truth's 0.055 rounds to
+    // it); kept as read, the faired station's bottom ran up the centreline from the faired keel
+    // (z 9.80) to WL2 (z 10) and then out along the straight bottom, an inflection. Cut from the
+    // bottom, the keel, WL2, WL3 and WL4 at that station lie on the bottom's straight section
+    let (_d, t) = table(&generate::hard_chine(1.5, 0, 1));
+    let settings = Settings {
+        tolerance: Some(1.5 * generate::STEP * 3f64.sqrt()),
+        ..Settings::default()
+    };
+    let f = fair(&t, &settings).unwrap();
+    let at = |line: &str| {
+        let i = t
+            .cells
+            .iter()
+            .position(|c| t.lines[c.line].label == line && c.station_index == 0)
+            .unwrap();
+        (f.values[i][1], f.values[i][2])
+    };
+    let (keel, wl4) = (at("keel"), at("WL4"));
+    for line in ["WL2", "WL3"] {
+        let p = at(line);
+        // distance from the line keel–WL4 in the body plan
+        let (dy, dz) = (wl4.0 - keel.0, wl4.1 - keel.1);
+        let off = ((p.0 - keel.0) * dz - (p.1 - keel.1) * dy).abs() / dy.hypot(dz);
+        assert!(
+            off < 1e-6 * generate::STEP,
+            "{line}: {p:?} is {off} off the keel–WL4 line"
+        );
+    }
+    assert!(at("WL2").0 > 0.0);
+}
+
+#[test]
 fn a_buttock_through_the_chine_is_cut_from_the_bottom() {
     // BT4 (y = 32) meets the chine exactly at station 7; planted seed 2's faired chine passes
     // a few thousandths outside it there, so the offset lies on the bottom, but the topsides'
