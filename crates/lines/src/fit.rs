@@ -237,7 +237,7 @@ pub(crate) struct Fit {
     pub met: bool,
     /// Fitted at the straight-section limit ([`Straight`]).
     pub straight: bool,
-    /// λ is GCV's, not the discrepancy's (the straight limit's final fit, see [`fit`]).
+    /// λ is GCV's, not the discrepancy's (see [`fit`]).
     pub by_gcv: bool,
     /// The robust scale of the moves in the final fit (the tolerance, or 1.4826 × their median
     /// absolute value where larger): a move beyond [`REJECT`] of them rejects an offset.
@@ -261,6 +261,9 @@ pub(crate) const REJECT: f64 = 6.0;
 const OUTER: usize = 8;
 /// Outer iterations fitted stiffer, the last of them deciding the first rejections.
 const STIFF: usize = 2;
+/// GCV's search above the discrepancy's λ stops after this many quarter decades without a
+/// lower score (two decades).
+const GCV_PATIENCE: usize = 8;
 
 impl Fit {
     /// |∇F| over the measured coordinates of `o` on spline `s`.
@@ -284,7 +287,7 @@ pub(crate) struct How<'a> {
     pub straight: bool,
     /// ≥ 1: the discrepancy target of the final fits widened by this factor ([`parsimony_slack`]).
     pub slack: f64,
-    /// At the straight limit, the final x smoothing GCV's where that is smoother (see [`fit`]).
+    /// The final fit's smoothing GCV's where that is smoother (see [`fit`]).
     pub gcv: bool,
     /// Offsets whose deleted (leave-one-out) moves the fit reports ([`Fit::deleted_moves`]).
     pub probe: &'a [usize],
@@ -305,16 +308,16 @@ impl Default for How<'_> {
 /// step by default). Observations with `hold` are fitted with a large weight and never
 /// rejected. `how.straight` (two variables only): the straight-section limit ([`Straight`]).
 /// `how.slack` (≥ 1) widens the discrepancy target of the final fits by that factor (1: the plain
-/// target; see [`parsimony_slack`]). `how.gcv`: at the straight limit, once the discrepancy has met
-/// its target and settled the weights, the x smoothing is raised to the minimiser of GCV,
+/// target; see [`parsimony_slack`]). `how.gcv`: once the discrepancy has met its target and
+/// settled the weights, the final fit's λ is raised to the minimiser of GCV,
 /// V(λ) = n·RSS(λ) / (n − tr H(λ))² (Craven & Wahba 1979; n the offsets fitted, H the weighted
-/// hat matrix over them), on a grid of quarter decades from the discrepancy's λ up: the
-/// discrepancy takes the tolerance as the offsets' error, and where they are noisier (a noisy
-/// table's RMS error is only near its declared value) it spends the x freedom, the only
-/// freedom the straight limit leaves, on wiggles along the waterlines; GCV reads the error
-/// from the offsets. Never below the discrepancy's λ, so a table as accurate as declared keeps
-/// its fit. Each grid point costs one factorisation and one solve per offset, O(n·N·bw), N the
-/// unknowns (2 per x coefficient).
+/// hat matrix over them), searched on quarter decades from the discrepancy's λ up (until two
+/// decades bring no lower score): the discrepancy takes the tolerance as the offsets' error,
+/// and where they are noisier (a noisy table's RMS error is only near its declared value) it
+/// spends the freedom on wiggles along the lines (at the straight limit all of it is along x,
+/// the waterlines); GCV reads the error from the offsets. Never below the discrepancy's λ, so a
+/// table as accurate as declared keeps its fit. Each grid point costs one factorisation and
+/// the selected inverse's band, O(N·bw²), N the unknowns.
 /// Returns None when the system is singular (too few offsets).
 pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64, how: &How) -> Option<Fit> {
     let (straight, slack, gcv) = (how.straight, how.slack, how.gcv);
@@ -508,12 +511,24 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64, how: &How
             robust[k] = w;
         }
         let last = (!changed && outer > STIFF) || outer + 1 == OUTER;
-        // at the straight-section limit only the smoothing along x is left: where the offsets
-        // are noisier than the tolerance declares, the discrepancy spends it on wiggles along
-        // the waterlines; there the final fit's x smoothing is GCV's (Craven & Wahba 1979),
-        // searched above the discrepancy's, with the weights and rejections the discrepancy
-        // decided
-        if last && gcv && met && reduce.is_some() {
+        if last {
+            // the probed offsets' leverages in this fit's system (its weights), one solve each
+            if !how.probe.is_empty() {
+                let (m, _) = system(lambda);
+                for &k in how.probe {
+                    let w = robust_fit[k] / (gain_fit[k] * gain_fit[k]);
+                    let h = if obs[k].held || w == 0.0 {
+                        0.0
+                    } else {
+                        m.quadratic_trace(&[(unknown_rows[k].as_slice(), w)])?
+                    };
+                    deleted_moves.push((k, moves[k] / (1.0 - h).max(1e-12)));
+                }
+            }
+        }
+        // the final fit's λ GCV's where that is smoother (offsets noisier than the tolerance
+        // declares; see the doc above), with the weights and rejections the discrepancy decided
+        if last && gcv && met {
             let active: Vec<(&[(usize, f64)], f64)> = unknown_rows
                 .iter()
                 .enumerate()
@@ -521,23 +536,31 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64, how: &How
                 .map(|(k, r)| (r.as_slice(), robust_fit[k] / (gain_fit[k] * gain_fit[k])))
                 .collect();
             let count = active.len() as f64;
+            let mut hat = Band::zeros(n, bw);
+            for (r, w) in &active {
+                hat.add_outer(r, *w);
+            }
             let score = |lg: f64| -> Option<(f64, Vec<f64>)> {
-                let (m, _) = system(10f64.powf(lg));
-                let tr = m.quadratic_trace(&active)?;
-                let c = solve(10f64.powf(lg))?;
+                let (m, rhs) = system(10f64.powf(lg));
+                let (c, tr) = m.solve_with_trace(&rhs, &hat)?;
+                let c = expand(c);
                 let rms = rms_move(&c);
                 (count - tr > 0.5).then(|| (count * rms * rms / ((count - tr) * (count - tr)), c))
             };
             let l0 = lambda.log10();
             let mut pick: Option<(f64, Vec<f64>)> = None;
             let mut best_score = score(l0).map_or(f64::INFINITY, |s| s.0);
-            let mut lg = l0 + 0.25;
-            while lg <= 8.0 {
-                if let Some((v, c2)) = score(lg) {
-                    if v < best_score {
+            // quarter decades up to 10⁸, until the score has stayed above its best for two
+            // decades (GCV's minimum above the discrepancy's λ, not a distant second one)
+            let (mut lg, mut worse) = (l0 + 0.25, 0);
+            while lg <= 8.0 && worse < GCV_PATIENCE {
+                match score(lg) {
+                    Some((v, c2)) if v < best_score => {
                         best_score = v;
                         pick = Some((lg, c2));
+                        worse = 0;
                     }
+                    _ => worse += 1,
                 }
                 lg += 0.25;
             }
@@ -553,19 +576,6 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64, how: &How
             }
         }
         if last {
-            // the probed offsets' leverages in this fit's system (its weights), one solve each
-            if !how.probe.is_empty() && !by_gcv {
-                let (m, _) = system(lambda);
-                for &k in how.probe {
-                    let w = robust_fit[k] / (gain_fit[k] * gain_fit[k]);
-                    let h = if obs[k].held || w == 0.0 {
-                        0.0
-                    } else {
-                        m.quadratic_trace(&[(unknown_rows[k].as_slice(), w)])?
-                    };
-                    deleted_moves.push((k, moves[k] / (1.0 - h).max(1e-12)));
-                }
-            }
             break;
         }
     }

@@ -240,8 +240,8 @@ pub struct Faired {
 /// simpler model, is fitted to the discrepancy target widened by its standard error
 /// (`parsimony_slack`) and taken when it reaches it, rejects every offset the free fit rejects,
 /// and any further offset it rejects is one the free fit only kept by bending to it (its
-/// deleted move there is beyond the rejection threshold); its smoothing along x is GCV's where
-/// that is smoother (offsets noisier than the tolerance). An offset cut from one region onto
+/// deleted move there is beyond the rejection threshold). On the final pass either fit's
+/// smoothing is GCV's where that is smoother (offsets noisier than the tolerance). An offset cut from one region onto
 /// the other's side of the knuckle is cut from the other. Knuckle edges, profile-only and
 /// plan-only lines, and every line of a table without waterlines or buttocks are faired alone
 /// (y(x) and z(x), the same penalty and tolerance). Offsets on the centreline (y = 0 of a waterline) are held
@@ -490,8 +490,8 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                 // rejects, and each offset it rejects beyond those the curved fit only kept by
                 // bending to it (its deleted move there is a rejection too: a wrong offset, not
                 // a curved section); as the simpler model it is given the target's slack
-                // (`parsimony_slack`), which its x smoothing also follows, and its x smoothing
-                // is GCV's where that is smoother, on the final pass only (a region fitted again
+                // (`parsimony_slack`), which its x smoothing also follows. Either fit's λ is
+                // GCV's where that is smoother, on the final pass only (a region fitted again
                 // with the knuckle's half-breadths first gives them as they are)
                 let interim = pass == 0 && below_soft;
                 let straight_how = How {
@@ -507,6 +507,7 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                     .unwrap_or_default();
                 let curved_how = How {
                     probe: &only_straight,
+                    gcv: !interim,
                     ..How::default()
                 };
                 let curved = fit(kx, Some(ku), &obs, tol, &curved_how)

@@ -125,8 +125,8 @@ pub struct HullFit {
     pub region: String,
     /// Smoothing weight: the discrepancy principle's, or GCV's where `lambda_rule` says so.
     pub lambda: f64,
-    /// Which rule chose `lambda`: "discrepancy", or "gcv" (the x smoothing of a straight-section
-    /// region whose offsets are noisier than the tolerance, where GCV's is the smoother).
+    /// Which rule chose `lambda`: "discrepancy", or "gcv" (a region whose offsets are noisier
+    /// than the tolerance, where GCV's is the smoother).
     pub lambda_rule: String,
     /// Outer (reweighting) iterations.
     pub iterations: usize,
