@@ -512,7 +512,8 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64, how: &How
         }
         let last = (!changed && outer > STIFF) || outer + 1 == OUTER;
         if last {
-            // the probed offsets' leverages in this fit's system (its weights), one solve each
+            // the probed offsets' leverages in this fit's system (its weights): a factorisation
+            // and a solve each (they are the few offsets only the straight limit rejects)
             if !how.probe.is_empty() {
                 let (m, _) = system(lambda);
                 for &k in how.probe {

@@ -241,11 +241,12 @@ pub struct Faired {
 /// (`parsimony_slack`) and taken when it reaches it, rejects every offset the free fit rejects,
 /// and any further offset it rejects is one the free fit only kept by bending to it (its
 /// deleted move there is beyond the rejection threshold). On the final pass either fit's
-/// smoothing is GCV's where that is smoother (offsets noisier than the tolerance). An offset cut from one region onto
-/// the other's side of the knuckle is cut from the other. Knuckle edges, profile-only and
-/// plan-only lines, and every line of a table without waterlines or buttocks are faired alone
-/// (y(x) and z(x), the same penalty and tolerance). Offsets on the centreline (y = 0 of a waterline) are held
-/// (below a knuckle they are cut from the bottom, the bottom's half-breadth at their height);
+/// smoothing is GCV's where that is smoother (offsets noisier than the tolerance). An offset
+/// cut from one region onto the other's side of the knuckle is cut from the other. Knuckle
+/// edges, profile-only and plan-only lines, and every line of a table without waterlines or
+/// buttocks are faired alone (y(x) and z(x), the same penalty and tolerance). Offsets on the
+/// centreline (y = 0 of a waterline) are held (below a knuckle they are cut from the bottom,
+/// the bottom's half-breadth at their height, where that lies on the bottom);
 /// an edge offset on it (a keel, stem or rabbet) keeps y = 0, projected onto the hull, or cut
 /// at the centreline of a bottom below a knuckle.
 /// Fails with [`Error::Setting`] for a non-positive step or tolerance and [`Error::Fit`] when
@@ -706,7 +707,8 @@ pub fn fair(table: &Table, settings: &Settings) -> Result<Faired> {
                 if t.lines[c.line].kind != Kind::Waterline || c.y != 0.0 || c.x < x0 || c.x > x1 {
                     continue;
                 }
-                if let Some(p) = cut(b, c.x, c.y, c.z, Kind::Waterline) {
+                // (not where the waterline passes above the knuckle: the bottom's extension)
+                if let Some(p) = cut(b, c.x, c.y, c.z, Kind::Waterline).filter(|p| own_side(b, p)) {
                     values[i] = p;
                     sources[i] = Source::Hull;
                 }
