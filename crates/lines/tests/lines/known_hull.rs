@@ -30,6 +30,15 @@ fn planted_cells(g: &generate::Generated, t: &fair_lines::Table) -> Vec<(serde_j
         .collect()
 }
 
+/// A noisy generated table (1.5 steps of noise) is faired at its noise: the error bound whose
+/// even spread has the noise's RMS.
+fn noisy_settings() -> Settings {
+    Settings {
+        tolerance: Some(1.5 * generate::STEP * 3f64.sqrt()),
+        ..Settings::default()
+    }
+}
+
 fn truth(t: &fair_lines::Table, i: usize) -> [f64; 3] {
     let c = &t.cells[i];
     match t.lines[c.line].kind {
@@ -357,10 +366,7 @@ fn no_faired_half_breadth_is_negative() {
     // a noisy table (faired at its noise) whose bottom, at the first station, lies above the
     // low waterline at y = 0: the waterline ends on the centreline, not beyond it
     let (_d, t) = table(&generate::hard_chine(1.5, 0, 101));
-    let settings = Settings {
-        tolerance: Some(1.5 * generate::STEP * 3f64.sqrt()),
-        ..Settings::default()
-    };
+    let settings = noisy_settings();
     let f = fair(&t, &settings).unwrap();
     for (i, v) in f.values.iter().enumerate() {
         assert!(
@@ -436,10 +442,7 @@ fn the_chine_height_below_is_the_bottoms_edge_weighed_with_the_waterlines() {
     // chine's last heights sat 2.3 steps high and WL2 at the last station 9.3 steps in; with the
     // chine's heights as offsets of the bottom's edge, the waterlines there correct them.
     let (_d, t) = table(&generate::hard_chine(1.5, 0, 8));
-    let settings = Settings {
-        tolerance: Some(1.5 * generate::STEP * 3f64.sqrt()),
-        ..Settings::default()
-    };
+    let settings = noisy_settings();
     let f = fair(&t, &settings).unwrap();
     for (i, c) in t.cells.iter().enumerate() {
         let label = &t.lines[c.line].label;
@@ -465,10 +468,7 @@ fn noisy_straight_sections_are_faired_straight() {
     // inflections (the truth none)
     for seed in [10, 701] {
         let (_d, t) = table(&generate::hard_chine(1.5, 0, seed));
-        let settings = Settings {
-            tolerance: Some(1.5 * generate::STEP * 3f64.sqrt()),
-            ..Settings::default()
-        };
+        let settings = noisy_settings();
         let f = fair(&t, &settings).unwrap();
         assert_eq!(f.report.hull_fit.len(), 2);
         for h in &f.report.hull_fit {
@@ -488,10 +488,7 @@ fn topsides_noisier_than_declared_are_smoothed_along_x_by_gcv() {
     // |y''| ≤ 0.6·step/h²), and GCV chose the topsides' λ
     for seed in [10, 602] {
         let (_d, t) = table(&generate::hard_chine(1.5, 0, seed));
-        let settings = Settings {
-            tolerance: Some(1.5 * generate::STEP * 3f64.sqrt()),
-            ..Settings::default()
-        };
+        let settings = noisy_settings();
         let f = fair(&t, &settings).unwrap();
         let above = f
             .report
@@ -584,10 +581,7 @@ fn a_waterline_on_the_centreline_below_a_chine_is_cut_from_the_bottom() {
     // (z 9.80) to WL2 (z 10) and then out along the straight bottom, an inflection. Cut from the
     // bottom, the keel, WL2, WL3 and WL4 at that station lie on the bottom's straight section
     let (_d, t) = table(&generate::hard_chine(1.5, 0, 1));
-    let settings = Settings {
-        tolerance: Some(1.5 * generate::STEP * 3f64.sqrt()),
-        ..Settings::default()
-    };
+    let settings = noisy_settings();
     let f = fair(&t, &settings).unwrap();
     let at = |line: &str| {
         let i = t
@@ -619,10 +613,7 @@ fn a_round_hull_noisier_than_declared_is_smoothed_by_gcv() {
     // `lines_check.py`); the truth's waterlines are parabolas, none. GCV's smoother λ is taken
     for seed in [301, 202] {
         let (_d, t) = table(&generate::wigley(1.5, 0, seed));
-        let settings = Settings {
-            tolerance: Some(1.5 * generate::STEP * 3f64.sqrt()),
-            ..Settings::default()
-        };
+        let settings = noisy_settings();
         let f = fair(&t, &settings).unwrap();
         assert_eq!(f.report.hull_fit[0].lambda_rule, "gcv", "seed {seed}");
         for (li, l) in t
@@ -675,10 +666,7 @@ fn the_keel_below_a_chine_is_on_the_bottoms_centreline() {
     // sections and set back to y = 0, sat 0.6 step off the line through station 3's other
     // bottom offsets (an inflection at most bottom stations); cut at u = 0 it is on the surface
     let (_d, t) = table(&generate::hard_chine(1.5, 0, 1));
-    let settings = Settings {
-        tolerance: Some(1.5 * generate::STEP * 3f64.sqrt()),
-        ..Settings::default()
-    };
+    let settings = noisy_settings();
     let f = fair(&t, &settings).unwrap();
     let below = f.hulls.iter().find(|h| h.region() == "below chine").unwrap();
     let keel = t.lines.iter().position(|l| l.label == "keel").unwrap();
