@@ -753,20 +753,7 @@ fn a_reduced_fit_is_a_spline_on_its_knots_and_its_score_is_its_residual() {
         "{gcv} against {expected}"
     );
     // The input's chord-length knots (the fit's own differ).
-    let input = BicubicSplineSurface::new(&grid).unwrap();
-    let sites = input.u_knots();
-    let knot_sites = super::reduced::knot_sites(rows, 40, false);
-    let tau: Vec<f64> = knot_sites.iter().map(|&i| sites[i]).collect();
-    for j in 0..columns {
-        for c in 0..3 {
-            let values: Vec<f64> = knot_sites.iter().map(|&i| out[i * columns + j][c]).collect();
-            let spline = natural_spline(&tau, &values);
-            for (i, &t) in sites.iter().enumerate() {
-                let off = (spline(t) - out[i * columns + j][c]).abs();
-                assert!(off < 1e-9, "site {i}, line {j}: {off}");
-            }
-        }
-    }
+    assert_on_knot_splines(&grid, &out, 40, 0..columns);
 }
 
 /// The natural cubic spline through (τ_k, c_k), by its moments (dense solve).
@@ -939,11 +926,19 @@ fn a_reduced_direction_on_fewer_knots_beside_held_lines_of_the_other_is_on_its_k
     for &(i, j) in &held {
         assert_eq!(out[i * columns + j], grid[i][j]);
     }
-    let input = BicubicSplineSurface::new(&grid).unwrap();
+    assert_on_knot_splines(&grid, &out, count, 1..columns - 1);
+}
+
+/// Columns `lines` of the fit `out` of `grid`, reduced along u to `count` knots, are natural
+/// cubic splines on those knots (the input's chord-length sites; the fit's own differ):
+/// their values at every site are the spline through their values at the knot sites.
+fn assert_on_knot_splines(grid: &[Vec<Vec3>], out: &[Vec3], count: usize, lines: std::ops::Range<usize>) {
+    let (rows, columns) = (grid.len(), grid[0].len());
+    let input = BicubicSplineSurface::new(grid).unwrap();
     let sites = input.u_knots();
     let knot_sites = super::reduced::knot_sites(rows, count, false);
     let tau: Vec<f64> = knot_sites.iter().map(|&i| sites[i]).collect();
-    for j in 1..columns - 1 {
+    for j in lines {
         for c in 0..3 {
             let values: Vec<f64> = knot_sites.iter().map(|&i| out[i * columns + j][c]).collect();
             let spline = natural_spline(&tau, &values);
