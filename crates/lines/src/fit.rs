@@ -512,17 +512,19 @@ pub(crate) fn fit(kx: Knots, ku: Option<Knots>, obs: &[Obs], tol: f64, how: &How
         }
         let last = (!changed && outer > STIFF) || outer + 1 == OUTER;
         if last {
-            // the probed offsets' leverages in this fit's system (its weights): a factorisation
-            // and a solve each (they are the few offsets only the straight limit rejects)
+            // the probed offsets' leverages in this fit's system (its weights): one
+            // factorisation, a solve each (a held or rejected offset has none)
             if !how.probe.is_empty() {
                 let (m, _) = system(lambda);
-                for &k in how.probe {
-                    let w = robust_fit[k] / (gain_fit[k] * gain_fit[k]);
-                    let h = if obs[k].held || w == 0.0 {
-                        0.0
-                    } else {
-                        m.quadratic_trace(&[(unknown_rows[k].as_slice(), w)])?
-                    };
+                let rows: Vec<(&[(usize, f64)], f64)> = how
+                    .probe
+                    .iter()
+                    .map(|&k| {
+                        let w = robust_fit[k] / (gain_fit[k] * gain_fit[k]);
+                        (unknown_rows[k].as_slice(), if obs[k].held { 0.0 } else { w })
+                    })
+                    .collect();
+                for (&k, h) in how.probe.iter().zip(m.leverages(&rows)?) {
                     deleted_moves.push((k, moves[k] / (1.0 - h).max(1e-12)));
                 }
             }

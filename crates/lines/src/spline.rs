@@ -187,21 +187,22 @@ impl Band {
         Some(self.solve_factored(&l, b))
     }
 
-    /// Σ_k w_k r_kᵀ A⁻¹ r_k over sparse rows r_k (the trace of a weighted least-squares hat
-    /// matrix over those rows), one factorisation for all; None when A is not positive definite.
-    pub(crate) fn quadratic_trace(&self, rows: &[(&[(usize, f64)], f64)]) -> Option<f64> {
+    /// Per sparse row r_k with weight w_k, its leverage w_k r_kᵀ A⁻¹ r_k (a diagonal entry of
+    /// a weighted least-squares hat matrix; their sum over all the fit's rows is its trace), one
+    /// factorisation for all; None when A is not positive definite.
+    pub(crate) fn leverages(&self, rows: &[(&[(usize, f64)], f64)]) -> Option<Vec<f64>> {
         let l = self.factor()?;
         let mut e = vec![0.0; self.n];
-        let mut tr = 0.0;
+        let mut out = Vec::with_capacity(rows.len());
         for &(r, w) in rows {
             e.iter_mut().for_each(|v| *v = 0.0);
             for &(i, v) in r {
                 e[i] += v;
             }
             let x = self.solve_factored(&l, &e);
-            tr += w * r.iter().map(|&(i, v)| v * x[i]).sum::<f64>();
+            out.push(w * r.iter().map(|&(i, v)| v * x[i]).sum::<f64>());
         }
-        Some(tr)
+        Some(out)
     }
 
     /// The solution of A x = `rhs` and tr(A⁻¹ B) for a symmetric B banded within A's band (a
@@ -511,7 +512,7 @@ mod tests {
             for (r, wk) in &pairs {
                 a.add_outer(r, c * wk);
             }
-            let tr = a.quadratic_trace(&pairs).unwrap();
+            let tr: f64 = a.leverages(&pairs).unwrap().iter().sum();
             assert!((tr - n as f64 / c).abs() < 1e-10, "c {c}: {tr}");
         }
     }
@@ -552,7 +553,7 @@ mod tests {
         let c = m.solve(&b).unwrap();
         for k in [0, 5, 13] {
             let e = y[k] - value(&c, &rows[k]);
-            let h = m.quadratic_trace(&[(rows[k].as_slice(), w[k])]).unwrap();
+            let h = m.leverages(&[(rows[k].as_slice(), w[k])]).unwrap()[0];
             let (m2, b2) = system(Some(k));
             let c2 = m2.solve(&b2).unwrap();
             let deleted = y[k] - value(&c2, &rows[k]);
@@ -588,7 +589,7 @@ mod tests {
         for i in 0..n.saturating_sub(2) {
             a.add_outer(&[(i, 1.0), (i + 1, -2.0), (i + 2, 1.0)], 1.3);
         }
-        let by_rows = a.quadratic_trace(&pairs).unwrap();
+        let by_rows: f64 = a.leverages(&pairs).unwrap().iter().sum();
         let selected = a.solve_with_trace(&vec![0.0; n], &b).unwrap().1;
         assert!(
             (by_rows - selected).abs() < 1e-10 * by_rows.abs(),
