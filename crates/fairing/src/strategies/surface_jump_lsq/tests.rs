@@ -728,7 +728,6 @@ fn reduced_basis_with_held_ends_is_the_exact_method_on_every_site() {
 }
 
 #[test]
-#[allow(clippy::needless_range_loop)] // (j, c) name the line and coordinate compared
 fn a_reduced_fit_is_a_spline_on_its_knots_and_its_score_is_its_residual() {
     // On 40 knots of 160 sites: each u-line of the fit is the natural cubic spline through its
     // values at the knots (it lies in the reduced space), and the GCV score reported is
@@ -753,7 +752,7 @@ fn a_reduced_fit_is_a_spline_on_its_knots_and_its_score_is_its_residual() {
         "{gcv} against {expected}"
     );
     // The input's chord-length knots (the fit's own differ).
-    assert_on_knot_splines(&grid, &out, 40, 0..columns);
+    assert_on_knot_splines(&grid, out, 40, 0..columns);
 }
 
 /// The natural cubic spline through (τ_k, c_k), by its moments (dense solve).
@@ -905,7 +904,6 @@ fn a_reduced_direction_beside_held_lines_of_the_other_is_the_exact_method() {
 }
 
 #[test]
-#[allow(clippy::needless_range_loop)] // (j, c) name the line and coordinate compared
 fn a_reduced_direction_on_fewer_knots_beside_held_lines_of_the_other_is_on_its_knots() {
     // 40 u sites on 12 knots, the v edges held: the run succeeds (the u direction's empty
     // coupling was once taken as coefficients, 12 rows against 40), the held nodes stay bit for
@@ -926,12 +924,13 @@ fn a_reduced_direction_on_fewer_knots_beside_held_lines_of_the_other_is_on_its_k
     for &(i, j) in &held {
         assert_eq!(out[i * columns + j], grid[i][j]);
     }
-    assert_on_knot_splines(&grid, &out, count, 1..columns - 1);
+    assert_on_knot_splines(&grid, out, count, 1..columns - 1);
 }
 
 /// Columns `lines` of the fit `out` of `grid`, reduced along u to `count` knots, are natural
 /// cubic splines on those knots (the input's chord-length sites; the fit's own differ):
 /// their values at every site are the spline through their values at the knot sites.
+#[allow(clippy::needless_range_loop)] // (j, c) name the line and coordinate compared
 fn assert_on_knot_splines(grid: &[Vec<Vec3>], out: &[Vec3], count: usize, lines: std::ops::Range<usize>) {
     let (rows, columns) = (grid.len(), grid[0].len());
     let input = BicubicSplineSurface::new(grid).unwrap();
