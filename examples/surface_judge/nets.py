@@ -5,7 +5,11 @@
 Families: bump (panels with Gaussian bumps), helicoid (helicoidal strips), height60 (60 x 60
 height fields), tube (closed in v), wigley (Wigley hull halves), aniso (height fields on
 anisotropic, uneven spacing), teapot (bicubic Bezier patches of the Utah teapot body, the
-project's data/surface_utah_teapot). Noise: isotropic Gaussian, sigma = LEVEL x 0.002 x the
+project's data/surface_utah_teapot), gunnerus (patches of the R/V Gunnerus hull's body and bow, waterlines 1-8
+over 24-37 consecutive stations of stations 23-59 of the project's data/hull_gunnerus table: a
+real hull, whose clean twin keeps the table's own ripple; aft of station 23 the hull steps
+(half-breadths jump by up to 2.2 m between adjacent stations at the transom and skeg), which
+bounds the patch as a knuckle bounds a lines plan's regions). Noise: isotropic Gaussian, sigma = LEVEL x 0.002 x the
 bounding-box diagonal, LEVEL in 0.5, 1, 2; the repeated seam line copied from the first.
 
 The split is fixed here, before any tuning: TUNING draws use seeds 1000 + k, TEST draws
@@ -13,7 +17,9 @@ The split is fixed here, before any tuning: TUNING draws use seeds 1000 + k, TES
 had been looked at while tuning, they joined the tuning data with two fresh draws
 (FRESH_TUNING_DRAWS), and a fresh test split (FRESH_TEST_DRAWS) was fixed before that tuning.
 After that split had been run, every draw above became tuning data and FINAL_TEST_DRAWS were
-fixed before the next tuning (the penalty's difference order).
+fixed before the next tuning (the penalty's difference order). The gunnerus family came after
+all of those had been run: its draws 1000-1002 are its tuning data, and LAST_TEST_DRAWS, fixed
+with it and run once, is every family's next test split.
 A net is a function of its family, level and draw alone, so every split's nets are the same
 whichever split (or --draws list) writes them.
 """
@@ -21,7 +27,7 @@ import os
 import sys
 import numpy as np
 
-FAMILIES = ["bump", "helicoid", "height60", "tube", "wigley", "aniso", "teapot"]
+FAMILIES = ["bump", "helicoid", "height60", "tube", "wigley", "aniso", "teapot", "gunnerus"]
 LEVELS = [0.5, 1.0, 2.0]
 BASE = 0.002
 TUNING_DRAWS = [1000]
@@ -29,10 +35,12 @@ TEST_DRAWS = [5000, 5001, 5002]
 FRESH_TUNING_DRAWS = [1001, 1002]
 FRESH_TEST_DRAWS = [7000, 7001, 7002]
 FINAL_TEST_DRAWS = [8000, 8001, 8002]
+LAST_TEST_DRAWS = [9000, 9001, 9002]
 SPLITS = {"tuning": TUNING_DRAWS, "test": TEST_DRAWS,
           "fresh-tuning": FRESH_TUNING_DRAWS, "fresh-test": FRESH_TEST_DRAWS,
-          "final-test": FINAL_TEST_DRAWS}
+          "final-test": FINAL_TEST_DRAWS, "last-test": LAST_TEST_DRAWS}
 HERE = os.path.dirname(os.path.abspath(__file__))
+GUNNERUS = os.environ.get("GUNNERUS", os.path.join(HERE, "..", "..", "data", "hull_gunnerus", "offsets_m.csv"))
 TEAPOT = os.environ.get("TEAPOT", os.path.join(HERE, "..", "..", "data", "surface_utah_teapot", "teapot_patches.csv"))
 
 
@@ -119,6 +127,18 @@ def teapot(r):
     Pc[q[:, 1].astype(int), q[:, 2].astype(int)] = q[:, 3:6]
     m = n = 24
     return bezier(Pc, np.linspace(0, 1, m), np.linspace(0, 1, n))
+
+
+def gunnerus(r):
+    d = np.loadtxt(GUNNERUS, delimiter=",", skiprows=1)
+    grid = np.full((16, 64, 3), np.nan)
+    grid[d[:, 0].astype(int), d[:, 1].astype(int)] = d[:, 2:5]
+    body = grid[1:9, 23:60]  # waterlines 1-8, from the stern's step to the bow
+    length = int(r.integers(24, 38))
+    start = int(r.integers(0, body.shape[1] - length + 1))
+    G = body[:, start:start + length]
+    assert np.isfinite(G).all()
+    return G
 
 
 def diag(G):
