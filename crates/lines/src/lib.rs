@@ -18,7 +18,10 @@ pub mod table;
 
 pub use error::{Error, Result};
 pub use table::{read_table, Cell, Coord, Kind, Layout, Line, Table};
+mod features;
 pub mod generate;
+mod hull;
+mod knuckle;
 pub mod lofting;
 pub mod report;
 pub mod write;
