@@ -105,6 +105,60 @@ fn surface_join_g1_fit_still_nears_the_clean_surface() {
     );
 }
 
+/// GCV's trace with a join in place (the unconstrained trace less the joins' loss,
+/// `Join::trace_loss`) against its defining condition: with λ fixed, uniform knots and the
+/// refusal rule off the fit is affine in the data, so tr H is the sum over the free nodes of
+/// how far a fitted coordinate moves per unit move of its own datum (measured one node at a
+/// time). g1 on u0 and, for a second shape of constraint, g1 on v1.
+#[test]
+fn surface_join_trace_is_the_hat_matrix_trace() {
+    let (first, second) = two_patches();
+    let v_neighbour: Vec<Vec<Vec3>> = patch(16, 21, 0.5, 1.0, 0.003, 21)
+        .into_iter()
+        .map(|row| row.into_iter().map(|p| p + Vec3::new(0.0, 1.0, 0.0)).collect())
+        .collect();
+    for (edge, neighbour) in [(JoinEdge::U0, &first), (JoinEdge::V1, &v_neighbour)] {
+        let settings = SurfaceJumpLsqSettings {
+            parametrization: Parametrization::Uniform,
+            guard: false,
+            ..SurfaceJumpLsqSettings::default()
+        }
+        .with_lambda(3.0)
+        .with_join(join(edge, Continuity::G1, neighbour));
+        let method = SurfaceJumpLsq::new(settings);
+        let base = method.run(&second).unwrap();
+        let fitted = base.surface.grid();
+        let (rows, columns) = (second.len(), second[0].len());
+        let held = |i: usize, j: usize| match edge {
+            JoinEdge::U0 => i == 0,
+            JoinEdge::V1 => j == columns - 1,
+            _ => unreachable!(),
+        };
+        let delta = 1e-3;
+        let mut trace = 0.0;
+        for i in 0..rows {
+            for j in 0..columns {
+                if held(i, j) {
+                    continue;
+                }
+                let mut moved = second.clone();
+                moved[i][j].z += delta;
+                let out = method.run(&moved).unwrap().surface.grid();
+                trace += (out[i][j].z - fitted[i][j].z) / delta;
+            }
+        }
+        assert!(
+            (trace - base.dof).abs() <= 1e-6 * trace,
+            "{edge:?}: tr H by moving each datum {trace}, the method's {}",
+            base.dof
+        );
+        assert!(
+            trace < (rows * columns) as f64 - 1.0,
+            "{edge:?}: the fit smooths ({trace})"
+        );
+    }
+}
+
 #[test]
 fn surface_join_g0_puts_the_edge_on_the_neighbours_bit_for_bit() {
     let (first, second) = two_patches();
