@@ -338,17 +338,18 @@ fn moments(tau: &[f64], closed: bool) -> Result<DMatrix<f64>> {
 /// Gᵀ e = Bᵀ(A⁻¹ e) by tridiagonal solves, O(M) a column instead of the dense G's O(M²) (two
 /// thirds of the method's time on a 1000² net). Fewer than four knots keep the dense G.
 enum MomentMap {
-    /// The knot spacings h (one per span) and A's diagonal and off-diagonals over the rows it
-    /// has: the interior knots of an open direction (the end moments are 0), every knot of a
-    /// closed one (its corners the period's wrap).
-    Tridiagonal {
-        h: Vec<f64>,
-        closed: bool,
-        lower: Vec<f64>,
-        diag: Vec<f64>,
-        upper: Vec<f64>,
-    },
+    Tridiagonal(Tridiagonal),
     Dense(DMatrix<f64>),
+}
+
+/// A's rows (the interior knots of an open direction, whose end moments are 0; every knot of a
+/// closed one, its corners the period's wrap) and the knot spacings h, one per span.
+struct Tridiagonal {
+    h: Vec<f64>,
+    closed: bool,
+    lower: Vec<f64>,
+    diag: Vec<f64>,
+    upper: Vec<f64>,
 }
 
 impl MomentMap {
@@ -365,18 +366,78 @@ impl MomentMap {
         let lower = (lo..hi).map(prev).collect();
         let diag = (lo..hi).map(|k| 2.0 * (prev(k) + h[k])).collect();
         let upper = (lo..hi).map(|k| h[k]).collect();
-        MomentMap::Tridiagonal {
+        MomentMap::Tridiagonal(Tridiagonal {
             h,
             closed,
             lower,
             diag,
             upper,
+        })
+    }
+
+    /// G z for coefficient columns z (knots × k).
+    fn apply(&self, z: &DMatrix<f64>) -> DMatrix<f64> {
+        match self {
+            MomentMap::Dense(g) => g * z,
+            MomentMap::Tridiagonal(t) => {
+                let mut out = DMatrix::<f64>::zeros(z.nrows(), z.ncols());
+                for c in 0..z.ncols() {
+                    let rhs: Vec<f64> = (0..t.diag.len())
+                        .map(|r| t.b_row(r).iter().map(|&(j, w)| w * z[(j, c)]).sum())
+                        .collect();
+                    for (r, m) in t.solve(&rhs).into_iter().enumerate() {
+                        out[(r + t.lo(), c)] = m;
+                    }
+                }
+                out
+            }
         }
     }
 
+    /// Gᵀ e for moment columns e (knots × k).
+    fn apply_transpose(&self, e: &DMatrix<f64>) -> DMatrix<f64> {
+        match self {
+            MomentMap::Dense(g) => g.transpose() * e,
+            MomentMap::Tridiagonal(t) => {
+                let mut out = DMatrix::<f64>::zeros(e.nrows(), e.ncols());
+                for c in 0..e.ncols() {
+                    let rhs: Vec<f64> = (0..t.diag.len()).map(|r| e[(r + t.lo(), c)]).collect();
+                    for (r, x) in t.solve(&rhs).into_iter().enumerate() {
+                        for (j, w) in t.b_row(r) {
+                            out[(j, c)] += w * x;
+                        }
+                    }
+                }
+                out
+            }
+        }
+    }
+}
+
+impl Tridiagonal {
+    /// The first knot with a row: 1 on an open direction, 0 on a closed one.
+    fn lo(&self) -> usize {
+        usize::from(!self.closed)
+    }
+
+    /// Row r of B (knot k = r + lo): 6/h_{k−1} on knot k − 1, −(6/h_k + 6/h_{k−1}) on k, 6/h_k
+    /// on k + 1, neighbours modulo the knot count on a closed direction.
+    fn b_row(&self, r: usize) -> [(usize, f64); 3] {
+        let n = self.h.len();
+        let knots = if self.closed { n } else { n + 1 };
+        let k = r + self.lo();
+        let (hp, hk) = (self.h[(k + n - 1) % n], self.h[k]);
+        [
+            ((k + knots - 1) % knots, 6.0 / hp),
+            (k, -(6.0 / hk + 6.0 / hp)),
+            ((k + 1) % knots, 6.0 / hk),
+        ]
+    }
+
     /// A⁻¹ x for one column over A's rows.
-    fn solve(lower: &[f64], diag: &[f64], upper: &[f64], closed: bool, x: &[f64]) -> Vec<f64> {
-        let solved = if closed {
+    fn solve(&self, x: &[f64]) -> Vec<f64> {
+        let (lower, diag, upper) = (&self.lower, &self.diag, &self.upper);
+        let solved = if self.closed {
             curve_repr::tridiagonal::solve_cyclic(lower, diag, upper, x)
         } else {
             curve_repr::tridiagonal::solve(lower, diag, upper, x)
@@ -384,74 +445,6 @@ impl MomentMap {
         // A is diagonally dominant with positive spacings: its factorisation succeeded when
         // the dense G was made from it
         solved.expect("the moment system was factorised before")
-    }
-
-    /// G z for coefficient columns z (knots × k).
-    fn apply(&self, z: &DMatrix<f64>) -> DMatrix<f64> {
-        let (h, closed, lower, diag, upper) = match self {
-            MomentMap::Dense(g) => return g * z,
-            MomentMap::Tridiagonal {
-                h,
-                closed,
-                lower,
-                diag,
-                upper,
-            } => (h, *closed, lower, diag, upper),
-        };
-        let knots = z.nrows();
-        let lo = usize::from(!closed);
-        let p = |k: usize| (k + knots - 1) % knots;
-        let q = |k: usize| (k + 1) % knots;
-        let prev = |k: usize| h[(k + h.len() - 1) % h.len()];
-        let mut out = DMatrix::<f64>::zeros(knots, z.ncols());
-        for c in 0..z.ncols() {
-            let rhs: Vec<f64> = (0..diag.len())
-                .map(|r| {
-                    let k = r + lo;
-                    6.0 / h[k] * (z[(q(k), c)] - z[(k, c)]) - 6.0 / prev(k) * (z[(k, c)] - z[(p(k), c)])
-                })
-                .collect();
-            for (r, m) in Self::solve(lower, diag, upper, closed, &rhs)
-                .into_iter()
-                .enumerate()
-            {
-                out[(r + lo, c)] = m;
-            }
-        }
-        out
-    }
-
-    /// Gᵀ e for moment columns e (knots × k).
-    fn apply_transpose(&self, e: &DMatrix<f64>) -> DMatrix<f64> {
-        let (h, closed, lower, diag, upper) = match self {
-            MomentMap::Dense(g) => return g.transpose() * e,
-            MomentMap::Tridiagonal {
-                h,
-                closed,
-                lower,
-                diag,
-                upper,
-            } => (h, *closed, lower, diag, upper),
-        };
-        let knots = e.nrows();
-        let lo = usize::from(!closed);
-        let p = |k: usize| (k + knots - 1) % knots;
-        let q = |k: usize| (k + 1) % knots;
-        let prev = |k: usize| h[(k + h.len() - 1) % h.len()];
-        let mut out = DMatrix::<f64>::zeros(knots, e.ncols());
-        for c in 0..e.ncols() {
-            let rhs: Vec<f64> = (0..diag.len()).map(|r| e[(r + lo, c)]).collect();
-            for (r, x) in Self::solve(lower, diag, upper, closed, &rhs)
-                .into_iter()
-                .enumerate()
-            {
-                let k = r + lo;
-                out[(q(k), c)] += 6.0 / h[k] * x;
-                out[(k, c)] -= (6.0 / h[k] + 6.0 / prev(k)) * x;
-                out[(p(k), c)] += 6.0 / prev(k) * x;
-            }
-        }
-        out
     }
 }
 
@@ -491,7 +484,7 @@ mod tests {
             let g = moments(&tau, closed).unwrap();
             let knots = g.nrows();
             let map = MomentMap::new(&tau, closed, g.clone());
-            assert!(matches!(map, MomentMap::Tridiagonal { .. }));
+            assert!(matches!(map, MomentMap::Tridiagonal(_)));
             let z = DMatrix::from_fn(knots, 3, |i, c| ((i * 7 + c * 3) as f64 * 0.37).cos());
             let scale = z.amax() * g.amax();
             let gap = (map.apply(&z) - &g * &z).amax();
