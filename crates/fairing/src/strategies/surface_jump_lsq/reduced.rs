@@ -23,8 +23,9 @@
 //! ```
 //!
 //! so N = E_c + E_M G with E_c, E_M of two entries a row: N c and Nᵀy cost O(m + M) per
-//! line (G applied by its tridiagonal system, not as the dense matrix). The direction's data term is cᵀ NᵀN c − 2 cᵀ Nᵀ y, and its part of the normal
-//! equations the generalised eigenproblem (K', NᵀN): with NᵀN = L Lᵀ (Cholesky; N has full
+//! line (G applied by its tridiagonal system, not as the dense matrix). The direction's data
+//! term is cᵀ NᵀN c − 2 cᵀ Nᵀ y, and its part of the normal equations the generalised
+//! eigenproblem (K', NᵀN): with NᵀN = L Lᵀ (Cholesky; N has full
 //! column rank, its rows at the knots being unit rows) and L⁻¹ K' L⁻ᵀ = U diag(μ) Uᵀ, the
 //! columns of T = N L⁻ᵀ U are orthonormal, span the reduced space, and diagonalise the
 //! penalty, so module `spectral`'s entrywise solve, GCV's RSS and trace as spectral sums and
@@ -366,13 +367,19 @@ impl MomentMap {
         let lower = (lo..hi).map(prev).collect();
         let diag = (lo..hi).map(|k| 2.0 * (prev(k) + h[k])).collect();
         let upper = (lo..hi).map(|k| h[k]).collect();
-        MomentMap::Tridiagonal(Tridiagonal {
+        let t = Tridiagonal {
             h,
             closed,
             lower,
             diag,
             upper,
-        })
+        };
+        // whether a solve succeeds depends on A alone (its pivots and, closed, the rank-one
+        // correction), not on the right-hand side: one probe settles every later solve
+        if t.try_solve(&vec![0.0; t.diag.len()]).is_err() {
+            return MomentMap::Dense(g);
+        }
+        MomentMap::Tridiagonal(t)
     }
 
     /// G z for coefficient columns z (knots × k).
@@ -435,16 +442,20 @@ impl Tridiagonal {
     }
 
     /// A⁻¹ x for one column over A's rows.
-    fn solve(&self, x: &[f64]) -> Vec<f64> {
+    fn try_solve(&self, x: &[f64]) -> curve_repr::Result<Vec<f64>> {
         let (lower, diag, upper) = (&self.lower, &self.diag, &self.upper);
-        let solved = if self.closed {
+        if self.closed {
             curve_repr::tridiagonal::solve_cyclic(lower, diag, upper, x)
         } else {
             curve_repr::tridiagonal::solve(lower, diag, upper, x)
-        };
-        // A is diagonally dominant with positive spacings: its factorisation succeeded when
-        // the dense G was made from it
-        solved.expect("the moment system was factorised before")
+        }
+    }
+
+    /// [`Tridiagonal::try_solve`] of a map whose solve was probed when it was made
+    /// ([`MomentMap::new`]), so that it cannot fail.
+    fn solve(&self, x: &[f64]) -> Vec<f64> {
+        self.try_solve(x)
+            .expect("the moment system's solve was probed in MomentMap::new")
     }
 }
 
