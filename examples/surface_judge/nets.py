@@ -5,12 +5,13 @@
 Families: bump (panels with Gaussian bumps), helicoid (helicoidal strips), height60 (60 x 60
 height fields), tube (closed in v), wigley (Wigley hull halves), aniso (height fields on
 anisotropic, uneven spacing), teapot (bicubic Bezier patches of the Utah teapot body, the
-project's data/surface_utah_teapot), gunnerus (patches of the R/V Gunnerus hull's body and bow, waterlines 1-8
-over 24-37 consecutive stations of stations 23-59 of the project's data/hull_gunnerus table: a
-real hull, whose clean twin keeps the table's own ripple; aft of station 23 the hull steps
-(half-breadths jump by up to 2.2 m between adjacent stations at the transom and skeg), which
-bounds the patch as a knuckle bounds a lines plan's regions). Noise: isotropic Gaussian, sigma = LEVEL x 0.002 x the
-bounding-box diagonal, LEVEL in 0.5, 1, 2; the repeated seam line copied from the first.
+project's data/surface_utah_teapot), gunnerus (patches of the R/V Gunnerus hull's body and bow,
+waterlines 1-8 over 24-37 consecutive stations of stations 23-59 of the project's
+data/hull_gunnerus table: a real hull, whose clean twin keeps the table's own ripple; aft of
+station 23 the hull steps (half-breadths jump by up to 2.2 m between adjacent stations at the
+transom and skeg), which bounds the patch as a knuckle bounds a lines plan's regions). Noise:
+isotropic Gaussian, sigma = LEVEL x 0.002 x the bounding-box diagonal, LEVEL in 0.5, 1, 2; the
+repeated seam line copied from the first.
 
 The split is fixed here, before any tuning: TUNING draws use seeds 1000 + k, TEST draws
 5000 + k; a draw's seed sets both the shape's parameters and the noise. After the test draws
