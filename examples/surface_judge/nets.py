@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Noisy nets with clean twins (`python nets.py tuning|test|fresh-tuning|fresh-test|final-test OUT_DIR`, or
-`python nets.py --draws D1,D2,... OUT_DIR`) for judging surface fairing (issue 46).
+"""Noisy nets with clean twins for judging surface fairing (issue 46): `python nets.py SPLIT
+OUT_DIR` (SPLIT: tuning, test, fresh-tuning, fresh-test, final-test, last-test) or
+`python nets.py --draws D1,D2,... OUT_DIR`.
 
 Families: bump (panels with Gaussian bumps), helicoid (helicoidal strips), height60 (60 x 60
 height fields), tube (closed in v), wigley (Wigley hull halves), aniso (height fields on
