@@ -224,13 +224,13 @@ fn on_hull(t: &Table, i: usize) -> bool {
     }
 }
 
-/// Fairs the lines faired alone (every line without a hull; with one, the knuckle edges and the
-/// profile-only and plan-only lines): y(x) and z(x) each, the same penalty and tolerance. Returns
-/// the first knuckle edge, which splits the hull. O(n) per line and solve.
+/// Fairs the lines that are not cut from the hull (every line of a table without one; with
+/// one, the knuckle edges and the profile-only and plan-only lines), y(x) and z(x) each with
+/// the hull's penalty and tolerance, before the hull is fitted. Returns the first knuckle
+/// edge, which splits the hull into regions. O(n) per line and solve.
 fn fair_alone(t: &Table, state: &mut Cells, use_hull: bool, tol: f64) -> Option<Knuckle> {
     let mut knuckle_z: Option<(usize, Spline)> = None;
     let mut knuckle_y: Option<(usize, Spline)> = None;
-    // knuckles first: the hull's regions are split along them
     for (li, l) in t.lines.iter().enumerate() {
         let alone = !use_hull || l.knuckle || matches!(l.kind, Kind::Profile | Kind::Plan);
         if !alone {
