@@ -21,7 +21,7 @@ fn sizes<T: Copy>(all: &[T]) -> Vec<T> {
 
 /// A smooth surface over a square with Gaussian noise (σ = 0.005) on z at every node.
 fn noisy_net(size: usize) -> Vec<Vec<Vec3>> {
-    shifted_net(size, 0)
+    shifted_net(size, 0, 0.005)
 }
 
 /// Gaussian noise of standard deviation `sigma` from a generator seeded by `seed`, one value
@@ -32,14 +32,15 @@ fn gaussian(sigma: f64, seed: u64) -> impl FnMut() -> f64 {
     use rand::SeedableRng;
     use rand_distr::Distribution;
     let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
-    let normal = rand_distr::Normal::new(0.0, sigma).expect("a positive σ");
+    let normal = rand_distr::Normal::new(0.0, sigma).expect("a finite σ, not negative");
     move || normal.sample(&mut rng)
 }
 
-/// [`noisy_net`]'s surface with its rows shifted back by `back` lines: at `back` = size − 1
-/// the net ends where [`noisy_net`] starts (its neighbour across u0); its own noise.
-fn shifted_net(size: usize, back: usize) -> Vec<Vec<Vec3>> {
-    let mut noise = gaussian(0.005, (size * 1000 + back) as u64);
+/// [`noisy_net`]'s surface with its rows shifted back by `back` lines and noise of σ `sigma`:
+/// at `back` = size − 1 the net ends where [`noisy_net`] starts (its neighbour across u0, given
+/// clean: a neighbour is one already faired, whose raw noise a g1 join would have to follow).
+fn shifted_net(size: usize, back: usize, sigma: f64) -> Vec<Vec<Vec3>> {
+    let mut noise = gaussian(sigma, (size * 1000 + back) as u64);
     (0..size)
         .map(|i| {
             (0..size)
@@ -107,7 +108,7 @@ fn bench(c: &mut Criterion) {
         let settings = SurfaceJumpLsqSettings::default().with_join(Join {
             edge: JoinEdge::U0,
             continuity: Continuity::G1,
-            neighbour: shifted_net(size, size - 1),
+            neighbour: shifted_net(size, size - 1, 0.0),
             source: "neighbour".into(),
         });
         group.throughput(Throughput::Elements((size * size) as u64));

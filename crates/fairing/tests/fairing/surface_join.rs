@@ -106,7 +106,7 @@ fn surface_join_g1_fit_still_nears_the_clean_surface() {
 }
 
 /// GCV's trace with a join in place (the unconstrained trace less the joins' loss,
-/// `Join::trace_loss`) against its defining condition: with λ fixed, uniform knots and the
+/// `Joined::correct_with_trace_loss`) against its defining condition: with λ fixed, uniform knots and the
 /// refusal rule off the fit is affine in the data, so tr H is the sum over the free nodes of
 /// how far a fitted coordinate moves per unit move of its own datum (measured one node at a
 /// time). g1 on u0 and, for a second shape of constraint, g1 on v1.

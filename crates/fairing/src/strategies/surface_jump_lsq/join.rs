@@ -663,24 +663,26 @@ impl Joined {
         }
     }
 
-    /// The Schur blocks W_l and W′_l of line l.
+    /// Line l's g along it (into `g`, reused between lines) and its Schur blocks W_l and W′_l.
     fn blocks(
         &self,
         spectral: &Spectral,
         weights: Weights,
         l: usize,
+        g: &mut Vec<f64>,
         along: usize,
     ) -> (DMatrix<f64>, DMatrix<f64>) {
+        g.clear();
+        g.extend((0..along).map(|q| self.g(spectral, weights, q, l)));
         let k = self.c_hat.len();
         let mut w = DMatrix::zeros(k, k);
         let mut w2 = DMatrix::zeros(k, k);
-        for q in 0..along {
-            let g = self.g(spectral, weights, q, l);
+        for (q, &gq) in g.iter().enumerate() {
             for a in 0..k {
                 for b in 0..k {
                     let cc = self.c_hat[a][q] * self.c_hat[b][q];
-                    w[(a, b)] += cc * g;
-                    w2[(a, b)] += cc * g * g;
+                    w[(a, b)] += cc * gq;
+                    w2[(a, b)] += cc * gq * gq;
                 }
             }
         }
@@ -689,51 +691,55 @@ impl Joined {
 
     /// Corrects the unconstrained X̂₀ (at the weights `w`) to the constrained X̂. O(m·n).
     pub(crate) fn correct(&self, x: &mut Planes, spectral: &Spectral, w: Weights) {
+        self.correct_with_trace_loss(x, spectral, w);
+    }
+
+    /// [`Joined::correct`], and what the constraints take from the smoother's trace at the
+    /// weights `w`, Σ_l tr(W_l⁻¹ W′_l): each line's g and blocks made once for both (GCV
+    /// needs both at every trial pair). O(m·n).
+    pub(crate) fn correct_with_trace_loss(&self, x: &mut Planes, spectral: &Spectral, w: Weights) -> f64 {
         let (lines, along) = self.lines(x);
-        let k = self.c_hat.len();
+        let mut g = Vec::with_capacity(along);
+        let mut row = Vec::with_capacity(along);
+        let mut loss = 0.0;
         for l in 0..lines {
-            let (block, _) = self.blocks(spectral, w, l, along);
+            let (block, block2) = self.blocks(spectral, w, l, &mut g, along);
             let Some(lu) = block.try_inverse() else {
                 continue;
             };
+            loss += (&lu * block2).trace();
             for (coord, plane) in x.iter_mut().enumerate() {
-                let at = |p: &DMatrix<f64>, q: usize| {
-                    if self.lines_are_columns {
-                        p[(q, l)]
-                    } else {
-                        p[(l, q)]
+                // the line as a slice: a column of the (column-major) plane in place, or a row
+                // copied out and back
+                if self.lines_are_columns {
+                    let rows = plane.nrows();
+                    let column = &mut plane.as_mut_slice()[l * rows..(l + 1) * rows];
+                    self.correct_line(column, &lu, &g, coord, l);
+                } else {
+                    row.clear();
+                    row.extend(plane.row(l).iter().copied());
+                    self.correct_line(&mut row, &lu, &g, coord, l);
+                    for (q, &v) in row.iter().enumerate() {
+                        plane[(l, q)] = v;
                     }
-                };
-                let r = DVector::from_fn(k, |a, _| {
-                    (0..along).map(|q| self.c_hat[a][q] * at(plane, q)).sum::<f64>() - self.t_hat[a][coord][l]
-                });
-                let mu = &lu * r;
-                for q in 0..along {
-                    let g = self.g(spectral, w, q, l);
-                    let d: f64 = (0..k).map(|a| self.c_hat[a][q] * mu[a]).sum();
-                    let entry = if self.lines_are_columns {
-                        &mut plane[(q, l)]
-                    } else {
-                        &mut plane[(l, q)]
-                    };
-                    *entry -= g * d;
                 }
             }
         }
+        loss
     }
 
-    /// What the constraints take from the smoother's trace at the weights `w`: Σ_l tr(W_l⁻¹ W′_l).
-    pub(crate) fn trace_loss(&self, spectral: &Spectral, w: Weights, shape: (usize, usize)) -> f64 {
-        let (lines, along) = if self.lines_are_columns {
-            (shape.1, shape.0)
-        } else {
-            shape
-        };
-        (0..lines)
-            .map(|l| {
-                let (block, block2) = self.blocks(spectral, w, l, along);
-                block.try_inverse().map_or(0.0, |inv| (inv * block2).trace())
-            })
-            .sum()
+    /// One line's values (`line`, coordinate `coord`) corrected to meet the constraints:
+    /// r = Ĉ x − τ̂, μ = W⁻¹ r, x_q −= g_q Σ_a ĉ_aq μ_a.
+    fn correct_line(&self, line: &mut [f64], w_inverse: &DMatrix<f64>, g: &[f64], coord: usize, l: usize) {
+        let k = self.c_hat.len();
+        let r = DVector::from_fn(k, |a, _| {
+            let c = self.c_hat[a].as_slice();
+            c.iter().zip(line.iter()).map(|(c, v)| c * v).sum::<f64>() - self.t_hat[a][coord][l]
+        });
+        let mu = w_inverse * r;
+        for (q, (entry, &gq)) in line.iter_mut().zip(g).enumerate() {
+            let d: f64 = (0..k).map(|a| self.c_hat[a][q] * mu[a]).sum();
+            *entry -= gq * d;
+        }
     }
 }

@@ -581,9 +581,9 @@ impl SurfaceJumpLsq {
                 None => spectral.rss_trace(&energies, w),
                 Some(joined) => {
                     let mut x = spectral.solve_hat(&y_hat, c_hat.as_ref(), w);
-                    joined.correct(&mut x, &spectral, w);
+                    let loss = joined.correct_with_trace_loss(&mut x, &spectral, w);
                     let rss = (0..3).map(|c| (&x[c] - &y_hat[c]).norm_squared()).sum::<f64>();
-                    let trace = spectral.trace(w) - joined.trace_loss(&spectral, w, (nr, nc));
+                    let trace = spectral.trace(w) - loss;
                     (rss, trace)
                 }
             };
