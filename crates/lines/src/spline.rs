@@ -353,6 +353,23 @@ impl Band {
 mod tests {
     use super::*;
 
+    /// `count` rows of a banded design, row k the bw + 1 entries from (k·stride) mod (n − bw),
+    /// valued `value(k, i)`: the tests' least-squares systems.
+    fn banded_rows(
+        n: usize,
+        bw: usize,
+        count: usize,
+        stride: usize,
+        value: impl Fn(usize, usize) -> f64,
+    ) -> Vec<Vec<(usize, f64)>> {
+        (0..count)
+            .map(|k| {
+                let i0 = (k * stride) % (n - bw);
+                (i0..=i0 + bw).map(|i| (i, value(k, i))).collect()
+            })
+            .collect()
+    }
+
     fn knots() -> Knots {
         Knots {
             t: vec![0.0, 0.0, 0.0, 0.0, 1.0, 2.5, 3.0, 4.5, 4.5, 4.5, 4.5],
@@ -496,14 +513,7 @@ mod tests {
         // A = Σ w_k r_k r_kᵀ: the hat matrix of least squares is a projection onto the n
         // unknowns' span, trace n; scaled, A = c·Σ w_k r_k r_kᵀ, the trace is n / c
         let (n, bw) = (7, 3);
-        let rows: Vec<Vec<(usize, f64)>> = (0..20)
-            .map(|k| {
-                let i0 = (k * 3) % (n - bw);
-                (i0..=i0 + bw)
-                    .map(|i| (i, 1.0 + ((k * 7 + i * 5) % 11) as f64 / 4.0))
-                    .collect()
-            })
-            .collect();
+        let rows = banded_rows(n, bw, 20, 3, |k, i| 1.0 + ((k * 7 + i * 5) % 11) as f64 / 4.0);
         let w: Vec<f64> = (0..rows.len()).map(|k| 0.5 + (k % 3) as f64).collect();
         let pairs: Vec<(&[(usize, f64)], f64)> =
             rows.iter().map(|r| r.as_slice()).zip(w.iter().copied()).collect();
@@ -523,14 +533,7 @@ mod tests {
         // (M − w_k r_k r_kᵀ, its term dropped from the right side) leaves a residual at it of
         // e_k / (1 − h_kk), h_kk = w_k r_kᵀ M⁻¹ r_k, the identity `Fit::deleted_moves` uses
         let (n, bw) = (8, 3);
-        let rows: Vec<Vec<(usize, f64)>> = (0..14)
-            .map(|k| {
-                let i0 = (k * 5) % (n - bw);
-                (i0..=i0 + bw)
-                    .map(|i| (i, 0.5 + ((k * 3 + i * 7) % 9) as f64 / 5.0))
-                    .collect()
-            })
-            .collect();
+        let rows = banded_rows(n, bw, 14, 5, |k, i| 0.5 + ((k * 3 + i * 7) % 9) as f64 / 5.0);
         let w: Vec<f64> = (0..rows.len()).map(|k| 1.0 + (k % 4) as f64 / 2.0).collect();
         let y: Vec<f64> = (0..rows.len()).map(|k| ((k * 13) % 7) as f64 - 3.0).collect();
         let system = |skip: Option<usize>| {
@@ -568,14 +571,7 @@ mod tests {
     fn the_selected_inverse_gives_the_trace_one_solve_per_row_gives() {
         // tr(A⁻¹ B), B = Σ w_k r_k r_kᵀ: from the inverse's band and from a solve per row
         let (n, bw) = (9, 3);
-        let rows: Vec<Vec<(usize, f64)>> = (0..17)
-            .map(|k| {
-                let i0 = (k * 5) % (n - bw);
-                (i0..=i0 + bw)
-                    .map(|i| (i, 0.3 + ((k * 5 + i * 3) % 7) as f64 / 3.0))
-                    .collect()
-            })
-            .collect();
+        let rows = banded_rows(n, bw, 17, 5, |k, i| 0.3 + ((k * 5 + i * 3) % 7) as f64 / 3.0);
         let pairs: Vec<(&[(usize, f64)], f64)> = rows
             .iter()
             .enumerate()
