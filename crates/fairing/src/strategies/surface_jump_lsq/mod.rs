@@ -107,6 +107,19 @@
 //! of a closed direction, and held lines with both directions long are solved exactly, at
 //! the exact path's cost below.
 //!
+//! Before that, when λ is chosen by GCV, a net with a direction of more than `COARSE_KNOTS`
+//! (200) sites is fitted with every such direction on a basis of 200 knots; that fit is kept
+//! when the basis resolves it: along each reduced direction the fit's equivalent degrees of
+//! freedom are at most half the basis's size (`COARSE_DOF_SHARE`). Otherwise the net is fitted
+//! again as above. A smooth surface's fit keeps a few dozen degrees of freedom a direction,
+//! so a scanned net of 10⁵–10⁶ nodes usually costs the 200-knot basis only. It also keeps
+//! smooth fits off the exact path at hundreds of sites: the penalty's eigenvalues fall like
+//! (k/m)⁸, so K's eigendecomposition returns the smoothest modes as round-off and they are
+//! taken as null (the 3rd and 4th on 60 sites, the first 30 on 800), which a smooth fit
+//! needs smoothed. A noisy smooth 800² net fitted exactly with its first 30 modes null ended
+//! 17 times farther from the clean surface than its input (GCV took λ_v → ∞ around them); on
+//! the 200-knot basis (9 null) 0.03 times as far.
+//!
 //! # Cost
 //!
 //! Exact path: building the jump operators O(m² + n²), their eigendecompositions O(m³ + n³)
@@ -114,7 +127,8 @@
 //! (about 700): O(N^1.5) on a square net of N nodes. With a long direction reduced (m > M_MAX):
 //! O(m + M_MAX³) to build its basis and O(m·n + M_MAX²·n) per transform, so a net of N nodes
 //! costs O(N) for a fixed M_MAX, time and memory (criterion bench `surface_jump`, its long
-//! strip). Each fixed node or band pin adds at most one conjugate-gradient iteration of two
+//! strip); on the 200-knot coarse basis, O(m·n + 200²·(m + n)) per transform, O(N) from
+//! 200² up. Each fixed node or band pin adds at most one conjugate-gradient iteration of two
 //! transforms.
 
 mod join;
@@ -303,15 +317,30 @@ pub struct SurfaceJumpLsq {
 }
 
 /// Sites along a direction above which its lines take a reduced basis (module `reduced`) of
-/// this many knots. Its cost is that of the exact path at M_MAX sites (O(M_MAX³) once, the
+/// this many knots when the [`COARSE_KNOTS`] basis does not resolve the fit. Its cost is that of the exact path at M_MAX sites (O(M_MAX³) once, the
 /// eigendecomposition ~0.2 s at 800, then O(M_MAX²) per line transformed); above it the exact
 /// path's O(m³) time and O(m²) memory dominate a run (2.4 s for the eigendecomposition alone
 /// at 2000 sites, ~20 s at 4000). 800 knots keep a detail of 1/400 of the direction's length,
 /// finer than a smoothing fit keeps along a scanned strip or a hull's length.
 const M_MAX: usize = 800;
 
+/// Every direction of more than this many sites is first fitted on a reduced basis of this
+/// many knots, and that fit is kept when the basis resolves it ([`COARSE_DOF_SHARE`]); else
+/// the net is fitted again as above (exact up to [`M_MAX`] sites, [`M_MAX`] knots beyond).
+/// A smooth fit needs far fewer knots than sites (a penalised spline's knots matter little
+/// once they outnumber its equivalent degrees of freedom several times: Ruppert 2002), and
+/// the basis costs O(knots²) per line transformed: on noisy 500² to 1200² nets of smooth and
+/// bumpy surfaces the fit took a quarter of the time and stayed as near the clean surface
+/// (`docs/experiments/surface-fairing.md`, "A coarse basis first").
+const COARSE_KNOTS: usize = 200;
+
+/// The coarse basis resolves a fit when, along each reduced direction, the fit's equivalent
+/// degrees of freedom (that direction's smoother alone at its λ) are at most this share of
+/// the basis's size; chosen on tuning nets (the same section).
+const COARSE_DOF_SHARE: f64 = 0.5;
+
 /// When a direction is reduced: more than `above` sites; and to how many knots.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Reduction {
     above: usize,
     knots: usize,
@@ -358,6 +387,35 @@ impl SurfaceJumpLsq {
 
     /// [`run`](Self::run) with the weights given (`None`: by GCV), `settings.lambda` ignored.
     pub(crate) fn fit(&self, grid: &[Vec<Vec3>], given: Option<Weights>) -> Result<SurfaceJumpLsqResult> {
+        let started = std::time::Instant::now();
+        // Not with λ given: λ's scale depends on the knots' spacing, so a given λ keeps the
+        // basis it has always had.
+        if given.is_none() && self.reduction == Reduction::default() {
+            let coarse = Reduction {
+                above: COARSE_KNOTS,
+                knots: COARSE_KNOTS,
+            };
+            // An error on the coarse basis is the full run's to report.
+            if let Ok((mut result, true)) = self.fit_with(grid, given, coarse, COARSE_DOF_SHARE) {
+                result.elapsed = started.elapsed();
+                return Ok(result);
+            }
+        }
+        let (mut result, _) = self.fit_with(grid, given, self.reduction, 1.0)?;
+        result.elapsed = started.elapsed();
+        Ok(result)
+    }
+
+    /// [`fit`](Self::fit) with the reduction `reduction`; and whether each reduced direction's
+    /// basis resolves the fit (its equivalent degrees of freedom at most `share` of its size,
+    /// [`Spectral::resolves`]).
+    fn fit_with(
+        &self,
+        grid: &[Vec<Vec3>],
+        given: Option<Weights>,
+        reduction: Reduction,
+        share: f64,
+    ) -> Result<(SurfaceJumpLsqResult, bool)> {
         let settings = &self.settings;
         settings.validate()?;
         let started = std::time::Instant::now();
@@ -461,6 +519,7 @@ impl SurfaceJumpLsq {
         let mut band_pins = 0;
         let mut cg_iterations = 0;
         let mut refused = 0;
+        let mut resolved = true;
         if !free_rows.is_empty() && !free_cols.is_empty() && given != Some(Weights::both(0.0)) {
             let held_rows: Vec<usize> = (0..mu).filter(|&i| held_row[i]).collect();
             let held_cols: Vec<usize> = (0..nv).filter(|&j| held_col[j]).collect();
@@ -475,7 +534,7 @@ impl SurfaceJumpLsq {
             let simple = prepared.is_empty() && settings.max_distance.is_none() && !scattered_held;
             let reducible = |count: usize, closed: bool, held: &[usize]| {
                 simple
-                    && count > self.reduction.above
+                    && count > reduction.above
                     && if closed {
                         held.is_empty()
                     } else {
@@ -496,7 +555,7 @@ impl SurfaceJumpLsq {
             let (u_part, coupling_u, ku) = direction_part(
                 input.u_knots(),
                 topology.closed_u,
-                reduce_u.then_some(self.reduction.knots),
+                reduce_u.then_some(reduction.knots),
                 (held_row[0], held_row[mu - 1]),
                 (&free_rows, &held_rows),
                 false,
@@ -506,7 +565,7 @@ impl SurfaceJumpLsq {
             let (v_part, coupling_v, kv) = direction_part(
                 input.v_knots(),
                 topology.closed_v,
-                reduce_v.then_some(self.reduction.knots),
+                reduce_v.then_some(reduction.knots),
                 (held_col[0], held_col[nv - 1]),
                 (&free_cols, &held_cols),
                 true,
@@ -712,6 +771,7 @@ impl SurfaceJumpLsq {
                 lambda_used = Weights::both(0.0);
                 dof = n_free;
             }
+            resolved = spectral.resolves(lambda_used, share);
         }
         let points = expand(&out_distinct, rows, columns, mu, nv);
         if points.iter().any(|p| !p.iter().all(|c| c.is_finite())) {
@@ -738,21 +798,24 @@ impl SurfaceJumpLsq {
                 .map(|p| p.report(p.measure(&own), p.measure(&surface)))
                 .collect()
         };
-        Ok(SurfaceJumpLsqResult {
-            surface,
-            lambda_u: lambda_used.u,
-            lambda_v: lambda_used.v,
-            gcv: gcv_score,
-            dof,
-            displacement,
-            band_pins,
-            cg_iterations,
-            refused,
-            topology,
-            moved,
-            elapsed: started.elapsed(),
-            joins,
-        })
+        Ok((
+            SurfaceJumpLsqResult {
+                surface,
+                lambda_u: lambda_used.u,
+                lambda_v: lambda_used.v,
+                gcv: gcv_score,
+                dof,
+                displacement,
+                band_pins,
+                cg_iterations,
+                refused,
+                topology,
+                moved,
+                elapsed: started.elapsed(),
+                joins,
+            },
+            resolved,
+        ))
     }
 }
 

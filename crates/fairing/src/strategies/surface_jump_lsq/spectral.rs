@@ -150,6 +150,18 @@ impl Spectral {
         }
     }
 
+    /// Whether each reduced direction's basis resolves the fit at the weights `w`: its
+    /// equivalent degrees of freedom along the direction alone, Σ_a 1/(1 + λ μ_a), are at most
+    /// `share` of the basis's size. O(|R| + |C|).
+    pub(super) fn resolves(&self, w: Weights, share: f64) -> bool {
+        let within = |basis: &Basis, values: &[f64], lambda: f64| {
+            !matches!(basis, Basis::Reduced(_))
+                || values.iter().map(|&m| 1.0 / (1.0 + lambda * m)).sum::<f64>()
+                    <= share * values.len() as f64
+        };
+        within(&self.u, &self.mu, w.u) && within(&self.v, &self.nu, w.v)
+    }
+
     /// Whether either direction has a reduced basis.
     pub(super) fn is_reduced(&self) -> bool {
         matches!(self.u, Basis::Reduced(_)) || matches!(self.v, Basis::Reduced(_))

@@ -948,3 +948,51 @@ fn assert_on_knot_splines(grid: &[Vec<Vec3>], out: &[Vec3], count: usize, lines:
         }
     }
 }
+
+#[test]
+fn a_coarse_basis_is_kept_only_where_it_resolves_the_fit() {
+    // 260 sites along u (more than COARSE_KNOTS), λ by GCV. A smooth surface: the default fit
+    // is the 200-knot basis's, bit for bit, and within a twentieth of the noise of the exact
+    // fit. A surface with a wave of 4 sites along u: the coarse basis cannot resolve it, and
+    // the default fit is the exact one, bit for bit.
+    let (rows, columns) = (260, 6);
+    let exact_fit = |grid: &[Vec<Vec3>]| {
+        SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default())
+            .with_reduction(usize::MAX, usize::MAX)
+            .fit(grid, None)
+            .unwrap()
+    };
+    let smooth = noisy_net(rows, columns, 0.02, 5, |x, y| {
+        Vec3::new(4.0 * x, y, 0.3 * (5.0 * x).sin() * (1.0 + 0.5 * y))
+    });
+    let default = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default())
+        .fit(&smooth, None)
+        .unwrap();
+    let coarse = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default())
+        .with_reduction(super::COARSE_KNOTS, super::COARSE_KNOTS)
+        .fit(&smooth, None)
+        .unwrap();
+    assert_eq!(default.surface.points(), coarse.surface.points());
+    let exact = exact_fit(&smooth);
+    assert_ne!(default.surface.points(), exact.surface.points());
+    let gap = default
+        .surface
+        .points()
+        .iter()
+        .zip(exact.surface.points())
+        .map(|(p, q)| (p - q).norm())
+        .fold(0.0, f64::max);
+    // The noise is uniform on [−0.01, 0.01) per coordinate: σ ≈ 0.0058.
+    assert!(gap < 0.05 * 0.0058, "coarse against exact: {gap}");
+    let wavy = noisy_net(rows, columns, 0.02, 6, |x, y| {
+        Vec3::new(
+            4.0 * x,
+            y,
+            0.3 * (2.0 * std::f64::consts::PI * 259.0 * x / 4.0).sin() + 0.1 * y,
+        )
+    });
+    let default = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default())
+        .fit(&wavy, None)
+        .unwrap();
+    assert_eq!(default.surface.points(), exact_fit(&wavy).surface.points());
+}
