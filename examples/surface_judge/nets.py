@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Noisy nets with clean twins for judging surface fairing (issue 46): `python nets.py SPLIT
-OUT_DIR` (SPLIT: tuning, test, fresh-tuning, fresh-test, final-test, last-test) or
+OUT_DIR` (SPLIT: tuning, test, fresh-tuning, fresh-test, final-test, last-test, next-test) or
 `python nets.py --draws D1,D2,... OUT_DIR`.
 
 Families: bump (panels with Gaussian bumps), helicoid (helicoidal strips), height60 (60 x 60
@@ -21,7 +21,8 @@ had been looked at while tuning, they joined the tuning data with two fresh draw
 After that split had been run, every draw above became tuning data and FINAL_TEST_DRAWS were
 fixed before the next tuning (the penalty's difference order). The gunnerus family came after
 all of those had been run: its draws 1000-1002 are its tuning data, and LAST_TEST_DRAWS, fixed
-with it and run once, is every family's next test split.
+with it and run once, is every family's next test split. NEXT_TEST_DRAWS were fixed before the
+limit's margin was chosen again on the refined spectrum (tuning: draws 1000-1002).
 A net is a function of its family, level and draw alone, so every split's nets are the same
 whichever split (or --draws list) writes them.
 """
@@ -38,9 +39,11 @@ FRESH_TUNING_DRAWS = [1001, 1002]
 FRESH_TEST_DRAWS = [7000, 7001, 7002]
 FINAL_TEST_DRAWS = [8000, 8001, 8002]
 LAST_TEST_DRAWS = [9000, 9001, 9002]
+NEXT_TEST_DRAWS = [9500, 9501, 9502]
 SPLITS = {"tuning": TUNING_DRAWS, "test": TEST_DRAWS,
           "fresh-tuning": FRESH_TUNING_DRAWS, "fresh-test": FRESH_TEST_DRAWS,
-          "final-test": FINAL_TEST_DRAWS, "last-test": LAST_TEST_DRAWS}
+          "final-test": FINAL_TEST_DRAWS, "last-test": LAST_TEST_DRAWS,
+          "next-test": NEXT_TEST_DRAWS}
 HERE = os.path.dirname(os.path.abspath(__file__))
 GUNNERUS = os.environ.get("GUNNERUS", os.path.join(HERE, "..", "..", "data", "hull_gunnerus", "offsets_m.csv"))
 TEAPOT = os.environ.get("TEAPOT", os.path.join(HERE, "..", "..", "data", "surface_utah_teapot", "teapot_patches.csv"))

@@ -75,15 +75,16 @@
 //! descent, each step a scan of ±1 around the current value refined by golden section.
 //! Last, on a plain block (no held lines or nodes, joins or band), the limit λ → ∞ in either
 //! direction is scored (`with_limits`, at a weight of 10³⁰) and taken if the data cannot tell
-//! it from the minimum: if its score is within a quarter of a standard error of the minimum's
-//! (a one-standard-error rule, narrowed; the standard error that of the residual sum of squares
+//! it from the minimum: if its score is within two standard errors of the minimum's (a
+//! one-standard-error rule, widened; the standard error that of the residual sum of squares
 //! the limit adds if the lines are straight, from the degrees of freedom it drops). Where a
 //! direction's lines are straight in the data (a helicoid's rulings) the score falls, stays
 //! flat up to the range's top, or has a shallow minimum at a large finite weight that keeps a
 //! faint wiggle with an inflection on many lines. A direction whose lines curve gently under
-//! heavy noise (a hull's waterlines) can score within one standard error of its limit, and
-//! straightening it puts the net farther from the truth than its input, hence the narrower
-//! margin (its factor chosen on the tuning nets, `docs/experiments/surface-fairing.md`). At
+//! heavy noise (a hull's waterlines) could score within one standard error of its limit while
+//! the smoothest modes were round-off null (below), and straightening it put the net farther
+//! from the truth than its input; with the spectrum's bottom refined no tuning net did (the
+//! factor chosen on the tuning nets, `docs/experiments/surface-fairing.md`). At
 //! the limit those lines are projected exactly onto the penalty's null space (`straighten`: least-squares lines a + b t, or the mean on a closed
 //! direction), which the eigenbasis solve gives only to the accuracy of its null vectors.
 //! A score whose denominator is not positive (the interpolating end) is infinite, and the
@@ -112,13 +113,18 @@
 //! when the basis resolves it: along each reduced direction the fit's equivalent degrees of
 //! freedom are at most half the basis's size (`COARSE_DOF_SHARE`). Otherwise the net is fitted
 //! again as above. A smooth surface's fit keeps a few dozen degrees of freedom a direction,
-//! so a scanned net of 10⁵–10⁶ nodes usually costs the 200-knot basis only. It also keeps
-//! smooth fits off the exact path at hundreds of sites: the penalty's eigenvalues fall like
-//! (k/m)⁸, so K's eigendecomposition returns the smoothest modes as round-off and they are
-//! taken as null (the 3rd and 4th on 60 sites, the first 30 on 800), which a smooth fit
-//! needs smoothed. A noisy smooth 800² net fitted exactly with its first 30 modes null ended
-//! 17 times farther from the clean surface than its input (GCV took λ_v → ∞ around them); on
-//! the 200-knot basis (9 null) 0.03 times as far.
+//! so a scanned net of 10⁵–10⁶ nodes usually costs the 200-knot basis only.
+//!
+//! # The spectrum's bottom
+//!
+//! The penalty's eigenvalues fall like (k/m)⁸ along a direction of m sites (or knots), so K's
+//! own eigendecomposition returns every mode below ~10⁻¹⁶ of the largest as round-off: the
+//! 3rd and 4th on 60 sites, the 3rd to 9th on 200, the 3rd to 30th on 800. Taken as null, those
+//! modes were left unsmoothed: a noisy smooth 800² net fitted exactly ended 17 times farther
+//! from the clean surface than its input (GCV took λ_v → ∞ around them, and the output's
+//! lines were straightened). Every basis, exact or reduced, now recomputes its bottom third
+//! from the singular values of the jump matrix in that span (`spectral::refine_bottom`), to
+//! full relative precision, so that exactly the lines (the constants when closed) are null.
 //!
 //! # Cost
 //!
@@ -958,13 +964,16 @@ fn direction_part(
         });
         return Ok(((spectral::Basis::Reduced(basis), values), coupling, None));
     }
-    let k_full = operator::gram(&operator::jump_matrix(knots, closed)?);
+    let d = operator::jump_matrix(knots, closed)?;
+    let k_full = operator::gram(&d);
     let k = submatrix(&k_full, free, free);
     let coupling = (!held.is_empty()).then(|| {
         let k_held = submatrix(&k_full, free, held);
         (0..3).map(|c| oriented(&k_held * ends(c))).collect()
     });
-    let (values, vectors) = spectral::symmetric_eigen(&k);
+    let (mut values, mut vectors) = spectral::symmetric_eigen(&k);
+    let d_free = DMatrix::from_fn(d.nrows(), free.len(), |r, c| d[(r, free[c])]);
+    spectral::refine_bottom(&mut values, &mut vectors, |v| &d_free * v);
     Ok(((spectral::Basis::Exact(vectors), values), coupling, Some(k)))
 }
 
@@ -1257,8 +1266,9 @@ fn with_limits(
 }
 
 /// The parsimony margin of [`with_limits`] in standard errors of the score (chosen on the
-/// tuning nets, `docs/experiments/surface-fairing.md`).
-const LIMIT_SE_FACTOR: f64 = 0.25;
+/// tuning nets, `docs/experiments/surface-fairing.md`: 0.25 while the smoothest modes were
+/// round-off null, 2 since the spectrum's bottom is refined).
+const LIMIT_SE_FACTOR: f64 = 2.0;
 
 /// A weight at least this large is the limit λ → ∞ ([`LOG_LAMBDA_LIMIT`], after the refusal
 /// rule's retries at a tenth each).

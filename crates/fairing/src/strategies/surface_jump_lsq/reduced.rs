@@ -54,7 +54,7 @@ use crate::state::strategy_error;
 use crate::Result;
 
 use super::operator::{gram, jump_matrix};
-use super::spectral::symmetric_eigen;
+use super::spectral::{refine_bottom, symmetric_eigen};
 use super::NAME;
 
 /// The site indices of the reduced knots: `count` of the `sites` spread by count, the first
@@ -169,7 +169,8 @@ impl Reduced {
             DMatrix::from_fn(rs.len(), cs.len(), |i, j| a[(rs[i], cs[j])])
         };
         let ntn = sub(&ntn_full, &free, &free);
-        let k_full = gram(&jump_matrix(&tau, closed)?);
+        let d = jump_matrix(&tau, closed)?;
+        let k_full = gram(&d);
         let k_free = sub(&k_full, &free, &free);
         let k_held = sub(&k_full, &free, &held);
         // faer's blocked Cholesky and triangular solves (nalgebra's are unblocked, several
@@ -184,7 +185,14 @@ impl Reduced {
         let mut kt = lk.transpose().to_owned();
         l.solve_lower_triangular_in_place(&mut kt);
         let kt = DMatrix::from_fn(f, f, |i, j| 0.5 * (kt[(i, j)] + kt[(j, i)]));
-        let (mu, u) = symmetric_eigen(&kt);
+        let (mut mu, mut u) = symmetric_eigen(&kt);
+        // L⁻¹K'L⁻ᵀ = (D' L⁻ᵀ)ᵀ (D' L⁻ᵀ) with D' the jumps over the free knots.
+        let d_free = sub(&d, &(0..d.nrows()).collect::<Vec<_>>(), &free);
+        refine_bottom(&mut mu, &mut u, |v| {
+            let mut x = to_faer(v);
+            l.transpose().solve_upper_triangular_in_place(&mut x);
+            &d_free * DMatrix::from_fn(x.nrows(), x.ncols(), |i, j| x[(i, j)])
+        });
         let mut w = to_faer(&u);
         l.transpose().solve_upper_triangular_in_place(&mut w);
         let w = DMatrix::from_fn(f, f, |i, j| w[(i, j)]);
