@@ -323,8 +323,9 @@ pub struct SurfaceJumpLsq {
 }
 
 /// Sites along a direction above which its lines take a reduced basis (module `reduced`) of
-/// this many knots when the [`COARSE_KNOTS`] basis does not resolve the fit. Its cost is that of the exact path at M_MAX sites (O(M_MAX³) once, the
-/// eigendecomposition ~0.2 s at 800, then O(M_MAX²) per line transformed); above it the exact
+/// this many knots when the [`COARSE_KNOTS`] basis does not resolve the fit. Its cost is that
+/// of the exact path at M_MAX sites (O(M_MAX³) once, the eigendecomposition ~0.2 s at 800,
+/// then O(M_MAX²) per line transformed); above it the exact
 /// path's O(m³) time and O(m²) memory dominate a run (2.4 s for the eigendecomposition alone
 /// at 2000 sites, ~20 s at 4000). 800 knots keep a detail of 1/400 of the direction's length,
 /// finer than a smoothing fit keeps along a scanned strip or a hull's length.
