@@ -1058,3 +1058,40 @@ fn a_coarse_basis_is_kept_only_where_it_resolves_the_fit() {
         .unwrap();
     assert_eq!(default.surface.points(), exact_fit(&wavy).surface.points());
 }
+
+#[test]
+fn a_smooth_net_of_hundreds_of_sites_is_faired_near_its_clean_surface_on_the_exact_path() {
+    // 400 × 20 sites of a smooth surface with noise, on the exact path (no reduction). With
+    // the penalty's smoothest modes along u taken as round-off null (the 3rd to ~14th on 400
+    // sites) this net was "faired" at λ_u → ∞ to 8.4 times the input's distance from the clean
+    // surface. It must end nearer than a fifth of the input's (RMS).
+    let (rows, columns) = (400, 20);
+    let clean = |x: f64, y: f64| {
+        let pi = std::f64::consts::PI;
+        Vec3::new(x, y, 0.2 * (2.4 * pi * x).sin() * (0.6 * pi * y).cos())
+    };
+    let grid = noisy_net(rows, columns, 0.02, 1, clean);
+    let result = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default())
+        .with_reduction(usize::MAX, usize::MAX)
+        .fit(&grid, None)
+        .unwrap();
+    let truth: Vec<Vec3> = (0..rows)
+        .flat_map(|i| {
+            (0..columns).map(move |j| clean(i as f64 / (rows - 1) as f64, j as f64 / (columns - 1) as f64))
+        })
+        .collect();
+    let rms = |a: &[Vec3]| {
+        (a.iter()
+            .zip(&truth)
+            .map(|(p, q)| (p - q).norm_squared())
+            .sum::<f64>()
+            / a.len() as f64)
+            .sqrt()
+    };
+    let flat: Vec<Vec3> = grid.iter().flatten().copied().collect();
+    let (input, faired) = (rms(&flat), rms(result.surface.points()));
+    assert!(
+        faired < 0.2 * input,
+        "RMS to the clean surface {faired}, the input's {input}"
+    );
+}
