@@ -67,6 +67,9 @@ fn g0_keeps_the_boundary_bit_for_bit_and_the_interior_nears_the_truth() {
     assert!(after < 0.8 * before, "RMS to the clean net {before} -> {after}");
     assert!(out.extras["lambda_u"].as_f64().unwrap() > 0.0);
     assert!(out.extras["lambda_v"].as_f64().unwrap() > 0.0);
+    // G0 holds the boundary lines: the exact path fits the 18 × 22 interior lines.
+    assert_eq!(out.extras["basis_u"].as_u64(), Some(18));
+    assert_eq!(out.extras["basis_v"].as_u64(), Some(22));
 }
 
 #[test]

@@ -68,6 +68,8 @@ impl SurfaceMethod for SurfaceJumpLsqMethod {
         extras.insert("band_pins".into(), serde_json::json!(result.band_pins));
         extras.insert("cg_iterations".into(), serde_json::json!(result.cg_iterations));
         extras.insert("displacement_sum".into(), serde_json::json!(result.displacement));
+        extras.insert("basis_u".into(), serde_json::json!(result.basis.0));
+        extras.insert("basis_v".into(), serde_json::json!(result.basis.1));
         if !result.joins.is_empty() {
             extras.insert("joins".into(), serde_json::json!(result.joins));
         }

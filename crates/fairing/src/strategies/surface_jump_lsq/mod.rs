@@ -313,6 +313,10 @@ pub struct SurfaceJumpLsqResult {
     pub elapsed: Duration,
     /// The joined edges, with their gaps, angles and curvature jumps before and after.
     pub joins: Vec<JoinReport>,
+    /// The size of the basis each direction (u, v) was fitted in: its free lines on the exact
+    /// path, its knots on a reduced one (200 where the coarse basis resolved the fit, else 800;
+    /// module docs); 0 where nothing was fitted.
+    pub basis: (usize, usize),
 }
 
 /// Surface jump least squares; see the [module docs](self).
@@ -527,6 +531,7 @@ impl SurfaceJumpLsq {
         let mut cg_iterations = 0;
         let mut refused = 0;
         let mut resolved = true;
+        let mut basis = (0, 0);
         if !free_rows.is_empty() && !free_cols.is_empty() && given != Some(Weights::both(0.0)) {
             let held_rows: Vec<usize> = (0..mu).filter(|&i| held_row[i]).collect();
             let held_cols: Vec<usize> = (0..nv).filter(|&j| held_col[j]).collect();
@@ -779,6 +784,7 @@ impl SurfaceJumpLsq {
                 dof = n_free;
             }
             resolved = spectral.resolves(lambda_used, share);
+            basis = (spectral.mu.len(), spectral.nu.len());
         }
         let points = expand(&out_distinct, rows, columns, mu, nv);
         if points.iter().any(|p| !p.iter().all(|c| c.is_finite())) {
@@ -820,6 +826,7 @@ impl SurfaceJumpLsq {
                 moved,
                 elapsed: started.elapsed(),
                 joins,
+                basis,
             },
             resolved,
         ))

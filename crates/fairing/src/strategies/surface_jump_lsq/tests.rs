@@ -1035,6 +1035,7 @@ fn a_coarse_basis_is_kept_only_where_it_resolves_the_fit() {
         .fit(&smooth, None)
         .unwrap();
     assert_eq!(default.surface.points(), coarse.surface.points());
+    assert_eq!(default.basis, (super::COARSE_KNOTS, columns));
     let exact = exact_fit(&smooth);
     assert_ne!(default.surface.points(), exact.surface.points());
     let gap = default
@@ -1057,6 +1058,7 @@ fn a_coarse_basis_is_kept_only_where_it_resolves_the_fit() {
         .fit(&wavy, None)
         .unwrap();
     assert_eq!(default.surface.points(), exact_fit(&wavy).surface.points());
+    assert_eq!(default.basis, (rows, columns));
 }
 
 #[test]
