@@ -980,7 +980,7 @@ fn direction_part(
         (0..3).map(|c| oriented(&k_held * ends(c))).collect()
     });
     let (mut values, mut vectors) = spectral::symmetric_eigen(&k);
-    let d_free = DMatrix::from_fn(d.nrows(), free.len(), |r, c| d[(r, free[c])]);
+    let d_free = d.select_columns(free);
     spectral::refine_bottom(&mut values, &mut vectors, |v| &d_free * v);
     Ok(((spectral::Basis::Exact(vectors), values), coupling, Some(k)))
 }

@@ -187,7 +187,7 @@ impl Reduced {
         let kt = DMatrix::from_fn(f, f, |i, j| 0.5 * (kt[(i, j)] + kt[(j, i)]));
         let (mut mu, mut u) = symmetric_eigen(&kt);
         // L⁻¹K'L⁻ᵀ = (D' L⁻ᵀ)ᵀ (D' L⁻ᵀ) with D' the jumps over the free knots.
-        let d_free = sub(&d, &(0..d.nrows()).collect::<Vec<_>>(), &free);
+        let d_free = d.select_columns(&free);
         refine_bottom(&mut mu, &mut u, |v| {
             let mut x = to_faer(v);
             l.transpose().solve_upper_triangular_in_place(&mut x);
