@@ -407,26 +407,30 @@ impl SurfaceJumpLsq {
                 knots: COARSE_KNOTS,
             };
             // An error on the coarse basis is the full run's to report.
-            if let Ok((mut result, true)) = self.fit_with(grid, given, coarse, COARSE_DOF_SHARE) {
+            if let Ok(Some(mut result)) = self.fit_with(grid, given, coarse, COARSE_DOF_SHARE) {
                 result.elapsed = started.elapsed();
                 return Ok(result);
             }
         }
-        let (mut result, _) = self.fit_with(grid, given, self.reduction, 1.0)?;
+        let mut result = self
+            .fit_with(grid, given, self.reduction, 1.0)?
+            .ok_or_else(|| strategy_error(NAME, "no basis resolves the fit"))?;
         result.elapsed = started.elapsed();
         Ok(result)
     }
 
-    /// [`fit`](Self::fit) with the reduction `reduction`; and whether each reduced direction's
-    /// basis resolves the fit (its equivalent degrees of freedom at most `share` of its size,
-    /// [`Spectral::resolves`]).
+    /// [`fit`](Self::fit) with the reduction `reduction`; `None` when a reduced direction's
+    /// basis does not resolve the fit (its equivalent degrees of freedom more than `share` of
+    /// its size, [`Spectral::resolves`]; never with `share` = 1). That is known once λ is
+    /// chosen, before the guard's judging and the output are paid for: the guard only lowers λ,
+    /// which only adds degrees of freedom.
     fn fit_with(
         &self,
         grid: &[Vec<Vec3>],
         given: Option<Weights>,
         reduction: Reduction,
         share: f64,
-    ) -> Result<(SurfaceJumpLsqResult, bool)> {
+    ) -> Result<Option<SurfaceJumpLsqResult>> {
         let settings = &self.settings;
         settings.validate()?;
         let started = std::time::Instant::now();
@@ -530,7 +534,6 @@ impl SurfaceJumpLsq {
         let mut band_pins = 0;
         let mut cg_iterations = 0;
         let mut refused = 0;
-        let mut resolved = true;
         let mut basis = (0, 0);
         if !free_rows.is_empty() && !free_cols.is_empty() && given != Some(Weights::both(0.0)) {
             let held_rows: Vec<usize> = (0..mu).filter(|&i| held_row[i]).collect();
@@ -706,6 +709,9 @@ impl SurfaceJumpLsq {
                     }
                 }
             };
+            if !spectral.resolves(lambda, share) {
+                return Ok(None);
+            }
             let system = Block {
                 spectral: &spectral,
                 operators: ku.as_ref().zip(kv.as_ref()),
@@ -783,7 +789,9 @@ impl SurfaceJumpLsq {
                 lambda_used = Weights::both(0.0);
                 dof = n_free;
             }
-            resolved = spectral.resolves(lambda_used, share);
+            if !spectral.resolves(lambda_used, share) {
+                return Ok(None);
+            }
             basis = (spectral.mu.len(), spectral.nu.len());
         }
         let points = expand(&out_distinct, rows, columns, mu, nv);
@@ -811,25 +819,22 @@ impl SurfaceJumpLsq {
                 .map(|p| p.report(p.measure(&own), p.measure(&surface)))
                 .collect()
         };
-        Ok((
-            SurfaceJumpLsqResult {
-                surface,
-                lambda_u: lambda_used.u,
-                lambda_v: lambda_used.v,
-                gcv: gcv_score,
-                dof,
-                displacement,
-                band_pins,
-                cg_iterations,
-                refused,
-                topology,
-                moved,
-                elapsed: started.elapsed(),
-                joins,
-                basis,
-            },
-            resolved,
-        ))
+        Ok(Some(SurfaceJumpLsqResult {
+            surface,
+            lambda_u: lambda_used.u,
+            lambda_v: lambda_used.v,
+            gcv: gcv_score,
+            dof,
+            displacement,
+            band_pins,
+            cg_iterations,
+            refused,
+            topology,
+            moved,
+            elapsed: started.elapsed(),
+            joins,
+            basis,
+        }))
     }
 }
 
