@@ -3,11 +3,16 @@
 (surface-fairing.md, "A coarse basis first").
 
     python surface-large-nets.py OUT FAMILY:SIZE:SEED:LEVEL ...   write OUT/NAME_{clean,noisy}.csv
+    python surface-large-nets.py OUT FAMILY:SIZE:SEED:LEVEL:join ...  and OUT/NAME_nb.csv
     python surface-large-nets.py --rms CLEAN NOISY FAIRED_A [FAIRED_B]
 
 Families over the unit square, SIZE x SIZE nodes, z only noisy (sigma = LEVEL x 0.002 x the
 bounding-box diagonal): smooth (0.2 sin(3 pi a u) cos(2 pi b v)), detail (40 Gaussian bumps of
 1/60..1/25 of the side), fine (300 bumps of 1/300..1/120), waves (4 plane waves of 2..12 pi).
+With `join` the family is drawn on 2 SIZE - 1 rows over u in [0, 1]: the net is the rows of
+u >= 1/2 (SIZE x SIZE, noisy, and its clean twin), its neighbour (NAME_nb.csv, clean) the rows
+of u <= 1/2, so the two share the edge u = 1/2 (the net's u0; `fair surface NET --join
+u0=NB:g1`, surface-fairing.md, "Joins on reduced bases").
 --rms prints the RMS distance to the clean net of each faired net, the input's, and the largest
 node difference between A and B over the input's RMS.
 """
@@ -17,9 +22,9 @@ import sys
 import numpy as np
 
 
-def net(fam, m, seed, level=1.0):
+def net(fam, m, seed, level=1.0, rows=None):
     r = np.random.default_rng(seed)
-    u, v = np.meshgrid(np.linspace(0, 1, m), np.linspace(0, 1, m), indexing="ij")
+    u, v = np.meshgrid(np.linspace(0, 1, rows or m), np.linspace(0, 1, m), indexing="ij")
     if fam == "smooth":
         z = 0.2 * np.sin(3 * u * np.pi * r.uniform(0.5, 1.5)) * np.cos(2 * v * np.pi * r.uniform(0.5, 1.5))
     elif fam in ("detail", "fine"):
@@ -65,9 +70,13 @@ if __name__ == "__main__":
     else:
         os.makedirs(sys.argv[1], exist_ok=True)
         for spec in sys.argv[2:]:
-            fam, m, seed, level = spec.split(":")
-            clean, noisy = net(fam, int(m), int(seed), float(level))
+            fam, m, seed, level, *join = spec.split(":")
+            m = int(m)
+            clean, noisy = net(fam, m, int(seed), float(level), 2 * m - 1 if join else None)
             name = f"{fam}_{m}_{seed}_{level}"
+            if join:
+                write(os.path.join(sys.argv[1], name + "_nb.csv"), clean[:m])
+                clean, noisy = clean[m - 1:], noisy[m - 1:]
             write(os.path.join(sys.argv[1], name + "_clean.csv"), clean)
             write(os.path.join(sys.argv[1], name + "_noisy.csv"), noisy)
             print(name)

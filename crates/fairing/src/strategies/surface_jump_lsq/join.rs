@@ -47,6 +47,20 @@
 //! (the scattered-node solve does not carry these constraints). g0 joins combine with
 //! everything but a node fixed on the joined edge.
 //!
+//! # Reduced bases
+//!
+//! On a long direction (module `reduced`) the same algebra holds with that direction's
+//! reduced basis T (orthonormal at the sites) in place of the eigenbasis: ĉ = Tᵀc across
+//! the edge, τ̂ = Tᵀτ along it. The joined edge is a held end, which shifts the block's data
+//! by its line (the shift's part of cᵀX is taken from τ first). Along a reduced direction τ̂
+//! is τ's projection, so the spectral correction meets the constraints in the reduced space
+//! only; the solution at the sites is then brought onto them exactly by the least change per
+//! line, x_l −= C (CᵀC)⁻¹ (Cᵀx_l − τ_l) (`correct_at_sites`), C's rows decaying away from the
+//! edge within a few lines. That change is the size of τ's part outside the basis (at most
+//! 7·10⁻⁶ on unit nets whose noise was 1.4·10⁻³ to 5.7·10⁻³, `docs/experiments/
+//! surface-joins.md`), and GCV does not see it. With knots at every site it is nothing, and
+//! the fit is the exact path's (tested to round-off).
+//!
 //! # The report
 //!
 //! [`JoinReport`]: along the edge, at every node and at the middle of every span, the gap
@@ -576,12 +590,25 @@ pub(crate) struct Joined {
     c_hat: Vec<DVector<f64>>,
     /// τ̂_k per coordinate (over the other direction's free lines).
     t_hat: Vec<[DVector<f64>; 3]>,
+    /// With a reduced basis, the constraints at the sites ([`Joined::correct_at_sites`]): c_k
+    /// over the free lines across, τ_k per coordinate over the other direction's free lines,
+    /// and (CᵀC)⁻¹.
+    at_sites: Option<AtSites>,
+}
+
+/// The constraints at the sites, c_kᵀ X[:, l] = τ_k,l (module docs, "Reduced bases").
+struct AtSites {
+    c: Vec<DVector<f64>>,
+    tau: Vec<[DVector<f64>; 3]>,
+    ctc_inverse: DMatrix<f64>,
 }
 
 impl Joined {
     /// The constraints of the g1/g2 joins in `prepared` (None when there are none), for the
     /// block of `free_rows` × `free_cols` with held values `data(i, j)` elsewhere, over our
-    /// knots `u_knots`, `v_knots`. The caller has refused g1/g2 joins across both directions.
+    /// knots `u_knots`, `v_knots`; `shift` the block's data shift by a reduced direction's held
+    /// ends (added back to the solution, so taken from the targets in the spectral space). The
+    /// caller has refused g1/g2 joins across both directions.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn new(
         prepared: &[Prepared],
@@ -591,6 +618,7 @@ impl Joined {
         free_cols: &[usize],
         data: &dyn Fn(usize, usize) -> Vec3,
         spectral: &Spectral,
+        shift: Option<&Planes>,
     ) -> Option<Self> {
         let held: Vec<&Prepared> = prepared.iter().filter(|p| p.holds_tangent()).collect();
         let first = held.first()?;
@@ -613,6 +641,8 @@ impl Joined {
         };
         let mut c_hat = Vec::new();
         let mut t_hat = Vec::new();
+        let mut c_sites = Vec::new();
+        let mut tau_sites = Vec::new();
         for p in held {
             let (c, targets) = p.constraint(across_knots);
             let c_free = DVector::from_iterator(mine.len(), mine.iter().map(|&q| c[q]));
@@ -634,14 +664,89 @@ impl Joined {
                     }),
                 )
             });
+            // The shift's part of c_kᵀ X[:, l] is known: the spectral part must meet the rest.
+            let shifted: [DVector<f64>; 3] = std::array::from_fn(|coord| {
+                let mut t = tau[coord].clone();
+                if let Some(shift) = shift {
+                    let plane = &shift[coord];
+                    for (l, entry) in t.iter_mut().enumerate() {
+                        *entry -= c_free
+                            .iter()
+                            .enumerate()
+                            .map(|(q, c)| {
+                                c * if lines_are_columns {
+                                    plane[(q, l)]
+                                } else {
+                                    plane[(l, q)]
+                                }
+                            })
+                            .sum::<f64>();
+                    }
+                }
+                t
+            });
             c_hat.push(basis.t_vector(&c_free));
-            t_hat.push(tau.map(|t| other_basis.t_vector(&t)));
+            t_hat.push(shifted.map(|t| other_basis.t_vector(&t)));
+            c_sites.push(c_free);
+            tau_sites.push(tau);
         }
+        let at_sites = spectral.is_reduced().then(|| {
+            let k = c_sites.len();
+            let ctc = DMatrix::from_fn(k, k, |a, b| c_sites[a].dot(&c_sites[b]));
+            AtSites {
+                ctc_inverse: ctc.try_inverse().unwrap_or_else(|| DMatrix::zeros(k, k)),
+                c: c_sites,
+                tau: tau_sites,
+            }
+        });
         Some(Self {
             lines_are_columns,
             c_hat,
             t_hat,
+            at_sites,
         })
+    }
+
+    /// With a reduced basis, the solution `x` at the sites (its shift added) brought onto the
+    /// constraints exactly. The spectral correction meets them within the reduced space only:
+    /// τ̂ = Tᵀτ is τ's projection along the edge, so the derivative across the edge misses the
+    /// neighbour's by τ's part outside that space (small where the basis resolves the edge).
+    /// Each line takes the least change that meets them, x_l −= C (CᵀC)⁻¹ (Cᵀ x_l − τ_l),
+    /// C = [c_k] (the end-derivative rows, which decay away from the edge within a few
+    /// lines). Exact bases meet the constraints already (nothing is done). O(m·n).
+    pub(crate) fn correct_at_sites(&self, x: &mut Planes) {
+        let Some(sites) = &self.at_sites else {
+            return;
+        };
+        let k = sites.c.len();
+        for (coord, plane) in x.iter_mut().enumerate() {
+            let lines = if self.lines_are_columns {
+                plane.ncols()
+            } else {
+                plane.nrows()
+            };
+            for l in 0..lines {
+                let mut line: Vec<f64> = if self.lines_are_columns {
+                    plane.column(l).iter().copied().collect()
+                } else {
+                    plane.row(l).iter().copied().collect()
+                };
+                let r = DVector::from_fn(k, |a, _| {
+                    sites.c[a].iter().zip(&line).map(|(c, v)| c * v).sum::<f64>() - sites.tau[a][coord][l]
+                });
+                let mu = &sites.ctc_inverse * r;
+                for (q, entry) in line.iter_mut().enumerate() {
+                    *entry -= (0..k).map(|a| sites.c[a][q] * mu[a]).sum::<f64>();
+                }
+                for (q, v) in line.into_iter().enumerate() {
+                    if self.lines_are_columns {
+                        plane[(q, l)] = v;
+                    } else {
+                        plane[(l, q)] = v;
+                    }
+                }
+            }
+        }
     }
 
     /// g_ab at the entry (q along the constrained direction, l the line).

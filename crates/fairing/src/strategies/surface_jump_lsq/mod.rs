@@ -102,17 +102,20 @@
 //! reduced space at the sites; the entrywise solve, GCV's RSS and trace as spectral sums (the
 //! RSS with the data's part outside the reduced space), the limits and the search are
 //! unchanged. With its knots at every site it is the exact method (tested to round-off). The
-//! reduced path serves plain blocks and held ends of an open direction (a boundary under
-//! `g0`, a pole row: the spline's end value is the held value) when the other direction is
-//! exact; joins, scattered fixed nodes, the tolerance band, held interior lines, held lines
-//! of a closed direction, and held lines with both directions long are solved exactly, at
-//! the exact path's cost below.
+//! reduced path serves plain blocks, held ends of an open direction (a boundary under `g0`, a
+//! pole row, a joined edge: the spline's end value is the held value) and joins (module
+//! `join`, "Reduced bases"). Held ends shift the data by their lines; the other direction's
+//! penalty sees that shift exactly when that direction is exact, and through its projection
+//! onto the basis when it is reduced too (the Galerkin form of the same problem; the output
+//! keeps the held lines themselves). Scattered fixed nodes, the tolerance band, held interior
+//! lines, held lines of a closed direction, and held ends in both directions with both
+//! reduced are solved exactly, at the exact path's cost below.
 //!
 //! Before that, when λ is chosen by GCV, a net with a direction of more than `COARSE_KNOTS`
 //! (200) sites is fitted with every such direction on a basis of 200 knots; that fit is kept
 //! when the basis resolves it: along each reduced direction the fit's equivalent degrees of
-//! freedom are at most half the basis's size (`COARSE_DOF_SHARE`). Otherwise the net is fitted
-//! again as above. A smooth surface's fit keeps a few dozen degrees of freedom a direction,
+//! freedom are at most half the basis's size (`COARSE_DOF_SHARE`), checked as soon as λ is
+//! chosen. Otherwise the net is fitted again as above. A smooth surface's fit keeps a few dozen degrees of freedom a direction,
 //! so a scanned net of 10⁵–10⁶ nodes usually costs the 200-knot basis only.
 //!
 //! # The spectrum's bottom
@@ -541,12 +544,13 @@ impl SurfaceJumpLsq {
             let (nr, nc) = (free_rows.len(), free_cols.len());
             let mut y = planes(nr, nc, |a, b| data(free_rows[a], free_cols[b]));
             // A direction longer than the reduction's threshold takes the reduced basis (module
-            // `reduced`) where the block is one it serves: no joins, band or scattered fixed
-            // nodes, and held lines of that direction only at the ends of an open direction.
+            // `reduced`) where the block is one it serves: no band or scattered fixed nodes,
+            // and held lines of that direction only at the ends of an open direction (a joined
+            // edge is one).
             let scattered_held = free_rows
                 .iter()
                 .any(|&i| free_cols.iter().any(|&j| held[i * nv + j]));
-            let simple = prepared.is_empty() && settings.max_distance.is_none() && !scattered_held;
+            let simple = settings.max_distance.is_none() && !scattered_held;
             let reducible = |count: usize, closed: bool, held: &[usize]| {
                 simple
                     && count > reduction.above
@@ -561,9 +565,10 @@ impl SurfaceJumpLsq {
                 reducible(nv, topology.closed_v, &held_cols),
             );
             // A reduced direction's held ends shift the data by lines that the other direction's
-            // penalty must see at the sites (below); with both directions reduced that shift is
-            // in neither basis, so such a net is solved exactly.
-            if reduce_u && reduce_v && !(held_rows.is_empty() && held_cols.is_empty()) {
+            // penalty must see (below). With both directions reduced that works for held ends
+            // of one direction; with held ends in both, the corners' product term is in neither
+            // basis, so such a net is solved exactly.
+            if reduce_u && reduce_v && !held_rows.is_empty() && !held_cols.is_empty() {
                 (reduce_u, reduce_v) = (false, false);
             }
             // Each direction's basis, coupling to its held lines and exact K (`direction_part`).
@@ -632,10 +637,29 @@ impl SurfaceJumpLsq {
             };
             let spectral = Spectral::from_parts(u_part, v_part);
             let y_hat = spectral.forward(&y);
-            let c_hat = coupling.as_ref().map(|c| Coupling {
+            let mut c_hat = coupling.as_ref().map(|c| Coupling {
                 u: spectral.forward_with(&c.u, u_at_sites, true),
                 v: spectral.forward_with(&c.v, true, v_at_sites),
             });
+            // With both directions reduced, the shift S (one direction's held ends) meets the
+            // other direction's reduced penalty through its projection onto that basis: the
+            // penalty's gradient there is Ŝ scaled by that direction's eigenvalues (ν_b Ŝ_ab
+            // for held rows, μ_a Ŝ_ab for held columns), as S K_v is for an exact v.
+            if let (Some(shift), Some(c_hat), true) = (&shift, c_hat.as_mut(), reduce_u && reduce_v) {
+                let s_hat = spectral.forward(shift);
+                let (part, values, along_rows) = if held_cols.is_empty() {
+                    (&mut c_hat.v, &spectral.nu, false)
+                } else {
+                    (&mut c_hat.u, &spectral.mu, true)
+                };
+                for (p, s) in part.iter_mut().zip(&s_hat) {
+                    for b in 0..s.ncols() {
+                        for a in 0..s.nrows() {
+                            p[(a, b)] += s[(a, b)] * values[if along_rows { a } else { b }];
+                        }
+                    }
+                }
+            }
             let n_free = (nr * nc) as f64;
             let joined = join::Joined::new(
                 &prepared,
@@ -645,18 +669,21 @@ impl SurfaceJumpLsq {
                 &free_cols,
                 &data,
                 &spectral,
+                shift.as_ref(),
             );
-            let mut energies = Energies::new(&y_hat, c_hat.as_ref());
-            if spectral.is_reduced() {
+            let outside = if spectral.is_reduced() {
                 let inside = spectral.back(&y_hat);
-                energies = energies.with_outside((0..3).map(|c| (&y[c] - &inside[c]).norm_squared()).sum());
-            }
+                (0..3).map(|c| (&y[c] - &inside[c]).norm_squared()).sum()
+            } else {
+                0.0
+            };
+            let energies = Energies::new(&y_hat, c_hat.as_ref()).with_outside(outside);
             let rss_trace = |w: Weights| match &joined {
                 None => spectral.rss_trace(&energies, w),
                 Some(joined) => {
                     let mut x = spectral.solve_hat(&y_hat, c_hat.as_ref(), w);
                     let loss = joined.correct_with_trace_loss(&mut x, &spectral, w);
-                    let rss = (0..3).map(|c| (&x[c] - &y_hat[c]).norm_squared()).sum::<f64>();
+                    let rss = outside + (0..3).map(|c| (&x[c] - &y_hat[c]).norm_squared()).sum::<f64>();
                     let trace = spectral.trace(w) - loss;
                     (rss, trace)
                 }
@@ -1021,6 +1048,9 @@ impl Block<'_> {
             for (p, s) in x.iter_mut().zip(shift) {
                 *p += s;
             }
+        }
+        if let Some(joined) = self.joined {
+            joined.correct_at_sites(&mut x);
         }
         // The right-hand side at the sites, for the constrained solves only (a reduced block,
         // whose coupling may lie in a reduced basis's coefficients, has none).

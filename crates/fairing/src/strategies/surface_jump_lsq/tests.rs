@@ -1097,3 +1097,140 @@ fn a_smooth_net_of_hundreds_of_sites_is_faired_near_its_clean_surface_on_the_exa
         "RMS to the clean surface {faired}, the input's {input}"
     );
 }
+
+/// The natural cubic splines on `count` knots of the input's `sites` (knot sites spread by
+/// count, module `reduced`) evaluated at the sites: N (sites × knots).
+fn spline_basis(sites: &[f64], count: usize) -> DMatrix<f64> {
+    let knot_sites = super::reduced::knot_sites(sites.len(), count, false);
+    let tau: Vec<f64> = knot_sites.iter().map(|&i| sites[i]).collect();
+    DMatrix::from_fn(sites.len(), count, |i, k| {
+        let e: Vec<f64> = (0..count).map(|q| f64::from(u8::from(q == k))).collect();
+        natural_spline(&tau, &e)(sites[i])
+    })
+}
+
+#[test]
+fn both_directions_reduced_with_held_ends_of_one_solve_their_normal_equations() {
+    // Both directions reduced (u to Mu knots, v to Mv), the first and last rows held: the
+    // model is X = N_uF C N_vᵀ + N_uE E N_vᵀ, E the held rows' projection onto the v basis
+    // (Eᵀ = (N_vᵀN_v)⁻¹N_vᵀHᵀ, H the held rows), and C minimises
+    // |X − Y|² + λ_u Σ_j |D'_u [E; C] n_j|² + λ_v Σ_i |D'_v (N_u [E; C])_i|², solved here
+    // densely. The output at the free nodes is N_uF C N_vᵀ + N_uE H: the held rows
+    // themselves, not their projection, at the edge's end of each u-line.
+    let (rows, columns, count) = (60, 48, 14);
+    let grid = noisy(rows, columns, 0.03);
+    let input = BicubicSplineSurface::new(&grid).unwrap();
+    let n_u = spline_basis(input.u_knots(), count);
+    let n_v = spline_basis(input.v_knots(), count);
+    let (r, f) = (rows - 2, count - 2);
+    let n_uf = n_u.view((1, 1), (r, f)).into_owned();
+    let n_ue = DMatrix::from_fn(r, 2, |i, e| n_u[(i + 1, if e == 0 { 0 } else { count - 1 })]);
+    let n_u_rows = n_u.rows(1, r).into_owned(); // N_u at the free rows, every coefficient
+    let ku = gram(&jump_matrix(&tau_of(input.u_knots(), count), false).unwrap());
+    let kv = gram(&jump_matrix(&tau_of(input.v_knots(), count), false).unwrap());
+    let ku_ff = ku.view((1, 1), (f, f)).into_owned();
+    let ku_fe = DMatrix::from_fn(f, 2, |i, e| ku[(i + 1, if e == 0 { 0 } else { count - 1 })]);
+    let vtv = n_v.transpose() * &n_v;
+    let vtv_inverse = vtv.clone().try_inverse().unwrap();
+    let held: Vec<(usize, usize)> = (0..columns).flat_map(|j| [(0, j), (rows - 1, j)]).collect();
+    for w in [Weights { u: 0.5, v: 3.0 }, Weights { u: 1e3, v: 1e-2 }] {
+        let result = SurfaceJumpLsq::new(
+            SurfaceJumpLsqSettings::default()
+                .with_guard(false)
+                .with_fixed(held.clone()),
+        )
+        .with_reduction(40, count)
+        .fit(&grid, Some(w))
+        .unwrap();
+        assert_eq!(result.basis, (f, count), "both directions reduced");
+        let out = result.surface.points();
+        for &(i, j) in &held {
+            assert_eq!(out[i * columns + j], grid[i][j]);
+        }
+        let a = n_uf.transpose() * &n_uf;
+        let system = vtv.kronecker(&a) + vtv.kronecker(&ku_ff) * w.u + kv.kronecker(&a) * w.v;
+        let lu = system.lu();
+        for k in 0..3 {
+            let y = DMatrix::from_fn(r, columns, |i, j| grid[i + 1][j][k]);
+            let h = DMatrix::from_fn(2, columns, |e, j| grid[if e == 0 { 0 } else { rows - 1 }][j][k]);
+            let e = (&vtv_inverse * n_v.transpose() * h.transpose()).transpose(); // 2 × Mv
+            let mut ec = DMatrix::zeros(count, count); // [E; C] with C zero
+            ec.row_mut(0).copy_from(&e.row(0));
+            ec.row_mut(count - 1).copy_from(&e.row(1));
+            let rhs = n_uf.transpose() * (&y - &n_ue * &h) * &n_v
+                - &ku_fe * &e * &vtv * w.u
+                - n_uf.transpose() * (&n_u_rows * &ec) * &kv * w.v;
+            let vec_c = lu.solve(&DVector::from_column_slice(rhs.as_slice())).unwrap();
+            let x =
+                &n_uf * DMatrix::from_column_slice(f, count, vec_c.as_slice()) * n_v.transpose() + &n_ue * &h;
+            for i in 0..r {
+                for j in 0..columns {
+                    let gap = (x[(i, j)] - out[(i + 1) * columns + j][k]).abs();
+                    assert!(gap < 1e-9, "{w:?} ({i}, {j}) coordinate {k}: {gap}");
+                }
+            }
+        }
+    }
+}
+
+/// The knots of a direction reduced to `count` of its `sites`.
+fn tau_of(sites: &[f64], count: usize) -> Vec<f64> {
+    super::reduced::knot_sites(sites.len(), count, false)
+        .iter()
+        .map(|&i| sites[i])
+        .collect()
+}
+
+#[test]
+fn a_g1_join_on_reduced_bases_is_the_exact_join_on_every_site_and_holds_on_fewer_knots() {
+    // A noisy net joined g1 on u0 to a clean neighbour of the same surface. With knots at
+    // every site (both directions reduced) the fit is the exact path's; on 12 knots a
+    // direction the edge is the neighbour's bit for bit and the tangent planes agree along it
+    // to round-off (the spectral correction meets the constraints in the reduced space only;
+    // the rest is met at the sites), and the fit nears the clean surface.
+    use super::join::{Continuity, Join, JoinEdge};
+    let surface = |x: f64, y: f64| Vec3::new(x, y, 0.3 * (2.0 * x).sin() * (1.5 * y).cos() + 0.1 * x * x);
+    let (rows, columns) = (36, 30);
+    let grid = noisy_net(rows, columns, 0.01, 3, |x, y| surface(0.5 + 0.5 * x, y));
+    let clean = noisy_net(rows, columns, 0.0, 3, |x, y| surface(0.5 + 0.5 * x, y));
+    let neighbour = noisy_net(rows, columns, 0.0, 3, |x, y| surface(0.5 * x, y));
+    let settings = SurfaceJumpLsqSettings::default().with_join(Join {
+        edge: JoinEdge::U0,
+        continuity: Continuity::G1,
+        neighbour: neighbour.clone(),
+        source: "neighbour".into(),
+    });
+    let flat: Vec<Vec3> = grid.iter().flatten().copied().collect();
+    for w in [Some(Weights { u: 2.0, v: 0.05 }), None] {
+        let (exact, reduced) = exact_and_all_knots(&grid, settings.clone(), w, 20);
+        assert_eq!(reduced.basis, (rows - 1, columns));
+        let gap = relative_gap(exact.surface.points(), reduced.surface.points(), &flat);
+        assert!(gap < 1e-9, "{w:?}: gap {gap}");
+    }
+    let reduced = SurfaceJumpLsq::new(settings)
+        .with_reduction(20, 12)
+        .run(&grid)
+        .unwrap();
+    assert_eq!(reduced.basis, (11, 12));
+    let out = reduced.surface.points();
+    for j in 0..columns {
+        assert_eq!(out[j], neighbour[rows - 1][j], "edge node {j}");
+    }
+    let report = &reduced.joins[0];
+    assert!(report.before.angle_degrees > 0.5, "{:?}", report.before);
+    assert!(report.after.angle_degrees < 1e-9, "{:?}", report.after);
+    let rms = |net: &[Vec3]| {
+        let sum: f64 = net
+            .iter()
+            .zip(clean.iter().flatten())
+            .map(|(p, q)| (p - q).norm_squared())
+            .sum();
+        (sum / net.len() as f64).sqrt()
+    };
+    assert!(
+        rms(out) < 0.5 * rms(&flat),
+        "{} against the input's {}",
+        rms(out),
+        rms(&flat)
+    );
+}
