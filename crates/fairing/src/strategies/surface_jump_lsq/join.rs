@@ -52,14 +52,15 @@
 //! On a long direction (module `reduced`) the same algebra holds with that direction's
 //! reduced basis T (orthonormal at the sites) in place of the eigenbasis: ĉ = Tᵀc across
 //! the edge, τ̂ = Tᵀτ along it. The joined edge is a held end, which shifts the block's data
-//! by its line (the shift's part of cᵀX is taken from τ first). Along a reduced direction τ̂
-//! is τ's projection, so the spectral correction meets the constraints in the reduced space
-//! only; the solution at the sites is then brought onto them exactly by the least change per
-//! line, x_l −= C (CᵀC)⁻¹ (Cᵀx_l − τ_l) (`correct_at_sites`), C's rows decaying away from the
-//! edge within a few lines. That change is the size of τ's part outside the basis (at most
-//! 7·10⁻⁶ on unit nets whose noise was 1.4·10⁻³ to 5.7·10⁻³, `docs/experiments/
-//! surface-joins.md`), and GCV does not see it. With knots at every site it is nothing, and
-//! the fit is the exact path's (tested to round-off).
+//! by its line, projected onto the basis along the edge when that direction is reduced too
+//! (module `reduced`, "Both directions"; the shift's part of cᵀX is taken from τ first).
+//! Along a reduced direction τ̂ is τ's projection, so the spectral correction meets the
+//! constraints in the reduced space only; the solution at the sites is then brought onto them
+//! exactly by the least change per line, x_l −= C (CᵀC)⁻¹ (Cᵀx_l − τ_l) (`correct_at_sites`),
+//! C's rows decaying away from the edge within a few lines. That change is the size of the
+//! edge's and τ's parts outside the basis (at most 2.9·10⁻⁵ on unit nets whose noise was
+//! 1.4·10⁻³ to 5.7·10⁻³, `docs/experiments/surface-joins.md`), and GCV does not see it. With
+//! knots at every site it is nothing, and the fit is the exact path's (tested to round-off).
 //!
 //! # The report
 //!

@@ -106,10 +106,9 @@
 //! pole row, a joined edge: the spline's end value is the held value) and joins (module
 //! `join`, "Reduced bases"). Held ends shift the data by their lines; the other direction's
 //! penalty sees that shift exactly when that direction is exact, and through its projection
-//! onto the basis when it is reduced too (the Galerkin form of the same problem; the output
-//! keeps the held lines themselves). Scattered fixed nodes, the tolerance band, held interior
-//! lines, held lines of a closed direction, and held ends in both directions with both
-//! reduced are solved exactly, at the exact path's cost below.
+//! onto the basis when it is reduced too (module `reduced`, "Both directions"). Scattered
+//! fixed nodes, the tolerance band, held interior lines and held lines of a closed direction
+//! are solved exactly, at the exact path's cost below.
 //!
 //! Before that, when λ is chosen by GCV, a net with a direction of more than `COARSE_KNOTS`
 //! (200) sites is fitted with every such direction on a basis of 200 knots; that fit is kept
@@ -560,18 +559,13 @@ impl SurfaceJumpLsq {
                         held.iter().all(|&i| i == 0 || i + 1 == count) && count - held.len() >= 2
                     }
             };
-            let (mut reduce_u, mut reduce_v) = (
+            let (reduce_u, reduce_v) = (
                 reducible(mu, topology.closed_u, &held_rows),
                 reducible(nv, topology.closed_v, &held_cols),
             );
-            // A reduced direction's held ends shift the data by lines that the other direction's
-            // penalty must see (below). With both directions reduced that works for held ends
-            // of one direction; with held ends in both, the corners' product term is in neither
-            // basis, so such a net is solved exactly.
-            if reduce_u && reduce_v && !held_rows.is_empty() && !held_cols.is_empty() {
-                (reduce_u, reduce_v) = (false, false);
-            }
-            // Each direction's basis, coupling to its held lines and exact K (`direction_part`).
+            // Each direction's basis, coupling to its held lines and exact K (`direction_part`);
+            // a reduced direction's held ends shift the data `y` by their lines (S_u, S_v).
+            let original = planes(nr, nc, |a, b| data(free_rows[a], free_cols[b]));
             let (u_part, coupling_u, ku) = direction_part(
                 input.u_knots(),
                 topology.closed_u,
@@ -582,6 +576,7 @@ impl SurfaceJumpLsq {
                 &mut y,
                 |c| DMatrix::from_fn(held_rows.len(), nc, |a, b| data(held_rows[a], free_cols[b])[c]),
             )?;
+            let after_u = y.clone();
             let (v_part, coupling_v, kv) = direction_part(
                 input.v_knots(),
                 topology.closed_v,
@@ -592,14 +587,17 @@ impl SurfaceJumpLsq {
                 &mut y,
                 |c| DMatrix::from_fn(held_cols.len(), nr, |a, b| data(free_rows[b], held_cols[a])[c]),
             )?;
+            let s_u: Planes = std::array::from_fn(|c| &original[c] - &after_u[c]);
+            let s_v: Planes = std::array::from_fn(|c| &after_u[c] - &y[c]);
             // Held ends of a reduced direction shifted the block's data by their lines' values
             // S; the solution gets the shift back, and the other (exact) direction's penalty
             // on X = Z + S adds λ S K (or λ K S) to the right-hand side: a coupling at the sites.
-            let shift: Option<Planes> =
-                ((reduce_u && !held_rows.is_empty()) || (reduce_v && !held_cols.is_empty())).then(|| {
-                    let original = planes(nr, nc, |a, b| data(free_rows[a], free_cols[b]));
-                    std::array::from_fn(|c| &original[c] - &y[c])
-                });
+            let (shifts_u, shifts_v) = (
+                reduce_u && !held_rows.is_empty(),
+                reduce_v && !held_cols.is_empty(),
+            );
+            let mut shift: Option<Planes> =
+                (shifts_u || shifts_v).then(|| std::array::from_fn(|c| &original[c] - &y[c]));
             let (mut coupling_u, mut coupling_v) = (coupling_u, coupling_v);
             if let Some(shift) = &shift {
                 let zeros = || vec![DMatrix::zeros(nr, nc); 3];
@@ -636,26 +634,65 @@ impl SurfaceJumpLsq {
                 })
             };
             let spectral = Spectral::from_parts(u_part, v_part);
+            // With both directions reduced the shift is the model's border (module `reduced`,
+            // "Both directions"): each direction's held lines less the corners' product
+            // P = N_uE P⁰[corners] N_vEᵀ (which both carry), projected onto the other basis, and
+            // P once.
+            let corners = (shifts_u && shifts_v).then(|| {
+                spectral.corner_product(|c| {
+                    DMatrix::from_fn(held_rows.len(), held_cols.len(), |a, b| {
+                        data(held_rows[a], held_cols[b])[c]
+                    })
+                })
+            });
+            let less_corners = |s: &Planes| -> Planes {
+                match &corners {
+                    Some(p) => std::array::from_fn(|c| &s[c] - &p[c]),
+                    None => s.clone(),
+                }
+            };
+            if reduce_u && reduce_v && (shifts_u || shifts_v) {
+                let mut border = corners
+                    .clone()
+                    .unwrap_or_else(|| planes(nr, nc, |_, _| Vec3::zeros()));
+                if shifts_u {
+                    let part = spectral.project_v(&less_corners(&s_u));
+                    border.iter_mut().zip(&part).for_each(|(b, p)| *b += p);
+                }
+                if shifts_v {
+                    let part = spectral.project_u(&less_corners(&s_v));
+                    border.iter_mut().zip(&part).for_each(|(b, p)| *b += p);
+                }
+                y = std::array::from_fn(|c| &original[c] - &border[c]);
+                shift = Some(border);
+            }
             let y_hat = spectral.forward(&y);
             let mut c_hat = coupling.as_ref().map(|c| Coupling {
                 u: spectral.forward_with(&c.u, u_at_sites, true),
                 v: spectral.forward_with(&c.v, true, v_at_sites),
             });
-            // With both directions reduced, the shift S (one direction's held ends) meets the
-            // other direction's reduced penalty through its projection onto that basis: the
-            // penalty's gradient there is Ŝ scaled by that direction's eigenvalues (ν_b Ŝ_ab
-            // for held rows, μ_a Ŝ_ab for held columns), as S K_v is for an exact v.
-            if let (Some(shift), Some(c_hat), true) = (&shift, c_hat.as_mut(), reduce_u && reduce_v) {
-                let s_hat = spectral.forward(shift);
-                let (part, values, along_rows) = if held_cols.is_empty() {
-                    (&mut c_hat.v, &spectral.nu, false)
-                } else {
-                    (&mut c_hat.u, &spectral.mu, true)
-                };
-                for (p, s) in part.iter_mut().zip(&s_hat) {
-                    for b in 0..s.ncols() {
-                        for a in 0..s.nrows() {
-                            p[(a, b)] += s[(a, b)] * values[if along_rows { a } else { b }];
+            // With both directions reduced, a direction's shift (less the corners' product,
+            // which the other direction's own held ends carry) meets the other direction's
+            // reduced penalty through its projection onto that basis: the penalty's gradient
+            // there is Ŝ scaled by that direction's eigenvalues (ν_b Ŝ_ab for held rows, μ_a Ŝ_ab
+            // for held columns), as S K_v is for an exact v (module `reduced`, "Both directions").
+            if let (Some(c_hat), true) = (c_hat.as_mut(), reduce_u && reduce_v) {
+                for (own, along_rows) in [
+                    (shifts_u.then_some(&s_u), false),
+                    (shifts_v.then_some(&s_v), true),
+                ] {
+                    let Some(own) = own else { continue };
+                    let s_hat = spectral.forward(&less_corners(own));
+                    let (part, values) = if along_rows {
+                        (&mut c_hat.u, &spectral.mu)
+                    } else {
+                        (&mut c_hat.v, &spectral.nu)
+                    };
+                    for (p, s) in part.iter_mut().zip(&s_hat) {
+                        for b in 0..s.ncols() {
+                            for a in 0..s.nrows() {
+                                p[(a, b)] += s[(a, b)] * values[if along_rows { a } else { b }];
+                            }
                         }
                     }
                 }

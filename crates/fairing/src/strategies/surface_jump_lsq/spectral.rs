@@ -163,6 +163,30 @@ impl Spectral {
         within(&self.u, &self.mu, w.u) && within(&self.v, &self.nu, w.v)
     }
 
+    /// N_uE C N_vEᵀ at the block's sites for both directions reduced with held ends, `corners(c)`
+    /// the held nodes where held rows and columns cross (held rows × held columns, coordinate
+    /// c): the corners' part of the two directions' held-end shifts. Empty planes when a
+    /// direction is exact.
+    pub(super) fn corner_product(&self, corners: impl Fn(usize) -> DMatrix<f64>) -> Planes {
+        std::array::from_fn(|c| match (&self.u, &self.v) {
+            (Basis::Reduced(u), Basis::Reduced(v)) => {
+                let along_u = u.held_parts(&corners(c)).0; // N_uE C: sites × held columns
+                v.held_parts(&along_u.transpose()).0.transpose()
+            }
+            _ => DMatrix::zeros(0, 0),
+        })
+    }
+
+    /// Each plane's columns projected onto the u basis, U Uᵀ X (X at the sites).
+    pub(super) fn project_u(&self, x: &Planes) -> Planes {
+        x.clone().map(|p| self.u.left(&self.u.t_left(&p, true)))
+    }
+
+    /// Each plane's rows projected onto the v basis, X V Vᵀ (X at the sites).
+    pub(super) fn project_v(&self, x: &Planes) -> Planes {
+        x.clone().map(|p| self.v.t_right(&self.v.right(&p, true)))
+    }
+
     /// Whether either direction has a reduced basis.
     pub(super) fn is_reduced(&self) -> bool {
         matches!(self.u, Basis::Reduced(_)) || matches!(self.v, Basis::Reduced(_))

@@ -710,8 +710,8 @@ fn boundary(rows: usize, columns: usize) -> Vec<(usize, usize)> {
 fn reduced_basis_with_held_ends_is_the_exact_method_on_every_site() {
     // Held boundary lines (g0) in a reduced direction are its clamped end coefficients: with
     // knots at every site the fit is the exact path's, and the held nodes are the input's bit
-    // for bit. One direction reduced at a time (u on 21 × 10, v on 10 × 21; with both reduced
-    // and held lines the net is solved exactly).
+    // for bit. One direction reduced at a time (u on 21 × 10, v on 10 × 21; both reduced:
+    // `both_directions_reduced_with_every_edge_held_solve_their_normal_equations`).
     for (rows, columns) in [(21, 10), (10, 21)] {
         let grid = noisy(rows, columns, 0.03);
         let settings = SurfaceJumpLsqSettings::default().with_fixed(boundary(rows, columns));
@@ -1115,8 +1115,7 @@ fn both_directions_reduced_with_held_ends_of_one_solve_their_normal_equations() 
     // model is X = N_uF C N_vᵀ + N_uE E N_vᵀ, E the held rows' projection onto the v basis
     // (Eᵀ = (N_vᵀN_v)⁻¹N_vᵀHᵀ, H the held rows), and C minimises
     // |X − Y|² + λ_u Σ_j |D'_u [E; C] n_j|² + λ_v Σ_i |D'_v (N_u [E; C])_i|², solved here
-    // densely. The output at the free nodes is N_uF C N_vᵀ + N_uE H: the held rows
-    // themselves, not their projection, at the edge's end of each u-line.
+    // densely; the output at the free nodes is X (the held rows themselves at the edge).
     let (rows, columns, count) = (60, 48, 14);
     let grid = noisy(rows, columns, 0.03);
     let input = BicubicSplineSurface::new(&grid).unwrap();
@@ -1161,8 +1160,8 @@ fn both_directions_reduced_with_held_ends_of_one_solve_their_normal_equations() 
                 - &ku_fe * &e * &vtv * w.u
                 - n_uf.transpose() * (&n_u_rows * &ec) * &kv * w.v;
             let vec_c = lu.solve(&DVector::from_column_slice(rhs.as_slice())).unwrap();
-            let x =
-                &n_uf * DMatrix::from_column_slice(f, count, vec_c.as_slice()) * n_v.transpose() + &n_ue * &h;
+            let x = (&n_uf * DMatrix::from_column_slice(f, count, vec_c.as_slice()) + &n_ue * &e)
+                * n_v.transpose();
             for i in 0..r {
                 for j in 0..columns {
                     let gap = (x[(i, j)] - out[(i + 1) * columns + j][k]).abs();
@@ -1233,4 +1232,86 @@ fn a_g1_join_on_reduced_bases_is_the_exact_join_on_every_site_and_holds_on_fewer
         rms(out),
         rms(&flat)
     );
+}
+
+#[test]
+fn both_directions_reduced_with_every_edge_held_solve_their_normal_equations() {
+    // Both directions reduced to M knots and the whole boundary held (g0). The model's
+    // coefficients C_full have the free block C, the corners P⁰ at the corner knots, and along
+    // each held edge the projection onto the free splines of that edge's data less the
+    // corners' end splines (h' = h − P⁰_corners N_vEᵀ, g' = g − N_uE P⁰_corners). C minimises
+    // |N_u C_full N_vᵀ − Y|² + λ_u tr(C_full AV C_fullᵀ K'_u) + λ_v tr(C_fullᵀ AU C_full K'_v)
+    // over the free sites (AU = N_uᵀN_u, AV = N_vᵀN_v there), solved here densely; the output
+    // there is N_u C_full N_vᵀ.
+    let (rows, columns, count) = (50, 44, 13);
+    let grid = noisy(rows, columns, 0.03);
+    let input = BicubicSplineSurface::new(&grid).unwrap();
+    let (ru, cv, f) = (rows - 2, columns - 2, count - 2);
+    // N at the free sites, every coefficient; F the free knots, E the two end knots.
+    let n_u = spline_basis(input.u_knots(), count).rows(1, ru).into_owned();
+    let n_v = spline_basis(input.v_knots(), count).rows(1, cv).into_owned();
+    let ends = [0, count - 1];
+    let free: Vec<usize> = (1..count - 1).collect();
+    let (n_uf, n_ue) = (n_u.select_columns(&free), n_u.select_columns(&ends));
+    let (n_vf, n_ve) = (n_v.select_columns(&free), n_v.select_columns(&ends));
+    let ku = gram(&jump_matrix(&tau_of(input.u_knots(), count), false).unwrap());
+    let kv = gram(&jump_matrix(&tau_of(input.v_knots(), count), false).unwrap());
+    let (au, av) = (n_u.transpose() * &n_u, n_v.transpose() * &n_v);
+    let ff = |m: &DMatrix<f64>| m.select_rows(&free).select_columns(&free);
+    let project =
+        |n: &DMatrix<f64>, y: &DMatrix<f64>| (n.transpose() * n).try_inverse().unwrap() * n.transpose() * y;
+    for w in [Weights { u: 0.5, v: 3.0 }, Weights { u: 1e3, v: 1e-2 }] {
+        let result = SurfaceJumpLsq::new(
+            SurfaceJumpLsqSettings::default()
+                .with_guard(false)
+                .with_fixed(boundary(rows, columns)),
+        )
+        .with_reduction(40, count)
+        .fit(&grid, Some(w))
+        .unwrap();
+        assert_eq!(result.basis, (f, f), "both directions reduced");
+        let out = result.surface.points();
+        for (i, j) in boundary(rows, columns) {
+            assert_eq!(out[i * columns + j], grid[i][j]);
+        }
+        let system = ff(&av).kronecker(&ff(&au))
+            + ff(&av).kronecker(&ff(&ku)) * w.u
+            + ff(&kv).kronecker(&ff(&au)) * w.v;
+        let lu = system.lu();
+        for k in 0..3 {
+            let y = DMatrix::from_fn(ru, cv, |i, j| grid[i + 1][j + 1][k]);
+            let h = DMatrix::from_fn(2, cv, |e, j| grid[[0, rows - 1][e]][j + 1][k]);
+            let g = DMatrix::from_fn(ru, 2, |i, e| grid[i + 1][[0, columns - 1][e]][k]);
+            let corners = DMatrix::from_fn(2, 2, |a, b| grid[[0, rows - 1][a]][[0, columns - 1][b]][k]);
+            let eh = project(&n_vf, &(&h - &corners * n_ve.transpose()).transpose()).transpose(); // 2 × f
+            let eg = project(&n_uf, &(&g - &n_ue * &corners)); // f × 2
+            let mut c0 = DMatrix::zeros(count, count);
+            for (a, &ka) in ends.iter().enumerate() {
+                for (b, &kb) in ends.iter().enumerate() {
+                    c0[(ka, kb)] = corners[(a, b)];
+                }
+                for (q, &kq) in free.iter().enumerate() {
+                    c0[(ka, kq)] = eh[(a, q)];
+                    c0[(kq, ka)] = eg[(q, a)];
+                }
+            }
+            let rhs = ff(&(n_u.transpose() * &y * &n_v))
+                - ff(&(&au * &c0 * &av + &ku * &c0 * &av * w.u + &au * &c0 * &kv * w.v));
+            let vec_c = lu.solve(&DVector::from_column_slice(rhs.as_slice())).unwrap();
+            let c = DMatrix::from_column_slice(f, f, vec_c.as_slice());
+            let mut c_full = c0;
+            for (a, &ka) in free.iter().enumerate() {
+                for (b, &kb) in free.iter().enumerate() {
+                    c_full[(ka, kb)] = c[(a, b)];
+                }
+            }
+            let x = &n_u * c_full * n_v.transpose();
+            for i in 0..ru {
+                for j in 0..cv {
+                    let gap = (x[(i, j)] - out[(i + 1) * columns + j + 1][k]).abs();
+                    assert!(gap < 1e-9, "{w:?} ({i}, {j}) coordinate {k}: {gap}");
+                }
+            }
+        }
+    }
 }
