@@ -80,13 +80,13 @@
 //! the limit adds if the lines are straight, from the degrees of freedom it drops). Where a
 //! direction's lines are straight in the data (a helicoid's rulings) the score falls, stays
 //! flat up to the range's top, or has a shallow minimum at a large finite weight that keeps a
-//! faint wiggle with an inflection on many lines. A direction whose lines curve gently under
-//! heavy noise (a hull's waterlines) could score within one standard error of its limit while
-//! the smoothest modes were round-off null (below), and straightening it put the net farther
-//! from the truth than its input; with the spectrum's bottom refined no tuning net did (the
-//! factor chosen on the tuning nets, `docs/experiments/surface-fairing.md`). At
-//! the limit those lines are projected exactly onto the penalty's null space (`straighten`: least-squares lines a + b t, or the mean on a closed
-//! direction), which the eigenbasis solve gives only to the accuracy of its null vectors.
+//! faint wiggle with an inflection on many lines. The margin of two standard errors keeps a
+//! finite weight where the lines curve gently under heavy noise (a hull's waterlines), whose
+//! straightening would put the net farther from the truth than its input (the factor chosen on
+//! the tuning nets, `docs/experiments/surface-fairing.md`). At the limit those lines are
+//! projected exactly onto the penalty's null space (`straighten`: least-squares lines
+//! a + b t, or the mean on a closed direction), which the eigenbasis solve gives only to the
+//! accuracy of its null vectors.
 //! A score whose denominator is not positive (the interpolating end) is infinite, and the
 //! range stops at 10⁻⁸, as for one weight. Scattered fixed nodes are treated as data in the
 //! score. A given `lambda` sets both weights and skips the search.
@@ -106,8 +106,10 @@
 //! pole row, a joined edge: the spline's end value is the held value) and joins (module
 //! `join`, "Reduced bases"). Held ends shift the data by their lines; the other direction's
 //! penalty sees that shift exactly when that direction is exact, and through its projection
-//! onto the basis when it is reduced too (module `reduced`, "Both directions"). Scattered
-//! fixed nodes, the tolerance band, held interior lines and held lines of a closed direction
+//! onto the basis when it is reduced too (module `reduced`, "Both directions"). Under a
+//! tolerance band a reduced fit is kept when no node leaves the band (a band wider than the
+//! noise, the usual case); one that would need pins is solved again exactly, where nodes are
+//! pinned. Scattered fixed nodes, held interior lines and held lines of a closed direction
 //! are solved exactly, at the exact path's cost below.
 //!
 //! Before that, when λ is chosen by GCV, a net with a direction of more than `COARSE_KNOTS`
@@ -121,12 +123,11 @@
 //!
 //! The penalty's eigenvalues fall like (k/m)⁸ along a direction of m sites (or knots), so K's
 //! own eigendecomposition returns every mode below ~10⁻¹⁶ of the largest as round-off: the
-//! 3rd and 4th on 60 sites, the 3rd to 9th on 200, the 3rd to 30th on 800. Taken as null, those
-//! modes were left unsmoothed: a noisy smooth 800² net fitted exactly ended 17 times farther
-//! from the clean surface than its input (GCV took λ_v → ∞ around them, and the output's
-//! lines were straightened). Every basis, exact or reduced, now recomputes its bottom third
-//! from the singular values of the jump matrix in that span (`spectral::refine_bottom`), to
-//! full relative precision, so that exactly the lines (the constants when closed) are null.
+//! 3rd and 4th on 60 sites, the 3rd to 9th on 200, the 3rd to 30th on 800. Taken as null, such
+//! modes would go unsmoothed (a noisy smooth 800² net fitted so ends 17 times farther from
+//! the clean surface than its input). So every basis, exact or reduced, recomputes its bottom
+//! third from the singular values of the jump matrix in that span (`spectral::refine_bottom`),
+//! to full relative precision, and exactly the lines (the constants when closed) are null.
 //!
 //! # Cost
 //!
@@ -359,6 +360,14 @@ struct Reduction {
     knots: usize,
 }
 
+impl Reduction {
+    /// No direction reduced: the exact path at every size.
+    const NONE: Self = Self {
+        above: usize::MAX,
+        knots: usize::MAX,
+    };
+}
+
 impl Default for Reduction {
     fn default() -> Self {
         Self {
@@ -414,18 +423,24 @@ impl SurfaceJumpLsq {
                 return Ok(result);
             }
         }
-        let mut result = self
-            .fit_with(grid, given, self.reduction, 1.0)?
-            .ok_or_else(|| strategy_error(NAME, "no basis resolves the fit"))?;
+        // A reduced fit that leaves the tolerance band needs pins, which only the exact path
+        // places.
+        let mut result = match self.fit_with(grid, given, self.reduction, 1.0)? {
+            Some(result) => result,
+            None => self
+                .fit_with(grid, given, Reduction::NONE, 1.0)?
+                .ok_or_else(|| strategy_error(NAME, "the exact path refused its own fit"))?,
+        };
         result.elapsed = started.elapsed();
         Ok(result)
     }
 
     /// [`fit`](Self::fit) with the reduction `reduction`; `None` when a reduced direction's
     /// basis does not resolve the fit (its equivalent degrees of freedom more than `share` of
-    /// its size, [`Spectral::resolves`]; never with `share` = 1). That is known once λ is
-    /// chosen, before the guard's judging and the output are paid for: the guard only lowers λ,
-    /// which only adds degrees of freedom.
+    /// its size, [`Spectral::resolves`]; never with `share` = 1), or a reduced fit leaves the
+    /// tolerance band (never on the exact path). The first is known once λ is chosen, before
+    /// the guard's judging and the output are paid for: the guard only lowers λ, which only
+    /// adds degrees of freedom.
     fn fit_with(
         &self,
         grid: &[Vec<Vec3>],
@@ -543,13 +558,13 @@ impl SurfaceJumpLsq {
             let (nr, nc) = (free_rows.len(), free_cols.len());
             let mut y = planes(nr, nc, |a, b| data(free_rows[a], free_cols[b]));
             // A direction longer than the reduction's threshold takes the reduced basis (module
-            // `reduced`) where the block is one it serves: no band or scattered fixed nodes,
-            // and held lines of that direction only at the ends of an open direction (a joined
-            // edge is one).
+            // `reduced`) where the block is one it serves: no scattered fixed nodes, and held
+            // lines of that direction only at the ends of an open direction (a joined edge is
+            // one). With a band the reduced fit is kept only if it needs no pin (below).
             let scattered_held = free_rows
                 .iter()
                 .any(|&i| free_cols.iter().any(|&j| held[i * nv + j]));
-            let simple = settings.max_distance.is_none() && !scattered_held;
+            let simple = !scattered_held;
             let reducible = |count: usize, closed: bool, held: &[usize]| {
                 simple
                     && count > reduction.above
@@ -798,7 +813,21 @@ impl SurfaceJumpLsq {
             let mut trial = lambda;
             let mut accepted = None;
             for _ in 0..=GUARD_RETRIES {
-                let (mut x, pins, iterations) = system.solve(trial, &scattered, settings.max_distance);
+                // A reduced basis cannot pin single nodes: its fit is kept only when no node
+                // leaves the band, else the net is solved exactly (`fit`).
+                let band = settings.max_distance.filter(|_| !spectral.is_reduced());
+                let (mut x, pins, iterations) = system.solve(trial, &scattered, band);
+                if let (Some(band), true) = (settings.max_distance, spectral.is_reduced()) {
+                    let leaves = free_rows.iter().enumerate().any(|(a, &i)| {
+                        free_cols
+                            .iter()
+                            .enumerate()
+                            .any(|(b, &j)| (y_at(&x, a, b) - data(i, j)).norm() > band)
+                    });
+                    if leaves {
+                        return Ok(None);
+                    }
+                }
                 cg_iterations += iterations;
                 if limits_allowed {
                     straighten(

@@ -1315,3 +1315,41 @@ fn both_directions_reduced_with_every_edge_held_solve_their_normal_equations() {
         }
     }
 }
+
+#[test]
+fn a_reduced_fit_is_kept_under_a_band_it_keeps_and_solved_exactly_under_one_it_leaves() {
+    // On 12 knots a direction: under a band wider than every move of the reduced fit, the fit
+    // is the reduced fit without a band, bit for bit; under a band half its largest move, the
+    // nodes it would leave are pinned, which only the exact path does: the result is the exact
+    // path's under that band, bit for bit, and within the band.
+    let (rows, columns) = (36, 30);
+    let grid = noisy(rows, columns, 0.03);
+    let flat: Vec<Vec3> = grid.iter().flatten().copied().collect();
+    let reduced = |settings: SurfaceJumpLsqSettings| {
+        SurfaceJumpLsq::new(settings)
+            .with_reduction(20, 12)
+            .run(&grid)
+            .unwrap()
+    };
+    let free = reduced(SurfaceJumpLsqSettings::default());
+    assert_eq!(free.basis, (12, 12));
+    let largest = free
+        .surface
+        .points()
+        .iter()
+        .zip(&flat)
+        .map(|(p, q)| (p - q).norm())
+        .fold(0.0, f64::max);
+    let wide = reduced(SurfaceJumpLsqSettings::default().with_max_distance(1.01 * largest));
+    assert_eq!(wide.basis, (12, 12));
+    assert_eq!(wide.surface.points(), free.surface.points());
+    let tight = SurfaceJumpLsqSettings::default().with_max_distance(0.5 * largest);
+    let pinned = reduced(tight.clone());
+    let exact = SurfaceJumpLsq::new(tight).run(&grid).unwrap();
+    assert_eq!(pinned.basis, (rows, columns));
+    assert!(pinned.band_pins > 0);
+    assert_eq!(pinned.surface.points(), exact.surface.points());
+    for (p, q) in pinned.surface.points().iter().zip(&flat) {
+        assert!((p - q).norm() <= 0.5 * largest * (1.0 + 1e-12));
+    }
+}
