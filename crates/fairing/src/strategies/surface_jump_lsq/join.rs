@@ -710,8 +710,9 @@ impl Joined {
 
     /// With a reduced basis, the solution `x` at the sites (its shift added) brought onto the
     /// constraints exactly. The spectral correction meets them within the reduced space only:
-    /// τ̂ = Tᵀτ is τ's projection along the edge, so the derivative across the edge misses the
-    /// neighbour's by τ's part outside that space (small where the basis resolves the edge).
+    /// τ̂ = Tᵀτ is τ's projection along the edge, and the held edge's shift its projection, so
+    /// the derivative across the edge misses the neighbour's by their parts outside that space
+    /// (small where the basis resolves the edge).
     /// Each line takes the least change that meets them, x_l −= C (CᵀC)⁻¹ (Cᵀ x_l − τ_l),
     /// C = [c_k] (the end-derivative rows, which decay away from the edge within a few
     /// lines). Exact bases meet the constraints already (nothing is done). O(m·n).

@@ -116,8 +116,9 @@
 //! (200) sites is fitted with every such direction on a basis of 200 knots; that fit is kept
 //! when the basis resolves it: along each reduced direction the fit's equivalent degrees of
 //! freedom are at most half the basis's size (`COARSE_DOF_SHARE`), checked as soon as λ is
-//! chosen. Otherwise the net is fitted again as above. A smooth surface's fit keeps a few dozen degrees of freedom a direction,
-//! so a scanned net of 10⁵–10⁶ nodes usually costs the 200-knot basis only.
+//! chosen. Otherwise the net is fitted again as above. A smooth surface's fit keeps a few
+//! dozen degrees of freedom a direction, so a scanned net of 10⁵–10⁶ nodes usually costs the
+//! 200-knot basis only.
 //!
 //! # The spectrum's bottom
 //!
