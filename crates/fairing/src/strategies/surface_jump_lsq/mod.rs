@@ -110,7 +110,9 @@
 //! tolerance band a reduced fit is kept when no node leaves the band (a band wider than the
 //! noise, the usual case); one that would need pins is solved again exactly, where nodes are
 //! pinned. Scattered fixed nodes, held interior lines and held lines of a closed direction
-//! are solved exactly, at the exact path's cost below.
+//! are solved exactly, at the exact path's cost below; beyond `EXACT_MAX` (5000) lines a
+//! direction that needs the exact solve is refused with the reason (a dense eigenproblem of
+//! 50 000 lines would need 20 GB a matrix).
 //!
 //! Before that, when λ is chosen by GCV, a net with a direction of more than `COARSE_KNOTS`
 //! (200) sites is fitted with every such direction on a basis of 200 knots; that fit is kept
@@ -361,6 +363,12 @@ struct Reduction {
     knots: usize,
 }
 
+/// Lines along a direction beyond which the exact path is refused (where the reduced basis does
+/// not serve the net: fixed nodes inside it, tolerance-band pins): its eigendecomposition is
+/// O(m³) (about a minute at 5000) and its dense matrices O(m²) memory (200 MB each at 5000),
+/// where a direction of 50 000 lines would need 20 GB for each.
+const EXACT_MAX: usize = 5000;
+
 impl Reduction {
     /// No direction reduced: the exact path at every size.
     const NONE: Self = Self {
@@ -579,6 +587,34 @@ impl SurfaceJumpLsq {
                 reducible(mu, topology.closed_u, &held_rows),
                 reducible(nv, topology.closed_v, &held_cols),
             );
+            // A direction the reduced basis does not serve is solved exactly, O(m³) time and
+            // O(m²) memory: refused beyond `EXACT_MAX` lines, before anything is allocated.
+            for (count, reduced) in [(nr, reduce_u), (nc, reduce_v)] {
+                if !reduced && count > EXACT_MAX {
+                    let (what, reason) = if reduction == Reduction::NONE {
+                        (
+                            crate::Refusal::Tolerance,
+                            format!(
+                                "cannot hold the tolerance band here: its fit on a reduced basis leaves \
+                                 the band, and pinning nodes onto it needs the exact solve of a \
+                                 direction of {count} lines (O(m³) time, O(m²) memory), done up to \
+                                 {EXACT_MAX} (a wider band keeps the reduced fit)"
+                            ),
+                        )
+                    } else {
+                        (
+                            crate::Refusal::Fixed,
+                            format!(
+                                "cannot hold these fixed nodes: nodes held inside the net (or lines \
+                                 held inside it or on a closed direction) need the exact solve of a \
+                                 direction of {count} lines (O(m³) time, O(m²) memory), done up to \
+                                 {EXACT_MAX} (hold only boundary lines, or split the net)"
+                            ),
+                        )
+                    };
+                    return Err(Error::refused(NAME, what, reason));
+                }
+            }
             // Each direction's basis, coupling to its held lines and exact K (`direction_part`);
             // a reduced direction's held ends shift the data `y` by their lines (S_u, S_v).
             let original = planes(nr, nc, |a, b| data(free_rows[a], free_cols[b]));

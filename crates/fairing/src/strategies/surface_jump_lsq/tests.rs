@@ -1353,3 +1353,41 @@ fn a_reduced_fit_is_kept_under_a_band_it_keeps_and_solved_exactly_under_one_it_l
         assert!((p - q).norm() <= 0.5 * largest * (1.0 + 1e-12));
     }
 }
+
+#[test]
+fn the_exact_solve_of_a_direction_too_long_for_it_is_refused_before_it_allocates() {
+    // A 5001 × 3 strip: a node fixed inside it, or a band its reduced fit leaves, needs the
+    // exact solve along the strip (a dense 5001² eigenproblem); refused with the reason, as a
+    // typed refusal of the fixed nodes or of the band. Without either the strip is faired on
+    // the reduced basis.
+    let grid = noisy_net(5001, 3, 0.02, 5, |x, y| Vec3::new(40.0 * x, y, (20.0 * x).sin()));
+    let plain = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default())
+        .run(&grid)
+        .unwrap();
+    assert!(plain.basis.0 <= 800, "{:?}", plain.basis);
+    let fixed = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default().with_fixed([(2500, 1)])).run(&grid);
+    match fixed {
+        Err(crate::Error::Refused {
+            what: crate::Refusal::Fixed,
+            reason,
+            ..
+        }) => {
+            assert!(reason.contains("5001") && reason.contains("5000"), "{reason}")
+        }
+        other => panic!(
+            "expected the fixed node refused, got {:?}",
+            other.map(|r| r.basis)
+        ),
+    }
+    let band = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default().with_max_distance(1e-4)).run(&grid);
+    match band {
+        Err(crate::Error::Refused {
+            what: crate::Refusal::Tolerance,
+            reason,
+            ..
+        }) => {
+            assert!(reason.contains("5001"), "{reason}")
+        }
+        other => panic!("expected the band refused, got {:?}", other.map(|r| r.basis)),
+    }
+}
