@@ -147,11 +147,14 @@ pub(crate) fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
     };
     write_results(args, &faired.report, &output_text, || faired.plot.figure())?;
     let report = &faired.report;
+    // A run whose every step the method's refusal rule turned down says so: "0 moved" alone
+    // reads as a net with nothing to fair.
+    let refused = report.extras.get("termination").and_then(|t| t.as_str()) == Some("refused");
     say(
         args.quiet,
         args.output.as_deref() == Some("-"),
         &format!(
-            "{}: {} ({} × {} grid): {} iterations, {} moved, S_d = {:.6e}, M_d = {:.6e}",
+            "{}: {} ({} × {} grid): {} iterations, {} moved, S_d = {:.6e}, M_d = {:.6e}{}",
             input.source,
             report.method,
             input.grid.rows,
@@ -159,7 +162,13 @@ pub(crate) fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
             report.iterations,
             report.moved.len(),
             report.s_d,
-            report.m_d
+            report.m_d,
+            if refused {
+                "; refused: every step tried made the net less fair by the method's own measure \
+                 (its largest z_ij or an energy), so the input is kept"
+            } else {
+                ""
+            }
         ),
     );
     Ok(())

@@ -70,6 +70,10 @@ impl SurfaceMethod for SurfaceJumpLsqMethod {
         extras.insert("displacement_sum".into(), serde_json::json!(result.displacement));
         extras.insert("basis_u".into(), serde_json::json!(result.basis.0));
         extras.insert("basis_v".into(), serde_json::json!(result.basis.1));
+        // Fits the refusal rule turned down (each raised the largest z_ij or the network
+        // energy); all of them when the input comes back unchanged.
+        extras.insert("refused".into(), serde_json::json!(result.refused));
+        let every_fit_refused = result.refused > 0 && result.moved.is_empty();
         if !result.joins.is_empty() {
             extras.insert("joins".into(), serde_json::json!(result.joins));
         }
@@ -82,7 +86,12 @@ impl SurfaceMethod for SurfaceJumpLsqMethod {
             iterations: 1,
             moved: result.moved.iter().map(|&(i, j)| i * columns + j).collect(),
             elapsed_ms: result.elapsed.as_secs_f64() * 1e3,
-            termination: "strategy-done".to_owned(),
+            termination: if every_fit_refused {
+                "refused"
+            } else {
+                "strategy-done"
+            }
+            .to_owned(),
             surface: record,
             extras,
         })
