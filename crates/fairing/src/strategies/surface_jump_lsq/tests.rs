@@ -778,7 +778,26 @@ fn natural_spline(tau: &[f64], c: &[f64]) -> impl Fn(f64) -> f64 {
     }
 }
 
+/// The dense solution `x` of coordinate `k` against the fit's nodes `out` (a net of `columns`
+/// columns) over the block whose first node is `corner`, to 10⁻⁹.
+fn assert_block_is(
+    x: &DMatrix<f64>,
+    out: &[Vec3],
+    corner: (usize, usize),
+    columns: usize,
+    k: usize,
+    w: Weights,
+) {
+    for i in 0..x.nrows() {
+        for j in 0..x.ncols() {
+            let gap = (x[(i, j)] - out[(i + corner.0) * columns + j + corner.1][k]).abs();
+            assert!(gap < 1e-9, "{w:?} ({i}, {j}) coordinate {k}: {gap}");
+        }
+    }
+}
+
 #[test]
+#[allow(clippy::needless_range_loop)] // the loop variable names the coordinate compared
 fn a_reduced_fit_solves_its_normal_equations() {
     // u reduced to M knots, v exact: the fit's knot values C minimise
     // |N C − Y|² + λ_u tr(Cᵀ K' C) + λ_v tr(N C K_v Cᵀ Nᵀ), solved here densely:
@@ -810,17 +829,13 @@ fn a_reduced_fit_solves_its_normal_equations() {
             let rhs = n.transpose() * &y;
             let vec_c = lu.solve(&DVector::from_column_slice(rhs.as_slice())).unwrap();
             let x = &n * DMatrix::from_column_slice(count, columns, vec_c.as_slice());
-            for i in 0..rows {
-                for j in 0..columns {
-                    let gap = (x[(i, j)] - out[i * columns + j][c]).abs();
-                    assert!(gap < 1e-9, "{w:?} ({i}, {j}) coordinate {c}: {gap}");
-                }
-            }
+            assert_block_is(&x, out, (0, 0), columns, c, w);
         }
     }
 }
 
 #[test]
+#[allow(clippy::needless_range_loop)] // the loop variable names the coordinate compared
 fn a_reduced_fit_with_held_boundary_solves_its_normal_equations() {
     // g0 on a net whose u-direction is reduced (v exact): the held nodes stay bit for bit, the
     // u-lines' end coefficients are the held ends, and the free knot values C minimise
@@ -873,12 +888,7 @@ fn a_reduced_fit_with_held_boundary_solves_its_normal_equations() {
                 - n_rf.transpose() * (&shift * &kv_cc + &sides * &kv_hc) * w.v;
             let vec_c = lu.solve(&DVector::from_column_slice(rhs.as_slice())).unwrap();
             let x = &n_rf * DMatrix::from_column_slice(f, c, vec_c.as_slice()) + &shift;
-            for i in 0..r {
-                for j in 0..c {
-                    let gap = (x[(i, j)] - out[(i + 1) * columns + j + 1][k]).abs();
-                    assert!(gap < 1e-9, "{w:?} ({i}, {j}) coordinate {k}: {gap}");
-                }
-            }
+            assert_block_is(&x, out, (1, 1), columns, k, w);
         }
     }
 }
@@ -1110,6 +1120,7 @@ fn spline_basis(sites: &[f64], count: usize) -> DMatrix<f64> {
 }
 
 #[test]
+#[allow(clippy::needless_range_loop)] // the loop variable names the coordinate compared
 fn both_directions_reduced_with_held_ends_of_one_solve_their_normal_equations() {
     // Both directions reduced (u to Mu knots, v to Mv), the first and last rows held: the
     // model is X = N_uF C N_vᵀ + N_uE E N_vᵀ, E the held rows' projection onto the v basis
@@ -1162,12 +1173,7 @@ fn both_directions_reduced_with_held_ends_of_one_solve_their_normal_equations() 
             let vec_c = lu.solve(&DVector::from_column_slice(rhs.as_slice())).unwrap();
             let x = (&n_uf * DMatrix::from_column_slice(f, count, vec_c.as_slice()) + &n_ue * &e)
                 * n_v.transpose();
-            for i in 0..r {
-                for j in 0..columns {
-                    let gap = (x[(i, j)] - out[(i + 1) * columns + j][k]).abs();
-                    assert!(gap < 1e-9, "{w:?} ({i}, {j}) coordinate {k}: {gap}");
-                }
-            }
+            assert_block_is(&x, out, (1, 0), columns, k, w);
         }
     }
 }
@@ -1235,6 +1241,7 @@ fn a_g1_join_on_reduced_bases_is_the_exact_join_on_every_site_and_holds_on_fewer
 }
 
 #[test]
+#[allow(clippy::needless_range_loop)] // the loop variable names the coordinate compared
 fn both_directions_reduced_with_every_edge_held_solve_their_normal_equations() {
     // Both directions reduced to M knots and the whole boundary held (g0). The model's
     // coefficients C_full have the free block C, the corners P⁰ at the corner knots, and along
@@ -1306,12 +1313,7 @@ fn both_directions_reduced_with_every_edge_held_solve_their_normal_equations() {
                 }
             }
             let x = &n_u * c_full * n_v.transpose();
-            for i in 0..ru {
-                for j in 0..cv {
-                    let gap = (x[(i, j)] - out[(i + 1) * columns + j + 1][k]).abs();
-                    assert!(gap < 1e-9, "{w:?} ({i}, {j}) coordinate {k}: {gap}");
-                }
-            }
+            assert_block_is(&x, out, (1, 1), columns, k, w);
         }
     }
 }
