@@ -901,6 +901,7 @@ impl MethodEntry {
         if run.grid.points.len() == grid.points.len() {
             run.grid = frame.grid_from_frame(job.grid, &grid, &run.grid);
             Frame::hold_band(job.constraints, settings, &job.grid.points, &mut run.grid.points);
+            keep_held_seam_repeats(&job, &mut run.grid.points);
             run.moved = (0..grid.points.len())
                 .filter(|&k| run.grid.points[k] != job.grid.points[k])
                 .collect();
@@ -923,6 +924,39 @@ impl MethodEntry {
         }
         job.constraints.check(&job.grid.points, &run.grid.points)?;
         Ok(run)
+    }
+}
+
+/// A closed net's repeated line is its first line written again, so that the seam stays closed
+/// exactly; but the input's may repeat it only to round-off (within the topology's
+/// coincidence tolerance). A held node there (fixed, or on the boundary under `g0`) that the
+/// method wrote as its twin's copy is given back its input bit for bit, as held nodes are
+/// promised: the seam then stays as closed at that node as the input was. O(m·n).
+fn keep_held_seam_repeats(job: &SurfaceJob, points: &mut [curve_repr::Vec3]) {
+    let (rows, columns) = (job.grid.rows, job.grid.columns);
+    let input = &job.grid.points;
+    if rows * columns != input.len() || points.len() != input.len() || rows < 2 || columns < 2 {
+        return;
+    }
+    let topology = curve_repr::GridTopology::detect(input, rows, columns);
+    if !topology.closed_u && !topology.closed_v {
+        return;
+    }
+    let held: std::collections::BTreeSet<(usize, usize)> = job.fixed_nodes();
+    for &(i, j) in &held {
+        let k = i * columns + j;
+        let twin = if topology.closed_v && j + 1 == columns {
+            Some(i * columns)
+        } else if topology.closed_u && i + 1 == rows {
+            Some(j)
+        } else {
+            None
+        };
+        if let Some(t) = twin {
+            if points[k] == points[t] && points[k] != input[k] {
+                points[k] = input[k];
+            }
+        }
     }
 }
 

@@ -71,9 +71,11 @@ impl SurfaceMethod for SurfaceJumpLsqMethod {
         extras.insert("basis_u".into(), serde_json::json!(result.basis.0));
         extras.insert("basis_v".into(), serde_json::json!(result.basis.1));
         // Fits the refusal rule turned down (each raised the largest z_ij or the network
-        // energy); all of them when the input comes back unchanged.
+        // energy); all of them when the weights end at 0 without a join to hold (the input
+        // comes back unchanged).
         extras.insert("refused".into(), serde_json::json!(result.refused));
-        let every_fit_refused = result.refused > 0 && result.moved.is_empty();
+        let every_fit_refused =
+            result.refused > 0 && result.lambda_u == 0.0 && result.lambda_v == 0.0 && result.joins.is_empty();
         if !result.joins.is_empty() {
             extras.insert("joins".into(), serde_json::json!(result.joins));
         }
