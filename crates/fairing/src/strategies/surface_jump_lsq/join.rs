@@ -76,6 +76,13 @@ use super::spectral::{Planes, Spectral, Weights};
 
 use crate::{Error, Result};
 
+/// The largest gap between a joined edge and its neighbour's, as a share of the net's
+/// bounding-box diagonal, beyond which the join is refused: a guard against gross mistakes
+/// only. Noisy edges of neighbouring patches are a few noise levels apart, and a join may
+/// deliberately move an edge some way onto a neighbour (a test's neighbour is 12 % off); a
+/// neighbour across another edge is most of the net's size away (67 % on a square).
+const JOIN_GAP_MAX: f64 = 0.25;
+
 /// An edge of a net: `u0` the first row (i = 0), `u1` the last row (i = m), `v0` the first
 /// column (j = 0), `v1` the last (j = n).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -285,13 +292,32 @@ impl Prepared {
                 }
             }
         }
-        let Some((_, nb_edge, reversed)) = best else {
+        let Some((gap, nb_edge, reversed)) = best else {
             return Err(refuse(format!(
                 "join {}: the edge has {count} nodes but no edge of the neighbour {name} does \
                  (it is {nr} × {nc}: its edges have {nc} and {nr} nodes)",
                 join.edge.name()
             )));
         };
+        // The joined edge is moved onto the neighbour's: a neighbour that does not meet it (the
+        // neighbour across another edge, a wrong file) would drag the edge across the net.
+        let (lo, hi) = grid.iter().flatten().fold(
+            (Vec3::repeat(f64::INFINITY), Vec3::repeat(f64::NEG_INFINITY)),
+            |(lo, hi), p| (lo.inf(p), hi.sup(p)),
+        );
+        let size = (hi - lo).norm();
+        if gap > JOIN_GAP_MAX * size {
+            return Err(refuse(format!(
+                "join {}: the nearest edge of the neighbour {name} ({}) lies up to {gap:.4e} from \
+                 this edge, {:.0} % of the net's size {size:.4e}; a join moves the edge onto the \
+                 neighbour's, so the two must meet (at most {:.0} % apart): is {name} the \
+                 neighbour across another edge?",
+                join.edge.name(),
+                nb_edge.name(),
+                100.0 * gap / size,
+                100.0 * JOIN_GAP_MAX,
+            )));
+        }
         let build = BicubicSurfaceSettings::default().with_parametrization(parametrization);
         let surface = BicubicSplineSurface::with_settings(nb, &build)
             .map_err(|e| refuse(format!("join {}: the neighbour {name}: {e}", join.edge.name())))?;

@@ -1393,3 +1393,34 @@ fn the_exact_solve_of_a_direction_too_long_for_it_is_refused_before_it_allocates
         other => panic!("expected the band refused, got {:?}", other.map(|r| r.basis)),
     }
 }
+
+#[test]
+fn a_join_to_a_neighbour_that_does_not_meet_the_edge_is_refused() {
+    // The neighbour meets edge u0; joined to u1 instead, its nearest edge is the net's width
+    // away, and moving u1 onto it would drag the edge across the net: refused, naming both
+    // edges. Joined to u0 it is taken.
+    use super::join::{Continuity, Join, JoinEdge};
+    let surface = |x: f64, y: f64| Vec3::new(x, y, 0.3 * (2.0 * x).sin() * (1.5 * y).cos());
+    let grid = noisy_net(20, 16, 0.01, 3, |x, y| surface(0.5 + 0.5 * x, y));
+    let neighbour = noisy_net(20, 16, 0.0, 3, |x, y| surface(0.5 * x, y));
+    let join = |edge| {
+        SurfaceJumpLsqSettings::default().with_join(Join {
+            edge,
+            continuity: Continuity::G1,
+            neighbour: neighbour.clone(),
+            source: "neighbour".into(),
+        })
+    };
+    assert!(SurfaceJumpLsq::new(join(JoinEdge::U0)).run(&grid).is_ok());
+    match SurfaceJumpLsq::new(join(JoinEdge::U1)).run(&grid) {
+        Err(crate::Error::Refused {
+            what: crate::Refusal::Join,
+            reason,
+            ..
+        }) => assert!(
+            reason.contains("join u1") && reason.contains("(u1)") && reason.contains("%"),
+            "{reason}"
+        ),
+        other => panic!("expected a refusal, got {:?}", other.map(|r| r.joins)),
+    }
+}
