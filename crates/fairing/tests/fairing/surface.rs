@@ -2,7 +2,7 @@
 //! with every surface method, the refusal rules, and the smoothing baseline against csaps.
 
 use curve_repr::{BicubicSplineSurface, BicubicSurfaceSettings, GridTopology, Vec3};
-use fairing::catalog::{Catalog, Grid, MethodKind, ParameterMap, SurfaceJob};
+use fairing::catalog::{Catalog, Grid, MethodKind, ParameterMap, SurfaceJob, SurfaceRun};
 use fairing::strategies::{
     smooth_grid, Closure, RefusalRule, SurfaceFairing, SurfaceFairingSettings, SurfaceSmoothing,
     SurfaceSmoothingSettings,
@@ -139,6 +139,30 @@ fn a_closed_tube_stays_closed_and_its_seam_is_faired_like_the_rest() {
     }
 }
 
+/// Every surface method of the catalogue, default settings, on `grid` under `constraints`:
+/// (name, run), a failure panicking with the method's name.
+fn every_surface_method(grid: &Grid, constraints: &Constraints) -> Vec<(String, SurfaceRun)> {
+    let catalog = Catalog::builtin();
+    catalog
+        .methods(MethodKind::Surface)
+        .map(|entry| {
+            let name = entry.name();
+            let settings = entry.settings(&ParameterMap::default()).unwrap();
+            let job = SurfaceJob {
+                method: name,
+                grid,
+                constraints,
+                bad_points: &[],
+                catalog: &catalog,
+            };
+            let run = entry
+                .fair_surface(&settings, &job)
+                .unwrap_or_else(|e| panic!("{name}: {e}"));
+            (name.to_owned(), run)
+        })
+        .collect()
+}
+
 #[test]
 fn a_pole_stays_one_point_and_the_seam_closed_with_every_surface_method() {
     let net = noisy_bowl();
@@ -148,19 +172,7 @@ fn a_pole_stays_one_point_and_the_seam_closed_with_every_surface_method() {
         columns,
         points: flat(&net),
     };
-    let catalog = Catalog::builtin();
-    let constraints = Constraints::default();
-    for entry in catalog.methods(MethodKind::Surface) {
-        let name = entry.name();
-        let settings = entry.settings(&ParameterMap::default()).unwrap();
-        let job = SurfaceJob {
-            method: name,
-            grid: &grid,
-            constraints: &constraints,
-            bad_points: &[],
-            catalog: &catalog,
-        };
-        let run = entry.fair_surface(&settings, &job).unwrap();
+    for (name, run) in every_surface_method(&grid, &Constraints::default()) {
         let after = &run.grid.points;
         assert!(!run.moved.is_empty(), "{name}: nothing moved");
         for (j, (a, b)) in after.iter().zip(&grid.points).enumerate().take(columns) {
@@ -459,21 +471,8 @@ fn a_seam_closed_to_round_off_keeps_its_held_nodes_bit_for_bit() {
         points: points.clone(),
     };
     assert!(GridTopology::detect(&grid.points, rows, columns).closed_v);
-    let catalog = Catalog::builtin();
     let constraints = Constraints::default().with_end_clamp(fairing::EndClamp::G0);
-    for entry in catalog.methods(MethodKind::Surface) {
-        let name = entry.name();
-        let settings = entry.settings(&ParameterMap::default()).unwrap();
-        let job = SurfaceJob {
-            method: name,
-            grid: &grid,
-            constraints: &constraints,
-            bad_points: &[],
-            catalog: &catalog,
-        };
-        let run = entry
-            .fair_surface(&settings, &job)
-            .unwrap_or_else(|e| panic!("{name}: {e}"));
+    for (name, run) in every_surface_method(&grid, &constraints) {
         for k in grid.boundary() {
             assert_eq!(run.grid.points[k], points[k], "{name}: held node {k}");
         }

@@ -805,13 +805,8 @@ fn a_reduced_fit_solves_its_normal_equations() {
     let (rows, columns, count) = (90, 6, 25);
     let grid = noisy(rows, columns, 0.03);
     let input = BicubicSplineSurface::new(&grid).unwrap();
-    let sites = input.u_knots().to_vec();
-    let knot_sites = super::reduced::knot_sites(rows, count, false);
-    let tau: Vec<f64> = knot_sites.iter().map(|&i| sites[i]).collect();
-    let n = DMatrix::from_fn(rows, count, |i, k| {
-        let e: Vec<f64> = (0..count).map(|q| f64::from(u8::from(q == k))).collect();
-        natural_spline(&tau, &e)(sites[i])
-    });
+    let tau = tau_of(input.u_knots(), count);
+    let n = spline_basis(input.u_knots(), count);
     let ntn = n.transpose() * &n;
     let kp = gram(&jump_matrix(&tau, false).unwrap());
     let kv = gram(&jump_matrix(input.v_knots(), false).unwrap());
@@ -844,13 +839,8 @@ fn a_reduced_fit_with_held_boundary_solves_its_normal_equations() {
     let (rows, columns, count) = (80, 7, 21);
     let grid = noisy(rows, columns, 0.03);
     let input = BicubicSplineSurface::new(&grid).unwrap();
-    let sites = input.u_knots().to_vec();
-    let knot_sites = super::reduced::knot_sites(rows, count, false);
-    let tau: Vec<f64> = knot_sites.iter().map(|&i| sites[i]).collect();
-    let n_full = DMatrix::from_fn(rows, count, |i, k| {
-        let e: Vec<f64> = (0..count).map(|q| f64::from(u8::from(q == k))).collect();
-        natural_spline(&tau, &e)(sites[i])
-    });
+    let tau = tau_of(input.u_knots(), count);
+    let n_full = spline_basis(input.u_knots(), count);
     let (r, c) = (rows - 2, columns - 2);
     let f = count - 2;
     let n_rf = n_full.view((1, 1), (r, f)).into_owned();
@@ -1111,8 +1101,7 @@ fn a_smooth_net_of_hundreds_of_sites_is_faired_near_its_clean_surface_on_the_exa
 /// The natural cubic splines on `count` knots of the input's `sites` (knot sites spread by
 /// count, module `reduced`) evaluated at the sites: N (sites × knots).
 fn spline_basis(sites: &[f64], count: usize) -> DMatrix<f64> {
-    let knot_sites = super::reduced::knot_sites(sites.len(), count, false);
-    let tau: Vec<f64> = knot_sites.iter().map(|&i| sites[i]).collect();
+    let tau = tau_of(sites, count);
     DMatrix::from_fn(sites.len(), count, |i, k| {
         let e: Vec<f64> = (0..count).map(|q| f64::from(u8::from(q == k))).collect();
         natural_spline(&tau, &e)(sites[i])
