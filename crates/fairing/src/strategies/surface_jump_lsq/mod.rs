@@ -616,8 +616,13 @@ impl SurfaceJumpLsq {
                 }
             }
             // Each direction's basis, coupling to its held lines and exact K (`direction_part`);
-            // a reduced direction's held ends shift the data `y` by their lines (S_u, S_v).
-            let original = planes(nr, nc, |a, b| data(free_rows[a], free_cols[b]));
+            // a reduced direction's held ends shift the data `y` by their lines (S_u, S_v), kept
+            // apart only where such a shift exists.
+            let (shifts_u, shifts_v) = (
+                reduce_u && !held_rows.is_empty(),
+                reduce_v && !held_cols.is_empty(),
+            );
+            let original = (shifts_u || shifts_v).then(|| y.clone());
             let (u_part, coupling_u, ku) = direction_part(
                 input.u_knots(),
                 topology.closed_u,
@@ -628,7 +633,9 @@ impl SurfaceJumpLsq {
                 &mut y,
                 |c| DMatrix::from_fn(held_rows.len(), nc, |a, b| data(held_rows[a], free_cols[b])[c]),
             )?;
-            let after_u = y.clone();
+            let difference = |a: &Planes, b: &Planes| -> Planes { std::array::from_fn(|c| &a[c] - &b[c]) };
+            let s_u = original.as_ref().filter(|_| shifts_u).map(|o| difference(o, &y));
+            let before_v = shifts_v.then(|| y.clone());
             let (v_part, coupling_v, kv) = direction_part(
                 input.v_knots(),
                 topology.closed_v,
@@ -639,17 +646,11 @@ impl SurfaceJumpLsq {
                 &mut y,
                 |c| DMatrix::from_fn(held_cols.len(), nr, |a, b| data(free_rows[b], held_cols[a])[c]),
             )?;
-            let s_u: Planes = std::array::from_fn(|c| &original[c] - &after_u[c]);
-            let s_v: Planes = std::array::from_fn(|c| &after_u[c] - &y[c]);
             // Held ends of a reduced direction shifted the block's data by their lines' values
             // S; the solution gets the shift back, and the other (exact) direction's penalty
             // on X = Z + S adds λ S K (or λ K S) to the right-hand side: a coupling at the sites.
-            let (shifts_u, shifts_v) = (
-                reduce_u && !held_rows.is_empty(),
-                reduce_v && !held_cols.is_empty(),
-            );
-            let mut shift: Option<Planes> =
-                (shifts_u || shifts_v).then(|| std::array::from_fn(|c| &original[c] - &y[c]));
+            let mut shift: Option<Planes> = original.as_ref().map(|o| difference(o, &y));
+            let s_v = before_v.map(|b| difference(&b, &y));
             let (mut coupling_u, mut coupling_v) = (coupling_u, coupling_v);
             if let Some(shift) = &shift {
                 let zeros = || vec![DMatrix::zeros(nr, nc); 3];
@@ -707,15 +708,17 @@ impl SurfaceJumpLsq {
                 let mut border = corners
                     .clone()
                     .unwrap_or_else(|| planes(nr, nc, |_, _| Vec3::zeros()));
-                if shifts_u {
-                    let part = spectral.project_v(&less_corners(&s_u));
+                if let Some(s_u) = &s_u {
+                    let part = spectral.project_v(&less_corners(s_u));
                     border.iter_mut().zip(&part).for_each(|(b, p)| *b += p);
                 }
-                if shifts_v {
-                    let part = spectral.project_u(&less_corners(&s_v));
+                if let Some(s_v) = &s_v {
+                    let part = spectral.project_u(&less_corners(s_v));
                     border.iter_mut().zip(&part).for_each(|(b, p)| *b += p);
                 }
-                y = std::array::from_fn(|c| &original[c] - &border[c]);
+                if let Some(original) = &original {
+                    y = difference(original, &border);
+                }
                 shift = Some(border);
             }
             let y_hat = spectral.forward(&y);
@@ -729,10 +732,7 @@ impl SurfaceJumpLsq {
             // there is Ŝ scaled by that direction's eigenvalues (ν_b Ŝ_ab for held rows, μ_a Ŝ_ab
             // for held columns), as S K_v is for an exact v (module `reduced`, "Both directions").
             if let (Some(c_hat), true) = (c_hat.as_mut(), reduce_u && reduce_v) {
-                for (own, along_rows) in [
-                    (shifts_u.then_some(&s_u), false),
-                    (shifts_v.then_some(&s_v), true),
-                ] {
+                for (own, along_rows) in [(s_u.as_ref(), false), (s_v.as_ref(), true)] {
                     let Some(own) = own else { continue };
                     let s_hat = spectral.forward(&less_corners(own));
                     let (part, values) = if along_rows {
