@@ -747,6 +747,7 @@ impl Joined {
             return;
         };
         let k = sites.c.len();
+        let mut line = Vec::new();
         for (coord, plane) in x.iter_mut().enumerate() {
             let lines = if self.lines_are_columns {
                 plane.ncols()
@@ -754,23 +755,22 @@ impl Joined {
                 plane.nrows()
             };
             for l in 0..lines {
-                let mut line: Vec<f64> = if self.lines_are_columns {
-                    plane.column(l).iter().copied().collect()
+                line.clear();
+                if self.lines_are_columns {
+                    line.extend(plane.column(l).iter().copied());
                 } else {
-                    plane.row(l).iter().copied().collect()
-                };
+                    line.extend(plane.row(l).iter().copied());
+                }
                 let r = DVector::from_fn(k, |a, _| {
                     sites.c[a].iter().zip(&line).map(|(c, v)| c * v).sum::<f64>() - sites.tau[a][coord][l]
                 });
                 let mu = &sites.ctc_inverse * r;
-                for (q, entry) in line.iter_mut().enumerate() {
-                    *entry -= (0..k).map(|a| sites.c[a][q] * mu[a]).sum::<f64>();
-                }
-                for (q, v) in line.into_iter().enumerate() {
+                for (q, &v) in line.iter().enumerate() {
+                    let corrected = v - (0..k).map(|a| sites.c[a][q] * mu[a]).sum::<f64>();
                     if self.lines_are_columns {
-                        plane[(q, l)] = v;
+                        plane[(q, l)] = corrected;
                     } else {
-                        plane[(l, q)] = v;
+                        plane[(l, q)] = corrected;
                     }
                 }
             }
