@@ -66,6 +66,7 @@ impl SurfaceMethod for SurfaceJumpLsqMethod {
         extras.insert("gcv".into(), serde_json::json!(result.gcv));
         extras.insert("dof".into(), serde_json::json!(result.dof));
         extras.insert("band_pins".into(), serde_json::json!(result.band_pins));
+        extras.insert("band_projected".into(), serde_json::json!(result.band_projected));
         extras.insert("cg_iterations".into(), serde_json::json!(result.cg_iterations));
         extras.insert("displacement_sum".into(), serde_json::json!(result.displacement));
         extras.insert("basis_u".into(), serde_json::json!(result.basis.0));

@@ -53,7 +53,15 @@
 //! - *The tolerance band* (`max_distance`): a node the solution moves farther than the band
 //!   is pinned at its projection onto the band and the system re-solved with it held, until no
 //!   free node leaves the band (at most [`BAND_ROUNDS`] rounds; after the last, any node still
-//!   outside is projected onto it, so the band always holds).
+//!   outside is projected onto it, so the band always holds). On a reduced basis a pin is a
+//!   constraint on the fit's value at the node, met through the pins' own system
+//!   (`Block::pin_reduced`). Pinning gives way where it cannot serve (a round whose new pins
+//!   outnumber all the earlier ones, or a solve that does not meet its pins) to the unpinned
+//!   fit projected onto the band (each node outside it moved straight back). A pin's
+//!   correction is the smoother's response, whose side lobes push the nodes beside it out, so
+//!   under a band narrower than the noise the pins multiply round by round; pinned to the end,
+//!   such a net ended farther from the truth than its input
+//!   (`docs/experiments/surface-fairing.md`, "The band narrower than the noise").
 //!
 //! # The refusal rule (`guard`)
 //!
@@ -106,13 +114,11 @@
 //! pole row, a joined edge: the spline's end value is the held value) and joins (module
 //! `join`, "Reduced bases"). Held ends shift the data by their lines; the other direction's
 //! penalty sees that shift exactly when that direction is exact, and through its projection
-//! onto the basis when it is reduced too (module `reduced`, "Both directions"). Under a
-//! tolerance band a reduced fit is kept when no node leaves the band (a band wider than the
-//! noise, the usual case); one that would need pins is solved again exactly, where nodes are
-//! pinned. Scattered fixed nodes, held interior lines and held lines of a closed direction
-//! are solved exactly, at the exact path's cost below; beyond `EXACT_MAX` (5000) lines a
-//! direction that needs the exact solve is refused with the reason (a dense eigenproblem of
-//! 50 000 lines would need 20 GB a matrix).
+//! onto the basis when it is reduced too (module `reduced`, "Both directions"). Its band pins
+//! are constraints on the fit (above). Scattered fixed nodes, held interior lines and held
+//! lines of a closed direction are solved exactly, at the exact path's cost below; beyond
+//! `EXACT_MAX` (5000) lines a direction that needs the exact solve is refused with the reason
+//! (a dense eigenproblem of 50 000 lines would need 20 GB a matrix).
 //!
 //! Before that, when λ is chosen by GCV, a net with a direction of more than `COARSE_KNOTS`
 //! (200) sites is fitted with every such direction on a basis of 200 knots; that fit is kept
@@ -167,6 +173,10 @@ pub const NAME: &str = "jump-lsq";
 
 /// Rounds of pinning nodes on the tolerance band before the remaining ones are projected.
 pub const BAND_ROUNDS: usize = 10;
+
+/// A reduced block's band pins are met when each is within this fraction of the band of its
+/// place (the node is then projected onto the band as any other).
+const PIN_TOLERANCE: f64 = 1e-6;
 
 /// Retries of a fit the refusal rule turns down, each at both weights × [`GUARD_FACTOR`].
 pub const GUARD_RETRIES: usize = 6;
@@ -306,6 +316,9 @@ pub struct SurfaceJumpLsqResult {
     pub displacement: f64,
     /// Nodes pinned on the tolerance band.
     pub band_pins: usize,
+    /// Nodes projected onto the tolerance band at the end (left outside it after the last
+    /// round of pins, or every node outside it where pinning gave way).
+    pub band_projected: usize,
     /// Conjugate-gradient iterations (fixed nodes and band pins).
     pub cg_iterations: usize,
     /// Fits the refusal rule turned down (each retried at a tenth of both weights; after
@@ -364,18 +377,10 @@ struct Reduction {
 }
 
 /// Lines along a direction beyond which the exact path is refused (where the reduced basis does
-/// not serve the net: fixed nodes inside it, tolerance-band pins): its eigendecomposition is
+/// not serve the net: fixed nodes inside it): its eigendecomposition is
 /// O(m³) (about a minute at 5000) and its dense matrices O(m²) memory (200 MB each at 5000),
 /// where a direction of 50 000 lines would need 20 GB for each.
 const EXACT_MAX: usize = 5000;
-
-impl Reduction {
-    /// No direction reduced: the exact path at every size.
-    const NONE: Self = Self {
-        above: usize::MAX,
-        knots: usize::MAX,
-    };
-}
 
 impl Default for Reduction {
     fn default() -> Self {
@@ -432,24 +437,18 @@ impl SurfaceJumpLsq {
                 return Ok(result);
             }
         }
-        // A reduced fit that leaves the tolerance band needs pins, which only the exact path
-        // places.
-        let mut result = match self.fit_with(grid, given, self.reduction, 1.0)? {
-            Some(result) => result,
-            None => self
-                .fit_with(grid, given, Reduction::NONE, 1.0)?
-                .ok_or_else(|| strategy_error(NAME, "the exact path refused its own fit"))?,
-        };
+        let mut result = self
+            .fit_with(grid, given, self.reduction, 1.0)?
+            .ok_or_else(|| strategy_error(NAME, "a fit refused its own basis"))?;
         result.elapsed = started.elapsed();
         Ok(result)
     }
 
     /// [`fit`](Self::fit) with the reduction `reduction`; `None` when a reduced direction's
     /// basis does not resolve the fit (its equivalent degrees of freedom more than `share` of
-    /// its size, [`Spectral::resolves`]; never with `share` = 1), or a reduced fit leaves the
-    /// tolerance band (never on the exact path). The first is known once λ is chosen, before
-    /// the guard's judging and the output are paid for: the guard only lowers λ, which only
-    /// adds degrees of freedom.
+    /// its size, [`Spectral::resolves`]; never with `share` = 1). That is known once λ is
+    /// chosen, before the guard's judging and the output are paid for: the guard only lowers
+    /// λ, which only adds degrees of freedom.
     fn fit_with(
         &self,
         grid: &[Vec<Vec3>],
@@ -558,6 +557,7 @@ impl SurfaceJumpLsq {
         let mut gcv_score = None;
         let mut dof = 0.0;
         let mut band_pins = 0;
+        let mut band_projected = 0;
         let mut cg_iterations = 0;
         let mut refused = 0;
         let mut basis = (0, 0);
@@ -569,7 +569,7 @@ impl SurfaceJumpLsq {
             // A direction longer than the reduction's threshold takes the reduced basis (module
             // `reduced`) where the block is one it serves: no scattered fixed nodes, and held
             // lines of that direction only at the ends of an open direction (a joined edge is
-            // one). With a band the reduced fit is kept only if it needs no pin (below).
+            // one). Band pins are constraints on its fit (`Block::pin_reduced`).
             let scattered_held = free_rows
                 .iter()
                 .any(|&i| free_cols.iter().any(|&j| held[i * nv + j]));
@@ -591,28 +591,13 @@ impl SurfaceJumpLsq {
             // O(m²) memory: refused beyond `EXACT_MAX` lines, before anything is allocated.
             for (count, reduced) in [(nr, reduce_u), (nc, reduce_v)] {
                 if !reduced && count > EXACT_MAX {
-                    let (what, reason) = if reduction == Reduction::NONE {
-                        (
-                            crate::Refusal::Tolerance,
-                            format!(
-                                "cannot hold the tolerance band here: its fit on a reduced basis leaves \
-                                 the band, and pinning nodes onto it needs the exact solve of a \
-                                 direction of {count} lines (O(m³) time, O(m²) memory), done up to \
-                                 {EXACT_MAX} (a wider band keeps the reduced fit)"
-                            ),
-                        )
-                    } else {
-                        (
-                            crate::Refusal::Fixed,
-                            format!(
-                                "cannot hold these fixed nodes: nodes held inside the net (or lines \
-                                 held inside it or on a closed direction) need the exact solve of a \
-                                 direction of {count} lines (O(m³) time, O(m²) memory), done up to \
-                                 {EXACT_MAX} (hold only boundary lines, or split the net)"
-                            ),
-                        )
-                    };
-                    return Err(Error::refused(NAME, what, reason));
+                    let reason = format!(
+                        "cannot hold these fixed nodes: nodes held inside the net (or lines held \
+                         inside it or on a closed direction) need the exact solve of a direction \
+                         of {count} lines (O(m³) time, O(m²) memory), done up to {EXACT_MAX} (hold \
+                         only boundary lines, or split the net)"
+                    );
+                    return Err(Error::refused(NAME, crate::Refusal::Fixed, reason));
                 }
             }
             // Each direction's basis, coupling to its held lines and exact K (`direction_part`);
@@ -850,21 +835,7 @@ impl SurfaceJumpLsq {
             let mut trial = lambda;
             let mut accepted = None;
             for _ in 0..=GUARD_RETRIES {
-                // A reduced basis cannot pin single nodes: its fit is kept only when no node
-                // leaves the band, else the net is solved exactly (`fit`).
-                let band = settings.max_distance.filter(|_| !spectral.is_reduced());
-                let (mut x, pins, iterations) = system.solve(trial, &scattered, band);
-                if let (Some(band), true) = (settings.max_distance, spectral.is_reduced()) {
-                    let leaves = free_rows.iter().enumerate().any(|(a, &i)| {
-                        free_cols
-                            .iter()
-                            .enumerate()
-                            .any(|(b, &j)| (y_at(&x, a, b) - data(i, j)).norm() > band)
-                    });
-                    if leaves {
-                        return Ok(None);
-                    }
-                }
+                let (mut x, pins, iterations) = system.solve(trial, &scattered, settings.max_distance);
                 cg_iterations += iterations;
                 if limits_allowed {
                     straighten(
@@ -875,22 +846,30 @@ impl SurfaceJumpLsq {
                     );
                 }
                 let mut candidate = out_distinct.clone();
+                let mut projected = 0;
                 for (a, &i) in free_rows.iter().enumerate() {
                     for (b, &j) in free_cols.iter().enumerate() {
                         let k = i * nv + j;
                         if !held[k] {
-                            candidate[k] = band_point(data(i, j), y_at(&x, a, b), settings.max_distance);
+                            let (start, fitted) = (data(i, j), y_at(&x, a, b));
+                            candidate[k] = band_point(start, fitted, settings.max_distance);
+                            // Pins are met to a fraction of the band; only a node farther out
+                            // than that was left outside it.
+                            projected +=
+                                usize::from(settings.max_distance.is_some_and(|band| {
+                                    (fitted - start).norm() > band * (1.0 + PIN_TOLERANCE)
+                                }));
                         }
                     }
                 }
                 if !settings.guard {
-                    accepted = Some((trial, candidate, pins));
+                    accepted = Some((trial, candidate, pins, projected));
                     break;
                 }
                 let full = expand(&candidate, rows, columns, mu, nv);
                 let after = judge(&full, rows, columns, &build)?;
                 if after.0 <= before.0 * (1.0 + 1e-12) && after.1 <= before.1 * (1.0 + 1e-12) {
-                    accepted = Some((trial, candidate, pins));
+                    accepted = Some((trial, candidate, pins, projected));
                     break;
                 }
                 refused += 1;
@@ -908,12 +887,13 @@ impl SurfaceJumpLsq {
                         }
                     }
                 }
-                accepted = Some((Weights::both(0.0), candidate, 0));
+                accepted = Some((Weights::both(0.0), candidate, 0, 0));
             }
-            if let Some((l, candidate, pins)) = accepted {
+            if let Some((l, candidate, pins, projected)) = accepted {
                 lambda_used = l;
                 out_distinct = candidate;
                 band_pins = pins;
+                band_projected = projected;
                 dof = rss_trace(l).1;
             } else {
                 lambda_used = Weights::both(0.0);
@@ -957,6 +937,7 @@ impl SurfaceJumpLsq {
             dof,
             displacement,
             band_pins,
+            band_projected,
             cg_iterations,
             refused,
             topology,
@@ -1138,7 +1119,7 @@ struct Block<'a> {
 impl Block<'_> {
     /// The block's solution at the weights with the `scattered` nodes held and the tolerance
     /// band kept by pinning (module docs). Returns the solution, the band pins and the CG
-    /// iterations.
+    /// iterations (no pins where pinning gave way, below).
     fn solve(
         &self,
         lambda: Weights,
@@ -1166,44 +1147,136 @@ impl Block<'_> {
                 None => self.y.clone(),
             }
         };
-        let mut pinned = scattered.to_vec();
+        let Some(band) = band else {
+            if scattered.is_empty() || self.operators.is_none() {
+                return (x, 0, 0);
+            }
+            let rhs = rhs();
+            let iterations = self.constrained(&mut x, &rhs, scattered, lambda);
+            return (x, 0, iterations);
+        };
         let mut iterations = 0;
-        if pinned.is_empty() && band.is_none() {
-            return (x, 0, 0);
+        let rhs = (self.operators.is_some()).then(rhs);
+        if let Some(rhs) = &rhs {
+            if !scattered.is_empty() {
+                iterations += self.constrained(&mut x, rhs, scattered, lambda);
+            }
         }
-        let rhs = rhs();
-        if !pinned.is_empty() {
-            iterations += self.constrained(&mut x, &rhs, &pinned, lambda);
+        // Band rounds: the nodes the solution moves beyond the band are pinned on it and the
+        // block solved again with them held, until none leaves it. Pinning gives way where it
+        // cannot serve: a round's solve that does not converge, or a round whose new pins
+        // outnumber all the earlier ones (a pin's correction is the smoother's response, whose
+        // side lobes push nodes beside it out: where the band is narrower than the noise, or
+        // than the fit's departure from the data over a region, the pins multiply, and the
+        // pinned net ended farther from the truth than its input). The unpinned solution is
+        // then projected onto the band by the caller.
+        let unpinned = x.clone();
+        let (nr, nc) = self.y[0].shape();
+        let start = |a: usize, b: usize| {
+            let s = self.shift.map_or_else(Vec3::zeros, |s| y_at(s, a, b));
+            y_at(self.y, a, b) + s
+        };
+        let mut pinned = scattered.to_vec();
+        let mut is_pinned = DMatrix::from_element(nr, nc, false);
+        for &(a, b, _) in &pinned {
+            is_pinned[(a, b)] = true;
         }
         let mut band_pins = 0;
-        if let Some(band) = band {
-            let (nr, nc) = self.y[0].shape();
-            let mut is_pinned = DMatrix::from_element(nr, nc, false);
-            for &(a, b, _) in &pinned {
-                is_pinned[(a, b)] = true;
-            }
-            for _ in 0..BAND_ROUNDS {
-                let mut added = 0;
+        for _ in 0..BAND_ROUNDS {
+            let mut added = 0;
+            for b in 0..nc {
                 for a in 0..nr {
-                    for b in 0..nc {
-                        let p0 = y_at(self.y, a, b);
-                        let p = y_at(&x, a, b);
-                        let d = (p - p0).norm();
-                        if d > band && !is_pinned[(a, b)] {
-                            pinned.push((a, b, p0 + (p - p0) * (band / d)));
-                            is_pinned[(a, b)] = true;
-                            added += 1;
-                        }
+                    let (p0, p) = (start(a, b), y_at(&x, a, b));
+                    let d = (p - p0).norm();
+                    if d > band && !is_pinned[(a, b)] {
+                        pinned.push((a, b, p0 + (p - p0) * (band / d)));
+                        is_pinned[(a, b)] = true;
+                        added += 1;
                     }
                 }
-                if added == 0 {
-                    break;
+            }
+            if added == 0 {
+                break;
+            }
+            if band_pins > 0 && added > band_pins {
+                return (unpinned, 0, iterations);
+            }
+            band_pins += added;
+            let converged = match &rhs {
+                Some(rhs) => {
+                    let used = self.constrained(&mut x, rhs, &pinned, lambda);
+                    iterations += used;
+                    used < CG_ITERATIONS
                 }
-                band_pins += added;
-                iterations += self.constrained(&mut x, &rhs, &pinned, lambda);
+                None => self.pin_reduced(&mut x, &pinned, band, lambda, &mut iterations),
+            };
+            if !converged {
+                return (unpinned, 0, iterations);
             }
         }
         (x, band_pins, iterations)
+    }
+
+    /// Pins on a reduced block, whose unknowns are a basis's coefficients, not the nodes: a
+    /// pinned node p is held by a constraint on the fit's value there, X_p = q_p. The reduced
+    /// problem's minimiser under such constraints is X = X₀ + H Z(m), H = T D⁻¹ Tᵀ the
+    /// block's smoother ([`inverse`](Self::inverse)) and Z(m) zero but for the multipliers m
+    /// at the pins (the Lagrange condition D Ĉ − Ŷ = Tᵀ Z(m) T); m solves the pins' system
+    /// P H Pᵀ m = q − P X₀, symmetric and positive definite where the basis can meet the pins.
+    /// Solved by conjugate gradients from the current X (the previous round's solution), one
+    /// application of H (two transforms, O(N) on reduced bases) an iteration, until every pin
+    /// is met within [`PIN_TOLERANCE`] of the band. Returns whether it was within as many
+    /// iterations as pins (where CG ends in exact arithmetic; at most [`CG_ITERATIONS`]): the
+    /// pins of a band narrower than the noise are met no sooner, if at all.
+    fn pin_reduced(
+        &self,
+        x: &mut Planes,
+        pins: &[(usize, usize, Vec3)],
+        band: f64,
+        lambda: Weights,
+        iterations: &mut usize,
+    ) -> bool {
+        let (nr, nc) = self.y[0].shape();
+        let dot = |p: &[Vec3], q: &[Vec3]| p.iter().zip(q).map(|(p, q)| p.dot(q)).sum::<f64>();
+        let mut r: Vec<Vec3> = pins.iter().map(|&(a, b, q)| q - y_at(x, a, b)).collect();
+        let mut d = r.clone();
+        let mut rr = dot(&r, &r);
+        let most = pins.len().min(CG_ITERATIONS);
+        for used in 0..=most {
+            if r.iter().all(|e| e.norm() <= PIN_TOLERANCE * band) {
+                return true;
+            }
+            if used == most {
+                break;
+            }
+            *iterations += 1;
+            let mut z: Planes = std::array::from_fn(|_| DMatrix::zeros(nr, nc));
+            for (&(a, b, _), e) in pins.iter().zip(&d) {
+                for c in 0..3 {
+                    z[c][(a, b)] = e[c];
+                }
+            }
+            let hz = self.inverse(&z, lambda);
+            let hd: Vec<Vec3> = pins.iter().map(|&(a, b, _)| y_at(&hz, a, b)).collect();
+            let curvature = dot(&d, &hd);
+            if !(curvature > 0.0 && curvature.is_finite()) {
+                break;
+            }
+            let alpha = rr / curvature;
+            for c in 0..3 {
+                x[c] += &hz[c] * alpha;
+            }
+            for (e, h) in r.iter_mut().zip(&hd) {
+                *e -= h * alpha;
+            }
+            let rr_new = dot(&r, &r);
+            let beta = rr_new / rr;
+            rr = rr_new;
+            for (e, q) in d.iter_mut().zip(&r) {
+                *e = q + *e * beta;
+            }
+        }
+        false
     }
 
     /// X̂ at the weights with the joins' constraints.
