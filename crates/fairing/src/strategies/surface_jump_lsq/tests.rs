@@ -1394,7 +1394,7 @@ fn a_reduced_fit_pins_the_nodes_it_would_leave_on_its_own_basis() {
 
 #[test]
 fn under_a_band_narrower_than_the_noise_the_pins_give_way_to_the_projected_fit() {
-    // A band of a fifth of the free fit's largest move on 12 knots a direction: pinning the
+    // On 12 knots a direction, a band of a fifth of the free fit's largest move: pinning the
     // nodes beyond it pushes more out than it holds (or cannot meet them), so the free fit is
     // projected onto the band instead, bit for bit, and every node is within it.
     let grid = noisy(36, 30, 0.03);
@@ -1413,6 +1413,13 @@ fn under_a_band_narrower_than_the_noise_the_pins_give_way_to_the_projected_fit()
         .zip(&flat)
         .map(|(p, q)| (p - q).norm())
         .fold(0.0, f64::max);
+    // A band wider than every move changes nothing.
+    let wide = fit(SurfaceJumpLsqSettings::default().with_max_distance(1.01 * largest));
+    assert_eq!(
+        (wide.basis, wide.band_pins, wide.band_projected),
+        ((12, 12), 0, 0)
+    );
+    assert_eq!(wide.surface.points(), free.surface.points());
     let band = 0.2 * largest;
     let result = fit(SurfaceJumpLsqSettings::default().with_max_distance(band));
     assert_eq!(result.basis, (12, 12));
