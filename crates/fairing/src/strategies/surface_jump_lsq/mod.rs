@@ -1241,6 +1241,7 @@ impl Block<'_> {
         let mut r: Vec<Vec3> = pins.iter().map(|&(a, b, q)| q - y_at(x, a, b)).collect();
         let mut d = r.clone();
         let mut rr = dot(&r, &r);
+        let mut z: Planes = std::array::from_fn(|_| DMatrix::zeros(nr, nc));
         let most = pins.len().min(CG_ITERATIONS);
         for used in 0..=most {
             if r.iter().all(|e| e.norm() <= PIN_TOLERANCE * band) {
@@ -1250,7 +1251,7 @@ impl Block<'_> {
                 break;
             }
             *iterations += 1;
-            let mut z: Planes = std::array::from_fn(|_| DMatrix::zeros(nr, nc));
+            // Z(d): every iteration writes the same pins' entries, so one buffer serves.
             for (&(a, b, _), e) in pins.iter().zip(&d) {
                 for c in 0..3 {
                     z[c][(a, b)] = e[c];
