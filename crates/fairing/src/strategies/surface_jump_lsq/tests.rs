@@ -796,6 +796,20 @@ fn assert_block_is(
     }
 }
 
+/// With u reduced to `count` knots and v exact, the basis N of u's reduced lines at the sites
+/// and the matrix of the fit's normal equations in vec C:
+/// (I ⊗ NᵀN) + λ_u (I ⊗ K') + λ_v (K_v ⊗ NᵀN).
+fn reduced_u_normal_matrix(grid: &[Vec<Vec3>], count: usize, w: Weights) -> (DMatrix<f64>, DMatrix<f64>) {
+    let input = BicubicSplineSurface::new(grid).unwrap();
+    let n = spline_basis(input.u_knots(), count);
+    let ntn = n.transpose() * &n;
+    let kp = gram(&jump_matrix(&tau_of(input.u_knots(), count), false).unwrap());
+    let kv = gram(&jump_matrix(input.v_knots(), false).unwrap());
+    let id = DMatrix::<f64>::identity(kv.nrows(), kv.nrows());
+    let a = id.kronecker(&ntn) + id.kronecker(&kp) * w.u + kv.kronecker(&ntn) * w.v;
+    (n, a)
+}
+
 #[test]
 #[allow(clippy::needless_range_loop)] // the loop variable names the coordinate compared
 fn a_reduced_fit_solves_its_normal_equations() {
@@ -804,20 +818,13 @@ fn a_reduced_fit_solves_its_normal_equations() {
     // [(I ⊗ NᵀN) + λ_u (I ⊗ K') + λ_v (K_v ⊗ NᵀN)] vec C = (I ⊗ Nᵀ) vec Y.
     let (rows, columns, count) = (90, 6, 25);
     let grid = noisy(rows, columns, 0.03);
-    let input = BicubicSplineSurface::new(&grid).unwrap();
-    let tau = tau_of(input.u_knots(), count);
-    let n = spline_basis(input.u_knots(), count);
-    let ntn = n.transpose() * &n;
-    let kp = gram(&jump_matrix(&tau, false).unwrap());
-    let kv = gram(&jump_matrix(input.v_knots(), false).unwrap());
-    let id = DMatrix::<f64>::identity(columns, columns);
     for w in [Weights { u: 0.5, v: 3.0 }, Weights { u: 1e3, v: 1e-2 }] {
         let result = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default().with_guard(false))
             .with_reduction(50, count)
             .fit(&grid, Some(w))
             .unwrap();
         let out = result.surface.points();
-        let a = id.kronecker(&ntn) + id.kronecker(&kp) * w.u + kv.kronecker(&ntn) * w.v;
+        let (n, a) = reduced_u_normal_matrix(&grid, count, w);
         let lu = a.lu();
         for c in 0..3 {
             let y = DMatrix::from_fn(rows, columns, |i, j| grid[i][j][c]);
@@ -1320,13 +1327,8 @@ fn a_reduced_fit_pins_the_nodes_it_would_leave_on_its_own_basis() {
     let (rows, columns, count) = (90, 6, 25);
     let grid = noisy(rows, columns, 0.03);
     let flat: Vec<Vec3> = grid.iter().flatten().copied().collect();
-    let input = BicubicSplineSurface::new(&grid).unwrap();
-    let n = spline_basis(input.u_knots(), count);
-    let ntn = n.transpose() * &n;
-    let kp = gram(&jump_matrix(&tau_of(input.u_knots(), count), false).unwrap());
-    let kv = gram(&jump_matrix(input.v_knots(), false).unwrap());
-    let id = DMatrix::<f64>::identity(columns, columns);
     let w = Weights { u: 0.5, v: 3.0 };
+    let (n, a) = reduced_u_normal_matrix(&grid, count, w);
     let fit = |settings: SurfaceJumpLsqSettings| {
         SurfaceJumpLsq::new(settings.with_guard(false))
             .with_reduction(50, count)
@@ -1346,7 +1348,6 @@ fn a_reduced_fit_pins_the_nodes_it_would_leave_on_its_own_basis() {
     assert!(pins.len() >= 2, "{} pins", pins.len());
     let pinned = fit(SurfaceJumpLsqSettings::default().with_max_distance(band));
     assert_eq!((pinned.band_pins, pinned.band_projected), (pins.len(), 0));
-    let a = id.kronecker(&ntn) + id.kronecker(&kp) * w.u + kv.kronecker(&ntn) * w.v;
     let size = count * columns;
     let mut kkt = DMatrix::zeros(size + pins.len(), size + pins.len());
     kkt.view_mut((0, 0), (size, size)).copy_from(&a);
