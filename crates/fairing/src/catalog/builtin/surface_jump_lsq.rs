@@ -67,6 +67,7 @@ impl SurfaceMethod for SurfaceJumpLsqMethod {
         extras.insert("dof".into(), serde_json::json!(result.dof));
         extras.insert("band_pins".into(), serde_json::json!(result.band_pins));
         extras.insert("band_projected".into(), serde_json::json!(result.band_projected));
+        extras.insert("fixed_spread".into(), serde_json::json!(result.fixed_spread));
         extras.insert("cg_iterations".into(), serde_json::json!(result.cg_iterations));
         extras.insert("displacement_sum".into(), serde_json::json!(result.displacement));
         extras.insert("basis_u".into(), serde_json::json!(result.basis.0));
@@ -80,6 +81,10 @@ impl SurfaceMethod for SurfaceJumpLsqMethod {
         if !result.joins.is_empty() {
             extras.insert("joins".into(), serde_json::json!(result.joins));
         }
+        extras.insert(
+            "warnings".into(),
+            serde_json::json!(warnings(&result, &settings.fixed)),
+        );
         Ok(SurfaceRun {
             grid: crate::catalog::Grid {
                 rows: grid.rows,
@@ -99,4 +104,23 @@ impl SurfaceMethod for SurfaceJumpLsqMethod {
             extras,
         })
     }
+}
+
+/// What kept the run from doing its job, in words for the report's `warnings` (the command
+/// prints them on standard error): fixed nodes whose values the fit can pass through only by
+/// swinging far from the data beside them ([`SurfaceJumpLsqResult::fixed_spread`]).
+///
+/// [`SurfaceJumpLsqResult::fixed_spread`]: crate::strategies::SurfaceJumpLsqResult::fixed_spread
+fn warnings(result: &crate::strategies::SurfaceJumpLsqResult, fixed: &[(usize, usize)]) -> Vec<String> {
+    let mut out = Vec::new();
+    if result.fixed_spread > crate::strategies::surface_jump_lsq::FIXED_SPREAD_WARNING {
+        out.push(format!(
+            "the {} fixed nodes bend the fit {:.1} times farther from the data than it moves \
+             without them: their values are not smooth together (adjacent noisy nodes?); fix \
+             fewer adjacent nodes, or fair them first",
+            fixed.len(),
+            result.fixed_spread
+        ));
+    }
+    out
 }

@@ -49,7 +49,16 @@
 //! - *Scattered fixed nodes* are equality constraints on the block: the unconstrained solution
 //!   with those nodes set is corrected by conjugate gradients on the free nodes, preconditioned
 //!   by the exact solve (the preconditioned operator is the identity plus a term of rank at
-//!   most the number of such nodes). Held nodes are written back bit for bit.
+//!   most the number of such nodes). On a reduced basis they are constraints on the fit's
+//!   value, as band pins are (below); where the basis cannot meet them (more adjacent fixed
+//!   nodes along a reduced direction than it has freedom for between two knots) the net is
+//!   fitted on the exact path. Held nodes are written back bit for bit. The fit must pass
+//!   through the fixed values with a C² bicubic surface, so where they are not smooth
+//!   together (a run of adjacent noisy nodes) it carries their curvature out into the net,
+//!   swinging far from the data beside them under a heavy weight (a noisy 1000² net, eleven
+//!   nodes fixed in a row: 4 units beside them on a surface 0.2 high). That is the
+//!   constrained minimiser; the result reports it (`fixed_spread`, the catalogue's
+//!   `warnings`).
 //! - *The tolerance band* (`max_distance`): a node the solution moves farther than the band
 //!   is pinned at its projection onto the band and the system re-solved with it held, until no
 //!   free node leaves the band (at most [`BAND_ROUNDS`] rounds; after the last, any node still
@@ -115,10 +124,11 @@
 //! `join`, "Reduced bases"). Held ends shift the data by their lines; the other direction's
 //! penalty sees that shift exactly when that direction is exact, and through its projection
 //! onto the basis when it is reduced too (module `reduced`, "Both directions"). Its band pins
-//! are constraints on the fit (above). Scattered fixed nodes, held interior lines and held
-//! lines of a closed direction are solved exactly, at the exact path's cost below; beyond
-//! `EXACT_MAX` (5000) lines a direction that needs the exact solve is refused with the reason
-//! (a dense eigenproblem of 50 000 lines would need 20 GB a matrix).
+//! and scattered fixed nodes are constraints on the fit (above). Held interior lines and held
+//! lines of a closed direction are solved exactly, at the exact path's cost below, as are
+//! fixed nodes the basis cannot meet; beyond `EXACT_MAX` (5000) lines a direction that needs
+//! the exact solve is refused with the reason (a dense eigenproblem of 50 000 lines would need
+//! 20 GB a matrix).
 //!
 //! Before that, when λ is chosen by GCV, a net with a direction of more than `COARSE_KNOTS`
 //! (200) sites is fitted with every such direction on a basis of 200 knots; that fit is kept
@@ -147,7 +157,7 @@
 //! costs O(N) for a fixed M_MAX, time and memory (criterion bench `surface_jump`, its long
 //! strip); on the 200-knot coarse basis, O(m·n + 200²·(m + n)) per transform, O(N) from
 //! 200² up. Each fixed node or band pin adds at most one conjugate-gradient iteration of two
-//! transforms.
+//! transforms, on the reduced bases too.
 
 mod join;
 mod operator;
@@ -177,6 +187,11 @@ pub const BAND_ROUNDS: usize = 10;
 /// A reduced block's band pins are met when each is within this fraction of the band of its
 /// place (the node is then projected onto the band as any other).
 const PIN_TOLERANCE: f64 = 1e-6;
+
+/// Fixed nodes whose fit moves a free node farther than this many times the unconstrained
+/// fit's largest move are reported ([`SurfaceJumpLsqResult::fixed_spread`]: one fixed node's
+/// correction spreads at most 2, its smoother's column being largest at its own node).
+pub const FIXED_SPREAD_WARNING: f64 = 2.0;
 
 /// Retries of a fit the refusal rule turns down, each at both weights × [`GUARD_FACTOR`].
 pub const GUARD_RETRIES: usize = 6;
@@ -319,6 +334,12 @@ pub struct SurfaceJumpLsqResult {
     /// Nodes projected onto the tolerance band at the end (left outside it after the last
     /// round of pins, or every node outside it where pinning gave way).
     pub band_projected: usize,
+    /// The largest move of a node the fixed nodes leave free over the unconstrained fit's (1
+    /// without fixed nodes or where they move nothing farther). Above
+    /// [`FIXED_SPREAD_WARNING`] the fixed nodes' values are not smooth together at these
+    /// weights (adjacent noisy nodes: the fit, which must pass through them, carries their
+    /// curvature out into the net).
+    pub fixed_spread: f64,
     /// Conjugate-gradient iterations (fixed nodes and band pins).
     pub cg_iterations: usize,
     /// Fits the refusal rule turned down (each retried at a tenth of both weights; after
@@ -377,7 +398,7 @@ struct Reduction {
 }
 
 /// Lines along a direction beyond which the exact path is refused (where the reduced basis does
-/// not serve the net: fixed nodes inside it): its eigendecomposition is
+/// not serve the net: lines held inside it, fixed nodes it cannot meet): its eigendecomposition is
 /// O(m³) (about a minute at 5000) and its dense matrices O(m²) memory (200 MB each at 5000),
 /// where a direction of 50 000 lines would need 20 GB for each.
 const EXACT_MAX: usize = 5000;
@@ -437,18 +458,28 @@ impl SurfaceJumpLsq {
                 return Ok(result);
             }
         }
-        let mut result = self
-            .fit_with(grid, given, self.reduction, 1.0)?
-            .ok_or_else(|| strategy_error(NAME, "a fit refused its own basis"))?;
+        // The reduction's own basis refuses the fit only where it cannot meet the fixed nodes;
+        // the exact path holds them (or refuses a direction too long for it).
+        let exact = Reduction {
+            above: usize::MAX,
+            knots: usize::MAX,
+        };
+        let mut result = match self.fit_with(grid, given, self.reduction, 1.0)? {
+            Some(result) => Some(result),
+            None if self.reduction != exact => self.fit_with(grid, given, exact, 1.0)?,
+            None => None,
+        }
+        .ok_or_else(|| strategy_error(NAME, "a fit refused its own basis"))?;
         result.elapsed = started.elapsed();
         Ok(result)
     }
 
     /// [`fit`](Self::fit) with the reduction `reduction`; `None` when a reduced direction's
     /// basis does not resolve the fit (its equivalent degrees of freedom more than `share` of
-    /// its size, [`Spectral::resolves`]; never with `share` = 1). That is known once λ is
-    /// chosen, before the guard's judging and the output are paid for: the guard only lowers
-    /// λ, which only adds degrees of freedom.
+    /// its size, [`Spectral::resolves`]; never with `share` = 1) or cannot meet the fixed
+    /// nodes ([`Block::solve`]). The first is known once λ is chosen, before the guard's
+    /// judging and the output are paid for: the guard only lowers λ, which only adds degrees
+    /// of freedom.
     fn fit_with(
         &self,
         grid: &[Vec<Vec3>],
@@ -558,6 +589,7 @@ impl SurfaceJumpLsq {
         let mut dof = 0.0;
         let mut band_pins = 0;
         let mut band_projected = 0;
+        let mut fixed_spread = 1.0;
         let mut cg_iterations = 0;
         let mut refused = 0;
         let mut basis = (0, 0);
@@ -567,16 +599,11 @@ impl SurfaceJumpLsq {
             let (nr, nc) = (free_rows.len(), free_cols.len());
             let mut y = planes(nr, nc, |a, b| data(free_rows[a], free_cols[b]));
             // A direction longer than the reduction's threshold takes the reduced basis (module
-            // `reduced`) where the block is one it serves: no scattered fixed nodes, and held
-            // lines of that direction only at the ends of an open direction (a joined edge is
-            // one). Band pins are constraints on its fit (`Block::pin_reduced`).
-            let scattered_held = free_rows
-                .iter()
-                .any(|&i| free_cols.iter().any(|&j| held[i * nv + j]));
-            let simple = !scattered_held;
+            // `reduced`) where the block is one it serves: held lines of that direction only at
+            // the ends of an open direction (a joined edge is one). Scattered fixed nodes and band
+            // pins are constraints on its fit (`Block::pin_reduced`).
             let reducible = |count: usize, closed: bool, held: &[usize]| {
-                simple
-                    && count > reduction.above
+                count > reduction.above
                     && if closed {
                         held.is_empty()
                     } else {
@@ -592,10 +619,11 @@ impl SurfaceJumpLsq {
             for (count, reduced) in [(nr, reduce_u), (nc, reduce_v)] {
                 if !reduced && count > EXACT_MAX {
                     let reason = format!(
-                        "cannot hold these fixed nodes: nodes held inside the net (or lines held \
-                         inside it or on a closed direction) need the exact solve of a direction \
-                         of {count} lines (O(m³) time, O(m²) memory), done up to {EXACT_MAX} (hold \
-                         only boundary lines, or split the net)"
+                        "cannot hold these fixed nodes: lines held inside the net or on a closed \
+                         direction (or fixed nodes closer together than a reduced basis's knots) \
+                         need the exact solve of a direction of {count} lines (O(m³) time, O(m²) \
+                         memory), done up to {EXACT_MAX} (hold single nodes or boundary lines, or \
+                         split the net)"
                     );
                     return Err(Error::refused(NAME, crate::Refusal::Fixed, reason));
                 }
@@ -835,7 +863,15 @@ impl SurfaceJumpLsq {
             let mut trial = lambda;
             let mut accepted = None;
             for _ in 0..=GUARD_RETRIES {
-                let (mut x, pins, iterations) = system.solve(trial, &scattered, settings.max_distance);
+                let Some(Solution {
+                    mut x,
+                    band_pins: pins,
+                    iterations,
+                    spread,
+                }) = system.solve(trial, &scattered, settings.max_distance)
+                else {
+                    return Ok(None);
+                };
                 cg_iterations += iterations;
                 if limits_allowed {
                     straighten(
@@ -863,13 +899,13 @@ impl SurfaceJumpLsq {
                     }
                 }
                 if !settings.guard {
-                    accepted = Some((trial, candidate, pins, projected));
+                    accepted = Some((trial, candidate, pins, projected, spread));
                     break;
                 }
                 let full = expand(&candidate, rows, columns, mu, nv);
                 let after = judge(&full, rows, columns, &build)?;
                 if after.0 <= before.0 * (1.0 + 1e-12) && after.1 <= before.1 * (1.0 + 1e-12) {
-                    accepted = Some((trial, candidate, pins, projected));
+                    accepted = Some((trial, candidate, pins, projected, spread));
                     break;
                 }
                 refused += 1;
@@ -877,7 +913,9 @@ impl SurfaceJumpLsq {
             }
             if accepted.is_none() && joined.is_some() {
                 // Every fit refused: the start moved least to hold the joins (λ = 0).
-                let (x, _, _) = system.solve(Weights::both(0.0), &scattered, None);
+                let Some(Solution { x, .. }) = system.solve(Weights::both(0.0), &scattered, None) else {
+                    return Ok(None);
+                };
                 let mut candidate = out_distinct.clone();
                 for (a, &i) in free_rows.iter().enumerate() {
                     for (b, &j) in free_cols.iter().enumerate() {
@@ -887,13 +925,14 @@ impl SurfaceJumpLsq {
                         }
                     }
                 }
-                accepted = Some((Weights::both(0.0), candidate, 0, 0));
+                accepted = Some((Weights::both(0.0), candidate, 0, 0, 1.0));
             }
-            if let Some((l, candidate, pins, projected)) = accepted {
+            if let Some((l, candidate, pins, projected, spread)) = accepted {
                 lambda_used = l;
                 out_distinct = candidate;
                 band_pins = pins;
                 band_projected = projected;
+                fixed_spread = spread;
                 dof = rss_trace(l).1;
             } else {
                 lambda_used = Weights::both(0.0);
@@ -938,6 +977,7 @@ impl SurfaceJumpLsq {
             displacement,
             band_pins,
             band_projected,
+            fixed_spread,
             cg_iterations,
             refused,
             topology,
@@ -1105,7 +1145,7 @@ fn direction_part(
 struct Block<'a> {
     spectral: &'a Spectral,
     /// The exact K_u and K_v of the block (for the constrained solves; `None` when a direction
-    /// is reduced, which has no fixed nodes or band to hold).
+    /// is reduced, whose fixed nodes and band pins are constraints on its fit, `pin_reduced`).
     operators: Option<(&'a DMatrix<f64>, &'a DMatrix<f64>)>,
     /// The data's shift by a reduced direction's held ends, added back to the solution.
     shift: Option<&'a Planes>,
@@ -1116,16 +1156,37 @@ struct Block<'a> {
     joined: Option<&'a join::Joined>,
 }
 
+/// A block's solution ([`Block::solve`]).
+struct Solution {
+    /// The free nodes' values at the sites.
+    x: Planes,
+    /// Nodes pinned on the tolerance band.
+    band_pins: usize,
+    /// Conjugate-gradient iterations.
+    iterations: usize,
+    /// The largest move of a node the fixed nodes leave free, over the unconstrained fit's
+    /// (1 where it is no larger, and without fixed nodes). One fixed node's correction is the
+    /// smoother's column at it, largest at the node itself (|H_pq| ≤ H_pp for the stationary
+    /// smoother), so it moves no free node farther than the fixed node's own discrepancy, at
+    /// most the unconstrained fit's largest move: a spread of at most 2. Fixed nodes whose
+    /// values the weights cannot bend through (a run of adjacent noisy nodes under a heavy
+    /// weight) swing the fit far past that ([`FIXED_SPREAD_WARNING`]).
+    spread: f64,
+}
+
 impl Block<'_> {
     /// The block's solution at the weights with the `scattered` nodes held and the tolerance
-    /// band kept by pinning (module docs). Returns the solution, the band pins and the CG
-    /// iterations (no pins where pinning gave way, below).
+    /// band kept by pinning (module docs): the solution, its band pins (none where pinning
+    /// gave way, below), the CG iterations and the fixed nodes' spread
+    /// ([`Solution::spread`]). `None` where a reduced block's basis cannot meet the scattered
+    /// nodes (fixed nodes closer together along a reduced direction than its knots), which the
+    /// exact path then holds.
     fn solve(
         &self,
         lambda: Weights,
         scattered: &[(usize, usize, Vec3)],
         band: Option<f64>,
-    ) -> (Planes, usize, usize) {
+    ) -> Option<Solution> {
         let x_hat = self.solve_hat(lambda);
         let mut x = self.spectral.back(&x_hat);
         if let Some(shift) = self.shift {
@@ -1147,21 +1208,64 @@ impl Block<'_> {
                 None => self.y.clone(),
             }
         };
-        let Some(band) = band else {
-            if scattered.is_empty() || self.operators.is_none() {
-                return (x, 0, 0);
+        let rhs = (self.operators.is_some() && (band.is_some() || !scattered.is_empty())).then(rhs);
+        let (nr, nc) = self.y[0].shape();
+        let start = |a: usize, b: usize| {
+            let s = self.shift.map_or_else(Vec3::zeros, |s| y_at(s, a, b));
+            y_at(self.y, a, b) + s
+        };
+        let mut is_pinned = DMatrix::from_element(nr, nc, false);
+        for &(a, b, _) in scattered {
+            is_pinned[(a, b)] = true;
+        }
+        // The largest move of a node the pins leave free.
+        let largest_free_move = |x: &Planes, is_pinned: &DMatrix<bool>| {
+            let mut largest: f64 = 0.0;
+            for b in 0..nc {
+                for a in 0..nr {
+                    if !is_pinned[(a, b)] {
+                        largest = largest.max((y_at(x, a, b) - start(a, b)).norm());
+                    }
+                }
             }
-            let rhs = rhs();
-            let iterations = self.constrained(&mut x, &rhs, scattered, lambda);
-            return (x, 0, iterations);
+            largest
         };
         let mut iterations = 0;
-        let rhs = (self.operators.is_some()).then(rhs);
-        if let Some(rhs) = &rhs {
-            if !scattered.is_empty() {
-                iterations += self.constrained(&mut x, rhs, scattered, lambda);
+        let mut spread = 1.0;
+        if !scattered.is_empty() {
+            let free_move = largest_free_move(&x, &is_pinned);
+            match &rhs {
+                Some(rhs) => iterations += self.constrained(&mut x, rhs, scattered, lambda),
+                None => {
+                    // Met to a fraction of the largest distance they start from (the node
+                    // itself is written back bit for bit).
+                    let start = scattered
+                        .iter()
+                        .map(|&(a, b, q)| (q - y_at(&x, a, b)).norm())
+                        .fold(0.0, f64::max);
+                    if !self.pin_reduced(&mut x, scattered, PIN_TOLERANCE * start, lambda, &mut iterations) {
+                        return None;
+                    }
+                }
             }
+            let pinned_move = largest_free_move(&x, &is_pinned);
+            spread = if pinned_move <= free_move {
+                1.0
+            } else if free_move > 0.0 {
+                pinned_move / free_move
+            } else {
+                f64::INFINITY
+            };
         }
+        let solution = |x: Planes, band_pins: usize, iterations: usize| Solution {
+            x,
+            band_pins,
+            iterations,
+            spread,
+        };
+        let Some(band) = band else {
+            return Some(solution(x, 0, iterations));
+        };
         // Band rounds: the nodes the solution moves beyond the band are pinned on it and the
         // block solved again with them held, until none leaves it. Pinning gives way where it
         // cannot serve: a round's solve that does not converge, or a round whose new pins
@@ -1171,16 +1275,7 @@ impl Block<'_> {
         // pinned net ended farther from the truth than its input). The unpinned solution is
         // then projected onto the band by the caller.
         let unpinned = x.clone();
-        let (nr, nc) = self.y[0].shape();
-        let start = |a: usize, b: usize| {
-            let s = self.shift.map_or_else(Vec3::zeros, |s| y_at(s, a, b));
-            y_at(self.y, a, b) + s
-        };
         let mut pinned = scattered.to_vec();
-        let mut is_pinned = DMatrix::from_element(nr, nc, false);
-        for &(a, b, _) in &pinned {
-            is_pinned[(a, b)] = true;
-        }
         let mut band_pins = 0;
         for _ in 0..BAND_ROUNDS {
             let mut added = 0;
@@ -1199,7 +1294,7 @@ impl Block<'_> {
                 break;
             }
             if band_pins > 0 && added > band_pins {
-                return (unpinned, 0, iterations);
+                return Some(solution(unpinned, 0, iterations));
             }
             band_pins += added;
             let converged = match &rhs {
@@ -1208,16 +1303,17 @@ impl Block<'_> {
                     iterations += used;
                     used < CG_ITERATIONS
                 }
-                None => self.pin_reduced(&mut x, &pinned, band, lambda, &mut iterations),
+                None => self.pin_reduced(&mut x, &pinned, PIN_TOLERANCE * band, lambda, &mut iterations),
             };
             if !converged {
-                return (unpinned, 0, iterations);
+                return Some(solution(unpinned, 0, iterations));
             }
         }
-        (x, band_pins, iterations)
+        Some(solution(x, band_pins, iterations))
     }
 
-    /// Pins on a reduced block, whose unknowns are a basis's coefficients, not the nodes: a
+    /// Pins (band pins, fixed nodes) on a reduced block, whose unknowns are a basis's
+    /// coefficients, not the nodes: a
     /// pinned node p is held by a constraint on the fit's value there, X_p = q_p. The reduced
     /// problem's minimiser under such constraints is X = X₀ + H Z(m), H = T D⁻¹ Tᵀ the
     /// block's smoother ([`inverse`](Self::inverse)) and Z(m) zero but for the multipliers m
@@ -1225,14 +1321,15 @@ impl Block<'_> {
     /// P H Pᵀ m = q − P X₀, symmetric and positive definite where the basis can meet the pins.
     /// Solved by conjugate gradients from the current X (the previous round's solution), one
     /// application of H (two transforms, O(N) on reduced bases) an iteration, until every pin
-    /// is met within [`PIN_TOLERANCE`] of the band. Returns whether it was within as many
-    /// iterations as pins (where CG ends in exact arithmetic; at most [`CG_ITERATIONS`]): the
-    /// pins of a band narrower than the noise are met no sooner, if at all.
+    /// is within `tolerance` of its place. Returns whether it was within as many iterations as
+    /// pins (where CG ends in exact arithmetic; at most [`CG_ITERATIONS`]): the pins of a band
+    /// narrower than the noise, or more pins than the basis has freedom for between two of
+    /// its knots, are met no sooner, if at all.
     fn pin_reduced(
         &self,
         x: &mut Planes,
         pins: &[(usize, usize, Vec3)],
-        band: f64,
+        tolerance: f64,
         lambda: Weights,
         iterations: &mut usize,
     ) -> bool {
@@ -1244,7 +1341,7 @@ impl Block<'_> {
         let mut z: Planes = std::array::from_fn(|_| DMatrix::zeros(nr, nc));
         let most = pins.len().min(CG_ITERATIONS);
         for used in 0..=most {
-            if r.iter().all(|e| e.norm() <= PIN_TOLERANCE * band) {
+            if r.iter().all(|e| e.norm() <= tolerance) {
                 return true;
             }
             if used == most {
@@ -1295,7 +1392,7 @@ impl Block<'_> {
             Some((ku, kv)) => {
                 std::array::from_fn(|c| &x[c] + (ku * &x[c]) * lambda.u + (&x[c] * kv) * lambda.v)
             }
-            // A reduced block has no pins (fixed nodes or band); never reached.
+            // A reduced block's pins (fixed nodes, band) go through `pin_reduced`; never reached.
             None => x.clone(),
         }
     }

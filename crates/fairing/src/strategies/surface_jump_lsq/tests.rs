@@ -1394,6 +1394,146 @@ fn a_reduced_fit_pins_the_nodes_it_would_leave_on_its_own_basis() {
 }
 
 #[test]
+#[allow(clippy::needless_range_loop)] // the loop variable names the coordinate compared
+fn fixed_nodes_on_a_reduced_basis_solve_its_constrained_normal_equations() {
+    // u reduced to M knots, v exact, nodes fixed inside the net: the fit is the reduced
+    // problem's minimiser under X_p = Y_p at each fixed node, the KKT system
+    // [A Φᵀ; Φ 0] [vec C; m] = [(I ⊗ Nᵀ) vec Y; Y_p] (the band test's, with the input's values),
+    // solved here densely; the fixed nodes come back bit for bit and the basis stays reduced.
+    let (rows, columns, count) = (90, 6, 25);
+    let grid = noisy(rows, columns, 0.03);
+    let flat: Vec<Vec3> = grid.iter().flatten().copied().collect();
+    let w = Weights { u: 0.5, v: 3.0 };
+    let fixed = [(10, 1), (37, 4), (38, 2), (71, 0), (89, 5)];
+    let result = SurfaceJumpLsq::new(
+        SurfaceJumpLsqSettings::default()
+            .with_guard(false)
+            .with_fixed(fixed),
+    )
+    .with_reduction(50, count)
+    .fit(&grid, Some(w))
+    .unwrap();
+    assert_eq!(result.basis, (count, columns));
+    let out = result.surface.points();
+    for &(i, j) in &fixed {
+        assert_eq!(out[i * columns + j], grid[i][j], "fixed node ({i}, {j})");
+    }
+    let (n, a) = reduced_u_normal_matrix(&grid, count, w);
+    let size = count * columns;
+    let mut kkt = DMatrix::zeros(size + fixed.len(), size + fixed.len());
+    kkt.view_mut((0, 0), (size, size)).copy_from(&a);
+    for (r, &(i, j)) in fixed.iter().enumerate() {
+        for q in 0..count {
+            kkt[(size + r, j * count + q)] = n[(i, q)];
+            kkt[(j * count + q, size + r)] = n[(i, q)];
+        }
+    }
+    let lu = kkt.lu();
+    let free = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default().with_guard(false))
+        .with_reduction(50, count)
+        .fit(&grid, Some(w))
+        .unwrap();
+    let mut pulled: f64 = 0.0;
+    for c in 0..3 {
+        let y = DMatrix::from_fn(rows, columns, |i, j| grid[i][j][c]);
+        let mut rhs = DVector::zeros(size + fixed.len());
+        rhs.rows_mut(0, size)
+            .copy_from(&DVector::from_column_slice((n.transpose() * &y).as_slice()));
+        for (r, &(i, j)) in fixed.iter().enumerate() {
+            rhs[size + r] = grid[i][j][c];
+        }
+        let solution = lu.solve(&rhs).unwrap();
+        let x = &n * DMatrix::from_column_slice(count, columns, &solution.as_slice()[..size]);
+        for i in 0..rows {
+            for j in 0..columns {
+                let k = i * columns + j;
+                let gap = (x[(i, j)] - out[k][c]).abs();
+                assert!(gap < 1e-7, "({i}, {j}) coordinate {c}: {gap}");
+                if !fixed.contains(&(i, j)) {
+                    pulled = pulled.max((out[k][c] - free.surface.points()[k][c]).abs());
+                }
+            }
+        }
+    }
+    // The fixed nodes pull the fit beside them (the test would pass an unconstrained fit with
+    // the fixed nodes written back only if they pulled nothing).
+    assert!(pulled > 1e-4, "{pulled}");
+    let _ = flat;
+}
+
+#[test]
+fn fixed_nodes_the_reduced_basis_cannot_meet_are_held_on_the_exact_path() {
+    // Nine adjacent nodes fixed along u, on a basis of 12 knots over 90 sites (8 sites an
+    // interval): the basis has five degrees of freedom a line there and cannot pass through
+    // them, so the net is fitted on the exact path, bit for bit the fit without the reduction.
+    let (rows, columns) = (90, 6);
+    let grid = noisy(rows, columns, 0.03);
+    let w = Weights { u: 0.5, v: 3.0 };
+    let fixed: Vec<(usize, usize)> = (40..49).map(|i| (i, 2)).collect();
+    let settings = SurfaceJumpLsqSettings::default()
+        .with_guard(false)
+        .with_fixed(fixed.clone());
+    let reduced = SurfaceJumpLsq::new(settings.clone())
+        .with_reduction(50, 12)
+        .fit(&grid, Some(w))
+        .unwrap();
+    let exact = SurfaceJumpLsq::new(settings).fit(&grid, Some(w)).unwrap();
+    assert_eq!(exact.basis, (rows, columns));
+    assert_eq!(reduced.basis, exact.basis);
+    assert_eq!(reduced.surface.points(), exact.surface.points());
+    for &(i, j) in &fixed {
+        assert_eq!(reduced.surface.points()[i * columns + j], grid[i][j]);
+    }
+}
+
+#[test]
+fn the_fixed_nodes_spread_is_their_fits_largest_free_move_over_the_unconstrained_fits() {
+    // `fixed_spread` by its definition, from two fits at the same weights: one fixed node
+    // spreads at most 2 (its correction is the smoother's column there, largest at the node);
+    // a run of adjacent noisy fixed nodes, which the fit passes through only by carrying
+    // their curvature out into the net, far more, and the catalogue warns of it.
+    let (rows, columns) = (40, 30);
+    let grid = noisy(rows, columns, 0.05);
+    let w = Weights::both(1e4);
+    let fit = |fixed: &[(usize, usize)]| {
+        SurfaceJumpLsq::new(
+            SurfaceJumpLsqSettings::default()
+                .with_guard(false)
+                .with_fixed(fixed.to_vec()),
+        )
+        .fit(&grid, Some(w))
+        .unwrap()
+    };
+    let free = fit(&[]);
+    assert_eq!(free.fixed_spread, 1.0);
+    let largest_move = |out: &[Vec3], fixed: &[(usize, usize)]| {
+        (0..rows * columns)
+            .filter(|&k| !fixed.contains(&(k / columns, k % columns)))
+            .map(|k| (out[k] - grid[k / columns][k % columns]).norm())
+            .fold(0.0, f64::max)
+    };
+    let single = [(20, 15)];
+    let run: Vec<(usize, usize)> = (11..19).map(|j| (20, j)).collect();
+    for (fixed, bounded) in [(&single[..], true), (&run[..], false)] {
+        let result = fit(fixed);
+        let spread = (largest_move(result.surface.points(), fixed)
+            / largest_move(free.surface.points(), fixed))
+        .max(1.0);
+        assert!(
+            (result.fixed_spread - spread).abs() <= 1e-9 * spread,
+            "{} against {spread}",
+            result.fixed_spread
+        );
+        assert_eq!(
+            spread <= super::FIXED_SPREAD_WARNING,
+            bounded,
+            "{} fixed nodes: spread {spread}",
+            fixed.len()
+        );
+    }
+}
+
+#[test]
 fn under_a_band_narrower_than_the_noise_the_pins_give_way_to_the_projected_fit() {
     // On 12 knots a direction, a band of a fifth of the free fit's largest move: pinning the
     // nodes beyond it pushes more out than it holds (or cannot meet them), so the free fit is
@@ -1449,17 +1589,26 @@ fn under_a_band_narrower_than_the_noise_the_pins_give_way_to_the_projected_fit()
 
 #[test]
 fn the_exact_solve_of_a_direction_too_long_for_it_is_refused_before_it_allocates() {
-    // A 5001 × 3 strip: a node fixed inside it needs the exact solve along the strip (a dense
-    // 5001² eigenproblem); refused with the reason, as a typed refusal of the fixed nodes.
+    // A 5002 × 3 strip: a line held inside it needs the exact solve along the strip's 5001
+    // other lines (a dense 5001² eigenproblem); refused with the reason, as a typed refusal
+    // of the fixed nodes.
     // Without it the strip is faired on the reduced basis, under a band its reduced fit leaves
     // too (0.9 of its largest move: pins on the reduced basis).
-    let grid = noisy_net(5001, 3, 0.02, 5, |x, y| Vec3::new(40.0 * x, y, (20.0 * x).sin()));
+    let grid = noisy_net(5002, 3, 0.02, 5, |x, y| Vec3::new(40.0 * x, y, (20.0 * x).sin()));
     let plain = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default())
         .run(&grid)
         .unwrap();
     assert!(plain.basis.0 <= 800, "{:?}", plain.basis);
-    let fixed = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default().with_fixed([(2500, 1)])).run(&grid);
-    match fixed {
+    // A node fixed inside it is a constraint on the reduced fit.
+    let fixed = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default().with_fixed([(2500, 1)]))
+        .run(&grid)
+        .unwrap();
+    assert!(fixed.basis.0 <= 800, "{:?}", fixed.basis);
+    assert_eq!(fixed.surface.points()[2500 * 3 + 1], grid[2500][1]);
+    let line =
+        SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default().with_fixed([(2500, 0), (2500, 1), (2500, 2)]))
+            .run(&grid);
+    match line {
         Err(crate::Error::Refused {
             what: crate::Refusal::Fixed,
             reason,
@@ -1467,10 +1616,7 @@ fn the_exact_solve_of_a_direction_too_long_for_it_is_refused_before_it_allocates
         }) => {
             assert!(reason.contains("5001") && reason.contains("5000"), "{reason}")
         }
-        other => panic!(
-            "expected the fixed node refused, got {:?}",
-            other.map(|r| r.basis)
-        ),
+        other => panic!("expected the held line refused, got {:?}", other.map(|r| r.basis)),
     }
     let largest = plain
         .surface
