@@ -366,3 +366,59 @@ fn a_run_whose_every_step_was_refused_says_so() {
         }
     }
 }
+
+/// Adjacent noisy fixed nodes, which `jump-lsq` can pass through only by carrying their
+/// curvature out into the net, are warned of on standard error and in the report's
+/// `warnings` (with `fixed_spread` above 2); the fit is still written, the nodes held. One
+/// fixed node is not warned of.
+#[test]
+fn adjacent_noisy_fixed_nodes_are_warned_of_and_still_held() {
+    let scratch = out_dir("spread");
+    let dir = scratch.path();
+    let noise = |i: usize, j: usize| {
+        let t = ((i * 7919 + j * 104_729 + 1_299_709) as f64 * 12.9898).sin() * 43_758.545_3;
+        2.0 * (t - t.floor()) - 1.0
+    };
+    let mut text = String::from("i,j,x,y,z\n");
+    for i in 0..40 {
+        for j in 0..40 {
+            let (x, y) = (i as f64 / 39.0, j as f64 / 39.0);
+            let z = 0.3 * (3.0 * x).sin() * (2.0 * y).cos() + 0.02 * noise(i, j);
+            text.push_str(&format!("{i},{j},{x},{y},{z}\n"));
+        }
+    }
+    let input = dir.join("net.csv");
+    std::fs::write(&input, text).unwrap();
+    let run = (20 * 40 + 15..20 * 40 + 23)
+        .map(|k| k.to_string())
+        .collect::<Vec<_>>()
+        .join(",");
+    for (fixed, warned) in [("820", false), (run.as_str(), true)] {
+        let (out, report) = (dir.join("out.csv"), dir.join("report.json"));
+        let result = fair(&[
+            "surface",
+            input.to_str().unwrap(),
+            "--fixed",
+            fixed,
+            "-o",
+            out.to_str().unwrap(),
+            "--report",
+            report.to_str().unwrap(),
+        ]);
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert!(result.status.success(), "{stderr}");
+        assert_eq!(
+            stderr.contains("warning") && stderr.contains("fixed nodes bend the fit"),
+            warned,
+            "{stderr}"
+        );
+        let report: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+        assert_eq!(report["fixed_spread"].as_f64().unwrap() > 2.0, warned, "{report}");
+        assert_eq!(report["warnings"].as_array().unwrap().len(), usize::from(warned));
+        let (before, after) = (read_grid(&input), read_grid(&out));
+        for k in fixed.split(',').map(|k| k.parse::<usize>().unwrap()) {
+            assert_eq!(before[k], after[k], "fixed node {k} moved");
+        }
+    }
+}

@@ -182,12 +182,10 @@ pub(crate) fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
     Ok(())
 }
 
-/// `fair: warning: …` on standard error (unless `quiet`) when the report's `largest_move`
-/// says the method moved a point farther than the bound the user did not ask to exceed
-/// ([`fairing::displacement::unasked_move`]).
-pub(crate) fn warn_largest_move(source: &str, report: &Report, quiet: bool) {
-    // The method's own `warnings` (jump-lsq: λ at its precision limit, a degenerate σ̂, no
-    // point moved), one line each.
+/// The method's own `warnings` (curve jump-lsq: λ at its precision limit, a degenerate σ̂, no
+/// point moved; surface jump-lsq: fixed nodes that swing the fit), one `fair: warning: …` line
+/// each on standard error, unless `quiet`.
+pub(crate) fn print_warnings(source: &str, report: &Report, quiet: bool) {
     if let (false, Some(warnings)) = (quiet, report.extras.get("warnings").and_then(|w| w.as_array())) {
         for warning in warnings.iter().filter_map(|w| w.as_str()) {
             eprintln!(
@@ -197,6 +195,13 @@ pub(crate) fn warn_largest_move(source: &str, report: &Report, quiet: bool) {
             );
         }
     }
+}
+
+/// `fair: warning: …` on standard error (unless `quiet`) when the report's `largest_move`
+/// says the method moved a point farther than the bound the user did not ask to exceed
+/// ([`fairing::displacement::unasked_move`]).
+pub(crate) fn warn_largest_move(source: &str, report: &Report, quiet: bool) {
+    print_warnings(source, report, quiet);
     let Some(largest) = report.extras.get("largest_move") else {
         return;
     };

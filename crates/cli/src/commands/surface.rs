@@ -147,6 +147,7 @@ pub(crate) fn run(catalog: &Catalog, args: &FairArgs) -> Result<()> {
     };
     write_results(args, &faired.report, &output_text, || faired.plot.figure())?;
     let report = &faired.report;
+    super::curve::print_warnings(&input.source, report, args.quiet);
     // A run whose every step the method's refusal rule turned down says so: "0 moved" alone
     // reads as a net with nothing to fair.
     let refused = report.extras.get("termination").and_then(|t| t.as_str()) == Some("refused");
