@@ -2,7 +2,8 @@
 //! 50², 200² and 1000² nodes (Gaussian noise from a seeded generator), λ by GCV, default
 //! settings; criterion's throughput in nodes.
 //! Issue 46's targets: 200² well under 1 s, 1000² in seconds. Group `surface_jump_join`: the
-//! same nets with edge u0 held g1 to a neighbour net. Group `surface_jump_strip`:
+//! same nets with edge u0 held g1 to a neighbour net; group `surface_jump_fixed`: the same nets
+//! with ten nodes fixed inside them (constraints on the reduced fit). Group `surface_jump_strip`:
 //! long strips of 4000 × 20 and 50 000 × 20 nodes (a scanned strip; the long direction on
 //! the reduced basis), which should cost in proportion to their nodes.
 
@@ -111,6 +112,19 @@ fn bench(c: &mut Criterion) {
             neighbour: shifted_net(size, size - 1, 0.0),
             source: "neighbour".into(),
         });
+        group.throughput(Throughput::Elements((size * size) as u64));
+        group.bench_with_input(BenchmarkId::from_parameter(size), &net, |b, net| {
+            b.iter(|| SurfaceJumpLsq::new(settings.clone()).run(net).unwrap())
+        });
+    }
+    group.finish();
+    let mut group = c.benchmark_group("surface_jump_fixed");
+    group.sample_size(10);
+    for size in sizes(&[50usize, 200, 1000]) {
+        let net = noisy_net(size);
+        // Ten nodes spread over the inside of the net, none adjacent to another.
+        let fixed = (1..=10).map(|k| (size * k / 11, size * (3 * k % 11) / 11));
+        let settings = SurfaceJumpLsqSettings::default().with_fixed(fixed);
         group.throughput(Throughput::Elements((size * size) as u64));
         group.bench_with_input(BenchmarkId::from_parameter(size), &net, |b, net| {
             b.iter(|| SurfaceJumpLsq::new(settings.clone()).run(net).unwrap())
