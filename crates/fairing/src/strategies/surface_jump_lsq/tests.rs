@@ -1402,7 +1402,6 @@ fn fixed_nodes_on_a_reduced_basis_solve_its_constrained_normal_equations() {
     // solved here densely; the fixed nodes come back bit for bit and the basis stays reduced.
     let (rows, columns, count) = (90, 6, 25);
     let grid = noisy(rows, columns, 0.03);
-    let flat: Vec<Vec3> = grid.iter().flatten().copied().collect();
     let w = Weights { u: 0.5, v: 3.0 };
     let fixed = [(10, 1), (37, 4), (38, 2), (71, 0), (89, 5)];
     let result = SurfaceJumpLsq::new(
@@ -1458,7 +1457,6 @@ fn fixed_nodes_on_a_reduced_basis_solve_its_constrained_normal_equations() {
     // The fixed nodes pull the fit beside them (the test would pass an unconstrained fit with
     // the fixed nodes written back only if they pulled nothing).
     assert!(pulled > 1e-4, "{pulled}");
-    let _ = flat;
 }
 
 #[test]
