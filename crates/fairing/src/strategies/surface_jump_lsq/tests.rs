@@ -810,6 +810,43 @@ fn reduced_u_normal_matrix(grid: &[Vec<Vec3>], count: usize, w: Weights) -> (DMa
     (n, a)
 }
 
+/// With u reduced to `count` knots and v exact, the reduced problem's minimiser under X_p = q_p
+/// at each pin ((i, j), q): the KKT system [A Φᵀ; Φ 0] [vec C; m] = [(I ⊗ Nᵀ) vec Y; q], A
+/// the matrix of [`reduced_u_normal_matrix`] and Φ's rows the pins' rows of I ⊗ N, solved
+/// densely. The fit at the sites, one matrix a coordinate.
+fn reduced_u_constrained_fit(
+    grid: &[Vec<Vec3>],
+    count: usize,
+    w: Weights,
+    pins: &[((usize, usize), Vec3)],
+) -> Vec<DMatrix<f64>> {
+    let (rows, columns) = (grid.len(), grid[0].len());
+    let (n, a) = reduced_u_normal_matrix(grid, count, w);
+    let size = count * columns;
+    let mut kkt = DMatrix::zeros(size + pins.len(), size + pins.len());
+    kkt.view_mut((0, 0), (size, size)).copy_from(&a);
+    for (r, &((i, j), _)) in pins.iter().enumerate() {
+        for q in 0..count {
+            kkt[(size + r, j * count + q)] = n[(i, q)];
+            kkt[(j * count + q, size + r)] = n[(i, q)];
+        }
+    }
+    let lu = kkt.lu();
+    (0..3)
+        .map(|c| {
+            let y = DMatrix::from_fn(rows, columns, |i, j| grid[i][j][c]);
+            let mut rhs = DVector::zeros(size + pins.len());
+            rhs.rows_mut(0, size)
+                .copy_from(&DVector::from_column_slice((n.transpose() * &y).as_slice()));
+            for (r, &(_, q)) in pins.iter().enumerate() {
+                rhs[size + r] = q[c];
+            }
+            let solution = lu.solve(&rhs).unwrap();
+            &n * DMatrix::from_column_slice(count, columns, &solution.as_slice()[..size])
+        })
+        .collect()
+}
+
 #[test]
 #[allow(clippy::needless_range_loop)] // the loop variable names the coordinate compared
 fn a_reduced_fit_solves_its_normal_equations() {
@@ -1315,7 +1352,6 @@ fn both_directions_reduced_with_every_edge_held_solve_their_normal_equations() {
 }
 
 #[test]
-#[allow(clippy::needless_range_loop)] // the loop variable names the coordinate compared
 fn a_reduced_fit_pins_the_nodes_it_would_leave_on_its_own_basis() {
     // u reduced to M knots, v exact (the normal equations of `a_reduced_fit_solves_its_normal_
     // equations`), under a band 0.9 of the free fit's largest move: the nodes beyond it are
@@ -1328,7 +1364,6 @@ fn a_reduced_fit_pins_the_nodes_it_would_leave_on_its_own_basis() {
     let grid = noisy(rows, columns, 0.03);
     let flat: Vec<Vec3> = grid.iter().flatten().copied().collect();
     let w = Weights { u: 0.5, v: 3.0 };
-    let (n, a) = reduced_u_normal_matrix(&grid, count, w);
     let fit = |settings: SurfaceJumpLsqSettings| {
         SurfaceJumpLsq::new(settings.with_guard(false))
             .with_reduction(50, count)
@@ -1348,17 +1383,14 @@ fn a_reduced_fit_pins_the_nodes_it_would_leave_on_its_own_basis() {
     assert!(pins.len() >= 2, "{} pins", pins.len());
     let pinned = fit(SurfaceJumpLsqSettings::default().with_max_distance(band));
     assert_eq!((pinned.band_pins, pinned.band_projected), (pins.len(), 0));
-    let size = count * columns;
-    let mut kkt = DMatrix::zeros(size + pins.len(), size + pins.len());
-    kkt.view_mut((0, 0), (size, size)).copy_from(&a);
-    for (r, &k) in pins.iter().enumerate() {
-        let (i, j) = (k / columns, k % columns);
-        for q in 0..count {
-            kkt[(size + r, j * count + q)] = n[(i, q)];
-            kkt[(j * count + q, size + r)] = n[(i, q)];
-        }
-    }
-    let lu = kkt.lu();
+    let targets: Vec<((usize, usize), Vec3)> = pins
+        .iter()
+        .map(|&k| {
+            let (x, y) = (free.surface.points()[k], flat[k]);
+            ((k / columns, k % columns), y + (x - y) * (band / moves[k]))
+        })
+        .collect();
+    let expected = reduced_u_constrained_fit(&grid, count, w, &targets);
     let out = pinned.surface.points();
     let projected: Vec<Vec3> = free
         .surface
@@ -1368,17 +1400,7 @@ fn a_reduced_fit_pins_the_nodes_it_would_leave_on_its_own_basis() {
         .map(|(p, q)| q + (p - q) * (band / (p - q).norm()).min(1.0))
         .collect();
     let mut clip_gap: f64 = 0.0;
-    for c in 0..3 {
-        let y = DMatrix::from_fn(rows, columns, |i, j| grid[i][j][c]);
-        let mut rhs = DVector::zeros(size + pins.len());
-        rhs.rows_mut(0, size)
-            .copy_from(&DVector::from_column_slice((n.transpose() * &y).as_slice()));
-        for (r, &k) in pins.iter().enumerate() {
-            let (x, y) = (free.surface.points()[k], flat[k]);
-            rhs[size + r] = (y + (x - y) * (band / moves[k]))[c];
-        }
-        let solution = lu.solve(&rhs).unwrap();
-        let x = &n * DMatrix::from_column_slice(count, columns, &solution.as_slice()[..size]);
+    for (c, x) in expected.iter().enumerate() {
         for i in 0..rows {
             for j in 0..columns {
                 let gap = (x[(i, j)] - out[i * columns + j][c]).abs();
@@ -1394,7 +1416,6 @@ fn a_reduced_fit_pins_the_nodes_it_would_leave_on_its_own_basis() {
 }
 
 #[test]
-#[allow(clippy::needless_range_loop)] // the loop variable names the coordinate compared
 fn fixed_nodes_on_a_reduced_basis_solve_its_constrained_normal_equations() {
     // u reduced to M knots, v exact, nodes fixed inside the net: the fit is the reduced
     // problem's minimiser under X_p = Y_p at each fixed node, the KKT system
@@ -1417,32 +1438,14 @@ fn fixed_nodes_on_a_reduced_basis_solve_its_constrained_normal_equations() {
     for &(i, j) in &fixed {
         assert_eq!(out[i * columns + j], grid[i][j], "fixed node ({i}, {j})");
     }
-    let (n, a) = reduced_u_normal_matrix(&grid, count, w);
-    let size = count * columns;
-    let mut kkt = DMatrix::zeros(size + fixed.len(), size + fixed.len());
-    kkt.view_mut((0, 0), (size, size)).copy_from(&a);
-    for (r, &(i, j)) in fixed.iter().enumerate() {
-        for q in 0..count {
-            kkt[(size + r, j * count + q)] = n[(i, q)];
-            kkt[(j * count + q, size + r)] = n[(i, q)];
-        }
-    }
-    let lu = kkt.lu();
+    let targets: Vec<((usize, usize), Vec3)> = fixed.iter().map(|&(i, j)| ((i, j), grid[i][j])).collect();
+    let expected = reduced_u_constrained_fit(&grid, count, w, &targets);
     let free = SurfaceJumpLsq::new(SurfaceJumpLsqSettings::default().with_guard(false))
         .with_reduction(50, count)
         .fit(&grid, Some(w))
         .unwrap();
     let mut pulled: f64 = 0.0;
-    for c in 0..3 {
-        let y = DMatrix::from_fn(rows, columns, |i, j| grid[i][j][c]);
-        let mut rhs = DVector::zeros(size + fixed.len());
-        rhs.rows_mut(0, size)
-            .copy_from(&DVector::from_column_slice((n.transpose() * &y).as_slice()));
-        for (r, &(i, j)) in fixed.iter().enumerate() {
-            rhs[size + r] = grid[i][j][c];
-        }
-        let solution = lu.solve(&rhs).unwrap();
-        let x = &n * DMatrix::from_column_slice(count, columns, &solution.as_slice()[..size]);
+    for (c, x) in expected.iter().enumerate() {
         for i in 0..rows {
             for j in 0..columns {
                 let k = i * columns + j;
