@@ -408,7 +408,7 @@ fn adjacent_noisy_fixed_nodes_are_warned_of_and_still_held() {
         let stderr = String::from_utf8_lossy(&result.stderr);
         assert!(result.status.success(), "{stderr}");
         assert_eq!(
-            stderr.contains("warning") && stderr.contains("fixed nodes bend the fit"),
+            stderr.contains("warning") && stderr.contains("fixed nodes inside the net bend the fit"),
             warned,
             "{stderr}"
         );

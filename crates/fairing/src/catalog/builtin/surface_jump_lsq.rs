@@ -81,10 +81,7 @@ impl SurfaceMethod for SurfaceJumpLsqMethod {
         if !result.joins.is_empty() {
             extras.insert("joins".into(), serde_json::json!(result.joins));
         }
-        extras.insert(
-            "warnings".into(),
-            serde_json::json!(warnings(&result, &settings.fixed)),
-        );
+        extras.insert("warnings".into(), serde_json::json!(warnings(&result)));
         Ok(SurfaceRun {
             grid: crate::catalog::Grid {
                 rows: grid.rows,
@@ -111,14 +108,13 @@ impl SurfaceMethod for SurfaceJumpLsqMethod {
 /// swinging far from the data beside them ([`SurfaceJumpLsqResult::fixed_spread`]).
 ///
 /// [`SurfaceJumpLsqResult::fixed_spread`]: crate::strategies::SurfaceJumpLsqResult::fixed_spread
-fn warnings(result: &crate::strategies::SurfaceJumpLsqResult, fixed: &[(usize, usize)]) -> Vec<String> {
+fn warnings(result: &crate::strategies::SurfaceJumpLsqResult) -> Vec<String> {
     let mut out = Vec::new();
     if result.fixed_spread > crate::strategies::surface_jump_lsq::FIXED_SPREAD_WARNING {
         out.push(format!(
-            "the {} fixed nodes bend the fit {:.1} times farther from the data than it moves \
-             without them: their values are not smooth together (adjacent noisy nodes?); fix \
-             fewer adjacent nodes, or fair them first",
-            fixed.len(),
+            "the fixed nodes inside the net bend the fit {:.1} times farther from the data than \
+             it moves without them: their values are not smooth together (adjacent noisy \
+             nodes?); fix fewer adjacent nodes, or fair them first",
             result.fixed_spread
         ));
     }
