@@ -184,8 +184,9 @@ pub const NAME: &str = "jump-lsq";
 /// Rounds of pinning nodes on the tolerance band before the remaining ones are projected.
 pub const BAND_ROUNDS: usize = 10;
 
-/// A reduced block's band pins are met when each is within this fraction of the band of its
-/// place (the node is then projected onto the band as any other).
+/// A reduced block's pins are met when each is within this fraction of its scale of its place:
+/// of the band for band pins (the node is then projected onto the band as any other), of the
+/// largest distance they start from for fixed nodes (written back bit for bit).
 const PIN_TOLERANCE: f64 = 1e-6;
 
 /// Fixed nodes whose fit moves a free node farther than this many times the unconstrained
@@ -1239,22 +1240,27 @@ impl Block<'_> {
                 None => {
                     // Met to a fraction of the largest distance they start from (the node
                     // itself is written back bit for bit).
-                    let start = scattered
+                    let farthest = scattered
                         .iter()
                         .map(|&(a, b, q)| (q - y_at(&x, a, b)).norm())
                         .fold(0.0, f64::max);
-                    if !self.pin_reduced(&mut x, scattered, PIN_TOLERANCE * start, lambda, &mut iterations) {
+                    if !self.pin_reduced(
+                        &mut x,
+                        scattered,
+                        PIN_TOLERANCE * farthest,
+                        lambda,
+                        &mut iterations,
+                    ) {
                         return None;
                     }
                 }
             }
             let pinned_move = largest_free_move(&x, &is_pinned);
+            // Infinite where only the fixed nodes moved anything.
             spread = if pinned_move <= free_move {
                 1.0
-            } else if free_move > 0.0 {
-                pinned_move / free_move
             } else {
-                f64::INFINITY
+                pinned_move / free_move
             };
         }
         let solution = |x: Planes, band_pins: usize, iterations: usize| Solution {
